@@ -117,7 +117,9 @@ struct Program {
   std::vector<SourceLoc> source_locs;
 
   SourceLoc LocOf(int instruction_index) const {
-    return instruction_index < static_cast<int>(source_locs.size()) ? source_locs[instruction_index] : SourceLoc{};
+    return instruction_index >= 0 && instruction_index < static_cast<int>(source_locs.size())
+               ? source_locs[instruction_index]
+               : SourceLoc{};
   }
 };
 
