@@ -1,0 +1,30 @@
+// Bytecode -> .vsh text (spec §4.13). The text is what the assembler (vm/assembler.h) reads back:
+// for every program the assembler can produce, AssembleSource(Disassemble(p)) encodes to exactly
+// Encode(p), except that comment blocks, printed as `;` lines, are dropped.
+//
+// Conventions: first line vs_1_1 (vs_1_0 for version 1.0); one instruction per line; lower-case
+// mnemonics; operands separated by ", "; write mask omitted when full; swizzle omitted when identity,
+// one letter when replicated, else four letters; relative constants as c<n>[a0.x];
+// dcl_<usage><index> with index 0 omitted; def values in the shortest text that reads back to the
+// same float ("1", "0.5", "1e-40"); infinities as inf / -inf and NaN as nan / -nan.
+// A NaN whose payload is not the canonical quiet NaN 0x7FC00000 cannot be written as text: it is
+// printed as nan (reassembling to 0x7FC00000) followed by a `;` comment giving the original bits.
+#pragma once
+
+#include <string>
+
+#include "vm/program.h"
+
+namespace vs11 {
+
+// The whole program, one line per instruction, each line ending in '\n'.
+std::string Disassemble(const Program& program);
+
+// One instruction without a trailing newline, e.g. "dp4 r1.x, v1, c3[a0.x]" (for messages and tools).
+std::string FormatInstruction(const Instruction& instruction);
+
+// Single operands as they appear inside FormatInstruction: "r1.x", "-c3[a0.x].y".
+std::string FormatDest(const DestOperand& dest);
+std::string FormatSource(const SourceOperand& source);
+
+}  // namespace vs11
