@@ -1,0 +1,262 @@
+// Direct and mip-pyramid SH9 projection of cube environment maps. See sh_projection.h.
+#include "irradiance/sh_projection.h"
+
+#include <cassert>
+#include <cstddef>
+#include <cstring>
+
+namespace vs11::irradiance {
+namespace {
+
+// Partial sums per row in ProjectLevel: lane j adds the texels x with x % kLanes == j, so they
+// live in vector registers without reassociating a floating-point reduction (which the compiler
+// may not do without -ffast-math), and the order of additions is fixed.
+constexpr int kLanes = 8;
+
+bool IsPowerOfTwo(int n) { return n > 0 && (n & (n - 1)) == 0; }
+
+// Solid angles of the texels of row y (the same on every face).
+void RowSolidAngles(int y, int size, std::vector<double>& out) {
+  out.resize(size);
+  for (int x = 0; x < size; ++x) out[x] = TexelSolidAngle(x, y, size);
+}
+
+// Adds one face row's products basis * radiance * solid angle (radiance from `row`) into `sums`.
+void AccumulateDirectRow(CubeFace face, int y, int size, const glm::vec3* row,
+                         const std::vector<double>& solid_angles,
+                         std::array<glm::dvec3, kSh9Coefficients>& sums) {
+  std::array<glm::dvec3, kSh9Coefficients> row_sums{};
+  for (int x = 0; x < size; ++x) {
+    const std::array<double, kSh9Coefficients> basis = ShBasis(TexelDirection(face, x, y, size));
+    const glm::dvec3 weighted = glm::dvec3(row[x]) * solid_angles[x];
+    for (int i = 0; i < kSh9Coefficients; ++i) row_sums[i] += basis[i] * weighted;
+  }
+  for (int i = 0; i < kSh9Coefficients; ++i) sums[i] += row_sums[i];
+}
+
+// Groups of floats and doubles as GCC vector extensions: two doubles fill an SSE2 register, four an
+// AVX register. Generic code over them compiles to plain vector instructions of either width.
+typedef float Floats2 __attribute__((vector_size(2 * sizeof(float))));
+typedef double Doubles2 __attribute__((vector_size(2 * sizeof(double))));
+typedef float Floats4 __attribute__((vector_size(4 * sizeof(float))));
+typedef double Doubles4 __attribute__((vector_size(4 * sizeof(double))));
+
+// sum_x w[x] * (r, g, b)[x] in double. Lane j of kLanes partial sums adds the texels x with
+// x % kLanes == j (groups of `Width` lanes per vector); the lanes are then folded in order j = 0..7,
+// so the additions, and the result, are the same for every vector width. Each product of a float
+// weight and a double-converted float radiance is exact. The row's tail is zero-padded to a full
+// set of lanes (adding +0 changes no sum).
+template <class FloatVector, class DoubleVector, int Width>
+[[gnu::always_inline]] inline glm::dvec3 WeightedRowSumT(const float* __restrict w,
+                                                         const double* __restrict r,
+                                                         const double* __restrict g,
+                                                         const double* __restrict b, int n) {
+  constexpr int kGroups = kLanes / Width;
+  DoubleVector acc_r[kGroups] = {}, acc_g[kGroups] = {}, acc_b[kGroups] = {};
+  auto step = [&](const float* wx, const double* rx, const double* gx, const double* bx) {
+    for (int k = 0; k < kGroups; ++k) {
+      FloatVector wf;
+      DoubleVector rv, gv, bv;
+      std::memcpy(&wf, wx + k * Width, sizeof wf);
+      std::memcpy(&rv, rx + k * Width, sizeof rv);
+      std::memcpy(&gv, gx + k * Width, sizeof gv);
+      std::memcpy(&bv, bx + k * Width, sizeof bv);
+      const DoubleVector wd = __builtin_convertvector(wf, DoubleVector);
+      acc_r[k] += wd * rv;
+      acc_g[k] += wd * gv;
+      acc_b[k] += wd * bv;
+    }
+  };
+  int x = 0;
+  for (; x + kLanes <= n; x += kLanes) step(w + x, r + x, g + x, b + x);
+  if (x < n) {
+    float wt[kLanes] = {};
+    double rt[kLanes] = {}, gt[kLanes] = {}, bt[kLanes] = {};
+    for (int j = 0; x + j < n; ++j) {
+      wt[j] = w[x + j];
+      rt[j] = r[x + j];
+      gt[j] = g[x + j];
+      bt[j] = b[x + j];
+    }
+    step(wt, rt, gt, bt);
+  }
+  glm::dvec3 sum(0.0);
+  for (int k = 0; k < kGroups; ++k) {
+    for (int j = 0; j < Width; ++j) sum += glm::dvec3(acc_r[k][j], acc_g[k][j], acc_b[k][j]);
+  }
+  return sum;
+}
+
+glm::dvec3 WeightedRowSumBaseline(const float* w, const double* r, const double* g,
+                                  const double* b, int n) {
+  return WeightedRowSumT<Floats2, Doubles2, 2>(w, r, g, b, n);
+}
+
+[[gnu::target("avx2")]] glm::dvec3 WeightedRowSumAvx2(const float* w, const double* r,
+                                                     const double* g, const double* b, int n) {
+  return WeightedRowSumT<Floats4, Doubles4, 4>(w, r, g, b, n);
+}
+
+// The widest kernel this CPU runs (both give identical results).
+using RowSumKernel = glm::dvec3 (*)(const float*, const double*, const double*, const double*, int);
+RowSumKernel SelectRowSumKernel() {
+  __builtin_cpu_init();
+  return __builtin_cpu_supports("avx2") ? WeightedRowSumAvx2 : WeightedRowSumBaseline;
+}
+
+std::size_t LevelTexels(int size) {
+  return static_cast<std::size_t>(kCubeFaceCount) * size * size;
+}
+
+}  // namespace
+
+Sh9Rgb ProjectDirect(const CubeMap& env) {
+  const int size = env.face_size;
+  Sh9Rgb sh;
+  std::vector<double> solid_angles;
+  for (int y = 0; y < size; ++y) {
+    RowSolidAngles(y, size, solid_angles);
+    for (CubeFace face : kAllCubeFaces) {
+      const Image& image = env.face(face);
+      assert(image.width == size && image.height == size);
+      AccumulateDirectRow(face, y, size, &image.at(0, y), solid_angles, sh.coefficients);
+    }
+  }
+  return sh;
+}
+
+int LevelCount(int face_size) {
+  if (!IsPowerOfTwo(face_size)) return 0;
+  int count = 1;
+  while (face_size > 1) {
+    face_size >>= 1;
+    ++count;
+  }
+  return count;
+}
+
+std::optional<CubeMipChain> BuildEnvironmentMips(const CubeMap& env) {
+  const int count = LevelCount(env.face_size);
+  if (count == 0) return std::nullopt;
+  CubeMipChain chain;
+  chain.levels.reserve(count);
+  chain.levels.push_back(env);
+  for (int k = 1; k < count; ++k) {
+    const CubeMap& fine = chain.levels.back();
+    CubeMap coarse(fine.face_size / 2);
+    for (int f = 0; f < kCubeFaceCount; ++f) {
+      const Image& src = fine.faces[f];
+      Image& dst = coarse.faces[f];
+      for (int y = 0; y < dst.height; ++y) {
+        for (int x = 0; x < dst.width; ++x) {
+          const glm::vec3 sum = (src.at(2 * x, 2 * y) + src.at(2 * x + 1, 2 * y)) +
+                                (src.at(2 * x, 2 * y + 1) + src.at(2 * x + 1, 2 * y + 1));
+          dst.at(x, y) = 0.25f * sum;
+        }
+      }
+    }
+    chain.levels.push_back(std::move(coarse));
+  }
+  return chain;
+}
+
+std::optional<BasisPyramid> BuildBasisPyramid(int face_size) {
+  const int count = LevelCount(face_size);
+  if (count == 0) return std::nullopt;
+  BasisPyramid pyramid;
+  pyramid.face_size = face_size;
+  pyramid.levels.resize(count);
+  for (int k = 0; k < count; ++k) {
+    BasisLevel& level = pyramid.levels[k];
+    level.size = face_size >> k;
+    for (auto& w : level.weights) w.assign(LevelTexels(level.size), 0.0f);
+  }
+
+  // Level 0 is computed in double, stored as float and summed (in double) into its parents; every
+  // coarser level is then the double sum of its four double children, rounded to float once.
+  const int parent_size = count > 1 ? face_size / 2 : 0;
+  std::array<std::vector<double>, kSh9Coefficients> parent;
+  for (auto& p : parent) p.assign(LevelTexels(parent_size), 0.0);
+  std::vector<double> solid_angles;
+  BasisLevel& finest = pyramid.levels[0];
+  for (int y = 0; y < face_size; ++y) {
+    RowSolidAngles(y, face_size, solid_angles);
+    for (int f = 0; f < kCubeFaceCount; ++f) {
+      const CubeFace face = kAllCubeFaces[f];
+      const std::size_t row = (static_cast<std::size_t>(f) * face_size + y) * face_size;
+      const std::size_t parent_row =
+          (static_cast<std::size_t>(f) * parent_size + y / 2) * parent_size;
+      for (int x = 0; x < face_size; ++x) {
+        const std::array<double, kSh9Coefficients> basis =
+            ShBasis(TexelDirection(face, x, y, face_size));
+        for (int i = 0; i < kSh9Coefficients; ++i) {
+          const double weight = basis[i] * solid_angles[x];
+          finest.weights[i][row + x] = static_cast<float>(weight);
+          if (parent_size > 0) parent[i][parent_row + x / 2] += weight;
+        }
+      }
+    }
+  }
+
+  for (int k = 1; k < count; ++k) {
+    BasisLevel& level = pyramid.levels[k];
+    for (int i = 0; i < kSh9Coefficients; ++i) {
+      for (std::size_t t = 0; t < parent[i].size(); ++t) {
+        level.weights[i][t] = static_cast<float>(parent[i][t]);
+      }
+    }
+    if (k + 1 == count) break;
+    const int size = level.size;
+    const int half = size / 2;
+    for (int i = 0; i < kSh9Coefficients; ++i) {
+      std::vector<double> next(LevelTexels(half), 0.0);
+      for (int f = 0; f < kCubeFaceCount; ++f) {
+        for (int y = 0; y < half; ++y) {
+          for (int x = 0; x < half; ++x) {
+            auto child = [&](int cx, int cy) {
+              return parent[i][(static_cast<std::size_t>(f) * size + cy) * size + cx];
+            };
+            next[(static_cast<std::size_t>(f) * half + y) * half + x] =
+                (child(2 * x, 2 * y) + child(2 * x + 1, 2 * y)) +
+                (child(2 * x, 2 * y + 1) + child(2 * x + 1, 2 * y + 1));
+          }
+        }
+      }
+      parent[i] = std::move(next);
+    }
+  }
+  return pyramid;
+}
+
+Sh9Rgb ProjectLevel(const CubeMipChain& env, const BasisPyramid& basis, int level) {
+  assert(!env.levels.empty() && env.levels[0].face_size == basis.face_size);
+  assert(level >= 0 && level < static_cast<int>(env.levels.size()) &&
+         level < static_cast<int>(basis.levels.size()));
+  const CubeMap& map = env.levels[level];
+  const BasisLevel& weights = basis.levels[level];
+  const int size = map.face_size;
+  assert(weights.size == size);
+
+  static const RowSumKernel row_sum = SelectRowSumKernel();
+  // One de-interleaved radiance row (converted to double once, used by all nine weights), reused
+  // for every row of every face.
+  std::vector<double> r(size), g(size), b(size);
+  Sh9Rgb sh;
+  for (int f = 0; f < kCubeFaceCount; ++f) {
+    const Image& image = map.faces[f];
+    for (int y = 0; y < size; ++y) {
+      const glm::vec3* row = &image.at(0, y);
+      for (int x = 0; x < size; ++x) {
+        r[x] = row[x].x;
+        g[x] = row[x].y;
+        b[x] = row[x].z;
+      }
+      for (int i = 0; i < kSh9Coefficients; ++i) {
+        sh.coefficients[i] += row_sum(weights.Row(i, f, y), r.data(), g.data(), b.data(), size);
+      }
+    }
+  }
+  return sh;
+}
+
+}  // namespace vs11::irradiance
