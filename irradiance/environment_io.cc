@@ -1,0 +1,958 @@
+#include "irradiance/environment_io.h"
+
+// The system fmt goes first so that OpenImageIO's headers reuse it instead of their bundled copy.
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cassert>
+#include <cctype>
+#include <cmath>
+#include <cstdint>
+#include <exception>
+#include <numbers>
+#include <random>
+#include <system_error>
+#include <utility>
+
+#include <OpenImageIO/imageio.h>
+
+namespace vs11::irradiance {
+namespace {
+
+namespace fs = std::filesystem;
+using Layout = EnvironmentLayout;
+
+// One row per layout: its name, what it is called in messages, and for single-image layouts the
+// aspect ratio columns:rows that kAuto detects it by (0:0 for layouts that are not one image).
+struct LayoutInfo {
+  Layout layout;
+  std::string_view name;
+  std::string_view description;
+  int aspect_columns;
+  int aspect_rows;
+};
+constexpr std::array<LayoutInfo, 8> kLayoutInfo = {{
+    {Layout::kAuto, "auto", "automatic", 0, 0},
+    {Layout::kFaces, "faces", "six face files", 0, 0},
+    {Layout::kHorizontalCross, "hcross", "horizontal cross", 4, 3},
+    {Layout::kVerticalCross, "vcross", "vertical cross", 3, 4},
+    {Layout::kHorizontalStrip, "hstrip", "horizontal strip", 6, 1},
+    {Layout::kVerticalStrip, "vstrip", "vertical strip", 1, 6},
+    {Layout::kLatLong, "latlong", "lat-long map", 2, 1},
+    {Layout::kAngular, "angular", "angular map", 1, 1},
+}};
+
+const LayoutInfo& Info(Layout layout) {
+  for (const LayoutInfo& info : kLayoutInfo) {
+    if (info.layout == layout) return info;
+  }
+  assert(false && "every layout has a row in kLayoutInfo");
+  return kLayoutInfo[0];
+}
+
+// Where each face sits in a layout made of square cells (see the diagrams in the header).
+struct FaceCell {
+  int column;
+  int row;
+  bool rotated_180;
+};
+struct CubeGrid {
+  Layout layout;
+  int columns;
+  int rows;
+  std::array<FaceCell, kCubeFaceCount> cells;  // CubeFace order
+};
+constexpr std::array<CubeGrid, 4> kCubeGrids = {{
+    {Layout::kHorizontalCross,
+     4,
+     3,
+     {{{2, 1, false}, {0, 1, false}, {1, 0, false}, {1, 2, false}, {1, 1, false}, {3, 1, false}}}},
+    {Layout::kVerticalCross,
+     3,
+     4,
+     {{{2, 1, false}, {0, 1, false}, {1, 0, false}, {1, 2, false}, {1, 1, false}, {1, 3, true}}}},
+    {Layout::kHorizontalStrip,
+     6,
+     1,
+     {{{0, 0, false}, {1, 0, false}, {2, 0, false}, {3, 0, false}, {4, 0, false}, {5, 0, false}}}},
+    {Layout::kVerticalStrip,
+     1,
+     6,
+     {{{0, 0, false}, {0, 1, false}, {0, 2, false}, {0, 3, false}, {0, 4, false}, {0, 5, false}}}},
+}};
+
+const CubeGrid* FindCubeGrid(Layout layout) {
+  for (const CubeGrid& grid : kCubeGrids) {
+    if (grid.layout == layout) return &grid;
+  }
+  return nullptr;
+}
+
+// Formats written as linear floats; everything else is written as 8-bit sRGB.
+constexpr std::array<std::string_view, 5> kFloatExtensions = {".exr", ".hdr", ".tif", ".tiff",
+                                                              ".pfm"};
+constexpr double kByteMax = 255.0;
+// IEC 61966-2-1 sRGB transfer function constants.
+constexpr double kSrgbDecodeThreshold = 0.04045;
+constexpr double kSrgbEncodeThreshold = 0.0031308;
+constexpr double kSrgbLinearSlope = 12.92;
+constexpr double kSrgbOffset = 0.055;
+constexpr double kSrgbGamma = 2.4;
+// Size of the exported lat-long (kExportScale N x kExportScale N / 2) and angular maps relative to
+// the face size N: a little finer than the cube's centre texels (pi / (2 N) against 2 / N radians).
+constexpr int kExportScale = 4;
+// What the DDS reader reports for a cube map with every face.
+constexpr std::string_view kCubeTextureFormat = "CubeFace Environment";
+constexpr std::string_view kAllDdsCubeSides = "+x -x +y -y +z -z";
+
+LoadResult Failure(std::string message) {
+  LoadResult result;
+  result.error = std::move(message);
+  return result;
+}
+
+ImageReadResult ReadFailure(std::string message) {
+  ImageReadResult result;
+  result.error = std::move(message);
+  return result;
+}
+
+std::string Lower(std::string text) {
+  std::transform(text.begin(), text.end(), text.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return text;
+}
+
+std::string AcceptedAspectRatios() {
+  std::string text;
+  for (const LayoutInfo& info : kLayoutInfo) {
+    if (info.aspect_columns == 0) continue;
+    if (!text.empty()) text += ", ";
+    text += fmt::format("{}:{} {}", info.aspect_columns, info.aspect_rows, info.description);
+  }
+  return text;
+}
+
+std::optional<Layout> DetectLayout(int width, int height) {
+  for (const LayoutInfo& info : kLayoutInfo) {
+    if (info.aspect_columns == 0) continue;
+    if (static_cast<std::int64_t>(width) * info.aspect_rows ==
+        static_cast<std::int64_t>(height) * info.aspect_columns) {
+      return info.layout;
+    }
+  }
+  return std::nullopt;
+}
+
+// ---- Reading -----------------------------------------------------------------------------------
+
+bool IsFloatType(OIIO::TypeDesc type) {
+  return type.basetype == OIIO::TypeDesc::FLOAT || type.basetype == OIIO::TypeDesc::HALF ||
+         type.basetype == OIIO::TypeDesc::DOUBLE;
+}
+
+std::string OiioMessage(std::string message) {
+  while (!message.empty() && (message.back() == '\n' || message.back() == ' ')) message.pop_back();
+  return message.empty() ? std::string("no details from OpenImageIO") : message;
+}
+
+// Whether OpenImageIO has a reader for the extension of `path` ("extension_list" is
+// "openexr:exr,sxr,mxr;tiff:tif,tiff,...").
+bool IsKnownImageExtension(const fs::path& path) {
+  std::string extension = Lower(path.extension().string());
+  if (extension.empty()) return false;
+  extension.erase(0, 1);  // the dot
+  const std::string list = OIIO::get_string_attribute("extension_list");
+  std::size_t begin = 0;
+  while (begin < list.size()) {
+    std::size_t end = list.find_first_of(":,;", begin);
+    if (end == std::string::npos) end = list.size();
+    const std::string_view token(list.data() + begin, end - begin);
+    const bool is_format_name = end < list.size() && list[end] == ':';
+    if (!is_format_name && token == extension) return true;
+    begin = end + 1;
+  }
+  return false;
+}
+
+ImageReadResult ReadImageUnchecked(const fs::path& path) {
+  std::error_code ec;
+  const fs::file_status status = fs::status(path, ec);
+  if (ec || !fs::exists(status))
+    return ReadFailure(fmt::format("{}: file not found", path.string()));
+  if (!fs::is_regular_file(status)) {
+    return ReadFailure(fmt::format("{}: not a regular file", path.string()));
+  }
+  if (fs::file_size(path, ec) == 0 && !ec) {
+    return ReadFailure(fmt::format("{}: file is empty", path.string()));
+  }
+
+  auto input = OIIO::ImageInput::open(path.string());
+  if (!input) {
+    const std::string oiio_error = OiioMessage(OIIO::geterror());
+    if (!IsKnownImageExtension(path)) {
+      return ReadFailure(
+          fmt::format("{}: unsupported image format ({})", path.string(), oiio_error));
+    }
+    return ReadFailure(fmt::format(
+        "{}: cannot read: corrupt or truncated file, or a variant OpenImageIO does not read ({})",
+        path.string(), oiio_error));
+  }
+  const OIIO::ImageSpec spec = input->spec();
+  if (spec.width <= 0 || spec.height <= 0 || spec.depth != 1 || spec.nchannels <= 0) {
+    return ReadFailure(fmt::format("{}: zero-size image ({} x {} pixels, {} channels)",
+                                   path.string(), spec.width, spec.height, spec.nchannels));
+  }
+  const std::size_t pixel_count = static_cast<std::size_t>(spec.width) * spec.height;
+  if (spec.width > static_cast<int>(kMaxImagePixels) || pixel_count > kMaxImagePixels) {
+    return ReadFailure(
+        fmt::format("{}: image of {} x {} pixels is larger than the {} pixels accepted",
+                    path.string(), spec.width, spec.height, kMaxImagePixels));
+  }
+
+  ImageReadResult result;
+  if (Lower(input->format_name()) == "dds" &&
+      std::string(spec.get_string_attribute("textureformat")) == kCubeTextureFormat) {
+    const std::string sides(spec.get_string_attribute("dds:CubeMapSides"));
+    if (sides != kAllDdsCubeSides || spec.height != 6 * spec.width) {
+      return ReadFailure(
+          fmt::format("{}: DDS cube map has faces \"{}\", all six (\"{}\") are needed",
+                      path.string(), sides, kAllDdsCubeSides));
+    }
+    result.is_dds_cube_map = true;
+  }
+
+  const int channels = std::min(spec.nchannels, 3);
+  std::vector<float> data(pixel_count * channels);
+  if (!input->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, data.data())) {
+    return ReadFailure(fmt::format("{}: cannot read pixels, corrupt or truncated file ({})",
+                                   path.string(), OiioMessage(input->geterror())));
+  }
+  input->close();
+
+  // Integer data holds sRGB-encoded values unless the reader says it is linear.
+  const bool decode_srgb =
+      !IsFloatType(spec.format) &&
+      Lower(std::string(spec.get_string_attribute("oiio:ColorSpace"))) != "linear";
+  Image image(spec.width, spec.height);
+  for (std::size_t i = 0; i < pixel_count; ++i) {
+    glm::vec3 rgb;
+    for (int c = 0; c < 3; ++c) {
+      float value = data[i * channels + (channels == 3 ? c : 0)];
+      if (decode_srgb) value = static_cast<float>(SrgbToLinear(value));
+      rgb[c] = value;
+    }
+    image.pixels[i] = rgb;
+  }
+  result.image = std::move(image);
+  return result;
+}
+
+CubeMap ExtractFaces(const Image& image, const CubeGrid& grid, int size) {
+  CubeMap cube(size);
+  for (CubeFace face : kAllCubeFaces) {
+    const FaceCell& cell = grid.cells[static_cast<int>(face)];
+    Image& out = cube.face(face);
+    for (int y = 0; y < size; ++y) {
+      for (int x = 0; x < size; ++x) {
+        const int sx = cell.rotated_180 ? size - 1 - x : x;
+        const int sy = cell.rotated_180 ? size - 1 - y : y;
+        out.at(x, y) = image.at(cell.column * size + sx, cell.row * size + sy);
+      }
+    }
+  }
+  return cube;
+}
+
+std::string ReplaceToken(std::string_view pattern, std::string_view replacement) {
+  std::string out(pattern);
+  for (std::size_t at = out.find(kFaceToken); at != std::string::npos;
+       at = out.find(kFaceToken, at + replacement.size())) {
+    out.replace(at, kFaceToken.size(), replacement);
+  }
+  return out;
+}
+
+std::string SanitizeWarning(std::size_t changed, std::size_t total, std::string_view what) {
+  return fmt::format("{}: {} of {} texels had NaN, infinite or negative values, set to 0", what,
+                     changed, total);
+}
+
+LoadResult LoadFaces(const fs::path& path) {
+  const std::string pattern = path.string();
+  if (pattern.find(kFaceToken) == std::string::npos) {
+    return Failure(
+        fmt::format("{}: the six-face layout needs a path containing \"{}\"", pattern, kFaceToken));
+  }
+  LoadedEnvironment environment;
+  environment.layout = Layout::kFaces;
+  std::string first_name;
+  for (CubeFace face : kAllCubeFaces) {
+    const int index = static_cast<int>(face);
+    const std::string short_name = ReplaceToken(pattern, kFaceFileNames[index]);
+    const std::string signed_name = ReplaceToken(pattern, kSignedFaceFileNames[index]);
+    std::error_code ec;
+    const std::string& name = fs::exists(short_name, ec) ? short_name : signed_name;
+    if (!fs::exists(name, ec)) {
+      return Failure(fmt::format("missing the {} face: neither {} nor {} exists",
+                                 CubeFaceName(face), short_name, signed_name));
+    }
+    ImageReadResult read = ReadImageUnchecked(name);
+    if (!read.ok()) return Failure(fmt::format("{} face: {}", CubeFaceName(face), read.error));
+    Image& image = *read.image;
+    if (image.width != image.height) {
+      return Failure(fmt::format("{} face ({}) is {} x {} pixels: faces must be square",
+                                 CubeFaceName(face), name, image.width, image.height));
+    }
+    if (face == CubeFace::kPositiveX) {
+      environment.cube = CubeMap(image.width);
+      first_name = name;
+    } else if (image.width != environment.cube.face_size) {
+      return Failure(fmt::format(
+          "{} face ({}) is {} x {} pixels but the +x face ({}) is {} x {}: mismatched face sizes",
+          CubeFaceName(face), name, image.width, image.height, first_name,
+          environment.cube.face_size, environment.cube.face_size));
+    }
+    if (const std::size_t changed = SanitizeRadiance(image); changed > 0) {
+      environment.warnings.push_back(SanitizeWarning(changed, image.pixels.size(), name));
+    }
+    environment.cube.face(face) = std::move(image);
+  }
+  LoadResult result;
+  result.environment = std::move(environment);
+  return result;
+}
+
+// ---- Resampling --------------------------------------------------------------------------------
+// (See the header: cubic B-spline reconstruction, widened in azimuth near the lat-long poles.)
+
+// Cubic B-spline: support (-2, 2), integral 1, and its integer shifts sum to 1.
+double CubicBSpline(double x) {
+  x = std::abs(x);
+  if (x < 1.0) return (4.0 - 6.0 * x * x + 3.0 * x * x * x) / 6.0;
+  if (x < 2.0) return (2.0 - x) * (2.0 - x) * (2.0 - x) / 6.0;
+  return 0.0;
+}
+
+// Weights of the taps floor(f) - 1 .. floor(f) + 2 for t = f - floor(f).
+std::array<double, 4> CubicBSplineWeights(double t) {
+  const double u = 1.0 - t;
+  const double t2 = t * t;
+  const double t3 = t2 * t;
+  return {u * u * u / 6.0, (3.0 * t3 - 6.0 * t2 + 4.0) / 6.0,
+          (-3.0 * t3 + 3.0 * t2 + 3.0 * t + 1.0) / 6.0, t3 / 6.0};
+}
+
+// The azimuthal kernel's scale (a quarter of its support) is at least this many point spacings.
+constexpr double kKernelScalePerSampleSpacing = 2.0;
+
+// Reconstructs a lat-long map at any direction: cubic B-spline in both axes, wrapping in azimuth
+// and continuing over the poles (row -1 is row 0 half a turn round), widened in azimuth where the
+// points a texel is sampled with (`sample_step` radians apart) are sparser than the pixels.
+class LatLongSampler {
+ public:
+  LatLongSampler(const Image& image, double sample_step)
+      : image_(image), sample_step_(sample_step) {
+    row_means_.resize(image.height, glm::dvec3(0.0));
+    for (int y = 0; y < image.height; ++y) {
+      for (int x = 0; x < image.width; ++x) row_means_[y] += glm::dvec3(image.at(x, y));
+      row_means_[y] /= image.width;
+    }
+  }
+
+  // `direction` is a unit vector.
+  glm::dvec3 operator()(glm::dvec3 direction) const {
+    const int width = image_.width;
+    const int height = image_.height;
+    const double sin_theta = std::sqrt(direction.x * direction.x + direction.z * direction.z);
+    const double u = std::atan2(direction.x, direction.z) / (2.0 * std::numbers::pi) + 0.5;
+    const double v = std::acos(std::clamp(direction.y, -1.0, 1.0)) / std::numbers::pi;
+    const double fx = u * width - 0.5;
+    const double fy = v * height - 0.5;
+    const double row_floor = std::floor(fy);
+    const std::array<double, 4> row_weights = CubicBSplineWeights(fy - row_floor);
+
+    // Azimuthal spacing of the points in pixels, and the kernel scale it asks for. A scale between
+    // two integers blends their kernels, so that the reconstruction stays continuous in theta; an
+    // integer scale keeps the partition of unity and every scale keeps each pixel's mass.
+    const double spacing =
+        sample_step_ * width / (2.0 * std::numbers::pi * std::max(sin_theta, 1e-12));
+    const double wanted_scale = std::max(1.0, kKernelScalePerSampleSpacing * spacing);
+    const bool whole_row = 4.0 * (std::floor(wanted_scale) + 1.0) >= width;
+    columns_.clear();
+    if (!whole_row && wanted_scale == 1.0) {
+      const double column_floor = std::floor(fx);
+      const std::array<double, 4> weights = CubicBSplineWeights(fx - column_floor);
+      for (int k = 0; k < 4; ++k)
+        columns_.emplace_back(static_cast<int>(column_floor) - 1 + k, weights[k]);
+    } else if (!whole_row) {
+      const int scale = static_cast<int>(wanted_scale);
+      const double blend = wanted_scale - scale;
+      const int first = static_cast<int>(std::floor(fx - 2.0 * (scale + 1))) + 1;
+      const int last = static_cast<int>(std::ceil(fx + 2.0 * (scale + 1))) - 1;
+      for (int x = first; x <= last; ++x) {
+        const double weight = (1.0 - blend) * CubicBSpline((fx - x) / scale) / scale +
+                              blend * CubicBSpline((fx - x) / (scale + 1)) / (scale + 1);
+        columns_.emplace_back(x, weight);
+      }
+    }
+    // Wrap once: the taps lie within (-width / 2, 3 width / 2) since 4 scale < width.
+    for (auto& [column, weight] : columns_) {
+      if (column < 0) column += width;
+      if (column >= width) column -= width;
+    }
+
+    glm::dvec3 sum(0.0);
+    for (int k = 0; k < 4; ++k) {
+      int row = static_cast<int>(row_floor) - 1 + k;
+      int shift = 0;
+      if (row < 0) {
+        row = -row - 1;
+        shift = width / 2;
+      } else if (row >= height) {
+        row = 2 * height - row - 1;
+        shift = width / 2;
+      }
+      row = std::clamp(row, 0, height - 1);  // only for maps under two rows high
+      glm::dvec3 row_value(0.0);
+      if (whole_row) {
+        row_value = row_means_[row];
+      } else {
+        const glm::vec3* pixels = &image_.pixels[static_cast<std::size_t>(row) * width];
+        for (const auto& [column, weight] : columns_) {
+          int x = column + shift;
+          if (x >= width) x -= width;
+          row_value += weight * glm::dvec3(pixels[x]);
+        }
+      }
+      sum += row_weights[k] * row_value;
+    }
+    return sum;
+  }
+
+ private:
+  const Image& image_;
+  double sample_step_;
+  std::vector<glm::dvec3> row_means_;
+  mutable std::vector<std::pair<int, double>> columns_;  // scratch, reused between calls
+};
+
+constexpr int kMinHalvedHeight = 128;
+
+// Halves a lat-long map, each new pixel the solid-angle-weighted mean of its 2 x 2 pixels (row
+// weights cos(theta_top) - cos(theta_bottom)), so that the map's integral does not change.
+Image HalveLatLong(const Image& image) {
+  Image half(image.width / 2, image.height / 2);
+  const auto row_weight = [&](int y) {
+    return std::cos(std::numbers::pi * y / image.height) -
+           std::cos(std::numbers::pi * (y + 1) / image.height);
+  };
+  for (int y = 0; y < half.height; ++y) {
+    const double top = row_weight(2 * y);
+    const double bottom = row_weight(2 * y + 1);
+    const double norm = 1.0 / (2.0 * (top + bottom));
+    for (int x = 0; x < half.width; ++x) {
+      const glm::dvec3 sum =
+          top * (glm::dvec3(image.at(2 * x, 2 * y)) + glm::dvec3(image.at(2 * x + 1, 2 * y))) +
+          bottom *
+              (glm::dvec3(image.at(2 * x, 2 * y + 1)) + glm::dvec3(image.at(2 * x + 1, 2 * y + 1)));
+      half.at(x, y) = glm::vec3(sum * norm);
+    }
+  }
+  return half;
+}
+
+// Pixel (x, y) of an n x n angular map has its centre inside the unit disk.
+bool InsideDisk(int x, int y, int n) {
+  const double a = 2.0 * (x + 0.5) / n - 1.0;
+  const double b = 1.0 - 2.0 * (y + 0.5) / n;
+  return a * a + b * b <= 1.0;
+}
+
+// Cubic B-spline lookup of an angular map over the taps whose centre lies in the disk (weights
+// renormalised when some are left out, near the rim); if none does, the nearest pixel.
+glm::dvec3 SampleAngular(const Image& image, glm::dvec3 direction) {
+  const int n = image.width;
+  const glm::dvec2 ab = DirectionToAngular(direction);
+  const double fx = (ab.x + 1.0) * 0.5 * n - 0.5;
+  const double fy = (1.0 - ab.y) * 0.5 * n - 0.5;
+  const double x_floor = std::floor(fx);
+  const double y_floor = std::floor(fy);
+  const std::array<double, 4> wx = CubicBSplineWeights(fx - x_floor);
+  const std::array<double, 4> wy = CubicBSplineWeights(fy - y_floor);
+  glm::dvec3 sum(0.0);
+  // Every tap is within 2 sqrt(2) pixels (4 sqrt(2) / n) of the point: inside the disk if the point
+  // is that far from the rim.
+  const double rim_margin = 1.0 - 4.0 * std::numbers::sqrt2 / n;
+  if (rim_margin > 0.0 && ab.x * ab.x + ab.y * ab.y < rim_margin * rim_margin) {
+    for (int j = 0; j < 4; ++j) {
+      const glm::vec3* row = &image.pixels[static_cast<std::size_t>(y_floor - 1 + j) * n];
+      glm::dvec3 row_sum(0.0);
+      for (int i = 0; i < 4; ++i)
+        row_sum += wx[i] * glm::dvec3(row[static_cast<int>(x_floor) - 1 + i]);
+      sum += wy[j] * row_sum;
+    }
+    return sum;
+  }
+  double weight_sum = 0.0;
+  for (int j = 0; j < 4; ++j) {
+    const int y = static_cast<int>(y_floor) - 1 + j;
+    if (y < 0 || y >= n) continue;
+    for (int i = 0; i < 4; ++i) {
+      const int x = static_cast<int>(x_floor) - 1 + i;
+      if (x < 0 || x >= n || !InsideDisk(x, y, n)) continue;
+      sum += wx[i] * wy[j] * glm::dvec3(image.at(x, y));
+      weight_sum += wx[i] * wy[j];
+    }
+  }
+  constexpr double kFullWeight = 1.0 - 1e-12;
+  if (weight_sum >= kFullWeight) return sum;
+  if (weight_sum > 0.0) return sum / weight_sum;
+  const int x = std::clamp(static_cast<int>(std::lround(fx)), 0, n - 1);
+  const int y = std::clamp(static_cast<int>(std::lround(fy)), 0, n - 1);
+  return glm::dvec3(image.at(x, y));
+}
+
+// Gathers `lookup(direction)` over each texel's footprint with n x n points weighted by their solid
+// angle, dw = ds dt / (1 + s^2 + t^2)^(3/2); n = samples(texel centre direction).
+template <class Lookup, class Samples>
+CubeMap GatherCube(int face_size, const Samples& samples_for, const Lookup& lookup) {
+  CubeMap cube(face_size);
+  const double texel = 2.0 / face_size;
+  for (CubeFace face : kAllCubeFaces) {
+    Image& out = cube.face(face);
+    for (int y = 0; y < face_size; ++y) {
+      for (int x = 0; x < face_size; ++x) {
+        const int samples = samples_for(TexelDirection(face, x, y, face_size));
+        const double step = texel / samples;
+        glm::dvec3 sum(0.0);
+        double weight_sum = 0.0;
+        for (int j = 0; j < samples; ++j) {
+          const double t = -1.0 + texel * y + step * (j + 0.5);
+          for (int i = 0; i < samples; ++i) {
+            const double s = -1.0 + texel * x + step * (i + 0.5);
+            const double d = 1.0 + s * s + t * t;
+            const double inv_length = 1.0 / std::sqrt(d);
+            const double weight = inv_length / d;
+            sum += weight * lookup(FaceDirection(face, s, t) * inv_length);
+            weight_sum += weight;
+          }
+        }
+        out.at(x, y) = glm::vec3(sum / weight_sum);
+      }
+    }
+  }
+  return cube;
+}
+
+// Points per texel side so that there are kResampleSamplesPerSourcePixel per source pixel pitch
+// (radians) across the largest texel, 2 / face_size radians wide at the face centre.
+int SamplesPerTexel(int face_size, double source_pitch) {
+  const double texel_angle = 2.0 / face_size;
+  const double wanted = std::ceil(kResampleSamplesPerSourcePixel * texel_angle / source_pitch);
+  return static_cast<int>(std::clamp(wanted, 1.0, static_cast<double>(kMaxResampleSamples)));
+}
+
+// ---- Writing -----------------------------------------------------------------------------------
+
+bool HasFloatExtension(const fs::path& path) {
+  const std::string extension = Lower(path.extension().string());
+  return std::find(kFloatExtensions.begin(), kFloatExtensions.end(), extension) !=
+         kFloatExtensions.end();
+}
+
+fs::path TemporaryPath(const fs::path& path) {
+  static std::atomic<std::uint64_t> counter{0};
+  static const std::uint64_t seed = std::random_device{}();
+  const std::string name = fmt::format(".{}.tmp{:x}-{}{}", path.filename().string(), seed,
+                                       counter.fetch_add(1), path.extension().string());
+  return path.parent_path() / name;
+}
+
+void RemoveQuietly(const fs::path& path) {
+  std::error_code ec;
+  fs::remove(path, ec);
+}
+
+// Writes `image` to a new temporary file beside `path` in `format` (an OpenImageIO format name, or
+// empty for the one `path`'s extension names). Returns the temporary's path, or sets `error`.
+std::optional<fs::path> WriteTemporary(const Image& image, const fs::path& path,
+                                       std::string_view format, std::string& error) {
+  if (image.width <= 0 || image.height <= 0 ||
+      image.pixels.size() != static_cast<std::size_t>(image.width) * image.height) {
+    error = fmt::format("{}: cannot write a zero-size image", path.string());
+    return std::nullopt;
+  }
+  const bool as_float = format == "openexr" || (format.empty() && HasFloatExtension(path));
+  auto output = OIIO::ImageOutput::create(format.empty() ? path.string() : std::string(format));
+  if (!output) {
+    error = fmt::format("{}: unsupported output format ({})", path.string(),
+                        OiioMessage(OIIO::geterror()));
+    return std::nullopt;
+  }
+  OIIO::ImageSpec spec(image.width, image.height, 3,
+                       as_float ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8);
+  spec.attribute("oiio:ColorSpace", as_float ? "Linear" : "sRGB");
+  if (std::string_view(output->format_name()) == "openexr") spec.attribute("compression", "zip");
+
+  std::vector<float> floats;
+  std::vector<std::uint8_t> bytes;
+  const void* data = nullptr;
+  if (as_float) {
+    floats.reserve(image.pixels.size() * 3);
+    for (const glm::vec3& p : image.pixels) floats.insert(floats.end(), {p.r, p.g, p.b});
+    data = floats.data();
+  } else {
+    bytes.reserve(image.pixels.size() * 3);
+    for (const glm::vec3& p : image.pixels) {
+      for (int c = 0; c < 3; ++c) {
+        const double value =
+            std::isnan(p[c]) ? 0.0 : std::clamp(static_cast<double>(p[c]), 0.0, 1.0);
+        bytes.push_back(static_cast<std::uint8_t>(std::lround(LinearToSrgb(value) * kByteMax)));
+      }
+    }
+    data = bytes.data();
+  }
+
+  const fs::path temporary = TemporaryPath(path);
+  if (!output->open(temporary.string(), spec)) {
+    error =
+        fmt::format("{}: cannot create file ({})", path.string(), OiioMessage(output->geterror()));
+    RemoveQuietly(temporary);
+    return std::nullopt;
+  }
+  const bool written =
+      output->write_image(as_float ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8, data);
+  const bool closed = output->close();
+  if (!written || !closed) {
+    error = fmt::format("{}: write failed ({})", path.string(), OiioMessage(output->geterror()));
+    RemoveQuietly(temporary);
+    return std::nullopt;
+  }
+  return temporary;
+}
+
+// Renames finished temporaries over their targets; on failure removes the remaining temporaries.
+std::optional<std::string> Commit(const std::vector<std::pair<fs::path, fs::path>>& renames) {
+  for (std::size_t i = 0; i < renames.size(); ++i) {
+    std::error_code ec;
+    fs::rename(renames[i].first, renames[i].second, ec);
+    if (ec) {
+      for (std::size_t j = i; j < renames.size(); ++j) RemoveQuietly(renames[j].first);
+      return fmt::format("{}: cannot rename the finished file into place ({})",
+                         renames[i].second.string(), ec.message());
+    }
+  }
+  return std::nullopt;
+}
+
+std::optional<std::string> WriteAtomically(const Image& image, const fs::path& path,
+                                           std::string_view format) {
+  try {
+    std::string error;
+    const std::optional<fs::path> temporary = WriteTemporary(image, path, format, error);
+    if (!temporary) return error;
+    return Commit({{*temporary, path}});
+  } catch (const std::exception& e) {
+    return fmt::format("{}: {}", path.string(), e.what());
+  }
+}
+
+}  // namespace
+
+// ---- Public ------------------------------------------------------------------------------------
+
+std::optional<EnvironmentLayout> ParseLayout(std::string_view name) {
+  for (const LayoutInfo& info : kLayoutInfo) {
+    if (info.name == name) return info.layout;
+  }
+  return std::nullopt;
+}
+
+std::string_view LayoutName(EnvironmentLayout layout) { return Info(layout).name; }
+
+double SrgbToLinear(double encoded) {
+  if (encoded <= kSrgbDecodeThreshold) return encoded / kSrgbLinearSlope;
+  return std::pow((encoded + kSrgbOffset) / (1.0 + kSrgbOffset), kSrgbGamma);
+}
+
+double LinearToSrgb(double linear) {
+  if (linear <= kSrgbEncodeThreshold) return linear * kSrgbLinearSlope;
+  return (1.0 + kSrgbOffset) * std::pow(linear, 1.0 / kSrgbGamma) - kSrgbOffset;
+}
+
+std::size_t SanitizeRadiance(Image& image) {
+  std::size_t changed = 0;
+  for (glm::vec3& p : image.pixels) {
+    bool any = false;
+    for (int c = 0; c < 3; ++c) {
+      if (!std::isfinite(p[c]) || p[c] < 0.0f) {
+        p[c] = 0.0f;
+        any = true;
+      }
+    }
+    changed += any ? 1 : 0;
+  }
+  return changed;
+}
+
+glm::dvec3 LatLongDirection(double u, double v) {
+  const double phi = 2.0 * std::numbers::pi * (u - 0.5);
+  const double theta = std::numbers::pi * v;
+  return {std::sin(phi) * std::sin(theta), std::cos(theta), std::cos(phi) * std::sin(theta)};
+}
+
+glm::dvec2 DirectionToLatLong(glm::dvec3 direction) {
+  const double length = glm::length(direction);
+  if (!(length > 0.0)) return {0.5, 0.5};
+  const double theta = std::acos(std::clamp(direction.y / length, -1.0, 1.0));
+  double u = std::atan2(direction.x, direction.z) / (2.0 * std::numbers::pi) + 0.5;
+  if (u >= 1.0) u -= 1.0;
+  return {u, theta / std::numbers::pi};
+}
+
+glm::dvec3 AngularDirection(double a, double b) {
+  const double r = std::sqrt(a * a + b * b);
+  if (r == 0.0) return {0.0, 0.0, 1.0};
+  const double theta = std::numbers::pi * r;
+  const double scale = std::sin(theta) / r;
+  return {a * scale, b * scale, std::cos(theta)};
+}
+
+glm::dvec2 DirectionToAngular(glm::dvec3 direction) {
+  const double length = glm::length(direction);
+  if (!(length > 0.0)) return {0.0, 0.0};
+  const glm::dvec3 d = direction / length;
+  const double r = std::acos(std::clamp(d.z, -1.0, 1.0)) / std::numbers::pi;
+  const double side = std::sqrt(d.x * d.x + d.y * d.y);
+  if (side == 0.0) return d.z > 0.0 ? glm::dvec2(0.0, 0.0) : glm::dvec2(1.0, 0.0);
+  return {r * d.x / side, r * d.y / side};
+}
+
+CubeMap ResampleLatLong(const Image& latlong, int face_size) {
+  assert(latlong.height > 0 && latlong.width == 2 * latlong.height);
+  assert(face_size >= 1 && face_size <= kMaxFaceSize);
+  // Halve the map (keeping its integral) while its pixels stay under half a texel across, so that
+  // a texel needs at most 4 kResampleSamplesPerSourcePixel points per side, but not below
+  // kMinHalvedHeight rows, where the B-spline's bias (pi / H)^2 / 8 would exceed 7.5e-5.
+  const double texel_angle = 2.0 / face_size;
+  const Image* source = &latlong;
+  Image reduced;
+  while (source->height % 2 == 0 && source->height / 2 >= kMinHalvedHeight &&
+         2.0 * std::numbers::pi / source->height <= 0.5 * texel_angle) {
+    reduced = HalveLatLong(*source);
+    source = &reduced;
+  }
+  const int samples = SamplesPerTexel(face_size, std::numbers::pi / source->height);
+  const LatLongSampler sampler(*source, texel_angle / samples);
+  return GatherCube(
+      face_size, [samples](glm::dvec3) { return samples; }, sampler);
+}
+
+CubeMap ResampleAngular(const Image& angular, int face_size) {
+  assert(angular.width > 0 && angular.width == angular.height);
+  assert(face_size >= 1 && face_size <= kMaxFaceSize);
+  // A pixel is 2 / N wide and theta = pi r, so the radial pitch is 2 pi / N radians; across the
+  // radius a pixel spans only sin(pi r) / (pi r) of that, so texels towards -z take more points
+  // (kResampleSamplesPerSourcePixel per pixel in both directions).
+  const double radial_pitch = 2.0 * std::numbers::pi / angular.width;
+  const auto samples = [&](glm::dvec3 direction) {
+    const double theta = std::acos(std::clamp(direction.z, -1.0, 1.0));
+    const double compression = theta > 0.0 ? std::sin(theta) / theta : 1.0;
+    return SamplesPerTexel(face_size, radial_pitch * std::clamp(compression, 1e-9, 1.0));
+  };
+  return GatherCube(face_size, samples,
+                    [&](glm::dvec3 direction) { return SampleAngular(angular, direction); });
+}
+
+glm::vec3 SampleCubeMap(const CubeMap& cube, glm::dvec3 direction) {
+  const FacePoint point = DirectionToFace(direction);
+  const Image& face = cube.face(point.face);
+  const int n = cube.face_size;
+  const double fx = std::clamp((point.s + 1.0) * 0.5 * n - 0.5, 0.0, n - 1.0);
+  const double fy = std::clamp((point.t + 1.0) * 0.5 * n - 0.5, 0.0, n - 1.0);
+  const int x0 = static_cast<int>(fx);
+  const int y0 = static_cast<int>(fy);
+  const int x1 = std::min(x0 + 1, n - 1);
+  const int y1 = std::min(y0 + 1, n - 1);
+  const float ax = static_cast<float>(fx - x0);
+  const float ay = static_cast<float>(fy - y0);
+  const glm::vec3 top = face.at(x0, y0) * (1.0f - ax) + face.at(x1, y0) * ax;
+  const glm::vec3 bottom = face.at(x0, y1) * (1.0f - ax) + face.at(x1, y1) * ax;
+  return top * (1.0f - ay) + bottom * ay;
+}
+
+Image CubeMapToImage(const CubeMap& cube, EnvironmentLayout layout) {
+  assert(cube.face_size > 0);
+  const int n = cube.face_size;
+  if (const CubeGrid* grid = FindCubeGrid(layout)) {
+    Image image(grid->columns * n, grid->rows * n);
+    for (CubeFace face : kAllCubeFaces) {
+      const FaceCell& cell = grid->cells[static_cast<int>(face)];
+      for (int y = 0; y < n; ++y) {
+        for (int x = 0; x < n; ++x) {
+          const int sx = cell.rotated_180 ? n - 1 - x : x;
+          const int sy = cell.rotated_180 ? n - 1 - y : y;
+          image.at(cell.column * n + sx, cell.row * n + sy) = cube.face(face).at(x, y);
+        }
+      }
+    }
+    return image;
+  }
+  if (layout == Layout::kLatLong) {
+    Image image(kExportScale * n, kExportScale * n / 2);
+    for (int y = 0; y < image.height; ++y) {
+      for (int x = 0; x < image.width; ++x) {
+        image.at(x, y) = SampleCubeMap(
+            cube, LatLongDirection((x + 0.5) / image.width, (y + 0.5) / image.height));
+      }
+    }
+    return image;
+  }
+  assert(layout == Layout::kAngular);
+  Image image(kExportScale * n, kExportScale * n);
+  for (int y = 0; y < image.height; ++y) {
+    for (int x = 0; x < image.width; ++x) {
+      if (!InsideDisk(x, y, image.width)) continue;
+      const double a = 2.0 * (x + 0.5) / image.width - 1.0;
+      const double b = 1.0 - 2.0 * (y + 0.5) / image.height;
+      image.at(x, y) = SampleCubeMap(cube, AngularDirection(a, b));
+    }
+  }
+  return image;
+}
+
+ImageReadResult ReadImage(const std::filesystem::path& path) {
+  try {
+    return ReadImageUnchecked(path);
+  } catch (const std::exception& e) {
+    return ReadFailure(fmt::format("{}: {}", path.string(), e.what()));
+  }
+}
+
+LoadResult EnvironmentFromImage(Image image, EnvironmentLayout layout, int face_size) {
+  try {
+    if (image.width <= 0 || image.height <= 0 ||
+        image.pixels.size() != static_cast<std::size_t>(image.width) * image.height) {
+      return Failure(fmt::format("zero-size image ({} x {} pixels)", image.width, image.height));
+    }
+    if (layout == Layout::kFaces) {
+      return Failure(fmt::format(
+          "the six-face layout reads six files: pass a path containing \"{}\"", kFaceToken));
+    }
+    if (layout == Layout::kAuto) {
+      const std::optional<Layout> detected = DetectLayout(image.width, image.height);
+      if (!detected) {
+        return Failure(fmt::format(
+            "cannot detect the layout of a {} x {} image: the accepted aspect ratios are {}",
+            image.width, image.height, AcceptedAspectRatios()));
+      }
+      layout = *detected;
+    }
+    const LayoutInfo& info = Info(layout);
+
+    LoadedEnvironment environment;
+    environment.layout = layout;
+    if (const std::size_t changed = SanitizeRadiance(image); changed > 0) {
+      environment.warnings.push_back(SanitizeWarning(changed, image.pixels.size(), "image"));
+    }
+    if (const CubeGrid* grid = FindCubeGrid(layout)) {
+      const int size = image.width / grid->columns;
+      if (size <= 0 || image.width != grid->columns * size || image.height != grid->rows * size) {
+        return Failure(fmt::format("a {} must be {}N x {}N pixels for a face size N, got {} x {}",
+                                   info.description, grid->columns, grid->rows, image.width,
+                                   image.height));
+      }
+      environment.cube = ExtractFaces(image, *grid, size);
+    } else {
+      if (static_cast<std::int64_t>(image.width) * info.aspect_rows !=
+          static_cast<std::int64_t>(image.height) * info.aspect_columns) {
+        return Failure(fmt::format("a {} must have an aspect ratio of {}:{}, got {} x {}",
+                                   info.description, info.aspect_columns, info.aspect_rows,
+                                   image.width, image.height));
+      }
+      if (face_size < 1 || face_size > kMaxFaceSize) {
+        return Failure(fmt::format("face size {} is outside [1, {}]", face_size, kMaxFaceSize));
+      }
+      environment.cube = layout == Layout::kLatLong ? ResampleLatLong(image, face_size)
+                                                    : ResampleAngular(image, face_size);
+    }
+    LoadResult result;
+    result.environment = std::move(environment);
+    return result;
+  } catch (const std::exception& e) {
+    return Failure(fmt::format("cannot build the cube map: {}", e.what()));
+  }
+}
+
+LoadResult LoadEnvironment(const std::filesystem::path& path, const LoadOptions& options) {
+  try {
+    const bool face_pattern = path.string().find(kFaceToken) != std::string::npos;
+    if (options.layout == Layout::kFaces || (options.layout == Layout::kAuto && face_pattern)) {
+      return LoadFaces(path);
+    }
+    ImageReadResult read = ReadImageUnchecked(path);
+    if (!read.ok()) return Failure(std::move(read.error));
+    Layout layout = options.layout;
+    if (read.is_dds_cube_map) {
+      if (layout != Layout::kAuto && layout != Layout::kVerticalStrip) {
+        return Failure(fmt::format(
+            "{}: a DDS cube map holds its six faces itself; its layout can only be auto or vstrip, "
+            "not {}",
+            path.string(), LayoutName(layout)));
+      }
+      layout = Layout::kVerticalStrip;
+    }
+    LoadResult result = EnvironmentFromImage(std::move(*read.image), layout, options.face_size);
+    if (!result.ok()) {
+      result.error = fmt::format("{}: {}", path.string(), result.error);
+      return result;
+    }
+    for (std::string& warning : result.environment->warnings) {
+      warning = fmt::format("{}: {}", path.string(), warning);
+    }
+    return result;
+  } catch (const std::exception& e) {
+    return Failure(fmt::format("{}: {}", path.string(), e.what()));
+  }
+}
+
+std::optional<std::string> WriteImage(const Image& image, const std::filesystem::path& path) {
+  return WriteAtomically(image, path, "");
+}
+
+std::optional<std::string> WriteCrossExr(const CubeMap& cube, const std::filesystem::path& path) {
+  if (cube.face_size <= 0) return fmt::format("{}: cannot write an empty cube map", path.string());
+  return WriteAtomically(CubeMapToImage(cube, Layout::kHorizontalCross), path, "openexr");
+}
+
+std::optional<std::string> WriteCubeMap(const CubeMap& cube, const std::filesystem::path& path,
+                                        EnvironmentLayout layout) {
+  if (cube.face_size <= 0) return fmt::format("{}: cannot write an empty cube map", path.string());
+  const std::string pattern = path.string();
+  const bool face_pattern = pattern.find(kFaceToken) != std::string::npos;
+  if (layout == Layout::kAuto) layout = face_pattern ? Layout::kFaces : Layout::kHorizontalCross;
+  if (layout != Layout::kFaces) return WriteAtomically(CubeMapToImage(cube, layout), path, "");
+  if (!face_pattern) {
+    return fmt::format("{}: writing six faces needs a path containing \"{}\"", pattern, kFaceToken);
+  }
+  try {
+    std::vector<std::pair<fs::path, fs::path>> renames;
+    for (CubeFace face : kAllCubeFaces) {
+      const fs::path target = ReplaceToken(pattern, kFaceFileNames[static_cast<int>(face)]);
+      std::string error;
+      const std::optional<fs::path> temporary = WriteTemporary(cube.face(face), target, "", error);
+      if (!temporary) {
+        for (const auto& [written, unused] : renames) RemoveQuietly(written);
+        return error;
+      }
+      renames.emplace_back(*temporary, target);
+    }
+    return Commit(renames);
+  } catch (const std::exception& e) {
+    return fmt::format("{}: {}", pattern, e.what());
+  }
+}
+
+}  // namespace vs11::irradiance
