@@ -1,0 +1,82 @@
+// vs11 asm, vs11 disasm, vs11 validate.
+#include <cstdio>
+#include <memory>
+
+#include <fmt/format.h>
+
+#include "vm/bytecode.h"
+#include "vm/cli/cli_support.h"
+#include "vm/cli/commands.h"
+#include "vm/disassembler.h"
+
+namespace vs11::cli {
+
+void AddAsmCommand(CLI::App& app) {
+  struct Args {
+    std::string input, output;
+    ProgramFlags flags;
+  };
+  auto args = std::make_shared<Args>();
+  CLI::App* command = app.add_subcommand("asm", "Assemble a .vsh source into D3D9 vs_1_1 bytecode (.vso)");
+  command->footer(
+      "The source is run through a C preprocessor first (#define, #include, #if, #line).\n"
+      "DX9 (vs_1_1, dcl_*) and DX8 (vs.1.1, c[a0.x + n]) syntax are both accepted.\n"
+      "Errors are printed as FILE:LINE:COL: error: MESSAGE; on error no output file is written.\n\n"
+      "Example:\n  vs11 asm programs/sh9_irradiance.vsh -o sh9.vso -D CV_BASE=4");
+  command->add_option("input", args->input, "Source file (.vsh)")->required();
+  command->add_option("-o,--output", args->output, "Bytecode file to write")->required();
+  args->flags.AddTo(*command);
+  command->callback([args] {
+    Program program = LoadProgramOrFail(args->input, args->flags);
+    std::vector<std::uint8_t> bytes = BytesFromWords(Encode(program));
+    if (std::optional<std::string> error = WriteFileAtomically(args->output, bytes)) Fail(*error);
+  });
+}
+
+void AddDisasmCommand(CLI::App& app) {
+  struct Args {
+    std::string input, output;
+  };
+  auto args = std::make_shared<Args>();
+  CLI::App* command = app.add_subcommand("disasm", "Print vs_1_1 bytecode as DX9 assembly that re-assembles identically");
+  command->footer("Malformed streams are rejected with the word offset of the bad token.\n\n"
+                  "Example:\n  vs11 disasm sh9.vso");
+  command->add_option("input", args->input, "Bytecode file (.vso)")->required();
+  command->add_option("-o,--output", args->output, "Write the text here instead of stdout");
+  command->callback([args] {
+    ProgramFlags flags;
+    flags.skip_validation = true;  // disassembly shows what is there, valid or not
+    LoadedProgram loaded = LoadProgram(args->input, flags.ToOptions());
+    if (loaded.program && !loaded.from_bytecode) {
+      Fail(fmt::format("{}: not a bytecode file (it does not start with a vs_1_x version token)", args->input));
+    }
+    std::fputs(loaded.diagnostics.ToString().c_str(), stderr);
+    if (!loaded.program) throw CommandFailure{1};
+    std::string text = Disassemble(*loaded.program);
+    if (args->output.empty()) {
+      std::fputs(text.c_str(), stdout);
+    } else if (std::optional<std::string> error = WriteFileAtomically(args->output, text)) {
+      Fail(*error);
+    }
+  });
+}
+
+void AddValidateCommand(CLI::App& app) {
+  struct Args {
+    std::string input;
+    ProgramFlags flags;
+  };
+  auto args = std::make_shared<Args>();
+  CLI::App* command = app.add_subcommand("validate", "Check a .vsh or .vso program against the D3D vs_1_1 rules");
+  command->footer("Exit status 0 when valid (warnings allowed), 1 otherwise.\n\n"
+                  "Example:\n  vs11 validate programs/sh9_irradiance.vsh");
+  command->add_option("input", args->input, "Program (.vsh source or .vso bytecode)")->required();
+  args->flags.AddTo(*command, /*offer_skip_validation=*/false);
+  command->callback([args] {
+    Program program = LoadProgramOrFail(args->input, args->flags);
+    ProgramStats stats = ComputeStats(program);
+    std::printf("%s: valid vs_1_1: %d instructions, %d slots\n", args->input.c_str(), stats.instructions, stats.slots);
+  });
+}
+
+}  // namespace vs11::cli

@@ -1,0 +1,62 @@
+#include "vm/cli/cli_support.h"
+
+#include <cstdio>
+
+#include <fmt/format.h>
+
+#include "vm/cli/commands.h"
+
+namespace vs11::cli {
+
+void ProgramFlags::AddTo(CLI::App& command, bool offer_skip_validation) {
+  command.add_option("-I,--include", include_dirs, "Folder searched for #include files (after the includer's folder)");
+  command.add_option("-D,--define", defines, "Preprocessor definition NAME or NAME=VALUE");
+  if (offer_skip_validation) {
+    command.add_flag("--skip-validation", skip_validation,
+                     "Accept anything that is syntactically vs_1_1 (like D3DXSHADER_SKIPVALIDATION)");
+  }
+  command.add_flag("--fragment", fragment,
+                   "The program is a piece of a shader: do not require it to write oPos");
+  command.add_option("--max-constants", constant_count, "Constant registers the device has (MaxVertexShaderConst)")
+      ->check(CLI::Range(kDefaultConstantCount, kMaxConstantIndex + 1));
+}
+
+LoadProgramOptions ProgramFlags::ToOptions() const {
+  LoadProgramOptions options;
+  for (const std::string& dir : include_dirs) options.assemble.preprocess.include_dirs.emplace_back(dir);
+  for (const std::string& define : defines) {
+    std::size_t equals = define.find('=');
+    if (equals == std::string::npos) {
+      options.assemble.preprocess.defines.emplace_back(define, "1");
+    } else {
+      options.assemble.preprocess.defines.emplace_back(define.substr(0, equals), define.substr(equals + 1));
+    }
+  }
+  options.assemble.validate = !skip_validation;
+  options.assemble.constant_count = constant_count;
+  options.assemble.require_position = !fragment;
+  return options;
+}
+
+Program LoadProgramOrFail(const std::string& path, const ProgramFlags& flags) {
+  LoadedProgram loaded = LoadProgram(path, flags.ToOptions());
+  std::fputs(loaded.diagnostics.ToString().c_str(), stderr);
+  if (!loaded.program) throw CommandFailure{1};
+  return std::move(*loaded.program);
+}
+
+void EngineFlags::AddTo(CLI::App& command) {
+  command.add_option("--engine", engine, "Execution engine: ref (scalar reference) or batch (SIMD)")
+      ->check(CLI::IsMember({"ref", "reference", "batch"}))
+      ->capture_default_str();
+  command.add_option("--threads", threads, "Threads for the batch engine")->check(CLI::Range(1, 256))->capture_default_str();
+}
+
+EngineKind EngineFlags::Kind() const { return EngineKindFromName(engine).value_or(EngineKind::kBatch); }
+
+void Fail(const std::string& message) {
+  std::fprintf(stderr, "error: %s\n", message.c_str());
+  throw CommandFailure{1};
+}
+
+}  // namespace vs11::cli

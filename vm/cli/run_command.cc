@@ -1,0 +1,139 @@
+// vs11 run: the program over vertices from CSV files or over a sphere of normals.
+#include <charconv>
+#include <cstdio>
+#include <memory>
+
+#include <fmt/format.h>
+
+#include "irradiance/ground_truth.h"
+#include "vm/cli/cli_support.h"
+#include "vm/cli/commands.h"
+#include "vm/vertex_io.h"
+
+namespace vs11::cli {
+namespace {
+
+// "v1" -> 1
+int InputRegisterFromName(const std::string& name) {
+  if (name.size() >= 2 && (name[0] == 'v' || name[0] == 'V')) {
+    int index = -1;
+    auto [ptr, ec] = std::from_chars(name.data() + 1, name.data() + name.size(), index);
+    if (ec == std::errc() && ptr == name.data() + name.size() && index >= 0 && index < kInputRegisterCount) return index;
+  }
+  Fail(fmt::format("'{}' is not an input register v0-v15", name));
+}
+
+int DeclaredNormalRegister(const Program& program) {
+  for (const Instruction& instruction : program.instructions) {
+    if (instruction.opcode == Opcode::kDcl && instruction.usage == kDeclUsageNormal) return instruction.dest.reg.index;
+  }
+  return -1;
+}
+
+ConstantBank LoadConstants(const std::vector<std::string>& files, const std::vector<std::string>& assignments,
+                           int count) {
+  ConstantBank bank(count);
+  for (const std::string& file : files) {
+    std::optional<std::string> text = ReadWholeFile(file);
+    if (!text) Fail(fmt::format("{}: cannot read the constants file", file));
+    Diagnostics diagnostics;
+    ParseConstantsText(*text, file, bank, diagnostics);
+    std::fputs(diagnostics.ToString().c_str(), stderr);
+    if (diagnostics.HasErrors()) throw CommandFailure{1};
+  }
+  for (const std::string& assignment : assignments) {
+    if (std::optional<std::string> error = ParseConstantAssignment(assignment, bank)) Fail("--const: " + *error);
+  }
+  return bank;
+}
+
+}  // namespace
+
+void AddRunCommand(CLI::App& app) {
+  struct Args {
+    std::string program, out, sphere_register;
+    std::vector<std::string> consts_files, const_flags, input_flags;
+    int sphere = 0;
+    ProgramFlags flags;
+    EngineFlags engine;
+  };
+  auto args = std::make_shared<Args>();
+  CLI::App* command = app.add_subcommand("run", "Run a vs_1_1 program over vertices and print its outputs as CSV");
+  command->footer(
+      "Constants: def lines in the program win over --consts files, which come before --const flags.\n"
+      "Inputs: --input v1=FILE.csv (a vertex a row, 1-4 numbers; missing components read 0,0,0,1), or\n"
+      "--sphere N: N unit normals spread evenly over the sphere, written into the register the program\n"
+      "declares with dcl_normal, or the one named by --sphere-reg. Registers not supplied read (0,0,0,1).\n"
+      "Outputs: CSV with a header naming each written output lane (raw values: the clamping D3D applies\n"
+      "to oD0/oD1/oFog after the shader is not applied).\n\n"
+      "Examples:\n"
+      "  vs11 run programs/sh9_irradiance.vsh --consts out/constants.vsh --sphere 6 --sphere-reg v0\n"
+      "  vs11 run light.vsh --input v0=positions.csv --input v1=normals.csv --const c4=0,0,1,0 --out lit.csv");
+  command->add_option("program", args->program, "Program (.vsh or .vso)")->required();
+  command->add_option("--const", args->const_flags, "Constant register value, e.g. c4=1,0,0,1");
+  command->add_option("--consts", args->consts_files, "File of `def c#, x, y, z, w` or `c# = x y z w` lines");
+  command->add_option("--input", args->input_flags, "Input register from a CSV file, e.g. v1=normals.csv");
+  command->add_option("--sphere", args->sphere, "Run over N unit normals spread over the sphere")->check(CLI::Range(1, 100000000));
+  command->add_option("--sphere-reg", args->sphere_register, "Input register for --sphere normals (default: dcl_normal)");
+  command->add_option("--out", args->out, "Write the CSV here (atomically) instead of stdout");
+  args->flags.AddTo(*command);
+  args->engine.AddTo(*command);
+  command->callback([args] {
+    Program program = LoadProgramOrFail(args->program, args->flags);
+    ConstantBank constants = LoadConstants(args->consts_files, args->const_flags, args->flags.constant_count);
+
+    std::vector<std::pair<int, std::vector<Vec4f>>> supplied;
+    for (const std::string& flag : args->input_flags) {
+      std::size_t equals = flag.find('=');
+      if (equals == std::string::npos) Fail(fmt::format("--input '{}': expected v#=FILE.csv", flag));
+      int reg = InputRegisterFromName(flag.substr(0, equals));
+      std::string file = flag.substr(equals + 1);
+      std::optional<std::string> text = ReadWholeFile(file);
+      if (!text) Fail(fmt::format("{}: cannot read the input file", file));
+      Diagnostics diagnostics;
+      std::vector<Vec4f> rows = ParseVertexCsv(*text, file, diagnostics);
+      std::fputs(diagnostics.ToString().c_str(), stderr);
+      if (diagnostics.HasErrors()) throw CommandFailure{1};
+      supplied.emplace_back(reg, std::move(rows));
+    }
+    CsvColumns prefix;
+    if (args->sphere > 0) {
+      int reg = args->sphere_register.empty() ? DeclaredNormalRegister(program)
+                                              : InputRegisterFromName(args->sphere_register);
+      if (reg < 0) Fail("--sphere: the program declares no dcl_normal register; name one with --sphere-reg");
+      std::vector<Vec4f> rows;
+      for (const glm::dvec3& n : irradiance::SphereNormals(args->sphere)) {
+        rows.push_back({static_cast<float>(n.x), static_cast<float>(n.y), static_cast<float>(n.z), 1.0f});
+        prefix.rows.push_back({rows.back()[0], rows.back()[1], rows.back()[2]});
+      }
+      std::string name = fmt::format("v{}", reg);
+      prefix.header = {name + ".x", name + ".y", name + ".z"};
+      supplied.emplace_back(reg, std::move(rows));
+    }
+    if (supplied.empty()) Fail("no vertices: give --input v#=FILE.csv or --sphere N");
+    std::size_t count = supplied.front().second.size();
+    for (const auto& [reg, rows] : supplied) {
+      if (rows.size() != count) {
+        Fail(fmt::format("v{} has {} vertices but v{} has {}", reg, rows.size(), supplied.front().first, count));
+      }
+    }
+    std::vector<int> registers;
+    for (const auto& entry : supplied) registers.push_back(entry.first);
+    VertexArrays inputs = MakeInputArrays(count, registers);
+    for (const auto& [reg, rows] : supplied) {
+      for (std::size_t i = 0; i < count; ++i) {
+        for (int c = 0; c < 4; ++c) inputs.lane(reg, c)[i] = rows[i][c];
+      }
+    }
+    VertexArrays outputs = MakeOutputArrays(count, program);
+    MakeEngine(args->engine.Kind(), program, constants, args->engine.Options())->Run(inputs, outputs);
+    std::string csv = FormatOutputCsv(program, outputs, prefix);
+    if (args->out.empty()) {
+      std::fputs(csv.c_str(), stdout);
+    } else if (std::optional<std::string> error = WriteFileAtomically(args->out, csv)) {
+      Fail(*error);
+    }
+  });
+}
+
+}  // namespace vs11::cli
