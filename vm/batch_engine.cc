@@ -1,0 +1,217 @@
+// The batch engine: the program is compiled once into a plan of kernel steps (vm/batch_plan.h), and
+// Run applies each step to a batch of kBatchSize vertices at a time, structure of arrays. The
+// kernels are compiled for every Highway target, each in its own vm/batch_kernels_<target>.cc (see
+// vm/batch_kernels-inl.h for why), and the best one the CPU supports is chosen when the engine is
+// made (HWY_DYNAMIC_DISPATCH).
+
+// Declare the per-target kernel tables once per Highway target.
+#undef HWY_TARGET_INCLUDE
+#define HWY_TARGET_INCLUDE "vm/batch_engine.cc"
+#include "hwy/foreach_target.h"  // IWYU pragma: keep
+
+#include "hwy/highway.h"
+#include "vm/batch_plan.h"
+
+namespace vs11::batch {
+namespace HWY_NAMESPACE {
+const KernelTable* GetKernelTable();  // defined by vm/batch_kernels_<target>.cc
+}  // namespace HWY_NAMESPACE
+}  // namespace vs11::batch
+
+#if HWY_ONCE
+
+#include <algorithm>
+#include <cassert>
+#include <cstring>
+#include <thread>
+#include <utility>
+#include <vector>
+
+#include "hwy/aligned_allocator.h"
+#include "hwy/cache_control.h"
+#include "vm/batch_engine.h"
+
+namespace vs11 {
+namespace batch {
+
+// Every target Highway compiles for needs its vm/batch_kernels_<target>.cc.
+static_assert((HWY_TARGETS & ~(HWY_SCALAR | HWY_EMU128 | HWY_SSSE3 | HWY_SSE4 | HWY_AVX2 | HWY_AVX3)) == 0,
+              "add a vm/batch_kernels_<target>.cc for the new Highway target");
+HWY_EXPORT(GetKernelTable);
+
+namespace {
+
+// Below this many vertices per thread, starting a thread costs more than it saves.
+constexpr std::size_t kMinVerticesPerThread = 4096;
+
+// Floats from one arena lane to the next: a batch plus one cache line, so that lanes do not sit a
+// multiple of 4 KiB apart (loads would then wait on unrelated stores: "4K aliasing").
+constexpr std::size_t kFloatsPerCacheLine = 64 / sizeof(float);
+constexpr std::size_t kLaneStride = kBatchSize + kFloatsPerCacheLine;
+
+constexpr std::size_t RoundUp(std::size_t value, std::size_t multiple) {
+  return (value + multiple - 1) / multiple * multiple;
+}
+
+// The state one thread runs batches with: the lane table and the lanes the engine owns (the plan's
+// arena lanes, then a padded copy of each input and output lane for a batch shorter than kBatchSize).
+struct Workspace {
+  explicit Workspace(const BatchPlan& plan)
+      : arena_lanes(plan.arena_lanes),
+        arena(hwy::AllocateAligned<float>(
+            (plan.arena_lanes + plan.input_lanes.size() + plan.output_lanes.size()) * kLaneStride)),
+        address(hwy::AllocateAligned<std::int32_t>(kBatchSize)),
+        read_lanes(kArenaLaneBase + plan.arena_lanes, nullptr),
+        write_lanes(kArenaLaneBase + plan.arena_lanes, nullptr),
+        input_arrays(plan.input_lanes.size(), nullptr),
+        output_arrays(plan.output_lanes.size(), nullptr) {
+    unstored.reserve(4 * kOutputSlotCount);
+    std::fill_n(arena.get(), (plan.arena_lanes + input_arrays.size() + output_arrays.size()) * kLaneStride, 0.0f);
+    std::fill_n(ArenaLane(kOneLane - kArenaLaneBase), kBatchSize, 1.0f);
+    for (int lane = 0; lane < plan.arena_lanes; ++lane) {
+      read_lanes[kArenaLaneBase + lane] = write_lanes[kArenaLaneBase + lane] = ArenaLane(lane);
+    }
+  }
+
+  float* ArenaLane(std::size_t lane) { return arena.get() + lane * kLaneStride; }
+  float* InputCopy(std::size_t k) { return ArenaLane(arena_lanes + k); }
+  float* OutputCopy(std::size_t k) { return ArenaLane(arena_lanes + input_arrays.size() + k); }
+
+  std::size_t arena_lanes;
+  hwy::AlignedFreeUniquePtr<float[]> arena;
+  hwy::AlignedFreeUniquePtr<std::int32_t[]> address;
+  std::vector<const float*> read_lanes;
+  std::vector<float*> write_lanes;
+  // Per Run: the caller's array behind each plan input and output lane, nullptr when absent.
+  std::vector<const float*> input_arrays;
+  std::vector<float*> output_arrays;
+  // Per Run: output lanes no instruction stores, with the value they keep (filled batch by batch).
+  std::vector<std::pair<float*, float>> unstored;
+};
+
+class BatchEngine final : public Engine {
+ public:
+  BatchEngine(const Program& program, const ConstantBank& api_constants, const EngineOptions& options)
+      : program_(program),
+        plan_(BuildBatchPlan(program, *HWY_DYNAMIC_DISPATCH(GetKernelTable)())),
+        written_(WrittenOutputLanes(program)),
+        threads_(static_cast<std::size_t>(std::max(1, options.threads))) {
+    SetConstants(api_constants);
+  }
+
+  void SetConstants(const ConstantBank& api_constants) override {
+    const ConstantBank bank = ApplyDefinitions(program_, api_constants);
+    const int rows = std::max(bank.size(), plan_.max_static_constant + 1);
+    constants_.assign(4 * static_cast<std::size_t>(kFirstConstantRow + rows), 0.0f);
+    for (int reg = 0; reg < bank.size(); ++reg) {
+      for (int c = 0; c < 4; ++c) constants_[ConstantIndex(reg, c)] = bank[reg][c];
+    }
+    constant_count_ = bank.size();
+  }
+
+  void Run(const VertexArrays& inputs, VertexArrays& outputs) override {
+    const std::size_t count = inputs.count();
+    assert(outputs.count() >= count);
+    if (count == 0) return;
+
+    const std::size_t threads = std::min(threads_, std::max<std::size_t>(1, count / kMinVerticesPerThread));
+    while (workspaces_.size() < threads) workspaces_.emplace_back(plan_);
+    if (threads == 1) {
+      RunRange(workspaces_[0], inputs, outputs, 0, count);
+      return;
+    }
+    // Contiguous ranges of whole batches, so only the last range has a short batch.
+    const std::size_t per_thread = RoundUp((count + threads - 1) / threads, kBatchSize);
+    std::vector<std::thread> workers;
+    for (std::size_t t = 1; t < threads && t * per_thread < count; ++t) {
+      const std::size_t begin = t * per_thread, end = std::min(count, begin + per_thread);
+      workers.emplace_back([this, t, begin, end, &inputs, &outputs] {
+        RunRange(workspaces_[t], inputs, outputs, begin, end);
+      });
+    }
+    RunRange(workspaces_[0], inputs, outputs, 0, std::min(count, per_thread));
+    for (std::thread& worker : workers) worker.join();
+  }
+
+ private:
+  void RunRange(Workspace& workspace, const VertexArrays& inputs, VertexArrays& outputs, std::size_t begin,
+                std::size_t end) const {
+    // Absent inputs read (0, 0, 0, 1) and absent outputs go to scratch, in every batch.
+    for (std::size_t k = 0; k < plan_.input_lanes.size(); ++k) {
+      const std::uint16_t lane = plan_.input_lanes[k];
+      const int reg = (lane - kInputLaneBase) / 4, c = (lane - kInputLaneBase) % 4;
+      workspace.input_arrays[k] = inputs.has(reg) ? inputs.lane(reg, c) : nullptr;
+      if (!inputs.has(reg)) workspace.read_lanes[lane] = workspace.read_lanes[kDefaultInput[c] == 0.0f ? kZeroLane : kOneLane];
+    }
+    for (std::size_t k = 0; k < plan_.output_lanes.size(); ++k) {
+      const std::uint16_t lane = plan_.output_lanes[k];
+      const int slot = (lane - kOutputLaneBase) / 4, c = (lane - kOutputLaneBase) % 4;
+      workspace.output_arrays[k] = outputs.has(slot) ? outputs.lane(slot, c) : nullptr;
+      if (!outputs.has(slot)) workspace.read_lanes[lane] = workspace.write_lanes[lane] = workspace.OutputCopy(k);
+    }
+
+    // Output lanes no instruction stores keep the reference engine's initial value.
+    workspace.unstored.clear();
+    for (int slot = 0; slot < kOutputSlotCount; ++slot) {
+      if (!outputs.has(slot)) continue;
+      const Vec4f initial = written_[slot].bits() ? Vec4f{} : UnwrittenOutputValue(slot);
+      for (int c = 0; c < 4; ++c) {
+        if (!(plan_.stored_lanes[slot] & (1 << c))) workspace.unstored.emplace_back(outputs.lane(slot, c), initial[c]);
+      }
+    }
+
+    Frame frame{workspace.read_lanes.data(), workspace.write_lanes.data(), constants_.data(),
+                workspace.address.get(), constant_count_, 0};
+    for (std::size_t start = begin; start < end; start += kBatchSize) {
+      const std::size_t n = std::min(kBatchSize, end - start);
+      const bool full = n == kBatchSize;
+      for (std::size_t k = 0; k < plan_.input_lanes.size(); ++k) {
+        const float* array = workspace.input_arrays[k];
+        if (array == nullptr) continue;
+        if (!full) std::memcpy(workspace.InputCopy(k), array + start, n * sizeof(float));
+        workspace.read_lanes[plan_.input_lanes[k]] = full ? array + start : workspace.InputCopy(k);
+      }
+      for (std::size_t k = 0; k < plan_.output_lanes.size(); ++k) {
+        float* array = workspace.output_arrays[k];
+        if (array == nullptr) continue;
+        float* target = full ? array + start : workspace.OutputCopy(k);
+        workspace.read_lanes[plan_.output_lanes[k]] = workspace.write_lanes[plan_.output_lanes[k]] = target;
+      }
+      // The caller's arrays stream from memory: ask for the next batch while this one computes.
+      if (start + kBatchSize < end) {
+        for (const float* array : workspace.input_arrays) {
+          if (array == nullptr) continue;
+          for (std::size_t k = 0; k < kBatchSize; k += kFloatsPerCacheLine) hwy::Prefetch(array + start + kBatchSize + k);
+        }
+      }
+      frame.count = RoundUp(n, kVertexGranule);
+      for (const Step& step : plan_.steps) step.kernel(step, frame);
+      for (const auto& [array, value] : workspace.unstored) std::fill_n(array + start, n, value);
+      if (full) continue;
+      for (std::size_t k = 0; k < plan_.output_lanes.size(); ++k) {
+        float* array = workspace.output_arrays[k];
+        if (array != nullptr) std::memcpy(array + start, workspace.OutputCopy(k), n * sizeof(float));
+      }
+    }
+  }
+
+  Program program_;
+  BatchPlan plan_;
+  std::array<WriteMask, kOutputSlotCount> written_;
+  std::size_t threads_;
+  std::vector<float> constants_;
+  std::int32_t constant_count_ = 0;
+  std::vector<Workspace> workspaces_;
+};
+
+}  // namespace
+}  // namespace batch
+
+std::unique_ptr<Engine> MakeBatchEngine(const Program& program, const ConstantBank& api_constants,
+                                        const EngineOptions& options) {
+  return std::make_unique<batch::BatchEngine>(program, api_constants, options);
+}
+
+}  // namespace vs11
+
+#endif  // HWY_ONCE
