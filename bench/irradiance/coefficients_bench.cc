@@ -1,0 +1,56 @@
+// Cost of one coefficient update (wall time, UseRealTime) from a sky environment:
+//
+//   BM_Coefficients/<face>/<level>       ProjectLevel from a pre-built mip chain and basis pyramid
+//   BM_EnvMips/<face>                    BuildEnvironmentMips (the per-frame part of the mip method)
+//   BM_Coefficients_ScalarDouble/<face>  ProjectScalarDouble: the scalar double per-texel baseline
+//   BM_SkyGeneration/<face>              MakeSky (how long regenerating the environment itself takes)
+
+#include <benchmark/benchmark.h>
+
+#include "bench/irradiance/projection_fixture.h"
+#include "irradiance/environments.h"
+#include "irradiance/sh_projection.h"
+
+namespace vs11::bench {
+namespace {
+
+constexpr int kFaceSizes[] = {256, 1024};
+
+void BM_Coefficients(benchmark::State& state) {
+  const ProjectionFixture& fixture = SkyFixture(static_cast<int>(state.range(0)));
+  const int level = static_cast<int>(state.range(1));
+  for (auto _ : state) {
+    benchmark::DoNotOptimize(irradiance::ProjectLevel(fixture.mips, fixture.basis, level));
+  }
+  const int size = fixture.env.face_size >> level;
+  state.counters["texels"] = 6.0 * size * size;
+}
+BENCHMARK(BM_Coefficients)
+    ->Apply([](benchmark::internal::Benchmark* b) {
+      for (int face : kFaceSizes) {
+        for (int level = 0; level < irradiance::LevelCount(face); ++level) b->Args({face, level});
+      }
+    })
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
+
+void BM_EnvMips(benchmark::State& state) {
+  const ProjectionFixture& fixture = SkyFixture(static_cast<int>(state.range(0)));
+  for (auto _ : state) benchmark::DoNotOptimize(irradiance::BuildEnvironmentMips(fixture.env));
+}
+BENCHMARK(BM_EnvMips)->Arg(256)->Arg(1024)->UseRealTime()->Unit(benchmark::kMillisecond);
+
+void BM_Coefficients_ScalarDouble(benchmark::State& state) {
+  const ProjectionFixture& fixture = SkyFixture(static_cast<int>(state.range(0)));
+  for (auto _ : state) benchmark::DoNotOptimize(ProjectScalarDouble(fixture.env));
+}
+BENCHMARK(BM_Coefficients_ScalarDouble)->Arg(256)->Arg(1024)->UseRealTime()->Unit(benchmark::kMillisecond);
+
+void BM_SkyGeneration(benchmark::State& state) {
+  const int face = static_cast<int>(state.range(0));
+  for (auto _ : state) benchmark::DoNotOptimize(irradiance::MakeSky(face));
+}
+BENCHMARK(BM_SkyGeneration)->Arg(256)->UseRealTime()->Unit(benchmark::kMillisecond);
+
+}  // namespace
+}  // namespace vs11::bench

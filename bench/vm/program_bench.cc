@@ -1,0 +1,105 @@
+// Every program of programs/*.vsh on each engine: BM_Program/<name>/<engine>, 65 536 vertices (the
+// sh9 references add their 14 fixed normals), items_per_second = vertices per second, and the
+// program's instruction-slot count (vm/program.h ComputeStats) as the counter "slots".
+//
+// Inputs and constants come from the program's reference (irradiance/program_references.h, named by
+// its `; vs11: reference=` line). A program without a usable reference gets (x, y, z, 1) unit normals
+// in every input register v0..v15 and random constants in [-1, 1].
+
+#include <algorithm>
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <random>
+#include <string>
+#include <vector>
+
+#include <benchmark/benchmark.h>
+
+#include "bench/bench_common.h"
+#include "irradiance/program_references.h"
+#include "irradiance/verify.h"
+#include "vm/machine.h"
+#include "vm/program.h"
+
+namespace vs11::bench {
+namespace {
+
+constexpr int kProgramVertices = 65536;
+constexpr int kInputRegisterCount = 16;  // v0..v15
+
+struct ProgramCase {
+  ConstantBank constants;
+  VertexArrays inputs;
+};
+
+ProgramCase FallbackCase() {
+  std::vector<int> registers(kInputRegisterCount);
+  for (int i = 0; i < kInputRegisterCount; ++i) registers[i] = i;
+  const SoaNormals normals = RandomUnitNormals(kProgramVertices);
+  ProgramCase c{ConstantBank(), MakeInputArrays(kProgramVertices, registers)};
+  for (int reg : registers) {
+    std::copy(normals.x.begin(), normals.x.end(), c.inputs.lane(reg, 0));
+    std::copy(normals.y.begin(), normals.y.end(), c.inputs.lane(reg, 1));
+    std::copy(normals.z.begin(), normals.z.end(), c.inputs.lane(reg, 2));
+    std::fill_n(c.inputs.lane(reg, 3), kProgramVertices, 1.0f);
+  }
+  std::mt19937_64 rng(kBenchSeed);
+  std::uniform_real_distribution<float> uniform(-1.0f, 1.0f);
+  for (int i = 0; i < c.constants.size(); ++i) {
+    c.constants[i] = {uniform(rng), uniform(rng), uniform(rng), uniform(rng)};
+  }
+  return c;
+}
+
+ProgramCase CaseFor(const irradiance::ProgramMetadata& metadata) {
+  const irradiance::ReferenceInfo* info = irradiance::FindReference(metadata.reference);
+  if (info != nullptr) {
+    irradiance::ReferenceOptions options;
+    options.coefficients = BenchCoefficients();
+    options.samples = kProgramVertices;
+    options.seed = kBenchSeed;
+    std::string error;
+    std::optional<irradiance::ReferenceCase> reference = info->build(metadata, options, error);
+    if (reference) return {std::move(reference->constants), std::move(reference->inputs)};
+  }
+  return FallbackCase();
+}
+
+void RunProgram(benchmark::State& state, const std::filesystem::path& path, EngineKind kind) {
+  const irradiance::ProgramForVerify loaded = LoadBenchProgram(path);
+  const Program& program = *loaded.program;
+  const ProgramCase c = CaseFor(loaded.metadata);
+  const std::size_t count = c.inputs.count();
+  VertexArrays outputs = MakeOutputArrays(count, program);
+  std::unique_ptr<Engine> engine = MakeEngine(kind, program, c.constants, EngineOptions{.threads = 1});
+  for (auto _ : state) {
+    engine->Run(c.inputs, outputs);
+    benchmark::ClobberMemory();
+  }
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()) * static_cast<std::int64_t>(count));
+  state.counters["slots"] = ComputeStats(program).slots;
+}
+
+// Registers one benchmark per (program, engine) before main runs.
+const bool kRegistered = [] {
+  std::vector<std::filesystem::path> paths;
+  for (const auto& entry : std::filesystem::directory_iterator(std::filesystem::path(VS11_SOURCE_DIR) / "programs")) {
+    if (entry.path().extension() == ".vsh") paths.push_back(entry.path());
+  }
+  std::sort(paths.begin(), paths.end());
+  for (const auto& path : paths) {
+    for (EngineKind kind : {EngineKind::kReference, EngineKind::kBatch}) {
+      const std::string name = "BM_Program/" + path.stem().string() + "/" + std::string(EngineName(kind));
+      benchmark::RegisterBenchmark(name.c_str(), [path, kind](benchmark::State& state) {
+        RunProgram(state, path, kind);
+      })->Unit(benchmark::kMicrosecond);
+    }
+  }
+  return true;
+}();
+
+}  // namespace
+}  // namespace vs11::bench
