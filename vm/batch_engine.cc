@@ -41,8 +41,9 @@ HWY_EXPORT(GetKernelTable);
 
 namespace {
 
-// Below this many vertices per thread, starting a thread costs more than it saves.
-constexpr std::size_t kMinVerticesPerThread = 4096;
+// Below this many vertices per thread, starting a thread (tens of microseconds) costs more than it
+// saves.
+constexpr std::size_t kMinVerticesPerThread = 16384;
 
 // Floats from one arena lane to the next: a batch plus one cache line, so that lanes do not sit a
 // multiple of 4 KiB apart (loads would then wait on unrelated stores: "4K aliasing").

@@ -1,10 +1,11 @@
-// The batch engine's kernels for one Highway target. vm/batch_engine.cc includes this file once per
-// target (hwy/foreach_target.h); each kernel runs one Step (vm/batch_plan.h) over every vertex of a
-// batch, with the arithmetic of vm/semantics.h instantiated for the target's float vector.
+// The batch engine's kernels for one Highway target (the one HWY_TARGET names), included by exactly
+// one vm/batch_kernels_<target>.cc. Each kernel runs one Step (vm/batch_plan.h) over every vertex of
+// a batch, with the arithmetic of vm/semantics.h instantiated for the target's float vector, and the
+// target's KernelTable is returned by GetKernelTable().
 //
 // Bit exactness: the kernels add nothing to the shared arithmetic. Negation is Highway's Neg (a sign
-// flip, as scalar -x), loads and stores move bits unchanged, and the build has -ffp-contract=off so
-// a*b+c is never fused.
+// flip, as scalar -x), loads and stores move bits unchanged, dot products use semantics::Dot (left to
+// right), and the build has -ffp-contract=off so a*b+c is never fused.
 
 #ifndef VS11_VM_BATCH_KERNELS_INL_H_
 #define VS11_VM_BATCH_KERNELS_INL_H_

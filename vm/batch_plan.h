@@ -32,7 +32,7 @@ inline constexpr std::uint16_t kNoLane = 0xFFFF;
 inline constexpr int kInputLaneBase = 0;  // v#.c at kInputLaneBase + 4 # + c
 inline constexpr int kOutputLaneBase = kInputLaneBase + 4 * kInputRegisterCount;  // output slot s, lane c
 inline constexpr int kArenaLaneBase = kOutputLaneBase + 4 * kOutputSlotCount;     // engine-owned lanes
-// The first two arena lanes hold constant vectors, for operands that must be arrays (see ToArray).
+// The first two arena lanes hold constant vectors, for operands that must be arrays (see UnifyKind in batch_plan.cc).
 inline constexpr int kZeroLane = kArenaLaneBase;    // all 0.0f
 inline constexpr int kOneLane = kArenaLaneBase + 1;  // all 1.0f (w of an absent input, §1.2)
 inline constexpr int kFixedArenaLanes = 2;

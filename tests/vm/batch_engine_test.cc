@@ -235,7 +235,7 @@ TEST_P(BatchEngine, ThreadsGiveTheSameBitsAsOneThread) {
   const Program program = Assemble(std::string(kIrradiance) +
                                    "mov a0.x, v1.x\nmad oT0, v0, c[a0.x + 2], -v1\nrsq oPos, v0.z\n");
   const ConstantBank constants = RandomConstants(11);
-  constexpr std::size_t kCount = 20000;  // several batches per thread, and a short last batch
+  constexpr std::size_t kCount = 70000;  // enough for 3 threads; several batches each, a short last one
   VertexArrays inputs = Inputs(kCount, [](int reg, std::size_t i) {
     return reg == 1 ? Vec4f{static_cast<float>(i % 13) - 3, 0.5f, 0.25f, 2} : RandomNormal(i);
   });
