@@ -1,0 +1,139 @@
+// irrmap: irradiance environment map of one environment by the method of Ai, Peng & Zhang 2008.
+// Parses the command line and calls RunIrrmap (irradiance/irrmap_job.h), which does all the work.
+#include <unistd.h>
+
+#include <chrono>
+#include <cstdio>
+#include <string>
+
+#include <CLI/CLI.hpp>
+#include <fmt/format.h>
+
+#include "irradiance/environments.h"
+#include "irradiance/irrmap_job.h"
+#include "irradiance/preview.h"
+
+namespace {
+
+constexpr int kProgressBarWidth = 30;
+
+std::string JoinNames() {
+  std::string out;
+  for (const std::string& name : vs11::irradiance::BuiltinEnvironmentNames()) out += (out.empty() ? "" : ", ") + name;
+  return out;
+}
+
+std::string Footer() {
+  return fmt::format(
+      "Outputs (in --out DIR, created if needed; all four are written to temporaries and renamed into\n"
+      "place only when all succeeded, so a failed run leaves no partial file):\n"
+      "  coeffs.json     the 9 RGB SH coefficients (L00, L1-1, L10, L11, L2-2, L2-1, L20, L21, L22),\n"
+      "                  level, face_size, layout, the 7 constants, every level's errors, timings_ms\n"
+      "  constants.vsh   the paper's Table 1 registers as def lines at c0..c6 (cAr cAg cAb cBr cBg cBb\n"
+      "                  cC), for `vs11 run programs/sh9_irradiance.vsh --consts constants.vsh`\n"
+      "  irradiance.exr  irradiance cube map (horizontal cross, float), every texel computed by the\n"
+      "                  paper's vs_1_1 program on the emulated machine\n"
+      "  preview.png     diffuse spheres as in the paper's Fig. 3: exact convolution, SH9 from full\n"
+      "                  resolution, from the 64x64 and 16x16 levels (and the chosen one, marked *),\n"
+      "                  relative-error images under them and the environment beside them\n"
+      "\n"
+      "Printed: a table of every mip level (face size, time to update the 9 coefficients from that\n"
+      "level with the mips already built, max/mean relative error against brute-force integration\n"
+      "over --error-normals normals; * marks the chosen level), then the time of every stage.\n"
+      "\n"
+      "Levels: 0 is the full face size, each level halves it, the last is 1x1. By default the level\n"
+      "whose faces are {0}x{0} when the face is larger (the paper's recommendation: Fig. 3 shows it\n"
+      "looking as good as full resolution, while the update costs 1/16 of it at 256x256), else 0.\n"
+      "\n"
+      "Examples:\n"
+      "  irrmap                                     built-in sky, 256x256 faces, level 2 (64x64), out/\n"
+      "  irrmap studio --face-size 128 --level 3    built-in studio, coefficients from 16x16\n"
+      "  irrmap probe.hdr --layout angular --face-size 256 --out probe-out\n"
+      "  irrmap 'sky_{{face}}.exr' --engine ref       six face files, reference engine\n"
+      "  irrmap cross.exr --map-size 64 --threads 2\n",
+      vs11::irradiance::kRecommendedLevelSize);
+}
+
+// A progress bar on stderr, only when stderr is a terminal.
+vs11::irradiance::IrrmapProgress TerminalProgress() {
+  if (!isatty(fileno(stderr))) return {};
+  return [](std::string_view stage, double fraction) {
+    const int filled = static_cast<int>(fraction * kProgressBarWidth + 0.5);
+    fmt::print(stderr, "\rirrmap: {} [{}{}] {:3.0f}%", stage, std::string(filled, '#'),
+               std::string(kProgressBarWidth - filled, ' '), fraction * 100.0);
+    if (fraction >= 1.0) fmt::print(stderr, "\n");
+    std::fflush(stderr);
+  };
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  vs11::irradiance::IrrmapOptions options;
+  std::string out_dir = options.out_dir.string();
+  std::string font;
+  int level = 0;
+
+  CLI::App app{fmt::format(
+      "irrmap: irradiance environment map of an environment, with 9 spherical-harmonic coefficients per\n"
+      "channel computed from a mip level of the cube map and evaluated by the paper's 11-instruction\n"
+      "vs_1_1 vertex program on the emulated machine (Ai, Peng & Zhang 2008).")};
+  app.footer(Footer());
+  app.add_option("ENV", options.environment,
+                 fmt::format("environment: an image file (any layout below), a six-face pattern holding "
+                             "{{face}}, or a built-in: {}", JoinNames()))
+      ->capture_default_str();
+  app.add_option("--layout", options.layout,
+                 "layout of a file: auto (by aspect ratio), faces, hcross, vcross, hstrip, vstrip, latlong, angular")
+      ->capture_default_str();
+  app.add_option("--face-size", options.face_size,
+                 "face size of a built-in environment, or of the cube a latlong/angular map is resampled to; "
+                 "a power of two (cube files keep theirs, which must be a power of two too)")
+      ->capture_default_str();
+  app.add_option("--level", level,
+                 "mip level the coefficients are computed from: 0 = full face size, each level halves it, down to "
+                 "1x1; default: the 64x64 level when the face is larger, else 0");
+  app.add_option("--out", out_dir, "output directory")->capture_default_str();
+  app.add_option("--engine", options.engine, "vertex machine engine: ref (reference, scalar) or batch (SIMD)")
+      ->capture_default_str();
+  app.add_option("--threads", options.threads, "worker threads (0 = every core)")->capture_default_str();
+  app.add_option("--map-size", options.map_size,
+                 "face size of irradiance.exr; the irradiance is a quadratic polynomial of the normal, so 32 "
+                 "texels per face resolve it")
+      ->capture_default_str();
+  app.add_option("--error-normals", options.error_normals,
+                 "normals (evenly spread) at which every level is compared with the ground truth")
+      ->capture_default_str();
+  app.add_option("--sphere-size", options.sphere_diameter, "diameter of the preview spheres in pixels")
+      ->capture_default_str();
+  app.add_option("--font", font, fmt::format("TrueType font of the preview labels (default {})",
+                                             vs11::irradiance::kDefaultPreviewFont));
+  try {
+    app.parse(argc, argv);
+  } catch (const CLI::ParseError& e) {
+    return app.exit(e);
+  }
+  options.out_dir = out_dir;
+  options.font = font;
+  if (app.count("--level") > 0) options.level = level;
+
+  const auto start = std::chrono::steady_clock::now();
+  vs11::irradiance::IrrmapReport report;
+  std::optional<std::string> error = vs11::irradiance::RunIrrmap(options, report, TerminalProgress());
+  for (const std::string& warning : report.warnings) fmt::print(stderr, "irrmap: warning: {}\n", warning);
+  if (error) {
+    fmt::print(stderr, "irrmap: error: {}\n", *error);
+    return 1;
+  }
+  const double total_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
+
+  fmt::print("environment {}, layout {}, face size {}, coefficients from level {} ({}x{}), {} threads\n\n",
+             report.environment, report.layout, report.face_size, report.level, report.levels[report.level].size,
+             report.levels[report.level].size, report.threads);
+  fmt::print("{}\n", vs11::irradiance::FormatLevelTable(report));
+  fmt::print("stage times:\n{}  {:<15} {:>10.3f} ms\n\n", vs11::irradiance::FormatTimings(report), "total", total_ms);
+  fmt::print("wrote:");
+  for (const auto& file : report.files) fmt::print(" {}", file.string());
+  fmt::print("\n");
+  return 0;
+}

@@ -1,0 +1,512 @@
+// The irrmap job. See irrmap_job.h.
+#include "irradiance/irrmap_job.h"
+
+#include <algorithm>
+#include <array>
+#include <bit>
+#include <cassert>
+#include <chrono>
+#include <cstddef>
+#include <functional>
+#include <memory>
+#include <random>
+#include <system_error>
+#include <thread>
+#include <type_traits>
+#include <utility>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "irradiance/constants_output.h"
+#include "irradiance/cube_map.h"
+#include "irradiance/environment_io.h"
+#include "irradiance/environments.h"
+#include "irradiance/preview.h"
+#include "irradiance/sh_projection.h"
+#include "irradiance/verify.h"
+#include "programs/embedded_programs.h"
+#include "vm/assembler.h"
+#include "vm/program_file.h"
+
+namespace vs11::irradiance {
+namespace {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+constexpr std::string_view kProgramFileName = "sh9_irradiance.vsh";
+// Output file names inside out_dir.
+constexpr std::string_view kCoefficientsFile = "coeffs.json";
+constexpr std::string_view kConstantsFile = "constants.vsh";
+constexpr std::string_view kIrradianceFile = "irradiance.exr";
+constexpr std::string_view kPreviewFile = "preview.png";
+// Each level's coefficient update is repeated until this much time has passed (or kMaxTimingRuns
+// runs), and the mean is reported: a 1 x 1 level takes well under a microsecond.
+constexpr double kMinTimingMs = 20.0;
+constexpr int kMaxTimingRuns = 1000;
+// The preview shows the levels whose faces have these sizes (besides level 0 and the chosen one),
+// the sizes of the paper's Fig. 3.
+constexpr std::array<int, 2> kPreviewLevelSizes = {64, 16};
+constexpr int kMinSphereDiameter = 16;
+constexpr int kMaxSphereDiameter = 2048;
+constexpr int kMaxErrorNormals = 1 << 20;
+
+double MillisecondsSince(Clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+// Runs `stage`, appending its time to the report.
+template <class F>
+auto Timed(IrrmapReport& report, std::string name, F&& stage) {
+  const Clock::time_point start = Clock::now();
+  if constexpr (std::is_void_v<decltype(stage())>) {
+    stage();
+    report.timings.push_back({std::move(name), MillisecondsSince(start)});
+  } else {
+    auto result = stage();
+    report.timings.push_back({std::move(name), MillisecondsSince(start)});
+    return result;
+  }
+}
+
+bool IsPowerOfTwo(int n) { return n > 0 && std::has_single_bit(static_cast<unsigned>(n)); }
+
+std::string BuiltinList() {
+  std::string out;
+  for (const std::string& name : BuiltinEnvironmentNames()) out += (out.empty() ? "" : ", ") + name;
+  return out;
+}
+
+bool IsBuiltinName(std::string_view name) {
+  const std::vector<std::string> names = BuiltinEnvironmentNames();
+  return std::find(names.begin(), names.end(), name) != names.end();
+}
+
+// What the options say once checked.
+struct CheckedOptions {
+  EnvironmentLayout layout = EnvironmentLayout::kAuto;
+  EngineKind engine = EngineKind::kBatch;
+  bool builtin = false;
+  int threads = 1;
+};
+
+std::string LevelRange(int face_size) {
+  return fmt::format("face size {} has levels 0 ({}x{}) to {} (1x1)", face_size, face_size, face_size,
+                     LevelCount(face_size) - 1);
+}
+
+std::optional<std::string> CheckOptions(const IrrmapOptions& options, CheckedOptions& checked) {
+  std::optional<EnvironmentLayout> layout = ParseLayout(options.layout);
+  if (!layout) {
+    return fmt::format("unknown layout '{}' (use auto, faces, hcross, vcross, hstrip, vstrip, latlong or angular)",
+                       options.layout);
+  }
+  checked.layout = *layout;
+  std::optional<EngineKind> engine = EngineKindFromName(options.engine);
+  if (!engine) return fmt::format("unknown engine '{}' (use ref or batch)", options.engine);
+  checked.engine = *engine;
+  if (!IsPowerOfTwo(options.face_size) || options.face_size > kMaxFaceSize) {
+    return fmt::format("--face-size {} must be a power of two from 1 to {} (the mip pyramid halves it down to 1x1)",
+                       options.face_size, kMaxFaceSize);
+  }
+  if (options.level && *options.level < 0) {
+    return fmt::format("--level {} is out of range: levels start at 0 (full resolution)", *options.level);
+  }
+  if (options.map_size < 1 || options.map_size > kMaxMapSize) {
+    return fmt::format("--map-size {} is out of range: 1 to {}", options.map_size, kMaxMapSize);
+  }
+  if (options.threads < 0) return fmt::format("--threads {} must be >= 0 (0: every core)", options.threads);
+  if (options.error_normals < 1 || options.error_normals > kMaxErrorNormals) {
+    return fmt::format("--error-normals {} is out of range: 1 to {}", options.error_normals, kMaxErrorNormals);
+  }
+  if (options.sphere_diameter < kMinSphereDiameter || options.sphere_diameter > kMaxSphereDiameter) {
+    return fmt::format("--sphere-size {} is out of range: {} to {}", options.sphere_diameter, kMinSphereDiameter,
+                       kMaxSphereDiameter);
+  }
+  if (options.out_dir.empty()) return std::string("the output directory is empty");
+  if (options.environment.empty()) return std::string("no environment given");
+  std::error_code ec;
+  const bool exists = fs::exists(options.environment, ec);
+  checked.builtin = IsBuiltinName(options.environment) && !exists;
+  if (!checked.builtin && !exists && options.environment.find(kFaceToken) == std::string::npos) {
+    return fmt::format("environment '{}' is neither an existing file nor a built-in ({})", options.environment,
+                       BuiltinList());
+  }
+  if (checked.builtin && options.level && *options.level >= LevelCount(options.face_size)) {
+    return fmt::format("--level {} is out of range: {}", *options.level, LevelRange(options.face_size));
+  }
+  const unsigned cores = std::thread::hardware_concurrency();
+  checked.threads = options.threads > 0 ? options.threads : static_cast<int>(std::max(1u, cores));
+  return std::nullopt;
+}
+
+std::optional<std::string> LoadCube(const IrrmapOptions& options, const CheckedOptions& checked,
+                                    IrrmapReport& report, CubeMap& cube) {
+  if (checked.builtin) {
+    std::optional<CubeMap> made = MakeBuiltinEnvironment(options.environment, options.face_size);
+    if (!made) return fmt::format("cannot make the built-in environment '{}'", options.environment);
+    cube = std::move(*made);
+    report.environment = fmt::format("{} (built-in)", options.environment);
+    report.layout = "builtin";
+    if (checked.layout != EnvironmentLayout::kAuto) {
+      report.warnings.push_back(fmt::format("--layout {} ignored for a built-in environment", options.layout));
+    }
+    return std::nullopt;
+  }
+  LoadOptions load;
+  load.layout = checked.layout;
+  load.face_size = options.face_size;
+  LoadResult loaded = LoadEnvironment(options.environment, load);
+  if (!loaded.ok()) return loaded.error;
+  for (std::string& warning : loaded.environment->warnings) report.warnings.push_back(std::move(warning));
+  cube = std::move(loaded.environment->cube);
+  report.environment = options.environment;
+  report.layout = std::string(LayoutName(loaded.environment->layout));
+  if (!IsPowerOfTwo(cube.face_size)) {
+    return fmt::format("{}: face size {} is not a power of two; the mip pyramid needs exact 2x2 parents down to "
+                       "1x1 (resample the map, or give a lat-long map with --face-size)",
+                       options.environment, cube.face_size);
+  }
+  if (options.level && *options.level >= LevelCount(cube.face_size)) {
+    return fmt::format("--level {} is out of range: {}", *options.level, LevelRange(cube.face_size));
+  }
+  return std::nullopt;
+}
+
+// Mean time of ProjectLevel at one level, in ms.
+double TimeProjection(const CubeMipChain& mips, const BasisPyramid& basis, int level, Sh9Rgb& coefficients) {
+  const Clock::time_point start = Clock::now();
+  int runs = 0;
+  double elapsed = 0.0;
+  do {
+    coefficients = ProjectLevel(mips, basis, level);
+    ++runs;
+    elapsed = MillisecondsSince(start);
+  } while (elapsed < kMinTimingMs && runs < kMaxTimingRuns);
+  return elapsed / runs;
+}
+
+// Unit directions of every texel of a size^3 cube map, in CubeFace, row, column order.
+std::vector<glm::dvec3> CubeTexelDirections(int size) {
+  std::vector<glm::dvec3> directions;
+  directions.reserve(static_cast<std::size_t>(kCubeFaceCount) * size * size);
+  for (CubeFace face : kAllCubeFaces) {
+    for (int y = 0; y < size; ++y) {
+      for (int x = 0; x < size; ++x) directions.push_back(TexelDirection(face, x, y, size));
+    }
+  }
+  return directions;
+}
+
+std::string PreviewLabel(const LevelReport& level) {
+  const std::string name = level.level == 0 ? fmt::format("SH9 from {0}x{0}", level.size)
+                                            : fmt::format("SH9 from {0}x{0} (level {1})", level.size, level.level);
+  return level.chosen ? name + " *" : name;
+}
+
+// Levels shown in the preview: 0, those of kPreviewLevelSizes, and the chosen one, in order.
+std::vector<int> PreviewLevels(const IrrmapReport& report) {
+  std::vector<int> levels = {0, report.level};
+  for (const LevelReport& level : report.levels) {
+    if (std::find(kPreviewLevelSizes.begin(), kPreviewLevelSizes.end(), level.size) != kPreviewLevelSizes.end()) {
+      levels.push_back(level.level);
+    }
+  }
+  std::sort(levels.begin(), levels.end());
+  levels.erase(std::unique(levels.begin(), levels.end()), levels.end());
+  return levels;
+}
+
+nlohmann::ordered_json CoefficientsJson(const IrrmapReport& report, const IrrmapOptions& options,
+                                        const CheckedOptions& checked) {
+  nlohmann::ordered_json json;
+  nlohmann::ordered_json rows = nlohmann::ordered_json::array();
+  for (const glm::dvec3& c : report.coefficients.coefficients) rows.push_back({c.r, c.g, c.b});
+  json["coefficients"] = std::move(rows);
+  json["level"] = report.level;
+  json["level_size"] = report.levels[report.level].size;
+  json["face_size"] = report.face_size;
+  json["layout"] = report.layout;
+  json["environment"] = report.environment;
+  json["engine"] = std::string(EngineName(checked.engine));
+  json["map_size"] = options.map_size;
+  json["constants"] = ConstantsJson(report.constants);
+  nlohmann::ordered_json levels = nlohmann::ordered_json::array();
+  for (const LevelReport& level : report.levels) {
+    levels.push_back({{"level", level.level},
+                      {"size", level.size},
+                      {"update_ms", level.update_ms},
+                      {"max_relative_error", level.error.max_relative},
+                      {"mean_relative_error", level.error.mean_relative}});
+  }
+  json["levels"] = std::move(levels);
+  nlohmann::ordered_json timings = nlohmann::ordered_json::object();
+  for (const Timing& timing : report.timings) timings[timing.name] = timing.ms;
+  json["timings_ms"] = std::move(timings);
+  return json;
+}
+
+void RemoveQuietly(const fs::path& path) {
+  std::error_code ec;
+  fs::remove(path, ec);
+}
+
+// One output: written by `write` to a temporary path with the same extension, then renamed.
+struct PendingOutput {
+  std::string_view name;
+  std::function<std::optional<std::string>(const fs::path&)> write;
+};
+
+std::optional<std::string> WriteOutputs(const fs::path& out_dir, const std::vector<PendingOutput>& outputs,
+                                        std::vector<fs::path>& written) {
+  std::error_code ec;
+  fs::create_directories(out_dir, ec);
+  if (ec) return fmt::format("cannot create the output directory {} ({})", out_dir.string(), ec.message());
+  std::random_device random;
+  const std::string tag = fmt::format(".irrmap-{:08x}-", random());
+  std::vector<std::pair<fs::path, fs::path>> renames;
+  auto discard = [&](std::size_t from) {
+    for (std::size_t i = from; i < renames.size(); ++i) RemoveQuietly(renames[i].first);
+  };
+  for (const PendingOutput& output : outputs) {
+    const fs::path target = out_dir / output.name;
+    const fs::path temporary = out_dir / (tag + std::string(output.name));
+    if (std::optional<std::string> error = output.write(temporary)) {
+      RemoveQuietly(temporary);
+      discard(0);
+      return fmt::format("cannot write {}: {}", target.string(), *error);
+    }
+    renames.emplace_back(temporary, target);
+  }
+  for (std::size_t i = 0; i < renames.size(); ++i) {
+    fs::rename(renames[i].first, renames[i].second, ec);
+    if (ec) {
+      discard(i);
+      return fmt::format("cannot rename the finished file into {} ({})", renames[i].second.string(), ec.message());
+    }
+    written.push_back(renames[i].second);
+  }
+  return std::nullopt;
+}
+
+std::string ConstantsFileComment(const IrrmapReport& report, const PaperProgram& program) {
+  return fmt::format(
+      "Irradiance constants for programs/{file} (Ai, Peng & Zhang 2008, Table 1), written by irrmap.\n"
+      "Environment: {environment}, face size {face}, coefficients from level {level} ({size}x{size}).\n"
+      "c{first}..c{last} = cAr cAg cAb cBr cBg cBb cC; normal in v{normal}, irradiance in {output}.rgb.\n"
+      "Run with: vs11 run programs/{file} --skip-validation --consts constants.vsh --sphere 6 --sphere-reg v{normal}\n"
+      "(--skip-validation: the program is the irradiance part only and writes no oPos), or with the\n"
+      "complete shader programs/sh9_vertex_od0.vsh, which reads the same c0..c6.",
+      fmt::arg("file", kProgramFileName), fmt::arg("environment", report.environment),
+      fmt::arg("face", report.face_size), fmt::arg("level", report.level),
+      fmt::arg("size", report.levels[report.level].size), fmt::arg("first", program.constant_base()),
+      fmt::arg("last", program.constant_base() + 6), fmt::arg("normal", program.normal_register()),
+      fmt::arg("output", OutputSlotName(program.output_slot())));
+}
+
+}  // namespace
+
+int DefaultLevel(int face_size) {
+  assert(IsPowerOfTwo(face_size));
+  int level = 0;
+  while ((face_size >> level) > kRecommendedLevelSize) ++level;
+  return level;
+}
+
+double IrrmapReport::TimingMs(std::string_view name) const {
+  for (const Timing& timing : timings) {
+    if (timing.name == name) return timing.ms;
+  }
+  return 0.0;
+}
+
+// ---- PaperProgram ----------------------------------------------------------------------------------
+
+std::optional<PaperProgram> PaperProgram::Load(std::string& error) {
+  const std::string file_name(kProgramFileName);
+  MetadataResult metadata = ParseProgramMetadata(programs::kProgramSh9Irradiance, file_name);
+  AssembleOptions assemble;
+  assemble.validate = false;  // validated below as a fragment: it writes no oPos
+  AssembleResult assembled = AssembleSource(programs::kProgramSh9Irradiance, file_name, assemble);
+  Diagnostics diagnostics = metadata.diagnostics;
+  diagnostics.Append(assembled.diagnostics);
+  if (assembled.program) {
+    diagnostics.Append(ValidateFragment(*assembled.program, assemble.constant_count, assembled.dx9_syntax));
+  }
+  if (!assembled.program || diagnostics.HasErrors()) {
+    error = "the embedded paper program does not assemble:\n" + diagnostics.ToString();
+    return std::nullopt;
+  }
+  const ProgramMetadata& m = metadata.metadata;
+  if (!m.normal || !m.output || !m.constants) {
+    error = fmt::format("{} lacks its normal=, output= or constants= metadata line", file_name);
+    return std::nullopt;
+  }
+  PaperProgram program;
+  program.program_ = std::move(*assembled.program);
+  program.normal_register_ = *m.normal;
+  program.output_slot_ = *m.output;
+  program.constant_base_ = *m.constants;
+  return program;
+}
+
+ConstantBank PaperProgram::Constants(const SevenConstants& constants) const {
+  ConstantBank bank;
+  for (std::size_t i = 0; i < constants.registers.size(); ++i) {
+    const glm::vec4& v = constants.registers[i];
+    bank[constant_base_ + static_cast<int>(i)] = {v.x, v.y, v.z, v.w};
+  }
+  return bank;
+}
+
+std::vector<glm::dvec3> PaperProgram::Irradiance(const SevenConstants& constants,
+                                                 std::span<const glm::dvec3> normals, EngineKind engine,
+                                                 const EngineOptions& engine_options) const {
+  const std::array<int, 1> input_registers = {normal_register_};
+  VertexArrays inputs = MakeInputArrays(normals.size(), input_registers);
+  for (int c = 0; c < 3; ++c) {
+    float* lane = inputs.lane(normal_register_, c);
+    for (std::size_t i = 0; i < normals.size(); ++i) lane[i] = static_cast<float>(normals[i][c]);
+  }
+  VertexArrays outputs = MakeOutputArrays(normals.size(), program_);
+  std::unique_ptr<Engine> machine = MakeEngine(engine, program_, Constants(constants), engine_options);
+  machine->Run(inputs, outputs);
+  std::vector<glm::dvec3> irradiance(normals.size());
+  for (int c = 0; c < 3; ++c) {
+    const float* lane = outputs.lane(output_slot_, c);
+    for (std::size_t i = 0; i < normals.size(); ++i) irradiance[i][c] = lane[i];
+  }
+  return irradiance;
+}
+
+// ---- RunIrrmap -------------------------------------------------------------------------------------
+
+std::optional<std::string> RunIrrmap(const IrrmapOptions& options, IrrmapReport& report,
+                                     const IrrmapProgress& progress) {
+  report = IrrmapReport{};
+  CheckedOptions checked;
+  if (std::optional<std::string> error = CheckOptions(options, checked)) return error;
+  report.threads = checked.threads;
+  const EngineOptions engine_options{checked.threads};
+
+  CubeMap cube;
+  std::optional<std::string> load_error =
+      Timed(report, "load", [&] { return LoadCube(options, checked, report, cube); });
+  if (load_error) return load_error;
+  report.face_size = cube.face_size;
+  report.level = options.level.value_or(DefaultLevel(cube.face_size));
+
+  std::optional<CubeMipChain> mips = Timed(report, "env_mips", [&] { return BuildEnvironmentMips(cube); });
+  std::optional<BasisPyramid> basis = Timed(report, "basis_pyramid", [&] { return BuildBasisPyramid(cube.face_size); });
+  if (!mips || !basis) return fmt::format("cannot build the mip pyramids of face size {}", cube.face_size);
+
+  // Every level's coefficients, each update timed on its own.
+  Timed(report, "level_updates", [&] {
+    const int level_count = LevelCount(cube.face_size);
+    for (int level = 0; level < level_count; ++level) {
+      LevelReport row;
+      row.level = level;
+      row.size = cube.face_size >> level;
+      row.chosen = level == report.level;
+      row.update_ms = TimeProjection(*mips, *basis, level, row.coefficients);
+      report.levels.push_back(row);
+    }
+  });
+  const LevelReport& chosen = report.levels[report.level];
+  report.coefficients = chosen.coefficients;
+  report.timings.push_back({"projection", chosen.update_ms});
+  report.constants = Timed(report, "constants", [&] { return PackTable1(report.coefficients); });
+
+  std::string program_error;
+  std::optional<PaperProgram> program = Timed(report, "program", [&] { return PaperProgram::Load(program_error); });
+  if (!program) return program_error;
+
+  // The irradiance cube map: the paper's program once per texel direction.
+  CubeMap irradiance_map(options.map_size);
+  Timed(report, "irradiance_map", [&] {
+    const std::vector<glm::dvec3> directions = CubeTexelDirections(options.map_size);
+    const std::vector<glm::dvec3> values =
+        program->Irradiance(report.constants, directions, checked.engine, engine_options);
+    std::size_t k = 0;
+    for (Image& face : irradiance_map.faces) {
+      for (glm::vec3& texel : face.pixels) texel = glm::vec3(values[k++]);
+    }
+  });
+
+  // Ground truth at the error normals and at the preview's grid, in one pass.
+  const std::vector<glm::dvec3> error_normals = SphereNormals(options.error_normals);
+  HemisphereGrid grid;
+  std::vector<glm::dvec3> truth_normals = error_normals;
+  truth_normals.insert(truth_normals.end(), grid.normals().begin(), grid.normals().end());
+  std::vector<glm::dvec3> truth = Timed(report, "ground_truth", [&] {
+    std::function<void(double)> report_fraction;
+    if (progress) report_fraction = [&](double fraction) { progress("ground truth", fraction); };
+    return GroundTruthIrradiance(cube, truth_normals, checked.threads, report_fraction);
+  });
+  const std::span<const glm::dvec3> error_truth(truth.data(), error_normals.size());
+  grid.SetValues(std::vector<glm::dvec3>(truth.begin() + static_cast<std::ptrdiff_t>(error_normals.size()), truth.end()));
+
+  Timed(report, "level_errors", [&] {
+    for (LevelReport& level : report.levels) {
+      const std::vector<glm::dvec3> estimate =
+          program->Irradiance(PackTable1(level.coefficients), error_normals, checked.engine, engine_options);
+      level.error = CompareIrradiance(estimate, error_truth, error_normals);
+    }
+  });
+
+  PreviewResult preview = Timed(report, "preview", [&] {
+    PreviewOptions preview_options;
+    preview_options.sphere_diameter = options.sphere_diameter;
+    if (!options.font.empty()) preview_options.font = options.font;
+    const SpherePixels sphere = MakeSpherePixels(options.sphere_diameter);
+    PreviewPanel truth_panel{"exact convolution", {}};
+    truth_panel.irradiance.reserve(sphere.normals.size());
+    for (const glm::dvec3& n : sphere.normals) truth_panel.irradiance.push_back(grid.Sample(n));
+    std::vector<PreviewPanel> panels;
+    for (int level : PreviewLevels(report)) {
+      const LevelReport& row = report.levels[level];
+      panels.push_back({PreviewLabel(row), program->Irradiance(PackTable1(row.coefficients), sphere.normals,
+                                                               checked.engine, engine_options)});
+    }
+    return RenderPreview(sphere, truth_panel, panels, cube, preview_options);
+  });
+  for (std::string& warning : preview.warnings) report.warnings.push_back(std::move(warning));
+
+  const std::string coefficients_text = CoefficientsJson(report, options, checked).dump(2) + "\n";
+  const std::string constants_text =
+      ConstantsDefText(report.constants, program->constant_base(), ConstantsFileComment(report, *program));
+  const std::vector<PendingOutput> outputs = {
+      {kCoefficientsFile, [&](const fs::path& path) { return WriteFileAtomically(path, coefficients_text); }},
+      {kConstantsFile, [&](const fs::path& path) { return WriteFileAtomically(path, constants_text); }},
+      {kIrradianceFile, [&](const fs::path& path) { return WriteCrossExr(irradiance_map, path); }},
+      {kPreviewFile, [&](const fs::path& path) { return WriteImage(preview.image, path); }},
+  };
+  std::vector<fs::path> written;
+  std::optional<std::string> write_error =
+      Timed(report, "write", [&] { return WriteOutputs(options.out_dir, outputs, written); });
+  if (write_error) return write_error;
+  report.files = std::move(written);
+  return std::nullopt;
+}
+
+// ---- Formatting ------------------------------------------------------------------------------------
+
+std::string FormatLevelTable(const IrrmapReport& report) {
+  std::string out = fmt::format("  {:>5}  {:>11}  {:>11}  {:>11}  {:>12}\n", "level", "size", "update ms",
+                                "max rel err", "mean rel err");
+  for (const LevelReport& level : report.levels) {
+    out += fmt::format("{} {:>5}  {:>11}  {:>11.4f}  {:>10.3f} %  {:>10.3f} %\n", level.chosen ? '*' : ' ',
+                       level.level, fmt::format("{0}x{0}", level.size), level.update_ms,
+                       100.0 * level.error.max_relative, 100.0 * level.error.mean_relative);
+  }
+  return out;
+}
+
+std::string FormatTimings(const IrrmapReport& report) {
+  std::string out;
+  for (const Timing& timing : report.timings) out += fmt::format("  {:<15} {:>10.3f} ms\n", timing.name, timing.ms);
+  return out;
+}
+
+}  // namespace vs11::irradiance

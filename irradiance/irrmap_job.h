@@ -1,0 +1,147 @@
+// The `irrmap` job: the paper's whole procedure (section 3.3) on one environment map, with every
+// intermediate written out and measured.
+//
+//   load ENV ─> environment mip pyramid ─┐
+//   basis pyramid (once per face size) ──┴─> ProjectLevel(K) = 9 RGB coefficients
+//     ─> PackTable1 = the 7 constant registers ─> the paper's vertex program (sh9_irradiance.vsh) on
+//        the vs_1_1 machine, once per texel direction of the irradiance cube map
+//   plus: the coefficients of every level compared with brute-force integration (ground truth) over
+//   a dense set of normals, and a Fig. 3-like preview.
+//
+// Files written into IrrmapOptions::out_dir (created if needed):
+//   coeffs.json      {"coefficients": 9 x [r, g, b] (L00, L1-1, L10, L11, L2-2, L2-1, L20, L21,
+//                    L22), "level", "level_size", "face_size", "layout", "environment", "engine",
+//                    "map_size", "constants": {"cAr": [x, y, z, w], ...}, "levels": [{"level",
+//                    "size", "update_ms", "max_relative_error", "mean_relative_error"}, ...],
+//                    "timings_ms": {"load", "env_mips", "basis_pyramid", "level_updates" (every
+//                    level, each repeated for timing), "projection" (the chosen level's update),
+//                    "constants", "program" (assembling it), "irradiance_map", "ground_truth",
+//                    "level_errors", "preview"}}; the final "write" is in IrrmapReport only
+//   constants.vsh    the seven registers as `def` lines at the registers the program reads
+//                    (`vs11 run --consts constants.vsh`, or paste into a program)
+//   irradiance.exr   the irradiance cube map, horizontal cross, 32-bit float, map_size per face
+//   preview.png      see irradiance/preview.h
+// All four are first written to hidden temporaries in out_dir and renamed into place only when all
+// of them were written, so a failure leaves no partial output.
+#pragma once
+
+#include <filesystem>
+#include <functional>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "irradiance/ground_truth.h"
+#include "irradiance/sh9.h"
+#include "vm/machine.h"
+#include "vm/program.h"
+
+namespace vs11::irradiance {
+
+// The paper recommends computing the coefficients from the 64 x 64 level of a larger map (Fig. 3:
+// it looks as good as full resolution at a quarter of the cost per halving).
+inline constexpr int kRecommendedLevelSize = 64;
+// Default face size of the irradiance cube map: the irradiance is band-limited to l <= 2 (a
+// quadratic polynomial of the normal), so 32 texels per face with bilinear filtering resolve it.
+inline constexpr int kDefaultMapSize = 32;
+inline constexpr int kMaxMapSize = 1024;
+// Normals of the error table (SphereNormals): dense enough that the max error is found to a few %.
+inline constexpr int kDefaultErrorNormals = 2000;
+
+// The level whose faces are kRecommendedLevelSize when the face is larger than that, else 0.
+// face_size a positive power of two (asserted).
+int DefaultLevel(int face_size);
+
+struct IrrmapOptions {
+  std::string environment = "sky";  // a file, a {face} pattern or a BuiltinEnvironmentNames() name
+  std::string layout = "auto";      // ParseLayout names; files only
+  int face_size = 256;              // built-ins; resampled lat-long and angular maps
+  std::optional<int> level;         // default DefaultLevel(face size)
+  std::filesystem::path out_dir = "out";
+  std::string engine = "batch";     // EngineKindFromName names
+  int threads = 0;                  // 0: std::thread::hardware_concurrency()
+  int map_size = kDefaultMapSize;   // irradiance cube map face size, 1..kMaxMapSize
+  int error_normals = kDefaultErrorNormals;
+  int sphere_diameter = 192;        // preview spheres, pixels (>= 16)
+  std::filesystem::path font;       // preview labels; empty = kDefaultPreviewFont
+};
+
+// One row of the level table.
+struct LevelReport {
+  int level = 0;
+  int size = 0;            // face size at this level
+  double update_ms = 0.0;  // ProjectLevel alone (the mips are not included), mean of repeated runs
+  ErrorStats error;        // the vertex program's irradiance against the ground truth
+  Sh9Rgb coefficients;
+  bool chosen = false;
+};
+
+struct Timing {
+  std::string name;
+  double ms = 0.0;
+};
+
+struct IrrmapReport {
+  std::string environment;  // "sky (built-in)" or the path
+  std::string layout;       // "builtin" or the layout read
+  int face_size = 0;
+  int level = 0;            // the chosen level
+  int threads = 0;          // worker threads used
+  Sh9Rgb coefficients;      // of the chosen level
+  SevenConstants constants;
+  std::vector<LevelReport> levels;  // every level, 0 first
+  std::vector<Timing> timings;      // in the order the stages ran
+  std::vector<std::filesystem::path> files;  // written, once everything succeeded
+  std::vector<std::string> warnings;
+
+  // The time of a stage, or 0 when it did not run.
+  double TimingMs(std::string_view name) const;
+};
+
+// Progress of the long stages: `stage` is a short name ("ground truth"), `fraction` in [0, 1] never
+// decreases within a stage and reaches 1.
+using IrrmapProgress = std::function<void(std::string_view stage, double fraction)>;
+
+// Runs the job. Returns nullopt on success; otherwise a message saying what is wrong (bad option,
+// unreadable or unusable environment, write failure), in which case no output file is left behind
+// (out_dir may have been created). Options are checked before any work starts.
+std::optional<std::string> RunIrrmap(const IrrmapOptions& options, IrrmapReport& report,
+                                     const IrrmapProgress& progress = {});
+
+// The level table, one row per level (the chosen one marked with '*'):
+//   level   size     update ms   max rel err   mean rel err
+std::string FormatLevelTable(const IrrmapReport& report);
+// "load 12.3 ms, env_mips 4.5 ms, ..." one stage per line.
+std::string FormatTimings(const IrrmapReport& report);
+
+// The paper's program (programs/sh9_irradiance.vsh, compiled into the binary) ready to run: its
+// registers come from the program's own metadata comments (normal=v0, output=oD0, constants=c0).
+class PaperProgram {
+ public:
+  // Assembles and validates (as a fragment: it writes no oPos) the embedded text; nullopt with
+  // `error` set if that fails (a build problem, not a user one).
+  static std::optional<PaperProgram> Load(std::string& error);
+
+  const Program& program() const { return program_; }
+  int normal_register() const { return normal_register_; }  // v#
+  int output_slot() const { return output_slot_; }          // OutputSlot
+  int constant_base() const { return constant_base_; }      // c# of cAr
+
+  // The constant bank with the seven registers at constant_base().
+  ConstantBank Constants(const SevenConstants& constants) const;
+  // Runs the program once per normal (as (x, y, z, 1) in floats) and returns the output's rgb.
+  std::vector<glm::dvec3> Irradiance(const SevenConstants& constants, std::span<const glm::dvec3> normals,
+                                     EngineKind engine, const EngineOptions& engine_options = {}) const;
+
+ private:
+  Program program_;
+  int normal_register_ = 0;
+  int output_slot_ = 0;
+  int constant_base_ = 0;
+};
+
+}  // namespace vs11::irradiance
