@@ -42,13 +42,12 @@ constexpr std::string_view kConstantsFile = "constants.vsh";
 constexpr std::string_view kIrradianceFile = "irradiance.exr";
 constexpr std::string_view kPreviewFile = "preview.png";
 // Each level's coefficient update is repeated until this much time has passed (or kMaxTimingRuns
-// runs), and the mean is reported: a 1 x 1 level takes well under a microsecond.
+// runs), and the mean is reported: a 1 x 1 level takes a few microseconds.
 constexpr double kMinTimingMs = 20.0;
 constexpr int kMaxTimingRuns = 1000;
 // The preview shows the levels whose faces have these sizes (besides level 0 and the chosen one),
 // the sizes of the paper's Fig. 3.
 constexpr std::array<int, 2> kPreviewLevelSizes = {64, 16};
-constexpr int kMinSphereDiameter = 16;
 constexpr int kMaxSphereDiameter = 2048;
 constexpr int kMaxErrorNormals = 1 << 20;
 
@@ -120,8 +119,8 @@ std::optional<std::string> CheckOptions(const IrrmapOptions& options, CheckedOpt
   if (options.error_normals < 1 || options.error_normals > kMaxErrorNormals) {
     return fmt::format("--error-normals {} is out of range: 1 to {}", options.error_normals, kMaxErrorNormals);
   }
-  if (options.sphere_diameter < kMinSphereDiameter || options.sphere_diameter > kMaxSphereDiameter) {
-    return fmt::format("--sphere-size {} is out of range: {} to {}", options.sphere_diameter, kMinSphereDiameter,
+  if (options.sphere_diameter < kMinPreviewSphereDiameter || options.sphere_diameter > kMaxSphereDiameter) {
+    return fmt::format("--sphere-size {} is out of range: {} to {}", options.sphere_diameter, kMinPreviewSphereDiameter,
                        kMaxSphereDiameter);
   }
   if (options.out_dir.empty()) return std::string("the output directory is empty");
@@ -263,6 +262,11 @@ std::optional<std::string> WriteOutputs(const fs::path& out_dir, const std::vect
   std::error_code ec;
   fs::create_directories(out_dir, ec);
   if (ec) return fmt::format("cannot create the output directory {} ({})", out_dir.string(), ec.message());
+  for (const PendingOutput& output : outputs) {  // a folder in the way would fail the last renames
+    if (fs::is_directory(out_dir / output.name, ec)) {
+      return fmt::format("cannot write {}: it is a directory", (out_dir / output.name).string());
+    }
+  }
   std::random_device random;
   const std::string tag = fmt::format(".irrmap-{:08x}-", random());
   std::vector<std::pair<fs::path, fs::path>> renames;
@@ -295,8 +299,8 @@ std::string ConstantsFileComment(const IrrmapReport& report, const PaperProgram&
       "Irradiance constants for programs/{file} (Ai, Peng & Zhang 2008, Table 1), written by irrmap.\n"
       "Environment: {environment}, face size {face}, coefficients from level {level} ({size}x{size}).\n"
       "c{first}..c{last} = cAr cAg cAb cBr cBg cBb cC; normal in v{normal}, irradiance in {output}.rgb.\n"
-      "Run with: vs11 run programs/{file} --skip-validation --consts constants.vsh --sphere 6 --sphere-reg v{normal}\n"
-      "(--skip-validation: the program is the irradiance part only and writes no oPos), or with the\n"
+      "Run with: vs11 run programs/{file} --fragment --consts constants.vsh --sphere 6 --sphere-reg v{normal}\n"
+      "(--fragment: the program is the irradiance part only and writes no oPos), or with the\n"
       "complete shader programs/sh9_vertex_od0.vsh, which reads the same c0..c6.",
       fmt::arg("file", kProgramFileName), fmt::arg("environment", report.environment),
       fmt::arg("face", report.face_size), fmt::arg("level", report.level),

@@ -25,7 +25,6 @@ constexpr int kRowGap = 12;            // between the sphere row and the error r
 constexpr int kLabelPad = 8;           // label height = font size + this
 constexpr int kRampWidth = 20;         // the colour bar of the error scale
 constexpr int kTickLength = 4;
-constexpr int kMinSphereDiameter = 16;
 constexpr float kTextValue = 0.9f;     // label grey (linear)
 constexpr float kOutlineValue = 0.03f;  // the least value of the thumbnail's cell borders (linear)
 // The error scale: the smallest "nice" value (1, 2, 5 x 10^k) at or above the largest error, but
@@ -268,7 +267,7 @@ Image EnvironmentThumbnail(const CubeMap& environment, int cross_face) {
 }
 
 PreviewLayout ComputePreviewLayout(int panels, int environment_face_size, const PreviewOptions& options) {
-  const int s = std::max(options.sphere_diameter, kMinSphereDiameter);
+  const int s = std::max(options.sphere_diameter, kMinPreviewSphereDiameter);
   const int label = LabelHeight(options);
   PreviewLayout layout;
   // The cross spans the height of both rows below the first label row.
@@ -281,7 +280,7 @@ PreviewLayout ComputePreviewLayout(int panels, int environment_face_size, const 
 PreviewResult RenderPreview(const SpherePixels& sphere, const PreviewPanel& truth,
                             std::span<const PreviewPanel> estimates, const CubeMap& environment,
                             const PreviewOptions& options) {
-  assert(sphere.diameter == std::max(options.sphere_diameter, kMinSphereDiameter));
+  assert(sphere.diameter == std::max(options.sphere_diameter, kMinPreviewSphereDiameter));
   assert(truth.irradiance.size() == sphere.normals.size());
   const int s = sphere.diameter;
   const int label_height = LabelHeight(options);

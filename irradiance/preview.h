@@ -34,6 +34,8 @@ inline constexpr double kSphereWhite = 0.8;
 // Relative errors: |estimate - truth| / max(truth, kPreviewErrorFloor x the brightest truth), the
 // max over the three channels, the same definition as CompareIrradiance with its default floor.
 inline constexpr double kPreviewErrorFloor = 0.01;
+// Smallest sphere the layout takes (smaller diameters are raised to it).
+inline constexpr int kMinPreviewSphereDiameter = 16;
 // Debian's fonts-dejavu-core; OpenImageIO's render_text needs a TrueType font.
 inline constexpr const char* kDefaultPreviewFont = "/usr/share/fonts/truetype/dejavu/DejaVuSans.ttf";
 
@@ -87,7 +89,7 @@ struct PreviewPanel {
 };
 
 struct PreviewOptions {
-  int sphere_diameter = 192;  // pixels, >= 16
+  int sphere_diameter = 192;  // pixels, >= kMinPreviewSphereDiameter
   std::filesystem::path font = kDefaultPreviewFont;
   int font_size = 15;  // pixels
 };

@@ -16,6 +16,9 @@
 namespace {
 
 constexpr int kProgressBarWidth = 30;
+// Exit status: 1 for a failed job, 2 for a command line that does not parse.
+constexpr int kJobError = 1;
+constexpr int kUsageError = 2;
 
 std::string JoinNames() {
   std::string out;
@@ -30,7 +33,8 @@ std::string Footer() {
       "  coeffs.json     the 9 RGB SH coefficients (L00, L1-1, L10, L11, L2-2, L2-1, L20, L21, L22),\n"
       "                  level, face_size, layout, the 7 constants, every level's errors, timings_ms\n"
       "  constants.vsh   the paper's Table 1 registers as def lines at c0..c6 (cAr cAg cAb cBr cBg cBb\n"
-      "                  cC), for `vs11 run programs/sh9_irradiance.vsh --consts constants.vsh`\n"
+      "                  cC), for `vs11 run programs/sh9_irradiance.vsh --fragment --consts\n"
+      "                  constants.vsh --sphere 6 --sphere-reg v0` (the program writes no oPos)\n"
       "  irradiance.exr  irradiance cube map (horizontal cross, float), every texel computed by the\n"
       "                  paper's vs_1_1 program on the emulated machine\n"
       "  preview.png     diffuse spheres as in the paper's Fig. 3: exact convolution, SH9 from full\n"
@@ -40,6 +44,11 @@ std::string Footer() {
       "Printed: a table of every mip level (face size, time to update the 9 coefficients from that\n"
       "level with the mips already built, max/mean relative error against brute-force integration\n"
       "over --error-normals normals; * marks the chosen level), then the time of every stage.\n"
+      "Relative error of a normal: max over r, g, b of |SH9 - exact| / max(exact, 1% of the largest\n"
+      "exact value). Around a strong light's terminator SH9 is far off (its band limit rings): tens\n"
+      "of percent for the sky's sun, more for the single spot light.\n"
+      "The ground truth (brute-force integration over every texel) is the slow stage; a progress\n"
+      "bar is shown when stderr is a terminal.\n"
       "\n"
       "Levels: 0 is the full face size, each level halves it, the last is 1x1. By default the level\n"
       "whose faces are {0}x{0} when the face is larger (the paper's recommendation: Fig. 3 shows it\n"
@@ -57,10 +66,13 @@ std::string Footer() {
 // A progress bar on stderr, only when stderr is a terminal.
 vs11::irradiance::IrrmapProgress TerminalProgress() {
   if (!isatty(fileno(stderr))) return {};
-  return [](std::string_view stage, double fraction) {
+  return [last_percent = -1](std::string_view stage, double fraction) mutable {
+    const int percent = static_cast<int>(fraction * 100.0);
+    if (percent == last_percent) return;  // redraw only when the number changes
+    last_percent = percent;
     const int filled = static_cast<int>(fraction * kProgressBarWidth + 0.5);
-    fmt::print(stderr, "\rirrmap: {} [{}{}] {:3.0f}%", stage, std::string(filled, '#'),
-               std::string(kProgressBarWidth - filled, ' '), fraction * 100.0);
+    fmt::print(stderr, "\rirrmap: {} [{}{}] {:3}%", stage, std::string(filled, '#'),
+               std::string(kProgressBarWidth - filled, ' '), percent);
     if (fraction >= 1.0) fmt::print(stderr, "\n");
     std::fflush(stderr);
   };
@@ -110,8 +122,11 @@ int main(int argc, char** argv) {
                                              vs11::irradiance::kDefaultPreviewFont));
   try {
     app.parse(argc, argv);
-  } catch (const CLI::ParseError& e) {
+  } catch (const CLI::CallForHelp& e) {
     return app.exit(e);
+  } catch (const CLI::ParseError& e) {
+    fmt::print(stderr, "irrmap: error: {}\nRun with --help for more information.\n", e.what());
+    return kUsageError;
   }
   options.out_dir = out_dir;
   options.font = font;
@@ -123,7 +138,7 @@ int main(int argc, char** argv) {
   for (const std::string& warning : report.warnings) fmt::print(stderr, "irrmap: warning: {}\n", warning);
   if (error) {
     fmt::print(stderr, "irrmap: error: {}\n", *error);
-    return 1;
+    return kJobError;
   }
   const double total_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 

@@ -297,5 +297,16 @@ TEST_F(IrrmapJob, AnUnwritableOutputLeavesNoFiles) {
   EXPECT_EQ(std::distance(fs::directory_iterator(folder_), fs::directory_iterator()), 1);
 }
 
+TEST_F(IrrmapJob, AFolderInPlaceOfAnOutputFailsBeforeAnythingIsReplaced) {
+  options_.environment = "spot";
+  fs::create_directories(options_.out_dir / "preview.png");
+  std::ofstream(options_.out_dir / "coeffs.json") << "old";
+  const std::optional<std::string> error = RunIrrmap(options_, report_);
+  ASSERT_TRUE(error);
+  EXPECT_THAT(*error, HasSubstr("preview.png"));
+  EXPECT_EQ(ReadText(options_.out_dir / "coeffs.json"), "old");
+  EXPECT_EQ(std::distance(fs::directory_iterator(options_.out_dir), fs::directory_iterator()), 2);
+}
+
 }  // namespace
 }  // namespace vs11::irradiance

@@ -67,7 +67,7 @@ void AddRunCommand(CLI::App& app) {
       "Outputs: CSV with a header naming each written output lane (raw values: the clamping D3D applies\n"
       "to oD0/oD1/oFog after the shader is not applied).\n\n"
       "Examples:\n"
-      "  vs11 run programs/sh9_irradiance.vsh --consts out/constants.vsh --sphere 6 --sphere-reg v0\n"
+      "  vs11 run programs/sh9_irradiance.vsh --fragment --consts out/constants.vsh --sphere 6 --sphere-reg v0\n"
       "  vs11 run light.vsh --input v0=positions.csv --input v1=normals.csv --const c4=0,0,1,0 --out lit.csv");
   command->add_option("program", args->program, "Program (.vsh or .vso)")->required();
   command->add_option("--const", args->const_flags, "Constant register value, e.g. c4=1,0,0,1");
