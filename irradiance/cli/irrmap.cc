@@ -9,6 +9,7 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include "irradiance/cli/subcommands.h"
 #include "irradiance/environments.h"
 #include "irradiance/irrmap_job.h"
 #include "irradiance/preview.h"
@@ -120,6 +121,7 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--font", font, fmt::format("TrueType font of the preview labels (default {})",
                                              vs11::irradiance::kDefaultPreviewFont));
+  vs11::irradiance::cli::AddSubcommands(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
@@ -127,7 +129,12 @@ int main(int argc, char** argv) {
   } catch (const CLI::ParseError& e) {
     fmt::print(stderr, "irrmap: error: {}\nRun with --help for more information.\n", e.what());
     return kUsageError;
+  } catch (const vs11::irradiance::cli::SubcommandFailure& failure) {
+    fmt::print(stderr, "irrmap: error: {}\n", failure.what());
+    return kJobError;
   }
+  // A subcommand (irrmap chart, irrmap stability ...) did its work in its own callback.
+  if (!app.get_subcommands().empty()) return 0;
   options.out_dir = out_dir;
   options.font = font;
   if (app.count("--level") > 0) options.level = level;

@@ -1,0 +1,10 @@
+#include "irradiance/cli/subcommands.h"
+
+namespace vs11::irradiance::cli {
+
+void AddSubcommands(CLI::App& app) {
+  // `irrmap chart` and `irrmap stability` register here, one Add...Command(app) line each.
+  (void)app;
+}
+
+}  // namespace vs11::irradiance::cli

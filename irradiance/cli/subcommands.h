@@ -1,0 +1,19 @@
+// irrmap's subcommands beside the default job (`irrmap [ENV] ...`). Each one registers itself on
+// the app with its own options and does its work in its CLI11 callback; a failure throws
+// SubcommandFailure, which main prints as "irrmap: error: ..." with exit status 1.
+#pragma once
+
+#include <stdexcept>
+
+#include <CLI/CLI.hpp>
+
+namespace vs11::irradiance::cli {
+
+struct SubcommandFailure : std::runtime_error {
+  using std::runtime_error::runtime_error;
+};
+
+// Registers every subcommand (subcommands.cc); a new one adds its line there.
+void AddSubcommands(CLI::App& app);
+
+}  // namespace vs11::irradiance::cli

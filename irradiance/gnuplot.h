@@ -1,0 +1,33 @@
+// Charts drawn by Debian's gnuplot (package gnuplot-nox, installed by .ci/setup), run as a child
+// process: the tool computes the numbers, gnuplot does the drawing.
+#pragma once
+
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace vs11::irradiance {
+
+struct GnuplotChart {
+  // Whitespace-separated columns, '#' comments, blank lines between data blocks (gnuplot's
+  // `index`). Written to a temporary file that the script reads as the string variable `datafile`.
+  std::string data;
+  // gnuplot commands after the terminal and output are set, e.g.
+  //   set logscale x; plot datafile index 0 using 1:2 with linespoints title 'sky'
+  std::string script;
+  int width = 900;  // pixels (SVG: its size in user units)
+  int height = 600;
+};
+
+// Renders the chart once per output; the terminal is chosen by the extension (.svg or .png, the
+// latter with cairo). Each image is written to a temporary beside it and renamed into place when
+// gnuplot succeeded, so a failure leaves none of them. nullopt on success, otherwise what went wrong
+// (gnuplot missing, or its own error message).
+std::optional<std::string> RenderGnuplotChart(const GnuplotChart& chart,
+                                              const std::vector<std::filesystem::path>& outputs);
+
+// `text` quoted as a gnuplot single-quoted string (for titles and labels).
+std::string GnuplotQuote(const std::string& text);
+
+}  // namespace vs11::irradiance
