@@ -103,7 +103,7 @@ std::optional<std::string> CheckOptions(const IrrmapOptions& options, CheckedOpt
   }
   checked.layout = *layout;
   std::optional<EngineKind> engine = EngineKindFromName(options.engine);
-  if (!engine) return fmt::format("unknown engine '{}' (use ref or batch)", options.engine);
+  if (!engine) return fmt::format("unknown engine '{}' (use ref, batch or jit)", options.engine);
   checked.engine = *engine;
   if (!IsPowerOfTwo(options.face_size) || options.face_size > kMaxFaceSize) {
     return fmt::format("--face-size {} must be a power of two from 1 to {} (the mip pyramid halves it down to 1x1)",

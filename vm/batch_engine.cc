@@ -30,6 +30,7 @@ const KernelTable* GetKernelTable();  // defined by vm/batch_kernels_<target>.cc
 #include "hwy/aligned_allocator.h"
 #include "hwy/cache_control.h"
 #include "vm/batch_engine.h"
+#include "vm/jit_compiler.h"
 
 namespace vs11 {
 namespace batch {
@@ -57,8 +58,9 @@ constexpr std::size_t RoundUp(std::size_t value, std::size_t multiple) {
 // The state one thread runs batches with: the lane table and the lanes the engine owns (the plan's
 // arena lanes, then a padded copy of each input and output lane for a batch shorter than kBatchSize).
 struct Workspace {
-  explicit Workspace(const BatchPlan& plan)
+  Workspace(const BatchPlan& plan, std::size_t spill_floats)
       : arena_lanes(plan.arena_lanes),
+        spill(hwy::AllocateAligned<float>(std::max<std::size_t>(1, spill_floats))),
         arena(hwy::AllocateAligned<float>(
             (plan.arena_lanes + plan.input_lanes.size() + plan.output_lanes.size()) * kLaneStride)),
         address(hwy::AllocateAligned<std::int32_t>(kBatchSize)),
@@ -79,6 +81,7 @@ struct Workspace {
   float* OutputCopy(std::size_t k) { return ArenaLane(arena_lanes + input_arrays.size() + k); }
 
   std::size_t arena_lanes;
+  hwy::AlignedFreeUniquePtr<float[]> spill;  // the compiled program's spilled registers
   hwy::AlignedFreeUniquePtr<float[]> arena;
   hwy::AlignedFreeUniquePtr<std::int32_t[]> address;
   std::vector<const float*> read_lanes;
@@ -92,11 +95,16 @@ struct Workspace {
 
 class BatchEngine final : public Engine {
  public:
-  BatchEngine(const Program& program, const ConstantBank& api_constants, const EngineOptions& options)
+  BatchEngine(const Program& program, const ConstantBank& api_constants, const EngineOptions& options,
+              bool compile_program)
       : program_(program),
         plan_(BuildBatchPlan(program, *HWY_DYNAMIC_DISPATCH(GetKernelTable)())),
         written_(WrittenOutputLanes(program)),
         threads_(static_cast<std::size_t>(std::max(1, options.threads))) {
+    if (compile_program) {
+      std::string why_not;
+      compiled_ = jit::Compile(program, why_not);
+    }
     SetConstants(api_constants);
   }
 
@@ -116,7 +124,7 @@ class BatchEngine final : public Engine {
     if (count == 0) return;
 
     const std::size_t threads = std::min(threads_, std::max<std::size_t>(1, count / kMinVerticesPerThread));
-    while (workspaces_.size() < threads) workspaces_.emplace_back(plan_);
+    while (workspaces_.size() < threads) workspaces_.emplace_back(plan_, compiled_ ? compiled_->spill_floats() : 0);
     if (threads == 1) {
       RunRange(workspaces_[0], inputs, outputs, 0, count);
       return;
@@ -186,7 +194,11 @@ class BatchEngine final : public Engine {
         }
       }
       frame.count = RoundUp(n, kVertexGranule);
-      for (const Step& step : plan_.steps) step.kernel(step, frame);
+      if (compiled_) {
+        compiled_->Run(frame.read_lanes, frame.write_lanes, frame.constants, frame.count, workspace.spill.get());
+      } else {
+        for (const Step& step : plan_.steps) step.kernel(step, frame);
+      }
       for (const auto& [array, value] : workspace.unstored) std::fill_n(array + start, n, value);
       if (full) continue;
       for (std::size_t k = 0; k < plan_.output_lanes.size(); ++k) {
@@ -202,6 +214,7 @@ class BatchEngine final : public Engine {
   std::size_t threads_;
   std::vector<float> constants_;
   std::int32_t constant_count_ = 0;
+  std::unique_ptr<jit::CompiledProgram> compiled_;  // null: the plan's kernels run the program
   std::vector<Workspace> workspaces_;
 };
 
@@ -209,8 +222,8 @@ class BatchEngine final : public Engine {
 }  // namespace batch
 
 std::unique_ptr<Engine> MakeBatchEngine(const Program& program, const ConstantBank& api_constants,
-                                        const EngineOptions& options) {
-  return std::make_unique<batch::BatchEngine>(program, api_constants, options);
+                                        const EngineOptions& options, bool compile_program) {
+  return std::make_unique<batch::BatchEngine>(program, api_constants, options, compile_program);
 }
 
 }  // namespace vs11

@@ -107,7 +107,7 @@ int main(int argc, char** argv) {
                  "mip level the coefficients are computed from: 0 = full face size, each level halves it, down to "
                  "1x1; default: the 64x64 level when the face is larger, else 0");
   app.add_option("--out", out_dir, "output directory")->capture_default_str();
-  app.add_option("--engine", options.engine, "vertex machine engine: ref (reference, scalar) or batch (SIMD)")
+  app.add_option("--engine", options.engine, "vertex machine engine: ref (reference, scalar), batch (SIMD kernels) or jit (compiled to AVX2 code)")
       ->capture_default_str();
   app.add_option("--threads", options.threads, "worker threads (0 = every core)")->capture_default_str();
   app.add_option("--map-size", options.map_size,
