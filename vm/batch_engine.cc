@@ -195,7 +195,9 @@ class BatchEngine final : public Engine {
       }
       frame.count = RoundUp(n, kVertexGranule);
       if (compiled_) {
-        compiled_->Run(frame.read_lanes, frame.write_lanes, frame.constants, frame.count, workspace.spill.get());
+        compiled_->Run({.read_lanes = frame.read_lanes, .write_lanes = frame.write_lanes, .constants = frame.constants,
+                        .count = frame.count, .literals = nullptr, .spill = workspace.spill.get(),
+                        .constant_count = frame.constant_count});
       } else {
         for (const Step& step : plan_.steps) step.kernel(step, frame);
       }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <bit>
+#include <cstddef>
 #include <cstdint>
 #include <cstring>
 #include <limits>
@@ -14,6 +15,7 @@
 
 #include "vm/batch_plan.h"
 #include "vm/machine.h"
+#include "vm/reference_engine.h"
 #include "vm/semantics.h"
 
 namespace vs11::jit {
@@ -30,7 +32,10 @@ enum class Op : std::uint8_t {
   kSelect,    // args: mask, yes, no
   kIntAdd, kIntSub, kAnd, kOr, kXor, kShiftLeft, kShiftRight,  // immediate: shift count
   kToInt, kToFloat,
-  kStore,     // immediate: lane table index; args: value
+  kIntGreater,     // all-ones lanes where a > b (signed)
+  kConstantCount,  // RunArguments::constant_count (broadcast)
+  kGather,         // args: constant table offset in floats; immediate: component (0..3)
+  kStore,          // immediate: lane table index; args: value
 };
 
 constexpr int kNoArg = -1;
@@ -109,6 +114,11 @@ template <int kBits>
 Int ShiftLeft(Int x) { return {Trace(Op::kShiftLeft, x.id, kNoArg, kNoArg, kBits)}; }
 template <int kBits>
 Int ShiftRight(Int x) { return {Trace(Op::kShiftRight, x.id, kNoArg, kNoArg, kBits)}; }
+inline Mask operator>(Int a, Int b) { return {Trace(Op::kIntGreater, a.id, b.id)}; }
+inline Mask operator&(Mask a, Mask b) { return {Trace(Op::kAnd, a.id, b.id)}; }
+inline Int IfThenElseZero(Mask condition, Int value) { return {Trace(Op::kAnd, condition.id, value.id)}; }
+inline Int LiteralInt(std::int32_t value) { return ConstantInt(Float{}, value); }
+
 // -x as the reference engine negates: the sign bit flipped, NaNs included.
 inline Float Negate(Float x) {
   return {Trace(Op::kXor, x.id, ConstantInt(x, std::numeric_limits<std::int32_t>::min()).id)};
@@ -125,15 +135,13 @@ class Tracer {
     for (auto& temp : temps_) temp.fill(zero);
   }
 
-  // false when the instruction needs what the compiler leaves to the batch kernels.
-  bool Trace(const Instruction& instruction) {
+  void Trace(const Instruction& instruction) {
     switch (instruction.opcode) {
 #define VS11_JIT_TRACE_CASE(name, ...) \
-  case Opcode::k##name: return Execute<semantics::name##Semantics>(instruction);
+  case Opcode::k##name: Execute<semantics::name##Semantics>(instruction); break;
       VS11_OPCODES(VS11_JIT_TRACE_CASE)
 #undef VS11_JIT_TRACE_CASE
     }
-    return false;
   }
 
   // A store of every output lane the program wrote, with its final value.
@@ -150,13 +158,38 @@ class Tracer {
  private:
   static Float Zero() { return Constant(Float{}, 0.0f); }
 
+  // c[a0.x + index] of every vertex, component by component (the batch engine's GatherKernel):
+  // registers outside the bank read row 0 of the constant table, which holds zeros.
+  Vec4F Gather(long index) const {
+    const Int register_index = address_ + LiteralInt(static_cast<std::int32_t>(index));
+    const Int count = {jit::Trace(Op::kConstantCount)};
+    const Mask in_range = (register_index > LiteralInt(-1)) & (count > register_index);
+    const Int row = IfThenElseZero(in_range, register_index + LiteralInt(batch::kFirstConstantRow));
+    const Int offset = ShiftLeft<2>(row);
+    Vec4F value;
+    for (int c = 0; c < 4; ++c) {
+      value[c] = {jit::Trace(Op::kGather, offset.id, kNoArg, kNoArg, static_cast<std::uint32_t>(c))};
+    }
+    return value;
+  }
+
+  // a0.x = AddressFromFloat(x), in the reference engine's order of tests (NaN fails both).
+  static Int AddressFrom(Float x) {
+    const Float whole = Floor(x);
+    const Float limit = Constant(x, static_cast<float>(kAddressLimit));
+    const Float below = IfThenElse(whole < limit, whole, limit);
+    return ToInt(IfThenElse(whole > Constant(x, -static_cast<float>(kAddressLimit)), below,
+                            Constant(x, -static_cast<float>(kAddressLimit))));
+  }
+
   Vec4F ReadRegister(const RegisterRef& reg, int row) const {
-    const long index = static_cast<long>(reg.index) + row;  // a0 is never written: relative reads use 0
+    const long index = static_cast<long>(reg.index) + row;
     Vec4F value;
     value.fill(Zero());
     switch (reg.file) {
       case RegisterFile::kConst:
-        if (index < 0) break;
+        if (reg.relative && address_written_) return Gather(index);
+        if (index < 0) break;  // before any write a0 is 0
         for (int c = 0; c < 4; ++c) {
           value[c] = {jit::Trace(Op::kConstant, kNoArg, kNoArg, kNoArg, batch::ConstantIndex(static_cast<int>(index), c))};
         }
@@ -188,6 +221,13 @@ class Tracer {
 
   void Store(const DestOperand& dest, const Vec4F& value, int lane_count) {
     Vec4F* target = nullptr;
+    if (dest.reg.file == RegisterFile::kAddress) {
+      if (dest.mask.has(0)) {
+        address_ = AddressFrom(value[0]);
+        address_written_ = true;
+      }
+      return;
+    }
     if (dest.reg.file == RegisterFile::kTemp) {
       if (dest.reg.index < kTempRegisterCount) target = &temps_[static_cast<std::size_t>(dest.reg.index)];
     } else if (std::optional<int> slot = OutputSlotOf(dest.reg)) {
@@ -204,9 +244,8 @@ class Tracer {
   }
 
   template <class Semantics>
-  bool Execute(const Instruction& instruction) {
+  void Execute(const Instruction& instruction) {
     const OpcodeInfo& info = instruction.info();
-    if (info.source_count() > 0 && instruction.dest.reg.file == RegisterFile::kAddress) return false;
     std::array<Vec4F, 3> src{};
     for (int s = 0; s < info.source_count(); ++s) src[s] = Fetch(instruction.sources[s], 0);
     Vec4F result;
@@ -225,14 +264,15 @@ class Tracer {
       }
       lane_count = info.matrix_rows;
     } else {
-      return true;  // nop, dcl, def
+      return;  // nop, dcl, def
     }
     Store(instruction.dest, result, lane_count);
-    return true;
   }
 
   std::array<Vec4F, kTempRegisterCount> temps_{};
   std::array<Vec4F, kOutputSlotCount> outputs_{};
+  Int address_;
+  bool address_written_ = false;
 };
 
 // ---- register allocation and code --------------------------------------------------------------------
@@ -241,7 +281,9 @@ constexpr int kVectorRegisters = 16;
 constexpr int kLanesPerVector = 8;
 constexpr int kVectorBytes = 32;
 
-bool Rematerializable(Op op) { return op == Op::kInput || op == Op::kConstant || op == Op::kLiteral; }
+bool Rematerializable(Op op) {
+  return op == Op::kInput || op == Op::kConstant || op == Op::kLiteral || op == Op::kConstantCount;
+}
 
 class Emitter : public Xbyak::CodeGenerator {
  public:
@@ -252,8 +294,13 @@ class Emitter : public Xbyak::CodeGenerator {
   void Generate() {
     const Registers& r = regs_;
     FindUses();
-    mov(r.end, r.count);
+    mov(r.read_lanes, ptr[r.arguments + offsetof(RunArguments, read_lanes)]);
+    mov(r.write_lanes, ptr[r.arguments + offsetof(RunArguments, write_lanes)]);
+    mov(r.constants, ptr[r.arguments + offsetof(RunArguments, constants)]);
+    mov(r.end, ptr[r.arguments + offsetof(RunArguments, count)]);
     shl(r.end, 2);
+    mov(r.literals, ptr[r.arguments + offsetof(RunArguments, literals)]);
+    mov(r.spill, ptr[r.arguments + offsetof(RunArguments, spill)]);
     xor_(r.offset, r.offset);
     Xbyak::Label loop;
     L(loop);
@@ -333,6 +380,7 @@ class Emitter : public Xbyak::CodeGenerator {
         break;
       case Op::kConstant: vbroadcastss(ymm, ptr[regs_.constants + 4 * node.immediate]); break;
       case Op::kLiteral: vbroadcastss(ymm, ptr[regs_.literals + 4 * LiteralIndex(node.immediate)]); break;
+      case Op::kConstantCount: vpbroadcastd(ymm, ptr[regs_.arguments + offsetof(RunArguments, constant_count)]); break;
       default: vmovups(ymm, ptr[regs_.spill + kVectorBytes * spill_slot_[value]]); break;
     }
     where_[value] = reg;
@@ -356,6 +404,10 @@ class Emitter : public Xbyak::CodeGenerator {
       if (arg == kNoArg) continue;
       if (where_[arg] == kNoArg) Materialize(arg, TakeRegister(n, node.args));
       in[a] = Xbyak::Ymm(where_[arg]);
+    }
+    if (node.op == Op::kGather) {
+      EmitGather(n, in[0]);
+      return;
     }
     // Operands used for the last time give their registers up before the result takes one.
     for (int arg : node.args) {
@@ -397,14 +449,38 @@ class Emitter : public Xbyak::CodeGenerator {
       case Op::kShiftRight: vpsrad(out, in[0], static_cast<std::uint8_t>(node.immediate)); break;
       case Op::kToInt: vcvttps2dq(out, in[0]); break;
       case Op::kToFloat: vcvtdq2ps(out, in[0]); break;
-      case Op::kInput: case Op::kConstant: case Op::kLiteral: case Op::kStore: break;  // handled above
+      case Op::kIntGreater: vpcmpgtd(out, in[0], in[1]); break;
+      case Op::kInput: case Op::kConstant: case Op::kLiteral: case Op::kConstantCount: case Op::kGather:
+      case Op::kStore: break;  // handled above
     }
   }
 
-  // Argument registers (System V): the lane tables, the constant table, the count, the literals, the
-  // spill area. r10 walks the batch in bytes, r11 is its end, rax holds a lane's address.
+  // vgatherdps wants its result, index and mask in three different registers and clears the mask, so
+  // the result and a scratch mask are taken while the index still holds its register.
+  void EmitGather(int n, const Xbyak::Ymm& index) {
+    const Node& node = nodes_[static_cast<std::size_t>(n)];
+    const int index_value = node.args[0];
+    const int reg = TakeRegister(n, node.args);
+    where_[n] = reg;
+    register_value_[reg] = n;
+    const int mask_reg = TakeRegister(n, {index_value, n, kNoArg});
+    const Xbyak::Ymm mask(mask_reg);
+    vpcmpeqd(mask, mask, mask);
+    vgatherdps(Xbyak::Ymm(reg), ptr[regs_.constants + index * 4 + 4 * static_cast<int>(node.immediate)], mask);
+    if (NextUse(index_value, n) == std::numeric_limits<int>::max()) {
+      register_value_[where_[index_value]] = kNoArg;
+      where_[index_value] = kNoArg;
+    }
+    if (uses_[static_cast<std::size_t>(n)].empty()) {
+      register_value_[reg] = kNoArg;
+      where_[n] = kNoArg;
+    }
+  }
+
+  // rdi: the RunArguments (System V's first argument); the others hold its fields, all scratch
+  // registers of the ABI. `offset` walks the batch in bytes up to `end`; `lane` holds a lane's address.
   struct Registers {
-    Xbyak::Reg64 read_lanes, write_lanes, constants, count, literals, spill, offset, end, lane;
+    Xbyak::Reg64 arguments, read_lanes, write_lanes, constants, literals, spill, offset, end, lane;
   };
   const std::vector<Node>& nodes_;
   const Registers regs_{rdi, rsi, rdx, rcx, r8, r9, r10, r11, rax};
@@ -421,7 +497,7 @@ class Emitter : public Xbyak::CodeGenerator {
 
 class AvxProgram final : public CompiledProgram {
  public:
-  using Function = void (*)(const float* const*, float* const*, const float*, std::size_t, const float*, float*);
+  using Function = void (*)(const RunArguments*);
 
   explicit AvxProgram(std::unique_ptr<Emitter> emitter)
       : emitter_(std::move(emitter)),
@@ -429,9 +505,9 @@ class AvxProgram final : public CompiledProgram {
         literals_(emitter_->literals()),
         spill_floats_(static_cast<std::size_t>(emitter_->spill_slots()) * kLanesPerVector) {}
 
-  void Run(const float* const* read_lanes, float* const* write_lanes, const float* constants, std::size_t count,
-           float* spill) const override {
-    function_(read_lanes, write_lanes, constants, count, literals_.data(), spill);
+  void Run(RunArguments arguments) const override {
+    arguments.literals = literals_.data();
+    function_(&arguments);
   }
   std::size_t spill_floats() const override { return spill_floats_; }
   std::span<const std::uint8_t> code() const override { return {emitter_->getCode(), emitter_->getSize()}; }
@@ -460,13 +536,7 @@ std::unique_ptr<CompiledProgram> Compile(const Program& program, std::string& wh
   Graph graph;
   tracing = &graph;
   Tracer tracer;
-  for (const Instruction& instruction : program.instructions) {
-    if (!tracer.Trace(instruction)) {
-      tracing = nullptr;
-      why_not = "the program writes a0 (relative addressing runs on the batch kernels)";
-      return nullptr;
-    }
-  }
+  for (const Instruction& instruction : program.instructions) tracer.Trace(instruction);
   tracer.StoreOutputs();
   tracing = nullptr;
   try {

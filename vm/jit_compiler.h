@@ -23,13 +23,21 @@
 
 namespace vs11::jit {
 
+// What one call of the compiled loop works on (the field order is part of the generated code).
+struct RunArguments {
+  const float* const* read_lanes;  // the lane table, for loads
+  float* const* write_lanes;       // the lane table, for stores
+  const float* constants;          // the constant table (rows as vm/batch_plan.h lays them out)
+  std::size_t count;               // vertices, a multiple of 8
+  const float* literals;           // filled in by CompiledProgram::Run
+  float* spill;                    // spill_floats() floats of scratch, one buffer per thread
+  std::int32_t constant_count;     // registers in the bank: relative reads outside [0, count) read 0
+};
+
 class CompiledProgram {
  public:
   virtual ~CompiledProgram() = default;
-  // Runs the program on `count` vertices (a multiple of 8) of the lanes in the tables; `spill` has
-  // spill_floats() floats of scratch (one buffer per thread).
-  virtual void Run(const float* const* read_lanes, float* const* write_lanes, const float* constants,
-                   std::size_t count, float* spill) const = 0;
+  virtual void Run(RunArguments arguments) const = 0;
   virtual std::size_t spill_floats() const = 0;
   // The machine code, and how many values the register allocator had to spill (for tests and notes).
   virtual std::span<const std::uint8_t> code() const = 0;
@@ -37,7 +45,7 @@ class CompiledProgram {
 };
 
 // Compiles `program` (well formed, as Decode accepts). nullptr, with `why_not` set, when the CPU has
-// no AVX2 or the program writes a0 (relative addressing stays with the batch kernels).
+// no AVX2 (or, should it ever happen, code generation fails).
 std::unique_ptr<CompiledProgram> Compile(const Program& program, std::string& why_not);
 
 }  // namespace vs11::jit

@@ -78,7 +78,7 @@ VertexArrays MakeInputArrays(std::size_t count, std::span<const int> input_regis
 VertexArrays MakeOutputArrays(std::size_t count, const Program& program);  // the slots the program writes
 
 // kJit: the batch engine running the program compiled to x86-64 AVX2 code (vm/jit_compiler.h), or
-// its kernels where the program cannot be compiled (a0 written, no AVX2).
+// its kernels on a CPU without AVX2.
 enum class EngineKind { kReference, kBatch, kJit };
 std::optional<EngineKind> EngineKindFromName(std::string_view name);  // "ref" | "reference" | "batch" | "jit"
 std::string_view EngineName(EngineKind kind);
