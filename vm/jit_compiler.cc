@@ -288,7 +288,8 @@ bool Rematerializable(Op op) {
 class Emitter : public Xbyak::CodeGenerator {
  public:
   Emitter(const std::vector<Node>& nodes, std::size_t code_size)
-      : Xbyak::CodeGenerator(code_size), nodes_(nodes), spill_slot_(nodes.size(), -1) {}
+      // Written, then made read+execute (never writable and executable at once).
+      : Xbyak::CodeGenerator(code_size, Xbyak::DontSetProtectRWE), nodes_(nodes), spill_slot_(nodes.size(), -1) {}
 
   // Emits the whole function; the literal pool and the spill size are known afterwards.
   void Generate() {
@@ -312,6 +313,7 @@ class Emitter : public Xbyak::CodeGenerator {
     jb(loop, T_NEAR);
     vzeroupper();
     ret();
+    setProtectModeRE();
   }
 
   const std::vector<float>& literals() const { return literals_; }
