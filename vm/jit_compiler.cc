@@ -287,14 +287,24 @@ bool Rematerializable(Op op) {
 
 class Emitter : public Xbyak::CodeGenerator {
  public:
-  Emitter(const std::vector<Node>& nodes, std::size_t code_size)
+  // `hoisted`: how many of the most used constants are loaded into registers once, before the loop,
+  // leaving the others to the values computed in it.
+  // `trial_buffer`: generate into this buffer (code_size bytes), only to count operations, instead
+  // of into executable pages.
+  Emitter(const std::vector<Node>& nodes, std::size_t code_size, int hoisted, std::uint8_t* trial_buffer = nullptr)
       // Written, then made read+execute (never writable and executable at once).
-      : Xbyak::CodeGenerator(code_size, Xbyak::DontSetProtectRWE), nodes_(nodes), spill_slot_(nodes.size(), -1) {}
+      : Xbyak::CodeGenerator(code_size, trial_buffer != nullptr ? trial_buffer : Xbyak::DontSetProtectRWE),
+        nodes_(nodes),
+        trial_(trial_buffer != nullptr),
+        spill_slot_(nodes.size(), -1),
+        hoisted_(static_cast<std::size_t>(hoisted)) {}
 
   // Emits the whole function; the literal pool and the spill size are known afterwards.
   void Generate() {
     const Registers& r = regs_;
     FindUses();
+    const std::vector<int> pointer_lanes = KeepLanePointers();
+    for (std::size_t k = 0; k < pointer_lanes.size(); ++k) push(kLanePointerRegisters[k]);
     mov(r.read_lanes, ptr[r.arguments + offsetof(RunArguments, read_lanes)]);
     mov(r.write_lanes, ptr[r.arguments + offsetof(RunArguments, write_lanes)]);
     mov(r.constants, ptr[r.arguments + offsetof(RunArguments, constants)]);
@@ -302,6 +312,12 @@ class Emitter : public Xbyak::CodeGenerator {
     shl(r.end, 2);
     mov(r.literals, ptr[r.arguments + offsetof(RunArguments, literals)]);
     mov(r.spill, ptr[r.arguments + offsetof(RunArguments, spill)]);
+    for (std::size_t k = 0; k < pointer_lanes.size(); ++k) {
+      const int lane = pointer_lanes[k];
+      mov(kLanePointerRegisters[k], ptr[(IsStoreLane(lane) ? r.write_lanes : r.read_lanes) + 8 * LaneIndex(lane)]);
+    }
+    HoistConstants();
+    loop_memory_operations_ = 0;  // the body's from here
     xor_(r.offset, r.offset);
     Xbyak::Label loop;
     L(loop);
@@ -312,15 +328,80 @@ class Emitter : public Xbyak::CodeGenerator {
     cmp(r.offset, r.end);
     jb(loop, T_NEAR);
     vzeroupper();
+    for (std::size_t k = pointer_lanes.size(); k-- > 0;) pop(kLanePointerRegisters[k]);
     ret();
-    setProtectModeRE();
+    if (!trial_) setProtectModeRE();
   }
 
   const std::vector<float>& literals() const { return literals_; }
   int spill_slots() const { return spill_slots_; }
   int spilled_values() const { return spilled_values_; }
+  std::size_t hoisted() const { return hoisted_; }  // after Generate: at most the constants there are
+  // Loads and stores in the loop body: what the number of hoisted constants is chosen by.
+  int loop_memory_operations() const { return loop_memory_operations_; }
 
  private:
+  // Lane keys: loads and stores go through different tables, so a stored lane is told apart.
+  static constexpr int kStoreLaneFlag = 1 << 16;
+  static bool IsStoreLane(int key) { return (key & kStoreLaneFlag) != 0; }
+  static int LaneIndex(int key) { return key & (kStoreLaneFlag - 1); }
+  static int LaneKey(const Node& node) {
+    return static_cast<int>(node.immediate) | (node.op == Op::kStore ? kStoreLaneFlag : 0);
+  }
+  // Callee-saved registers (pushed and popped), each holding one lane's address for the whole call.
+  inline static const std::array<Xbyak::Reg64, 6> kLanePointerRegisters = {
+      Xbyak::Reg64(Xbyak::Operand::RBX), Xbyak::Reg64(Xbyak::Operand::RBP), Xbyak::Reg64(Xbyak::Operand::R12),
+      Xbyak::Reg64(Xbyak::Operand::R13), Xbyak::Reg64(Xbyak::Operand::R14), Xbyak::Reg64(Xbyak::Operand::R15)};
+
+  // Chooses the lanes whose addresses live in registers (the most used ones); returns their keys.
+  std::vector<int> KeepLanePointers() {
+    std::map<int, int> uses;
+    for (std::size_t n = 0; n < nodes_.size(); ++n) {
+      const Node& node = nodes_[n];
+      if (!live_[n] || (node.op != Op::kInput && node.op != Op::kStore)) continue;
+      uses[LaneKey(node)] += std::max<int>(1, static_cast<int>(uses_[n].size()));
+    }
+    std::vector<std::pair<int, int>> by_use;
+    for (const auto& [key, count] : uses) by_use.emplace_back(count, key);
+    std::stable_sort(by_use.begin(), by_use.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+    std::vector<int> keys;
+    for (const auto& [count, key] : by_use) {
+      if (keys.size() == kLanePointerRegisters.size()) break;
+      lane_pointer_[key] = kLanePointerRegisters[keys.size()];
+      keys.push_back(key);
+    }
+    return keys;
+  }
+
+  // The address of this vertex group in a lane, loading the lane's address into `lane` if needed.
+  Xbyak::RegExp LaneAddress(const Node& node) {
+    const auto it = lane_pointer_.find(LaneKey(node));
+    if (it != lane_pointer_.end()) return it->second + regs_.offset;
+    ++loop_memory_operations_;
+    mov(regs_.lane, ptr[(node.op == Op::kStore ? regs_.write_lanes : regs_.read_lanes) + 8 * node.immediate]);
+    return regs_.lane + regs_.offset;
+  }
+
+  // Loads the most used constants into the top registers before the loop, for good.
+  void HoistConstants() {
+    std::vector<std::pair<int, int>> by_use;  // (uses, node)
+    for (std::size_t n = 0; n < nodes_.size(); ++n) {
+      const Op op = nodes_[n].op;
+      if (live_[n] && op != Op::kInput && Rematerializable(op)) by_use.emplace_back(uses_[n].size(), n);
+    }
+    std::stable_sort(by_use.begin(), by_use.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+    hoisted_ = std::min(hoisted_, by_use.size());
+    available_registers_ = kVectorRegisters - static_cast<int>(hoisted_);
+    for (std::size_t k = 0; k < hoisted_; ++k) {
+      const int value = by_use[k].second;
+      Materialize(value, kVectorRegisters - 1 - static_cast<int>(k));
+      pinned_values_.push_back(value);
+    }
+  }
+  bool Hoisted(int value) const {
+    return std::find(pinned_values_.begin(), pinned_values_.end(), value) != pinned_values_.end();
+  }
+
   void FindUses() {
     live_.assign(nodes_.size(), false);
     uses_.assign(nodes_.size(), {});
@@ -350,11 +431,11 @@ class Emitter : public Xbyak::CodeGenerator {
 
   // A free register, evicting the value used farthest in the future (not one of `pinned`).
   int TakeRegister(int position, const std::array<int, 3>& pinned) {
-    for (int reg = 0; reg < kVectorRegisters; ++reg) {
+    for (int reg = 0; reg < available_registers_; ++reg) {
       if (register_value_[reg] == kNoArg) return reg;
     }
     int victim = -1, farthest = -1;
-    for (int reg = 0; reg < kVectorRegisters; ++reg) {
+    for (int reg = 0; reg < available_registers_; ++reg) {
       const int value = register_value_[reg];
       if (std::find(pinned.begin(), pinned.end(), value) != pinned.end()) continue;
       const int next = NextUse(value, position);
@@ -364,6 +445,7 @@ class Emitter : public Xbyak::CodeGenerator {
     if (!Rematerializable(nodes_[static_cast<std::size_t>(value)].op) && spill_slot_[value] < 0) {
       spill_slot_[value] = spill_slots_++;
       ++spilled_values_;
+      ++loop_memory_operations_;
       vmovups(ptr[regs_.spill + kVectorBytes * spill_slot_[value]], Xbyak::Ymm(victim));
     }
     where_[value] = kNoArg;
@@ -375,11 +457,9 @@ class Emitter : public Xbyak::CodeGenerator {
   void Materialize(int value, int reg) {
     const Node& node = nodes_[static_cast<std::size_t>(value)];
     const Xbyak::Ymm ymm(reg);
+    ++loop_memory_operations_;
     switch (node.op) {
-      case Op::kInput:
-        mov(regs_.lane, ptr[regs_.read_lanes + 8 * node.immediate]);
-        vmovups(ymm, ptr[regs_.lane + regs_.offset]);
-        break;
+      case Op::kInput: vmovups(ymm, ptr[LaneAddress(node)]); break;
       case Op::kConstant: vbroadcastss(ymm, ptr[regs_.constants + 4 * node.immediate]); break;
       case Op::kLiteral: vbroadcastss(ymm, ptr[regs_.literals + 4 * LiteralIndex(node.immediate)]); break;
       case Op::kConstantCount: vpbroadcastd(ymm, ptr[regs_.arguments + offsetof(RunArguments, constant_count)]); break;
@@ -413,14 +493,14 @@ class Emitter : public Xbyak::CodeGenerator {
     }
     // Operands used for the last time give their registers up before the result takes one.
     for (int arg : node.args) {
-      if (arg != kNoArg && where_[arg] != kNoArg && NextUse(arg, n) == std::numeric_limits<int>::max()) {
+      if (arg != kNoArg && where_[arg] != kNoArg && !Hoisted(arg) && NextUse(arg, n) == std::numeric_limits<int>::max()) {
         register_value_[where_[arg]] = kNoArg;
         where_[arg] = kNoArg;
       }
     }
     if (node.op == Op::kStore) {
-      mov(regs_.lane, ptr[regs_.write_lanes + 8 * node.immediate]);
-      vmovups(ptr[regs_.lane + regs_.offset], in[0]);
+      ++loop_memory_operations_;
+      vmovups(ptr[LaneAddress(node)], in[0]);
       return;
     }
     if (uses_[static_cast<std::size_t>(n)].empty()) return;
@@ -469,7 +549,8 @@ class Emitter : public Xbyak::CodeGenerator {
     const Xbyak::Ymm mask(mask_reg);
     vpcmpeqd(mask, mask, mask);
     vgatherdps(Xbyak::Ymm(reg), ptr[regs_.constants + index * 4 + 4 * static_cast<int>(node.immediate)], mask);
-    if (NextUse(index_value, n) == std::numeric_limits<int>::max()) {
+    ++loop_memory_operations_;
+    if (!Hoisted(index_value) && NextUse(index_value, n) == std::numeric_limits<int>::max()) {
       register_value_[where_[index_value]] = kNoArg;
       where_[index_value] = kNoArg;
     }
@@ -485,6 +566,7 @@ class Emitter : public Xbyak::CodeGenerator {
     Xbyak::Reg64 arguments, read_lanes, write_lanes, constants, literals, spill, offset, end, lane;
   };
   const std::vector<Node>& nodes_;
+  const bool trial_;
   const Registers regs_{rdi, rsi, rdx, rcx, r8, r9, r10, r11, rax};
   std::vector<bool> live_;
   std::vector<std::vector<int>> uses_;
@@ -495,6 +577,11 @@ class Emitter : public Xbyak::CodeGenerator {
   int spilled_values_ = 0;
   std::vector<float> literals_;
   std::map<std::uint32_t, int> literal_index_;
+  std::size_t hoisted_;
+  int available_registers_ = kVectorRegisters;  // the others hold hoisted constants
+  std::vector<int> pinned_values_;
+  std::map<int, Xbyak::Reg64> lane_pointer_;  // by lane key
+  int loop_memory_operations_ = 0;
 };
 
 class AvxProgram final : public CompiledProgram {
@@ -525,7 +612,9 @@ class AvxProgram final : public CompiledProgram {
 // Bytes of code per traced node, generously: an operation is one instruction, a reload or spill
 // adds one or two more (each at most 10 bytes).
 constexpr std::size_t kCodeBytesPerNode = 40;
-constexpr std::size_t kCodeBytesFixed = 256;
+constexpr std::size_t kCodeBytesFixed = 512;
+// Constants kept in registers across the loop: at most this many of the 16 (the rest are the loop's).
+constexpr int kMaxHoistedConstants = 12;
 
 }  // namespace
 
@@ -542,7 +631,19 @@ std::unique_ptr<CompiledProgram> Compile(const Program& program, std::string& wh
   tracer.StoreOutputs();
   tracing = nullptr;
   try {
-    auto emitter = std::make_unique<Emitter>(graph.nodes(), kCodeBytesFixed + kCodeBytesPerNode * graph.nodes().size());
+    // Each constant kept in a register saves a load per iteration but takes a register from the
+    // loop's values, which may then be reloaded or spilled more: the count with the fewest loads
+    // and stores in the loop wins (code generation takes microseconds).
+    const std::size_t code_size = kCodeBytesFixed + kCodeBytesPerNode * graph.nodes().size();
+    std::vector<std::uint8_t> trial_buffer(code_size);
+    int best_hoisted = 0, fewest = std::numeric_limits<int>::max();
+    for (int hoisted = 0; hoisted <= kMaxHoistedConstants && hoisted <= best_hoisted + 2; ++hoisted) {
+      Emitter trial(graph.nodes(), code_size, hoisted, trial_buffer.data());
+      trial.Generate();
+      if (trial.loop_memory_operations() < fewest) fewest = trial.loop_memory_operations(), best_hoisted = hoisted;
+      if (trial.hoisted() < static_cast<std::size_t>(hoisted)) break;  // no constants left to keep
+    }
+    auto emitter = std::make_unique<Emitter>(graph.nodes(), code_size, best_hoisted);
     emitter->Generate();
     return std::make_unique<AvxProgram>(std::move(emitter));
   } catch (const Xbyak::Error& error) {
