@@ -21,7 +21,9 @@ const KernelTable* GetKernelTable();  // defined by vm/batch_kernels_<target>.cc
 #if HWY_ONCE
 
 #include <algorithm>
+#include <bit>
 #include <cassert>
+#include <cstdint>
 #include <cstring>
 #include <thread>
 #include <utility>
@@ -53,6 +55,14 @@ constexpr std::size_t kLaneStride = kBatchSize + kFloatsPerCacheLine;
 
 constexpr std::size_t RoundUp(std::size_t value, std::size_t multiple) {
   return (value + multiple - 1) / multiple * multiple;
+}
+
+void FillLane(float* lane, std::size_t count, float value) {
+  if (std::bit_cast<std::uint32_t>(value) == 0) {
+    std::memset(lane, 0, count * sizeof(float));  // +0.0f: the C library's widest stores
+  } else {
+    std::fill_n(lane, count, value);
+  }
 }
 
 // The state one thread runs batches with: the lane table and the lanes the engine owns (the plan's
@@ -171,9 +181,23 @@ class BatchEngine final : public Engine {
 
     Frame frame{workspace.read_lanes.data(), workspace.write_lanes.data(), constants_.data(),
                 workspace.address.get(), constant_count_, 0};
-    for (std::size_t start = begin; start < end; start += kBatchSize) {
-      const std::size_t n = std::min(kBatchSize, end - start);
-      const bool full = n == kBatchSize;
+    // The kernels go through L1-sized batches; the compiled loop keeps its values in registers and
+    // takes every whole granule at once, when it reads and writes only the caller's arrays (an absent
+    // input's constant lane and an absent output's scratch lane hold one batch). A short rest runs on
+    // padded copies.
+    const bool whole_range =
+        compiled_ && std::ranges::none_of(workspace.input_arrays, [](const float* a) { return a == nullptr; }) &&
+        std::ranges::none_of(workspace.output_arrays, [](const float* a) { return a == nullptr; });
+    for (std::size_t start = begin, n = 0; start < end; start += n) {
+      const std::size_t left = end - start;
+      bool full;
+      if (whole_range && left >= kVertexGranule) {
+        n = left - left % kVertexGranule;
+        full = true;
+      } else {
+        n = std::min(kBatchSize, left);
+        full = n == kBatchSize;
+      }
       for (std::size_t k = 0; k < plan_.input_lanes.size(); ++k) {
         const float* array = workspace.input_arrays[k];
         if (array == nullptr) continue;
@@ -187,7 +211,7 @@ class BatchEngine final : public Engine {
         workspace.read_lanes[plan_.output_lanes[k]] = workspace.write_lanes[plan_.output_lanes[k]] = target;
       }
       // The caller's arrays stream from memory: ask for the next batch while this one computes.
-      if (start + kBatchSize < end) {
+      if (!whole_range && start + kBatchSize < end) {
         for (const float* array : workspace.input_arrays) {
           if (array == nullptr) continue;
           for (std::size_t k = 0; k < kBatchSize; k += kFloatsPerCacheLine) hwy::Prefetch(array + start + kBatchSize + k);
@@ -201,7 +225,7 @@ class BatchEngine final : public Engine {
       } else {
         for (const Step& step : plan_.steps) step.kernel(step, frame);
       }
-      for (const auto& [array, value] : workspace.unstored) std::fill_n(array + start, n, value);
+      for (const auto& [array, value] : workspace.unstored) FillLane(array + start, n, value);
       if (full) continue;
       for (std::size_t k = 0; k < plan_.output_lanes.size(); ++k) {
         float* array = workspace.output_arrays[k];
