@@ -51,12 +51,16 @@ std::string Footer() {
       "The ground truth (brute-force integration over every texel) is the slow stage; a progress\n"
       "bar is shown when stderr is a terminal.\n"
       "\n"
-      "Levels: 0 is the full face size, each level halves it, the last is 1x1. By default the level\n"
-      "whose faces are {0}x{0} when the face is larger (the paper's recommendation: Fig. 3 shows it\n"
-      "looking as good as full resolution, while the update costs 1/16 of it at 256x256), else 0.\n"
+      "Levels: 0 is the full face size, each level halves it, the last is 1x1. By default the coarsest\n"
+      "level whose error against level 0 stays under --max-error (0.5 %), estimated as 1.4 x its\n"
+      "difference from the next finer level, every finer level passing too: the sky of 256x256 faces\n"
+      "gets 16x16, the spot 128x128, a constant environment 1x1 (the paper fixes {0}x{0}: Fig. 3).\n"
+      "--window trades ringing (negative irradiance opposite a small bright light) against blur;\n"
+      "`irrmap stability` measures both.\n"
       "\n"
       "Examples:\n"
-      "  irrmap                                     built-in sky, 256x256 faces, level 2 (64x64), out/\n"
+      "  irrmap                                     built-in sky, 256x256 faces, level by --max-error, out/\n"
+      "  irrmap spot --window dering                the spot light without negative irradiance\n"
       "  irrmap studio --face-size 128 --level 3    built-in studio, coefficients from 16x16\n"
       "  irrmap probe.hdr --layout angular --face-size 256 --out probe-out\n"
       "  irrmap 'sky_{{face}}.exr' --engine ref       six face files, reference engine\n"
@@ -103,9 +107,20 @@ int main(int argc, char** argv) {
                  "face size of a built-in environment, or of the cube a latlong/angular map is resampled to; "
                  "a power of two (cube files keep theirs, which must be a power of two too)")
       ->capture_default_str();
-  app.add_option("--level", level,
+  CLI::Option* level_option = app.add_option("--level", level,
                  "mip level the coefficients are computed from: 0 = full face size, each level halves it, down to "
-                 "1x1; default: the 64x64 level when the face is larger, else 0");
+                 "1x1; default: picked by --max-error");
+  app.add_option("--max-error", options.max_error,
+                 "unless --level is given, pick the coarsest level whose error against full resolution, estimated "
+                 "from adjacent levels, stays under this fraction (0.005 = 0.5 %)")
+      ->capture_default_str()
+      ->excludes(level_option);
+  app.add_option("--window", options.window,
+                 "window on the coefficients against ringing from small bright lights: none, hanning, lanczos "
+                 "(of --window-width bands) or dering (the mildest window that makes the irradiance non-negative)")
+      ->capture_default_str();
+  app.add_option("--window-width", options.window_width, "width of the hanning and lanczos windows, in bands")
+      ->capture_default_str();
   app.add_option("--out", out_dir, "output directory")->capture_default_str();
   app.add_option("--engine", options.engine, "vertex machine engine: ref (reference, scalar) or batch (SIMD)")
       ->capture_default_str();
