@@ -1,7 +1,7 @@
 // The stability report of `irrmap stability --out DIR`: runs every measurement of stability.h at
 // report sizes and writes DIR/stability.md (tables and findings) with the charts it embeds,
-// DIR/sweep.svg (error against light size per window), DIR/ringing.svg (lowest irradiance against
-// light size) and DIR/levels.svg (error of each mip level per environment), drawn by gnuplot.
+// DIR/sweep.png (error against light size per window), DIR/ringing.png (lowest irradiance against
+// light size) and DIR/levels.png (error of each mip level per environment), drawn by gnuplot.
 #pragma once
 
 #include <filesystem>

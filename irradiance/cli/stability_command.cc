@@ -42,7 +42,7 @@ void AddStabilityCommand(CLI::App& app) {
       "Where the nine-coefficient method fails, measured: a light swept from 90 to 0.25 degrees at constant power "
       "(ringing, and the windows against it), the error each mip level adds for every built-in environment and "
       "the --max-error level pick, and precision (float sums, non-unit and zero normals, denormal constants, HDR "
-      "radiance). Writes DIR/stability.md with the charts sweep.svg, ringing.svg and levels.svg (gnuplot) beside "
+      "radiance). Writes DIR/stability.md with the charts sweep.png, ringing.png and levels.png (gnuplot) beside "
       "it. About a minute at the defaults on two cores; a progress bar is shown when stderr is a terminal.");
   command->add_option("--out", *out_dir, "output directory")->capture_default_str();
   command->add_option("--face-size", options->face_size, "face size of the sweep's and the level study's maps")

@@ -325,13 +325,13 @@ TEST_F(StabilityFiles, ReportWritesMarkdownWithItsCharts) {
   ASSERT_EQ(RunStability(options, report), std::nullopt);
   std::vector<fs::path> written;
   ASSERT_EQ(WriteStabilityReport(report, written), std::nullopt);
-  for (const char* name : {"stability.md", "sweep.svg", "ringing.svg", "levels.svg"}) {
+  for (const char* name : {"stability.md", "sweep.png", "ringing.png", "levels.png"}) {
     EXPECT_TRUE(fs::exists(folder_ / name)) << name;
   }
   std::ifstream in(folder_ / "stability.md");
   std::stringstream text;
   text << in.rdbuf();
-  EXPECT_THAT(text.str(), HasSubstr("![max and mean error against light size](sweep.svg)"));
+  EXPECT_THAT(text.str(), HasSubstr("![max and mean error against light size](sweep.png)"));
   EXPECT_THAT(text.str(), HasSubstr("## 3. Precision"));
   options.radii = {2.0, 90.0};
   EXPECT_TRUE(RunStability(options, report));  // largest first
