@@ -33,7 +33,8 @@ struct WindowVariant {
   std::string Label() const;  // "none", "hanning 4", "dering"
 };
 
-// The windows the report compares: none, hanning and lanczos of width kReportWindowWidth, dering.
+// The windows the report compares, in this order: none, hanning and lanczos of width
+// kReportWindowWidth, dering (the report relies on none first and dering last).
 inline constexpr double kReportWindowWidth = 4.0;
 std::vector<WindowVariant> ReportWindowVariants();
 
@@ -163,7 +164,7 @@ std::vector<ScaledRun> MeasureScaledRuns(const Sh9Rgb& sh, std::span<const glm::
                                          std::span<const double> scales, std::string& error);
 
 // The sky with its sun given radiance `sun_radiance` (1e6: an HDR capture of the real sun): the
-// program on the machine against double eq. 7, and the level-2-vs-direct difference.
+// program on the machine against double eq. 7, and SH9 against the ground truth.
 struct HdrResult {
   double sun_radiance = 0.0;
   double peak_irradiance = 0.0;

@@ -44,6 +44,16 @@ void AddStabilityCommand(CLI::App& app) {
       "the --max-error level pick, and precision (float sums, non-unit and zero normals, denormal constants, HDR "
       "radiance). Writes DIR/stability.md with the charts sweep.png, ringing.png and levels.png (gnuplot) beside "
       "it. About a minute at the defaults on two cores; a progress bar is shown when stderr is a terminal.");
+  // Its own footer: CLI11 copies the parent's, which describes the main job's outputs.
+  command->footer(
+      "Outputs (in --out DIR, created if needed; each file written to a temporary and renamed):\n"
+      "  stability.md    the findings with their tables, embedding the three charts\n"
+      "  sweep.png       max and mean error against the light's radius, per window\n"
+      "  ringing.png     lowest irradiance over the sphere against the light's radius, per window\n"
+      "  levels.png      error of each mip level against level 0, per environment\n"
+      "\n"
+      "Example (the report the README links to):\n"
+      "  irrmap stability --out irradiance/images/stability");
   command->add_option("--out", *out_dir, "output directory")->capture_default_str();
   command->add_option("--face-size", options->face_size, "face size of the sweep's and the level study's maps")
       ->capture_default_str();
