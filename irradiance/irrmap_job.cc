@@ -329,7 +329,7 @@ std::string ConstantsFileComment(const IrrmapReport& report, const PaperProgram&
       fmt::arg("output", OutputSlotName(program.output_slot())));
 }
 
-// Picks report.level (--level, --max-error or the default), marks it, records every level's
+// Picks report.level (--level, else by --max-error), marks it, records every level's
 // estimated error, and applies the window to every level's coefficients.
 void ChooseLevelAndWindow(const IrrmapOptions& options, const CheckedOptions& checked, IrrmapReport& report) {
   std::vector<Sh9Rgb> coefficients;

@@ -120,12 +120,13 @@ std::array<double, kSh9Bands> ShWindowFactors(ShWindow window, double width);
 std::array<double, kSh9Bands> LaplacianWindowFactors(double lambda);
 
 // Sloan's deringing for these coefficients: the smallest lambda (to within 1e-4 relative) of
-// LaplacianWindowFactors for which the windowed irradiance of every channel is >= 0 at every one of
-// `normals` (unit vectors, e.g. SphereNormals(2000)); lambda = 0, i.e. no window, when the
-// irradiance is already non-negative there. Any non-negative radiance is deringed by a finite
-// lambda, because the windowed kernel of a point light becomes non-negative; coefficients that are
-// not a non-negative radiance (their band 0 negative) may need an unbounded one, and then the
-// factors are those of the largest lambda tried (1e6). Cost: about 60 evaluations of the normals.
+// LaplacianWindowFactors for which the windowed irradiance of every channel is >= 0 (down to 1e-9 of
+// the largest |E|, for rounding) at every one of `normals` (unit vectors, e.g. SphereNormals(2000));
+// 0, i.e. no window, when the irradiance is already non-negative there. Any non-negative radiance is
+// deringed by a finite lambda, because the windowed kernel of a point light becomes non-negative;
+// coefficients that are not a non-negative radiance (their band 0 negative) may need an unbounded
+// one, and then 1e6, the largest lambda tried, is returned. Cost: at most about 45 evaluations of eq. (7)
+// at every normal (25 for a point light).
 double DeringLambda(const Sh9Rgb& sh, std::span<const glm::dvec3> normals);
 
 // The coefficients with band l multiplied by factors[l].
