@@ -16,4 +16,6 @@ struct SubcommandFailure : std::runtime_error {
 // Registers every subcommand (subcommands.cc); a new one adds its line there.
 void AddSubcommands(CLI::App& app);
 
+void AddStabilityCommand(CLI::App& app);  // stability_command.cc
+
 }  // namespace vs11::irradiance::cli
