@@ -17,6 +17,8 @@
 
 #include <OpenImageIO/imageio.h>
 
+#include "irradiance/dds_reader.h"
+
 namespace vs11::irradiance {
 namespace {
 
@@ -188,6 +190,21 @@ ImageReadResult ReadImageUnchecked(const fs::path& path) {
     return ReadFailure(fmt::format("{}: file is empty", path.string()));
   }
 
+  DdsReadResult dds = ReadDds(path, kMaxImagePixels);
+  switch (dds.outcome) {
+    case DdsReadResult::Outcome::kError:
+      return ReadFailure(fmt::format("{}: {}", path.string(), dds.error));
+    case DdsReadResult::Outcome::kRead: {
+      ImageReadResult result;
+      result.image = std::move(dds.image);
+      result.is_dds_cube_map = dds.is_cube_map;
+      return result;
+    }
+    case DdsReadResult::Outcome::kNotDds:
+    case DdsReadResult::Outcome::kLeaveToOpenImageIo:
+      break;
+  }
+
   auto input = OIIO::ImageInput::open(path.string());
   if (!input) {
     const std::string oiio_error = OiioMessage(OIIO::geterror());
@@ -225,7 +242,9 @@ ImageReadResult ReadImageUnchecked(const fs::path& path) {
 
   const int channels = std::min(spec.nchannels, 3);
   std::vector<float> data(pixel_count * channels);
-  if (!input->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, data.data())) {
+  // Some readers (TIFF, DDS, BMP) return true for a short file and only record the error.
+  if (!input->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, data.data()) ||
+      input->has_error()) {
     return ReadFailure(fmt::format("{}: cannot read pixels, corrupt or truncated file ({})",
                                    path.string(), OiioMessage(input->geterror())));
   }
