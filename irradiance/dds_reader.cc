@@ -244,10 +244,15 @@ DdsReadResult ReadDds(const fs::path& path, std::size_t max_pixels) {
   const std::uint64_t width = Word(header, kWidthAt);
   const std::uint64_t height = Word(header, kHeightAt);
   const std::uint32_t caps2 = Word(header, kCaps2At);
-  const bool is_cube = dx10 ? (Word(header, kMiscFlagAt) & kMiscTextureCube) != 0
-                            : (caps2 & kCaps2Cubemap) != 0;
+  // A DX10 header flags a cube map in its misc flags; writers set the legacy caps2 bits as well,
+  // and OpenImageIO only looks at those.
+  const bool dx10_cube = dx10 && (Word(header, kMiscFlagAt) & kMiscTextureCube) != 0;
+  const bool legacy_cube = (caps2 & kCaps2Cubemap) != 0;
+  const bool is_cube = dx10_cube || legacy_cube;
   const std::uint64_t faces =
-      !is_cube ? 1 : dx10 ? 6 : static_cast<std::uint64_t>(std::popcount(caps2 & kCaps2AllFaces));
+      !is_cube    ? 1
+      : dx10_cube ? 6
+                  : static_cast<std::uint64_t>(std::popcount(caps2 & kCaps2AllFaces));
   const std::uint64_t array_size = dx10 ? Word(header, kArraySizeAt) : 1;
   const bool volume = dx10 ? Word(header, kResourceDimensionAt) != kDimensionTexture2D
                            : (caps2 & kCaps2Volume) != 0 ||
@@ -320,7 +325,15 @@ DdsReadResult ReadDds(const fs::path& path, std::size_t max_pixels) {
                              "are needed",
                              faces, caps2 & kCaps2AllFaces));
   }
-  if (!decode_here) return LeaveToOpenImageIo();
+  if (!decode_here) {
+    if (dx10_cube && (!legacy_cube || (caps2 & kCaps2AllFaces) != kCaps2AllFaces)) {
+      return Error(fmt::format(
+          "DX10 cube map without the DDSCAPS2 cube map flags (caps2 {:#x}): OpenImageIO, which "
+          "decodes {}, would read one face only",
+          caps2, format->name));
+    }
+    return LeaveToOpenImageIo();
+  }
 
   DdsReadResult result;
   result.outcome = DdsReadResult::Outcome::kRead;
