@@ -178,6 +178,24 @@ bool IsKnownImageExtension(const fs::path& path) {
   return false;
 }
 
+// The bytes of pixels a file must hold when they are stored uncompressed, as in PFM and in TIFF
+// without compression (one sample of 8 bits or more per channel, no palette); nullopt for other
+// files. Checked before the pixel buffer is allocated: OpenImageIO reads a short uncompressed TIFF
+// without failing, and a tiny file must not make us allocate what its header claims.
+std::optional<std::uint64_t> UncompressedPixelBytes(const OIIO::ImageInput& input,
+                                                    const OIIO::ImageSpec& spec) {
+  const std::string format = Lower(input.format_name());
+  const bool pfm = format == "pnm" && spec.format == OIIO::TypeDesc::FLOAT;
+  constexpr int kPhotometricPalette = 3;
+  const bool raw_tiff =
+      format == "tiff" &&
+      Lower(std::string(spec.get_string_attribute("compression", "none"))) == "none" &&
+      spec.get_int_attribute("oiio:BitsPerSample", 0) >= 8 &&
+      spec.get_int_attribute("tiff:PhotometricInterpretation", 0) < kPhotometricPalette;
+  if (!pfm && !raw_tiff) return std::nullopt;
+  return static_cast<std::uint64_t>(spec.image_bytes(/*native=*/true));
+}
+
 ImageReadResult ReadImageUnchecked(const fs::path& path) {
   std::error_code ec;
   const fs::file_status status = fs::status(path, ec);
@@ -186,9 +204,8 @@ ImageReadResult ReadImageUnchecked(const fs::path& path) {
   if (!fs::is_regular_file(status)) {
     return ReadFailure(fmt::format("{}: not a regular file", path.string()));
   }
-  if (fs::file_size(path, ec) == 0 && !ec) {
-    return ReadFailure(fmt::format("{}: file is empty", path.string()));
-  }
+  const std::uintmax_t file_size = fs::file_size(path, ec);
+  if (file_size == 0 && !ec) return ReadFailure(fmt::format("{}: file is empty", path.string()));
 
   DdsReadResult dds = ReadDds(path, kMaxImagePixels);
   switch (dds.outcome) {
@@ -226,6 +243,13 @@ ImageReadResult ReadImageUnchecked(const fs::path& path) {
     return ReadFailure(
         fmt::format("{}: image of {} x {} pixels is larger than the {} pixels accepted",
                     path.string(), spec.width, spec.height, kMaxImagePixels));
+  }
+  if (const std::optional<std::uint64_t> needed = UncompressedPixelBytes(*input, spec);
+      needed && !ec && file_size < *needed) {
+    return ReadFailure(fmt::format(
+        "{}: truncated file: {} bytes, but the {} x {} uncompressed pixels its header declares "
+        "take {}",
+        path.string(), file_size, spec.width, spec.height, *needed));
   }
 
   ImageReadResult result;

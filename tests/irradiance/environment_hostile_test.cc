@@ -58,17 +58,17 @@ TEST_F(EnvironmentHostile, FilesCutShortAtSeveralPointsAreReportedAsTruncated) {
   }
 }
 
-// A little-endian baseline TIFF header claiming an 8-bit grey image of 2^30 x 2^30 in one strip.
-std::string HugeTiffHeader() {
+// A little-endian baseline TIFF header claiming an uncompressed 8-bit grey image of size x size in
+// one strip.
+std::string TiffHeader(std::uint32_t size) {
   struct Entry {
     std::uint16_t tag;
     std::uint16_t type;  // 3 SHORT, 4 LONG
     std::uint32_t value;
   };
-  constexpr std::uint32_t kHuge = std::uint32_t{1} << 30;
   const std::vector<Entry> entries = {
-      {256, 4, kHuge}, {257, 4, kHuge}, {258, 3, 8},     {259, 3, 1},    {262, 3, 1},
-      {273, 4, 200},   {277, 3, 1},     {278, 4, kHuge}, {279, 4, kHuge},
+      {256, 4, size}, {257, 4, size}, {258, 3, 8},    {259, 3, 1},           {262, 3, 1},
+      {273, 4, 200},  {277, 3, 1},    {278, 4, size}, {279, 4, size * size},
   };
   std::string bytes = "II*";
   bytes.push_back('\0');
@@ -98,7 +98,11 @@ TEST_F(EnvironmentHostile, HeadersClaimingHugeImagesAreRefusedBeforeAllocating) 
       {"wide.pfm", "PF\n4294967295 1\n-1.0\n" + padding, "larger than"},
       {"huge.hdr", "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 1073741824 +X 1073741824\n" + padding,
        "larger than"},
-      {"huge.tif", HugeTiffHeader() + padding, "corrupt"},
+      {"huge.tif", TiffHeader(std::uint32_t{1} << 30) + padding, "corrupt"},
+      // Within the pixel limit, but the file cannot hold them: refused before the pixel buffer
+      // (3 GB as float) is allocated.
+      {"big.tif", TiffHeader(16384) + padding, "uncompressed pixels its header declares"},
+      {"big.pfm", "PF\n16384 16384\n-1.0\n" + padding, "uncompressed pixels its header declares"},
   };
   for (const auto& [name, bytes, problem] : files) {
     WriteBytes(Path(name), bytes);
@@ -106,6 +110,40 @@ TEST_F(EnvironmentHostile, HeadersClaimingHugeImagesAreRefusedBeforeAllocating) 
     ASSERT_FALSE(result.ok()) << name;
     EXPECT_THAT(result.error, HasSubstr(name));
     EXPECT_THAT(result.error, HasSubstr(problem));
+  }
+}
+
+// OpenImageIO reads a short uncompressed TIFF without an error: its size is checked instead.
+TEST_F(EnvironmentHostile, UncompressedTiffCutShortIsReportedAsTruncated) {
+  const Image cross = CubeMapToImage(MakeTestCube(4), EnvironmentLayout::kHorizontalCross);
+  const std::vector<float> floats = Interleave(cross);
+  std::vector<std::uint16_t> words;
+  for (float value : floats) words.push_back(static_cast<std::uint16_t>(value * 1000.0f));
+  std::vector<std::uint8_t> bytes;
+  for (float value : floats) bytes.push_back(static_cast<std::uint8_t>(value * 20.0f));
+  struct Variant {
+    const char* name;
+    int channels;
+    OIIO::TypeDesc type;
+    const void* data;
+  };
+  for (const Variant& v : {Variant{"f32.tif", 3, OIIO::TypeDesc::FLOAT, floats.data()},
+                           Variant{"u16.tif", 1, OIIO::TypeDesc::UINT16, words.data()},
+                           Variant{"u8.tif", 3, OIIO::TypeDesc::UINT8, bytes.data()}}) {
+    auto out = OIIO::ImageOutput::create(v.name);
+    ASSERT_TRUE(out);
+    OIIO::ImageSpec spec(cross.width, cross.height, v.channels, v.type);
+    spec.attribute("compression", "none");
+    ASSERT_TRUE(out->open(Path(v.name).string(), spec) && out->write_image(v.type, v.data) &&
+                out->close());
+    ASSERT_TRUE(LoadEnvironment(Path(v.name)).ok()) << v.name;
+    const std::string file = ReadBytes(Path(v.name));
+    for (std::size_t length : {file.size() / 2, file.size() - 1}) {
+      WriteBytes(Path(v.name), file.substr(0, length));
+      const std::string error = LoadError(Path(v.name));
+      EXPECT_THAT(error, HasSubstr(v.name));
+      EXPECT_THAT(error, HasSubstr("truncated")) << v.name << " cut to " << length;
+    }
   }
 }
 
