@@ -7,6 +7,7 @@
 #include <cstring>
 #include <utility>
 #include <limits>
+#include <random>
 #include <string>
 #include <vector>
 
@@ -318,10 +319,21 @@ std::array<std::uint8_t, 16> EncodeBc6hMode11(const std::array<glm::vec3, 16>& t
   return block;
 }
 
-// A BC6H cube map of `source` and the cube a decoder must return for it.
-std::string Bc6hCubeFile(const CubeMap& source, bool is_signed, CubeMap& expected) {
+// A BC6H cube map of `source` and the cube a decoder must return for it. With `mip_tail`, each
+// face is followed by the levels below it down to 1 x 1 (blocks of noise, never to be read).
+std::string Bc6hCubeFile(const CubeMap& source, bool is_signed, CubeMap& expected,
+                         bool mip_tail = false) {
   const int n = source.face_size;
-  std::string bytes = DdsBytes(Dx10Cube(n, is_signed ? kDxgiBc6hSf16 : kDxgiBc6hUf16));
+  DdsFields fields = Dx10Cube(n, is_signed ? kDxgiBc6hSf16 : kDxgiBc6hUf16);
+  int tail_blocks = 0;
+  if (mip_tail) {
+    for (int size = n / 2; size >= 1; size /= 2) {
+      ++fields.mip_count;
+      tail_blocks += ((size + 3) / 4) * ((size + 3) / 4);
+    }
+  }
+  std::string bytes = DdsBytes(fields);
+  std::mt19937 noise(7);
   expected = CubeMap(n);
   for (CubeFace face : kAllCubeFaces) {
     for (int by = 0; by < n; by += 4) {
@@ -334,6 +346,7 @@ std::string Bc6hCubeFile(const CubeMap& source, bool is_signed, CubeMap& expecte
         for (int i = 0; i < 16; ++i) expected.face(face).at(bx + i % 4, by + i / 4) = decoded[i];
       }
     }
+    for (int i = 0; i < 16 * tail_blocks; ++i) bytes.push_back(static_cast<char>(noise()));
   }
   return bytes;
 }
@@ -369,6 +382,12 @@ TEST_F(DdsReader, Bc6hUnsignedCubeDecodesAsTheFormatSaysAndCloseToTheSource) {
   EXPECT_EQ(loaded.layout, EnvironmentLayout::kVerticalStrip);
   ExpectCubesEqual(loaded.cube, expected);
   ExpectCubesNear(loaded.cube, source, kBc6hMode11RelativeError, /*relative=*/true);
+}
+
+TEST_F(DdsReader, Bc6hCubeWithMipChainsReadsLevelZeroOfEachFace) {
+  CubeMap expected;
+  WriteBytes(Path("mips.dds"), Bc6hCubeFile(HdrTestCube(8), false, expected, /*mip_tail=*/true));
+  ExpectCubesEqual(Load(Path("mips.dds")).cube, expected);
 }
 
 TEST_F(DdsReader, Bc6hSignedCubeKeepsValuesAndZeroesNegativeTexelsWithAWarning) {
