@@ -28,6 +28,7 @@ constexpr std::uint32_t kMagic = 0x20534444;  // "DDS "
 constexpr std::uint32_t kHeaderSize = 124;
 constexpr std::size_t kLegacyDataOffset = 4 + kHeaderSize;
 constexpr std::size_t kDx10DataOffset = kLegacyDataOffset + 20;
+constexpr std::size_t kFlagsAt = 8;
 constexpr std::size_t kHeightAt = 12;
 constexpr std::size_t kWidthAt = 16;
 constexpr std::size_t kDepthAt = 24;
@@ -254,9 +255,9 @@ DdsReadResult ReadDds(const fs::path& path, std::size_t max_pixels) {
       : dx10_cube ? 6
                   : static_cast<std::uint64_t>(std::popcount(caps2 & kCaps2AllFaces));
   const std::uint64_t array_size = dx10 ? Word(header, kArraySizeAt) : 1;
+  const bool has_depth = (Word(header, kFlagsAt) & kFlagDepth) != 0 && Word(header, kDepthAt) > 1;
   const bool volume = dx10 ? Word(header, kResourceDimensionAt) != kDimensionTexture2D
-                           : (caps2 & kCaps2Volume) != 0 ||
-                                 ((Word(header, 8) & kFlagDepth) != 0 && Word(header, kDepthAt) > 1);
+                           : (caps2 & kCaps2Volume) != 0 || has_depth;
   if (width == 0 || height == 0) {
     return Error(fmt::format("zero-size image ({} x {} pixels in the DDS header)", width, height));
   }

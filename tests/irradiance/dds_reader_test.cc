@@ -152,7 +152,8 @@ void AppendRgb9e5(std::string& bytes, glm::vec3 p) {
   Append(bytes, word);
 }
 
-class DdsFloatFormat : public TempFolderTest, public testing::WithParamInterface<FloatFormatCase> {};
+class DdsFloatFormat : public TempFolderTest,
+                       public testing::WithParamInterface<FloatFormatCase> {};
 
 TEST_P(DdsFloatFormat, CubeMapLoadsExactlyInD3dFaceOrder) {
   const int n = 2;

@@ -29,7 +29,9 @@ std::vector<std::pair<std::string, std::string>> CrossInEveryFormat(const fs::pa
   }
   std::vector<std::uint8_t> bytes;
   for (const glm::vec3& p : cross.pixels) {
-    for (int c = 0; c < 3; ++c) bytes.push_back(static_cast<std::uint8_t>(std::min(p[c], 1.0f) * 255));
+    for (int c = 0; c < 3; ++c) {
+      bytes.push_back(static_cast<std::uint8_t>(std::min(p[c], 1.0f) * 255));
+    }
   }
   for (const char* name : {"cross8.tif", "cross.bmp"}) {
     EXPECT_TRUE(WriteWithOiio(folder / name, cross.width, cross.height, 3, OIIO::TypeDesc::UINT8,

@@ -49,7 +49,7 @@ inline glm::vec3 SmoothRadiance(glm::dvec3 d) {
 }
 
 inline void ExpectCubesNear(const CubeMap& actual, const CubeMap& expected, float tolerance,
-                     bool relative = false) {
+                            bool relative = false) {
   ASSERT_EQ(actual.face_size, expected.face_size);
   int failures = 0;
   for (CubeFace face : kAllCubeFaces) {
@@ -83,8 +83,9 @@ inline std::vector<float> Interleave(const Image& image) {
   return data;
 }
 
-inline bool WriteWithOiio(const fs::path& path, int width, int height, int channels, OIIO::TypeDesc type,
-                   const void* data, const char* color_space = nullptr) {
+inline bool WriteWithOiio(const fs::path& path, int width, int height, int channels,
+                          OIIO::TypeDesc type, const void* data,
+                          const char* color_space = nullptr) {
   auto out = OIIO::ImageOutput::create(path.string());
   if (!out) return false;
   OIIO::ImageSpec spec(width, height, channels, type);
@@ -133,7 +134,8 @@ struct Cell {
   int row;
   bool rotated_180 = false;
 };
-inline Image PlaceFaces(const CubeMap& cube, int columns, int rows, const std::array<Cell, 6>& cells) {
+inline Image PlaceFaces(const CubeMap& cube, int columns, int rows,
+                        const std::array<Cell, 6>& cells) {
   const int n = cube.face_size;
   Image image(columns * n, rows * n, glm::vec3(-7.0f));  // unused cells are never read
   for (CubeFace face : kAllCubeFaces) {
@@ -172,7 +174,8 @@ struct DdsPixelFormat {
   std::array<std::uint32_t, 4> masks;  // r g b a
 };
 
-inline std::string DdsHeader(int size, std::uint32_t caps2, const DdsPixelFormat& format, int pitch) {
+inline std::string DdsHeader(int size, std::uint32_t caps2, const DdsPixelFormat& format,
+                             int pitch) {
   std::string bytes;
   Append(bytes, kDdsMagic);
   Append(bytes, kDdsHeaderSize);
