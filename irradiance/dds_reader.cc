@@ -278,6 +278,11 @@ DdsReadResult ReadDds(const fs::path& path, std::size_t max_pixels) {
     return Error(fmt::format("corrupt DDS header: {} mip levels for a {} x {} image (at most {})",
                              mip_count, width, height, full_chain));
   }
+  if (is_cube && faces != 6) {
+    return Error(fmt::format("DDS cube map has {} of the six faces (cube map flags {:#x}), all six "
+                             "are needed",
+                             faces, caps2 & kCaps2AllFaces));
+  }
 
   // The format, if its size is known here.
   std::optional<Format> format;
@@ -320,11 +325,6 @@ DdsReadResult ReadDds(const fs::path& path, std::size_t max_pixels) {
         "truncated DDS file: {} bytes, but its header ({} x {} {}, {} face(s), {} mip level(s)) "
         "needs at least {}",
         file_size, width, height, format->name, faces, mip_count, needed));
-  }
-  if (is_cube && faces != 6) {
-    return Error(fmt::format("DDS cube map has {} of the six faces (cube map flags {:#x}), all six "
-                             "are needed",
-                             faces, caps2 & kCaps2AllFaces));
   }
   if (!decode_here) {
     if (dx10_cube && (!legacy_cube || (caps2 & kCaps2AllFaces) != kCaps2AllFaces)) {

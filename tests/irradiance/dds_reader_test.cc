@@ -463,6 +463,8 @@ TEST_F(DdsReader, DdsHeaderContradictionsAreReported) {
   fields = LegacyCube(4, kD3dFmtA32B32G32R32F);
   fields.caps2 = kDdsCaps2Cubemap | 0x400 | 0x800;
   EXPECT_THAT(error_of(fields), HasSubstr("2 of the six faces"));
+  fields.caps2 = kDdsCaps2Cubemap;
+  EXPECT_THAT(error_of(fields), HasSubstr("0 of the six faces"));
   fields = LegacyCube(4, kD3dFmtA32B32G32R32F);
   fields.caps2 = kDdsCaps2Volume;
   EXPECT_THAT(error_of(fields), HasSubstr("volume"));

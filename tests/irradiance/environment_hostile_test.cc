@@ -4,6 +4,7 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <random>
 #include <string>
 #include <tuple>
 #include <utility>
@@ -205,6 +206,46 @@ TEST_F(EnvironmentHostile, AnImageOfOnlyBadTexelsLoadsBlackWithEveryTexelCounted
   for (CubeFace face : kAllCubeFaces) {
     for (const glm::vec3& texel : loaded.cube.face(face).pixels) EXPECT_EQ(texel, glm::vec3(0.0f));
   }
+}
+
+// Bytes overwritten at random places: every load must come back, loaded or refused with a message
+// naming the file. (A crash or a hang here fails the whole run.)
+TEST_F(EnvironmentHostile, CorruptedBytesInEveryFormatAreLoadedOrRefusedNeverFatal) {
+  constexpr int kMutantsPerFormat = 40;
+  std::mt19937 random(2026);
+  std::vector<std::pair<std::string, std::string>> files = CrossInEveryFormat(folder_);
+  files.emplace_back("cube.dds", Dds8BitCube(4, {kAllCubeFaces.begin(), kAllCubeFaces.end()},
+                                             DdsTestBytes));
+  const DdsPixelFormat float_format = {kDdpfFourCc, kD3dFmtA32B32G32R32F, 0, {0, 0, 0, 0}};
+  std::string float_dds = DdsHeader(4, kDdsCaps2Cubemap | 0xfc00, float_format, 4 * 16);
+  const CubeMap cube = MakeTestCube(4);
+  for (CubeFace face : kAllCubeFaces) {
+    for (const glm::vec3& p : cube.face(face).pixels) {
+      for (float value : {p.r, p.g, p.b, 1.0f}) Append(float_dds, value);
+    }
+  }
+  files.emplace_back("float.dds", float_dds);
+  int refused = 0;
+  for (const auto& [name, bytes] : files) {
+    for (int mutant = 0; mutant < kMutantsPerFormat; ++mutant) {
+      std::string damaged = bytes;
+      const int changes = 1 + static_cast<int>(random() % 4);
+      for (int i = 0; i < changes; ++i) {
+        // Mostly the first 200 bytes, where the headers are.
+        const std::size_t span = random() % 2 ? std::min<std::size_t>(200, damaged.size())
+                                              : damaged.size();
+        damaged[random() % span] = static_cast<char>(random());
+      }
+      const std::string damaged_name = "damaged_" + name;
+      WriteBytes(Path(damaged_name), damaged);
+      const LoadResult result = LoadEnvironment(Path(damaged_name));
+      if (!result.ok()) {
+        ++refused;
+        EXPECT_THAT(result.error, HasSubstr(damaged_name));
+      }
+    }
+  }
+  EXPECT_GT(refused, 0);
 }
 
 }  // namespace
