@@ -468,6 +468,9 @@ TEST_F(DdsReader, DdsHeaderContradictionsAreReported) {
   fields = LegacyCube(4, kD3dFmtA32B32G32R32F);
   fields.caps2 = kDdsCaps2Volume;
   EXPECT_THAT(error_of(fields), HasSubstr("volume"));
+  fields = Dx10Cube(4, kDxgiBc6hUf16);
+  fields.caps2 = 0;  // OpenImageIO would read the first face as a square image
+  EXPECT_THAT(error_of(fields), HasSubstr("DX10 cube map without the DDSCAPS2 cube map flags"));
   fields = Dx10Cube(4, kDxgiRgba16Float);
   fields.width = fields.height = 0;
   EXPECT_THAT(error_of(fields), HasSubstr("zero-size"));
