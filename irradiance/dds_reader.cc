@@ -13,6 +13,7 @@
 #include <optional>
 #include <string_view>
 #include <system_error>
+#include <utility>
 #include <vector>
 
 #include <OpenImageIO/imageio.h>
@@ -36,6 +37,10 @@ constexpr std::size_t kMipCountAt = 28;
 constexpr std::size_t kPixelFormatFlagsAt = 80;
 constexpr std::size_t kFourCcAt = 84;
 constexpr std::size_t kBitCountAt = 88;
+constexpr std::size_t kRedMaskAt = 92;
+constexpr std::size_t kGreenMaskAt = 96;
+constexpr std::size_t kBlueMaskAt = 100;
+constexpr std::size_t kAlphaMaskAt = 104;
 constexpr std::size_t kCaps2At = 112;
 constexpr std::size_t kDxgiFormatAt = 128;
 constexpr std::size_t kResourceDimensionAt = 132;
@@ -43,7 +48,11 @@ constexpr std::size_t kMiscFlagAt = 136;
 constexpr std::size_t kArraySizeAt = 140;
 
 constexpr std::uint32_t kFlagDepth = 0x800000;          // DDSD_DEPTH
+constexpr std::uint32_t kPixelFormatAlphaPixels = 0x1;  // DDPF_ALPHAPIXELS
+constexpr std::uint32_t kPixelFormatAlphaOnly = 0x2;    // DDPF_ALPHA
 constexpr std::uint32_t kPixelFormatFourCc = 0x4;       // DDPF_FOURCC
+constexpr std::uint32_t kPixelFormatRgb = 0x40;         // DDPF_RGB
+constexpr std::uint32_t kPixelFormatLuminance = 0x20000;  // DDPF_LUMINANCE
 constexpr std::uint32_t kCaps2Cubemap = 0x200;          // DDSCAPS2_CUBEMAP
 constexpr std::uint32_t kCaps2AllFaces = 0xfc00;        // DDSCAPS2_CUBEMAP_POSITIVEX .. NEGATIVEZ
 constexpr std::uint32_t kCaps2FirstFace = 0x400;
@@ -126,7 +135,10 @@ constexpr std::array<FourCcFormat, 11> kFourCcFormats = {{
     {FourCc("BC5U"), {"BC5U", 16, true, Decoder::kOpenImageIo, 2}},
 }};
 
-std::uint32_t Word(const std::array<unsigned char, kDx10DataOffset>& header, std::size_t at) {
+// The raw header: magic, DDS_HEADER and, if present, DDS_HEADER_DXT10.
+using Header = std::array<unsigned char, kDx10DataOffset>;
+
+std::uint32_t Word(const Header& header, std::size_t at) {
   std::uint32_t value = 0;
   for (int i = 3; i >= 0; --i) value = value << 8 | header[at + i];
   return value;
@@ -137,6 +149,34 @@ DdsReadResult Error(std::string message) {
   result.outcome = DdsReadResult::Outcome::kError;
   result.error = std::move(message);
   return result;
+}
+
+// What is wrong with an uncompressed pixel format given by a bit count and channel masks, if
+// anything. OpenImageIO 2.4 never returns from a file whose bit count is 0 or whose masks in use
+// include a 0 (it shifts the mask down until its lowest bit is set), so those are refused here.
+std::optional<std::string> MaskedFormatProblem(const Header& h) {
+  const std::uint32_t flags = Word(h, kPixelFormatFlagsAt);
+  const std::uint32_t bit_count = Word(h, kBitCountAt);
+  if (bit_count != 8 && bit_count != 16 && bit_count != 24 && bit_count != 32) {
+    return fmt::format("unsupported DDS pixel format: {} bits per pixel (flags {:#x})", bit_count,
+                       flags);
+  }
+  std::vector<std::pair<std::size_t, std::string_view>> masks_in_use;
+  if (flags & kPixelFormatLuminance) {
+    masks_in_use.emplace_back(kRedMaskAt, "luminance");
+  } else if ((flags & kPixelFormatAlphaOnly) && !(flags & kPixelFormatRgb)) {
+    masks_in_use.emplace_back(kAlphaMaskAt, "alpha");
+  } else {
+    masks_in_use = {{kRedMaskAt, "red"}, {kGreenMaskAt, "green"}, {kBlueMaskAt, "blue"}};
+  }
+  if (flags & kPixelFormatAlphaPixels) masks_in_use.emplace_back(kAlphaMaskAt, "alpha");
+  for (const auto& [at, channel] : masks_in_use) {
+    if (Word(h, at) == 0) {
+      return fmt::format("corrupt DDS pixel format: the {} channel's bit mask is 0 (flags {:#x})",
+                         channel, flags);
+    }
+  }
+  return std::nullopt;
 }
 
 DdsReadResult LeaveToOpenImageIo() {
@@ -216,7 +256,7 @@ DdsReadResult ReadDds(const fs::path& path, std::size_t max_pixels) {
   const std::uintmax_t file_size = fs::file_size(path, ec);
   if (ec) return Error(fmt::format("cannot read the file size ({})", ec.message()));
   std::ifstream file(path, std::ios::binary);
-  std::array<unsigned char, kDx10DataOffset> header{};
+  Header header{};
   file.read(reinterpret_cast<char*>(header.data()), 4);
   if (!file || Word(header, 0) != kMagic) return {};  // not a DDS file: kNotDds
   file.read(reinterpret_cast<char*>(header.data()) + 4, kLegacyDataOffset - 4);
@@ -297,11 +337,11 @@ DdsReadResult ReadDds(const fs::path& path, std::size_t max_pixels) {
       if (entry.code == code) format = entry.format;
     }
   } else {
-    const std::uint32_t bit_count = Word(header, kBitCountAt);
-    if (bit_count % 8 == 0 && bit_count >= 8 && bit_count <= 32) {
-      format = Format{"uncompressed", static_cast<int>(bit_count / 8), false, Decoder::kOpenImageIo,
-                      0};
+    if (const std::optional<std::string> problem = MaskedFormatProblem(header)) {
+      return Error(*problem);
     }
+    format = Format{"uncompressed", static_cast<int>(Word(header, kBitCountAt) / 8), false,
+                    Decoder::kOpenImageIo, 0};
   }
   const bool decode_here = format && format->decoder != Decoder::kOpenImageIo;
   if (!format || ((volume || array_size > 1) && !decode_here)) return LeaveToOpenImageIo();

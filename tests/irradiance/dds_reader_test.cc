@@ -22,6 +22,7 @@ using testing::HasSubstr;
 using DdsReader = TempFolderTest;
 
 constexpr std::uint32_t kDdsdMipMapCount = 0x20000;
+constexpr float kSrgbDecodeError = 1e-6f;  // sRGB decode in double, rounded to float
 constexpr std::uint32_t kDdsCaps2Volume = 0x200000;
 constexpr std::uint32_t kDx10MiscTextureCube = 0x4;
 constexpr std::uint32_t kDx10Texture2D = 3;
@@ -474,6 +475,36 @@ TEST_F(DdsReader, DdsHeaderContradictionsAreReported) {
   fields = Dx10Cube(4, kDxgiRgba16Float);
   fields.width = fields.height = 0;
   EXPECT_THAT(error_of(fields), HasSubstr("zero-size"));
+}
+
+// OpenImageIO 2.4 never returns from these (found by the damaged-bytes test in
+// environment_hostile_test.cc): a bit count of 0, or a mask in use that is 0.
+TEST_F(DdsReader, UncompressedFormatsThatHangOpenImageIoAreRefused) {
+  constexpr std::uint32_t kDdpfLuminance = 0x20000;
+  const std::array<std::uint32_t, 4> bgra = {0x00ff0000, 0x0000ff00, 0x000000ff, 0xff000000};
+  const std::vector<std::pair<DdsPixelFormat, std::string>> cases = {
+      {{kDdpfRgb, 0, 0, bgra}, "0 bits per pixel"},
+      {{kDdpfRgb, 0, 12, bgra}, "12 bits per pixel"},
+      {{kDdpfRgb | kDdpfAlphaPixels, 0, 32, {0, 0, 0, 0}}, "red channel's bit mask is 0"},
+      {{kDdpfRgb, 0, 32, {0x00ff0000, 0, 0x000000ff, 0}}, "green channel's bit mask is 0"},
+      {{kDdpfRgb | kDdpfAlphaPixels, 0, 32, {0x00ff0000, 0x0000ff00, 0x000000ff, 0}},
+       "alpha channel's bit mask is 0"},
+      {{kDdpfLuminance, 0, 8, {0, 0, 0, 0}}, "luminance channel's bit mask is 0"},
+  };
+  std::uint32_t caps2 = kDdsCaps2Cubemap;
+  for (std::uint32_t bit : kDdsCaps2Face) caps2 |= bit;
+  for (const auto& [format, problem] : cases) {
+    WriteBytes(Path("odd.dds"), DdsHeader(4, caps2, format, 16) + std::string(6 * 64, '\x11'));
+    const std::string error = LoadError(Path("odd.dds"));
+    EXPECT_THAT(error, HasSubstr("odd.dds"));
+    EXPECT_THAT(error, HasSubstr(problem));
+  }
+  // A luminance mask alone is enough.
+  WriteBytes(Path("grey.dds"), DdsHeader(4, caps2, {kDdpfLuminance, 0, 8, {0xff, 0, 0, 0}}, 4) +
+                                   std::string(6 * 16, '\x80'));
+  const LoadedEnvironment& grey = Load(Path("grey.dds"));
+  EXPECT_NEAR(grey.cube.face(CubeFace::kNegativeZ).at(3, 3).g, SrgbToLinear(128 / 255.0),
+              kSrgbDecodeError);
 }
 
 TEST_F(DdsReader, EightBitDdsCutShortIsReportedAsTruncated) {
