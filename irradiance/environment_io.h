@@ -19,7 +19,7 @@
 //                     right to left), and its stored top edge meets the bottom edge of -y.
 //   kHorizontalStrip  6N x N, +x -x +y -y +z -z from left to right.
 //   kVerticalStrip    N x 6N, +x -x +y -y +z -z from top to bottom. A DDS cube map is read this way
-//                     (OpenImageIO presents its six faces stacked in that order).
+//                     (OpenImageIO and dds_reader.h present its six faces stacked in that order).
 //   kLatLong          equirectangular W x H with W = 2 H. The centre of pixel (x, y) has
 //                       u = (x + 0.5) / W,  v = (y + 0.5) / H,
 //                       phi = 2 pi (u - 0.5)    azimuth, 0 at the centre column
@@ -45,7 +45,10 @@
 // OpenImageIO tags them "Linear" (for example a PNG with gAMA 1.0). Only the first three channels
 // are used; a one- or two-channel image (grey, grey + alpha) has its first channel replicated.
 // NaN, infinite and negative values are not rejected: NaN and infinities become 0, negatives are
-// clamped to 0, and LoadedEnvironment::warnings says how many pixels were changed.
+// clamped to 0, and LoadedEnvironment::warnings says in which file and how many texels were
+// changed (irrmap prints these warnings). Sanitising rather than refusing because real probes
+// carry a few such texels (a sensor's hot pixel, a signed BC6H block ringing below 0) and radiance
+// is never negative; a file of nothing but bad texels loads as black, with all of them counted.
 #pragma once
 
 #include <array>
@@ -118,13 +121,17 @@ struct LoadResult {
 // (4N x 3N for hcross and so on, 2:1 for latlong, square for angular); a DDS cube map only fits
 // kAuto and kVerticalStrip.
 // Lat-long and angular maps are resampled to options.face_size by ResampleLatLong/ResampleAngular.
-// Formats: whatever OpenImageIO reads, among them Radiance .hdr, OpenEXR, PFM, TIFF, DDS (with
-// BC6H if OpenImageIO decodes it), PNG and JPEG.
-// Errors (never thrown): missing, empty, unreadable, truncated or corrupt files, formats
-// OpenImageIO cannot read (OpenImageIO 2.4: no uncompressed float DDS), zero-size or oversized
-// images, sizes that do not fit the layout, non-square faces, six faces of different sizes, a face
-// file missing. Truncation is caught where OpenImageIO's reader notices it (EXR, HDR, PNG, JPEG);
-// its TIFF and DDS readers return a short uncompressed file's missing pixels without an error.
+// Formats: whatever OpenImageIO reads, among them Radiance .hdr, OpenEXR, PFM, TIFF, PNG, JPEG and
+// DDS (8-bit, BC1-BC5, BC6H unsigned and signed, BC7), plus the uncompressed float DDS formats
+// OpenImageIO 2.4 refuses, read by dds_reader.h.
+// Errors (never thrown), each naming the file: missing, empty, unreadable, truncated or corrupt
+// files, formats nobody here reads, zero-size or oversized images (more than kMaxImagePixels,
+// refused from the header before anything is allocated), sizes that do not fit the layout,
+// non-square faces, six faces of different sizes, a face file missing, DDS texture arrays and
+// volumes. Truncation: DDS, PFM and uncompressed TIFF files are checked against the size their
+// header implies before any pixel is read; everything else by OpenImageIO's error state after
+// reading, which it sets even where read_image succeeds (a short TIFF, DDS or BMP). A PNG cut only
+// in its closing IEND chunk keeps all its pixels and loads.
 LoadResult LoadEnvironment(const std::filesystem::path& path, const LoadOptions& options = {});
 
 // An image read as linear RGB as described above (sRGB decoded, channels fitted, not sanitised).
