@@ -108,6 +108,30 @@ std::size_t LevelTexels(int size) {
   return static_cast<std::size_t>(kCubeFaceCount) * size * size;
 }
 
+// True when chain.levels are LevelCount(face_size) cube maps of faces face_size >> k.
+bool HasPyramidShape(const CubeMipChain& chain, int face_size) {
+  if (static_cast<int>(chain.levels.size()) != LevelCount(face_size)) return false;
+  for (std::size_t k = 0; k < chain.levels.size(); ++k) {
+    const int size = face_size >> k;
+    if (chain.levels[k].face_size != size) return false;
+    for (const Image& face : chain.levels[k].faces) {
+      if (face.width != size || face.height != size) return false;
+    }
+  }
+  return true;
+}
+
+// Each texel of `coarse` (half the size of `fine`) becomes the float mean of its 2 x 2 children.
+void HalveFace(const Image& fine, Image& coarse) {
+  for (int y = 0; y < coarse.height; ++y) {
+    for (int x = 0; x < coarse.width; ++x) {
+      const glm::vec3 sum = (fine.at(2 * x, 2 * y) + fine.at(2 * x + 1, 2 * y)) +
+                            (fine.at(2 * x, 2 * y + 1) + fine.at(2 * x + 1, 2 * y + 1));
+      coarse.at(x, y) = 0.25f * sum;
+    }
+  }
+}
+
 }  // namespace
 
 Sh9Rgb ProjectDirect(const CubeMap& env) {
@@ -136,28 +160,27 @@ int LevelCount(int face_size) {
 }
 
 std::optional<CubeMipChain> BuildEnvironmentMips(const CubeMap& env) {
-  const int count = LevelCount(env.face_size);
-  if (count == 0) return std::nullopt;
   CubeMipChain chain;
-  chain.levels.reserve(count);
-  chain.levels.push_back(env);
-  for (int k = 1; k < count; ++k) {
-    const CubeMap& fine = chain.levels.back();
-    CubeMap coarse(fine.face_size / 2);
-    for (int f = 0; f < kCubeFaceCount; ++f) {
-      const Image& src = fine.faces[f];
-      Image& dst = coarse.faces[f];
-      for (int y = 0; y < dst.height; ++y) {
-        for (int x = 0; x < dst.width; ++x) {
-          const glm::vec3 sum = (src.at(2 * x, 2 * y) + src.at(2 * x + 1, 2 * y)) +
-                                (src.at(2 * x, 2 * y + 1) + src.at(2 * x + 1, 2 * y + 1));
-          dst.at(x, y) = 0.25f * sum;
-        }
-      }
-    }
-    chain.levels.push_back(std::move(coarse));
-  }
+  if (!RefillEnvironmentMips(env, chain)) return std::nullopt;
   return chain;
+}
+
+bool RefillEnvironmentMips(const CubeMap& env, CubeMipChain& chain) {
+  const int count = LevelCount(env.face_size);
+  if (count == 0) return false;
+  if (!HasPyramidShape(chain, env.face_size)) {
+    chain.levels.clear();
+    chain.levels.reserve(count);
+    for (int k = 0; k < count; ++k) chain.levels.emplace_back(env.face_size >> k);
+  }
+  for (int f = 0; f < kCubeFaceCount; ++f) {
+    // Same size and capacity: the copy reuses the level's pixel buffer.
+    chain.levels[0].faces[f].pixels = env.faces[f].pixels;
+  }
+  for (int k = 1; k < count; ++k) {
+    for (int f = 0; f < kCubeFaceCount; ++f) HalveFace(chain.levels[k - 1].faces[f], chain.levels[k].faces[f]);
+  }
+  return true;
 }
 
 std::optional<BasisPyramid> BuildBasisPyramid(int face_size) {

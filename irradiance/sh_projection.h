@@ -42,6 +42,14 @@ struct CubeMipChain {
 // have no exact 2 x 2 parentage, and dropping a row or column would silently lose light.
 std::optional<CubeMipChain> BuildEnvironmentMips(const CubeMap& env);
 
+// The same pyramid written into `chain` in place, for an environment that changes every frame: no
+// allocation when `chain` already holds a pyramid of env's face size (one from BuildEnvironmentMips,
+// or one filled here before), so its memory is not freed and page-faulted in again per frame; the
+// result is bit-identical to BuildEnvironmentMips(env). Any other `chain` (empty, another size) is
+// reshaped first, which allocates once. Returns false, leaving `chain` unchanged, when the face size
+// is not a positive power of two.
+bool RefillEnvironmentMips(const CubeMap& env, CubeMipChain& chain);
+
 // One level of the basis pyramid: for each of the nine basis functions, a float per texel of the six
 // faces, stored structure-of-arrays as weights[index][(face * size + y) * size + x] (face in
 // CubeFace order), where the value is the sum over the texel's finest-level children of
