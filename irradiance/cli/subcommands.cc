@@ -4,7 +4,7 @@ namespace vs11::irradiance::cli {
 
 void AddSubcommands(CLI::App& app) {
   // `irrmap chart` and `irrmap stability` register here, one Add...Command(app) line each.
-  (void)app;
+  AddChartCommand(app);
 }
 
 }  // namespace vs11::irradiance::cli
