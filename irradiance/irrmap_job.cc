@@ -173,8 +173,9 @@ std::optional<std::string> LoadCube(const IrrmapOptions& options, const CheckedO
   return std::nullopt;
 }
 
-// Mean time of ProjectLevel at one level, in ms.
-double TimeProjection(const CubeMipChain& mips, const BasisPyramid& basis, int level, Sh9Rgb& coefficients) {
+// Mean time of ProjectLevel at one level, in ms, repeated until `min_ms` have passed.
+double TimeProjection(const CubeMipChain& mips, const BasisPyramid& basis, int level, Sh9Rgb& coefficients,
+                      double min_ms) {
   const Clock::time_point start = Clock::now();
   int runs = 0;
   double elapsed = 0.0;
@@ -182,7 +183,7 @@ double TimeProjection(const CubeMipChain& mips, const BasisPyramid& basis, int l
     coefficients = ProjectLevel(mips, basis, level);
     ++runs;
     elapsed = MillisecondsSince(start);
-  } while (elapsed < kMinTimingMs && runs < kMaxTimingRuns);
+  } while (elapsed < min_ms && runs < kMaxTimingRuns);
   return elapsed / runs;
 }
 
@@ -233,11 +234,12 @@ nlohmann::ordered_json CoefficientsJson(const IrrmapReport& report, const Irrmap
   json["constants"] = ConstantsJson(report.constants);
   nlohmann::ordered_json levels = nlohmann::ordered_json::array();
   for (const LevelReport& level : report.levels) {
-    levels.push_back({{"level", level.level},
-                      {"size", level.size},
-                      {"update_ms", level.update_ms},
-                      {"max_relative_error", level.error.max_relative},
-                      {"mean_relative_error", level.error.mean_relative}});
+    nlohmann::ordered_json row = {{"level", level.level}, {"size", level.size}, {"update_ms", level.update_ms}};
+    if (!options.coefficients_only) {
+      row["max_relative_error"] = level.error.max_relative;
+      row["mean_relative_error"] = level.error.mean_relative;
+    }
+    levels.push_back(std::move(row));
   }
   json["levels"] = std::move(levels);
   nlohmann::ordered_json timings = nlohmann::ordered_json::object();
@@ -413,7 +415,7 @@ std::optional<std::string> RunIrrmap(const IrrmapOptions& options, IrrmapReport&
       row.level = level;
       row.size = cube.face_size >> level;
       row.chosen = level == report.level;
-      row.update_ms = TimeProjection(*mips, *basis, level, row.coefficients);
+      row.update_ms = TimeProjection(*mips, *basis, level, row.coefficients, options.coefficients_only ? 0.0 : kMinTimingMs);
       report.levels.push_back(row);
     }
   });
@@ -425,6 +427,22 @@ std::optional<std::string> RunIrrmap(const IrrmapOptions& options, IrrmapReport&
   std::string program_error;
   std::optional<PaperProgram> program = Timed(report, "program", [&] { return PaperProgram::Load(program_error); });
   if (!program) return program_error;
+
+  if (options.coefficients_only) {
+    const std::string coefficients_text = CoefficientsJson(report, options, checked).dump(2) + "\n";
+    const std::string constants_text =
+        ConstantsDefText(report.constants, program->constant_base(), ConstantsFileComment(report, *program));
+    const std::vector<PendingOutput> outputs = {
+        {kCoefficientsFile, [&](const fs::path& path) { return WriteFileAtomically(path, coefficients_text); }},
+        {kConstantsFile, [&](const fs::path& path) { return WriteFileAtomically(path, constants_text); }},
+    };
+    std::vector<fs::path> written;
+    std::optional<std::string> write_error =
+        Timed(report, "write", [&] { return WriteOutputs(options.out_dir, outputs, written); });
+    if (write_error) return write_error;
+    report.files = std::move(written);
+    return std::nullopt;
+  }
 
   // The irradiance cube map: the paper's program once per texel direction.
   CubeMap irradiance_map(options.map_size);
