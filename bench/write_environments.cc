@@ -1,7 +1,8 @@
 // vs11_write_environments: writes the built-in environments as files, for comparisons with other
 // tools (bench/compare_cmgen.py). For each built-in NAME, into OUT_DIR:
 //   NAME_hcross.exr   horizontal cross, 32-bit float (linear)
-//   NAME_latlong.hdr  lat-long 4N x 2N, Radiance RGBE (point-sampled from the cube: CubeMapToImage)
+//   NAME_hcross.hdr   the same cross in Radiance RGBE (8-bit mantissas)
+//   NAME_latlong.exr  lat-long 4N x 2N, 32-bit float (point-sampled from the cube: CubeMapToImage)
 //   NAME_cube.dds     DDS cube map, 8-bit BGRA, sRGB-encoded and clamped to [0, 1]
 //   NAME_ldr.png      the same 8-bit sRGB bytes as NAME_cube.dds, as a horizontal cross PNG (for
 //                     tools that read no DDS)
@@ -83,8 +84,8 @@ int main(int argc, char** argv) {
   std::string out_dir;
   int face_size = 256;
   std::vector<std::string> names = vs11::irradiance::BuiltinEnvironmentNames();
-  CLI::App app{"vs11_write_environments: the built-in environments as files (hcross EXR, lat-long HDR, 8-bit DDS "
-               "cube map and the same bytes as an hcross PNG)"};
+  CLI::App app{"vs11_write_environments: the built-in environments as files (hcross EXR and HDR, lat-long EXR, "
+               "8-bit DDS cube map and the same bytes as an hcross PNG)"};
   app.add_option("OUT_DIR", out_dir, "output folder (created if needed)")->required();
   app.add_option("--face-size", face_size, "cube face size")->capture_default_str();
   app.add_option("--env", names, "built-ins to write (default: all)");
@@ -107,8 +108,12 @@ int main(int argc, char** argv) {
     std::optional<std::string> error =
         vs11::irradiance::WriteCubeMap(*cube, base.string() + "_hcross.exr", EnvironmentLayout::kHorizontalCross);
     if (!error) {
+      error =
+          vs11::irradiance::WriteCubeMap(*cube, base.string() + "_hcross.hdr", EnvironmentLayout::kHorizontalCross);
+    }
+    if (!error) {
       error = vs11::irradiance::WriteImage(vs11::irradiance::CubeMapToImage(*cube, EnvironmentLayout::kLatLong),
-                                           base.string() + "_latlong.hdr");
+                                           base.string() + "_latlong.exr");
     }
     if (!error) error = vs11::WriteFileAtomically(base.string() + "_cube.dds", DdsCube(*cube));
     if (!error) {

@@ -196,56 +196,53 @@ std::optional<BasisPyramid> BuildBasisPyramid(int face_size) {
   }
 
   // Level 0 is computed in double, stored as float and summed (in double) into its parents; every
-  // coarser level is then the double sum of its four double children, rounded to float once.
-  const int parent_size = count > 1 ? face_size / 2 : 0;
-  std::array<std::vector<double>, kSh9Coefficients> parent;
-  for (auto& p : parent) p.assign(LevelTexels(parent_size), 0.0);
-  std::vector<double> solid_angles;
-  BasisLevel& finest = pyramid.levels[0];
+  // coarser level is then the double sum of its four double children, rounded to float once. One
+  // face at a time, so the double sums take a sixth of a level-1 pyramid level, not all of it.
+  std::vector<double> solid_angles(static_cast<std::size_t>(face_size) * face_size);
   for (int y = 0; y < face_size; ++y) {
-    RowSolidAngles(y, face_size, solid_angles);
-    for (int f = 0; f < kCubeFaceCount; ++f) {
-      const CubeFace face = kAllCubeFaces[f];
+    for (int x = 0; x < face_size; ++x) solid_angles[static_cast<std::size_t>(y) * face_size + x] = TexelSolidAngle(x, y, face_size);
+  }
+  BasisLevel& finest = pyramid.levels[0];
+  std::array<std::vector<double>, kSh9Coefficients> parent;
+  for (int f = 0; f < kCubeFaceCount; ++f) {
+    const CubeFace face = kAllCubeFaces[f];
+    const int parent_size = face_size / 2;
+    for (auto& p : parent) p.assign(static_cast<std::size_t>(parent_size) * parent_size, 0.0);
+    for (int y = 0; y < face_size; ++y) {
       const std::size_t row = (static_cast<std::size_t>(f) * face_size + y) * face_size;
-      const std::size_t parent_row =
-          (static_cast<std::size_t>(f) * parent_size + y / 2) * parent_size;
+      const std::size_t parent_row = static_cast<std::size_t>(y / 2) * parent_size;
       for (int x = 0; x < face_size; ++x) {
-        const std::array<double, kSh9Coefficients> basis =
-            ShBasis(TexelDirection(face, x, y, face_size));
+        const std::array<double, kSh9Coefficients> basis = ShBasis(TexelDirection(face, x, y, face_size));
+        const double solid_angle = solid_angles[static_cast<std::size_t>(y) * face_size + x];
         for (int i = 0; i < kSh9Coefficients; ++i) {
-          const double weight = basis[i] * solid_angles[x];
+          const double weight = basis[i] * solid_angle;
           finest.weights[i][row + x] = static_cast<float>(weight);
           if (parent_size > 0) parent[i][parent_row + x / 2] += weight;
         }
       }
     }
-  }
-
-  for (int k = 1; k < count; ++k) {
-    BasisLevel& level = pyramid.levels[k];
-    for (int i = 0; i < kSh9Coefficients; ++i) {
-      for (std::size_t t = 0; t < parent[i].size(); ++t) {
-        level.weights[i][t] = static_cast<float>(parent[i][t]);
-      }
-    }
-    if (k + 1 == count) break;
-    const int size = level.size;
-    const int half = size / 2;
-    for (int i = 0; i < kSh9Coefficients; ++i) {
-      std::vector<double> next(LevelTexels(half), 0.0);
-      for (int f = 0; f < kCubeFaceCount; ++f) {
-        for (int y = 0; y < half; ++y) {
-          for (int x = 0; x < half; ++x) {
-            auto child = [&](int cx, int cy) {
-              return parent[i][(static_cast<std::size_t>(f) * size + cy) * size + cx];
-            };
-            next[(static_cast<std::size_t>(f) * half + y) * half + x] =
-                (child(2 * x, 2 * y) + child(2 * x + 1, 2 * y)) +
-                (child(2 * x, 2 * y + 1) + child(2 * x + 1, 2 * y + 1));
-          }
+    for (int k = 1; k < count; ++k) {
+      BasisLevel& level = pyramid.levels[k];
+      const int size = level.size;
+      const std::size_t face_offset = static_cast<std::size_t>(f) * size * size;
+      for (int i = 0; i < kSh9Coefficients; ++i) {
+        for (std::size_t t = 0; t < parent[i].size(); ++t) {
+          level.weights[i][face_offset + t] = static_cast<float>(parent[i][t]);
         }
       }
-      parent[i] = std::move(next);
+      if (k + 1 == count) break;
+      const int half = size / 2;
+      for (int i = 0; i < kSh9Coefficients; ++i) {
+        std::vector<double> next(static_cast<std::size_t>(half) * half, 0.0);
+        auto child = [&](int cx, int cy) { return parent[i][static_cast<std::size_t>(cy) * size + cx]; };
+        for (int y = 0; y < half; ++y) {
+          for (int x = 0; x < half; ++x) {
+            next[static_cast<std::size_t>(y) * half + x] = (child(2 * x, 2 * y) + child(2 * x + 1, 2 * y)) +
+                                                           (child(2 * x, 2 * y + 1) + child(2 * x + 1, 2 * y + 1));
+          }
+        }
+        parent[i] = std::move(next);
+      }
     }
   }
   return pyramid;

@@ -73,7 +73,8 @@ struct BasisPyramid {
 // 2 x 2 up to 1 x 1. The sums are formed in double (never from already rounded floats) and each
 // stored value is rounded to float once. Returns std::nullopt when `face_size` is not a positive
 // power of two. Memory: 6 size^2 x 9 floats at level 0 (about 14 MB at 256, 906 MB at 2048) plus
-// a third more for the coarser levels, and a transient double copy of level 1 while building.
+// a third more for the coarser levels; while building, one face's level 1 in double and one face's
+// solid angles (9 / 4 x 8 + 8 = 26 bytes per texel of one face: 27 MB at 1024).
 std::optional<BasisPyramid> BuildBasisPyramid(int face_size);
 
 // sum over the texels of `level` of mean radiance (float) x summed basis weight (float), each
