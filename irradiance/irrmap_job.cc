@@ -403,7 +403,10 @@ std::optional<std::string> RunIrrmap(const IrrmapOptions& options, IrrmapReport&
   report.face_size = cube.face_size;
   report.level = options.level.value_or(DefaultLevel(cube.face_size));
 
-  std::optional<CubeMipChain> mips = Timed(report, "env_mips", [&] { return BuildEnvironmentMips(cube); });
+  // The pyramid takes the map as its level 0 rather than a second copy; from here on `cube` holds
+  // only its face_size and the texels are mips->levels[0].
+  std::optional<CubeMipChain> mips =
+      Timed(report, "env_mips", [&] { return BuildEnvironmentMips(std::move(cube)); });
   std::optional<BasisPyramid> basis = Timed(report, "basis_pyramid", [&] { return BuildBasisPyramid(cube.face_size); });
   if (!mips || !basis) return fmt::format("cannot build the mip pyramids of face size {}", cube.face_size);
 
@@ -464,7 +467,7 @@ std::optional<std::string> RunIrrmap(const IrrmapOptions& options, IrrmapReport&
   std::vector<glm::dvec3> truth = Timed(report, "ground_truth", [&] {
     std::function<void(double)> report_fraction;
     if (progress) report_fraction = [&](double fraction) { progress("ground truth", fraction); };
-    return GroundTruthIrradiance(cube, truth_normals, checked.threads, report_fraction);
+    return GroundTruthIrradiance(mips->levels[0], truth_normals, checked.threads, report_fraction);
   });
   const std::span<const glm::dvec3> error_truth(truth.data(), error_normals.size());
   grid.SetValues(std::vector<glm::dvec3>(truth.begin() + static_cast<std::ptrdiff_t>(error_normals.size()), truth.end()));
@@ -491,7 +494,7 @@ std::optional<std::string> RunIrrmap(const IrrmapOptions& options, IrrmapReport&
       panels.push_back({PreviewLabel(row), program->Irradiance(PackTable1(row.coefficients), sphere.normals,
                                                                checked.engine, engine_options)});
     }
-    return RenderPreview(sphere, truth_panel, panels, cube, preview_options);
+    return RenderPreview(sphere, truth_panel, panels, mips->levels[0], preview_options);
   });
   for (std::string& warning : preview.warnings) report.warnings.push_back(std::move(warning));
 

@@ -132,6 +132,13 @@ void HalveFace(const Image& fine, Image& coarse) {
   }
 }
 
+// Levels 1.. of a chain already shaped as a pyramid, from its level 0.
+void FillCoarserLevels(CubeMipChain& chain) {
+  for (std::size_t k = 1; k < chain.levels.size(); ++k) {
+    for (int f = 0; f < kCubeFaceCount; ++f) HalveFace(chain.levels[k - 1].faces[f], chain.levels[k].faces[f]);
+  }
+}
+
 }  // namespace
 
 Sh9Rgb ProjectDirect(const CubeMap& env) {
@@ -159,9 +166,17 @@ int LevelCount(int face_size) {
   return count;
 }
 
-std::optional<CubeMipChain> BuildEnvironmentMips(const CubeMap& env) {
+std::optional<CubeMipChain> BuildEnvironmentMips(const CubeMap& env) { return BuildEnvironmentMips(CubeMap(env)); }
+
+std::optional<CubeMipChain> BuildEnvironmentMips(CubeMap&& env) {
+  const int count = LevelCount(env.face_size);
+  if (count == 0) return std::nullopt;
   CubeMipChain chain;
-  if (!RefillEnvironmentMips(env, chain)) return std::nullopt;
+  chain.levels.reserve(count);
+  const int face_size = env.face_size;
+  chain.levels.push_back(std::move(env));
+  for (int k = 1; k < count; ++k) chain.levels.emplace_back(face_size >> k);
+  FillCoarserLevels(chain);
   return chain;
 }
 
@@ -177,9 +192,7 @@ bool RefillEnvironmentMips(const CubeMap& env, CubeMipChain& chain) {
     // Same size and capacity: the copy reuses the level's pixel buffer.
     chain.levels[0].faces[f].pixels = env.faces[f].pixels;
   }
-  for (int k = 1; k < count; ++k) {
-    for (int f = 0; f < kCubeFaceCount; ++f) HalveFace(chain.levels[k - 1].faces[f], chain.levels[k].faces[f]);
-  }
+  FillCoarserLevels(chain);
   return true;
 }
 

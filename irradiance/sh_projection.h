@@ -41,6 +41,9 @@ struct CubeMipChain {
 // box filter). Returns std::nullopt when the face size is not a positive power of two: odd sizes
 // have no exact 2 x 2 parentage, and dropping a row or column would silently lose light.
 std::optional<CubeMipChain> BuildEnvironmentMips(const CubeMap& env);
+// The same, taking `env` as level 0 instead of copying it (a map of 1024 faces is 75 MB). `env` is
+// left moved-from, its face_size unchanged.
+std::optional<CubeMipChain> BuildEnvironmentMips(CubeMap&& env);
 
 // The same pyramid written into `chain` in place, for an environment that changes every frame: no
 // allocation when `chain` already holds a pyramid of env's face size (one from BuildEnvironmentMips,

@@ -135,6 +135,16 @@ TEST(ShProjection, RefilledMipsEqualAFreshBuildAndReuseTheirBuffers) {
   }
 }
 
+TEST(ShProjection, MipsBuiltFromAMovedMapEqualThoseFromACopy) {
+  const CubeMap env = AsymmetricEnvironment(16);
+  CubeMap moved = env;
+  const std::optional<CubeMipChain> from_moved = BuildEnvironmentMips(std::move(moved));
+  ASSERT_TRUE(from_moved.has_value());
+  ExpectSameMips(*from_moved, *BuildEnvironmentMips(env));
+  EXPECT_EQ(moved.face_size, 16);
+  EXPECT_FALSE(BuildEnvironmentMips(CubeMap(12)).has_value());
+}
+
 TEST(ShProjection, RefillReshapesAChainOfAnotherSizeAndRejectsBadSizes) {
   CubeMipChain chain;
   ASSERT_TRUE(RefillEnvironmentMips(MakeStudio(8), chain));
