@@ -311,6 +311,27 @@ std::string ConstantsFileComment(const IrrmapReport& report, const PaperProgram&
       fmt::arg("output", OutputSlotName(program.output_slot())));
 }
 
+// Writes coeffs.json, constants.vsh and `more` into out_dir, all or none (WriteOutputs), timed as
+// "write"; the paths go to report.files.
+std::optional<std::string> WriteJobOutputs(const IrrmapOptions& options, const CheckedOptions& checked,
+                                           const PaperProgram& program, std::vector<PendingOutput> more,
+                                           IrrmapReport& report) {
+  const std::string coefficients_text = CoefficientsJson(report, options, checked).dump(2) + "\n";
+  const std::string constants_text =
+      ConstantsDefText(report.constants, program.constant_base(), ConstantsFileComment(report, program));
+  std::vector<PendingOutput> outputs = {
+      {kCoefficientsFile, [&](const fs::path& path) { return WriteFileAtomically(path, coefficients_text); }},
+      {kConstantsFile, [&](const fs::path& path) { return WriteFileAtomically(path, constants_text); }},
+  };
+  for (PendingOutput& output : more) outputs.push_back(std::move(output));
+  std::vector<fs::path> written;
+  std::optional<std::string> write_error =
+      Timed(report, "write", [&] { return WriteOutputs(options.out_dir, outputs, written); });
+  if (write_error) return write_error;
+  report.files = std::move(written);
+  return std::nullopt;
+}
+
 }  // namespace
 
 int DefaultLevel(int face_size) {
@@ -431,21 +452,7 @@ std::optional<std::string> RunIrrmap(const IrrmapOptions& options, IrrmapReport&
   std::optional<PaperProgram> program = Timed(report, "program", [&] { return PaperProgram::Load(program_error); });
   if (!program) return program_error;
 
-  if (options.coefficients_only) {
-    const std::string coefficients_text = CoefficientsJson(report, options, checked).dump(2) + "\n";
-    const std::string constants_text =
-        ConstantsDefText(report.constants, program->constant_base(), ConstantsFileComment(report, *program));
-    const std::vector<PendingOutput> outputs = {
-        {kCoefficientsFile, [&](const fs::path& path) { return WriteFileAtomically(path, coefficients_text); }},
-        {kConstantsFile, [&](const fs::path& path) { return WriteFileAtomically(path, constants_text); }},
-    };
-    std::vector<fs::path> written;
-    std::optional<std::string> write_error =
-        Timed(report, "write", [&] { return WriteOutputs(options.out_dir, outputs, written); });
-    if (write_error) return write_error;
-    report.files = std::move(written);
-    return std::nullopt;
-  }
+  if (options.coefficients_only) return WriteJobOutputs(options, checked, *program, {}, report);
 
   // The irradiance cube map: the paper's program once per texel direction.
   CubeMap irradiance_map(options.map_size);
@@ -498,21 +505,10 @@ std::optional<std::string> RunIrrmap(const IrrmapOptions& options, IrrmapReport&
   });
   for (std::string& warning : preview.warnings) report.warnings.push_back(std::move(warning));
 
-  const std::string coefficients_text = CoefficientsJson(report, options, checked).dump(2) + "\n";
-  const std::string constants_text =
-      ConstantsDefText(report.constants, program->constant_base(), ConstantsFileComment(report, *program));
-  const std::vector<PendingOutput> outputs = {
-      {kCoefficientsFile, [&](const fs::path& path) { return WriteFileAtomically(path, coefficients_text); }},
-      {kConstantsFile, [&](const fs::path& path) { return WriteFileAtomically(path, constants_text); }},
-      {kIrradianceFile, [&](const fs::path& path) { return WriteCrossExr(irradiance_map, path); }},
-      {kPreviewFile, [&](const fs::path& path) { return WriteImage(preview.image, path); }},
-  };
-  std::vector<fs::path> written;
-  std::optional<std::string> write_error =
-      Timed(report, "write", [&] { return WriteOutputs(options.out_dir, outputs, written); });
-  if (write_error) return write_error;
-  report.files = std::move(written);
-  return std::nullopt;
+  return WriteJobOutputs(options, checked, *program,
+                         {{kIrradianceFile, [&](const fs::path& path) { return WriteCrossExr(irradiance_map, path); }},
+                          {kPreviewFile, [&](const fs::path& path) { return WriteImage(preview.image, path); }}},
+                         report);
 }
 
 // ---- Formatting ------------------------------------------------------------------------------------
