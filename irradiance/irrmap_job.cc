@@ -428,7 +428,8 @@ std::optional<std::string> RunIrrmap(const IrrmapOptions& options, IrrmapReport&
   // only its face_size and the texels are mips->levels[0].
   std::optional<CubeMipChain> mips =
       Timed(report, "env_mips", [&] { return BuildEnvironmentMips(std::move(cube)); });
-  std::optional<BasisPyramid> basis = Timed(report, "basis_pyramid", [&] { return BuildBasisPyramid(cube.face_size); });
+  std::optional<BasisPyramid> basis =
+      Timed(report, "basis_pyramid", [&] { return BuildBasisPyramid(cube.face_size, checked.threads); });
   if (!mips || !basis) return fmt::format("cannot build the mip pyramids of face size {}", cube.face_size);
 
   // Every level's coefficients, each update timed on its own.

@@ -1,9 +1,12 @@
 // Direct and mip-pyramid SH9 projection of cube environment maps. See sh_projection.h.
 #include "irradiance/sh_projection.h"
 
+#include <algorithm>
+#include <atomic>
 #include <cassert>
 #include <cstddef>
 #include <cstring>
+#include <thread>
 
 namespace vs11::irradiance {
 namespace {
@@ -139,6 +142,56 @@ void FillCoarserLevels(CubeMipChain& chain) {
   }
 }
 
+// Face f of every level of `pyramid` (already sized). Level 0 is computed in double, stored as float
+// and summed (in double) into its parents; every coarser level is then the double sum of its four
+// double children, rounded to float once. The double sums of one face take 18 bytes per texel of
+// it (a sixth of a whole level 1).
+void BuildBasisFace(int f, const std::vector<double>& solid_angles, BasisPyramid& pyramid) {
+  const int face_size = pyramid.face_size;
+  const int count = static_cast<int>(pyramid.levels.size());
+  BasisLevel& finest = pyramid.levels[0];
+  std::array<std::vector<double>, kSh9Coefficients> parent;
+  const CubeFace face = kAllCubeFaces[f];
+  const int parent_size = face_size / 2;
+  for (auto& p : parent) p.assign(static_cast<std::size_t>(parent_size) * parent_size, 0.0);
+  for (int y = 0; y < face_size; ++y) {
+    const std::size_t row = (static_cast<std::size_t>(f) * face_size + y) * face_size;
+    const std::size_t parent_row = static_cast<std::size_t>(y / 2) * parent_size;
+    for (int x = 0; x < face_size; ++x) {
+      const std::array<double, kSh9Coefficients> basis = ShBasis(TexelDirection(face, x, y, face_size));
+      const double solid_angle = solid_angles[static_cast<std::size_t>(y) * face_size + x];
+      for (int i = 0; i < kSh9Coefficients; ++i) {
+        const double weight = basis[i] * solid_angle;
+        finest.weights[i][row + x] = static_cast<float>(weight);
+        if (parent_size > 0) parent[i][parent_row + x / 2] += weight;
+      }
+    }
+  }
+  for (int k = 1; k < count; ++k) {
+    BasisLevel& level = pyramid.levels[k];
+    const int size = level.size;
+    const std::size_t face_offset = static_cast<std::size_t>(f) * size * size;
+    for (int i = 0; i < kSh9Coefficients; ++i) {
+      for (std::size_t t = 0; t < parent[i].size(); ++t) {
+        level.weights[i][face_offset + t] = static_cast<float>(parent[i][t]);
+      }
+    }
+    if (k + 1 == count) break;
+    const int half = size / 2;
+    for (int i = 0; i < kSh9Coefficients; ++i) {
+      std::vector<double> next(static_cast<std::size_t>(half) * half, 0.0);
+      auto child = [&](int cx, int cy) { return parent[i][static_cast<std::size_t>(cy) * size + cx]; };
+      for (int y = 0; y < half; ++y) {
+        for (int x = 0; x < half; ++x) {
+          next[static_cast<std::size_t>(y) * half + x] = (child(2 * x, 2 * y) + child(2 * x + 1, 2 * y)) +
+                                                         (child(2 * x, 2 * y + 1) + child(2 * x + 1, 2 * y + 1));
+        }
+      }
+      parent[i] = std::move(next);
+    }
+  }
+}
+
 }  // namespace
 
 Sh9Rgb ProjectDirect(const CubeMap& env) {
@@ -196,7 +249,8 @@ bool RefillEnvironmentMips(const CubeMap& env, CubeMipChain& chain) {
   return true;
 }
 
-std::optional<BasisPyramid> BuildBasisPyramid(int face_size) {
+std::optional<BasisPyramid> BuildBasisPyramid(int face_size, int threads) {
+  assert(threads >= 1);
   const int count = LevelCount(face_size);
   if (count == 0) return std::nullopt;
   BasisPyramid pyramid;
@@ -207,57 +261,22 @@ std::optional<BasisPyramid> BuildBasisPyramid(int face_size) {
     level.size = face_size >> k;
     for (auto& w : level.weights) w.assign(LevelTexels(level.size), 0.0f);
   }
-
-  // Level 0 is computed in double, stored as float and summed (in double) into its parents; every
-  // coarser level is then the double sum of its four double children, rounded to float once. One
-  // face at a time, so the double sums take a sixth of a level-1 pyramid level, not all of it.
   std::vector<double> solid_angles(static_cast<std::size_t>(face_size) * face_size);
   for (int y = 0; y < face_size; ++y) {
-    for (int x = 0; x < face_size; ++x) solid_angles[static_cast<std::size_t>(y) * face_size + x] = TexelSolidAngle(x, y, face_size);
-  }
-  BasisLevel& finest = pyramid.levels[0];
-  std::array<std::vector<double>, kSh9Coefficients> parent;
-  for (int f = 0; f < kCubeFaceCount; ++f) {
-    const CubeFace face = kAllCubeFaces[f];
-    const int parent_size = face_size / 2;
-    for (auto& p : parent) p.assign(static_cast<std::size_t>(parent_size) * parent_size, 0.0);
-    for (int y = 0; y < face_size; ++y) {
-      const std::size_t row = (static_cast<std::size_t>(f) * face_size + y) * face_size;
-      const std::size_t parent_row = static_cast<std::size_t>(y / 2) * parent_size;
-      for (int x = 0; x < face_size; ++x) {
-        const std::array<double, kSh9Coefficients> basis = ShBasis(TexelDirection(face, x, y, face_size));
-        const double solid_angle = solid_angles[static_cast<std::size_t>(y) * face_size + x];
-        for (int i = 0; i < kSh9Coefficients; ++i) {
-          const double weight = basis[i] * solid_angle;
-          finest.weights[i][row + x] = static_cast<float>(weight);
-          if (parent_size > 0) parent[i][parent_row + x / 2] += weight;
-        }
-      }
-    }
-    for (int k = 1; k < count; ++k) {
-      BasisLevel& level = pyramid.levels[k];
-      const int size = level.size;
-      const std::size_t face_offset = static_cast<std::size_t>(f) * size * size;
-      for (int i = 0; i < kSh9Coefficients; ++i) {
-        for (std::size_t t = 0; t < parent[i].size(); ++t) {
-          level.weights[i][face_offset + t] = static_cast<float>(parent[i][t]);
-        }
-      }
-      if (k + 1 == count) break;
-      const int half = size / 2;
-      for (int i = 0; i < kSh9Coefficients; ++i) {
-        std::vector<double> next(static_cast<std::size_t>(half) * half, 0.0);
-        auto child = [&](int cx, int cy) { return parent[i][static_cast<std::size_t>(cy) * size + cx]; };
-        for (int y = 0; y < half; ++y) {
-          for (int x = 0; x < half; ++x) {
-            next[static_cast<std::size_t>(y) * half + x] = (child(2 * x, 2 * y) + child(2 * x + 1, 2 * y)) +
-                                                           (child(2 * x, 2 * y + 1) + child(2 * x + 1, 2 * y + 1));
-          }
-        }
-        parent[i] = std::move(next);
-      }
+    for (int x = 0; x < face_size; ++x) {
+      solid_angles[static_cast<std::size_t>(y) * face_size + x] = TexelSolidAngle(x, y, face_size);
     }
   }
+  // Faces write disjoint parts of every level, so they are built in parallel, each worker taking
+  // the next face left; the result does not depend on `threads`.
+  std::atomic<int> next_face = 0;
+  auto work = [&] {
+    for (int f = next_face++; f < kCubeFaceCount; f = next_face++) BuildBasisFace(f, solid_angles, pyramid);
+  };
+  std::vector<std::thread> helpers;
+  for (int t = 1; t < std::min(threads, kCubeFaceCount); ++t) helpers.emplace_back(work);
+  work();
+  for (std::thread& helper : helpers) helper.join();
   return pyramid;
 }
 

@@ -75,10 +75,12 @@ struct BasisPyramid {
 // Samples the nine basis functions times the exact solid angle at every finest texel and sums them
 // 2 x 2 up to 1 x 1. The sums are formed in double (never from already rounded floats) and each
 // stored value is rounded to float once. Returns std::nullopt when `face_size` is not a positive
-// power of two. Memory: 6 size^2 x 9 floats at level 0 (about 14 MB at 256, 906 MB at 2048) plus
-// a third more for the coarser levels; while building, one face's level 1 in double and one face's
-// solid angles (9 / 4 x 8 + 8 = 26 bytes per texel of one face: 27 MB at 1024).
-std::optional<BasisPyramid> BuildBasisPyramid(int face_size);
+// power of two. The six faces are built by up to `threads` (>= 1, asserted) threads, the calling
+// one among them, with the same result for any count. Memory: 6 size^2 x 9 floats at level 0
+// (about 14 MB at 256, 906 MB at 2048) plus a third more for the coarser levels; while building, a
+// table of one face's solid angles (8 bytes per texel of a face) and, per thread, one face's level 1
+// in double (18 bytes per texel of a face): 27 MB at 1024 with one thread, 46 MB with two.
+std::optional<BasisPyramid> BuildBasisPyramid(int face_size, int threads = 1);
 
 // sum over the texels of `level` of mean radiance (float) x summed basis weight (float), each
 // product exact in double, summed in double per face row (8 fixed lane-wise partial sums folded in

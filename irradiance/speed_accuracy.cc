@@ -120,7 +120,7 @@ std::optional<std::string> RunSpeedAccuracySweep(const SpeedAccuracyOptions& opt
     if (std::optional<std::string> error = LoadSweepEnvironment(name, options, layout, cube, result.warnings)) {
       return error;
     }
-    if (!basis || basis->face_size != cube.face_size) basis = BuildBasisPyramid(cube.face_size);
+    if (!basis || basis->face_size != cube.face_size) basis = BuildBasisPyramid(cube.face_size, threads);
     SpeedAccuracyEnvironment environment{name, cube.face_size, 0.0};
     environment.mips_ms = MedianBatchMs(options, [&] { RefillEnvironmentMips(cube, mips); });
     result.environments.push_back(environment);

@@ -191,6 +191,19 @@ TEST(ShProjection, BasisPyramidLevelsAreSumsOfTheirChildren) {
   }
 }
 
+TEST(ShProjection, BasisPyramidIsTheSameForAnyThreadCount) {
+  const std::optional<BasisPyramid> one = BuildBasisPyramid(16, 1);
+  ASSERT_TRUE(one.has_value());
+  for (int threads : {2, 4, 6, 9}) {
+    const std::optional<BasisPyramid> many = BuildBasisPyramid(16, threads);
+    ASSERT_TRUE(many.has_value());
+    ASSERT_EQ(many->levels.size(), one->levels.size());
+    for (std::size_t k = 0; k < one->levels.size(); ++k) {
+      EXPECT_EQ(many->levels[k].weights, one->levels[k].weights) << threads << " threads, level " << k;
+    }
+  }
+}
+
 TEST(ShProjection, WhiteFurnaceGivesOnlyL00AtEveryLevel) {
   constexpr int kSize = 64;
   const CubeMap env = MakeConstant(kSize, glm::vec3(1.0f));
