@@ -50,6 +50,7 @@ constexpr int kMaxTimingRuns = 1000;
 constexpr std::array<int, 2> kPreviewLevelSizes = {64, 16};
 constexpr int kMaxSphereDiameter = 2048;
 constexpr int kMaxErrorNormals = 1 << 20;
+constexpr double kMaxWindowWidth = 1e6;
 
 double MillisecondsSince(Clock::time_point start) {
   return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
@@ -86,6 +87,7 @@ bool IsBuiltinName(std::string_view name) {
 struct CheckedOptions {
   EnvironmentLayout layout = EnvironmentLayout::kAuto;
   EngineKind engine = EngineKind::kBatch;
+  ShWindow window = ShWindow::kNone;
   bool builtin = false;
   int threads = 1;
 };
@@ -103,8 +105,19 @@ std::optional<std::string> CheckOptions(const IrrmapOptions& options, CheckedOpt
   }
   checked.layout = *layout;
   std::optional<EngineKind> engine = EngineKindFromName(options.engine);
-  if (!engine) return fmt::format("unknown engine '{}' (use ref or batch)", options.engine);
+  if (!engine) return fmt::format("unknown engine '{}' (use ref, batch or jit)", options.engine);
   checked.engine = *engine;
+  std::optional<ShWindow> window = ParseShWindow(options.window);
+  if (!window) return fmt::format("unknown window '{}' (use none, hanning, lanczos or dering)", options.window);
+  checked.window = *window;
+  if (!(options.window_width > 0.0) || options.window_width > kMaxWindowWidth) {
+    return fmt::format("--window-width {} is out of range: above 0, at most {}", options.window_width,
+                       kMaxWindowWidth);
+  }
+  if (!(options.max_error > 0.0 && options.max_error < 1.0)) {
+    return fmt::format("--max-error {} is out of range: a fraction above 0 and below 1 (0.005 = 0.5 %)",
+                       options.max_error);
+  }
   if (!IsPowerOfTwo(options.face_size) || options.face_size > kMaxFaceSize) {
     return fmt::format("--face-size {} must be a power of two from 1 to {} (the mip pyramid halves it down to 1x1)",
                        options.face_size, kMaxFaceSize);
@@ -226,6 +239,12 @@ nlohmann::ordered_json CoefficientsJson(const IrrmapReport& report, const Irrmap
   json["coefficients"] = std::move(rows);
   json["level"] = report.level;
   json["level_size"] = report.levels[report.level].size;
+  json["level_choice"] = options.level ? "level" : "max_error";
+  if (!options.level) json["max_error"] = options.max_error;
+  const std::array<double, kSh9Bands>& factors = report.levels[report.level].window_factors;
+  json["window"] = {{"name", std::string(ShWindowName(checked.window))},
+                    {"width", options.window_width},
+                    {"factors", {factors[0], factors[1], factors[2]}}};
   json["face_size"] = report.face_size;
   json["layout"] = report.layout;
   json["environment"] = report.environment;
@@ -239,6 +258,7 @@ nlohmann::ordered_json CoefficientsJson(const IrrmapReport& report, const Irrmap
       row["max_relative_error"] = level.error.max_relative;
       row["mean_relative_error"] = level.error.mean_relative;
     }
+    row["estimated_error"] = level.estimated_error;
     levels.push_back(std::move(row));
   }
   json["levels"] = std::move(levels);
@@ -332,6 +352,24 @@ std::optional<std::string> WriteJobOutputs(const IrrmapOptions& options, const C
   return std::nullopt;
 }
 
+// Picks report.level (--level, else by --max-error), marks it, records every level's
+// estimated error, and applies the window to every level's coefficients.
+void ChooseLevelAndWindow(const IrrmapOptions& options, const CheckedOptions& checked, IrrmapReport& report) {
+  std::vector<Sh9Rgb> coefficients;
+  for (const LevelReport& row : report.levels) coefficients.push_back(row.coefficients);
+  const std::vector<glm::dvec3> normals = SphereNormals(kLevelErrorNormals);
+  const std::vector<double> estimated = EstimateLevelErrors(coefficients, normals);
+  report.level = options.level ? *options.level : CoarsestLevelWithin(estimated, options.max_error);
+  for (LevelReport& row : report.levels) {
+    row.chosen = row.level == report.level;
+    row.estimated_error = estimated[row.level];
+    row.window_factors = checked.window == ShWindow::kDering
+                             ? LaplacianWindowFactors(DeringLambda(row.coefficients, normals))
+                             : ShWindowFactors(checked.window, options.window_width);
+    row.coefficients = ApplyShWindow(row.coefficients, row.window_factors);
+  }
+}
+
 }  // namespace
 
 int DefaultLevel(int face_size) {
@@ -351,18 +389,23 @@ double IrrmapReport::TimingMs(std::string_view name) const {
 // ---- PaperProgram ----------------------------------------------------------------------------------
 
 std::optional<PaperProgram> PaperProgram::Load(std::string& error) {
-  const std::string file_name(kProgramFileName);
-  MetadataResult metadata = ParseProgramMetadata(programs::kProgramSh9Irradiance, file_name);
+  return LoadEmbedded(kProgramFileName, programs::kProgramSh9Irradiance, error);
+}
+
+std::optional<PaperProgram> PaperProgram::LoadEmbedded(std::string_view name, std::string_view text,
+                                                       std::string& error) {
+  const std::string file_name(name);
+  MetadataResult metadata = ParseProgramMetadata(text, file_name);
   AssembleOptions assemble;
   assemble.validate = false;  // validated below as a fragment: it writes no oPos
-  AssembleResult assembled = AssembleSource(programs::kProgramSh9Irradiance, file_name, assemble);
+  AssembleResult assembled = AssembleSource(text, file_name, assemble);
   Diagnostics diagnostics = metadata.diagnostics;
   diagnostics.Append(assembled.diagnostics);
   if (assembled.program) {
     diagnostics.Append(ValidateFragment(*assembled.program, assemble.constant_count, assembled.dx9_syntax));
   }
   if (!assembled.program || diagnostics.HasErrors()) {
-    error = "the embedded paper program does not assemble:\n" + diagnostics.ToString();
+    error = "the embedded program " + file_name + " does not assemble:\n" + diagnostics.ToString();
     return std::nullopt;
   }
   const ProgramMetadata& m = metadata.metadata;
@@ -422,7 +465,6 @@ std::optional<std::string> RunIrrmap(const IrrmapOptions& options, IrrmapReport&
       Timed(report, "load", [&] { return LoadCube(options, checked, report, cube); });
   if (load_error) return load_error;
   report.face_size = cube.face_size;
-  report.level = options.level.value_or(DefaultLevel(cube.face_size));
 
   // The pyramid takes the map as its level 0 rather than a second copy; from here on `cube` holds
   // only its face_size and the texels are mips->levels[0].
@@ -439,11 +481,12 @@ std::optional<std::string> RunIrrmap(const IrrmapOptions& options, IrrmapReport&
       LevelReport row;
       row.level = level;
       row.size = cube.face_size >> level;
-      row.chosen = level == report.level;
-      row.update_ms = TimeProjection(*mips, *basis, level, row.coefficients, options.coefficients_only ? 0.0 : kMinTimingMs);
+      row.update_ms = TimeProjection(*mips, *basis, level, row.coefficients,
+                                     options.coefficients_only ? 0.0 : kMinTimingMs);
       report.levels.push_back(row);
     }
   });
+  ChooseLevelAndWindow(options, checked, report);
   const LevelReport& chosen = report.levels[report.level];
   report.coefficients = chosen.coefficients;
   report.timings.push_back({"projection", chosen.update_ms});
@@ -515,12 +558,13 @@ std::optional<std::string> RunIrrmap(const IrrmapOptions& options, IrrmapReport&
 // ---- Formatting ------------------------------------------------------------------------------------
 
 std::string FormatLevelTable(const IrrmapReport& report) {
-  std::string out = fmt::format("  {:>5}  {:>11}  {:>11}  {:>11}  {:>12}\n", "level", "size", "update ms",
-                                "max rel err", "mean rel err");
+  std::string out = fmt::format("  {:>5}  {:>11}  {:>11}  {:>11}  {:>12}  {:>12}\n", "level", "size", "update ms",
+                                "max rel err", "mean rel err", "est vs lvl 0");
   for (const LevelReport& level : report.levels) {
-    out += fmt::format("{} {:>5}  {:>11}  {:>11.4f}  {:>10.3f} %  {:>10.3f} %\n", level.chosen ? '*' : ' ',
+    out += fmt::format("{} {:>5}  {:>11}  {:>11.4f}  {:>10.3f} %  {:>10.3f} %  {:>10.3f} %\n", level.chosen ? '*' : ' ',
                        level.level, fmt::format("{0}x{0}", level.size), level.update_ms,
-                       100.0 * level.error.max_relative, 100.0 * level.error.mean_relative);
+                       100.0 * level.error.max_relative, 100.0 * level.error.mean_relative,
+                       100.0 * level.estimated_error);
   }
   return out;
 }

@@ -10,9 +10,12 @@
 //
 // Files written into IrrmapOptions::out_dir (created if needed):
 //   coeffs.json      {"coefficients": 9 x [r, g, b] (L00, L1-1, L10, L11, L2-2, L2-1, L20, L21,
-//                    L22), "level", "level_size", "face_size", "layout", "environment", "engine",
+//                    L22, windowed), "level", "level_size", "level_choice" ("level" or
+//                    "max_error"), "max_error" (when picked by it), "window": {"name", "width",
+//                    "factors": [w0, w1, w2]}, "face_size", "layout", "environment", "engine",
 //                    "map_size", "constants": {"cAr": [x, y, z, w], ...}, "levels": [{"level",
-//                    "size", "update_ms", "max_relative_error", "mean_relative_error"}, ...],
+//                    "size", "update_ms", "max_relative_error", "mean_relative_error",
+//                    "estimated_error"}, ...],
 //                    "timings_ms": {"load", "env_mips", "basis_pyramid", "level_updates" (every
 //                    level, each repeated for timing), "projection" (the chosen level's update),
 //                    "constants", "program" (assembling it), "irradiance_map", "ground_truth",
@@ -25,6 +28,7 @@
 // of them were written, so a failure leaves no partial output.
 #pragma once
 
+#include <array>
 #include <filesystem>
 #include <functional>
 #include <optional>
@@ -36,6 +40,7 @@
 #include <glm/glm.hpp>
 
 #include "irradiance/ground_truth.h"
+#include "irradiance/level_choice.h"
 #include "irradiance/sh9.h"
 #include "vm/machine.h"
 #include "vm/program.h"
@@ -51,8 +56,12 @@ inline constexpr int kDefaultMapSize = 32;
 inline constexpr int kMaxMapSize = 1024;
 // Normals of the error table (SphereNormals): dense enough that the max error is found to a few %.
 inline constexpr int kDefaultErrorNormals = 2000;
+// Default width of the hanning and lanczos windows (w1, w2 = 0.854, 0.5 and 0.900, 0.637): the width
+// whose far-side dip is smallest for a point light (irrmap stability).
+inline constexpr double kDefaultWindowWidth = 4.0;
 
-// The level whose faces are kRecommendedLevelSize when the face is larger than that, else 0.
+// The level whose faces are kRecommendedLevelSize when the face is larger than that, else 0 (the
+// paper's fixed choice; irrmap picks by IrrmapOptions::max_error instead unless --level is given).
 // face_size a positive power of two (asserted).
 int DefaultLevel(int face_size);
 
@@ -60,7 +69,12 @@ struct IrrmapOptions {
   std::string environment = "sky";  // a file, a {face} pattern or a BuiltinEnvironmentNames() name
   std::string layout = "auto";      // ParseLayout names; files only
   int face_size = 256;              // built-ins; resampled lat-long and angular maps
-  std::optional<int> level;         // default DefaultLevel(face size)
+  std::optional<int> level;         // when set, max_error is not used
+  // Otherwise the level is the coarsest whose error against level 0, estimated from adjacent
+  // levels, stays under this fraction (CoarsestLevelWithin, irradiance/level_choice.h).
+  double max_error = kDefaultMaxLevelError;
+  std::string window = "none";      // ShWindowName names, applied to every level's coefficients
+  double window_width = kDefaultWindowWidth;  // bands, for hanning and lanczos
   std::filesystem::path out_dir = "out";
   std::string engine = "batch";     // EngineKindFromName names
   int threads = 0;                  // 0: std::thread::hardware_concurrency()
@@ -79,7 +93,9 @@ struct LevelReport {
   int size = 0;            // face size at this level
   double update_ms = 0.0;  // ProjectLevel alone (the mips are not included), mean of repeated runs
   ErrorStats error;        // the vertex program's irradiance against the ground truth
-  Sh9Rgb coefficients;
+  Sh9Rgb coefficients;     // windowed when a window is set
+  double estimated_error = 0.0;  // against level 0, from this level and the next finer (EstimateLevelErrors)
+  std::array<double, kSh9Bands> window_factors = {1.0, 1.0, 1.0};
   bool chosen = false;
 };
 
@@ -116,7 +132,7 @@ std::optional<std::string> RunIrrmap(const IrrmapOptions& options, IrrmapReport&
                                      const IrrmapProgress& progress = {});
 
 // The level table, one row per level (the chosen one marked with '*'):
-//   level   size     update ms   max rel err   mean rel err
+//   level   size     update ms   max rel err   mean rel err   est vs lvl 0
 std::string FormatLevelTable(const IrrmapReport& report);
 // "load 12.3 ms, env_mips 4.5 ms, ..." one stage per line.
 std::string FormatTimings(const IrrmapReport& report);
@@ -128,6 +144,10 @@ class PaperProgram {
   // Assembles and validates (as a fragment: it writes no oPos) the embedded text; nullopt with
   // `error` set if that fails (a build problem, not a user one).
   static std::optional<PaperProgram> Load(std::string& error);
+  // The same for another embedded irradiance program with the same metadata lines (such as
+  // programs/sh9_irradiance_unit10.vsh, which takes PackUnitSphere10 constants).
+  static std::optional<PaperProgram> LoadEmbedded(std::string_view file_name, std::string_view text,
+                                                  std::string& error);
 
   const Program& program() const { return program_; }
   int normal_register() const { return normal_register_; }  // v#

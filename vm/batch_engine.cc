@@ -21,7 +21,9 @@ const KernelTable* GetKernelTable();  // defined by vm/batch_kernels_<target>.cc
 #if HWY_ONCE
 
 #include <algorithm>
+#include <bit>
 #include <cassert>
+#include <cstdint>
 #include <cstring>
 #include <thread>
 #include <utility>
@@ -30,6 +32,7 @@ const KernelTable* GetKernelTable();  // defined by vm/batch_kernels_<target>.cc
 #include "hwy/aligned_allocator.h"
 #include "hwy/cache_control.h"
 #include "vm/batch_engine.h"
+#include "vm/jit_compiler.h"
 
 namespace vs11 {
 namespace batch {
@@ -54,11 +57,20 @@ constexpr std::size_t RoundUp(std::size_t value, std::size_t multiple) {
   return (value + multiple - 1) / multiple * multiple;
 }
 
+void FillLane(float* lane, std::size_t count, float value) {
+  if (std::bit_cast<std::uint32_t>(value) == 0) {
+    std::memset(lane, 0, count * sizeof(float));  // +0.0f: the C library's widest stores
+  } else {
+    std::fill_n(lane, count, value);
+  }
+}
+
 // The state one thread runs batches with: the lane table and the lanes the engine owns (the plan's
 // arena lanes, then a padded copy of each input and output lane for a batch shorter than kBatchSize).
 struct Workspace {
-  explicit Workspace(const BatchPlan& plan)
+  Workspace(const BatchPlan& plan, std::size_t spill_floats)
       : arena_lanes(plan.arena_lanes),
+        spill(hwy::AllocateAligned<float>(std::max<std::size_t>(1, spill_floats))),
         arena(hwy::AllocateAligned<float>(
             (plan.arena_lanes + plan.input_lanes.size() + plan.output_lanes.size()) * kLaneStride)),
         address(hwy::AllocateAligned<std::int32_t>(kBatchSize)),
@@ -79,6 +91,7 @@ struct Workspace {
   float* OutputCopy(std::size_t k) { return ArenaLane(arena_lanes + input_arrays.size() + k); }
 
   std::size_t arena_lanes;
+  hwy::AlignedFreeUniquePtr<float[]> spill;  // the compiled program's spilled registers
   hwy::AlignedFreeUniquePtr<float[]> arena;
   hwy::AlignedFreeUniquePtr<std::int32_t[]> address;
   std::vector<const float*> read_lanes;
@@ -92,11 +105,16 @@ struct Workspace {
 
 class BatchEngine final : public Engine {
  public:
-  BatchEngine(const Program& program, const ConstantBank& api_constants, const EngineOptions& options)
+  BatchEngine(const Program& program, const ConstantBank& api_constants, const EngineOptions& options,
+              bool compile_program)
       : program_(program),
         plan_(BuildBatchPlan(program, *HWY_DYNAMIC_DISPATCH(GetKernelTable)())),
         written_(WrittenOutputLanes(program)),
         threads_(static_cast<std::size_t>(std::max(1, options.threads))) {
+    if (compile_program) {
+      std::string why_not;
+      compiled_ = jit::Compile(program, why_not);
+    }
     SetConstants(api_constants);
   }
 
@@ -116,7 +134,7 @@ class BatchEngine final : public Engine {
     if (count == 0) return;
 
     const std::size_t threads = std::min(threads_, std::max<std::size_t>(1, count / kMinVerticesPerThread));
-    while (workspaces_.size() < threads) workspaces_.emplace_back(plan_);
+    while (workspaces_.size() < threads) workspaces_.emplace_back(plan_, compiled_ ? compiled_->spill_floats() : 0);
     if (threads == 1) {
       RunRange(workspaces_[0], inputs, outputs, 0, count);
       return;
@@ -163,9 +181,23 @@ class BatchEngine final : public Engine {
 
     Frame frame{workspace.read_lanes.data(), workspace.write_lanes.data(), constants_.data(),
                 workspace.address.get(), constant_count_, 0};
-    for (std::size_t start = begin; start < end; start += kBatchSize) {
-      const std::size_t n = std::min(kBatchSize, end - start);
-      const bool full = n == kBatchSize;
+    // The kernels go through L1-sized batches; the compiled loop keeps its values in registers and
+    // takes every whole granule at once, when it reads and writes only the caller's arrays (an absent
+    // input's constant lane and an absent output's scratch lane hold one batch). A short rest runs on
+    // padded copies.
+    const bool whole_range =
+        compiled_ && std::ranges::none_of(workspace.input_arrays, [](const float* a) { return a == nullptr; }) &&
+        std::ranges::none_of(workspace.output_arrays, [](const float* a) { return a == nullptr; });
+    for (std::size_t start = begin, n = 0; start < end; start += n) {
+      const std::size_t left = end - start;
+      bool full;
+      if (whole_range && left >= kVertexGranule) {
+        n = left - left % kVertexGranule;
+        full = true;
+      } else {
+        n = std::min(kBatchSize, left);
+        full = n == kBatchSize;
+      }
       for (std::size_t k = 0; k < plan_.input_lanes.size(); ++k) {
         const float* array = workspace.input_arrays[k];
         if (array == nullptr) continue;
@@ -179,15 +211,21 @@ class BatchEngine final : public Engine {
         workspace.read_lanes[plan_.output_lanes[k]] = workspace.write_lanes[plan_.output_lanes[k]] = target;
       }
       // The caller's arrays stream from memory: ask for the next batch while this one computes.
-      if (start + kBatchSize < end) {
+      if (!whole_range && start + kBatchSize < end) {
         for (const float* array : workspace.input_arrays) {
           if (array == nullptr) continue;
           for (std::size_t k = 0; k < kBatchSize; k += kFloatsPerCacheLine) hwy::Prefetch(array + start + kBatchSize + k);
         }
       }
       frame.count = RoundUp(n, kVertexGranule);
-      for (const Step& step : plan_.steps) step.kernel(step, frame);
-      for (const auto& [array, value] : workspace.unstored) std::fill_n(array + start, n, value);
+      if (compiled_) {
+        compiled_->Run({.read_lanes = frame.read_lanes, .write_lanes = frame.write_lanes, .constants = frame.constants,
+                        .count = frame.count, .literals = nullptr, .spill = workspace.spill.get(),
+                        .constant_count = frame.constant_count});
+      } else {
+        for (const Step& step : plan_.steps) step.kernel(step, frame);
+      }
+      for (const auto& [array, value] : workspace.unstored) FillLane(array + start, n, value);
       if (full) continue;
       for (std::size_t k = 0; k < plan_.output_lanes.size(); ++k) {
         float* array = workspace.output_arrays[k];
@@ -202,6 +240,7 @@ class BatchEngine final : public Engine {
   std::size_t threads_;
   std::vector<float> constants_;
   std::int32_t constant_count_ = 0;
+  std::unique_ptr<jit::CompiledProgram> compiled_;  // null: the plan's kernels run the program
   std::vector<Workspace> workspaces_;
 };
 
@@ -209,8 +248,8 @@ class BatchEngine final : public Engine {
 }  // namespace batch
 
 std::unique_ptr<Engine> MakeBatchEngine(const Program& program, const ConstantBank& api_constants,
-                                        const EngineOptions& options) {
-  return std::make_unique<batch::BatchEngine>(program, api_constants, options);
+                                        const EngineOptions& options, bool compile_program) {
+  return std::make_unique<batch::BatchEngine>(program, api_constants, options, compile_program);
 }
 
 }  // namespace vs11

@@ -8,7 +8,9 @@
 
 namespace vs11 {
 
+// With `compile_program`, the program runs as machine code made by vm/jit_compiler.h (the jit
+// engine) when it can be compiled, and on the kernels otherwise.
 std::unique_ptr<Engine> MakeBatchEngine(const Program& program, const ConstantBank& api_constants,
-                                        const EngineOptions& options);
+                                        const EngineOptions& options, bool compile_program = false);
 
 }  // namespace vs11

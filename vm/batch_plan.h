@@ -21,7 +21,7 @@
 namespace vs11::batch {
 
 // Vertices per batch: the lanes a typical program touches (about 20) then fit in a 32 KiB L1 cache.
-inline constexpr std::size_t kBatchSize = 512;
+inline constexpr std::size_t kBatchSize = 256;
 // Kernels run over a whole number of these vertices (a multiple of every target's vector length, up
 // to 2048-bit vectors); a short last batch is padded up to it.
 inline constexpr std::size_t kVertexGranule = 64;

@@ -111,15 +111,23 @@ VertexArrays MakeOutputArrays(std::size_t count, const Program& program) {
 std::optional<EngineKind> EngineKindFromName(std::string_view name) {
   if (name == "ref" || name == "reference") return EngineKind::kReference;
   if (name == "batch") return EngineKind::kBatch;
+  if (name == "jit") return EngineKind::kJit;
   return std::nullopt;
 }
 
-std::string_view EngineName(EngineKind kind) { return kind == EngineKind::kReference ? "ref" : "batch"; }
+std::string_view EngineName(EngineKind kind) {
+  switch (kind) {
+    case EngineKind::kReference: return "ref";
+    case EngineKind::kBatch: return "batch";
+    case EngineKind::kJit: return "jit";
+  }
+  return "batch";
+}
 
 std::unique_ptr<Engine> MakeEngine(EngineKind kind, const Program& program, const ConstantBank& api_constants,
                                    const EngineOptions& options) {
   if (kind == EngineKind::kReference) return MakeReferenceEngine(program, api_constants);
-  return MakeBatchEngine(program, api_constants, options);
+  return MakeBatchEngine(program, api_constants, options, kind == EngineKind::kJit);
 }
 
 }  // namespace vs11

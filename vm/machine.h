@@ -77,8 +77,10 @@ class VertexArrays {
 VertexArrays MakeInputArrays(std::size_t count, std::span<const int> input_registers);
 VertexArrays MakeOutputArrays(std::size_t count, const Program& program);  // the slots the program writes
 
-enum class EngineKind { kReference, kBatch };
-std::optional<EngineKind> EngineKindFromName(std::string_view name);  // "ref" | "reference" | "batch"
+// kJit: the batch engine running the program compiled to x86-64 AVX2 code (vm/jit_compiler.h), or
+// its kernels on a CPU without AVX2.
+enum class EngineKind { kReference, kBatch, kJit };
+std::optional<EngineKind> EngineKindFromName(std::string_view name);  // "ref" | "reference" | "batch" | "jit"
 std::string_view EngineName(EngineKind kind);
 
 // Runs one program with one constant bank over many vertices.

@@ -7,8 +7,6 @@
 namespace vs11 {
 namespace {
 
-constexpr int kAddressLimit = 1 << 20;
-
 Vec4f ReadRegister(const RegisterRef& reg, int row, const ConstantBank& constants, const VertexState& state) {
   long index = static_cast<long>(reg.index) + row;
   switch (reg.file) {

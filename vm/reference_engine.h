@@ -18,6 +18,7 @@ struct VertexState {
 
 // a0.x = floor(x) (§1.5). NaN and values beyond +-2^20 become +-2^20, which puts every relative read
 // out of range, so it reads 0 (the bank holds at most 2048 registers).
+inline constexpr int kAddressLimit = 1 << 20;
 int AddressFromFloat(float x);
 
 // Runs `program` (def constants already folded into `constants`) on one vertex.

@@ -4,6 +4,7 @@
 //
 //   BM_Irradiance_Reference/N     reference engine
 //   BM_Irradiance_Batch/N         batch engine, threads = 1
+//   BM_Irradiance_Jit/N           jit engine (the program compiled to AVX2 code), threads = 1
 //   BM_Irradiance_NativeScalar/N  EvalTable1Scalar (no vectorisation)
 //   BM_Irradiance_NativeSimd/N    EvalTable1Simd (AVX-512 / AVX2 / SSE2 by multi-versioning)
 
@@ -114,6 +115,7 @@ void RunEngine(benchmark::State& state, EngineKind kind) {
 
 void BM_Irradiance_Reference(benchmark::State& state) { RunEngine(state, EngineKind::kReference); }
 void BM_Irradiance_Batch(benchmark::State& state) { RunEngine(state, EngineKind::kBatch); }
+void BM_Irradiance_Jit(benchmark::State& state) { RunEngine(state, EngineKind::kJit); }
 
 template <auto kEval>
 void RunNative(benchmark::State& state) {
@@ -135,6 +137,7 @@ void BM_Irradiance_NativeSimd(benchmark::State& state) { RunNative<EvalTable1Sim
 #define VS11_IRRADIANCE_SIZES Arg(1024)->Arg(65536)->Arg(1 << 20)
 BENCHMARK(BM_Irradiance_Reference)->VS11_IRRADIANCE_SIZES;
 BENCHMARK(BM_Irradiance_Batch)->VS11_IRRADIANCE_SIZES;
+BENCHMARK(BM_Irradiance_Jit)->VS11_IRRADIANCE_SIZES;
 BENCHMARK(BM_Irradiance_NativeScalar)->VS11_IRRADIANCE_SIZES;
 BENCHMARK(BM_Irradiance_NativeSimd)->VS11_IRRADIANCE_SIZES;
 #undef VS11_IRRADIANCE_SIZES

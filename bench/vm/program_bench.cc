@@ -91,7 +91,7 @@ const bool kRegistered = [] {
   }
   std::sort(paths.begin(), paths.end());
   for (const auto& path : paths) {
-    for (EngineKind kind : {EngineKind::kReference, EngineKind::kBatch}) {
+    for (EngineKind kind : {EngineKind::kReference, EngineKind::kBatch, EngineKind::kJit}) {
       const std::string name = "BM_Program/" + path.stem().string() + "/" + std::string(EngineName(kind));
       benchmark::RegisterBenchmark(name.c_str(), [path, kind](benchmark::State& state) {
         RunProgram(state, path, kind);

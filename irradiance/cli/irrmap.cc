@@ -32,7 +32,8 @@ std::string Footer() {
       "Outputs (in --out DIR, created if needed; all four are written to temporaries and renamed into\n"
       "place only when all succeeded, so a failed run leaves no partial file):\n"
       "  coeffs.json     the 9 RGB SH coefficients (L00, L1-1, L10, L11, L2-2, L2-1, L20, L21, L22),\n"
-      "                  level, face_size, layout, the 7 constants, every level's errors, timings_ms\n"
+      "                  level (and level_choice, max_error), window, face_size, layout, the 7\n"
+      "                  constants, every level's errors and estimated error, timings_ms\n"
       "  constants.vsh   the paper's Table 1 registers as def lines at c0..c6 (cAr cAg cAb cBr cBg cBb\n"
       "                  cC), for `vs11 run programs/sh9_irradiance.vsh --fragment --consts\n"
       "                  constants.vsh --sphere 6 --sphere-reg v0` (the program writes no oPos)\n"
@@ -51,12 +52,16 @@ std::string Footer() {
       "The ground truth (brute-force integration over every texel) is the slow stage; a progress\n"
       "bar is shown when stderr is a terminal.\n"
       "\n"
-      "Levels: 0 is the full face size, each level halves it, the last is 1x1. By default the level\n"
-      "whose faces are {0}x{0} when the face is larger (the paper's recommendation: Fig. 3 shows it\n"
-      "looking as good as full resolution, while the update costs 1/16 of it at 256x256), else 0.\n"
+      "Levels: 0 is the full face size, each level halves it, the last is 1x1. By default the coarsest\n"
+      "level whose error against level 0 stays under --max-error (0.5 %), estimated as 1.4 x its\n"
+      "difference from the next finer level, every finer level passing too: the sky of 256x256 faces\n"
+      "gets 16x16, the spot 128x128, a constant environment 1x1 (the paper fixes {0}x{0}: Fig. 3).\n"
+      "--window trades ringing (negative irradiance opposite a small bright light) against blur;\n"
+      "`irrmap stability` measures both.\n"
       "\n"
       "Examples:\n"
-      "  irrmap                                     built-in sky, 256x256 faces, level 2 (64x64), out/\n"
+      "  irrmap                                     built-in sky, 256x256 faces, level by --max-error, out/\n"
+      "  irrmap spot --window dering                the spot light without negative irradiance\n"
       "  irrmap studio --face-size 128 --level 3    built-in studio, coefficients from 16x16\n"
       "  irrmap probe.hdr --layout angular --face-size 256 --out probe-out\n"
       "  irrmap 'sky_{{face}}.exr' --engine ref       six face files, reference engine\n"
@@ -103,11 +108,22 @@ int main(int argc, char** argv) {
                  "face size of a built-in environment, or of the cube a latlong/angular map is resampled to; "
                  "a power of two (cube files keep theirs, which must be a power of two too)")
       ->capture_default_str();
-  app.add_option("--level", level,
+  CLI::Option* level_option = app.add_option("--level", level,
                  "mip level the coefficients are computed from: 0 = full face size, each level halves it, down to "
-                 "1x1; default: the 64x64 level when the face is larger, else 0");
+                 "1x1; default: picked by --max-error");
+  app.add_option("--max-error", options.max_error,
+                 "unless --level is given, pick the coarsest level whose error against full resolution, estimated "
+                 "from adjacent levels, stays under this fraction (0.005 = 0.5 %)")
+      ->capture_default_str()
+      ->excludes(level_option);
+  app.add_option("--window", options.window,
+                 "window on the coefficients against ringing from small bright lights: none, hanning, lanczos "
+                 "(of --window-width bands) or dering (the mildest window that makes the irradiance non-negative)")
+      ->capture_default_str();
+  app.add_option("--window-width", options.window_width, "width of the hanning and lanczos windows, in bands")
+      ->capture_default_str();
   app.add_option("--out", out_dir, "output directory")->capture_default_str();
-  app.add_option("--engine", options.engine, "vertex machine engine: ref (reference, scalar) or batch (SIMD)")
+  app.add_option("--engine", options.engine, "vertex machine engine: ref (reference, scalar), batch (SIMD kernels) or jit (compiled to AVX2 code)")
       ->capture_default_str();
   app.add_option("--threads", options.threads, "worker threads (0 = every core)")->capture_default_str();
   app.add_option("--map-size", options.map_size,

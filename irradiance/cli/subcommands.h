@@ -17,5 +17,6 @@ struct SubcommandFailure : std::runtime_error {
 void AddSubcommands(CLI::App& app);
 
 void AddChartCommand(CLI::App& app);  // irrmap chart (chart_command.cc)
+void AddStabilityCommand(CLI::App& app);  // stability_command.cc
 
 }  // namespace vs11::irradiance::cli

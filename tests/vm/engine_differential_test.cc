@@ -1,5 +1,6 @@
 // The batch engine against the reference engine, bit for bit (NaN equals NaN only with the same
-// bits), on every Highway target this build compiled and the CPU supports:
+// bits), on every Highway target this build compiled and the CPU supports, and the jit engine (the
+// program compiled to AVX2 code) likewise:
 //  * every executable opcode x write masks x swizzles x negations x operand files, over vertices
 //    whose lanes run through the special values (signed zeros, denormals, infinities, NaNs, the
 //    limits of exp and of a0);
@@ -26,6 +27,7 @@
 #include "hwy/tests/hwy_gtest.h"
 #include "vm/batch_engine.h"
 #include "vm/disassembler.h"
+#include "vm/jit_compiler.h"
 #include "vm/reference_engine.h"
 
 namespace vs11 {
@@ -63,12 +65,12 @@ bool IsNaN(float x) { return x != x; }
 
 // Runs `program` on both engines and compares every output lane.
 Comparison CompareEngines(const Program& program, const ConstantBank& constants, const VertexArrays& inputs,
-                          NanBits nan_bits) {
+                          NanBits nan_bits, EngineKind kind) {
   const std::size_t count = inputs.count();
   VertexArrays expected = MakeOutputArrays(count, program);
   VertexArrays actual = MakeOutputArrays(count, program);
   MakeReferenceEngine(program, constants)->Run(inputs, expected);
-  MakeBatchEngine(program, constants, {})->Run(inputs, actual);
+  MakeEngine(kind, program, constants)->Run(inputs, actual);
   Comparison result;
   for (int slot : expected.registers()) {
     for (int c = 0; c < 4; ++c) {
@@ -82,7 +84,7 @@ Comparison CompareEngines(const Program& program, const ConstantBank& constants,
         if (!result.difference.empty()) continue;
         std::ostringstream message;
         message << OutputSlotName(slot) << "." << kLaneLetters[c] << " of vertex " << i << " of " << count
-                << ": batch " << got << " (0x" << std::hex << Bits(got) << "), reference " << want << " (0x"
+                << ": " << EngineName(kind) << " " << got << " (0x" << std::hex << Bits(got) << "), reference " << want << " (0x"
                 << Bits(want) << std::dec << ")\ninputs:";
         for (int reg : inputs.registers()) {
           message << " v" << reg << "=(";
@@ -141,7 +143,7 @@ HWY_TARGET_INSTANTIATE_TEST_SUITE_P(EngineDifferential);
 
 // ---- the sweep --------------------------------------------------------------------------------------
 
-TEST_P(EngineDifferential, EveryOpcodeMaskSwizzleNegationAndSpecialValue) {
+void SweepEveryOpcode(EngineKind kind, const char* label) {
   const std::vector<float>& special = SpecialValues();
   const std::size_t n = special.size();
   // Vertex i pairs every special value of v0 with every one of v1 (v2 and v3 vary too), lane by lane
@@ -204,7 +206,7 @@ TEST_P(EngineDifferential, EveryOpcodeMaskSwizzleNegationAndSpecialValue) {
             code.push_back(MakeInstruction(Opcode::kMov, {Output(static_cast<int>(OutputSlot::kTexCoord0)), WriteMask()},
                                            {Src(Temp(2))}));
             ++programs;
-            const Comparison comparison = CompareEngines(program, constants, inputs, NanBits::kAnyNaN);
+            const Comparison comparison = CompareEngines(program, constants, inputs, NanBits::kAnyNaN, kind);
             ASSERT_TRUE(comparison.difference.empty()) << comparison.difference;
             nan_bit_mismatches += comparison.nan_bit_mismatches;
           }
@@ -212,13 +214,17 @@ TEST_P(EngineDifferential, EveryOpcodeMaskSwizzleNegationAndSpecialValue) {
       }
     }
   }
-  std::printf("[ %s ] %d programs x %zu vertices compared bit for bit (%zu lanes: NaN from two NaNs)\n",
-              hwy::TargetName(GetParam()), programs, count, nan_bit_mismatches);
+  std::printf("[ %s ] %d programs x %zu vertices compared bit for bit (%zu lanes: NaN from two NaNs)\n", label,
+              programs, count, nan_bit_mismatches);
+}
+
+TEST_P(EngineDifferential, EveryOpcodeMaskSwizzleNegationAndSpecialValue) {
+  SweepEveryOpcode(EngineKind::kBatch, hwy::TargetName(GetParam()));
 }
 
 // Every operand position of every opcode, negated or not, carrying one NaN (quiet or signalling, either
 // sign, with a payload) in one lane while every other value is ordinary: the result's bits must match.
-TEST_P(EngineDifferential, LoneNaNOperandKeepsItsBits) {
+void CheckLoneNaNOperands(EngineKind kind, const char* label) {
   const std::uint32_t nans[] = {0x7FC12345u, 0xFFC0ABCDu, 0x7F800001u, 0xFF812345u};
   const float ordinary[3][4] = {{0.75f, -1.5f, 2.0f, 3.25f}, {-0.5f, 4.0f, 1.25f, -2.0f}, {1.5f, 0.25f, -3.0f, 5.0f}};
   const int inputs_used[] = {0, 1, 2, 3, 4};  // m4x4 rows of v1 reach v4
@@ -247,13 +253,16 @@ TEST_P(EngineDifferential, LoneNaNOperandKeepsItsBits) {
         Program program;
         program.instructions.push_back(op);
         ++programs;
-        const Comparison comparison = CompareEngines(program, ConstantBank(), inputs, NanBits::kExact);
+        const Comparison comparison = CompareEngines(program, ConstantBank(), inputs, NanBits::kExact, kind);
         ASSERT_TRUE(comparison.difference.empty()) << comparison.difference;
       }
     }
   }
-  std::printf("[ %s ] %d programs x %zu vertices compared bit for bit, NaNs included\n",
-              hwy::TargetName(GetParam()), programs, count);
+  std::printf("[ %s ] %d programs x %zu vertices compared bit for bit, NaNs included\n", label, programs, count);
+}
+
+TEST_P(EngineDifferential, LoneNaNOperandKeepsItsBits) {
+  CheckLoneNaNOperands(EngineKind::kBatch, hwy::TargetName(GetParam()));
 }
 
 // ---- random programs --------------------------------------------------------------------------------
@@ -373,10 +382,17 @@ int RandomProgramCount() {
   return text != nullptr ? std::max(1, std::atoi(text)) : 3000;
 }
 
-TEST_P(EngineDifferential, RandomProgramsMatchBitForBit) {
+struct JitCoverage {
+  int compiled = 0;  // programs the jit compiler compiled (all, on a CPU with AVX2)
+  int spilling = 0;  // of which the register allocator spilled values
+};
+
+// For kJit, also says how many programs ran as machine code.
+JitCoverage CompareRandomPrograms(EngineKind kind, const char* label) {
   const int programs = RandomProgramCount();
   ProgramGenerator generator(20240611);
   std::size_t vertices = 0, nan_bit_mismatches = 0;
+  JitCoverage coverage;
   std::mt19937 sizes(5);
   for (int k = 0; k < programs; ++k) {
     const Program program = generator.MakeProgram();
@@ -385,12 +401,53 @@ TEST_P(EngineDifferential, RandomProgramsMatchBitForBit) {
     const std::size_t count = k % 10 == 0 ? std::uniform_int_distribution<std::size_t>(257, 1500)(sizes)
                                           : std::uniform_int_distribution<std::size_t>(1, 100)(sizes);
     vertices += count;
-    const Comparison comparison = CompareEngines(program, constants, generator.Inputs(count), NanBits::kAnyNaN);
-    ASSERT_TRUE(comparison.difference.empty()) << "random program " << k << ": " << comparison.difference;
+    const Comparison comparison =
+        CompareEngines(program, constants, generator.Inputs(count), NanBits::kAnyNaN, kind);
+    EXPECT_TRUE(comparison.difference.empty()) << "random program " << k << ": " << comparison.difference;
+    if (!comparison.difference.empty()) return coverage;
     nan_bit_mismatches += comparison.nan_bit_mismatches;
+    if (kind != EngineKind::kJit) continue;
+    std::string why_not;
+    if (const auto compiled = jit::Compile(program, why_not)) {
+      ++coverage.compiled;
+      if (compiled->spilled_values() > 0) ++coverage.spilling;
+    }
   }
-  std::printf("[ %s ] %d random programs, %zu vertices compared bit for bit (%zu lanes: NaN from two NaNs)\n",
-              hwy::TargetName(GetParam()), programs, vertices, nan_bit_mismatches);
+  std::printf("[ %s ] %d random programs, %zu vertices compared bit for bit (%zu lanes: NaN from two NaNs)\n", label,
+              programs, vertices, nan_bit_mismatches);
+  return coverage;
+}
+
+TEST_P(EngineDifferential, RandomProgramsMatchBitForBit) {
+  CompareRandomPrograms(EngineKind::kBatch, hwy::TargetName(GetParam()));
+}
+
+// ---- the jit engine -----------------------------------------------------------------------------------
+
+bool CpuHasAvx2() {
+  std::string why_not;
+  return jit::Compile(Program(), why_not) != nullptr;
+}
+
+TEST(JitDifferential, EveryOpcodeMaskSwizzleNegationAndSpecialValue) {
+  if (!CpuHasAvx2()) GTEST_SKIP() << "this CPU has no AVX2: the jit engine runs the batch kernels";
+  SweepEveryOpcode(EngineKind::kJit, "jit");
+}
+
+TEST(JitDifferential, LoneNaNOperandKeepsItsBits) {
+  if (!CpuHasAvx2()) GTEST_SKIP() << "this CPU has no AVX2: the jit engine runs the batch kernels";
+  CheckLoneNaNOperands(EngineKind::kJit, "jit");
+}
+
+TEST(JitDifferential, RandomProgramsMatchBitForBit) {
+  if (!CpuHasAvx2()) GTEST_SKIP() << "this CPU has no AVX2: the jit engine runs the batch kernels";
+  const JitCoverage coverage = CompareRandomPrograms(EngineKind::kJit, "jit");
+  // Every program compiles (so none ran on the batch kernels instead), and enough of them keep more
+  // than 16 values alive that the spill path runs too.
+  std::printf("[ jit ] %d of %d random programs compiled, %d of them spilling registers\n", coverage.compiled,
+              RandomProgramCount(), coverage.spilling);
+  EXPECT_EQ(coverage.compiled, RandomProgramCount());
+  EXPECT_GT(coverage.spilling, RandomProgramCount() / 20);
 }
 
 }  // namespace

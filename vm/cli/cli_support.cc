@@ -46,10 +46,12 @@ Program LoadProgramOrFail(const std::string& path, const ProgramFlags& flags) {
 }
 
 void EngineFlags::AddTo(CLI::App& command) {
-  command.add_option("--engine", engine, "Execution engine: ref (scalar reference) or batch (SIMD)")
-      ->check(CLI::IsMember({"ref", "reference", "batch"}))
+  command.add_option("--engine", engine,
+                     "Execution engine: ref (scalar reference), batch (SIMD kernels) or jit (the program compiled to "
+                     "AVX2 code; batch kernels on a CPU without AVX2)")
+      ->check(CLI::IsMember({"ref", "reference", "batch", "jit"}))
       ->capture_default_str();
-  command.add_option("--threads", threads, "Threads for the batch engine")->check(CLI::Range(1, 256))->capture_default_str();
+  command.add_option("--threads", threads, "Threads for the batch and jit engines")->check(CLI::Range(1, 256))->capture_default_str();
 }
 
 EngineKind EngineFlags::Kind() const { return EngineKindFromName(engine).value_or(EngineKind::kBatch); }

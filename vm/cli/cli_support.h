@@ -28,7 +28,7 @@ struct ProgramFlags {
 // when there are errors.
 Program LoadProgramOrFail(const std::string& path, const ProgramFlags& flags);
 
-// "--engine ref|batch" (batch by default) and "--threads N".
+// "--engine ref|batch|jit" (batch by default) and "--threads N".
 struct EngineFlags {
   std::string engine = "batch";
   int threads = 1;

@@ -73,12 +73,12 @@ void AddCountCommand(CLI::App& app) {
       "Columns: executable instructions, instruction slots (macros and multi-slot instructions as the\n"
       "spec counts them), distinct constant, temporary and input registers, instructions executed per\n"
       "vertex (vs_1_1 has no flow control: every instruction runs once), and the best of 5 timed runs\n"
-      "over 65536 normals on each engine.\n\n"
+      "over 65536 normals on each engine (ref, batch, jit).\n\n"
       "Examples:\n  vs11 count programs/*.vsh\n  vs11 count programs/sh9_irradiance.vsh --json");
   command->add_option("programs", args->programs, "Programs (.vsh or .vso)")->required();
   command->add_flag("--json", args->json, "Print a JSON array of objects instead of a table");
   command->add_flag("--no-timing", args->no_timing, "Skip the timed runs");
-  command->add_option("--threads", args->threads, "Threads for the batch engine")->check(CLI::Range(1, 256));
+  command->add_option("--threads", args->threads, "Threads for the batch and jit engines")->check(CLI::Range(1, 256));
   args->flags.AddTo(*command);
   command->callback([args] {
     nlohmann::json rows = nlohmann::json::array();
@@ -92,7 +92,7 @@ void AddCountCommand(CLI::App& app) {
                             {"dynamic_instructions_per_vertex", stats.instructions},
                             {"ns_per_vertex", nlohmann::json::object()}};
       if (!args->no_timing) {
-        for (EngineKind kind : {EngineKind::kReference, EngineKind::kBatch}) {
+        for (EngineKind kind : {EngineKind::kReference, EngineKind::kBatch, EngineKind::kJit}) {
           row["ns_per_vertex"][std::string(EngineName(kind))] = MeasureNsPerVertex(kind, programs[p], args->threads);
         }
       }
@@ -102,16 +102,17 @@ void AddCountCommand(CLI::App& app) {
       std::printf("%s\n", rows.dump(2).c_str());
       return;
     }
-    std::printf("%-44s %6s %6s %6s %6s %6s %10s %10s\n", "program", "instr", "slots", "const", "temps", "inputs",
-                "ref ns/v", "batch ns/v");
+    std::printf("%-44s %6s %6s %6s %6s %6s %10s %10s %10s\n", "program", "instr", "slots", "const", "temps", "inputs",
+                "ref ns/v", "batch ns/v", "jit ns/v");
     for (const nlohmann::json& row : rows) {
       auto ns = [&](const char* engine) {
         return row["ns_per_vertex"].contains(engine) ? fmt::format("{:.2f}", row["ns_per_vertex"][engine].get<double>())
                                                      : std::string("-");
       };
-      std::printf("%-44s %6d %6d %6d %6d %6d %10s %10s\n", row["file"].get<std::string>().c_str(),
+      std::printf("%-44s %6d %6d %6d %6d %6d %10s %10s %10s\n", row["file"].get<std::string>().c_str(),
                   row["instructions"].get<int>(), row["slots"].get<int>(), row["constants"].get<int>(),
-                  row["temporaries"].get<int>(), row["inputs"].get<int>(), ns("ref").c_str(), ns("batch").c_str());
+                  row["temporaries"].get<int>(), row["inputs"].get<int>(), ns("ref").c_str(), ns("batch").c_str(),
+                  ns("jit").c_str());
     }
   });
 }

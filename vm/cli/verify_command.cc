@@ -73,7 +73,7 @@ void RunVerify(const VerifyFlags& flags) {
 
   if (!flags.against_engine.empty()) {
     std::optional<EngineKind> other = EngineKindFromName(flags.against_engine);
-    if (!other) Fail(fmt::format("--against-engine {}: expected ref or batch", flags.against_engine));
+    if (!other) Fail(fmt::format("--against-engine {}: expected ref, batch or jit", flags.against_engine));
     irr::EngineComparison comparison = irr::VerifyEngines(*loaded.program, metadata, options.engine, *other, options);
     if (!comparison.error.empty()) Fail(fmt::format("{}: {}", flags.program, comparison.error));
     std::string text = flags.json
@@ -142,8 +142,8 @@ void AddVerifyCommand(CLI::App& app) {
   command->add_option("--seed", flags->seed, "Seed of the random coefficients and inputs")->capture_default_str();
   command->add_flag("--json", flags->json, "Print the report as JSON");
   command->add_option("--against-engine", flags->against_engine,
-                      "Compare --engine with this engine (ref or batch) bit for bit instead of with a reference")
-      ->check(CLI::IsMember({"ref", "reference", "batch"}));
+                      "Compare --engine with this engine (ref, batch or jit) bit for bit instead of with a reference")
+      ->check(CLI::IsMember({"ref", "reference", "batch", "jit"}));
   flags->program_flags.AddTo(*command);
   flags->engine_flags.AddTo(*command);
   command->callback([flags] { RunVerify(*flags); });

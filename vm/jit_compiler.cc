@@ -1,0 +1,655 @@
+#include "vm/jit_compiler.h"
+
+#include <algorithm>
+#include <array>
+#include <bit>
+#include <cstddef>
+#include <cstdint>
+#include <cstring>
+#include <limits>
+#include <map>
+#include <tuple>
+
+#include <xbyak/xbyak.h>
+#include <xbyak/xbyak_util.h>
+
+#include "vm/batch_plan.h"
+#include "vm/machine.h"
+#include "vm/reference_engine.h"
+#include "vm/semantics.h"
+
+namespace vs11::jit {
+namespace {
+
+// ---- the traced program: a graph of vector operations on 8 vertices --------------------------------
+
+enum class Op : std::uint8_t {
+  kInput,     // immediate: lane table index
+  kConstant,  // immediate: constant table index (broadcast)
+  kLiteral,   // immediate: the float's bits (broadcast)
+  kAdd, kSub, kMul, kDiv, kFloor, kSqrt,
+  kLess, kGreater, kGreaterEqual, kEqual, kUnordered,  // all-ones lanes where true
+  kSelect,    // args: mask, yes, no
+  kIntAdd, kIntSub, kAnd, kOr, kXor, kShiftLeft, kShiftRight,  // immediate: shift count
+  kToInt, kToFloat,
+  kIntGreater,     // all-ones lanes where a > b (signed)
+  kConstantCount,  // RunArguments::constant_count (broadcast)
+  kGather,         // args: constant table offset in floats; immediate: component (0..3)
+  kStore,          // immediate: lane table index; args: value
+};
+
+constexpr int kNoArg = -1;
+
+struct Node {
+  Op op;
+  std::array<int, 3> args = {kNoArg, kNoArg, kNoArg};
+  std::uint32_t immediate = 0;
+};
+
+class Graph {
+ public:
+  // Identical pure nodes are made once (v0.x read by three dp4s is one load).
+  int Add(Op op, std::array<int, 3> args = {kNoArg, kNoArg, kNoArg}, std::uint32_t immediate = 0) {
+    if (op != Op::kStore) {
+      const auto key = std::make_tuple(op, args, immediate);
+      if (const auto it = existing_.find(key); it != existing_.end()) return it->second;
+      existing_.emplace(key, static_cast<int>(nodes_.size()));
+    }
+    nodes_.push_back({op, args, immediate});
+    return static_cast<int>(nodes_.size()) - 1;
+  }
+  const std::vector<Node>& nodes() const { return nodes_; }
+
+ private:
+  std::vector<Node> nodes_;
+  std::map<std::tuple<Op, std::array<int, 3>, std::uint32_t>, int> existing_;
+};
+
+// The graph being traced (Compile sets it for its duration; tracing is single-threaded per call).
+thread_local Graph* tracing = nullptr;
+
+int Trace(Op op, int a = kNoArg, int b = kNoArg, int c = kNoArg, std::uint32_t immediate = 0) {
+  return tracing->Add(op, {a, b, c}, immediate);
+}
+
+// The lane types vm/semantics.h is instantiated with: handles to graph nodes, typed so that float,
+// integer and mask operations resolve as they do for float/int32/bool and Highway vectors.
+struct Float {
+  int id = kNoArg;
+};
+struct Int {
+  int id = kNoArg;
+};
+struct Mask {
+  int id = kNoArg;
+};
+
+inline Float operator+(Float a, Float b) { return {Trace(Op::kAdd, a.id, b.id)}; }
+inline Float operator-(Float a, Float b) { return {Trace(Op::kSub, a.id, b.id)}; }
+inline Float operator*(Float a, Float b) { return {Trace(Op::kMul, a.id, b.id)}; }
+inline Float operator/(Float a, Float b) { return {Trace(Op::kDiv, a.id, b.id)}; }
+inline Mask operator<(Float a, Float b) { return {Trace(Op::kLess, a.id, b.id)}; }
+inline Mask operator>(Float a, Float b) { return {Trace(Op::kGreater, a.id, b.id)}; }
+inline Mask operator>=(Float a, Float b) { return {Trace(Op::kGreaterEqual, a.id, b.id)}; }
+inline Mask operator==(Float a, Float b) { return {Trace(Op::kEqual, a.id, b.id)}; }
+inline Int operator+(Int a, Int b) { return {Trace(Op::kIntAdd, a.id, b.id)}; }
+inline Int operator-(Int a, Int b) { return {Trace(Op::kIntSub, a.id, b.id)}; }
+inline Int operator&(Int a, Int b) { return {Trace(Op::kAnd, a.id, b.id)}; }
+inline Int operator|(Int a, Int b) { return {Trace(Op::kOr, a.id, b.id)}; }
+
+inline Float Constant(Float, float value) { return {Trace(Op::kLiteral, kNoArg, kNoArg, kNoArg, std::bit_cast<std::uint32_t>(value))}; }
+inline Int ConstantInt(Float, std::int32_t value) {
+  return {Trace(Op::kLiteral, kNoArg, kNoArg, kNoArg, static_cast<std::uint32_t>(value))};
+}
+inline Int BitsOf(Float x) { return {x.id}; }
+inline Float FloatFromBits(Int x) { return {x.id}; }
+inline Float Floor(Float x) { return {Trace(Op::kFloor, x.id)}; }
+inline Float Sqrt(Float x) { return {Trace(Op::kSqrt, x.id)}; }
+inline Float Abs(Float x) { return FloatFromBits(BitsOf(x) & ConstantInt(x, 0x7FFFFFFF)); }
+inline Mask IsNaN(Float x) { return {Trace(Op::kUnordered, x.id, x.id)}; }
+inline Float IfThenElse(Mask condition, Float yes, Float no) { return {Trace(Op::kSelect, condition.id, yes.id, no.id)}; }
+inline Int ToInt(Float x) { return {Trace(Op::kToInt, x.id)}; }
+inline Float ToFloat(Int x) { return {Trace(Op::kToFloat, x.id)}; }
+template <int kBits>
+Int ShiftLeft(Int x) { return {Trace(Op::kShiftLeft, x.id, kNoArg, kNoArg, kBits)}; }
+template <int kBits>
+Int ShiftRight(Int x) { return {Trace(Op::kShiftRight, x.id, kNoArg, kNoArg, kBits)}; }
+inline Mask operator>(Int a, Int b) { return {Trace(Op::kIntGreater, a.id, b.id)}; }
+inline Mask operator&(Mask a, Mask b) { return {Trace(Op::kAnd, a.id, b.id)}; }
+inline Int IfThenElseZero(Mask condition, Int value) { return {Trace(Op::kAnd, condition.id, value.id)}; }
+inline Int LiteralInt(std::int32_t value) { return ConstantInt(Float{}, value); }
+
+// -x as the reference engine negates: the sign bit flipped, NaNs included.
+inline Float Negate(Float x) {
+  return {Trace(Op::kXor, x.id, ConstantInt(x, std::numeric_limits<std::int32_t>::min()).id)};
+}
+
+using Vec4F = semantics::Vec4<Float>;
+
+// ---- tracing a program: the reference engine's Execute with Float lanes ------------------------------
+
+class Tracer {
+ public:
+  Tracer() {
+    const Float zero = Zero();
+    for (auto& temp : temps_) temp.fill(zero);
+  }
+
+  void Trace(const Instruction& instruction) {
+    switch (instruction.opcode) {
+#define VS11_JIT_TRACE_CASE(name, ...) \
+  case Opcode::k##name: Execute<semantics::name##Semantics>(instruction); break;
+      VS11_OPCODES(VS11_JIT_TRACE_CASE)
+#undef VS11_JIT_TRACE_CASE
+    }
+  }
+
+  // A store of every output lane the program wrote, with its final value.
+  void StoreOutputs() {
+    for (int slot = 0; slot < kOutputSlotCount; ++slot) {
+      for (int c = 0; c < 4; ++c) {
+        if (outputs_[slot][c].id != kNoArg) {
+          jit::Trace(Op::kStore, outputs_[slot][c].id, kNoArg, kNoArg, static_cast<std::uint32_t>(batch::OutputLane(slot, c)));
+        }
+      }
+    }
+  }
+
+ private:
+  static Float Zero() { return Constant(Float{}, 0.0f); }
+
+  // c[a0.x + index] of every vertex, component by component (the batch engine's GatherKernel):
+  // registers outside the bank read row 0 of the constant table, which holds zeros.
+  Vec4F Gather(long index) const {
+    const Int register_index = address_ + LiteralInt(static_cast<std::int32_t>(index));
+    const Int count = {jit::Trace(Op::kConstantCount)};
+    const Mask in_range = (register_index > LiteralInt(-1)) & (count > register_index);
+    const Int row = IfThenElseZero(in_range, register_index + LiteralInt(batch::kFirstConstantRow));
+    const Int offset = ShiftLeft<2>(row);
+    Vec4F value;
+    for (int c = 0; c < 4; ++c) {
+      value[c] = {jit::Trace(Op::kGather, offset.id, kNoArg, kNoArg, static_cast<std::uint32_t>(c))};
+    }
+    return value;
+  }
+
+  // a0.x = AddressFromFloat(x), in the reference engine's order of tests (NaN fails both).
+  static Int AddressFrom(Float x) {
+    const Float whole = Floor(x);
+    const Float limit = Constant(x, static_cast<float>(kAddressLimit));
+    const Float below = IfThenElse(whole < limit, whole, limit);
+    return ToInt(IfThenElse(whole > Constant(x, -static_cast<float>(kAddressLimit)), below,
+                            Constant(x, -static_cast<float>(kAddressLimit))));
+  }
+
+  Vec4F ReadRegister(const RegisterRef& reg, int row) const {
+    const long index = static_cast<long>(reg.index) + row;
+    Vec4F value;
+    value.fill(Zero());
+    switch (reg.file) {
+      case RegisterFile::kConst:
+        if (reg.relative && address_written_) return Gather(index);
+        if (index < 0) break;  // before any write a0 is 0
+        for (int c = 0; c < 4; ++c) {
+          value[c] = {jit::Trace(Op::kConstant, kNoArg, kNoArg, kNoArg, batch::ConstantIndex(static_cast<int>(index), c))};
+        }
+        break;
+      case RegisterFile::kTemp:
+        if (index < kTempRegisterCount) value = temps_[static_cast<std::size_t>(index)];
+        break;
+      case RegisterFile::kInput:
+        if (index >= kInputRegisterCount) break;
+        for (int c = 0; c < 4; ++c) {
+          value[c] = {jit::Trace(Op::kInput, kNoArg, kNoArg, kNoArg,
+                                 static_cast<std::uint32_t>(batch::InputLane(static_cast<int>(index), c)))};
+        }
+        break;
+      default: break;  // outputs and a0 are not readable
+    }
+    return value;
+  }
+
+  Vec4F Fetch(const SourceOperand& source, int row) const {
+    const Vec4F base = ReadRegister(source.reg, row);
+    Vec4F value;
+    for (int lane = 0; lane < 4; ++lane) {
+      const Float v = base[source.swizzle[lane]];
+      value[lane] = source.negate ? Negate(v) : v;
+    }
+    return value;
+  }
+
+  void Store(const DestOperand& dest, const Vec4F& value, int lane_count) {
+    Vec4F* target = nullptr;
+    if (dest.reg.file == RegisterFile::kAddress) {
+      if (dest.mask.has(0)) {
+        address_ = AddressFrom(value[0]);
+        address_written_ = true;
+      }
+      return;
+    }
+    if (dest.reg.file == RegisterFile::kTemp) {
+      if (dest.reg.index < kTempRegisterCount) target = &temps_[static_cast<std::size_t>(dest.reg.index)];
+    } else if (std::optional<int> slot = OutputSlotOf(dest.reg)) {
+      target = &outputs_[static_cast<std::size_t>(*slot)];
+    }
+    if (target == nullptr) return;
+    for (int lane = 0; lane < lane_count; ++lane) {
+      if (dest.mask.has(lane)) (*target)[lane] = value[lane];
+    }
+  }
+
+  static Float DotOfWidth(int width, const Vec4F& a, const Vec4F& b) {
+    return width == 3 ? semantics::Dot<Float, 3>(a, b) : semantics::Dot<Float, 4>(a, b);
+  }
+
+  template <class Semantics>
+  void Execute(const Instruction& instruction) {
+    const OpcodeInfo& info = instruction.info();
+    std::array<Vec4F, 3> src{};
+    for (int s = 0; s < info.source_count(); ++s) src[s] = Fetch(instruction.sources[s], 0);
+    Vec4F result;
+    int lane_count = 4;
+    if constexpr (requires(Float v) { Semantics::Lane(v, v, v); }) {
+      for (int lane = 0; lane < 4; ++lane) result[lane] = Semantics::Lane(src[0][lane], src[1][lane], src[2][lane]);
+    } else if constexpr (requires(Float v) { Semantics::Scalar(v); }) {
+      result.fill(Semantics::Scalar(src[0][3]));
+    } else if constexpr (requires(Vec4F v) { Semantics::Vector(v, v); }) {
+      result = Semantics::Vector(src[0], src[1]);
+    } else if (info.kind == ResultKind::kDotProduct) {
+      result.fill(DotOfWidth(info.dot_width, src[0], src[1]));
+    } else if (info.kind == ResultKind::kMatrix) {
+      for (int row = 0; row < info.matrix_rows; ++row) {
+        result[row] = DotOfWidth(info.dot_width, src[0], Fetch(instruction.sources[1], row));
+      }
+      lane_count = info.matrix_rows;
+    } else {
+      return;  // nop, dcl, def
+    }
+    Store(instruction.dest, result, lane_count);
+  }
+
+  std::array<Vec4F, kTempRegisterCount> temps_{};
+  std::array<Vec4F, kOutputSlotCount> outputs_{};
+  Int address_;
+  bool address_written_ = false;
+};
+
+// ---- register allocation and code --------------------------------------------------------------------
+
+constexpr int kVectorRegisters = 16;
+constexpr int kLanesPerVector = 8;
+constexpr int kVectorBytes = 32;
+
+bool Rematerializable(Op op) {
+  return op == Op::kInput || op == Op::kConstant || op == Op::kLiteral || op == Op::kConstantCount;
+}
+
+class Emitter : public Xbyak::CodeGenerator {
+ public:
+  // `hoisted`: how many of the most used constants are loaded into registers once, before the loop,
+  // leaving the others to the values computed in it.
+  // `trial_buffer`: generate into this buffer (code_size bytes), only to count operations, instead
+  // of into executable pages.
+  Emitter(const std::vector<Node>& nodes, std::size_t code_size, int hoisted, std::uint8_t* trial_buffer = nullptr)
+      // Written, then made read+execute (never writable and executable at once).
+      : Xbyak::CodeGenerator(code_size, trial_buffer != nullptr ? trial_buffer : Xbyak::DontSetProtectRWE),
+        nodes_(nodes),
+        trial_(trial_buffer != nullptr),
+        spill_slot_(nodes.size(), -1),
+        hoisted_(static_cast<std::size_t>(hoisted)) {}
+
+  // Emits the whole function; the literal pool and the spill size are known afterwards.
+  void Generate() {
+    const Registers& r = regs_;
+    FindUses();
+    const std::vector<int> pointer_lanes = KeepLanePointers();
+    for (std::size_t k = 0; k < pointer_lanes.size(); ++k) push(kLanePointerRegisters[k]);
+    mov(r.read_lanes, ptr[r.arguments + offsetof(RunArguments, read_lanes)]);
+    mov(r.write_lanes, ptr[r.arguments + offsetof(RunArguments, write_lanes)]);
+    mov(r.constants, ptr[r.arguments + offsetof(RunArguments, constants)]);
+    mov(r.end, ptr[r.arguments + offsetof(RunArguments, count)]);
+    shl(r.end, 2);
+    mov(r.literals, ptr[r.arguments + offsetof(RunArguments, literals)]);
+    mov(r.spill, ptr[r.arguments + offsetof(RunArguments, spill)]);
+    for (std::size_t k = 0; k < pointer_lanes.size(); ++k) {
+      const int lane = pointer_lanes[k];
+      mov(kLanePointerRegisters[k], ptr[(IsStoreLane(lane) ? r.write_lanes : r.read_lanes) + 8 * LaneIndex(lane)]);
+    }
+    HoistConstants();
+    loop_memory_operations_ = 0;  // the body's from here
+    xor_(r.offset, r.offset);
+    Xbyak::Label loop;
+    L(loop);
+    for (std::size_t n = 0; n < nodes_.size(); ++n) {
+      if (live_[n]) Emit(static_cast<int>(n));
+    }
+    add(r.offset, kVectorBytes);
+    cmp(r.offset, r.end);
+    jb(loop, T_NEAR);
+    vzeroupper();
+    for (std::size_t k = pointer_lanes.size(); k-- > 0;) pop(kLanePointerRegisters[k]);
+    ret();
+    if (!trial_) setProtectModeRE();
+  }
+
+  const std::vector<float>& literals() const { return literals_; }
+  int spill_slots() const { return spill_slots_; }
+  int spilled_values() const { return spilled_values_; }
+  std::size_t hoisted() const { return hoisted_; }  // after Generate: at most the constants there are
+  // Loads and stores in the loop body: what the number of hoisted constants is chosen by.
+  int loop_memory_operations() const { return loop_memory_operations_; }
+
+ private:
+  // Lane keys: loads and stores go through different tables, so a stored lane is told apart.
+  static constexpr int kStoreLaneFlag = 1 << 16;
+  static bool IsStoreLane(int key) { return (key & kStoreLaneFlag) != 0; }
+  static int LaneIndex(int key) { return key & (kStoreLaneFlag - 1); }
+  static int LaneKey(const Node& node) {
+    return static_cast<int>(node.immediate) | (node.op == Op::kStore ? kStoreLaneFlag : 0);
+  }
+  // Callee-saved registers (pushed and popped), each holding one lane's address for the whole call.
+  inline static const std::array<Xbyak::Reg64, 6> kLanePointerRegisters = {
+      Xbyak::Reg64(Xbyak::Operand::RBX), Xbyak::Reg64(Xbyak::Operand::RBP), Xbyak::Reg64(Xbyak::Operand::R12),
+      Xbyak::Reg64(Xbyak::Operand::R13), Xbyak::Reg64(Xbyak::Operand::R14), Xbyak::Reg64(Xbyak::Operand::R15)};
+
+  // Chooses the lanes whose addresses live in registers (the most used ones); returns their keys.
+  std::vector<int> KeepLanePointers() {
+    std::map<int, int> uses;
+    for (std::size_t n = 0; n < nodes_.size(); ++n) {
+      const Node& node = nodes_[n];
+      if (!live_[n] || (node.op != Op::kInput && node.op != Op::kStore)) continue;
+      uses[LaneKey(node)] += std::max<int>(1, static_cast<int>(uses_[n].size()));
+    }
+    std::vector<std::pair<int, int>> by_use;
+    for (const auto& [key, count] : uses) by_use.emplace_back(count, key);
+    std::stable_sort(by_use.begin(), by_use.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+    std::vector<int> keys;
+    for (const auto& [count, key] : by_use) {
+      if (keys.size() == kLanePointerRegisters.size()) break;
+      lane_pointer_[key] = kLanePointerRegisters[keys.size()];
+      keys.push_back(key);
+    }
+    return keys;
+  }
+
+  // The address of this vertex group in a lane, loading the lane's address into `lane` if needed.
+  Xbyak::RegExp LaneAddress(const Node& node) {
+    const auto it = lane_pointer_.find(LaneKey(node));
+    if (it != lane_pointer_.end()) return it->second + regs_.offset;
+    ++loop_memory_operations_;
+    mov(regs_.lane, ptr[(node.op == Op::kStore ? regs_.write_lanes : regs_.read_lanes) + 8 * node.immediate]);
+    return regs_.lane + regs_.offset;
+  }
+
+  // Loads the most used constants into the top registers before the loop, for good.
+  void HoistConstants() {
+    std::vector<std::pair<int, int>> by_use;  // (uses, node)
+    for (std::size_t n = 0; n < nodes_.size(); ++n) {
+      const Op op = nodes_[n].op;
+      if (live_[n] && op != Op::kInput && Rematerializable(op)) by_use.emplace_back(uses_[n].size(), n);
+    }
+    std::stable_sort(by_use.begin(), by_use.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+    hoisted_ = std::min(hoisted_, by_use.size());
+    available_registers_ = kVectorRegisters - static_cast<int>(hoisted_);
+    for (std::size_t k = 0; k < hoisted_; ++k) {
+      const int value = by_use[k].second;
+      Materialize(value, kVectorRegisters - 1 - static_cast<int>(k));
+      pinned_values_.push_back(value);
+    }
+  }
+  bool Hoisted(int value) const {
+    return std::find(pinned_values_.begin(), pinned_values_.end(), value) != pinned_values_.end();
+  }
+
+  void FindUses() {
+    live_.assign(nodes_.size(), false);
+    uses_.assign(nodes_.size(), {});
+    for (std::size_t n = nodes_.size(); n-- > 0;) {
+      if (nodes_[n].op == Op::kStore) live_[n] = true;
+      if (!live_[n]) continue;
+      for (int arg : nodes_[n].args) {
+        if (arg != kNoArg) live_[static_cast<std::size_t>(arg)] = true;
+      }
+    }
+    for (std::size_t n = 0; n < nodes_.size(); ++n) {
+      if (!live_[n]) continue;
+      for (int arg : nodes_[n].args) {
+        if (arg != kNoArg) uses_[static_cast<std::size_t>(arg)].push_back(static_cast<int>(n));
+      }
+    }
+    register_value_.fill(kNoArg);
+    where_.assign(nodes_.size(), kNoArg);
+  }
+
+  // The position of the next use of `value` after `position`, or "never".
+  int NextUse(int value, int position) const {
+    const std::vector<int>& uses = uses_[static_cast<std::size_t>(value)];
+    const auto it = std::upper_bound(uses.begin(), uses.end(), position);
+    return it == uses.end() ? std::numeric_limits<int>::max() : *it;
+  }
+
+  // A free register, evicting the value used farthest in the future (not one of `pinned`).
+  int TakeRegister(int position, const std::array<int, 3>& pinned) {
+    for (int reg = 0; reg < available_registers_; ++reg) {
+      if (register_value_[reg] == kNoArg) return reg;
+    }
+    int victim = -1, farthest = -1;
+    for (int reg = 0; reg < available_registers_; ++reg) {
+      const int value = register_value_[reg];
+      if (std::find(pinned.begin(), pinned.end(), value) != pinned.end()) continue;
+      const int next = NextUse(value, position);
+      if (next > farthest) farthest = next, victim = reg;
+    }
+    const int value = register_value_[victim];
+    if (!Rematerializable(nodes_[static_cast<std::size_t>(value)].op) && spill_slot_[value] < 0) {
+      spill_slot_[value] = spill_slots_++;
+      ++spilled_values_;
+      ++loop_memory_operations_;
+      vmovups(ptr[regs_.spill + kVectorBytes * spill_slot_[value]], Xbyak::Ymm(victim));
+    }
+    where_[value] = kNoArg;
+    register_value_[victim] = kNoArg;
+    return victim;
+  }
+
+  // Loads a rematerializable or spilled value into `reg`.
+  void Materialize(int value, int reg) {
+    const Node& node = nodes_[static_cast<std::size_t>(value)];
+    const Xbyak::Ymm ymm(reg);
+    ++loop_memory_operations_;
+    switch (node.op) {
+      case Op::kInput: vmovups(ymm, ptr[LaneAddress(node)]); break;
+      case Op::kConstant: vbroadcastss(ymm, ptr[regs_.constants + 4 * node.immediate]); break;
+      case Op::kLiteral: vbroadcastss(ymm, ptr[regs_.literals + 4 * LiteralIndex(node.immediate)]); break;
+      case Op::kConstantCount: vpbroadcastd(ymm, ptr[regs_.arguments + offsetof(RunArguments, constant_count)]); break;
+      default: vmovups(ymm, ptr[regs_.spill + kVectorBytes * spill_slot_[value]]); break;
+    }
+    where_[value] = reg;
+    register_value_[reg] = value;
+  }
+
+  int LiteralIndex(std::uint32_t bits) {
+    const auto it = literal_index_.find(bits);
+    if (it != literal_index_.end()) return it->second;
+    literals_.push_back(std::bit_cast<float>(bits));
+    return literal_index_[bits] = static_cast<int>(literals_.size()) - 1;
+  }
+
+  void Emit(int n) {
+    const Node& node = nodes_[static_cast<std::size_t>(n)];
+    if (Rematerializable(node.op)) return;  // loaded where it is used
+    // Operands into registers.
+    std::array<Xbyak::Ymm, 3> in = {Xbyak::Ymm(0), Xbyak::Ymm(0), Xbyak::Ymm(0)};
+    for (int a = 0; a < 3; ++a) {
+      const int arg = node.args[a];
+      if (arg == kNoArg) continue;
+      if (where_[arg] == kNoArg) Materialize(arg, TakeRegister(n, node.args));
+      in[a] = Xbyak::Ymm(where_[arg]);
+    }
+    if (node.op == Op::kGather) {
+      EmitGather(n, in[0]);
+      return;
+    }
+    // Operands used for the last time give their registers up before the result takes one.
+    for (int arg : node.args) {
+      if (arg != kNoArg && where_[arg] != kNoArg && !Hoisted(arg) && NextUse(arg, n) == std::numeric_limits<int>::max()) {
+        register_value_[where_[arg]] = kNoArg;
+        where_[arg] = kNoArg;
+      }
+    }
+    if (node.op == Op::kStore) {
+      ++loop_memory_operations_;
+      vmovups(ptr[LaneAddress(node)], in[0]);
+      return;
+    }
+    if (uses_[static_cast<std::size_t>(n)].empty()) return;
+    const int reg = TakeRegister(n, {kNoArg, kNoArg, kNoArg});
+    where_[n] = reg;
+    register_value_[reg] = n;
+    const Xbyak::Ymm out(reg);
+    switch (node.op) {
+      case Op::kAdd: vaddps(out, in[0], in[1]); break;
+      case Op::kSub: vsubps(out, in[0], in[1]); break;
+      case Op::kMul: vmulps(out, in[0], in[1]); break;
+      case Op::kDiv: vdivps(out, in[0], in[1]); break;
+      case Op::kFloor: vroundps(out, in[0], 0x09); break;  // toward -inf, no precision exception
+      case Op::kSqrt: vsqrtps(out, in[0]); break;
+      // Ordered predicates: false when either side is NaN, as the C++ comparisons.
+      case Op::kLess: vcmpps(out, in[0], in[1], 0x11); break;          // LT_OQ
+      case Op::kGreater: vcmpps(out, in[0], in[1], 0x1E); break;       // GT_OQ
+      case Op::kGreaterEqual: vcmpps(out, in[0], in[1], 0x1D); break;  // GE_OQ
+      case Op::kEqual: vcmpps(out, in[0], in[1], 0x00); break;         // EQ_OQ
+      case Op::kUnordered: vcmpps(out, in[0], in[1], 0x03); break;     // UNORD_Q
+      case Op::kSelect: vblendvps(out, in[2], in[1], in[0]); break;    // mask ? yes : no
+      case Op::kIntAdd: vpaddd(out, in[0], in[1]); break;
+      case Op::kIntSub: vpsubd(out, in[0], in[1]); break;
+      case Op::kAnd: vpand(out, in[0], in[1]); break;
+      case Op::kOr: vpor(out, in[0], in[1]); break;
+      case Op::kXor: vpxor(out, in[0], in[1]); break;
+      case Op::kShiftLeft: vpslld(out, in[0], static_cast<std::uint8_t>(node.immediate)); break;
+      case Op::kShiftRight: vpsrad(out, in[0], static_cast<std::uint8_t>(node.immediate)); break;
+      case Op::kToInt: vcvttps2dq(out, in[0]); break;
+      case Op::kToFloat: vcvtdq2ps(out, in[0]); break;
+      case Op::kIntGreater: vpcmpgtd(out, in[0], in[1]); break;
+      case Op::kInput: case Op::kConstant: case Op::kLiteral: case Op::kConstantCount: case Op::kGather:
+      case Op::kStore: break;  // handled above
+    }
+  }
+
+  // vgatherdps wants its result, index and mask in three different registers and clears the mask, so
+  // the result and a scratch mask are taken while the index still holds its register.
+  void EmitGather(int n, const Xbyak::Ymm& index) {
+    const Node& node = nodes_[static_cast<std::size_t>(n)];
+    const int index_value = node.args[0];
+    const int reg = TakeRegister(n, node.args);
+    where_[n] = reg;
+    register_value_[reg] = n;
+    const int mask_reg = TakeRegister(n, {index_value, n, kNoArg});
+    const Xbyak::Ymm mask(mask_reg);
+    vpcmpeqd(mask, mask, mask);
+    vgatherdps(Xbyak::Ymm(reg), ptr[regs_.constants + index * 4 + 4 * static_cast<int>(node.immediate)], mask);
+    ++loop_memory_operations_;
+    if (!Hoisted(index_value) && NextUse(index_value, n) == std::numeric_limits<int>::max()) {
+      register_value_[where_[index_value]] = kNoArg;
+      where_[index_value] = kNoArg;
+    }
+    if (uses_[static_cast<std::size_t>(n)].empty()) {
+      register_value_[reg] = kNoArg;
+      where_[n] = kNoArg;
+    }
+  }
+
+  // rdi: the RunArguments (System V's first argument); the others hold its fields, all scratch
+  // registers of the ABI. `offset` walks the batch in bytes up to `end`; `lane` holds a lane's address.
+  struct Registers {
+    Xbyak::Reg64 arguments, read_lanes, write_lanes, constants, literals, spill, offset, end, lane;
+  };
+  const std::vector<Node>& nodes_;
+  const bool trial_;
+  const Registers regs_{rdi, rsi, rdx, rcx, r8, r9, r10, r11, rax};
+  std::vector<bool> live_;
+  std::vector<std::vector<int>> uses_;
+  std::vector<int> where_;  // register of each value, kNoArg when not in one
+  std::array<int, kVectorRegisters> register_value_{};
+  std::vector<int> spill_slot_;
+  int spill_slots_ = 0;
+  int spilled_values_ = 0;
+  std::vector<float> literals_;
+  std::map<std::uint32_t, int> literal_index_;
+  std::size_t hoisted_;
+  int available_registers_ = kVectorRegisters;  // the others hold hoisted constants
+  std::vector<int> pinned_values_;
+  std::map<int, Xbyak::Reg64> lane_pointer_;  // by lane key
+  int loop_memory_operations_ = 0;
+};
+
+class AvxProgram final : public CompiledProgram {
+ public:
+  using Function = void (*)(const RunArguments*);
+
+  explicit AvxProgram(std::unique_ptr<Emitter> emitter)
+      : emitter_(std::move(emitter)),
+        function_(emitter_->getCode<Function>()),
+        literals_(emitter_->literals()),
+        spill_floats_(static_cast<std::size_t>(emitter_->spill_slots()) * kLanesPerVector) {}
+
+  void Run(RunArguments arguments) const override {
+    arguments.literals = literals_.data();
+    function_(&arguments);
+  }
+  std::size_t spill_floats() const override { return spill_floats_; }
+  std::span<const std::uint8_t> code() const override { return {emitter_->getCode(), emitter_->getSize()}; }
+  int spilled_values() const override { return emitter_->spilled_values(); }
+
+ private:
+  std::unique_ptr<Emitter> emitter_;
+  Function function_;
+  std::vector<float> literals_;
+  std::size_t spill_floats_;
+};
+
+// Bytes of code per traced node, generously: an operation is one instruction, a reload or spill
+// adds one or two more (each at most 10 bytes).
+constexpr std::size_t kCodeBytesPerNode = 40;
+constexpr std::size_t kCodeBytesFixed = 512;
+// Constants kept in registers across the loop: at most this many of the 16 (the rest are the loop's).
+constexpr int kMaxHoistedConstants = 12;
+
+}  // namespace
+
+std::unique_ptr<CompiledProgram> Compile(const Program& program, std::string& why_not) {
+  static const bool has_avx2 = Xbyak::util::Cpu().has(Xbyak::util::Cpu::tAVX2);
+  if (!has_avx2) {
+    why_not = "the CPU has no AVX2";
+    return nullptr;
+  }
+  Graph graph;
+  tracing = &graph;
+  Tracer tracer;
+  for (const Instruction& instruction : program.instructions) tracer.Trace(instruction);
+  tracer.StoreOutputs();
+  tracing = nullptr;
+  try {
+    // Each constant kept in a register saves a load per iteration but takes a register from the
+    // loop's values, which may then be reloaded or spilled more: the count with the fewest loads
+    // and stores in the loop wins (code generation takes microseconds).
+    const std::size_t code_size = kCodeBytesFixed + kCodeBytesPerNode * graph.nodes().size();
+    std::vector<std::uint8_t> trial_buffer(code_size);
+    int best_hoisted = 0, fewest = std::numeric_limits<int>::max();
+    for (int hoisted = 0; hoisted <= kMaxHoistedConstants && hoisted <= best_hoisted + 2; ++hoisted) {
+      Emitter trial(graph.nodes(), code_size, hoisted, trial_buffer.data());
+      trial.Generate();
+      if (trial.loop_memory_operations() < fewest) fewest = trial.loop_memory_operations(), best_hoisted = hoisted;
+      if (trial.hoisted() < static_cast<std::size_t>(hoisted)) break;  // no constants left to keep
+    }
+    auto emitter = std::make_unique<Emitter>(graph.nodes(), code_size, best_hoisted);
+    emitter->Generate();
+    return std::make_unique<AvxProgram>(std::move(emitter));
+  } catch (const Xbyak::Error& error) {
+    why_not = std::string("code generation failed: ") + error.what();
+    return nullptr;
+  }
+}
+
+}  // namespace vs11::jit

@@ -1,0 +1,51 @@
+// The jit engine's compiler: a whole vs_1_1 program becomes one x86-64 AVX2 loop (xbyak) that runs
+// it on 8 vertices per iteration with the values in registers. The batch engine's kernels store every
+// instruction's result to memory and load it back in the next step; this loop does not, which is
+// what the batch engine loses to hand-written SIMD code.
+//
+// Bit exactness: the program is traced through the very templates of vm/semantics.h with a lane type
+// that records operations instead of computing them, so the machine code performs the reference
+// engine's IEEE operations in the reference engine's order (unfused, floor/sqrt/div exact).
+//
+// The compiled loop reads and writes the batch engine's lane table and constant table
+// (vm/batch_plan.h), so it slots into the batch engine in place of its kernel steps.
+#pragma once
+
+#include <cstddef>
+#include <memory>
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "vm/program.h"
+
+namespace vs11::jit {
+
+// What one call of the compiled loop works on (the field order is part of the generated code).
+struct RunArguments {
+  const float* const* read_lanes;  // the lane table, for loads
+  float* const* write_lanes;       // the lane table, for stores
+  const float* constants;          // the constant table (rows as vm/batch_plan.h lays them out)
+  std::size_t count;               // vertices, a multiple of 8
+  const float* literals;           // filled in by CompiledProgram::Run
+  float* spill;                    // spill_floats() floats of scratch, one buffer per thread
+  std::int32_t constant_count;     // registers in the bank: relative reads outside [0, count) read 0
+};
+
+class CompiledProgram {
+ public:
+  virtual ~CompiledProgram() = default;
+  virtual void Run(RunArguments arguments) const = 0;
+  virtual std::size_t spill_floats() const = 0;
+  // The machine code, and how many values the register allocator had to spill (for tests and notes).
+  virtual std::span<const std::uint8_t> code() const = 0;
+  virtual int spilled_values() const = 0;
+};
+
+// Compiles `program` (well formed, as Decode accepts). nullptr, with `why_not` set, when the CPU has
+// no AVX2 (or, should it ever happen, code generation fails).
+std::unique_ptr<CompiledProgram> Compile(const Program& program, std::string& why_not);
+
+}  // namespace vs11::jit
