@@ -186,8 +186,9 @@ std::optional<std::string> LoadCube(const IrrmapOptions& options, const CheckedO
   return std::nullopt;
 }
 
-// Mean time of ProjectLevel at one level, in ms.
-double TimeProjection(const CubeMipChain& mips, const BasisPyramid& basis, int level, Sh9Rgb& coefficients) {
+// Mean time of ProjectLevel at one level, in ms, repeated until `min_ms` have passed.
+double TimeProjection(const CubeMipChain& mips, const BasisPyramid& basis, int level, Sh9Rgb& coefficients,
+                      double min_ms) {
   const Clock::time_point start = Clock::now();
   int runs = 0;
   double elapsed = 0.0;
@@ -195,7 +196,7 @@ double TimeProjection(const CubeMipChain& mips, const BasisPyramid& basis, int l
     coefficients = ProjectLevel(mips, basis, level);
     ++runs;
     elapsed = MillisecondsSince(start);
-  } while (elapsed < kMinTimingMs && runs < kMaxTimingRuns);
+  } while (elapsed < min_ms && runs < kMaxTimingRuns);
   return elapsed / runs;
 }
 
@@ -252,12 +253,13 @@ nlohmann::ordered_json CoefficientsJson(const IrrmapReport& report, const Irrmap
   json["constants"] = ConstantsJson(report.constants);
   nlohmann::ordered_json levels = nlohmann::ordered_json::array();
   for (const LevelReport& level : report.levels) {
-    levels.push_back({{"level", level.level},
-                      {"size", level.size},
-                      {"update_ms", level.update_ms},
-                      {"max_relative_error", level.error.max_relative},
-                      {"mean_relative_error", level.error.mean_relative},
-                      {"estimated_error", level.estimated_error}});
+    nlohmann::ordered_json row = {{"level", level.level}, {"size", level.size}, {"update_ms", level.update_ms}};
+    if (!options.coefficients_only) {
+      row["max_relative_error"] = level.error.max_relative;
+      row["mean_relative_error"] = level.error.mean_relative;
+    }
+    row["estimated_error"] = level.estimated_error;
+    levels.push_back(std::move(row));
   }
   json["levels"] = std::move(levels);
   nlohmann::ordered_json timings = nlohmann::ordered_json::object();
@@ -327,6 +329,27 @@ std::string ConstantsFileComment(const IrrmapReport& report, const PaperProgram&
       fmt::arg("size", report.levels[report.level].size), fmt::arg("first", program.constant_base()),
       fmt::arg("last", program.constant_base() + 6), fmt::arg("normal", program.normal_register()),
       fmt::arg("output", OutputSlotName(program.output_slot())));
+}
+
+// Writes coeffs.json, constants.vsh and `more` into out_dir, all or none (WriteOutputs), timed as
+// "write"; the paths go to report.files.
+std::optional<std::string> WriteJobOutputs(const IrrmapOptions& options, const CheckedOptions& checked,
+                                           const PaperProgram& program, std::vector<PendingOutput> more,
+                                           IrrmapReport& report) {
+  const std::string coefficients_text = CoefficientsJson(report, options, checked).dump(2) + "\n";
+  const std::string constants_text =
+      ConstantsDefText(report.constants, program.constant_base(), ConstantsFileComment(report, program));
+  std::vector<PendingOutput> outputs = {
+      {kCoefficientsFile, [&](const fs::path& path) { return WriteFileAtomically(path, coefficients_text); }},
+      {kConstantsFile, [&](const fs::path& path) { return WriteFileAtomically(path, constants_text); }},
+  };
+  for (PendingOutput& output : more) outputs.push_back(std::move(output));
+  std::vector<fs::path> written;
+  std::optional<std::string> write_error =
+      Timed(report, "write", [&] { return WriteOutputs(options.out_dir, outputs, written); });
+  if (write_error) return write_error;
+  report.files = std::move(written);
+  return std::nullopt;
 }
 
 // Picks report.level (--level, else by --max-error), marks it, records every level's
@@ -443,8 +466,12 @@ std::optional<std::string> RunIrrmap(const IrrmapOptions& options, IrrmapReport&
   if (load_error) return load_error;
   report.face_size = cube.face_size;
 
-  std::optional<CubeMipChain> mips = Timed(report, "env_mips", [&] { return BuildEnvironmentMips(cube); });
-  std::optional<BasisPyramid> basis = Timed(report, "basis_pyramid", [&] { return BuildBasisPyramid(cube.face_size); });
+  // The pyramid takes the map as its level 0 rather than a second copy; from here on `cube` holds
+  // only its face_size and the texels are mips->levels[0].
+  std::optional<CubeMipChain> mips =
+      Timed(report, "env_mips", [&] { return BuildEnvironmentMips(std::move(cube)); });
+  std::optional<BasisPyramid> basis =
+      Timed(report, "basis_pyramid", [&] { return BuildBasisPyramid(cube.face_size, checked.threads); });
   if (!mips || !basis) return fmt::format("cannot build the mip pyramids of face size {}", cube.face_size);
 
   // Every level's coefficients, each update timed on its own.
@@ -454,7 +481,8 @@ std::optional<std::string> RunIrrmap(const IrrmapOptions& options, IrrmapReport&
       LevelReport row;
       row.level = level;
       row.size = cube.face_size >> level;
-      row.update_ms = TimeProjection(*mips, *basis, level, row.coefficients);
+      row.update_ms = TimeProjection(*mips, *basis, level, row.coefficients,
+                                     options.coefficients_only ? 0.0 : kMinTimingMs);
       report.levels.push_back(row);
     }
   });
@@ -467,6 +495,8 @@ std::optional<std::string> RunIrrmap(const IrrmapOptions& options, IrrmapReport&
   std::string program_error;
   std::optional<PaperProgram> program = Timed(report, "program", [&] { return PaperProgram::Load(program_error); });
   if (!program) return program_error;
+
+  if (options.coefficients_only) return WriteJobOutputs(options, checked, *program, {}, report);
 
   // The irradiance cube map: the paper's program once per texel direction.
   CubeMap irradiance_map(options.map_size);
@@ -488,7 +518,7 @@ std::optional<std::string> RunIrrmap(const IrrmapOptions& options, IrrmapReport&
   std::vector<glm::dvec3> truth = Timed(report, "ground_truth", [&] {
     std::function<void(double)> report_fraction;
     if (progress) report_fraction = [&](double fraction) { progress("ground truth", fraction); };
-    return GroundTruthIrradiance(cube, truth_normals, checked.threads, report_fraction);
+    return GroundTruthIrradiance(mips->levels[0], truth_normals, checked.threads, report_fraction);
   });
   const std::span<const glm::dvec3> error_truth(truth.data(), error_normals.size());
   grid.SetValues(std::vector<glm::dvec3>(truth.begin() + static_cast<std::ptrdiff_t>(error_normals.size()), truth.end()));
@@ -515,25 +545,14 @@ std::optional<std::string> RunIrrmap(const IrrmapOptions& options, IrrmapReport&
       panels.push_back({PreviewLabel(row), program->Irradiance(PackTable1(row.coefficients), sphere.normals,
                                                                checked.engine, engine_options)});
     }
-    return RenderPreview(sphere, truth_panel, panels, cube, preview_options);
+    return RenderPreview(sphere, truth_panel, panels, mips->levels[0], preview_options);
   });
   for (std::string& warning : preview.warnings) report.warnings.push_back(std::move(warning));
 
-  const std::string coefficients_text = CoefficientsJson(report, options, checked).dump(2) + "\n";
-  const std::string constants_text =
-      ConstantsDefText(report.constants, program->constant_base(), ConstantsFileComment(report, *program));
-  const std::vector<PendingOutput> outputs = {
-      {kCoefficientsFile, [&](const fs::path& path) { return WriteFileAtomically(path, coefficients_text); }},
-      {kConstantsFile, [&](const fs::path& path) { return WriteFileAtomically(path, constants_text); }},
-      {kIrradianceFile, [&](const fs::path& path) { return WriteCrossExr(irradiance_map, path); }},
-      {kPreviewFile, [&](const fs::path& path) { return WriteImage(preview.image, path); }},
-  };
-  std::vector<fs::path> written;
-  std::optional<std::string> write_error =
-      Timed(report, "write", [&] { return WriteOutputs(options.out_dir, outputs, written); });
-  if (write_error) return write_error;
-  report.files = std::move(written);
-  return std::nullopt;
+  return WriteJobOutputs(options, checked, *program,
+                         {{kIrradianceFile, [&](const fs::path& path) { return WriteCrossExr(irradiance_map, path); }},
+                          {kPreviewFile, [&](const fs::path& path) { return WriteImage(preview.image, path); }}},
+                         report);
 }
 
 // ---- Formatting ------------------------------------------------------------------------------------

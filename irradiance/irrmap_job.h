@@ -82,6 +82,9 @@ struct IrrmapOptions {
   int error_normals = kDefaultErrorNormals;
   int sphere_diameter = 192;        // preview spheres, pixels (>= 16)
   std::filesystem::path font;       // preview labels; empty = kDefaultPreviewFont
+  // Only coeffs.json (without the error columns) and constants.vsh: no irradiance map, ground truth,
+  // error table or preview, and each level's update is run once instead of repeated for timing.
+  bool coefficients_only = false;
 };
 
 // One row of the level table.

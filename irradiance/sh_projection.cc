@@ -1,9 +1,12 @@
 // Direct and mip-pyramid SH9 projection of cube environment maps. See sh_projection.h.
 #include "irradiance/sh_projection.h"
 
+#include <algorithm>
+#include <atomic>
 #include <cassert>
 #include <cstddef>
 #include <cstring>
+#include <thread>
 
 namespace vs11::irradiance {
 namespace {
@@ -108,6 +111,87 @@ std::size_t LevelTexels(int size) {
   return static_cast<std::size_t>(kCubeFaceCount) * size * size;
 }
 
+// True when chain.levels are LevelCount(face_size) cube maps of faces face_size >> k.
+bool HasPyramidShape(const CubeMipChain& chain, int face_size) {
+  if (static_cast<int>(chain.levels.size()) != LevelCount(face_size)) return false;
+  for (std::size_t k = 0; k < chain.levels.size(); ++k) {
+    const int size = face_size >> k;
+    if (chain.levels[k].face_size != size) return false;
+    for (const Image& face : chain.levels[k].faces) {
+      if (face.width != size || face.height != size) return false;
+    }
+  }
+  return true;
+}
+
+// Each texel of `coarse` (half the size of `fine`) becomes the float mean of its 2 x 2 children.
+void HalveFace(const Image& fine, Image& coarse) {
+  for (int y = 0; y < coarse.height; ++y) {
+    for (int x = 0; x < coarse.width; ++x) {
+      const glm::vec3 sum = (fine.at(2 * x, 2 * y) + fine.at(2 * x + 1, 2 * y)) +
+                            (fine.at(2 * x, 2 * y + 1) + fine.at(2 * x + 1, 2 * y + 1));
+      coarse.at(x, y) = 0.25f * sum;
+    }
+  }
+}
+
+// Levels 1.. of a chain already shaped as a pyramid, from its level 0.
+void FillCoarserLevels(CubeMipChain& chain) {
+  for (std::size_t k = 1; k < chain.levels.size(); ++k) {
+    for (int f = 0; f < kCubeFaceCount; ++f) HalveFace(chain.levels[k - 1].faces[f], chain.levels[k].faces[f]);
+  }
+}
+
+// Face f of every level of `pyramid` (already sized). Level 0 is computed in double, stored as float
+// and summed (in double) into its parents; every coarser level is then the double sum of its four
+// double children, rounded to float once. The double sums of one face take 18 bytes per texel of
+// it (a sixth of a whole level 1).
+void BuildBasisFace(int f, const std::vector<double>& solid_angles, BasisPyramid& pyramid) {
+  const int face_size = pyramid.face_size;
+  const int count = static_cast<int>(pyramid.levels.size());
+  BasisLevel& finest = pyramid.levels[0];
+  std::array<std::vector<double>, kSh9Coefficients> parent;
+  const CubeFace face = kAllCubeFaces[f];
+  const int parent_size = face_size / 2;
+  for (auto& p : parent) p.assign(static_cast<std::size_t>(parent_size) * parent_size, 0.0);
+  for (int y = 0; y < face_size; ++y) {
+    const std::size_t row = (static_cast<std::size_t>(f) * face_size + y) * face_size;
+    const std::size_t parent_row = static_cast<std::size_t>(y / 2) * parent_size;
+    for (int x = 0; x < face_size; ++x) {
+      const std::array<double, kSh9Coefficients> basis = ShBasis(TexelDirection(face, x, y, face_size));
+      const double solid_angle = solid_angles[static_cast<std::size_t>(y) * face_size + x];
+      for (int i = 0; i < kSh9Coefficients; ++i) {
+        const double weight = basis[i] * solid_angle;
+        finest.weights[i][row + x] = static_cast<float>(weight);
+        if (parent_size > 0) parent[i][parent_row + x / 2] += weight;
+      }
+    }
+  }
+  for (int k = 1; k < count; ++k) {
+    BasisLevel& level = pyramid.levels[k];
+    const int size = level.size;
+    const std::size_t face_offset = static_cast<std::size_t>(f) * size * size;
+    for (int i = 0; i < kSh9Coefficients; ++i) {
+      for (std::size_t t = 0; t < parent[i].size(); ++t) {
+        level.weights[i][face_offset + t] = static_cast<float>(parent[i][t]);
+      }
+    }
+    if (k + 1 == count) break;
+    const int half = size / 2;
+    for (int i = 0; i < kSh9Coefficients; ++i) {
+      std::vector<double> next(static_cast<std::size_t>(half) * half, 0.0);
+      auto child = [&](int cx, int cy) { return parent[i][static_cast<std::size_t>(cy) * size + cx]; };
+      for (int y = 0; y < half; ++y) {
+        for (int x = 0; x < half; ++x) {
+          next[static_cast<std::size_t>(y) * half + x] = (child(2 * x, 2 * y) + child(2 * x + 1, 2 * y)) +
+                                                         (child(2 * x, 2 * y + 1) + child(2 * x + 1, 2 * y + 1));
+        }
+      }
+      parent[i] = std::move(next);
+    }
+  }
+}
+
 }  // namespace
 
 Sh9Rgb ProjectDirect(const CubeMap& env) {
@@ -135,32 +219,38 @@ int LevelCount(int face_size) {
   return count;
 }
 
-std::optional<CubeMipChain> BuildEnvironmentMips(const CubeMap& env) {
+std::optional<CubeMipChain> BuildEnvironmentMips(const CubeMap& env) { return BuildEnvironmentMips(CubeMap(env)); }
+
+std::optional<CubeMipChain> BuildEnvironmentMips(CubeMap&& env) {
   const int count = LevelCount(env.face_size);
   if (count == 0) return std::nullopt;
   CubeMipChain chain;
   chain.levels.reserve(count);
-  chain.levels.push_back(env);
-  for (int k = 1; k < count; ++k) {
-    const CubeMap& fine = chain.levels.back();
-    CubeMap coarse(fine.face_size / 2);
-    for (int f = 0; f < kCubeFaceCount; ++f) {
-      const Image& src = fine.faces[f];
-      Image& dst = coarse.faces[f];
-      for (int y = 0; y < dst.height; ++y) {
-        for (int x = 0; x < dst.width; ++x) {
-          const glm::vec3 sum = (src.at(2 * x, 2 * y) + src.at(2 * x + 1, 2 * y)) +
-                                (src.at(2 * x, 2 * y + 1) + src.at(2 * x + 1, 2 * y + 1));
-          dst.at(x, y) = 0.25f * sum;
-        }
-      }
-    }
-    chain.levels.push_back(std::move(coarse));
-  }
+  const int face_size = env.face_size;
+  chain.levels.push_back(std::move(env));
+  for (int k = 1; k < count; ++k) chain.levels.emplace_back(face_size >> k);
+  FillCoarserLevels(chain);
   return chain;
 }
 
-std::optional<BasisPyramid> BuildBasisPyramid(int face_size) {
+bool RefillEnvironmentMips(const CubeMap& env, CubeMipChain& chain) {
+  const int count = LevelCount(env.face_size);
+  if (count == 0) return false;
+  if (!HasPyramidShape(chain, env.face_size)) {
+    chain.levels.clear();
+    chain.levels.reserve(count);
+    for (int k = 0; k < count; ++k) chain.levels.emplace_back(env.face_size >> k);
+  }
+  for (int f = 0; f < kCubeFaceCount; ++f) {
+    // Same size and capacity: the copy reuses the level's pixel buffer.
+    chain.levels[0].faces[f].pixels = env.faces[f].pixels;
+  }
+  FillCoarserLevels(chain);
+  return true;
+}
+
+std::optional<BasisPyramid> BuildBasisPyramid(int face_size, int threads) {
+  assert(threads >= 1);
   const int count = LevelCount(face_size);
   if (count == 0) return std::nullopt;
   BasisPyramid pyramid;
@@ -171,60 +261,22 @@ std::optional<BasisPyramid> BuildBasisPyramid(int face_size) {
     level.size = face_size >> k;
     for (auto& w : level.weights) w.assign(LevelTexels(level.size), 0.0f);
   }
-
-  // Level 0 is computed in double, stored as float and summed (in double) into its parents; every
-  // coarser level is then the double sum of its four double children, rounded to float once.
-  const int parent_size = count > 1 ? face_size / 2 : 0;
-  std::array<std::vector<double>, kSh9Coefficients> parent;
-  for (auto& p : parent) p.assign(LevelTexels(parent_size), 0.0);
-  std::vector<double> solid_angles;
-  BasisLevel& finest = pyramid.levels[0];
+  std::vector<double> solid_angles(static_cast<std::size_t>(face_size) * face_size);
   for (int y = 0; y < face_size; ++y) {
-    RowSolidAngles(y, face_size, solid_angles);
-    for (int f = 0; f < kCubeFaceCount; ++f) {
-      const CubeFace face = kAllCubeFaces[f];
-      const std::size_t row = (static_cast<std::size_t>(f) * face_size + y) * face_size;
-      const std::size_t parent_row =
-          (static_cast<std::size_t>(f) * parent_size + y / 2) * parent_size;
-      for (int x = 0; x < face_size; ++x) {
-        const std::array<double, kSh9Coefficients> basis =
-            ShBasis(TexelDirection(face, x, y, face_size));
-        for (int i = 0; i < kSh9Coefficients; ++i) {
-          const double weight = basis[i] * solid_angles[x];
-          finest.weights[i][row + x] = static_cast<float>(weight);
-          if (parent_size > 0) parent[i][parent_row + x / 2] += weight;
-        }
-      }
+    for (int x = 0; x < face_size; ++x) {
+      solid_angles[static_cast<std::size_t>(y) * face_size + x] = TexelSolidAngle(x, y, face_size);
     }
   }
-
-  for (int k = 1; k < count; ++k) {
-    BasisLevel& level = pyramid.levels[k];
-    for (int i = 0; i < kSh9Coefficients; ++i) {
-      for (std::size_t t = 0; t < parent[i].size(); ++t) {
-        level.weights[i][t] = static_cast<float>(parent[i][t]);
-      }
-    }
-    if (k + 1 == count) break;
-    const int size = level.size;
-    const int half = size / 2;
-    for (int i = 0; i < kSh9Coefficients; ++i) {
-      std::vector<double> next(LevelTexels(half), 0.0);
-      for (int f = 0; f < kCubeFaceCount; ++f) {
-        for (int y = 0; y < half; ++y) {
-          for (int x = 0; x < half; ++x) {
-            auto child = [&](int cx, int cy) {
-              return parent[i][(static_cast<std::size_t>(f) * size + cy) * size + cx];
-            };
-            next[(static_cast<std::size_t>(f) * half + y) * half + x] =
-                (child(2 * x, 2 * y) + child(2 * x + 1, 2 * y)) +
-                (child(2 * x, 2 * y + 1) + child(2 * x + 1, 2 * y + 1));
-          }
-        }
-      }
-      parent[i] = std::move(next);
-    }
-  }
+  // Faces write disjoint parts of every level, so they are built in parallel, each worker taking
+  // the next face left; the result does not depend on `threads`.
+  std::atomic<int> next_face = 0;
+  auto work = [&] {
+    for (int f = next_face++; f < kCubeFaceCount; f = next_face++) BuildBasisFace(f, solid_angles, pyramid);
+  };
+  std::vector<std::thread> helpers;
+  for (int t = 1; t < std::min(threads, kCubeFaceCount); ++t) helpers.emplace_back(work);
+  work();
+  for (std::thread& helper : helpers) helper.join();
   return pyramid;
 }
 

@@ -41,6 +41,17 @@ struct CubeMipChain {
 // box filter). Returns std::nullopt when the face size is not a positive power of two: odd sizes
 // have no exact 2 x 2 parentage, and dropping a row or column would silently lose light.
 std::optional<CubeMipChain> BuildEnvironmentMips(const CubeMap& env);
+// The same, taking `env` as level 0 instead of copying it (a map of 1024 faces is 75 MB). `env` is
+// left moved-from, its face_size unchanged.
+std::optional<CubeMipChain> BuildEnvironmentMips(CubeMap&& env);
+
+// The same pyramid written into `chain` in place, for an environment that changes every frame: no
+// allocation when `chain` already holds a pyramid of env's face size (one from BuildEnvironmentMips,
+// or one filled here before), so its memory is not freed and page-faulted in again per frame; the
+// result is bit-identical to BuildEnvironmentMips(env). Any other `chain` (empty, another size) is
+// reshaped first, which allocates once. Returns false, leaving `chain` unchanged, when the face size
+// is not a positive power of two.
+bool RefillEnvironmentMips(const CubeMap& env, CubeMipChain& chain);
 
 // One level of the basis pyramid: for each of the nine basis functions, a float per texel of the six
 // faces, stored structure-of-arrays as weights[index][(face * size + y) * size + x] (face in
@@ -64,9 +75,12 @@ struct BasisPyramid {
 // Samples the nine basis functions times the exact solid angle at every finest texel and sums them
 // 2 x 2 up to 1 x 1. The sums are formed in double (never from already rounded floats) and each
 // stored value is rounded to float once. Returns std::nullopt when `face_size` is not a positive
-// power of two. Memory: 6 size^2 x 9 floats at level 0 (about 14 MB at 256, 906 MB at 2048) plus
-// a third more for the coarser levels, and a transient double copy of level 1 while building.
-std::optional<BasisPyramid> BuildBasisPyramid(int face_size);
+// power of two. The six faces are built by up to `threads` (>= 1, asserted) threads, the calling
+// one among them, with the same result for any count. Memory: 6 size^2 x 9 floats at level 0
+// (about 14 MB at 256, 906 MB at 2048) plus a third more for the coarser levels; while building, a
+// table of one face's solid angles (8 bytes per texel of a face) and, per thread, one face's level 1
+// in double (18 bytes per texel of a face): 27 MB at 1024 with one thread, 46 MB with two.
+std::optional<BasisPyramid> BuildBasisPyramid(int face_size, int threads = 1);
 
 // sum over the texels of `level` of mean radiance (float) x summed basis weight (float), each
 // product exact in double, summed in double per face row (8 fixed lane-wise partial sums folded in

@@ -1,7 +1,9 @@
 // Cost of one coefficient update (wall time, UseRealTime) from a sky environment:
 //
 //   BM_Coefficients/<face>/<level>       ProjectLevel from a pre-built mip chain and basis pyramid
-//   BM_EnvMips/<face>                    BuildEnvironmentMips (the per-frame part of the mip method)
+//   BM_EnvMips/<face>                    BuildEnvironmentMips (a freshly allocated pyramid per call)
+//   BM_EnvMipsRefill/<face>              RefillEnvironmentMips into one pyramid (the per-frame part
+//                                        of the mip method in a real-time loop)
 //   BM_Coefficients_ScalarDouble/<face>  ProjectScalarDouble: the scalar double per-texel baseline
 //   BM_SkyGeneration/<face>              MakeSky (how long regenerating the environment itself takes)
 
@@ -39,6 +41,16 @@ void BM_EnvMips(benchmark::State& state) {
   for (auto _ : state) benchmark::DoNotOptimize(irradiance::BuildEnvironmentMips(fixture.env));
 }
 BENCHMARK(BM_EnvMips)->Arg(256)->Arg(1024)->UseRealTime()->Unit(benchmark::kMillisecond);
+
+void BM_EnvMipsRefill(benchmark::State& state) {
+  const ProjectionFixture& fixture = SkyFixture(static_cast<int>(state.range(0)));
+  irradiance::CubeMipChain mips = fixture.mips;
+  for (auto _ : state) {
+    irradiance::RefillEnvironmentMips(fixture.env, mips);
+    benchmark::ClobberMemory();
+  }
+}
+BENCHMARK(BM_EnvMipsRefill)->Arg(256)->Arg(1024)->UseRealTime()->Unit(benchmark::kMillisecond);
 
 void BM_Coefficients_ScalarDouble(benchmark::State& state) {
   const ProjectionFixture& fixture = SkyFixture(static_cast<int>(state.range(0)));

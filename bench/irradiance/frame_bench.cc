@@ -1,7 +1,7 @@
 // The paper's dynamic-lighting experiment (section 3.3), one frame per iteration (wall time):
 //
 //   the sky changes (the sun's azimuth advances 45 degrees a frame)
-//   -> [mip methods] its mip pyramid (BuildEnvironmentMips)
+//   -> [mip methods] its mip pyramid, refilled in place (RefillEnvironmentMips: no allocation)
 //   -> nine coefficients -> the seven Table 1 constants -> the program over a 100 000-vertex mesh
 //
 //   BM_Frame/direct_cpu  ProjectScalarDouble at full resolution + EvalTable1Scalar per vertex (no VM)
@@ -82,12 +82,13 @@ int LevelOf(FrameCase c) {
   }
 }
 
-// The coefficient step of one frame for sky `index`.
-irradiance::Sh9Rgb FrameCoefficients(const FrameFixture& f, FrameCase c, int index) {
+// The coefficient step of one frame for sky `index`; `mips` is the pyramid the mip cases refill
+// every frame.
+irradiance::Sh9Rgb FrameCoefficients(const FrameFixture& f, FrameCase c, int index, irradiance::CubeMipChain& mips) {
   const int level = LevelOf(c);
   if (c == FrameCase::kDirectCpu) return ProjectScalarDouble(f.skies[index]);
   if (level == 0) return irradiance::ProjectLevel(f.single_level[index], f.basis, 0);
-  const irradiance::CubeMipChain mips = *irradiance::BuildEnvironmentMips(f.skies[index]);
+  irradiance::RefillEnvironmentMips(f.skies[index], mips);
   return irradiance::ProjectLevel(mips, f.basis, level);
 }
 
@@ -139,7 +140,8 @@ double MeanRelativeError(const FrameFixture& f, FrameCase c) {
     normals.z.push_back(static_cast<float>(n.z));
   }
   VertexStep step(f, c, normals);
-  step.Run(irradiance::PackTable1(FrameCoefficients(f, c, 0)));
+  irradiance::CubeMipChain mips;
+  step.Run(irradiance::PackTable1(FrameCoefficients(f, c, 0, mips)));
   std::vector<glm::dvec3> estimate(normals.size());
   for (std::size_t i = 0; i < estimate.size(); ++i) estimate[i] = step.Result(i);
   return irradiance::CompareIrradiance(estimate, f.truth).mean_relative;
@@ -150,9 +152,10 @@ void BM_Frame(benchmark::State& state, FrameCase c) {
   const double error = MeanRelativeError(f, c);
   const SoaNormals mesh = RandomUnitNormals(kMeshVertices);
   VertexStep step(f, c, mesh);
+  irradiance::CubeMipChain mips;  // shaped by the first frame, refilled by every later one
   int frame = 0;
   for (auto _ : state) {
-    step.Run(irradiance::PackTable1(FrameCoefficients(f, c, frame)));
+    step.Run(irradiance::PackTable1(FrameCoefficients(f, c, frame, mips)));
     frame = (frame + 1) % kSunPositions;
     benchmark::ClobberMemory();
   }

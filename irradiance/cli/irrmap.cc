@@ -135,6 +135,9 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--sphere-size", options.sphere_diameter, "diameter of the preview spheres in pixels")
       ->capture_default_str();
+  app.add_flag("--coefficients-only", options.coefficients_only,
+               "write only coeffs.json and constants.vsh: no irradiance map, ground truth, error table or preview "
+               "(each level computed once, not timed repeatedly)");
   app.add_option("--font", font, fmt::format("TrueType font of the preview labels (default {})",
                                              vs11::irradiance::kDefaultPreviewFont));
   vs11::irradiance::cli::AddSubcommands(app);
@@ -168,7 +171,7 @@ int main(int argc, char** argv) {
   fmt::print("environment {}, layout {}, face size {}, coefficients from level {} ({}x{}), {} threads\n\n",
              report.environment, report.layout, report.face_size, report.level, report.levels[report.level].size,
              report.levels[report.level].size, report.threads);
-  fmt::print("{}\n", vs11::irradiance::FormatLevelTable(report));
+  if (!options.coefficients_only) fmt::print("{}\n", vs11::irradiance::FormatLevelTable(report));
   fmt::print("stage times:\n{}  {:<15} {:>10.3f} ms\n\n", vs11::irradiance::FormatTimings(report), "total", total_ms);
   fmt::print("wrote:");
   for (const auto& file : report.files) fmt::print(" {}", file.string());

@@ -4,6 +4,7 @@ namespace vs11::irradiance::cli {
 
 void AddSubcommands(CLI::App& app) {
   // `irrmap chart` and `irrmap stability` register here, one Add...Command(app) line each.
+  AddChartCommand(app);
   AddStabilityCommand(app);
 }
 

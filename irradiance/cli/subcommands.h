@@ -16,6 +16,7 @@ struct SubcommandFailure : std::runtime_error {
 // Registers every subcommand (subcommands.cc); a new one adds its line there.
 void AddSubcommands(CLI::App& app);
 
+void AddChartCommand(CLI::App& app);  // irrmap chart (chart_command.cc)
 void AddStabilityCommand(CLI::App& app);  // stability_command.cc
 
 }  // namespace vs11::irradiance::cli

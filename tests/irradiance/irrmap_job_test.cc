@@ -174,6 +174,27 @@ TEST_F(IrrmapJob, WritesTheFourFilesForASmallBuiltin) {
   png->close();
 }
 
+TEST_F(IrrmapJob, CoefficientsOnlyWritesTheSameCoefficientsAndNoMore) {
+  options_.environment = "studio";
+  options_.level = 2;
+  ASSERT_EQ(RunIrrmap(options_, report_), std::nullopt);
+  const Sh9Rgb full_run = report_.coefficients;
+  options_.out_dir = folder_ / "coefficients_only";
+  options_.coefficients_only = true;
+  ASSERT_EQ(RunIrrmap(options_, report_), std::nullopt);
+  std::vector<std::string> names;
+  for (const auto& entry : fs::directory_iterator(options_.out_dir)) names.push_back(entry.path().filename());
+  std::sort(names.begin(), names.end());
+  EXPECT_EQ(names, (std::vector<std::string>{"coeffs.json", "constants.vsh"}));
+  EXPECT_EQ(report_.TimingMs("ground_truth"), 0.0);
+  const nlohmann::json json = nlohmann::json::parse(ReadText(options_.out_dir / "coeffs.json"));
+  EXPECT_FALSE(json["levels"][0].contains("mean_relative_error"));
+  std::string error;
+  const std::optional<Sh9Rgb> parsed = ParseCoefficientsJson(ReadText(options_.out_dir / "coeffs.json"), error);
+  ASSERT_TRUE(parsed) << error;
+  for (int i = 0; i < kSh9Coefficients; ++i) EXPECT_EQ(parsed->coefficients[i], full_run.coefficients[i]) << i;
+}
+
 TEST_F(IrrmapJob, ReportsEveryLevelAndCoarseLevelsKeepTheFullResolutionError) {
   options_.environment = "sky";
   options_.face_size = 128;

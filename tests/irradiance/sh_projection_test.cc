@@ -105,6 +105,55 @@ TEST(ShProjection, EnvironmentMipsAreBoxMeansDownToOneTexel) {
   EXPECT_EQ(chain->levels[2].faces[5].at(0, 0), glm::vec3(7.5f, 5.0f, 1.0f));
 }
 
+void ExpectSameMips(const CubeMipChain& actual, const CubeMipChain& expected) {
+  ASSERT_EQ(actual.levels.size(), expected.levels.size());
+  for (std::size_t k = 0; k < actual.levels.size(); ++k) {
+    ASSERT_EQ(actual.levels[k].face_size, expected.levels[k].face_size) << "level " << k;
+    for (int f = 0; f < kCubeFaceCount; ++f) {
+      EXPECT_EQ(actual.levels[k].faces[f].pixels, expected.levels[k].faces[f].pixels)
+          << "level " << k << " face " << f;
+    }
+  }
+}
+
+TEST(ShProjection, RefilledMipsEqualAFreshBuildAndReuseTheirBuffers) {
+  constexpr int kSize = 16;
+  std::optional<CubeMipChain> chain = BuildEnvironmentMips(MakeSky(kSize));
+  ASSERT_TRUE(chain.has_value());
+  std::vector<const glm::vec3*> buffers;
+  for (const CubeMap& level : chain->levels) {
+    for (const Image& face : level.faces) buffers.push_back(face.pixels.data());
+  }
+  SkyParams moved_sun;
+  moved_sun.sun_azimuth_degrees += 90.0;
+  const CubeMap next = MakeSky(kSize, moved_sun);
+  ASSERT_TRUE(RefillEnvironmentMips(next, *chain));
+  ExpectSameMips(*chain, *BuildEnvironmentMips(next));
+  std::size_t i = 0;
+  for (const CubeMap& level : chain->levels) {
+    for (const Image& face : level.faces) EXPECT_EQ(face.pixels.data(), buffers[i++]) << "reallocated";
+  }
+}
+
+TEST(ShProjection, MipsBuiltFromAMovedMapEqualThoseFromACopy) {
+  const CubeMap env = AsymmetricEnvironment(16);
+  CubeMap moved = env;
+  const std::optional<CubeMipChain> from_moved = BuildEnvironmentMips(std::move(moved));
+  ASSERT_TRUE(from_moved.has_value());
+  ExpectSameMips(*from_moved, *BuildEnvironmentMips(env));
+  EXPECT_EQ(moved.face_size, 16);
+  EXPECT_FALSE(BuildEnvironmentMips(CubeMap(12)).has_value());
+}
+
+TEST(ShProjection, RefillReshapesAChainOfAnotherSizeAndRejectsBadSizes) {
+  CubeMipChain chain;
+  ASSERT_TRUE(RefillEnvironmentMips(MakeStudio(8), chain));
+  ASSERT_TRUE(RefillEnvironmentMips(AsymmetricEnvironment(32), chain));
+  ExpectSameMips(chain, *BuildEnvironmentMips(AsymmetricEnvironment(32)));
+  EXPECT_FALSE(RefillEnvironmentMips(CubeMap(6), chain));
+  EXPECT_EQ(chain.levels.size(), 6u);  // unchanged
+}
+
 TEST(ShProjection, BasisPyramidLevelsAreSumsOfTheirChildren) {
   constexpr int kSize = 16;
   const std::optional<BasisPyramid> pyramid = BuildBasisPyramid(kSize);
@@ -139,6 +188,19 @@ TEST(ShProjection, BasisPyramidLevelsAreSumsOfTheirChildren) {
   const double solid_angle = TexelSolidAngle(3, 11, kSize);
   for (int i = 0; i < kSh9Coefficients; ++i) {
     EXPECT_EQ(finest.Row(i, 3, 11)[3], static_cast<float>(basis[i] * solid_angle));
+  }
+}
+
+TEST(ShProjection, BasisPyramidIsTheSameForAnyThreadCount) {
+  const std::optional<BasisPyramid> one = BuildBasisPyramid(16, 1);
+  ASSERT_TRUE(one.has_value());
+  for (int threads : {2, 4, 6, 9}) {
+    const std::optional<BasisPyramid> many = BuildBasisPyramid(16, threads);
+    ASSERT_TRUE(many.has_value());
+    ASSERT_EQ(many->levels.size(), one->levels.size());
+    for (std::size_t k = 0; k < one->levels.size(); ++k) {
+      EXPECT_EQ(many->levels[k].weights, one->levels[k].weights) << threads << " threads, level " << k;
+    }
   }
 }
 

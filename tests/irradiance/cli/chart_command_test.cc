@@ -1,0 +1,73 @@
+// `irrmap chart` as a user runs it: the binary (built before the tests, tests/CMakeLists.txt).
+#include <sys/wait.h>
+
+#include <array>
+#include <cstdio>
+#include <filesystem>
+#include <random>
+#include <string>
+
+#include <fmt/format.h>
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+namespace {
+
+namespace fs = std::filesystem;
+using ::testing::HasSubstr;
+
+struct CommandResult {
+  int status = -1;
+  std::string out;  // stdout and stderr
+};
+
+CommandResult RunIrrmap(const std::string& args) {
+  CommandResult result;
+  const std::string command = std::string(VS11_BINARY_DIR) + "/irradiance/irrmap " + args + " 2>&1";
+  FILE* pipe = popen(command.c_str(), "r");
+  if (!pipe) return result;
+  std::array<char, 4096> buffer;
+  while (std::size_t n = std::fread(buffer.data(), 1, buffer.size(), pipe)) result.out.append(buffer.data(), n);
+  const int status = pclose(pipe);
+  result.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
+  return result;
+}
+
+class ChartCommand : public testing::Test {
+ protected:
+  void SetUp() override {
+    ASSERT_TRUE(fs::exists(std::string(VS11_BINARY_DIR) + "/irradiance/irrmap"));
+    folder_ = fs::path(testing::TempDir()) / fmt::format("vs11_chart_command_{:x}", std::random_device{}());
+    fs::remove_all(folder_);
+  }
+  void TearDown() override { fs::remove_all(folder_); }
+  fs::path folder_;
+};
+
+TEST_F(ChartCommand, WritesTheCsvAndBothImagesAndPrintsTheTable) {
+  const CommandResult r = RunIrrmap(fmt::format(
+      "chart sky constant --face-size 4 --error-normals 16 --min-batch-ms 0 --batches 1 --threads 1 --out {}",
+      folder_.string()));
+  ASSERT_EQ(r.status, 0) << r.out;
+  for (const char* name : {"speed_accuracy.csv", "speed_accuracy.svg", "speed_accuracy.png"}) {
+    EXPECT_TRUE(fs::is_regular_file(folder_ / name)) << name;
+  }
+  EXPECT_THAT(r.out, HasSubstr("sky          direct     2       1x1"));
+}
+
+TEST_F(ChartCommand, AnUnknownEnvironmentFailsWithoutOutput) {
+  const CommandResult r = RunIrrmap(fmt::format("chart no_such_file.exr --face-size 4 --out {}", folder_.string()));
+  EXPECT_EQ(r.status, 1) << r.out;
+  EXPECT_THAT(r.out, HasSubstr("irrmap: error:"));
+  EXPECT_THAT(r.out, HasSubstr("no_such_file.exr"));
+  EXPECT_FALSE(fs::exists(folder_ / "speed_accuracy.csv"));
+}
+
+TEST_F(ChartCommand, HelpDescribesTheMethods) {
+  const CommandResult r = RunIrrmap("chart --help");
+  EXPECT_EQ(r.status, 0) << r.out;
+  EXPECT_THAT(r.out, HasSubstr("--min-batch-ms"));
+  EXPECT_THAT(r.out, HasSubstr("direct  the basis evaluated at level k's texel centres"));
+}
+
+}  // namespace
