@@ -2,9 +2,11 @@
 // cube map with their energy kept, and bilinear cube lookups.
 #include <algorithm>
 #include <array>
+#include <atomic>
 #include <cassert>
 #include <cmath>
 #include <numbers>
+#include <thread>
 #include <utility>
 #include <vector>
 
@@ -68,12 +70,13 @@ class LatLongSampler {
         sample_step_ * width / (2.0 * std::numbers::pi * std::max(sin_theta, 1e-12));
     const double wanted_scale = std::max(1.0, kKernelScalePerSampleSpacing * spacing);
     const bool whole_row = 4.0 * (std::floor(wanted_scale) + 1.0) >= width;
-    columns_.clear();
+    std::vector<std::pair<int, double>>& columns = ColumnScratch();
+    columns.clear();
     if (!whole_row && wanted_scale == 1.0) {
       const double column_floor = std::floor(fx);
       const std::array<double, 4> weights = CubicBSplineWeights(fx - column_floor);
       for (int k = 0; k < 4; ++k)
-        columns_.emplace_back(static_cast<int>(column_floor) - 1 + k, weights[k]);
+        columns.emplace_back(static_cast<int>(column_floor) - 1 + k, weights[k]);
     } else if (!whole_row) {
       const int scale = static_cast<int>(wanted_scale);
       const double blend = wanted_scale - scale;
@@ -82,11 +85,11 @@ class LatLongSampler {
       for (int x = first; x <= last; ++x) {
         const double weight = (1.0 - blend) * CubicBSpline((fx - x) / scale) / scale +
                               blend * CubicBSpline((fx - x) / (scale + 1)) / (scale + 1);
-        columns_.emplace_back(x, weight);
+        columns.emplace_back(x, weight);
       }
     }
     // Wrap once: the taps lie within (-width / 2, 3 width / 2) since 4 scale < width.
-    for (auto& [column, weight] : columns_) {
+    for (auto& [column, weight] : columns) {
       if (column < 0) column += width;
       if (column >= width) column -= width;
     }
@@ -108,7 +111,7 @@ class LatLongSampler {
         row_value = row_means_[row];
       } else {
         const glm::vec3* pixels = &image_.pixels[static_cast<std::size_t>(row) * width];
-        for (const auto& [column, weight] : columns_) {
+        for (const auto& [column, weight] : columns) {
           int x = column + shift;
           if (x >= width) x -= width;
           row_value += weight * glm::dvec3(pixels[x]);
@@ -123,7 +126,13 @@ class LatLongSampler {
   const Image& image_;
   double sample_step_;
   std::vector<glm::dvec3> row_means_;
-  mutable std::vector<std::pair<int, double>> columns_;  // scratch, reused between calls
+
+  // The taps of one lookup: scratch reused between calls, one per thread (GatherCube runs lookups
+  // on every core).
+  static std::vector<std::pair<int, double>>& ColumnScratch() {
+    thread_local std::vector<std::pair<int, double>> columns;
+    return columns;
+  }
 };
 
 constexpr int kMinHalvedHeight = 128;
@@ -208,9 +217,15 @@ template <class Lookup, class Samples>
 CubeMap GatherCube(int face_size, const Samples& samples_for, const Lookup& lookup) {
   CubeMap cube(face_size);
   const double texel = 2.0 / face_size;
-  for (CubeFace face : kAllCubeFaces) {
-    Image& out = cube.face(face);
-    for (int y = 0; y < face_size; ++y) {
+  // Rows of all faces are independent: every core takes the next row left (the result does not
+  // depend on the order).
+  std::atomic<int> next_row = 0;
+  const int rows = kCubeFaceCount * face_size;
+  auto work = [&] {
+    for (int row = next_row++; row < rows; row = next_row++) {
+      const CubeFace face = kAllCubeFaces[static_cast<std::size_t>(row / face_size)];
+      const int y = row % face_size;
+      Image& out = cube.face(face);
       for (int x = 0; x < face_size; ++x) {
         const int samples = samples_for(TexelDirection(face, x, y, face_size));
         const double step = texel / samples;
@@ -230,7 +245,12 @@ CubeMap GatherCube(int face_size, const Samples& samples_for, const Lookup& look
         out.at(x, y) = glm::vec3(sum / weight_sum);
       }
     }
-  }
+  };
+  const int threads = static_cast<int>(std::clamp(std::thread::hardware_concurrency(), 1u, static_cast<unsigned>(rows)));
+  std::vector<std::thread> helpers;
+  for (int t = 1; t < threads; ++t) helpers.emplace_back(work);
+  work();
+  for (std::thread& helper : helpers) helper.join();
   return cube;
 }
 
