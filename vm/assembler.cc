@@ -58,10 +58,6 @@ WriteMask MaskWithLane(WriteMask mask, int lane) {
   return WriteMask(static_cast<std::uint8_t>(mask.bits() | (1u << lane)));
 }
 
-bool IsScalarOutput(const RegisterRef& reg) {
-  return reg.file == RegisterFile::kRasterOut && (reg.index == kRasterOutFog || reg.index == kRasterOutPointSize);
-}
-
 // What each operand position of an instruction holds, from its operand shape (§3.2 "form").
 enum class OperandKind { kDest, kSource, kFloat };
 

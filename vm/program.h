@@ -40,6 +40,11 @@ struct RegisterRef {
   friend constexpr bool operator==(const RegisterRef&, const RegisterRef&) = default;
 };
 
+// oFog and oPts hold one value (lane x); they are written with the full mask (§2.3).
+constexpr bool IsScalarOutput(const RegisterRef& reg) {
+  return reg.file == RegisterFile::kRasterOut && (reg.index == kRasterOutFog || reg.index == kRasterOutPointSize);
+}
+
 // Lane selectors packed as D3D does: two bits per lane, lane x in the low bits (§4.5).
 class Swizzle {
  public:

@@ -347,6 +347,14 @@ class Validator {
       }
       return;
     }
+    if (IsScalarOutput(instruction.dest.reg) && mask.bits() != kAllLanes) {
+      // The assembler writes no other mask here, and the disassembler prints these registers without
+      // one (§4.13), so any other mask could not survive a round trip through text.
+      Error(index, fmt::format("writes {}{}; {} is scalar and takes the full mask: write it without a mask (§2.3)",
+                               RegisterName(instruction.dest.reg), LaneSuffix(mask.bits()),
+                               RegisterName(instruction.dest.reg)));
+      return;
+    }
     const MaskRule rule = instruction.info().mask_rule;
     if (!MaskAllowed(rule, mask)) {
       Error(index, fmt::format("write mask {} is not allowed; {} must write {} (§3.2)", LaneSuffix(mask.bits()),

@@ -210,7 +210,7 @@ TEST(Programs, AsPrintedListingComputesWhatSpecSection9Predicts) {
   double scale = 0.0;
   for (const glm::dvec3& n : normals) scale = std::max(scale, glm::length(IrradianceEq6(sh, n)));
   for (std::size_t i = 0; i < normals.size(); ++i) {
-    const glm::dvec3 n(glm::vec3(normals[i]));  // as the machine saw it
+    const glm::dvec3 n{glm::vec3(normals[i])};  // as the machine saw it
     const glm::dvec4 products(n.x * n.y, n.y * n.z, n.z * n.z, n.z * n.x);
     for (int c = 0; c < 3; ++c) {
       const double x2 = glm::dot(products, glm::dvec4(k.registers[SevenConstants::kB + c]));

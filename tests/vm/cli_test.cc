@@ -7,26 +7,14 @@
 
 #include <gtest/gtest.h>
 
+#include "tests/vm/run_vs11.h"
+
 namespace {
 
 namespace fs = std::filesystem;
 
-struct CommandResult {
-  int status = -1;
-  std::string output;  // stdout and stderr together
-};
-
-CommandResult RunVs11(const std::string& args) {
-  std::string command = std::string(VS11_BINARY_DIR) + "/vm/vs11 " + args + " 2>&1";
-  CommandResult result;
-  FILE* pipe = popen(command.c_str(), "r");
-  if (pipe == nullptr) return result;
-  std::array<char, 4096> buffer;
-  while (std::size_t n = std::fread(buffer.data(), 1, buffer.size(), pipe)) result.output.append(buffer.data(), n);
-  int status = pclose(pipe);
-  result.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return result;
-}
+using vs11::testing::CommandResult;
+using vs11::testing::RunVs11;
 
 class Vs11Cli : public ::testing::Test {
  protected:

@@ -1,0 +1,94 @@
+// Writes the fuzzers' seed corpora: make_fuzz_seeds SOURCE_DIR CORPUS_DIR.
+//   CORPUS_DIR/fuzz_assembler    programs/*.vsh and tests/data/disasm/*.vsh
+//   CORPUS_DIR/fuzz_bytecode     the same programs assembled (without validation) to bytecode
+//   CORPUS_DIR/fuzz_environment  tiny images, one per layout and format (.hdr .exr .png .tif)
+// plus, for each target, the committed files in tests/fuzz/seeds/<target>/.
+#include <cstdio>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include "irradiance/environment_io.h"
+#include "vm/assembler.h"
+#include "vm/bytecode.h"
+#include "vm/program_file.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+namespace irr = vs11::irradiance;
+
+bool WriteOrComplain(const fs::path& path, std::span<const std::uint8_t> bytes) {
+  if (std::optional<std::string> error = vs11::WriteFileAtomically(path, bytes)) {
+    std::fprintf(stderr, "make_fuzz_seeds: %s\n", error->c_str());
+    return false;
+  }
+  return true;
+}
+
+bool WriteProgramSeeds(const fs::path& source_dir, const fs::path& corpus_dir) {
+  bool ok = true;
+  for (const fs::path& folder : {source_dir / "programs", source_dir / "tests" / "data" / "disasm"}) {
+    for (const fs::directory_entry& entry : fs::directory_iterator(folder)) {
+      if (entry.path().extension() != ".vsh") continue;
+      std::string name = folder.filename().string() + "_" + entry.path().stem().string();
+      fs::copy_file(entry.path(), corpus_dir / "fuzz_assembler" / (name + ".vsh"), fs::copy_options::overwrite_existing);
+      vs11::AssembleOptions options;
+      options.validate = false;
+      vs11::AssembleResult assembled = vs11::AssembleFile(entry.path(), options);
+      if (!assembled.program) continue;  // a program that needs -I or -D: its text is seed enough
+      std::vector<std::uint8_t> bytes = vs11::BytesFromWords(vs11::Encode(*assembled.program));
+      ok &= WriteOrComplain(corpus_dir / "fuzz_bytecode" / (name + ".vso"), bytes);
+    }
+  }
+  return ok;
+}
+
+// A small image with a gradient, so that no two channels or pixels are alike.
+irr::Image Gradient(int width, int height) {
+  irr::Image image(width, height);
+  for (int y = 0; y < height; ++y) {
+    for (int x = 0; x < width; ++x) image.at(x, y) = glm::vec3(0.1f * x, 0.2f * y + 0.05f, 0.5f);
+  }
+  return image;
+}
+
+bool WriteImageSeeds(const fs::path& dir) {
+  struct Seed {
+    const char* name;
+    int width, height;
+  };
+  const Seed seeds[] = {
+      {"latlong.hdr", 8, 4}, {"hcross.exr", 8, 6}, {"vcross.png", 3, 4}, {"hstrip.tif", 6, 1},
+      {"vstrip.exr", 2, 12}, {"angular.png", 4, 4}, {"odd.hdr", 5, 3},
+  };
+  bool ok = true;
+  for (const Seed& seed : seeds) {
+    if (std::optional<std::string> error = irr::WriteImage(Gradient(seed.width, seed.height), dir / seed.name)) {
+      std::fprintf(stderr, "make_fuzz_seeds: %s\n", error->c_str());
+      ok = false;
+    }
+  }
+  return ok;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  if (argc != 3) {
+    std::fprintf(stderr, "usage: make_fuzz_seeds SOURCE_DIR CORPUS_DIR\n");
+    return 2;
+  }
+  fs::path source_dir = argv[1], corpus_dir = argv[2];
+  bool ok = true;
+  for (const char* target : {"fuzz_assembler", "fuzz_bytecode", "fuzz_environment"}) {
+    fs::create_directories(corpus_dir / target);
+    fs::path committed = source_dir / "tests" / "fuzz" / "seeds" / target;
+    if (fs::is_directory(committed)) {
+      fs::copy(committed, corpus_dir / target, fs::copy_options::overwrite_existing);
+    }
+  }
+  ok &= WriteProgramSeeds(source_dir, corpus_dir);
+  ok &= WriteImageSeeds(corpus_dir / "fuzz_environment");
+  return ok ? 0 : 1;
+}
