@@ -147,6 +147,32 @@ std::optional<Layout> DetectLayout(int width, int height) {
   return std::nullopt;
 }
 
+// Whether a width x height image can hold `layout` (kAuto: any layout DetectLayout finds; kFaces:
+// one square face). Checked on the header's size before any pixel is read, and again on the image.
+std::optional<std::string> CheckLayoutSize(Layout layout, int width, int height) {
+  if (layout == Layout::kAuto) {
+    if (DetectLayout(width, height)) return std::nullopt;
+    return fmt::format("cannot detect the layout of a {} x {} image: the accepted aspect ratios are {}",
+                       width, height, AcceptedAspectRatios());
+  }
+  if (layout == Layout::kFaces) {
+    if (width == height) return std::nullopt;
+    return fmt::format("a cube face must be square, got {} x {}", width, height);
+  }
+  const LayoutInfo& info = Info(layout);
+  if (const CubeGrid* grid = FindCubeGrid(layout)) {
+    const int size = width / grid->columns;
+    if (size > 0 && width == grid->columns * size && height == grid->rows * size) return std::nullopt;
+    return fmt::format("a {} must be {}N x {}N pixels for a face size N, got {} x {}", info.description,
+                       grid->columns, grid->rows, width, height);
+  }
+  if (static_cast<std::int64_t>(width) * info.aspect_rows == static_cast<std::int64_t>(height) * info.aspect_columns) {
+    return std::nullopt;
+  }
+  return fmt::format("a {} must have an aspect ratio of {}:{}, got {} x {}", info.description, info.aspect_columns,
+                     info.aspect_rows, width, height);
+}
+
 // ---- Reading -----------------------------------------------------------------------------------
 
 bool IsFloatType(OIIO::TypeDesc type) {
@@ -196,7 +222,10 @@ std::optional<std::uint64_t> UncompressedPixelBytes(const OIIO::ImageInput& inpu
   return static_cast<std::uint64_t>(spec.image_bytes(/*native=*/true));
 }
 
-ImageReadResult ReadImageUnchecked(const fs::path& path) {
+// `expected`: the layout the image must fit, checked on the header's size before the pixels are
+// read, so that a small file claiming a huge image of a useless shape allocates nothing; nullopt
+// for any shape (ReadImage). A DDS cube map is always accepted (it is read as a vertical strip).
+ImageReadResult ReadImageUnchecked(const fs::path& path, std::optional<Layout> expected) {
   std::error_code ec;
   const fs::file_status status = fs::status(path, ec);
   if (ec || !fs::exists(status))
@@ -244,6 +273,13 @@ ImageReadResult ReadImageUnchecked(const fs::path& path) {
         fmt::format("{}: image of {} x {} pixels is larger than the {} pixels accepted",
                     path.string(), spec.width, spec.height, kMaxImagePixels));
   }
+  const bool dds_cube_map = Lower(input->format_name()) == "dds" &&
+                            std::string(spec.get_string_attribute("textureformat")) == kCubeTextureFormat;
+  if (expected && !dds_cube_map) {
+    if (std::optional<std::string> error = CheckLayoutSize(*expected, spec.width, spec.height)) {
+      return ReadFailure(fmt::format("{}: {}", path.string(), *error));
+    }
+  }
   if (const std::optional<std::uint64_t> needed = UncompressedPixelBytes(*input, spec);
       needed && !ec && file_size < *needed) {
     return ReadFailure(fmt::format(
@@ -253,8 +289,7 @@ ImageReadResult ReadImageUnchecked(const fs::path& path) {
   }
 
   ImageReadResult result;
-  if (Lower(input->format_name()) == "dds" &&
-      std::string(spec.get_string_attribute("textureformat")) == kCubeTextureFormat) {
+  if (dds_cube_map) {
     const std::string sides(spec.get_string_attribute("dds:CubeMapSides"));
     if (sides != kAllDdsCubeSides || spec.height != 6 * spec.width) {
       return ReadFailure(
@@ -341,7 +376,7 @@ LoadResult LoadFaces(const fs::path& path) {
       return Failure(fmt::format("missing the {} face: neither {} nor {} exists",
                                  CubeFaceName(face), short_name, signed_name));
     }
-    ImageReadResult read = ReadImageUnchecked(name);
+    ImageReadResult read = ReadImageUnchecked(name, Layout::kFaces);
     if (!read.ok()) return Failure(fmt::format("{} face: {}", CubeFaceName(face), read.error));
     Image& image = *read.image;
     if (image.width != image.height) {
@@ -552,7 +587,7 @@ Image CubeMapToImage(const CubeMap& cube, EnvironmentLayout layout) {
 
 ImageReadResult ReadImage(const std::filesystem::path& path) {
   try {
-    return ReadImageUnchecked(path);
+    return ReadImageUnchecked(path, std::nullopt);
   } catch (const std::exception& e) {
     return ReadFailure(fmt::format("{}: {}", path.string(), e.what()));
   }
@@ -568,16 +603,10 @@ LoadResult EnvironmentFromImage(Image image, EnvironmentLayout layout, int face_
       return Failure(fmt::format(
           "the six-face layout reads six files: pass a path containing \"{}\"", kFaceToken));
     }
-    if (layout == Layout::kAuto) {
-      const std::optional<Layout> detected = DetectLayout(image.width, image.height);
-      if (!detected) {
-        return Failure(fmt::format(
-            "cannot detect the layout of a {} x {} image: the accepted aspect ratios are {}",
-            image.width, image.height, AcceptedAspectRatios()));
-      }
-      layout = *detected;
+    if (std::optional<std::string> error = CheckLayoutSize(layout, image.width, image.height)) {
+      return Failure(std::move(*error));
     }
-    const LayoutInfo& info = Info(layout);
+    if (layout == Layout::kAuto) layout = *DetectLayout(image.width, image.height);
 
     LoadedEnvironment environment;
     environment.layout = layout;
@@ -585,20 +614,8 @@ LoadResult EnvironmentFromImage(Image image, EnvironmentLayout layout, int face_
       environment.warnings.push_back(SanitizeWarning(changed, image.pixels.size(), "image"));
     }
     if (const CubeGrid* grid = FindCubeGrid(layout)) {
-      const int size = image.width / grid->columns;
-      if (size <= 0 || image.width != grid->columns * size || image.height != grid->rows * size) {
-        return Failure(fmt::format("a {} must be {}N x {}N pixels for a face size N, got {} x {}",
-                                   info.description, grid->columns, grid->rows, image.width,
-                                   image.height));
-      }
-      environment.cube = ExtractFaces(image, *grid, size);
+      environment.cube = ExtractFaces(image, *grid, image.width / grid->columns);
     } else {
-      if (static_cast<std::int64_t>(image.width) * info.aspect_rows !=
-          static_cast<std::int64_t>(image.height) * info.aspect_columns) {
-        return Failure(fmt::format("a {} must have an aspect ratio of {}:{}, got {} x {}",
-                                   info.description, info.aspect_columns, info.aspect_rows,
-                                   image.width, image.height));
-      }
       if (face_size < 1 || face_size > kMaxFaceSize) {
         return Failure(fmt::format("face size {} is outside [1, {}]", face_size, kMaxFaceSize));
       }
@@ -619,7 +636,7 @@ LoadResult LoadEnvironment(const std::filesystem::path& path, const LoadOptions&
     if (options.layout == Layout::kFaces || (options.layout == Layout::kAuto && face_pattern)) {
       return LoadFaces(path);
     }
-    ImageReadResult read = ReadImageUnchecked(path);
+    ImageReadResult read = ReadImageUnchecked(path, options.layout);
     if (!read.ok()) return Failure(std::move(read.error));
     Layout layout = options.layout;
     if (read.is_dds_cube_map) {

@@ -108,7 +108,15 @@ HWY_INLINE std::size_t LanesPerVector() { return hn::Lanes(D()); }
 HWY_INLINE VF Broadcast(float value) { return hn::Set(D(), value); }
 HWY_INLINE VF LoadLanes(const float* from) { return hn::LoadU(D(), from); }
 HWY_INLINE void StoreLanes(VF value, float* to) { hn::StoreU(value, D(), to); }
-HWY_INLINE VF Negate(VF value) { return hn::Neg(value); }  // flips the sign bit, as scalar -x
+// Flips the sign bit, as scalar -x. The empty asm keeps the compiler from folding a + (-b) into
+// a - b (clang does), which would return b's NaN unflipped where the reference engine flips it.
+HWY_INLINE VF Negate(VF value) {
+  VF negated = hn::Neg(value);
+#if HWY_ARCH_X86 && HWY_TARGET != HWY_EMU128
+  asm("" : "+v"(negated.raw));
+#endif
+  return negated;
+}
 #endif
 using Vec4F = semantics::Vec4<VF>;
 static_assert(kVertexGranule * sizeof(float) % HWY_MAX_BYTES == 0, "a batch must be whole vectors");

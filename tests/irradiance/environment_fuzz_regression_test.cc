@@ -23,6 +23,21 @@ constexpr char kCorruptPngHex[] =
     "7061634D4D4D4D47425E2D4BBB0000001F49444154089963644449B0DF13C9C0A0CCC0C0C2E0C500012C0C5A70960294"
     "050042D9021909D6D0830000000049454E44AE426082";
 
+// A 435-byte zip EXR whose header claims 8257538 x 12 float RGB pixels (under the pixel limit): the
+// loader used to allocate 1.2 GB and OpenImageIO asked for 25 GB more before finding no data. No
+// layout has that shape, so it is refused from the header, before any pixel is read.
+constexpr char kHugeHeaderExrHex[] =
+    "762F3101020000006361704461746500737472696E670013000000323032363A31313A32322030373A31303A32356368"
+    "616E6E656C730063686C6973740037000000420002000000000000000100000001000000470002000000000000000100"
+    "00000100000052000200000000000000010000000100000000636F6D7072657373696F6E00636F6D7072657373696F6E"
+    "0001000000036461746157696E646F7700626F7832690010000000000000000000000001007E000B000000646973706C"
+    "617957696E646F7700626F78326900100000000000000000000000010000000B000000646B73706C61795769006C696E"
+    "654F72646572000100000000706978656C417370656374526174696F00666C6F617400040000000000803F7363726565"
+    "6E57696E646F7743656E746572007632660008000000000000000000000073637265656E57696E646F77576964746800"
+    "666C6F617400040000000000803F006701000000000000000000009E000000785E63686868F0FDCFF8DFA4C1B77E0B90"
+    "DDC0000450F673A0F82C18DBFEA07D14942D0564AB43D9CF16240363F37EE6FD0C17EF2DEE7580E93DE07000C40600A4"
+    "7B8EBE";
+
 std::string FromHex(std::string_view hex) {
   std::string bytes;
   for (std::size_t i = 0; i + 1 < hex.size(); i += 2) {
@@ -38,6 +53,16 @@ TEST(EnvironmentFuzzRegression, CorruptPngWithABrokenChunkIsRefused) {
   std::filesystem::remove(path);
   EXPECT_FALSE(result.ok());
   EXPECT_NE(result.error.find(path.string()), std::string::npos) << result.error;
+}
+
+TEST(EnvironmentFuzzRegression, ExrClaimingAHugeImageOfNoLayoutIsRefusedFromItsHeader) {
+  std::filesystem::path path = std::filesystem::path(::testing::TempDir()) / "vs11_fuzz_huge_header.exr";
+  std::ofstream(path, std::ios::binary) << FromHex(kHugeHeaderExrHex);
+  LoadResult result = LoadEnvironment(path);
+  std::filesystem::remove(path);
+  EXPECT_FALSE(result.ok());
+  EXPECT_NE(result.error.find("8257538 x 12"), std::string::npos) << result.error;
+  EXPECT_NE(result.error.find("cannot detect the layout"), std::string::npos) << result.error;
 }
 
 }  // namespace
