@@ -128,9 +128,14 @@ using Vec4F = semantics::Vec4<Float>;
 
 // ---- tracing a program: the reference engine's Execute with Float lanes ------------------------------
 
+// Input and store nodes name a lane and, above kGroupShift, which of the loop's vertex groups
+// (8 vertices each) they belong to.
+constexpr int kGroupShift = 16;
+constexpr std::uint32_t kLaneMask = (1u << kGroupShift) - 1;
+
 class Tracer {
  public:
-  Tracer() {
+  explicit Tracer(int group) : group_(static_cast<std::uint32_t>(group) << kGroupShift) {
     const Float zero = Zero();
     for (auto& temp : temps_) temp.fill(zero);
   }
@@ -149,7 +154,8 @@ class Tracer {
     for (int slot = 0; slot < kOutputSlotCount; ++slot) {
       for (int c = 0; c < 4; ++c) {
         if (outputs_[slot][c].id != kNoArg) {
-          jit::Trace(Op::kStore, outputs_[slot][c].id, kNoArg, kNoArg, static_cast<std::uint32_t>(batch::OutputLane(slot, c)));
+          jit::Trace(Op::kStore, outputs_[slot][c].id, kNoArg, kNoArg,
+                     static_cast<std::uint32_t>(batch::OutputLane(slot, c)) | group_);
         }
       }
     }
@@ -201,7 +207,7 @@ class Tracer {
         if (index >= kInputRegisterCount) break;
         for (int c = 0; c < 4; ++c) {
           value[c] = {jit::Trace(Op::kInput, kNoArg, kNoArg, kNoArg,
-                                 static_cast<std::uint32_t>(batch::InputLane(static_cast<int>(index), c)))};
+                                 static_cast<std::uint32_t>(batch::InputLane(static_cast<int>(index), c)) | group_)};
         }
         break;
       default: break;  // outputs and a0 are not readable
@@ -273,6 +279,7 @@ class Tracer {
   std::array<Vec4F, kOutputSlotCount> outputs_{};
   Int address_;
   bool address_written_ = false;
+  std::uint32_t group_;
 };
 
 // ---- register allocation and code --------------------------------------------------------------------
@@ -291,10 +298,12 @@ class Emitter : public Xbyak::CodeGenerator {
   // leaving the others to the values computed in it.
   // `trial_buffer`: generate into this buffer (code_size bytes), only to count operations, instead
   // of into executable pages.
-  Emitter(const std::vector<Node>& nodes, std::size_t code_size, int hoisted, std::uint8_t* trial_buffer = nullptr)
+  Emitter(const std::vector<Node>& nodes, int groups, std::size_t code_size, int hoisted,
+          std::uint8_t* trial_buffer = nullptr)
       // Written, then made read+execute (never writable and executable at once).
       : Xbyak::CodeGenerator(code_size, trial_buffer != nullptr ? trial_buffer : Xbyak::DontSetProtectRWE),
         nodes_(nodes),
+        groups_(groups),
         trial_(trial_buffer != nullptr),
         spill_slot_(nodes.size(), -1),
         hoisted_(static_cast<std::size_t>(hoisted)) {}
@@ -324,7 +333,7 @@ class Emitter : public Xbyak::CodeGenerator {
     for (std::size_t n = 0; n < nodes_.size(); ++n) {
       if (live_[n]) Emit(static_cast<int>(n));
     }
-    add(r.offset, kVectorBytes);
+    add(r.offset, kVectorBytes * groups_);
     cmp(r.offset, r.end);
     jb(loop, T_NEAR);
     vzeroupper();
@@ -346,7 +355,7 @@ class Emitter : public Xbyak::CodeGenerator {
   static bool IsStoreLane(int key) { return (key & kStoreLaneFlag) != 0; }
   static int LaneIndex(int key) { return key & (kStoreLaneFlag - 1); }
   static int LaneKey(const Node& node) {
-    return static_cast<int>(node.immediate) | (node.op == Op::kStore ? kStoreLaneFlag : 0);
+    return static_cast<int>(node.immediate & kLaneMask) | (node.op == Op::kStore ? kStoreLaneFlag : 0);
   }
   // Callee-saved registers (pushed and popped), each holding one lane's address for the whole call.
   inline static const std::array<Xbyak::Reg64, 6> kLanePointerRegisters = {
@@ -375,11 +384,12 @@ class Emitter : public Xbyak::CodeGenerator {
 
   // The address of this vertex group in a lane, loading the lane's address into `lane` if needed.
   Xbyak::RegExp LaneAddress(const Node& node) {
+    const int group_offset = kVectorBytes * static_cast<int>(node.immediate >> kGroupShift);
     const auto it = lane_pointer_.find(LaneKey(node));
-    if (it != lane_pointer_.end()) return it->second + regs_.offset;
+    if (it != lane_pointer_.end()) return it->second + regs_.offset + group_offset;
     ++loop_memory_operations_;
-    mov(regs_.lane, ptr[(node.op == Op::kStore ? regs_.write_lanes : regs_.read_lanes) + 8 * node.immediate]);
-    return regs_.lane + regs_.offset;
+    mov(regs_.lane, ptr[(node.op == Op::kStore ? regs_.write_lanes : regs_.read_lanes) + 8 * (node.immediate & kLaneMask)]);
+    return regs_.lane + regs_.offset + group_offset;
   }
 
   // Loads the most used constants into the top registers before the loop, for good.
@@ -566,6 +576,7 @@ class Emitter : public Xbyak::CodeGenerator {
     Xbyak::Reg64 arguments, read_lanes, write_lanes, constants, literals, spill, offset, end, lane;
   };
   const std::vector<Node>& nodes_;
+  const int groups_;  // vertex groups of 8 per iteration
   const bool trial_;
   const Registers regs_{rdi, rsi, rdx, rcx, r8, r9, r10, r11, rax};
   std::vector<bool> live_;
@@ -615,6 +626,36 @@ constexpr std::size_t kCodeBytesPerNode = 40;
 constexpr std::size_t kCodeBytesFixed = 512;
 // Constants kept in registers across the loop: at most this many of the 16 (the rest are the loop's).
 constexpr int kMaxHoistedConstants = 12;
+// A program whose longest chain of dependent operations is at least this long (exp, log and lit's
+// series) runs two vertex groups per iteration, interleaved instruction by instruction, so that
+// the CPU has independent work while a chain waits on its latencies.
+constexpr int kLongChain = 24;
+
+Graph TraceProgram(const Program& program, int groups) {
+  Graph graph;
+  tracing = &graph;
+  std::vector<Tracer> tracers;
+  for (int group = 0; group < groups; ++group) tracers.emplace_back(group);
+  for (const Instruction& instruction : program.instructions) {
+    for (Tracer& tracer : tracers) tracer.Trace(instruction);
+  }
+  for (Tracer& tracer : tracers) tracer.StoreOutputs();
+  tracing = nullptr;
+  return graph;
+}
+
+// Operations on the longest dependency chain.
+int LongestChain(const Graph& graph) {
+  std::vector<int> depth(graph.nodes().size(), 0);
+  int longest = 0;
+  for (std::size_t n = 0; n < graph.nodes().size(); ++n) {
+    for (int arg : graph.nodes()[n].args) {
+      if (arg != kNoArg) depth[n] = std::max(depth[n], depth[static_cast<std::size_t>(arg)] + 1);
+    }
+    longest = std::max(longest, depth[n]);
+  }
+  return longest;
+}
 
 }  // namespace
 
@@ -624,12 +665,12 @@ std::unique_ptr<CompiledProgram> Compile(const Program& program, std::string& wh
     why_not = "the CPU has no AVX2";
     return nullptr;
   }
-  Graph graph;
-  tracing = &graph;
-  Tracer tracer;
-  for (const Instruction& instruction : program.instructions) tracer.Trace(instruction);
-  tracer.StoreOutputs();
-  tracing = nullptr;
+  Graph graph = TraceProgram(program, 1);
+  int groups = 1;
+  if (LongestChain(graph) >= kLongChain) {
+    groups = 2;
+    graph = TraceProgram(program, groups);
+  }
   try {
     // Each constant kept in a register saves a load per iteration but takes a register from the
     // loop's values, which may then be reloaded or spilled more: the count with the fewest loads
@@ -638,12 +679,12 @@ std::unique_ptr<CompiledProgram> Compile(const Program& program, std::string& wh
     std::vector<std::uint8_t> trial_buffer(code_size);
     int best_hoisted = 0, fewest = std::numeric_limits<int>::max();
     for (int hoisted = 0; hoisted <= kMaxHoistedConstants && hoisted <= best_hoisted + 2; ++hoisted) {
-      Emitter trial(graph.nodes(), code_size, hoisted, trial_buffer.data());
+      Emitter trial(graph.nodes(), groups, code_size, hoisted, trial_buffer.data());
       trial.Generate();
       if (trial.loop_memory_operations() < fewest) fewest = trial.loop_memory_operations(), best_hoisted = hoisted;
       if (trial.hoisted() < static_cast<std::size_t>(hoisted)) break;  // no constants left to keep
     }
-    auto emitter = std::make_unique<Emitter>(graph.nodes(), code_size, best_hoisted);
+    auto emitter = std::make_unique<Emitter>(graph.nodes(), groups, code_size, best_hoisted);
     emitter->Generate();
     return std::make_unique<AvxProgram>(std::move(emitter));
   } catch (const Xbyak::Error& error) {

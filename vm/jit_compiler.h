@@ -1,7 +1,7 @@
 // The jit engine's compiler: a whole vs_1_1 program becomes one x86-64 AVX2 loop (xbyak) that runs
-// it on 8 vertices per iteration with the values in registers. The batch engine's kernels store every
-// instruction's result to memory and load it back in the next step; this loop does not, which is
-// what the batch engine loses to hand-written SIMD code.
+// it on 8 vertices per iteration (2 x 8 for long dependency chains) with the values in registers.
+// The batch engine's kernels store every instruction's result to memory and load it back in the
+// next step; this loop does not, which is what the batch engine loses to hand-written SIMD code.
 //
 // Bit exactness: the program is traced through the very templates of vm/semantics.h with a lane type
 // that records operations instead of computing them, so the machine code performs the reference
@@ -28,7 +28,7 @@ struct RunArguments {
   const float* const* read_lanes;  // the lane table, for loads
   float* const* write_lanes;       // the lane table, for stores
   const float* constants;          // the constant table (rows as vm/batch_plan.h lays them out)
-  std::size_t count;               // vertices, a multiple of 8
+  std::size_t count;               // vertices, a multiple of 16
   const float* literals;           // filled in by CompiledProgram::Run
   float* spill;                    // spill_floats() floats of scratch, one buffer per thread
   std::int32_t constant_count;     // registers in the bank: relative reads outside [0, count) read 0
