@@ -5,32 +5,17 @@
 
 #include "irradiance/environment_io.h"
 #include "tests/irradiance/environment_test_support.h"
+#include "tests/run_tool.h"
 
 namespace vs11::irradiance {
 namespace {
 
 using namespace envtest;
-using testing::HasSubstr;
+using ::testing::HasSubstr;
 using IrrmapCli = TempFolderTest;
 
-struct CommandResult {
-  int status = -1;
-  std::string output;  // stdout and stderr together
-};
-
-CommandResult RunIrrmap(const std::string& args) {
-  const std::string command = std::string(VS11_BINARY_DIR) + "/irradiance/irrmap " + args + " 2>&1";
-  CommandResult result;
-  FILE* pipe = popen(command.c_str(), "r");
-  if (pipe == nullptr) return result;
-  char buffer[4096];
-  while (std::size_t n = std::fread(buffer, 1, sizeof buffer, pipe)) {
-    result.output.append(buffer, n);
-  }
-  const int status = pclose(pipe);
-  result.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return result;
-}
+using vs11::testing::CommandResult;
+using vs11::testing::RunIrrmap;
 
 // Small and quick: a 4 x 4 face, few error normals, small previews.
 std::string QuickRun(const fs::path& input, const fs::path& out) {

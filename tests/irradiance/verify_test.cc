@@ -17,6 +17,7 @@
 #include "irradiance/program_references.h"
 #include "irradiance/sh9.h"
 #include "vm/assembler.h"
+#include "tests/run_tool.h"
 
 namespace vs11::irradiance {
 namespace {
@@ -405,25 +406,10 @@ TEST(VerifyLoading, MissingFileIsAnError) {
 
 // ---- the command line -----------------------------------------------------------------------------
 
-struct CommandResult {
-  int status = -1;
-  std::string out;
-};
+using vs11::testing::CommandResult;
+using vs11::testing::RunVs11;
 
-// Runs `vs11 ARGS` with stderr merged into stdout.
-CommandResult RunVs11(const std::string& args) {
-  CommandResult result;
-  const std::string command = std::string(VS11_BINARY_DIR) + "/vm/vs11 " + args + " 2>&1";
-  FILE* pipe = popen(command.c_str(), "r");
-  if (!pipe) return result;
-  std::array<char, 4096> buffer;
-  while (std::size_t n = std::fread(buffer.data(), 1, buffer.size(), pipe)) result.out.append(buffer.data(), n);
-  const int status = pclose(pipe);
-  result.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return result;
-}
-
-class VerifyCommand : public testing::Test {
+class VerifyCommand : public ::testing::Test {
  protected:
   void SetUp() override {
     if (!std::filesystem::exists(std::string(VS11_BINARY_DIR) + "/vm/vs11")) GTEST_SKIP() << "vs11 not built";
@@ -434,47 +420,47 @@ class VerifyCommand : public testing::Test {
 TEST_F(VerifyCommand, PaperProgramPassesOnBothEngines) {
   for (const char* engine : {"ref", "batch"}) {
     CommandResult r = RunVs11("verify " + Program("sh9_irradiance.vsh") + " --engine " + engine);
-    EXPECT_EQ(r.status, 0) << r.out;
-    EXPECT_NE(r.out.find("PASS"), std::string::npos) << r.out;
-    EXPECT_NE(r.out.find("tolerance 1.0e-05"), std::string::npos) << r.out;
-    EXPECT_NE(r.out.find("worst normal"), std::string::npos) << r.out;
+    EXPECT_EQ(r.status, 0) << r.output;
+    EXPECT_NE(r.output.find("PASS"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("tolerance 1.0e-05"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find("worst normal"), std::string::npos) << r.output;
   }
 }
 
 TEST_F(VerifyCommand, AsPrintedListingFails) {
   CommandResult r = RunVs11("verify " + Program("sh9_irradiance_as_printed.vsh"));
-  EXPECT_EQ(r.status, 1) << r.out;
-  EXPECT_NE(r.out.find("FAIL"), std::string::npos) << r.out;
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_NE(r.output.find("FAIL"), std::string::npos) << r.output;
 }
 
 TEST_F(VerifyCommand, AgainstEngineReportsIdentical) {
   CommandResult r = RunVs11("verify " + Program("skinning.vsh") + " --against-engine ref --json");
-  EXPECT_EQ(r.status, 0) << r.out;
-  EXPECT_NE(r.out.find("\"differing_lanes\": 0"), std::string::npos) << r.out;
+  EXPECT_EQ(r.status, 0) << r.output;
+  EXPECT_NE(r.output.find("\"differing_lanes\": 0"), std::string::npos) << r.output;
 }
 
 TEST_F(VerifyCommand, ErrorsNameTheFileAndExitWithOne) {
   const std::filesystem::path bad = std::filesystem::temp_directory_path() / "vs11_verify_command_bad.json";
   std::ofstream(bad) << "{not json";
   CommandResult r = RunVs11("verify " + Program("sh9_irradiance.vsh") + " --coeffs " + bad.string());
-  EXPECT_EQ(r.status, 1) << r.out;
-  EXPECT_NE(r.out.find("error: " + bad.string()), std::string::npos) << r.out;
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_NE(r.output.find("error: " + bad.string()), std::string::npos) << r.output;
   std::filesystem::remove(bad);
 
   r = RunVs11("verify " + Program("sh9_irradiance.vsh") + " --reference nosuch");
-  EXPECT_EQ(r.status, 1) << r.out;
-  EXPECT_NE(r.out.find("error: unknown reference 'nosuch'"), std::string::npos) << r.out;
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_NE(r.output.find("error: unknown reference 'nosuch'"), std::string::npos) << r.output;
 
   r = RunVs11("verify /nonexistent/p.vsh");
-  EXPECT_EQ(r.status, 1) << r.out;
-  EXPECT_NE(r.out.find("/nonexistent/p.vsh"), std::string::npos) << r.out;
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_NE(r.output.find("/nonexistent/p.vsh"), std::string::npos) << r.output;
 }
 
 TEST_F(VerifyCommand, HelpDescribesFlagsAndGivesAnExample) {
   CommandResult r = RunVs11("verify --help");
-  EXPECT_EQ(r.status, 0) << r.out;
+  EXPECT_EQ(r.status, 0) << r.output;
   for (const char* text : {"--reference", "--coeffs", "--against-engine", "--tolerance", "Examples:", "sh9"}) {
-    EXPECT_NE(r.out.find(text), std::string::npos) << text;
+    EXPECT_NE(r.output.find(text), std::string::npos) << text;
   }
 }
 

@@ -7,7 +7,7 @@
 
 #include <gtest/gtest.h>
 
-#include "tests/vm/run_vs11.h"
+#include "tests/run_tool.h"
 
 namespace {
 

@@ -18,7 +18,7 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "tests/vm/run_vs11.h"
+#include "tests/run_tool.h"
 #include "vm/assembler.h"
 #include "vm/bytecode.h"
 #include "vm/disassembler.h"

@@ -10,28 +10,15 @@
 #include <fmt/format.h>
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
+#include "tests/run_tool.h"
 
 namespace {
 
 namespace fs = std::filesystem;
 using ::testing::HasSubstr;
 
-struct CommandResult {
-  int status = -1;
-  std::string out;  // stdout and stderr
-};
-
-CommandResult RunIrrmap(const std::string& args) {
-  CommandResult result;
-  const std::string command = std::string(VS11_BINARY_DIR) + "/irradiance/irrmap " + args + " 2>&1";
-  FILE* pipe = popen(command.c_str(), "r");
-  if (!pipe) return result;
-  std::array<char, 4096> buffer;
-  while (std::size_t n = std::fread(buffer.data(), 1, buffer.size(), pipe)) result.out.append(buffer.data(), n);
-  const int status = pclose(pipe);
-  result.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return result;
-}
+using vs11::testing::CommandResult;
+using vs11::testing::RunIrrmap;
 
 class ChartCommand : public testing::Test {
  protected:
@@ -48,26 +35,26 @@ TEST_F(ChartCommand, WritesTheCsvAndBothImagesAndPrintsTheTable) {
   const CommandResult r = RunIrrmap(fmt::format(
       "chart sky constant --face-size 4 --error-normals 16 --min-batch-ms 0 --batches 1 --threads 1 --out {}",
       folder_.string()));
-  ASSERT_EQ(r.status, 0) << r.out;
+  ASSERT_EQ(r.status, 0) << r.output;
   for (const char* name : {"speed_accuracy.csv", "speed_accuracy.svg", "speed_accuracy.png"}) {
     EXPECT_TRUE(fs::is_regular_file(folder_ / name)) << name;
   }
-  EXPECT_THAT(r.out, HasSubstr("sky          direct     2       1x1"));
+  EXPECT_THAT(r.output, HasSubstr("sky          direct     2       1x1"));
 }
 
 TEST_F(ChartCommand, AnUnknownEnvironmentFailsWithoutOutput) {
   const CommandResult r = RunIrrmap(fmt::format("chart no_such_file.exr --face-size 4 --out {}", folder_.string()));
-  EXPECT_EQ(r.status, 1) << r.out;
-  EXPECT_THAT(r.out, HasSubstr("irrmap: error:"));
-  EXPECT_THAT(r.out, HasSubstr("no_such_file.exr"));
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("irrmap: error:"));
+  EXPECT_THAT(r.output, HasSubstr("no_such_file.exr"));
   EXPECT_FALSE(fs::exists(folder_ / "speed_accuracy.csv"));
 }
 
 TEST_F(ChartCommand, HelpDescribesTheMethods) {
   const CommandResult r = RunIrrmap("chart --help");
-  EXPECT_EQ(r.status, 0) << r.out;
-  EXPECT_THAT(r.out, HasSubstr("--min-batch-ms"));
-  EXPECT_THAT(r.out, HasSubstr("direct  the basis evaluated at level k's texel centres"));
+  EXPECT_EQ(r.status, 0) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("--min-batch-ms"));
+  EXPECT_THAT(r.output, HasSubstr("direct  the basis evaluated at level k's texel centres"));
 }
 
 }  // namespace

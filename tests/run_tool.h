@@ -1,4 +1,4 @@
-// Runs the built vs11 tool for end-to-end tests (stdout and stderr captured together).
+// Runs the built tools (vs11, irrmap) for end-to-end tests, stdout and stderr captured together.
 #pragma once
 
 #include <sys/wait.h>
@@ -14,8 +14,9 @@ struct CommandResult {
   std::string output;  // stdout and stderr together
 };
 
-inline CommandResult RunVs11(const std::string& args) {
-  std::string command = std::string(VS11_BINARY_DIR) + "/vm/vs11 " + args + " 2>&1";
+// `tool` is the executable's path inside the build folder.
+inline CommandResult RunTool(const std::string& tool, const std::string& args) {
+  std::string command = std::string(VS11_BINARY_DIR) + "/" + tool + " " + args + " 2>&1";
   CommandResult result;
   FILE* pipe = popen(command.c_str(), "r");
   if (pipe == nullptr) return result;
@@ -25,5 +26,8 @@ inline CommandResult RunVs11(const std::string& args) {
   result.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return result;
 }
+
+inline CommandResult RunVs11(const std::string& args) { return RunTool("vm/vs11", args); }
+inline CommandResult RunIrrmap(const std::string& args) { return RunTool("irradiance/irrmap", args); }
 
 }  // namespace vs11::testing
