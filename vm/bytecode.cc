@@ -2,6 +2,8 @@
 
 #include <fmt/format.h>
 
+#include "vm/lexer.h"
+
 namespace vs11 {
 namespace {
 
@@ -102,7 +104,10 @@ class Decoder {
       }
       Instruction instruction;
       instruction.opcode = *opcode;
-      if (DecodeParameters(info, p + 1, instruction)) program.instructions.push_back(instruction);
+      if (DecodeParameters(info, p + 1, instruction)) {
+        program.instructions.push_back(instruction);
+        program.word_offsets.push_back(static_cast<long>(p));
+      }
       p += 1 + needed;
     }
     if (!ended && !diagnostics_.HasErrors()) Fail(words_.size(), "missing end token 0x0000FFFF");
@@ -132,6 +137,13 @@ class Decoder {
     std::uint32_t type = DecodeRegisterType(token);
     if (type > static_cast<std::uint32_t>(RegisterFile::kTexCoordOut)) {
       Fail(at, fmt::format("register type {} is not used by vs_1_1", type));
+      return false;
+    }
+    // Every register Decode accepts has a name, so that every decoded program can be disassembled.
+    const int number = static_cast<int>(token & kRegisterNumberMask);
+    if (!HasRegisterName(static_cast<RegisterFile>(type), number)) {
+      Fail(at, fmt::format("register type {} has no register {} in vs_1_1 (RASTOUT: 0 oPos, 1 oFog, 2 oPts)", type,
+                           number));
       return false;
     }
     return true;

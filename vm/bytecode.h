@@ -25,7 +25,8 @@ struct DecodeResult {
   Diagnostics diagnostics;         // each error carries the word offset of the bad token
 };
 // Reads a token stream, checking the structure of §4.12 (version, reserved bits, known vs_1_1 opcodes,
-// complete instructions, end token last). Never reads past `words`.
+// complete instructions, end token last). Never reads past `words`. The program's word_offsets say
+// where each instruction starts, so that the validator can point at the bad word.
 DecodeResult Decode(std::span<const std::uint32_t> words);
 
 // Little-endian bytes <-> 32-bit words. A byte count that is not a multiple of 4 is an error.

@@ -141,15 +141,26 @@ SourceLoc LocOf(const LexedLine& line, const Token& token) {
   return SourceLoc{line.loc.file, line.loc.line, token.column};
 }
 
-std::string RegisterName(RegisterFile file, int index) {
+namespace {
+
+const RegisterSpelling* FindSpelling(RegisterFile file, int index) {
   for (const RegisterSpelling& spelling : kRegisterSpellings) {
     if (spelling.file != file) continue;
-    if (spelling.fixed_index == RegisterSpelling::kNumbered) return fmt::format("{}{}", spelling.name, index);
-    if (spelling.fixed_index == index) return std::string(spelling.name);
+    if (spelling.fixed_index == RegisterSpelling::kNumbered || spelling.fixed_index == index) return &spelling;
   }
-  // Only reachable for bytecode the validator rejects (e.g. RASTOUT register 5); not re-assemblable.
-  return fmt::format("<register type {} number {}>", static_cast<int>(file), index);
+  return nullptr;
 }
+
+}  // namespace
+
+std::string RegisterName(RegisterFile file, int index) {
+  const RegisterSpelling* spelling = FindSpelling(file, index);
+  if (spelling == nullptr) return fmt::format("<register type {} number {}>", static_cast<int>(file), index);
+  if (spelling->fixed_index == RegisterSpelling::kNumbered) return fmt::format("{}{}", spelling->name, index);
+  return std::string(spelling->name);
+}
+
+bool HasRegisterName(RegisterFile file, int index) { return FindSpelling(file, index) != nullptr; }
 
 int LaneFromLetter(char letter) {
   constexpr std::array<char, 4> kColorLetters = {'r', 'g', 'b', 'a'};  // §2.3: synonyms of x y z w

@@ -83,8 +83,11 @@ inline constexpr std::array kVersionSpellings = {
     VersionSpelling{"vs.1.0", kVersionVs10, false},
 };
 
-// The text form of a register (no mask, swizzle or relative suffix): "r3", "oPos", "oT7".
+// The text form of a register (no mask, swizzle or relative suffix): "r3", "oPos", "oT7". A register
+// with no spelling (RASTOUT 3 and beyond) prints as "<register type 4 number 3>", which does not
+// assemble; Decode refuses such registers (HasRegisterName).
 std::string RegisterName(RegisterFile file, int index);
+bool HasRegisterName(RegisterFile file, int index);
 
 // Component letters: x y z w, with r g b a as synonyms (§2.3). Returns the lane 0-3, or -1.
 int LaneFromLetter(char letter);

@@ -120,11 +120,20 @@ struct Program {
   std::vector<CommentBlock> comments;
   // Where each instruction came from, when assembled from text (same length as instructions), or empty.
   std::vector<SourceLoc> source_locs;
+  // The word offset of each instruction token, when decoded from bytecode (same length as
+  // instructions), or empty.
+  std::vector<long> word_offsets;
 
   SourceLoc LocOf(int instruction_index) const {
     return instruction_index >= 0 && instruction_index < static_cast<int>(source_locs.size())
                ? source_locs[instruction_index]
                : SourceLoc{};
+  }
+  // -1 when unknown (Diagnostic::word_offset's convention).
+  long WordOffsetOf(int instruction_index) const {
+    return instruction_index >= 0 && instruction_index < static_cast<int>(word_offsets.size())
+               ? word_offsets[instruction_index]
+               : -1;
   }
 };
 

@@ -223,11 +223,12 @@ class Validator {
     return fmt::format("instruction {} ({})", index, mnemonic);
   }
 
-  void Error(int index, std::string_view message) {
-    diagnostics_.Error(program_.LocOf(index), fmt::format("{}: {}", Subject(index), message));
-  }
-  void Warning(int index, std::string_view message) {
-    diagnostics_.Warning(program_.LocOf(index), fmt::format("{}: {}", Subject(index), message));
+  void Error(int index, std::string_view message) { Report(Severity::kError, index, message); }
+  void Warning(int index, std::string_view message) { Report(Severity::kWarning, index, message); }
+  // At the source line, or for bytecode at the word of the instruction token.
+  void Report(Severity severity, int index, std::string_view message) {
+    diagnostics_.Add(Diagnostic{program_.LocOf(index), severity, fmt::format("{}: {}", Subject(index), message),
+                                program_.WordOffsetOf(index)});
   }
   // Whole-program problems point at the file only.
   SourceLoc ProgramLoc() const {
@@ -300,13 +301,17 @@ class Validator {
     }
     const int count = rule->count == kUseConstantCount ? options_.constant_count : rule->count;
     if (reg.index >= 0 && reg.index < count) return true;
+    // Real vs_1_1 shaders use c100 and beyond on devices with 256 constants.
+    const std::string more_constants =
+        fmt::format("; for a device with more, give its count with --max-constants (e.g. --max-constants {})",
+                    std::max(256, reg.index + 1));
     if (reg.relative) {
       // Only the offset can be checked statically; a0.x is known at run time (§1.4).
-      Error(index, fmt::format("{} uses relative offset {}, outside 0-{} (the device has {} constants)", what,
-                               reg.index, count - 1, count));
+      Error(index, fmt::format("{} uses relative offset {}, outside 0-{} (the device has {} constants){}", what,
+                               reg.index, count - 1, count, more_constants));
     } else if (reg.file == RegisterFile::kConst) {
-      Error(index, fmt::format("{} names {}, but the device has only c0-c{} (MaxVertexShaderConst = {})", what,
-                               RegisterName(reg), count - 1, count));
+      Error(index, fmt::format("{} names {}, but the device has only c0-c{} (MaxVertexShaderConst = {}){}", what,
+                               RegisterName(reg), count - 1, count, more_constants));
     } else {
       RegisterRef last{reg.file, count - 1, false};
       std::string range = count == 1 ? RegisterName(last)
@@ -420,20 +425,16 @@ class Validator {
     return groups;
   }
 
-  // The first two distinct registers of `file` in `group` (RegisterRef equality: an absolute c5 and a
-  // relative c5[a0.x] are different operands), or nothing.
-  static std::optional<std::pair<RegisterRef, RegisterRef>> TwoDistinct(const std::vector<RegisterRef>& group,
-                                                                        RegisterFile file) {
-    const RegisterRef* first = nullptr;
+  // The distinct registers of `file` in `group`, in operand order (RegisterRef equality: an absolute c5
+  // and a relative c5[a0.x] are different operands).
+  static std::vector<RegisterRef> DistinctRegisters(const std::vector<RegisterRef>& group, RegisterFile file) {
+    std::vector<RegisterRef> distinct;
     for (const RegisterRef& reg : group) {
-      if (reg.file != file) continue;
-      if (first == nullptr) {
-        first = &reg;
-      } else if (!(reg == *first)) {
-        return std::make_pair(*first, reg);
+      if (reg.file == file && std::find(distinct.begin(), distinct.end(), reg) == distinct.end()) {
+        distinct.push_back(reg);
       }
     }
-    return std::nullopt;
+    return distinct;
   }
 
   void CheckReadPorts(int index) {
@@ -443,23 +444,32 @@ class Validator {
         {{RegisterFile::kConst, "constant"}, {RegisterFile::kInput, "input"}}};
     for (const auto& [file, role] : kOnePortFiles) {
       for (int row = 0; row < static_cast<int>(groups.size()); ++row) {
-        const auto pair = TwoDistinct(groups[row], file);
-        if (!pair) continue;
-        ReportReadPort(index, row, groups.size() > 1, role, pair->first, pair->second);
+        const std::vector<RegisterRef> distinct = DistinctRegisters(groups[row], file);
+        if (distinct.size() < 2) continue;
+        ReportReadPort(index, row, groups.size() > 1, role, distinct);
         break;  // one report per register file and instruction
       }
     }
   }
 
-  void ReportReadPort(int index, int row, bool is_macro, std::string_view role, const RegisterRef& a,
-                      const RegisterRef& b) {
+  void ReportReadPort(int index, int row, bool is_macro, std::string_view role,
+                      const std::vector<RegisterRef>& distinct) {
     std::string where = is_macro ? fmt::format("row {} of the macro expansion (§3.4) ", row) : "";
+    std::vector<std::string> names;
+    bool absolute_and_relative = false;
+    for (const RegisterRef& reg : distinct) {
+      names.push_back(RegisterName(reg));
+      for (const RegisterRef& other : distinct) {
+        absolute_and_relative |= reg.index == other.index && reg.relative != other.relative;
+      }
+    }
     // Unconfirmed (§10.8): we count an absolute and a relative constant as two operands.
-    std::string note =
-        a.index == b.index && a.relative != b.relative ? " (an absolute and a relative constant count as two)" : "";
-    Error(index, fmt::format("{}reads two different {} registers ({}, {}){}; vs_1_1 allows one per instruction "
-                             "— copy one of them into a temporary first",
-                             where, role, RegisterName(a), RegisterName(b), note));
+    std::string note = absolute_and_relative ? " (an absolute and a relative constant count as two)" : "";
+    const bool two = distinct.size() == 2;
+    Error(index, fmt::format("{}reads {} different {} registers ({}){}; vs_1_1 allows one per instruction "
+                             "— copy {} into {} first",
+                             where, two ? "two" : std::to_string(distinct.size()), role, fmt::join(names, ", "), note,
+                             two ? "one of them" : "all but one of them", two ? "a temporary" : "temporaries"));
   }
 
   // --- matrix macros (§3.3) --------------------------------------------------------------------

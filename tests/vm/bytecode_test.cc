@@ -103,9 +103,29 @@ const MalformedCase kMalformed[] = {
      2,
      "dcl usage 14 is not a D3DDECLUSAGE value"},
     {"DclDestReservedBits", {0xFFFE0101, 0x0000001F, 0x80000000, 0x900FC000, 0x0000FFFF}, 3, "reserved bits 14-15"},
+    // RASTOUT has oPos, oFog and oPts only: a register with no name could not be disassembled.
+    {"RastoutRegister3Dest",
+     {0xFFFE0101, 0x00000001, 0xC00F0003, 0x80E40001, 0x0000FFFF},
+     2,
+     "register type 4 has no register 3 in vs_1_1"},
+    {"RastoutRegister2047Source",
+     {0xFFFE0101, 0x00000001, 0x800F0000, 0xC0E407FF, 0x0000FFFF},
+     3,
+     "register type 4 has no register 2047 in vs_1_1"},
 };
 INSTANTIATE_TEST_SUITE_P(BytecodeMalformed, BytecodeDecode, testing::ValuesIn(kMalformed),
                          [](const auto& info) { return info.param.name; });
+
+TEST(Bytecode, RecordsTheWordOffsetOfEveryInstruction) {
+  // version, comment (2 words), dcl (3), def (6), mov (3), end.
+  DecodeResult result = Decode(Words{0xFFFE0101, 0x0001FFFE, 0x12345678, 0x0000001F, 0x80000000, 0x900F0000,
+                                     0x00000051, 0xA00F0000, 0, 0, 0, 0, 0x00000001, 0xC00F0000, 0x90E40000,
+                                     0x0000FFFF});
+  ASSERT_TRUE(result.program) << result.diagnostics.ToString();
+  EXPECT_EQ(result.program->word_offsets, (std::vector<long>{3, 6, 12}));
+  EXPECT_EQ(result.program->WordOffsetOf(2), 12);
+  EXPECT_EQ(result.program->WordOffsetOf(3), -1);
+}
 
 TEST(Bytecode, DecodesEveryFieldOfAWellFormedStream) {
   // §5: dcl_texcoord1 v7; def c12, 0, -1, -0.5, 1024; dp4 r1.x, v1, c[a0.x + 3]; add r0, -r0.x, -r1;

@@ -135,6 +135,27 @@ TEST_F(HostileProgram, ToolRefusesRandomBytesWithoutCrashing) {
   }
 }
 
+// Bytecode errors say which word is at fault, in every subcommand that reads a .vso (README).
+TEST_F(HostileProgram, ToolNamesTheWordOfBytecodeErrors) {
+  // mov oPos, <RASTOUT register 3>: no such register in vs_1_1; the disassembler refuses it too.
+  const std::string rastout3 = Write("rastout3.vso", BytesOf({kVersionVs11, 0x1, 0xC00F0000, 0xC0E40003, kEndToken}));
+  for (const char* command : {"disasm", "validate"}) {
+    vs11::testing::CommandResult r = RunVs11(std::string(command) + " " + rastout3);
+    EXPECT_EQ(r.status, 1) << command << ": " << r.output;
+    EXPECT_THAT(r.output, HasSubstr("rastout3.vso: word 3: error: register type 4 has no register 3 in vs_1_1"));
+  }
+  // Well formed, but it reads an output register: the validator names instruction 1 at word 4.
+  const std::string reads_output = Write(
+      "reads_output.vso", BytesOf({kVersionVs11, 0x1, 0x800F0000, 0x90E40000, 0x1, 0xC00F0000, 0xD0E40000, kEndToken}));
+  for (const char* command : {"validate", "run --sphere 2"}) {
+    vs11::testing::CommandResult r = RunVs11(std::string(command) + " " + reads_output);
+    EXPECT_EQ(r.status, 1) << command << ": " << r.output;
+    EXPECT_THAT(r.output, HasSubstr("reads_output.vso: word 4: error: instruction 1 (mov): reads oD0, but output "
+                                    "registers are write-only"))
+        << command;
+  }
+}
+
 // ---- truncated token streams ------------------------------------------------------------------------
 
 TEST(HostileBytecode, EveryTruncationOfAProgramIsRefused) {

@@ -299,6 +299,21 @@ TEST(Validator, RejectsConstantBeyondConstantCount) {
   EXPECT_TRUE(HasError(d, "names c96, but the device has only c0-c95", LineOf(0)));
 }
 
+TEST(Validator, SuggestsMaxConstantsForADefBeyondTheDevice) {
+  // Real vs_1_1 shaders define c100 and beyond for devices with 256 constants.
+  Diagnostics d = Validate(Prog({Def(C(100)), WritePosition()}));
+  EXPECT_TRUE(HasError(d,
+                       "def: the definition names c100, but the device has only c0-c95 (MaxVertexShaderConst = 96); "
+                       "for a device with more, give its count with --max-constants (e.g. --max-constants 256)",
+                       LineOf(0)));
+  d = Validate(Prog({Def(C(300)), WritePosition()}));
+  EXPECT_TRUE(HasError(d, "(e.g. --max-constants 301)", LineOf(0)));
+  d = Validate(Prog({Op(kMov, D(A0(), "x"), S(C(0), "x")), Op(kMov, D(OPos()), CRel(100))}));
+  EXPECT_TRUE(HasError(d, "outside 0-95 (the device has 96 constants); for a device with more, give its count "
+                          "with --max-constants",
+                       LineOf(1)));
+}
+
 TEST(Validator, AcceptsConstantWithinConfiguredCount) {
   ValidatorOptions options;
   options.constant_count = 256;
@@ -409,6 +424,20 @@ TEST(Validator, RejectsSecondConstantRegisterRead) {
   Diagnostics d = Validate(Prog({Op(kAdd, D(R(0)), C(4), C(3)), WritePosition()}));
   EXPECT_TRUE(
       HasError(d, "reads two different constant registers (c4, c3); vs_1_1 allows one per instruction", LineOf(0)));
+}
+
+TEST(Validator, ListsEveryDistinctConstantOfTheInstruction) {
+  Diagnostics d = Validate(Prog({Op(kMad, D(R(0)), C(1), C(2), C(3)), WritePosition()}));
+  EXPECT_TRUE(HasError(d,
+                       "reads 3 different constant registers (c1, c2, c3); vs_1_1 allows one per instruction — "
+                       "copy all but one of them into temporaries first",
+                       LineOf(0)));
+  EXPECT_EQ(d.error_count(), 1);
+  d = Validate(Prog({Op(kMad, D(R(0)), V(1), V(2), V(3)), WritePosition()}));
+  EXPECT_TRUE(HasError(d, "reads 3 different input registers (v1, v2, v3)", LineOf(0)));
+  // A register named twice counts once.
+  d = Validate(Prog({Op(kMad, D(R(0)), C(1), S(C(2), "x"), C(1)), WritePosition()}));
+  EXPECT_TRUE(HasError(d, "reads two different constant registers (c1, c2);", LineOf(0)));
 }
 
 TEST(Validator, AcceptsSameConstantWithDifferentSwizzles) {
@@ -725,6 +754,17 @@ TEST(Validator, NamesInstructionIndexWhenThereIsNoSourceLine) {
   EXPECT_TRUE(HasError(d, "instruction 1 (add): reads two different constant registers (c4, c3)", 0));
   ASSERT_EQ(d.all().size(), 1u);
   EXPECT_EQ(d.all().front().loc, SourceLoc{});
+}
+
+TEST(Validator, GivesTheWordOffsetOfDecodedInstructions) {
+  Program program = Bytecode({Op(kMov, D(R(1)), C(0)), Op(kAdd, D(OPos()), C(4), C(3))});
+  program.word_offsets = {1, 4};
+  Diagnostics d = Validate(program);
+  ASSERT_EQ(d.all().size(), 1u);
+  EXPECT_EQ(d.all().front().word_offset, 4);
+  EXPECT_EQ(FormatDiagnostic(d.all().front()),
+            "word 4: error: instruction 1 (add): reads two different constant registers (c4, c3); vs_1_1 allows one "
+            "per instruction — copy one of them into a temporary first");
 }
 
 TEST(Validator, UsesTheSourceLineAndColumnOfTheInstruction) {
