@@ -133,7 +133,8 @@ class StatementParser {
     int source = 0;
     for (std::size_t i = 0; i < std::min(kinds.size(), operands.size()); ++i) {
       Cursor cursor(operands[i], ColumnAfter(operands[i].back()));
-      bool ok = kinds[i] == OperandKind::kDest     ? ParseDest(cursor, instruction.dest)
+      bool ok = kinds[i] == OperandKind::kDest     ? ParseDest(cursor, WriteMask(instruction.info().default_mask),
+                                                               instruction.dest)
                 : kinds[i] == OperandKind::kSource ? ParseSource(cursor, instruction.sources[source++])
                                                    : ParseFloat(cursor, instruction.def_bits[i - 1]);
       if (!ok) return false;
@@ -218,21 +219,15 @@ class StatementParser {
     return Fail(cursor.Peek(), fmt::format("unexpected '{}' after the {}", cursor.Peek().text, what));
   }
 
-  bool ParseDest(Cursor& cursor, DestOperand& dest) {
+  // A written mask is emitted as written, on every register (Microsoft's assembler keeps
+  // `mov oFog.x, r0.x` as mask .x); without one the opcode's default mask applies (vm/isa.h).
+  bool ParseDest(Cursor& cursor, WriteMask default_mask, DestOperand& dest) {
     if (cursor.NextIs(TokenKind::kMinus)) return Fail(cursor.Peek(), "a destination cannot be negated");
     int column = cursor.column();
     if (!ParseRegister(cursor, dest.reg)) return false;
     if (dest.reg.relative) return Fail(column, "a destination cannot be relatively addressed");
-    dest.mask = WriteMask();
+    dest.mask = default_mask;
     if (cursor.Accept(TokenKind::kDot) && !ParseWriteMask(cursor, dest.mask)) return false;
-    if (IsScalarOutput(dest.reg)) {
-      // §2.3: scalar outputs are emitted with the full mask, as Microsoft's assembler does.
-      if (dest.mask.count() != 1 && !dest.mask.is_full()) {
-        return Fail(column, fmt::format("{} is scalar: write it without a mask or with one component",
-                                        RegisterName(dest.reg.file, dest.reg.index)));
-      }
-      dest.mask = WriteMask();
-    }
     return ExpectEnd(cursor, "destination");
   }
 
@@ -562,7 +557,9 @@ AssembleResult AssembleSource(std::string_view text, const std::string& file_nam
     ValidatorOptions validator_options;
     validator_options.constant_count = options.constant_count;
     validator_options.require_position = options.require_position;
-    validator_options.dialect = result.dx9_syntax ? ValidatorOptions::Dialect::kDx9 : ValidatorOptions::Dialect::kDx8;
+    // A vs.1.1 program with a dcl follows the dcl rules too: its tokens are those of a DX9 program, and
+    // the same tokens loaded as bytecode (or disassembled, vm/disassembler.h) get DX9 rules.
+    validator_options.dialect = result.dx9_syntax ? ValidatorOptions::Dialect::kDx9 : ValidatorOptions::Dialect::kAuto;
     result.diagnostics.Append(Validate(assembler.program(), validator_options));
     if (result.diagnostics.HasErrors()) return result;
   }

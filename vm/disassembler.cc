@@ -17,22 +17,30 @@ namespace {
 constexpr std::uint32_t kQuietNanBits = 0x7FC00000u;
 constexpr std::uint32_t kFloatSignBit = 0x80000000u;
 
-std::string VersionLine(std::uint32_t version) {
-  auto spelling = std::find_if(kVersionSpellings.begin(), kVersionSpellings.end(),
-                               [&](const VersionSpelling& v) { return v.token == version; });
+std::string VersionLine(std::uint32_t version, Syntax syntax) {
+  auto spelling = std::find_if(kVersionSpellings.begin(), kVersionSpellings.end(), [&](const VersionSpelling& v) {
+    return v.token == version && v.dx9 == (syntax == Syntax::kDx9);
+  });
   if (spelling != kVersionSpellings.end()) return std::string(spelling->text);
   // Only for hand-built programs; Decode rejects other versions.
   return fmt::format("{} ; unknown version token 0x{:08X}", kVersionSpellings.front().text, version);
 }
 
-std::string RegisterText(const RegisterRef& reg) {
+// DX9: c3[a0.x] (Microsoft's disassembler); DX8: c[a0.x + 3], as the DX8 documentation writes it.
+std::string RegisterText(const RegisterRef& reg, Syntax syntax) {
+  const std::string address = fmt::format("{}.{}", kAddressRegisterName, kLaneLetters[kAddressLane]);
+  if (reg.relative && syntax == Syntax::kDx8) {
+    return reg.index == 0 ? fmt::format("c[{}]", address) : fmt::format("c[{} + {}]", address, reg.index);
+  }
   std::string text = RegisterName(reg.file, reg.index);
-  if (reg.relative) text += fmt::format("[{}.{}]", kAddressRegisterName, kLaneLetters[kAddressLane]);
+  if (reg.relative) text += fmt::format("[{}]", address);
   return text;
 }
 
-std::string MaskText(WriteMask mask) {
-  if (mask.is_full()) return "";
+// Omitted only when full and the assembler's default: `m3x3 r0.xyzw` keeps its mask, so that it does
+// not come back as the default .xyz.
+std::string MaskText(WriteMask mask, WriteMask default_mask = WriteMask()) {
+  if (mask.is_full() && default_mask.is_full()) return "";
   std::string text = ".";
   for (int lane = 0; lane < 4; ++lane) {
     if (mask.has(lane)) text += kLaneLetters[lane];
@@ -90,20 +98,32 @@ std::string CommentLine(const CommentBlock& block) {
 
 }  // namespace
 
-std::string FormatDest(const DestOperand& dest) { return RegisterText(dest.reg) + MaskText(dest.mask); }
-
-std::string FormatSource(const SourceOperand& source) {
-  return (source.negate ? "-" : "") + RegisterText(source.reg) + SwizzleText(source.swizzle);
+Syntax SyntaxOf(const Program& program) {
+  const bool declares = std::any_of(program.instructions.begin(), program.instructions.end(),
+                                    [](const Instruction& instruction) { return instruction.opcode == Opcode::kDcl; });
+  return declares ? Syntax::kDx9 : Syntax::kDx8;
 }
 
-std::string FormatInstruction(const Instruction& instruction) {
+std::string FormatDest(const DestOperand& dest) { return RegisterText(dest.reg, Syntax::kDx9) + MaskText(dest.mask); }
+
+std::string FormatSource(const SourceOperand& source, Syntax syntax) {
+  std::string text = source.negate ? "-" : "";
+  text += RegisterText(source.reg, syntax);
+  text += SwizzleText(source.swizzle);
+  return text;
+}
+
+std::string FormatInstruction(const Instruction& instruction, Syntax syntax) {
   const OpcodeInfo& info = instruction.info();
   std::vector<std::string> operands;
-  if (info.has_dest()) operands.push_back(FormatDest(instruction.dest));
+  if (info.has_dest()) {
+    operands.push_back(RegisterText(instruction.dest.reg, syntax) +
+                       MaskText(instruction.dest.mask, WriteMask(info.default_mask)));
+  }
   if (info.shape == OperandShape::kDefinition) {
     for (std::uint32_t bits : instruction.def_bits) operands.push_back(FloatText(bits));
   }
-  for (int s = 0; s < info.source_count(); ++s) operands.push_back(FormatSource(instruction.sources[s]));
+  for (int s = 0; s < info.source_count(); ++s) operands.push_back(FormatSource(instruction.sources[s], syntax));
   std::string text = MnemonicText(instruction);
   for (std::size_t i = 0; i < operands.size(); ++i) text += (i == 0 ? " " : ", ") + operands[i];
   if (info.shape == OperandShape::kDefinition) text += DefNote(instruction);
@@ -111,7 +131,8 @@ std::string FormatInstruction(const Instruction& instruction) {
 }
 
 std::string Disassemble(const Program& program) {
-  std::string out = VersionLine(program.version) + "\n";
+  const Syntax syntax = SyntaxOf(program);
+  std::string out = VersionLine(program.version, syntax) + "\n";
   std::size_t next_comment = 0;
   auto print_comments_before = [&](int index) {
     while (next_comment < program.comments.size() && program.comments[next_comment].before_instruction <= index) {
@@ -120,7 +141,7 @@ std::string Disassemble(const Program& program) {
   };
   for (int i = 0; i < static_cast<int>(program.instructions.size()); ++i) {
     print_comments_before(i);
-    out += FormatInstruction(program.instructions[i]) + "\n";
+    out += FormatInstruction(program.instructions[i], syntax) + "\n";
   }
   print_comments_before(static_cast<int>(program.instructions.size()));
   return out;

@@ -40,7 +40,7 @@ struct RegisterRef {
   friend constexpr bool operator==(const RegisterRef&, const RegisterRef&) = default;
 };
 
-// oFog and oPts hold one value (lane x); they are written with the full mask (§2.3).
+// oFog and oPts hold one value: the rasterizer reads lane x only (§7). Any write mask is encodable.
 constexpr bool IsScalarOutput(const RegisterRef& reg) {
   return reg.file == RegisterFile::kRasterOut && (reg.index == kRasterOutFog || reg.index == kRasterOutPointSize);
 }

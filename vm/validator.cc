@@ -352,13 +352,12 @@ class Validator {
       }
       return;
     }
-    if (IsScalarOutput(instruction.dest.reg) && mask.bits() != kAllLanes) {
-      // The assembler writes no other mask here, and the disassembler prints these registers without
-      // one (§4.13), so any other mask could not survive a round trip through text.
-      Error(index, fmt::format("writes {}{}; {} is scalar and takes the full mask: write it without a mask (§2.3)",
-                               RegisterName(instruction.dest.reg), LaneSuffix(mask.bits()),
-                               RegisterName(instruction.dest.reg)));
-      return;
+    if (IsScalarOutput(instruction.dest.reg) && !(mask.bits() & kLaneX)) {
+      // Any mask is encodable and round-trips through text; but the rasterizer reads lane x only.
+      const std::string name = RegisterName(instruction.dest.reg);
+      Warning(index, fmt::format("writes {}{}, but only lane x of {} is used (§7), so this write has no effect; "
+                                 "write {} or {}.x",
+                                 name, LaneSuffix(mask.bits()), name, name, name));
     }
     const MaskRule rule = instruction.info().mask_rule;
     if (!MaskAllowed(rule, mask)) {

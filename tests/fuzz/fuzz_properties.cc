@@ -33,10 +33,11 @@ void CanonicalizeNans(std::vector<Instruction>& instructions) {
   }
 }
 
-// Assembles a listing without validation (the program it came from was validated already).
-AssembleResult Reassemble(const std::string& listing) {
+// Assembles a listing with the validation its program passed: a valid program's listing must be a
+// valid program too (a DX8 stream printed as DX9 text, say, would fail for want of dcl).
+AssembleResult Reassemble(const std::string& listing, bool require_position) {
   AssembleOptions options;
-  options.validate = false;
+  options.require_position = require_position;
   return AssembleSource(listing, "listing.vsh", options, InMemoryReader(""));
 }
 
@@ -55,7 +56,7 @@ std::optional<std::string> CheckSource(std::string_view text) {
   DecodeResult decoded = Decode(words);
   if (!decoded.program) return fmt::format("the assembler wrote a stream the decoder refuses: {}", decoded.diagnostics.ToString());
   std::string listing = Disassemble(*result.program);
-  AssembleResult reassembled = Reassemble(listing);
+  AssembleResult reassembled = Reassemble(listing, options.require_position);
   if (!reassembled.program) return fmt::format("the listing does not assemble:\n{}{}", listing, reassembled.diagnostics.ToString());
   if (Encode(*reassembled.program) != words) return fmt::format("the listing assembles to other tokens:\n{}", listing);
   return std::nullopt;
@@ -78,7 +79,7 @@ std::optional<std::string> CheckBytecode(std::span<const std::uint8_t> bytes) {
   // An invalid program need not survive text: an empty write mask, say, prints as "r0.".
   if (problems.HasErrors()) return std::nullopt;
 
-  AssembleResult reassembled = Reassemble(listing);
+  AssembleResult reassembled = Reassemble(listing, validator.require_position);
   if (!reassembled.program) return fmt::format("the listing does not assemble:\n{}{}", listing, reassembled.diagnostics.ToString());
   std::vector<Instruction> expected = decoded.program->instructions;
   CanonicalizeNans(expected);

@@ -111,7 +111,6 @@ const RejectCase kOperands[] = {
     {"NegatedDestination", "vs_1_1\nmov -r0, r1\n", 2, 5, "a destination cannot be negated"},
     {"DoubleNegation", "vs_1_1\nmov r0, --r1\n", 2, 10, "double negation"},
     {"ImmediateSource", "vs_1_1\nadd r0, r1, 2.0\n", 2, 13, "not the number '2.0'"},
-    {"ScalarOutputWithTwoLanes", "vs_1_1\nmov oFog.xy, r0\n", 2, 5, "oFog is scalar"},
     {"UnknownRegister", "vs_1_1\nmov r0, q1\n", 2, 9, "unknown register 'q1'"},
     {"NumberOnFixedOutput", "vs_1_1\nmov oPos1, r0\n", 2, 5, "unknown register 'oPos1'"},
     {"RegisterWithoutNumber", "vs_1_1\nmov r, r1\n", 2, 5, "register 'r' needs a number"},

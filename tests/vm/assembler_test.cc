@@ -143,6 +143,41 @@ const EncodingCase kOpcodes[] = {
 INSTANTIATE_TEST_SUITE_P(AssemblerOpcodes, AssemblerEncoding, testing::ValuesIn(kOpcodes),
                          [](const auto& info) { return info.param.name; });
 
+// A destination without a mask gets the lanes the macro writes (Microsoft's assembler; MojoShader's
+// opcode table records 0x7 for m3x3/m4x3 and 0x3 for m3x2): the DX8 SDK's SkinnedMesh shaders write
+// `m4x3 r0, v0, c[a0.x]` and `m3x3 r5, v3, c0`. Every other opcode gets 0xF.
+const EncodingCase kDefaultMasks[] = {
+    {"M3x3WithoutMask",
+     "vs_1_1\nm3x3 r5, v3, c0\n",
+     {0xFFFE0101, 0x00000017, 0x80070005, 0x90E40003, 0xA0E40000, 0x0000FFFF}},
+    {"M4x3RelativeWithoutMask",
+     "vs.1.1\nm4x3 r0, v0, c[a0.x]\n",
+     {0xFFFE0101, 0x00000015, 0x80070000, 0x90E40000, 0xA0E42000, 0x0000FFFF}},
+    {"M3x2WithoutMask",
+     "vs_1_1\nm3x2 oT0, v2, c12\n",
+     {0xFFFE0101, 0x00000018, 0xE0030000, 0x90E40002, 0xA0E4000C, 0x0000FFFF}},
+    {"M3x3FullMaskWritten",
+     "vs_1_1\nm3x3 r5.xyzw, v3, c0\n",
+     {0xFFFE0101, 0x00000017, 0x800F0005, 0x90E40003, 0xA0E40000, 0x0000FFFF}},
+    {"M4x4AndM3x4WithoutMask",
+     "vs_1_1\nm4x4 oPos, v0, c0\nm3x4 r1, v1, c4\n",
+     {0xFFFE0101, 0x00000014, 0xC00F0000, 0x90E40000, 0xA0E40000, 0x00000016, 0x800F0001, 0x90E40001, 0xA0E40004,
+      0x0000FFFF}},
+    {"FrcWithoutMask", "vs_1_1\nfrc r0, v0\n", {0xFFFE0101, 0x00000013, 0x800F0000, 0x90E40000, 0x0000FFFF}},
+};
+INSTANTIATE_TEST_SUITE_P(AssemblerDefaultMasks, AssemblerEncoding, testing::ValuesIn(kDefaultMasks),
+                         [](const auto& info) { return info.param.name; });
+
+TEST(Assembler, MatrixMacrosWithoutMaskValidate) {
+  // The SkinnedMesh pattern (DX8 SDK): no masks on m4x3/m3x3, and the result is accepted as written.
+  AssembleResult result = AssembleForTest(
+      "vs.1.1\nmul r1, v1.x, c2.x\nmov a0.x, r1.x\nm4x3 r0, v0, c[a0.x]\nm3x3 r5, v3, c[a0.x]\n"
+      "mov r0.w, c1.x\nm4x4 oPos, r0, c4\nm3x2 oT0, r5, c8\nmov oFog.x, r5.x\n",
+      /*validate=*/true);
+  ASSERT_TRUE(result.program) << result.diagnostics.ToString();
+  EXPECT_EQ(result.diagnostics.ToString(), "");
+}
+
 // dcl usages (§4.9: usage token 0x80000000 | index << 16 | usage) and def number spellings (§2.1).
 const EncodingCase kDeclarations[] = {
     {"DclEveryUsage",
@@ -192,10 +227,13 @@ const EncodingCase kRegisters[] = {
      {0xFFFE0101, 0x1, 0x800F0000, 0xA1002003, 0x0000FFFF}},
     {"LargestRegisterNumber", "vs_1_1\nmov r0, c2047\n", {0xFFFE0101, 0x1, 0x800F0000, 0xA0E407FF, 0x0000FFFF}},
     {"AddressWithoutMask", "vs_1_1\nmov a0, c0.x\n", {0xFFFE0101, 0x1, 0xB00F0000, 0xA0000000, 0x0000FFFF}},
-    // §2.3: scalar outputs always get mask 0xF.
-    {"ScalarOutputsWithOneLane",
-     "vs_1_1\nmov oFog.x, r0.x\nmov oPts.w, r0.x\nmov oFog.xyzw, r0\n",
-     {0xFFFE0101, 0x1, 0xC00F0001, 0x80000000, 0x1, 0xC00F0002, 0x80000000, 0x1, 0xC00F0001, 0x80E40000, 0x0000FFFF}},
+    // Scalar outputs keep a written mask, as Microsoft's assembler does (shipped DX8 shaders write
+    // `mov oFog.x, r11.x`); without one they get 0xF, like any register (Wine: `mov oFog, c0.x` ->
+    // 0xC00F0001).
+    {"ScalarOutputsKeepTheirMask",
+     "vs_1_1\nmov oFog.x, r11.x\nmov oPts.w, r0.x\nmov oFog.xyzw, r0\nmov oFog.zw, r2.w\nmov oPts, c0.x\n",
+     {0xFFFE0101, 0x1, 0xC0010001, 0x8000000B, 0x1, 0xC0080002, 0x80000000, 0x1, 0xC00F0001, 0x80E40000,
+      0x1, 0xC00C0001, 0x80FF0002, 0x1, 0xC00F0002, 0xA0000000, 0x0000FFFF}},
 };
 INSTANTIATE_TEST_SUITE_P(AssemblerRegisters, AssemblerEncoding, testing::ValuesIn(kRegisters),
                          [](const auto& info) { return info.param.name; });
@@ -303,6 +341,17 @@ TEST(Assembler, ValidatesCompleteDx9Program) {
 TEST(Assembler, ValidatesDx8ProgramWithoutDcl) {
   AssembleResult result = AssembleForTest("vs.1.1\nm4x4 oPos, v0, c0\nmov oD0, v5\n", /*validate=*/true);
   EXPECT_TRUE(result.program) << result.diagnostics.ToString();
+}
+
+TEST(Assembler, Dx8ProgramWithDclFollowsTheDclRules) {
+  // Its tokens are a DX9 program's: loaded as bytecode or disassembled, they get the DX9 rules, so the
+  // source gets them too.
+  AssembleResult result =
+      AssembleForTest("vs.1.1\ndcl_position v0\nmov oPos, v0\nmov oD0, v1\n", /*validate=*/true);
+  EXPECT_FALSE(result.program);
+  EXPECT_NE(result.diagnostics.ToString().find("test.vsh:4:1: error: mov: reads v1, which has no dcl"),
+            std::string::npos)
+      << result.diagnostics.ToString();
 }
 
 TEST(Assembler, ValidatorErrorsWithholdTheProgram) {

@@ -19,6 +19,7 @@
 
 #include "vm/assembler.h"
 #include "vm/bytecode.h"
+#include "vm/validator.h"
 
 namespace vs11 {
 namespace {
@@ -81,7 +82,10 @@ TEST_P(DisassemblerText, PrintsTheCanonicalLine) {
   Program program = DecodeOrDie(words);
   ASSERT_EQ(program.instructions.size(), 1u);
   EXPECT_EQ(FormatInstruction(program.instructions[0]), c.text);
-  EXPECT_EQ(Disassemble(program), "vs_1_1\n" + c.text + "\n");
+  // Without a dcl the program came from DX8 source and prints as DX8 text.
+  const bool dcl = program.instructions[0].opcode == Opcode::kDcl;
+  EXPECT_EQ(Disassemble(program),
+            (dcl ? "vs_1_1\n" : "vs.1.1\n") + FormatInstruction(program.instructions[0], SyntaxOf(program)) + "\n");
   ExpectRoundTrip(program);
 }
 
@@ -116,6 +120,15 @@ const TextCase kWorkedEncodingTexts[] = {
     {"NegatedRelativeReplicate", {0x1, 0x800F0000, 0xA1002003}, "mov r0, -c3[a0.x].x"},
     {"RelativeZero", {0x1, 0x800F0000, 0xA0E42000}, "mov r0, c0[a0.x]"},
     {"A0FullMask", {0x1, 0xB00F0000, 0xA0000000}, "mov a0, c0.x"},
+    // A mask is printed unless it is .xyzw and the opcode's default, so that text assembles back to it.
+    {"M3x3DefaultMask", {0x17, 0x80070005, 0x90E40003, 0xA0E40000}, "m3x3 r5.xyz, v3, c0"},
+    {"M3x3FullMask", {0x17, 0x800F0005, 0x90E40003, 0xA0E40000}, "m3x3 r5.xyzw, v3, c0"},
+    {"M4x3FullMask", {0x15, 0x800F0000, 0x90E40000, 0xA0E42000}, "m4x3 r0.xyzw, v0, c0[a0.x]"},
+    {"M3x2DefaultMask", {0x18, 0xE0030000, 0x90E40002, 0xA0E4000C}, "m3x2 oT0.xy, v2, c12"},
+    {"M3x2FullMask", {0x18, 0xE00F0000, 0x90E40002, 0xA0E4000C}, "m3x2 oT0.xyzw, v2, c12"},
+    {"MovOFogX", {0x1, 0xC0010001, 0x8000000B}, "mov oFog.x, r11.x"},
+    {"MovOFogZw", {0x1, 0xC00C0001, 0x80FF0002}, "mov oFog.zw, r2.w"},
+    {"MovOPtsY", {0x1, 0xC0020002, 0xA0000000}, "mov oPts.y, c0.x"},
 };
 INSTANTIATE_TEST_SUITE_P(DisassemblerWorkedEncodings, DisassemblerText, testing::ValuesIn(kWorkedEncodingTexts),
                          [](const auto& info) { return info.param.name; });
@@ -128,15 +141,52 @@ TEST(Disassembler, PrintsWholeGoldenProgram) {
 
 TEST(Disassembler, PrintsVersion10) {
   Program program = DecodeOrDie({kVersionVs10, 0x1, 0xC00F0000, 0x90E40000, kEndToken});
-  EXPECT_EQ(Disassemble(program), "vs_1_0\nmov oPos, v0\n");
+  EXPECT_EQ(Disassemble(program), "vs.1.0\nmov oPos, v0\n");
   ExpectRoundTrip(program);
+  program = DecodeOrDie({kVersionVs10, 0x1F, 0x80000000, 0x900F0000, 0x1, 0xC00F0000, 0x90E40000, kEndToken});
+  EXPECT_EQ(Disassemble(program), "vs_1_0\ndcl_position v0\nmov oPos, v0\n");
+  ExpectRoundTrip(program);
+}
+
+// A stream without dcl comes from DX8 source: printed as DX9 text (vs_1_1) it would not validate
+// again ("reads v0, which has no dcl"); printed as DX8 text it does.
+TEST(Disassembler, PrintsDx8TextForAStreamWithoutDcl) {
+  const Words words = {kVersionVs11, 0x1,        0xB0010000, 0x90000001, 0x15,       0x80070000, 0x90E40000,
+                       0xA0E42000,   0x1,        0x80080000, 0x90FF0000, 0x14,       0xC00F0000, 0x80E40000,
+                       0xA0E42004,   0x1,        0xD00F0000, 0xA1FF2003, 0x1,        0xC0010001, 0x80000000,
+                       kEndToken};
+  Program program = DecodeOrDie(words);
+  EXPECT_EQ(SyntaxOf(program), Syntax::kDx8);
+  const std::string text = Disassemble(program);
+  EXPECT_EQ(text,
+            "vs.1.1\n"
+            "mov a0.x, v1.x\n"
+            "m4x3 r0.xyz, v0, c[a0.x]\n"
+            "mov r0.w, v0.w\n"
+            "m4x4 oPos, r0, c[a0.x + 4]\n"
+            "mov oD0, -c[a0.x + 3].w\n"
+            "mov oFog.x, r0.x\n");
+  AssembleResult again = AssembleText(text, /*validate=*/true);
+  ASSERT_TRUE(again.program) << again.diagnostics.ToString();
+  EXPECT_EQ(Encode(*again.program), words);
+}
+
+TEST(Disassembler, ValidatedDx8SourceComesBackValid) {
+  const std::string source = "vs.1.1\nm4x4 oPos, v0, c0\nm3x3 r5, v3, c4\nmov oD0.xyz, r5\n";
+  AssembleResult first = AssembleText(source, /*validate=*/true);
+  ASSERT_TRUE(first.program) << first.diagnostics.ToString();
+  const std::string text = Disassemble(*first.program);
+  EXPECT_EQ(text, "vs.1.1\nm4x4 oPos, v0, c0\nm3x3 r5.xyz, v3, c4\nmov oD0.xyz, r5\n");
+  AssembleResult again = AssembleText(text, /*validate=*/true);
+  ASSERT_TRUE(again.program) << again.diagnostics.ToString();
+  EXPECT_EQ(Encode(*again.program), Encode(*first.program));
 }
 
 TEST(Disassembler, PrintsCommentBlocksWhereTheyStand) {
   Program program = DecodeOrDie({kVersionVs11, 0x0002FFFE, 0x454E494C, 0x0000000C, 0x1, 0xC00F0000, 0x90E40000,
                                  0x0000FFFE, 0x0001FFFE, 0xDEADBEEF, kEndToken});
   EXPECT_EQ(Disassemble(program),
-            "vs_1_1\n"
+            "vs.1.1\n"
             "; comment (2 words): 0x454E494C 0x0000000C\n"
             "mov oPos, v0\n"
             "; comment (0 words)\n"
@@ -184,15 +234,28 @@ TEST(DisassemblerRoundTrip, BuiltInSources) {
   for (const char* source : kBuiltInSources) ExpectSourceRoundTrip(source, "built-in");
 }
 
-TEST(DisassemblerRoundTrip, EveryProgramInProgramsFolder) {
-  std::filesystem::path folder = kSourceDir / "programs";
-  int count = 0;
+// asm -> disasm -> asm, validating both times as `vs11 asm` does (fragments by their metadata).
+TEST(DisassemblerRoundTrip, EveryProgramInProgramsFolderValidatesAgain) {
+  const std::filesystem::path folder = kSourceDir / "programs";
+  ASSERT_TRUE(std::filesystem::is_directory(folder)) << folder;
+  int dx8 = 0, dx9 = 0;
   for (const auto& entry : std::filesystem::directory_iterator(folder)) {
     if (entry.path().extension() != ".vsh") continue;
-    ++count;
-    ExpectSourceRoundTrip(ReadText(entry.path()), entry.path().string());
+    SCOPED_TRACE(entry.path().string());
+    const std::string source = ReadText(entry.path());
+    AssembleOptions options;
+    options.require_position = source.find("; vs11: fragment=yes") == std::string::npos;
+    AssembleResult first = AssembleSource(source, entry.path().string(), options);
+    ASSERT_TRUE(first.program) << first.diagnostics.ToString();
+    (first.dx9_syntax ? dx9 : dx8) += 1;
+    const std::string listing = Disassemble(*first.program);
+    AssembleResult again = AssembleSource(listing, "listing.vsh", options);
+    ASSERT_TRUE(again.program) << again.diagnostics.ToString() << listing;
+    EXPECT_EQ(Encode(*again.program), Encode(*first.program)) << listing;
   }
-  std::cout << "[          ] round-tripped " << count << " programs from " << folder << "\n";
+  std::cout << "[          ] round-tripped " << dx8 << " DX8 and " << dx9 << " DX9 programs from " << folder << "\n";
+  EXPECT_GT(dx8, 0);
+  EXPECT_GT(dx9, 0);
 }
 
 // ---- golden disassembly files -------------------------------------------------------------------
@@ -285,11 +348,13 @@ TEST(DisassemblerGeneratedSpecial, AddressAndScalarOutputDestinations) {
   for (RegisterRef dest :
        {RegisterRef{RegisterFile::kAddress, 0, false}, RegisterRef{RegisterFile::kRasterOut, kRasterOutFog, false},
         RegisterRef{RegisterFile::kRasterOut, kRasterOutPointSize, false}}) {
-    Instruction mov;
-    mov.opcode = Opcode::kMov;
-    mov.dest = DestOperand{dest, WriteMask(dest.file == RegisterFile::kAddress ? 0x1 : WriteMask::kAllLanes)};
-    mov.sources[0] = SourceOperand{{RegisterFile::kConst, 5, true}, Swizzle(0xAA), true};
-    program.instructions.push_back(mov);
+    for (std::uint8_t mask : kMasks) {
+      Instruction mov;
+      mov.opcode = Opcode::kMov;
+      mov.dest = DestOperand{dest, WriteMask(mask)};
+      mov.sources[0] = SourceOperand{{RegisterFile::kConst, 5, true}, Swizzle(0xAA), true};
+      program.instructions.push_back(mov);
+    }
   }
   ExpectRoundTrip(program);
 }
@@ -324,6 +389,150 @@ TEST(DisassemblerGeneratedSpecial, DefValuesKeepTheirBits) {
     program.instructions.push_back(def);
   }
   ExpectRoundTrip(program);
+}
+
+// ---- generated valid programs: asm -> disasm -> asm with validation, DX8 (no dcl) and DX9 ---------
+
+// Random programs that pass the validator: four temporaries written whole first, one input and one
+// constant register per instruction (absolute, or relative once a0.x is written), masks the opcode
+// allows, matrix operands unswizzled and apart from the destination, oPos written last.
+class ValidProgramGenerator {
+ public:
+  explicit ValidProgramGenerator(unsigned seed) : random_(seed) {}
+
+  Program Next(bool declare_inputs) {
+    Program program;
+    if (declare_inputs) {
+      for (int v = 0; v < kInputRegisterCount; ++v) {
+        Instruction dcl;
+        dcl.opcode = Opcode::kDcl;
+        dcl.usage = 5;  // texcoord<v>
+        dcl.usage_index = v;
+        dcl.dest.reg = {RegisterFile::kInput, v, false};
+        program.instructions.push_back(dcl);
+      }
+    }
+    for (int i = Uniform(0, 3); i > 0; --i) {
+      Instruction def;
+      def.opcode = Opcode::kDef;
+      def.dest.reg = {RegisterFile::kConst, Uniform(0, kDefaultConstantCount - 1), false};
+      for (std::uint32_t& bits : def.def_bits) bits = static_cast<std::uint32_t>(random_()) & 0xBFFFFFFFu;  // finite
+      program.instructions.push_back(def);
+    }
+    const bool relative = Uniform(0, 1) == 1;
+    if (relative) program.instructions.push_back(Mov({RegisterFile::kAddress, 0, false}, 0x1, Input(0x00)));
+    for (int t = 0; t < kTemps; ++t) program.instructions.push_back(Mov(Temp(t), 0xF, Input(Swizzle().bits())));
+    int slots = kTemps + 2;
+    for (int i = Uniform(5, 40); i > 0; --i) {
+      Instruction instruction = RandomInstruction(relative);
+      slots += instruction.info().slots;
+      if (slots > kMaxInstructionSlots) break;
+      program.instructions.push_back(instruction);
+    }
+    const SourceOperand position{Temp(0), Swizzle(), false};
+    program.instructions.push_back(Mov({RegisterFile::kRasterOut, kRasterOutPosition, false}, 0xF, position));
+    return program;
+  }
+
+ private:
+  static constexpr int kTemps = 4;
+
+  int Uniform(int low, int high) { return std::uniform_int_distribution<int>(low, high)(random_); }
+  RegisterRef Temp(int index) { return {RegisterFile::kTemp, index, false}; }
+  SourceOperand Input(std::uint8_t swizzle) {
+    return {{RegisterFile::kInput, Uniform(0, kInputRegisterCount - 1), false}, Swizzle(swizzle), false};
+  }
+  Instruction Mov(RegisterRef dest, std::uint8_t mask, SourceOperand source) {
+    Instruction mov;
+    mov.opcode = Opcode::kMov;
+    mov.dest = {dest, WriteMask(mask)};
+    mov.sources[0] = source;
+    return mov;
+  }
+
+  std::uint8_t MaskFor(MaskRule rule) {
+    switch (rule) {
+      case MaskRule::kYOrXy: return Uniform(0, 1) ? 0x2 : 0x3;
+      case MaskRule::kXy: return 0x3;
+      case MaskRule::kXyz: return 0x7;
+      case MaskRule::kXyzw:
+      case MaskRule::kFull: return 0xF;
+      case MaskRule::kAny: break;
+    }
+    return static_cast<std::uint8_t>(Uniform(1, 15));
+  }
+
+  RegisterRef Destination(bool matrix) {
+    switch (Uniform(0, matrix ? 3 : 5)) {
+      case 0: return {RegisterFile::kAttributeOut, Uniform(0, kColorOutputCount - 1), false};
+      case 1: return {RegisterFile::kTexCoordOut, Uniform(0, kTexCoordOutputCount - 1), false};
+      case 4: return {RegisterFile::kRasterOut, kRasterOutFog, false};
+      case 5: return {RegisterFile::kRasterOut, kRasterOutPointSize, false};
+      default: return Temp(Uniform(0, kTemps - 1));
+    }
+  }
+
+  Instruction RandomInstruction(bool relative) {
+    std::vector<const OpcodeInfo*> executable;
+    for (const OpcodeInfo& info : kOpcodeTable) {
+      if (info.is_executable() && info.has_dest()) executable.push_back(&info);
+    }
+    const OpcodeInfo& info = *executable[static_cast<std::size_t>(Uniform(0, static_cast<int>(executable.size()) - 1))];
+    const bool matrix = info.kind == ResultKind::kMatrix;
+    const int rows = matrix ? info.matrix_rows : 1;
+    Instruction instruction;
+    instruction.opcode = info.opcode;
+    instruction.dest = {Destination(matrix), WriteMask(MaskFor(info.mask_rule))};
+    // The one input and the one constant this instruction may read (a matrix reads `rows` of them).
+    const RegisterRef input{RegisterFile::kInput, Uniform(0, kInputRegisterCount - rows), false};
+    const bool relative_constant = relative && Uniform(0, 1) == 1;
+    const RegisterRef constant{RegisterFile::kConst, Uniform(0, kDefaultConstantCount - rows), relative_constant};
+    // A matrix's rows come from one file, its first source from another; temporaries only for s0.
+    const int matrix_file = Uniform(0, 1);  // 0: constants, 1: inputs
+    for (int s = 0; s < info.source_count(); ++s) {
+      SourceOperand& source = instruction.sources[s];
+      if (matrix && s == 1) {
+        source = {matrix_file == 0 ? constant : input, Swizzle(), false};
+        continue;
+      }
+      int file = Uniform(0, 2);  // 0 temp, 1 input, 2 constant
+      if (matrix && file == 2 - matrix_file) file = 0;
+      source.reg = file == 0 ? Temp(Uniform(0, kTemps - 1)) : file == 1 ? input : constant;
+      if (matrix && source.reg == instruction.dest.reg) source.reg = Temp((source.reg.index + 1) % kTemps);
+      source.swizzle = Swizzle(static_cast<std::uint8_t>(Uniform(0, 255)));
+      source.negate = Uniform(0, 1) == 1;
+    }
+    return instruction;
+  }
+
+  std::mt19937 random_;
+};
+
+void ExpectValidRoundTrip(const Program& program, bool dx8) {
+  Diagnostics problems = Validate(program);
+  ASSERT_FALSE(problems.HasErrors()) << problems.ToString() << Disassemble(program);
+  const Words words = Encode(program);
+  const std::string listing = Disassemble(program);
+  EXPECT_EQ(listing.rfind(dx8 ? "vs.1.1\n" : "vs_1_1\n", 0), 0u) << listing;
+  AssembleResult again = AssembleText(listing, /*validate=*/true);
+  ASSERT_TRUE(again.program) << again.diagnostics.ToString() << listing;
+  ASSERT_EQ(Encode(*again.program), words) << listing;
+}
+
+TEST(DisassemblerGeneratedValid, Dx8ProgramsComeBackValidAndIdentical) {
+  ValidProgramGenerator generator(20261123);
+  for (int i = 0; i < 300; ++i) {
+    SCOPED_TRACE(i);
+    ExpectValidRoundTrip(generator.Next(/*declare_inputs=*/false), /*dx8=*/true);
+  }
+}
+
+TEST(DisassemblerGeneratedValid, Dx9ProgramsComeBackValidAndIdentical) {
+  ValidProgramGenerator generator(11);
+  for (int i = 0; i < 300; ++i) {
+    SCOPED_TRACE(i);
+    ExpectValidRoundTrip(generator.Next(/*declare_inputs=*/true), /*dx8=*/false);
+  }
 }
 
 }  // namespace

@@ -339,6 +339,19 @@ TEST(Validator, RejectsOutputRegistersBeyondTheirRange) {
   EXPECT_TRUE(HasError(d, "names <register type 4 number 3>, which does not exist; vs_1_1 has oPos-oPts", LineOf(2)));
 }
 
+TEST(Validator, AcceptsScalarOutputsWithAnyMaskHoldingLaneX) {
+  // Shipped DX8 shaders write `mov oFog.x, r11.x`; Microsoft's assembler keeps the mask.
+  EXPECT_TRUE(Clean(Validate(Prog({WritePosition(), Op(kMov, D(OFog(), "x"), S(C(0), "x")),
+                                   Op(kMov, D(OPts(), "xy"), S(C(0), "y"))}))));
+}
+
+TEST(Validator, WarnsWhenAScalarOutputMissesLaneX) {
+  // Encodable and round-trips through text, but the rasterizer reads lane x only (§7).
+  Diagnostics d = Validate(Prog({WritePosition(), Op(kMov, D(OFog(), "zw"), S(C(0), "w"))}));
+  EXPECT_EQ(d.error_count(), 0) << d.ToString();
+  EXPECT_TRUE(HasWarning(d, "writes oFog.zw, but only lane x of oFog is used (§7), so this write has no effect", LineOf(1)));
+}
+
 TEST(Validator, AcceptsEveryOutputRegister) {
   std::vector<Instruction> code = {WritePosition(), Op(kMov, D(OFog()), S(C(0), "x")),
                                    Op(kMov, D(OPts()), S(C(0), "y")), Op(kMov, D(OD(0)), C(1)),
