@@ -27,9 +27,11 @@ std::string VersionLine(std::uint32_t version, Syntax syntax) {
 }
 
 // DX9: c3[a0.x] (Microsoft's disassembler); DX8: c[a0.x + 3], as the DX8 documentation writes it.
+// (Only constants can be relative; any other relative register, which the validator refuses, keeps the
+// DX9 form so that it is printed as what it is.)
 std::string RegisterText(const RegisterRef& reg, Syntax syntax) {
   const std::string address = fmt::format("{}.{}", kAddressRegisterName, kLaneLetters[kAddressLane]);
-  if (reg.relative && syntax == Syntax::kDx8) {
+  if (reg.relative && reg.file == RegisterFile::kConst && syntax == Syntax::kDx8) {
     return reg.index == 0 ? fmt::format("c[{}]", address) : fmt::format("c[{} + {}]", address, reg.index);
   }
   std::string text = RegisterName(reg.file, reg.index);

@@ -171,6 +171,12 @@ TEST(Disassembler, PrintsDx8TextForAStreamWithoutDcl) {
   EXPECT_EQ(Encode(*again.program), words);
 }
 
+TEST(Disassembler, Dx8TextIndexesOnlyConstantsInTheDx8Form) {
+  // A relative input (the validator refuses it) still prints as the input it is.
+  Program program = DecodeOrDie({kVersionVs11, 0x1, 0x800F0000, 0x90E42003, 0x1, 0x800F0001, 0xA0E42000, kEndToken});
+  EXPECT_EQ(Disassemble(program), "vs.1.1\nmov r0, v3[a0.x]\nmov r1, c[a0.x]\n");
+}
+
 TEST(Disassembler, ValidatedDx8SourceComesBackValid) {
   const std::string source = "vs.1.1\nm4x4 oPos, v0, c0\nm3x3 r5, v3, c4\nmov oD0.xyz, r5\n";
   AssembleResult first = AssembleText(source, /*validate=*/true);
