@@ -14,6 +14,7 @@
 #include <iostream>
 #include <random>
 #include <sstream>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -186,13 +187,18 @@ TEST(DisassemblerRoundTrip, BuiltInSources) {
 
 TEST(DisassemblerRoundTrip, EveryProgramInProgramsFolder) {
   std::filesystem::path folder = kSourceDir / "programs";
-  int count = 0;
+  std::set<std::string> seen;
   for (const auto& entry : std::filesystem::directory_iterator(folder)) {
     if (entry.path().extension() != ".vsh") continue;
-    ++count;
+    seen.insert(entry.path().filename().string());
     ExpectSourceRoundTrip(ReadText(entry.path()), entry.path().string());
   }
-  std::cout << "[          ] round-tripped " << count << " programs from " << folder << "\n";
+  std::cout << "[          ] round-tripped " << seen.size() << " programs from " << folder << "\n";
+  // An empty or moved folder must not pass: the folder holds 12 programs, these among them.
+  EXPECT_GE(seen.size(), 12u);
+  for (const char* name : {"sh9_irradiance.vsh", "all_instructions.vsh", "skinning.vsh"}) {
+    EXPECT_TRUE(seen.count(name)) << name << " not found in " << folder;
+  }
 }
 
 // ---- golden disassembly files -------------------------------------------------------------------
