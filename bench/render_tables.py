@@ -67,25 +67,47 @@ def coefficients(found):
     print()
     print("| other | face 256 ms | face 1024 ms |")
     print("|---|---|---|")
-    for name in ("BM_EnvMips", "BM_EnvMipsRefill", "BM_Coefficients_ScalarDouble"):
+    for name in ("BM_EnvMips", "BM_EnvMipsRefill", "BM_Coefficients_ScalarDouble", "BM_Coefficients_PlainLoop"):
         cells = [f"{ms(found[f'{name}/{face}']):.4g}" if f"{name}/{face}" in found else "" for face in (256, 1024)]
         print(f"| `{name}` | {cells[0]} | {cells[1]} |")
+    for threads in (1, 2):
+        cells = [f"{ms(found[k]):.4g}" if (k := f"BM_BasisPyramidBuild/{face}/{threads}") in found else ""
+                 for face in (256, 1024)]
+        print(f"| `BM_BasisPyramidBuild`, {threads} thread{'s' if threads > 1 else ''} (once per face size) | "
+              f"{cells[0]} | {cells[1]} |")
     level0, level2 = ms(found["BM_Coefficients/256/0"]), ms(found["BM_Coefficients/256/2"])
     scalar = ms(found["BM_Coefficients_ScalarDouble/256"])
+    plain = found.get("BM_Coefficients_PlainLoop/256")
+    build = found.get("BM_BasisPyramidBuild/256/2")
     print()
     print(f"Goals: `/256/2` {level0 / level2:.1f}x faster than `/256/0` (>= 12x); level 0 "
           f"{scalar / level0:.1f}x faster than ScalarDouble at 256 (>= 4x).")
+    if plain and build:
+        print(f"Level 0 and the plain loop read a basis pyramid built once per face size ({ms(build):.4g} ms at 256, "
+              f"2 threads); ScalarDouble needs none. Against the plain loop over the same weights, level 0 is "
+              f"{ms(plain) / level0:.1f}x faster.")
 
 
 def frame(found):
     direct = found["BM_Frame/direct_cpu"]
-    print("| case | wall ms / frame | CPU ms / frame | ratio to direct_cpu (CPU) | paper fps | paper ratio | mean rel. error |")
-    print("|---|---|---|---|---|---|---|")
-    paper = {"direct_cpu": 21, "vm_full": 34, "vm_64": 45, "vm_16": 56}
+    plain = found.get("BM_Frame/plain_cpu")
+    print("| case | wall ms / frame | CPU ms / frame | ratio to direct_cpu (CPU) | ratio to plain_cpu (CPU) | paper fps | "
+          "paper ratio | mean rel. error |")
+    print("|---|---|---|---|---|---|---|---|")
+    paper = {"direct_cpu": 21, "plain_cpu": None, "vm_full": 34, "vm_64": 45, "vm_16": 56}
     for case, fps in paper.items():
-        b = found[f"BM_Frame/{case}"]
+        b = found.get(f"BM_Frame/{case}")
+        if b is None:
+            continue
+        to_plain = f"{ms(plain, 'cpu_time') / ms(b, 'cpu_time'):.1f}" if plain else ""
+        paper_cells = f"{fps} | {fps / paper['direct_cpu']:.2f}" if fps else " | "
         print(f"| {case} | {ms(b):.2f} | {ms(b, 'cpu_time'):.2f} | {ms(direct, 'cpu_time') / ms(b, 'cpu_time'):.1f} | "
-              f"{fps} | {fps / paper['direct_cpu']:.2f} | {100 * b['error_mean_rel']:.2f} % |")
+              f"{to_plain} | {paper_cells} | {100 * b['error_mean_rel']:.2f} % |")
+    build = found.get("BM_BasisPyramidBuild/256/2")
+    if build:
+        print()
+        print(f"Every case but direct_cpu reads the 256 basis pyramid, built once before the first frame "
+              f"({ms(build):.4g} ms, 2 threads; `BM_BasisPyramidBuild/256/2`), not in these frame times.")
 
 
 def main():

@@ -222,6 +222,47 @@ std::optional<std::uint64_t> UncompressedPixelBytes(const OIIO::ImageInput& inpu
   return static_cast<std::uint64_t>(spec.image_bytes(/*native=*/true));
 }
 
+// The largest ratio of pixel data to file size a compressed file may declare, per format. A header
+// of a few bytes can claim an image of up to kMaxImagePixels, and OpenImageIO (and this loader)
+// allocate the whole image before finding the data missing: gigabytes for a 400-byte EXR or PNG.
+// Each bound is about the most that format's coding reaches on a constant image: deflate (PNG;
+// EXR zip, zips, pxr24, piz's Huffman with run lengths stays below it) 1032:1; Radiance HDR's run
+// lengths 127 bytes in 2; EXR rle 128 bytes in 2; EXR b44a 32 bytes in 3; EXR dwaa/dwab run-length
+// code the transformed blocks and deflate them again, 32 x 1032. Other formats get deflate's bound:
+// an image that compresses further (a BMP ending in its end-of-image code) is refused with a message
+// saying so.
+double MaxCompressionRatio(std::string_view format, std::string_view compression) {
+  constexpr double kDeflate = 1032;
+  if (format == "hdr") return 64;
+  if (format == "openexr") {
+    if (compression.starts_with("none")) return 1;
+    if (compression.starts_with("rle")) return 64;
+    if (compression.starts_with("b44")) return 11;
+    if (compression.starts_with("dwa")) return 32 * kDeflate;
+  }
+  return kDeflate;
+}
+
+// Refuses, from the header alone, a compressed file too small for the image it declares (see
+// MaxCompressionRatio). The pixel data is counted low: one channel per pixel, at the file's
+// smallest sample size, so that no image its format can really store is refused.
+std::optional<std::string> CheckCompressionRatio(const OIIO::ImageInput& input, const OIIO::ImageSpec& spec,
+                                                 std::uintmax_t file_size) {
+  const std::string format = Lower(input.format_name());
+  const std::string compression = Lower(std::string(spec.get_string_attribute("compression", "")));
+  int bits_per_sample = spec.get_int_attribute("oiio:BitsPerSample", static_cast<int>(spec.format.size() * 8));
+  if (format == "openexr") bits_per_sample = 16;  // half, the smallest EXR sample
+  if (format == "hdr") bits_per_sample = 8;       // one byte of RGBE
+  const double pixel_bytes = static_cast<double>(spec.width) * spec.height * std::max(bits_per_sample, 1) / 8;
+  const double ratio = MaxCompressionRatio(format, compression);
+  if (pixel_bytes <= ratio * static_cast<double>(file_size)) return std::nullopt;
+  return fmt::format(
+      "corrupt or truncated file: its header declares a {} x {} image, at least {:.0f} bytes of pixels, "
+      "which {} bytes of {}{} cannot hold (more than the {:.0f}:1 this format's compression reaches)",
+      spec.width, spec.height, pixel_bytes, file_size, format, compression.empty() ? "" : " " + compression,
+      ratio);
+}
+
 // `expected`: the layout the image must fit, checked on the header's size before the pixels are
 // read, so that a small file claiming a huge image of a useless shape allocates nothing; nullopt
 // for any shape (ReadImage). A DDS cube map is always accepted (it is read as a vertical strip).
@@ -286,6 +327,12 @@ ImageReadResult ReadImageUnchecked(const fs::path& path, std::optional<Layout> e
         "{}: truncated file: {} bytes, but the {} x {} uncompressed pixels its header declares "
         "take {}",
         path.string(), file_size, spec.width, spec.height, *needed));
+  }
+
+  if (!ec && !UncompressedPixelBytes(*input, spec)) {
+    if (std::optional<std::string> error = CheckCompressionRatio(*input, spec, file_size)) {
+      return ReadFailure(fmt::format("{}: {}", path.string(), *error));
+    }
   }
 
   ImageReadResult result;

@@ -81,7 +81,9 @@ V Exp2(V x) {
   p = p * f + Constant(x, 6.93147181e-1f);
   p = p * f + Constant(x, 1.0f);
   V result = ScaleByPowerOfTwo(p, ToInt(whole));
-  return IfThenElse(IsNaN(x), x, result);
+  // x + x: a NaN comes out quiet, as from any IEEE operation. Passed through as it is, a signalling
+  // NaN whose payload sits in the 8 low bits would become +inf under expp's PartialPrecision mask.
+  return IfThenElse(IsNaN(x), x + x, result);
 }
 
 // log2(v) for v >= 0 to about 23 bits (spec asks 21): v = 2^e m with m in [sqrt(1/2), sqrt(2)), and
@@ -110,7 +112,7 @@ V Log2(V v) {
   V result = e + p * t;
   result = IfThenElse(v == Constant(v, 0.0f), Constant(v, -kMaxFloat), result);
   result = IfThenElse(v == Constant(v, INFINITY), v, result);
-  return IfThenElse(IsNaN(v), v, result);
+  return IfThenElse(IsNaN(v), v + v, result);  // quiet, as in Exp2 (logp's PartialPrecision)
 }
 
 // Clears the low 8 mantissa bits, as the reference rasterizer did for expp/logp's partial result.

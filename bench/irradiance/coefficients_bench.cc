@@ -4,8 +4,16 @@
 //   BM_EnvMips/<face>                    BuildEnvironmentMips (a freshly allocated pyramid per call)
 //   BM_EnvMipsRefill/<face>              RefillEnvironmentMips into one pyramid (the per-frame part
 //                                        of the mip method in a real-time loop)
-//   BM_Coefficients_ScalarDouble/<face>  ProjectScalarDouble: the scalar double per-texel baseline
+//   BM_Coefficients_ScalarDouble/<face>  ProjectScalarDouble: the obvious baseline, which computes
+//                                        each texel's direction, basis and solid angle every call
+//   BM_Coefficients_PlainLoop/<face>     ProjectPlainLoop: the fair baseline, a plain scalar double
+//                                        loop over the pyramid's precomputed level-0 weights
+//   BM_BasisPyramidBuild/<face>/<threads> BuildBasisPyramid: the one-off set-up ProjectLevel and the
+//                                        plain loop read (built once per face size, not per frame)
 //   BM_SkyGeneration/<face>              MakeSky (how long regenerating the environment itself takes)
+
+#include <algorithm>
+#include <cmath>
 
 #include <benchmark/benchmark.h>
 
@@ -57,6 +65,39 @@ void BM_Coefficients_ScalarDouble(benchmark::State& state) {
   for (auto _ : state) benchmark::DoNotOptimize(ProjectScalarDouble(fixture.env));
 }
 BENCHMARK(BM_Coefficients_ScalarDouble)->Arg(256)->Arg(1024)->UseRealTime()->Unit(benchmark::kMillisecond);
+
+// Largest difference between two projections, relative to the largest coefficient of `reference`.
+double RelativeDifference(const irradiance::Sh9Rgb& value, const irradiance::Sh9Rgb& reference) {
+  double largest = 0, difference = 0;
+  for (int i = 0; i < irradiance::kSh9Coefficients; ++i) {
+    for (int c = 0; c < 3; ++c) {
+      largest = std::max(largest, std::abs(reference.coefficients[i][c]));
+      difference = std::max(difference, std::abs(value.coefficients[i][c] - reference.coefficients[i][c]));
+    }
+  }
+  return difference / largest;
+}
+
+void BM_Coefficients_PlainLoop(benchmark::State& state) {
+  const ProjectionFixture& fixture = SkyFixture(static_cast<int>(state.range(0)));
+  const irradiance::BasisLevel& level0 = fixture.basis.levels[0];
+  for (auto _ : state) benchmark::DoNotOptimize(ProjectPlainLoop(fixture.env, level0));
+  // The same projection as the obvious baseline, up to the float rounding of the stored weights.
+  state.counters["rel_diff_vs_scalar_double"] =
+      RelativeDifference(ProjectPlainLoop(fixture.env, level0), ProjectScalarDouble(fixture.env));
+}
+BENCHMARK(BM_Coefficients_PlainLoop)->Arg(256)->Arg(1024)->UseRealTime()->Unit(benchmark::kMillisecond);
+
+void BM_BasisPyramidBuild(benchmark::State& state) {
+  const int face = static_cast<int>(state.range(0)), threads = static_cast<int>(state.range(1));
+  for (auto _ : state) benchmark::DoNotOptimize(irradiance::BuildBasisPyramid(face, threads));
+}
+BENCHMARK(BM_BasisPyramidBuild)
+    ->Args({256, 1})
+    ->Args({256, 2})
+    ->Args({1024, 2})
+    ->UseRealTime()
+    ->Unit(benchmark::kMillisecond);
 
 void BM_SkyGeneration(benchmark::State& state) {
   const int face = static_cast<int>(state.range(0));

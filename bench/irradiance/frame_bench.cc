@@ -4,7 +4,10 @@
 //   -> [mip methods] its mip pyramid, refilled in place (RefillEnvironmentMips: no allocation)
 //   -> nine coefficients -> the seven Table 1 constants -> the program over a 100 000-vertex mesh
 //
-//   BM_Frame/direct_cpu  ProjectScalarDouble at full resolution + EvalTable1Scalar per vertex (no VM)
+//   BM_Frame/direct_cpu  ProjectScalarDouble at full resolution + EvalTable1Scalar per vertex (no VM);
+//                        recomputes every texel's direction, basis and solid angle each frame
+//   BM_Frame/plain_cpu   ProjectPlainLoop (full resolution, the basis pyramid's precomputed level-0
+//                        weights, as vm_full reads them) + EvalTable1Scalar per vertex (no VM)
 //   BM_Frame/vm_full     ProjectLevel level 0 (no mip pyramid needed) + batch engine running
 //                        programs/sh9_irradiance.vsh
 //   BM_Frame/vm_64       mip pyramid + ProjectLevel of the 64 x 64 level + batch engine
@@ -42,7 +45,9 @@ constexpr std::size_t kMeshVertices = 100000;
 constexpr int kErrorNormals = 1000;
 constexpr int kGroundTruthThreads = 2;
 
-enum class FrameCase { kDirectCpu, kVmFull, kVm64, kVm16 };
+enum class FrameCase { kDirectCpu, kPlainCpu, kVmFull, kVm64, kVm16 };
+
+bool RunsTheVm(FrameCase c) { return c != FrameCase::kDirectCpu && c != FrameCase::kPlainCpu; }
 
 struct FrameFixture {
   std::vector<irradiance::CubeMap> skies;              // one per sun position
@@ -87,6 +92,7 @@ int LevelOf(FrameCase c) {
 irradiance::Sh9Rgb FrameCoefficients(const FrameFixture& f, FrameCase c, int index, irradiance::CubeMipChain& mips) {
   const int level = LevelOf(c);
   if (c == FrameCase::kDirectCpu) return ProjectScalarDouble(f.skies[index]);
+  if (c == FrameCase::kPlainCpu) return ProjectPlainLoop(f.skies[index], f.basis.levels[0]);
   if (level == 0) return irradiance::ProjectLevel(f.single_level[index], f.basis, 0);
   irradiance::RefillEnvironmentMips(f.skies[index], mips);
   return irradiance::ProjectLevel(mips, f.basis, level);
@@ -96,7 +102,7 @@ irradiance::Sh9Rgb FrameCoefficients(const FrameFixture& f, FrameCase c, int ind
 class VertexStep {
  public:
   VertexStep(const FrameFixture& f, FrameCase c, const SoaNormals& normals)
-      : vm_(c != FrameCase::kDirectCpu), normals_(normals) {
+      : vm_(RunsTheVm(c)), normals_(normals) {
     if (vm_) {
       inputs_ = NormalInputs(normals);
       outputs_ = MakeOutputArrays(normals.size(), f.program);
@@ -164,6 +170,7 @@ void BM_Frame(benchmark::State& state, FrameCase c) {
 }
 
 BENCHMARK_CAPTURE(BM_Frame, direct_cpu, FrameCase::kDirectCpu)->UseRealTime()->Unit(benchmark::kMillisecond);
+BENCHMARK_CAPTURE(BM_Frame, plain_cpu, FrameCase::kPlainCpu)->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_Frame, vm_full, FrameCase::kVmFull)->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_Frame, vm_64, FrameCase::kVm64)->UseRealTime()->Unit(benchmark::kMillisecond);
 BENCHMARK_CAPTURE(BM_Frame, vm_16, FrameCase::kVm16)->UseRealTime()->Unit(benchmark::kMillisecond);

@@ -1,5 +1,6 @@
 // Inputs fuzz_environment (tests/fuzz) found, replayed through the loader. Run under .ci/sanitize
 // they also check that reading them stays clean under ASan and UBSan.
+#include <cstdint>
 #include <filesystem>
 #include <fstream>
 #include <string>
@@ -8,9 +9,14 @@
 #include <gtest/gtest.h>
 
 #include "irradiance/environment_io.h"
+#include "tests/irradiance/environment_test_support.h"
 
 namespace vs11::irradiance {
 namespace {
+
+using envtest::Append;
+using envtest::ReadBytes;
+using envtest::WriteWithOiio;
 
 // A 3 x 4 PNG whose cHRM chunk runs into a run of 'r' bytes: libpng fails on a CRC, and OpenImageIO
 // 2.4 leaks its error string (hence tests/fuzz/lsan.supp). The loader must refuse it with a message.
@@ -63,6 +69,79 @@ TEST(EnvironmentFuzzRegression, ExrClaimingAHugeImageOfNoLayoutIsRefusedFromItsH
   EXPECT_FALSE(result.ok());
   EXPECT_NE(result.error.find("8257538 x 12"), std::string::npos) << result.error;
   EXPECT_NE(result.error.find("cannot detect the layout"), std::string::npos) << result.error;
+}
+
+// ---- Compressed files too small for the image their header declares (CheckCompressionRatio) --------
+// OpenImageIO allocates the whole image a header declares before it finds the data missing, so
+// without the check each of these made fuzz_environment run out of memory (with 4 GB).
+
+std::filesystem::path WriteScratch(const std::string& name, const std::string& bytes) {
+  std::filesystem::path path = std::filesystem::path(::testing::TempDir()) / name;
+  std::ofstream(path, std::ios::binary) << bytes;
+  return path;
+}
+
+void ExpectRefusedAsTooSmall(const std::filesystem::path& path, const std::string& size) {
+  LoadResult result = LoadEnvironment(path);
+  std::filesystem::remove(path);
+  EXPECT_FALSE(result.ok());
+  EXPECT_NE(result.error.find(path.string()), std::string::npos) << result.error;
+  EXPECT_NE(result.error.find("declares a " + size + " image"), std::string::npos) << result.error;
+  EXPECT_NE(result.error.find("cannot hold"), std::string::npos) << result.error;
+}
+
+// A real 8 x 4 file written by OpenImageIO, read back as bytes.
+std::string SmallImageBytes(const std::string& name) {
+  const std::filesystem::path path = std::filesystem::path(::testing::TempDir()) / name;
+  const std::vector<float> pixels(8 * 4 * 3, 0.25f);
+  EXPECT_TRUE(WriteWithOiio(path, 8, 4, 3, OIIO::TypeDesc::FLOAT, pixels.data()));
+  std::string bytes = ReadBytes(path);
+  std::filesystem::remove(path);
+  return bytes;
+}
+
+TEST(EnvironmentFuzzRegression, SmallZipExrClaimingALatLongNearThePixelLimitIsRefused) {
+  // Both windows of an 8 x 4 zip EXR made 8192 x 4096, a lat-long shape (2^25 pixels).
+  std::string bytes = SmallImageBytes("vs11_small.exr");
+  for (const std::string window : {"dataWindow", "displayWindow"}) {
+    const std::size_t at = bytes.find(window + '\0' + "box2i");
+    ASSERT_NE(at, std::string::npos) << window;
+    std::string box;  // x min, y min, x max, y max (little-endian int32)
+    for (std::int32_t value : {0, 0, 8191, 4095}) Append(box, value);
+    bytes.replace(at + window.size() + 1 + 6 + 4, box.size(), box);
+  }
+  bytes += std::string(4096, '\0');  // room for the 256 chunk offsets OpenEXR reads when it opens the file
+  ExpectRefusedAsTooSmall(WriteScratch("vs11_fuzz_small_latlong.exr", bytes), "8192 x 4096");
+}
+
+TEST(EnvironmentFuzzRegression, HdrHeaderWithoutPixelsClaimingALatLongIsRefused) {
+  const std::string bytes = "#?RADIANCE\nFORMAT=32-bit_rle_rgbe\n\n-Y 8192 +X 16384\n" + std::string(64, '\x02');
+  ExpectRefusedAsTooSmall(WriteScratch("vs11_fuzz_small_latlong.hdr", bytes), "16384 x 8192");
+}
+
+// PNG chunk checksum (ISO 3309 CRC-32), so that the patched header below is a valid chunk.
+std::uint32_t Crc32(std::string_view bytes) {
+  std::uint32_t crc = 0xFFFFFFFFu;
+  for (unsigned char byte : bytes) {
+    crc ^= byte;
+    for (int bit = 0; bit < 8; ++bit) crc = (crc >> 1) ^ (0xEDB88320u & (0u - (crc & 1u)));
+  }
+  return ~crc;
+}
+
+std::string BigEndian(std::uint32_t value) {
+  return {static_cast<char>(value >> 24), static_cast<char>(value >> 16), static_cast<char>(value >> 8),
+          static_cast<char>(value)};
+}
+
+TEST(EnvironmentFuzzRegression, SmallPngClaimingAHugeCrossIsRefused) {
+  // An 8 x 4 PNG whose IHDR chunk (valid checksum) declares a 16384 x 12288 horizontal cross.
+  std::string bytes = SmallImageBytes("vs11_small.png");
+  ASSERT_EQ(bytes.substr(12, 4), "IHDR");
+  const std::string ihdr = "IHDR" + BigEndian(16384) + BigEndian(12288) + bytes.substr(24, 5);
+  bytes.replace(12, ihdr.size(), ihdr);
+  bytes.replace(12 + ihdr.size(), 4, BigEndian(Crc32(ihdr)));
+  ExpectRefusedAsTooSmall(WriteScratch("vs11_fuzz_small_cross.png", bytes), "16384 x 12288");
 }
 
 }  // namespace

@@ -14,6 +14,7 @@
 #include <iostream>
 #include <random>
 #include <sstream>
+#include <set>
 #include <string>
 #include <vector>
 
@@ -245,9 +246,11 @@ TEST(DisassemblerRoundTrip, EveryProgramInProgramsFolderValidatesAgain) {
   const std::filesystem::path folder = kSourceDir / "programs";
   ASSERT_TRUE(std::filesystem::is_directory(folder)) << folder;
   int dx8 = 0, dx9 = 0;
+  std::set<std::string> seen;
   for (const auto& entry : std::filesystem::directory_iterator(folder)) {
     if (entry.path().extension() != ".vsh") continue;
     SCOPED_TRACE(entry.path().string());
+    seen.insert(entry.path().filename().string());
     const std::string source = ReadText(entry.path());
     AssembleOptions options;
     options.require_position = source.find("; vs11: fragment=yes") == std::string::npos;
@@ -262,6 +265,10 @@ TEST(DisassemblerRoundTrip, EveryProgramInProgramsFolderValidatesAgain) {
   std::cout << "[          ] round-tripped " << dx8 << " DX8 and " << dx9 << " DX9 programs from " << folder << "\n";
   EXPECT_GT(dx8, 0);
   EXPECT_GT(dx9, 0);
+  // An empty or moved folder must not pass.
+  for (const char* name : {"sh9_irradiance.vsh", "all_instructions.vsh", "skinning.vsh"}) {
+    EXPECT_TRUE(seen.count(name)) << name << " not found in " << folder;
+  }
 }
 
 // ---- golden disassembly files -------------------------------------------------------------------
