@@ -1,0 +1,114 @@
+// vs11 end to end: the program's `; vs11: fragment=` metadata in every subcommand, --fragment and
+// --no-fragment, count going on past a bad program, and usage errors (status 2, the culprit named).
+#include <filesystem>
+#include <fstream>
+#include <string>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "tests/run_tool.h"
+
+namespace {
+
+namespace fs = std::filesystem;
+
+using ::testing::HasSubstr;
+using ::testing::Not;
+using vs11::testing::CommandResult;
+using vs11::testing::RunVs11;
+
+class Vs11MetadataAndUsage : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    dir_ = fs::path(::testing::TempDir()) /
+           ("vs11_usage_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  std::string Write(const std::string& name, const std::string& text) {
+    std::ofstream(dir_ / name, std::ios::binary) << text;
+    return (dir_ / name).string();
+  }
+  fs::path dir_;
+};
+
+// A piece of a shader: it writes oD0 only.
+const std::string kFragmentBody = "vs_1_1\ndcl_normal v0\nadd oD0.xyz, v0, c0\n";
+const std::string kOposMissing = "never writes oPos";
+
+TEST_F(Vs11MetadataAndUsage, FragmentMetadataIsHonouredByEverySubcommand) {
+  std::string program = Write("frag.vsh", "; vs11: fragment=yes\n" + kFragmentBody);
+  std::string vso = (dir_ / "frag.vso").string();
+  CommandResult assembled = RunVs11("asm " + program + " -o " + vso);
+  ASSERT_EQ(assembled.status, 0) << assembled.output;
+  EXPECT_EQ(RunVs11("disasm " + vso).status, 0);
+  CommandResult validated = RunVs11("validate " + program);
+  EXPECT_EQ(validated.status, 0) << validated.output;
+  CommandResult ran = RunVs11("run " + program + " --sphere 2 --const c0=1,2,3,4 --engine ref");
+  EXPECT_EQ(ran.status, 0) << ran.output;
+  CommandResult counted = RunVs11("count --no-timing " + program);
+  EXPECT_EQ(counted.status, 0) << counted.output;
+}
+
+TEST_F(Vs11MetadataAndUsage, NoFragmentFlagWinsOverTheMetadata) {
+  std::string program = Write("frag.vsh", "; vs11: fragment=yes\n" + kFragmentBody);
+  for (const std::string& command : {"validate " + program, "asm " + program + " -o " + (dir_ / "f.vso").string(),
+                                     "count --no-timing " + program, "run " + program + " --sphere 2"}) {
+    CommandResult r = RunVs11(command + " --no-fragment");
+    EXPECT_EQ(r.status, 1) << command;
+    EXPECT_THAT(r.output, HasSubstr(kOposMissing)) << command;
+  }
+  EXPECT_FALSE(fs::exists(dir_ / "f.vso"));
+}
+
+TEST_F(Vs11MetadataAndUsage, FragmentFlagWinsOverMetadataSayingNo) {
+  std::string program = Write("frag.vsh", "; vs11: fragment=no\n" + kFragmentBody);
+  EXPECT_THAT(RunVs11("validate " + program).output, HasSubstr(kOposMissing));
+  EXPECT_EQ(RunVs11("validate --fragment " + program).status, 0);
+  CommandResult both = RunVs11("validate --fragment --no-fragment " + program);
+  EXPECT_EQ(both.status, 2);
+  EXPECT_THAT(both.output, HasSubstr("--no-fragment"));
+}
+
+TEST_F(Vs11MetadataAndUsage, CountListsEveryProgramThatLoadsAndFailsForTheRest) {
+  std::string good = Write("good.vsh", "; vs11: fragment=yes\n" + kFragmentBody);
+  std::string bad = Write("bad.vsh", "vs_1_1\nfrobnicate r0\n");
+  std::string later = Write("later.vsh", "vs_1_1\ndcl_position v0\nmov oPos, v0\n");
+  CommandResult r = RunVs11("count --no-timing " + bad + " " + good + " " + later);
+  EXPECT_EQ(r.status, 1);
+  EXPECT_THAT(r.output, HasSubstr("bad.vsh:2:1: error"));
+  EXPECT_THAT(r.output, HasSubstr("good.vsh"));
+  EXPECT_THAT(r.output, HasSubstr("later.vsh"));
+}
+
+TEST_F(Vs11MetadataAndUsage, CountShowsTheExecutedPerVertexColumnItsHelpDescribes) {
+  std::string program = Write("p.vsh", "vs_1_1\ndcl_position v0\nm4x4 oPos, v0, c0\nmov oD0, v0\n");
+  CommandResult r = RunVs11("count --no-timing " + program);
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("exec/v"));
+  EXPECT_THAT(RunVs11("count --help").output, HasSubstr("exec/v"));
+  // m4x4 is one instruction in four slots: executed per vertex counts instructions.
+  EXPECT_THAT(r.output, ::testing::ContainsRegex("p.vsh +2 +5 +4 +0 +1 +2 "));
+}
+
+TEST_F(Vs11MetadataAndUsage, UsageErrorsExitTwoAndNameTheCulprit) {
+  CommandResult unknown = RunVs11("frobnicate");
+  EXPECT_EQ(unknown.status, 2);
+  EXPECT_THAT(unknown.output, HasSubstr("frobnicate"));
+  EXPECT_THAT(unknown.output, Not(HasSubstr("A subcommand is required")));
+  CommandResult flag = RunVs11("validate x.vsh --frob");
+  EXPECT_EQ(flag.status, 2);
+  EXPECT_THAT(flag.output, HasSubstr("--frob"));
+  EXPECT_EQ(RunVs11("").status, 2);
+  EXPECT_EQ(RunVs11("asm").status, 2);
+  EXPECT_EQ(RunVs11("run p.vsh --engine warp").status, 2);
+  CommandResult version = RunVs11("--version");
+  EXPECT_EQ(version.status, 0);
+  EXPECT_THAT(version.output, HasSubstr("vs11 "));
+  EXPECT_EQ(RunVs11("--help").status, 0);
+  EXPECT_EQ(RunVs11("run --help").status, 0);
+}
+
+}  // namespace
