@@ -70,8 +70,8 @@ void AddChartCommand(CLI::App& app) {
       "and dashed for direct, each point labelled by its level. gnuplot draws it.\n"
       "\n"
       "Examples:\n"
-      "  irrmap chart                          every built-in at 256x256, into out/\n"
-      "  irrmap chart sky spot --face-size 512 --out chart-512\n"
+      "  irrmap chart                          # every built-in at 256x256, into out/\n"
+      "  irrmap chart sky spot --face-size 64 --out chart-64\n"
       "  irrmap chart probe.hdr --layout angular --face-size 256\n");
   chart->add_option("ENV", arguments->options.environments,
                     "environments (files, {face} patterns or built-in names); default: every built-in");

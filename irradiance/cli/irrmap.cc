@@ -60,11 +60,11 @@ std::string Footer() {
       "`irrmap stability` measures both.\n"
       "\n"
       "Examples:\n"
-      "  irrmap                                     built-in sky, 256x256 faces, level by --max-error, out/\n"
-      "  irrmap spot --window dering                the spot light without negative irradiance\n"
-      "  irrmap studio --face-size 128 --level 3    built-in studio, coefficients from 16x16\n"
+      "  irrmap                                       # built-in sky, 256x256 faces, level by --max-error, out/\n"
+      "  irrmap spot --window dering                  # the spot light without negative irradiance\n"
+      "  irrmap studio --face-size 128 --level 3      # built-in studio, coefficients from 16x16\n"
       "  irrmap probe.hdr --layout angular --face-size 256 --out probe-out\n"
-      "  irrmap 'sky_{{face}}.exr' --engine ref       six face files, reference engine\n"
+      "  irrmap 'sky_{{face}}.exr' --engine ref         # six face files, reference engine\n"
       "  irrmap cross.exr --map-size 64 --threads 2\n",
       vs11::irradiance::kRecommendedLevelSize);
 }

@@ -52,8 +52,8 @@ void AddStabilityCommand(CLI::App& app) {
       "  ringing.png     lowest irradiance over the sphere against the light's radius, per window\n"
       "  levels.png      error of each mip level against level 0, per environment\n"
       "\n"
-      "Example (the report the README links to):\n"
-      "  irrmap stability --out irradiance/images/stability");
+      "Examples:\n"
+      "  irrmap stability --out irradiance/images/stability   # the report the README links to");
   command->add_option("--out", *out_dir, "output directory")->capture_default_str();
   command->add_option("--face-size", options->face_size, "face size of the sweep's and the level study's maps")
       ->capture_default_str();
