@@ -111,4 +111,38 @@ TEST_F(Vs11MetadataAndUsage, UsageErrorsExitTwoAndNameTheCulprit) {
   EXPECT_EQ(RunVs11("run --help").status, 0);
 }
 
+TEST_F(Vs11MetadataAndUsage, RunWarnsAboutConstantsAndInputsNobodySets) {
+  std::string program = Write("xform.vsh", "vs_1_1\ndef c4, 1, 1, 1, 1\ndcl_position v0\ndcl_normal v1\n"
+                                           "m4x4 oPos, v0, c0\nmul oD0, v1, c4\n");
+  std::string positions = Write("pos.csv", "1,2,3\n");
+  CommandResult r = RunVs11("run " + program + " --input v0=" + positions + " --const c4=0,0,0,0 --const c1=1,0,0,0");
+  EXPECT_EQ(r.status, 0) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("reads c0, c2, c3, which no def"));
+  EXPECT_THAT(r.output, HasSubstr("def of c4 overrides"));
+  EXPECT_THAT(r.output, HasSubstr("reads v1, which no --input"));
+  EXPECT_THAT(RunVs11("run --help").output, HasSubstr("def lines in the program win"));
+}
+
+TEST_F(Vs11MetadataAndUsage, RunReadsTheCsvItWritesBackByColumnName) {
+  std::string program = Write("p.vsh", "vs_1_1\ndcl_position v0\ndcl_normal v1\nmov oPos, v0\nmov oD0.xyz, v1\n");
+  std::string first = (dir_ / "first.csv").string();
+  ASSERT_EQ(RunVs11("run " + program + " --sphere 3 --out " + first).status, 0);
+  std::string second = (dir_ / "second.csv").string();
+  CommandResult again = RunVs11("run " + program + " --input v0=" + first + ":oPos --input v1=" + first +
+                                ":oD0.x,oD0.y,oD0.z --out " + second);
+  ASSERT_EQ(again.status, 0) << again.output;
+  std::ifstream a(first), b(second);
+  std::string header_a, header_b;
+  std::getline(a, header_a);
+  std::getline(b, header_b);
+  EXPECT_EQ(header_a, "v1.x,v1.y,v1.z,oPos.x,oPos.y,oPos.z,oPos.w,oD0.x,oD0.y,oD0.z");
+  for (std::string row_a, row_b; std::getline(a, row_a) && std::getline(b, row_b);) {
+    EXPECT_EQ(row_a.substr(row_a.find(',', row_a.find(',', row_a.find(',') + 1) + 1) + 1), row_b);
+  }
+  CommandResult whole = RunVs11("run " + program + " --input v0=" + first);
+  EXPECT_EQ(whole.status, 1);
+  EXPECT_THAT(whole.output, HasSubstr("v#=FILE:NAME"));
+  EXPECT_THAT(whole.output, HasSubstr("and 2 more bad rows"));
+}
+
 }  // namespace
