@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 
 #include "irradiance/cli/subcommands.h"
+#include "irradiance/irrmap_job.h"
 #include "irradiance/speed_accuracy.h"
 
 namespace vs11::irradiance::cli {
@@ -20,6 +21,7 @@ struct ChartArguments {
 };
 
 void RunChart(const ChartArguments& arguments) {
+  if (std::optional<std::string> error = CheckOutputFolder(arguments.out_dir)) throw SubcommandFailure(*error);
   SpeedAccuracyResult result;
   const auto progress = [](std::string_view environment, int index, int count) {
     fmt::print(stderr, "irrmap chart: {} ({} of {})\n", environment, index + 1, count);

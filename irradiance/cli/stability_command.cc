@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 
 #include "irradiance/cli/subcommands.h"
+#include "irradiance/irrmap_job.h"
 #include "irradiance/stability_report.h"
 
 namespace vs11::irradiance::cli {
@@ -67,6 +68,7 @@ void AddStabilityCommand(CLI::App& app) {
   command->add_option("--threads", options->threads, "worker threads (0 = every core)")->capture_default_str();
   command->callback([options, out_dir] {
     options->out_dir = *out_dir;
+    if (std::optional<std::string> error = CheckOutputFolder(options->out_dir)) throw SubcommandFailure(*error);
     StabilityReport report;
     if (std::optional<std::string> error = RunStability(*options, report, TerminalProgress())) {
       throw SubcommandFailure(*error);
