@@ -169,36 +169,35 @@ std::string HelpText(const HelpPage& page) {
   return help.output;
 }
 
-// The indented lines under "Examples:", comments and all (they are shell lines).
-std::vector<std::string> ExampleLines(const std::string& help) {
-  std::vector<std::string> examples;
+// The indented lines under a heading such as "Examples:", up to the next blank or unindented line.
+std::vector<std::string> LinesUnder(const std::string& help, const std::string& heading) {
+  std::vector<std::string> lines;
   std::istringstream in(help);
   bool inside = false;
   for (std::string line; std::getline(in, line);) {
-    if (line == "Examples:") {
+    if (line == heading) {
       inside = true;
     } else if (inside && line.rfind("  ", 0) == 0) {
-      examples.push_back(line.substr(line.find_first_not_of(' ')));
+      lines.push_back(line);
     } else {
       inside = false;
     }
   }
+  return lines;
+}
+
+// The examples, comments and all (they are shell lines).
+std::vector<std::string> ExampleLines(const std::string& help) {
+  std::vector<std::string> examples;
+  for (const std::string& line : LinesUnder(help, "Examples:")) examples.push_back(line.substr(line.find_first_not_of(' ')));
   return examples;
 }
 
-// The names listed under "Subcommands:".
+// The names listed under "Subcommands:" (their descriptions may continue on deeper-indented lines).
 std::vector<std::string> SubcommandNames(const std::string& help) {
   std::vector<std::string> names;
-  std::istringstream in(help);
-  bool inside = false;
-  for (std::string line; std::getline(in, line);) {
-    if (line == "Subcommands:") {
-      inside = true;
-    } else if (inside && line.size() > 2 && line.rfind("  ", 0) == 0 && line[2] != ' ') {
-      names.push_back(line.substr(2, line.find(' ', 2) - 2));
-    } else if (inside && line.empty()) {
-      inside = false;
-    }
+  for (const std::string& line : LinesUnder(help, "Subcommands:")) {
+    if (line.size() > 2 && line[2] != ' ') names.push_back(line.substr(2, line.find(' ', 2) - 2));
   }
   return names;
 }

@@ -18,21 +18,7 @@ using ::testing::Not;
 using vs11::testing::CommandResult;
 using vs11::testing::RunVs11;
 
-class Vs11MetadataAndUsage : public ::testing::Test {
- protected:
-  void SetUp() override {
-    dir_ = fs::path(::testing::TempDir()) /
-           ("vs11_usage_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-  std::string Write(const std::string& name, const std::string& text) {
-    std::ofstream(dir_ / name, std::ios::binary) << text;
-    return (dir_ / name).string();
-  }
-  fs::path dir_;
-};
+using Vs11MetadataAndUsage = vs11::testing::ToolFolderTest;
 
 // A piece of a shader: it writes oD0 only.
 const std::string kFragmentBody = "vs_1_1\ndcl_normal v0\nadd oD0.xyz, v0, c0\n";
