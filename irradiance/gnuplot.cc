@@ -105,6 +105,9 @@ std::optional<std::string> RenderGnuplotChart(const GnuplotChart& chart, const s
     images.push_back(TemporaryBeside(output, random, temporaries));
     commands << "reset session\n" << *terminal << "\nset output " << GnuplotQuote(images.back().string()) << "\n"
              << "datafile = " << GnuplotQuote(data.string()) << "\n"
+             // Tick labels as numbers read (10000, 0.001, 1e-05), not gnuplot's log-axis default
+             // 10000.000000; a chart's script can still set its own.
+             << "set format x '%g'\nset format y '%g'\n"
              << chart.script << "\nunset output\n";
   }
   if (auto error = WriteFileAtomically(script, commands.str())) return error;

@@ -1,6 +1,8 @@
 // The irrmap job. See irrmap_job.h.
 #include "irradiance/irrmap_job.h"
 
+#include <unistd.h>
+
 #include <algorithm>
 #include <array>
 #include <bit>
@@ -137,6 +139,7 @@ std::optional<std::string> CheckOptions(const IrrmapOptions& options, CheckedOpt
                        kMaxSphereDiameter);
   }
   if (options.out_dir.empty()) return std::string("the output directory is empty");
+  if (std::optional<std::string> error = CheckOutputFolder(options.out_dir)) return error;
   if (options.environment.empty()) return std::string("no environment given");
   std::error_code ec;
   const bool exists = fs::exists(options.environment, ec);
@@ -175,6 +178,14 @@ std::optional<std::string> LoadCube(const IrrmapOptions& options, const CheckedO
   cube = std::move(loaded.environment->cube);
   report.environment = options.environment;
   report.layout = std::string(LayoutName(loaded.environment->layout));
+  const bool resampled = loaded.environment->layout == EnvironmentLayout::kLatLong ||
+                         loaded.environment->layout == EnvironmentLayout::kAngular;
+  if (options.face_size_given && !resampled && cube.face_size != options.face_size) {
+    report.warnings.push_back(fmt::format("--face-size {} ignored: {} is a cube map ({}) with faces of {}x{}; only "
+                                          "lat-long and angular maps are resampled",
+                                          options.face_size, options.environment, report.layout, cube.face_size,
+                                          cube.face_size));
+  }
   if (!IsPowerOfTwo(cube.face_size)) {
     return fmt::format("{}: face size {} is not a power of two; the mip pyramid needs exact 2x2 parents down to "
                        "1x1 (resample the map, or give a lat-long map with --face-size)",
@@ -254,7 +265,7 @@ nlohmann::ordered_json CoefficientsJson(const IrrmapReport& report, const Irrmap
   nlohmann::ordered_json levels = nlohmann::ordered_json::array();
   for (const LevelReport& level : report.levels) {
     nlohmann::ordered_json row = {{"level", level.level}, {"size", level.size}, {"update_ms", level.update_ms}};
-    if (!options.coefficients_only) {
+    if (!options.coefficients_only && !options.no_ground_truth) {
       row["max_relative_error"] = level.error.max_relative;
       row["mean_relative_error"] = level.error.mean_relative;
     }
@@ -461,9 +472,12 @@ std::optional<std::string> RunIrrmap(const IrrmapOptions& options, IrrmapReport&
   const EngineOptions engine_options{checked.threads};
 
   CubeMap cube;
+  // Loading has no fraction to report: the bar shows the stage at 0 % and at its end.
+  if (progress) progress("load", 0.0);
   std::optional<std::string> load_error =
       Timed(report, "load", [&] { return LoadCube(options, checked, report, cube); });
   if (load_error) return load_error;
+  if (progress) progress("load", 1.0);
   report.face_size = cube.face_size;
 
   // The pyramid takes the map as its level 0 rather than a second copy; from here on `cube` holds
@@ -471,7 +485,11 @@ std::optional<std::string> RunIrrmap(const IrrmapOptions& options, IrrmapReport&
   std::optional<CubeMipChain> mips =
       Timed(report, "env_mips", [&] { return BuildEnvironmentMips(std::move(cube)); });
   std::optional<BasisPyramid> basis =
-      Timed(report, "basis_pyramid", [&] { return BuildBasisPyramid(cube.face_size, checked.threads); });
+      Timed(report, "basis_pyramid", [&] {
+        std::function<void(double)> report_fraction;
+        if (progress) report_fraction = [&](double fraction) { progress("basis pyramid", fraction); };
+        return BuildBasisPyramid(cube.face_size, checked.threads, report_fraction);
+      });
   if (!mips || !basis) return fmt::format("cannot build the mip pyramids of face size {}", cube.face_size);
 
   // Every level's coefficients, each update timed on its own.
@@ -510,6 +528,12 @@ std::optional<std::string> RunIrrmap(const IrrmapOptions& options, IrrmapReport&
     }
   });
 
+  if (options.no_ground_truth) {
+    return WriteJobOutputs(
+        options, checked, *program,
+        {{kIrradianceFile, [&](const fs::path& path) { return WriteCrossExr(irradiance_map, path); }}}, report);
+  }
+
   // Ground truth at the error normals and at the preview's grid, in one pass.
   const std::vector<glm::dvec3> error_normals = SphereNormals(options.error_normals);
   HemisphereGrid grid;
@@ -530,6 +554,7 @@ std::optional<std::string> RunIrrmap(const IrrmapOptions& options, IrrmapReport&
       level.error = CompareIrradiance(estimate, error_truth, error_normals);
     }
   });
+  report.errors_measured = true;
 
   PreviewResult preview = Timed(report, "preview", [&] {
     PreviewOptions preview_options;
@@ -557,14 +582,31 @@ std::optional<std::string> RunIrrmap(const IrrmapOptions& options, IrrmapReport&
 
 // ---- Formatting ------------------------------------------------------------------------------------
 
+std::optional<std::string> CheckOutputFolder(const fs::path& out_dir) {
+  std::error_code ec;
+  // The folder itself, or the nearest existing folder above it, where it would be created.
+  fs::path existing = out_dir;
+  while (!existing.empty() && !fs::exists(existing, ec)) existing = existing.parent_path();
+  if (existing.empty()) existing = ".";
+  if (!fs::is_directory(existing, ec)) {
+    return fmt::format("cannot write into {}: {} is not a directory", out_dir.string(), existing.string());
+  }
+  if (::access(existing.c_str(), W_OK | X_OK) != 0) {
+    return fmt::format("cannot write into {}: {} is not writable", out_dir.string(), existing.string());
+  }
+  return std::nullopt;
+}
+
 std::string FormatLevelTable(const IrrmapReport& report) {
   std::string out = fmt::format("  {:>5}  {:>11}  {:>11}  {:>11}  {:>12}  {:>12}\n", "level", "size", "update ms",
                                 "max rel err", "mean rel err", "est vs lvl 0");
   for (const LevelReport& level : report.levels) {
-    out += fmt::format("{} {:>5}  {:>11}  {:>11.4f}  {:>10.3f} %  {:>10.3f} %  {:>10.3f} %\n", level.chosen ? '*' : ' ',
-                       level.level, fmt::format("{0}x{0}", level.size), level.update_ms,
-                       100.0 * level.error.max_relative, 100.0 * level.error.mean_relative,
-                       100.0 * level.estimated_error);
+    auto percent = [&](double fraction) {
+      return report.errors_measured ? fmt::format("{:>10.3f} %", 100.0 * fraction) : fmt::format("{:>12}", "-");
+    };
+    out += fmt::format("{} {:>5}  {:>11}  {:>11.4f}  {}  {}  {:>10.3f} %\n", level.chosen ? '*' : ' ', level.level,
+                       fmt::format("{0}x{0}", level.size), level.update_ms, percent(level.error.max_relative),
+                       percent(level.error.mean_relative), 100.0 * level.estimated_error);
   }
   return out;
 }

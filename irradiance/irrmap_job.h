@@ -85,7 +85,17 @@ struct IrrmapOptions {
   // Only coeffs.json (without the error columns) and constants.vsh: no irradiance map, ground truth,
   // error table or preview, and each level's update is run once instead of repeated for timing.
   bool coefficients_only = false;
+  // No brute-force ground truth (most of a default run's time): no error columns and no preview;
+  // coeffs.json, constants.vsh and irradiance.exr are still written.
+  bool no_ground_truth = false;
+  // --face-size was given: a cube-map file, which keeps its own face size, then gets a warning.
+  bool face_size_given = false;
 };
+
+// Whether files can be created in `out_dir` (or in the folder that would hold it, when it does
+// not exist yet): nullopt if so, else why not. Checked before any work, so that a bad --out fails
+// at once rather than after the whole job.
+std::optional<std::string> CheckOutputFolder(const std::filesystem::path& out_dir);
 
 // One row of the level table.
 struct LevelReport {
@@ -105,6 +115,7 @@ struct Timing {
 };
 
 struct IrrmapReport {
+  bool errors_measured = false;  // the levels' errors against the ground truth (not with --no-ground-truth)
   std::string environment;  // "sky (built-in)" or the path
   std::string layout;       // "builtin" or the layout read
   int face_size = 0;

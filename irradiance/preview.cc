@@ -40,11 +40,14 @@ constexpr double kByteMax = 255.0;
 // Rec. 709 luminance weights (linear RGB).
 constexpr glm::dvec3 kLuminance{0.2126, 0.7152, 0.0722};
 
+constexpr int kMinFontSize = 8;         // a label too wide for its column shrinks down to this
+
 struct Label {
   int x = 0;
   int y = 0;  // baseline
   std::string text;
   bool centred = false;
+  int max_width = 0;  // > 0: the text is drawn smaller until it fits (its column's width)
 };
 
 int LabelHeight(const PreviewOptions& options) { return options.font_size + kLabelPad; }
@@ -117,9 +120,11 @@ void OutlineCrossCells(Image& image, int x0, int y0, int cell) {
   }
 }
 
-// Draws the labels with OpenImageIO; returns a warning when that is not possible.
+// Draws the labels with OpenImageIO, each shrunk to its max_width, and records where they went;
+// returns a warning when that is not possible.
 std::optional<std::string> DrawLabels(Image& image, const std::vector<Label>& labels,
-                                      const PreviewOptions& options) {
+                                      const PreviewOptions& options,
+                                      std::vector<PreviewResult::PlacedLabel>& placed) {
   std::error_code ec;
   if (!std::filesystem::is_regular_file(options.font, ec)) {
     return fmt::format("preview: font {} not found, labels left out (install fonts-dejavu-core)",
@@ -130,9 +135,27 @@ std::optional<std::string> DrawLabels(Image& image, const std::vector<Label>& la
                     image.pixels.data());
   const std::array<float, 3> colour = {kTextValue, kTextValue, kTextValue};
   for (const Label& label : labels) {
+    int size = options.font_size;
+    std::string text = label.text;
+    OIIO::ROI box = OIIO::ImageBufAlgo::text_size(text, size, options.font.string());
+    auto too_wide = [&] { return label.max_width > 0 && box.defined() && box.width() > label.max_width; };
+    while (too_wide() && size > kMinFontSize) box = OIIO::ImageBufAlgo::text_size(text, --size, options.font.string());
+    // Still too wide at the smallest size (tiny spheres): shortened with "..", keeping a trailing
+    // " *" (the chosen level's mark).
+    const std::string mark = text.ends_with(" *") ? " *" : "";
+    std::string stem = text.substr(0, text.size() - mark.size());
+    while (too_wide() && !stem.empty()) {
+      stem.pop_back();
+      text = stem + ".." + mark;
+      box = OIIO::ImageBufAlgo::text_size(text, size, options.font.string());
+    }
     const bool ok = OIIO::ImageBufAlgo::render_text(
-        buffer, label.x, label.y, label.text, options.font_size, options.font.string(), colour,
+        buffer, label.x, label.y, text, size, options.font.string(), colour,
         label.centred ? OIIO::ImageBufAlgo::TextAlignX::Center : OIIO::ImageBufAlgo::TextAlignX::Left);
+    if (box.defined()) {
+      const int left = label.centred ? label.x - box.width() / 2 : label.x + box.xbegin;
+      placed.push_back({text, left, left + box.width(), label.y + box.ybegin, label.y + box.yend, size});
+    }
     if (!ok) {
       return fmt::format("preview: cannot draw text with font {} ({}), labels left out",
                          options.font.string(), buffer.geterror());
@@ -295,6 +318,7 @@ PreviewResult RenderPreview(const SpherePixels& sphere, const PreviewPanel& trut
   const int error_top = sphere_top + s + kRowGap + label_height;
   auto column_left = [&](int panel) { return kMargin + panel * (s + kMargin); };
   auto label_baseline = [&](int top) { return top - kLabelPad / 2 - 2; };
+  const int column_width = s + kMargin - 2;  // a label's room: its sphere and the gap, less a little
 
   // Exposure: E / pi is the radiance of a white diffuse surface; the brightest pixel of any sphere
   // is shown at kSphereWhite.
@@ -317,7 +341,7 @@ PreviewResult RenderPreview(const SpherePixels& sphere, const PreviewPanel& trut
       image.at(left + sphere.pixels[k].x, sphere_top + sphere.pixels[k].y) =
           glm::vec3(radiance * exposure * static_cast<double>(sphere.coverage[k]));
     }
-    labels.push_back({left + s / 2, label_baseline(sphere_top), panel.label, true});
+    labels.push_back({left + s / 2, label_baseline(sphere_top), panel.label, true, column_width});
   };
   draw_sphere(truth, 0);
   for (std::size_t p = 0; p < estimates.size(); ++p) draw_sphere(estimates[p], static_cast<int>(p) + 1);
@@ -348,7 +372,7 @@ PreviewResult RenderPreview(const SpherePixels& sphere, const PreviewPanel& trut
     labels.push_back({left + s / 2, label_baseline(error_top),
                       fmt::format("max {}, mean {}", Percent(result.errors[p].max_relative),
                                   Percent(result.errors[p].mean_relative)),
-                      true});
+                      true, column_width});
   }
 
   // The colour ramp of the error scale, under the exact sphere: top = the scale, bottom = 0.
@@ -363,20 +387,24 @@ PreviewResult RenderPreview(const SpherePixels& sphere, const PreviewPanel& trut
     for (double tick : ticks) {
       const int y = std::min(error_top + static_cast<int>(std::lround((1.0 - tick) * s)), error_top + s - 1);
       for (int x = 0; x < kTickLength; ++x) image.at(tick_left + x, y) = glm::vec3(kTextValue);
-      labels.push_back({tick_left + kTickLength + 4, y + options.font_size / 3,
-                        Percent(tick * result.error_scale), false});
+      // The top tick's text stays below the ramp's top, clear of the "relative error" title.
+      const int baseline = std::max(y + options.font_size / 3, error_top + options.font_size);
+      labels.push_back({tick_left + kTickLength + 4, baseline, Percent(tick * result.error_scale), false,
+                        column_left(1) - (tick_left + kTickLength + 4) - 2});
     }
-    labels.push_back({column_left(0) + s / 2, label_baseline(error_top), "relative error", true});
+    labels.push_back({column_left(0) + s / 2, label_baseline(error_top), "relative error", true, column_width});
   }
 
   // The environment.
   const int cross_left = column_left(panels);
   Blit(EnvironmentThumbnail(environment, layout.cross_face), image, cross_left, sphere_top);
   OutlineCrossCells(image, cross_left, sphere_top, layout.cross_face);
-  labels.push_back({cross_left, label_baseline(sphere_top), "environment (tone-mapped)", false});
+  labels.push_back({cross_left, label_baseline(sphere_top), "environment (tone-mapped)", false,
+                    4 * layout.cross_face});
 
-  if (std::optional<std::string> warning = DrawLabels(image, labels, options)) {
+  if (std::optional<std::string> warning = DrawLabels(image, labels, options, result.labels)) {
     result.warnings.push_back(std::move(*warning));
+    result.labels.clear();
   }
   return result;
 }

@@ -100,6 +100,14 @@ struct PreviewResult {
   std::vector<ErrorStats> errors;
   double error_scale = 0.0;  // the relative error shown at the top of the colour ramp
   std::vector<std::string> warnings;  // e.g. the font is missing and labels were left out
+  // Where each label was drawn (pixels, bottom and right exclusive), after a label too wide for its
+  // column was drawn smaller: no two overlap. Empty when the labels were left out.
+  struct PlacedLabel {
+    std::string text;
+    int left = 0, right = 0, top = 0, bottom = 0;
+    int font_size = 0;
+  };
+  std::vector<PlacedLabel> labels;
 };
 
 // Image size for `panels` spheres (the truth included) with an environment thumbnail of `cross_face`

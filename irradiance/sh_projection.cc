@@ -6,6 +6,7 @@
 #include <cassert>
 #include <cstddef>
 #include <cstring>
+#include <mutex>
 #include <thread>
 
 namespace vs11::irradiance {
@@ -249,7 +250,8 @@ bool RefillEnvironmentMips(const CubeMap& env, CubeMipChain& chain) {
   return true;
 }
 
-std::optional<BasisPyramid> BuildBasisPyramid(int face_size, int threads) {
+std::optional<BasisPyramid> BuildBasisPyramid(int face_size, int threads,
+                                              const std::function<void(double)>& progress) {
   assert(threads >= 1);
   const int count = LevelCount(face_size);
   if (count == 0) return std::nullopt;
@@ -270,8 +272,16 @@ std::optional<BasisPyramid> BuildBasisPyramid(int face_size, int threads) {
   // Faces write disjoint parts of every level, so they are built in parallel, each worker taking
   // the next face left; the result does not depend on `threads`.
   std::atomic<int> next_face = 0;
+  std::mutex progress_mutex;
+  int faces_done = 0;
   auto work = [&] {
-    for (int f = next_face++; f < kCubeFaceCount; f = next_face++) BuildBasisFace(f, solid_angles, pyramid);
+    for (int f = next_face++; f < kCubeFaceCount; f = next_face++) {
+      BuildBasisFace(f, solid_angles, pyramid);
+      if (progress) {
+        std::lock_guard<std::mutex> lock(progress_mutex);
+        progress(static_cast<double>(++faces_done) / kCubeFaceCount);
+      }
+    }
   };
   std::vector<std::thread> helpers;
   for (int t = 1; t < std::min(threads, kCubeFaceCount); ++t) helpers.emplace_back(work);

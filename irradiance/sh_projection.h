@@ -11,6 +11,7 @@
 
 #include <array>
 #include <cstddef>
+#include <functional>
 #include <optional>
 #include <vector>
 
@@ -80,7 +81,10 @@ struct BasisPyramid {
 // (about 14 MB at 256, 906 MB at 2048) plus a third more for the coarser levels; while building, a
 // table of one face's solid angles (8 bytes per texel of a face) and, per thread, one face's level 1
 // in double (18 bytes per texel of a face): 27 MB at 1024 with one thread, 46 MB with two.
-std::optional<BasisPyramid> BuildBasisPyramid(int face_size, int threads = 1);
+// `progress`, when set, is called with the fraction done after each face (from the worker threads,
+// one call at a time).
+std::optional<BasisPyramid> BuildBasisPyramid(int face_size, int threads = 1,
+                                              const std::function<void(double)>& progress = {});
 
 // sum over the texels of `level` of mean radiance (float) x summed basis weight (float), each
 // product exact in double, summed in double per face row (8 fixed lane-wise partial sums folded in

@@ -239,7 +239,8 @@ Diagnostics ValidateFragment(const Program& program, int constant_count, bool dx
   return Validate(program, options);
 }
 
-ProgramForVerify LoadProgramForVerify(const std::filesystem::path& path, const LoadProgramOptions& options) {
+ProgramForVerify LoadProgramForVerify(const std::filesystem::path& path, const LoadProgramOptions& options,
+                                      std::optional<bool> fragment) {
   ProgramForVerify result;
   std::optional<std::string> text = ReadWholeFile(path);
   if (!text) {
@@ -248,7 +249,11 @@ ProgramForVerify LoadProgramForVerify(const std::filesystem::path& path, const L
   }
   MetadataResult metadata = ParseProgramMetadata(*text, path.string());
   LoadProgramOptions load_options = options;
-  if (metadata.metadata.fragment) load_options.assemble.require_position = false;
+  if (fragment) {
+    load_options.assemble.require_position = !*fragment;
+  } else if (metadata.metadata.fragment) {
+    load_options.assemble.require_position = false;
+  }
   LoadedProgram loaded = LoadProgram(path, load_options);
   if (!loaded.from_bytecode) {
     result.diagnostics.Append(metadata.diagnostics);

@@ -54,8 +54,10 @@ struct ProgramForVerify {
 // Loads a .vsh or bytecode file (vm/program_file.h) and its metadata. With
 // options.assemble.validate, a program whose metadata says fragment=yes is validated with every rule
 // except "oPos must be written" (ValidatorOptions::require_position); any other program exactly as
-// LoadProgram does.
-ProgramForVerify LoadProgramForVerify(const std::filesystem::path& path, const LoadProgramOptions& options = {});
+// LoadProgram does. `fragment`, when set (a command line's --fragment or --no-fragment), wins over
+// the metadata and over options.assemble.require_position.
+ProgramForVerify LoadProgramForVerify(const std::filesystem::path& path, const LoadProgramOptions& options = {},
+                                      std::optional<bool> fragment = std::nullopt);
 
 // Validates a program that is only part of a vertex shader (it computes a value and writes no
 // oPos): every vs_1_1 rule of the validator applies except the one demanding an oPos write.

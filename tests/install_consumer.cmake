@@ -1,6 +1,19 @@
 # Installs the built project into a scratch prefix, then configures, builds and runs tests/consumer
 # against it. Arguments: -DBINARY_DIR=<build tree> -DSOURCE_DIR=<source tree> -DWORK_DIR=<scratch>
 # -DCXX_COMPILER=<the build's compiler> -DLINK_FLAGS=<extra link flags, e.g. the sanitizers>.
+# The README's "Use it from C++" shows the consumer's two files verbatim: the example that is
+# built here is the one users read.
+file(READ "${SOURCE_DIR}/README.md" readme)
+foreach(shown cmake:CMakeLists.txt cpp:main.cc)
+  string(REPLACE ":" ";" shown "${shown}")
+  list(GET shown 0 language)
+  list(GET shown 1 file)
+  file(READ "${SOURCE_DIR}/tests/consumer/${file}" text)
+  string(FIND "${readme}" "```${language}\n${text}```" at)
+  if(at EQUAL -1)
+    message(FATAL_ERROR "README.md does not show tests/consumer/${file} verbatim in a ```${language} block")
+  endif()
+endforeach()
 file(REMOVE_RECURSE "${WORK_DIR}")
 execute_process(COMMAND ${CMAKE_COMMAND} --install "${BINARY_DIR}" --prefix "${WORK_DIR}/prefix"
                 RESULT_VARIABLE status OUTPUT_QUIET)
@@ -21,6 +34,9 @@ endif()
 execute_process(COMMAND "${WORK_DIR}/build/vs11_consumer" RESULT_VARIABLE status)
 if(status)
   message(FATAL_ERROR "the consumer failed: ${status}")
+endif()
+if(NOT EXISTS "${WORK_DIR}/prefix/include/vs11/vm/machine.h" OR EXISTS "${WORK_DIR}/prefix/include/vm")
+  message(FATAL_ERROR "the headers are not installed under include/vs11/ alone")
 endif()
 if(NOT EXISTS "${WORK_DIR}/prefix/bin/vs11")
   message(FATAL_ERROR "the vs11 binary was not installed")

@@ -5,7 +5,11 @@
 
 #include <array>
 #include <cstdio>
+#include <filesystem>
+#include <fstream>
 #include <string>
+
+#include <gtest/gtest.h>
 
 namespace vs11::testing {
 
@@ -28,6 +32,25 @@ inline CommandResult RunTool(const std::string& tool, const std::string& args) {
 }
 
 inline CommandResult RunVs11(const std::string& args) { return RunTool("vm/vs11", args); }
+
+// A fresh folder per test (named after it) for the files a tool reads and writes; removed after.
+class ToolFolderTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const ::testing::TestInfo* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    dir_ = std::filesystem::path(::testing::TempDir()) /
+           ("vs11_tool_" + std::string(info->test_suite_name()) + "_" + info->name());
+    std::filesystem::remove_all(dir_);
+    std::filesystem::create_directories(dir_);
+  }
+  void TearDown() override { std::filesystem::remove_all(dir_); }
+  // Writes `text` to `name` in the folder; returns its path.
+  std::string Write(const std::string& name, const std::string& text) {
+    std::ofstream(dir_ / name, std::ios::binary) << text;
+    return (dir_ / name).string();
+  }
+  std::filesystem::path dir_;
+};
 inline CommandResult RunIrrmap(const std::string& args) { return RunTool("irradiance/irrmap", args); }
 
 }  // namespace vs11::testing

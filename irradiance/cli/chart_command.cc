@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 
 #include "irradiance/cli/subcommands.h"
+#include "irradiance/irrmap_job.h"
 #include "irradiance/speed_accuracy.h"
 
 namespace vs11::irradiance::cli {
@@ -20,6 +21,7 @@ struct ChartArguments {
 };
 
 void RunChart(const ChartArguments& arguments) {
+  if (std::optional<std::string> error = CheckOutputFolder(arguments.out_dir)) throw SubcommandFailure(*error);
   SpeedAccuracyResult result;
   const auto progress = [](std::string_view environment, int index, int count) {
     fmt::print(stderr, "irrmap chart: {} ({} of {})\n", environment, index + 1, count);
@@ -70,8 +72,8 @@ void AddChartCommand(CLI::App& app) {
       "and dashed for direct, each point labelled by its level. gnuplot draws it.\n"
       "\n"
       "Examples:\n"
-      "  irrmap chart                          every built-in at 256x256, into out/\n"
-      "  irrmap chart sky spot --face-size 512 --out chart-512\n"
+      "  irrmap chart                          # every built-in at 256x256, into out/\n"
+      "  irrmap chart sky spot --face-size 64 --out chart-64\n"
       "  irrmap chart probe.hdr --layout angular --face-size 256\n");
   chart->add_option("ENV", arguments->options.environments,
                     "environments (files, {face} patterns or built-in names); default: every built-in");

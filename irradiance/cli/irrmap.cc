@@ -49,8 +49,9 @@ std::string Footer() {
       "Relative error of a normal: max over r, g, b of |SH9 - exact| / max(exact, 1% of the largest\n"
       "exact value). Around a strong light's terminator SH9 is far off (its band limit rings): tens\n"
       "of percent for the sky's sun, more for the single spot light.\n"
-      "The ground truth (brute-force integration over every texel) is the slow stage; a progress\n"
-      "bar is shown when stderr is a terminal.\n"
+      "The ground truth (brute-force integration over every texel) is the slow stage (--no-ground-truth\n"
+      "skips it, with the error columns and the preview); a progress bar for it, the load and the basis\n"
+      "pyramid is shown when stderr is a terminal.\n"
       "\n"
       "Levels: 0 is the full face size, each level halves it, the last is 1x1. By default the coarsest\n"
       "level whose error against level 0 stays under --max-error (0.5 %), estimated as 1.4 x its\n"
@@ -60,12 +61,13 @@ std::string Footer() {
       "`irrmap stability` measures both.\n"
       "\n"
       "Examples:\n"
-      "  irrmap                                     built-in sky, 256x256 faces, level by --max-error, out/\n"
-      "  irrmap spot --window dering                the spot light without negative irradiance\n"
-      "  irrmap studio --face-size 128 --level 3    built-in studio, coefficients from 16x16\n"
+      "  irrmap                                       # built-in sky, 256x256 faces, level by --max-error, out/\n"
+      "  irrmap spot --window dering                  # the spot light without negative irradiance\n"
+      "  irrmap studio --face-size 128 --level 3      # built-in studio, coefficients from 16x16\n"
       "  irrmap probe.hdr --layout angular --face-size 256 --out probe-out\n"
-      "  irrmap 'sky_{{face}}.exr' --engine ref       six face files, reference engine\n"
-      "  irrmap cross.exr --map-size 64 --threads 2\n",
+      "  irrmap 'sky_{{face}}.exr' --engine ref         # six face files, reference engine\n"
+      "  irrmap cross.exr --map-size 64 --threads 2\n"
+      "  irrmap sky --face-size 512 --no-ground-truth   # coefficients and irradiance.exr, no error table\n",
       vs11::irradiance::kRecommendedLevelSize);
 }
 
@@ -140,10 +142,18 @@ int main(int argc, char** argv) {
                "(each level computed once, not timed repeatedly)");
   app.add_option("--font", font, fmt::format("TrueType font of the preview labels (default {})",
                                              vs11::irradiance::kDefaultPreviewFont));
+  app.add_flag("--no-ground-truth", options.no_ground_truth,
+               "skip the brute-force ground truth (most of a default run's time): no error columns and no "
+               "preview.png; coeffs.json, constants.vsh and irradiance.exr are written");
+  app.set_version_flag("--version", "irrmap 0.1.0");
   vs11::irradiance::cli::AddSubcommands(app);
   try {
     app.parse(argc, argv);
   } catch (const CLI::CallForHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForAllHelp& e) {
+    return app.exit(e);
+  } catch (const CLI::CallForVersion& e) {
     return app.exit(e);
   } catch (const CLI::ParseError& e) {
     fmt::print(stderr, "irrmap: error: {}\nRun with --help for more information.\n", e.what());
@@ -157,6 +167,7 @@ int main(int argc, char** argv) {
   options.out_dir = out_dir;
   options.font = font;
   if (app.count("--level") > 0) options.level = level;
+  options.face_size_given = app.count("--face-size") > 0;
 
   const auto start = std::chrono::steady_clock::now();
   vs11::irradiance::IrrmapReport report;

@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 
 #include "irradiance/cli/subcommands.h"
+#include "irradiance/irrmap_job.h"
 #include "irradiance/stability_report.h"
 
 namespace vs11::irradiance::cli {
@@ -52,8 +53,8 @@ void AddStabilityCommand(CLI::App& app) {
       "  ringing.png     lowest irradiance over the sphere against the light's radius, per window\n"
       "  levels.png      error of each mip level against level 0, per environment\n"
       "\n"
-      "Example (the report the README links to):\n"
-      "  irrmap stability --out irradiance/images/stability");
+      "Examples:\n"
+      "  irrmap stability --out irradiance/images/stability   # the report the README links to");
   command->add_option("--out", *out_dir, "output directory")->capture_default_str();
   command->add_option("--face-size", options->face_size, "face size of the sweep's and the level study's maps")
       ->capture_default_str();
@@ -67,6 +68,7 @@ void AddStabilityCommand(CLI::App& app) {
   command->add_option("--threads", options->threads, "worker threads (0 = every core)")->capture_default_str();
   command->callback([options, out_dir] {
     options->out_dir = *out_dir;
+    if (std::optional<std::string> error = CheckOutputFolder(options->out_dir)) throw SubcommandFailure(*error);
     StabilityReport report;
     if (std::optional<std::string> error = RunStability(*options, report, TerminalProgress())) {
       throw SubcommandFailure(*error);

@@ -70,6 +70,19 @@ TEST_F(Gnuplot, AnUnknownExtensionIsRefused) {
   EXPECT_EQ(FileCount(), 0u);
 }
 
+TEST_F(Gnuplot, LogAxisTickLabelsReadLikeNumbers) {
+  GnuplotChart chart;
+  // As the stability sweep draws it: gnuplot's own labels for this were 0.000010 ... 10000.000000.
+  chart.data = "100 0.00001\n0.25 5000\n";
+  chart.script = "set logscale x\nset xrange [*:*] reverse\nset logscale y\n"
+                 "plot datafile using 1:2 with lines notitle\n";
+  ASSERT_EQ(RenderGnuplotChart(chart, {folder_ / "log.svg"}), std::nullopt);
+  const std::string svg = ReadText(folder_ / "log.svg");
+  EXPECT_THAT(svg, ::testing::ContainsRegex(">10000<"));
+  EXPECT_THAT(svg, ::testing::ContainsRegex(">1e-05<"));
+  EXPECT_THAT(svg, ::testing::Not(HasSubstr(".000000")));
+}
+
 TEST(GnuplotQuoteTest, DoublesSingleQuotes) { EXPECT_EQ(GnuplotQuote("a'b"), "'a''b'"); }
 
 }  // namespace

@@ -160,6 +160,38 @@ TEST_F(PreviewRender, ErrorScaleIsTheNextNiceValueAboveTheLargestError) {
   EXPECT_DOUBLE_EQ(exact.error_scale, 1e-3);
 }
 
+TEST_F(PreviewRender, LongLabelsShrinkIntoTheirColumnsAndNeverOverlap) {
+  ASSERT_TRUE(std::filesystem::exists(kDefaultPreviewFont)) << "fonts-dejavu-core (.ci/setup) is needed";
+  std::vector<PreviewPanel> estimates;
+  for (const char* label : {"SH9 from 256x256", "SH9 from 128x128 (level 1) *", "SH9 from 64x64 (level 2)",
+                            "SH9 from 16x16 (level 4)"}) {
+    estimates.push_back(Scaled(1.5));  // large errors: "max 50.0%, mean 50.0%" and a 50% ramp
+    estimates.back().label = label;
+  }
+  const PreviewResult result = RenderPreview(sphere_, truth_, estimates, environment_, options_);
+  ASSERT_TRUE(result.warnings.empty());
+  ASSERT_EQ(result.labels.size(), 2 * estimates.size() + 1 + 3 + 1 + 1);  // spheres, errors, ramp, title, environment
+  const int pitch = options_.sphere_diameter + 16;  // a column: sphere and margin
+  for (std::size_t a = 0; a < result.labels.size(); ++a) {
+    const PreviewResult::PlacedLabel& first = result.labels[a];
+    for (std::size_t b = a + 1; b < result.labels.size(); ++b) {
+      const PreviewResult::PlacedLabel& second = result.labels[b];
+      const bool apart = first.right <= second.left || second.right <= first.left || first.bottom <= second.top ||
+                         second.bottom <= first.top;
+      EXPECT_TRUE(apart) << "'" << first.text << "' overlaps '" << second.text << "'";
+    }
+  }
+  // The chosen level's label, star and all, stays over its own sphere (panel 2), within half the
+  // margin either side.
+  const auto chosen = std::find_if(result.labels.begin(), result.labels.end(),
+                                   [](const auto& label) { return label.text.ends_with("*"); });
+  ASSERT_NE(chosen, result.labels.end());
+  const int sphere_left = 16 + 2 * pitch;
+  EXPECT_GE(chosen->left, sphere_left - 8);
+  EXPECT_LE(chosen->right, sphere_left + options_.sphere_diameter + 8);
+  EXPECT_LT(chosen->font_size, options_.font_size);  // it did not fit at full size in 48 + 16 pixels
+}
+
 TEST_F(PreviewRender, MissingFontIsAWarningNotAFailure) {
   options_.font = "/nonexistent/font.ttf";
   const PreviewResult result = RenderPreview(sphere_, truth_, std::vector<PreviewPanel>{Scaled(1.02)}, environment_,

@@ -22,7 +22,7 @@ void AddAsmCommand(CLI::App& app) {
       "The source is run through a C preprocessor first (#define, #include, #if, #line).\n"
       "DX9 (vs_1_1, dcl_*) and DX8 (vs.1.1, c[a0.x + n]) syntax are both accepted.\n"
       "Errors are printed as FILE:LINE:COL: error: MESSAGE; on error no output file is written.\n\n"
-      "Example:\n  vs11 asm programs/sh9_irradiance.vsh -o sh9.vso -D CV_BASE=4");
+      "Examples:\n  vs11 asm programs/sh9_irradiance.vsh -o sh9.vso -D CV_BASE=4");
   command->add_option("input", args->input, "Source file (.vsh)")->required();
   command->add_option("-o,--output", args->output, "Bytecode file to write")->required();
   args->flags.AddTo(*command);
@@ -40,7 +40,7 @@ void AddDisasmCommand(CLI::App& app) {
   auto args = std::make_shared<Args>();
   CLI::App* command = app.add_subcommand("disasm", "Print vs_1_1 bytecode as DX9 assembly that re-assembles identically");
   command->footer("Malformed streams are rejected with the word offset of the bad token.\n\n"
-                  "Example:\n  vs11 disasm sh9.vso");
+                  "Examples:\n  vs11 disasm sh9.vso");
   command->add_option("input", args->input, "Bytecode file (.vso)")->required();
   command->add_option("-o,--output", args->output, "Write the text here instead of stdout");
   command->callback([args] {
@@ -69,7 +69,7 @@ void AddValidateCommand(CLI::App& app) {
   auto args = std::make_shared<Args>();
   CLI::App* command = app.add_subcommand("validate", "Check a .vsh or .vso program against the D3D vs_1_1 rules");
   command->footer("Exit status 0 when valid (warnings allowed), 1 otherwise.\n\n"
-                  "Example:\n  vs11 validate programs/sh9_irradiance.vsh");
+                  "Examples:\n  vs11 validate programs/sh9_irradiance.vsh");
   command->add_option("input", args->input, "Program (.vsh source or .vso bytecode)")->required();
   args->flags.AddTo(*command, /*offer_skip_validation=*/false);
   command->callback([args] {

@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include "irradiance/verify.h"
 #include "vm/cli/commands.h"
 
 namespace vs11::cli {
@@ -15,8 +16,13 @@ void ProgramFlags::AddTo(CLI::App& command, bool offer_skip_validation) {
     command.add_flag("--skip-validation", skip_validation,
                      "Accept anything that is syntactically vs_1_1 (like D3DXSHADER_SKIPVALIDATION)");
   }
-  command.add_flag("--fragment", fragment,
-                   "The program is a piece of a shader: do not require it to write oPos");
+  CLI::Option* fragment_flag = command.add_flag(
+      "--fragment", fragment,
+      "The program is a piece of a shader: do not require it to write oPos (default: the program's "
+      "`; vs11: fragment=yes|no` metadata line, else no)");
+  command.add_flag("--no-fragment", no_fragment,
+                   "Require oPos even when the program's metadata says fragment=yes")
+      ->excludes(fragment_flag);
   command.add_option("--max-constants", constant_count, "Constant registers the device has (MaxVertexShaderConst)")
       ->check(CLI::Range(kDefaultConstantCount, kMaxConstantIndex + 1));
 }
@@ -38,8 +44,14 @@ LoadProgramOptions ProgramFlags::ToOptions() const {
   return options;
 }
 
+std::optional<bool> ProgramFlags::FragmentFlag() const {
+  if (fragment) return true;
+  if (no_fragment) return false;
+  return std::nullopt;
+}
+
 Program LoadProgramOrFail(const std::string& path, const ProgramFlags& flags) {
-  LoadedProgram loaded = LoadProgram(path, flags.ToOptions());
+  irradiance::ProgramForVerify loaded = irradiance::LoadProgramForVerify(path, flags.ToOptions(), flags.FragmentFlag());
   std::fputs(loaded.diagnostics.ToString().c_str(), stderr);
   if (!loaded.program) throw CommandFailure{1};
   return std::move(*loaded.program);

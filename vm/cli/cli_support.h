@@ -2,6 +2,7 @@
 // preprocessor flags.
 #pragma once
 
+#include <optional>
 #include <string>
 #include <vector>
 
@@ -12,20 +13,26 @@
 
 namespace vs11::cli {
 
-// -I and -D and --skip-validation and --constants, bound to one LoadProgramOptions.
+// -I, -D, --skip-validation, --fragment/--no-fragment and --max-constants, bound to one
+// LoadProgramOptions.
 struct ProgramFlags {
   std::vector<std::string> include_dirs;
   std::vector<std::string> defines;
   bool skip_validation = false;
   bool fragment = false;
+  bool no_fragment = false;
   int constant_count = kDefaultConstantCount;
 
   void AddTo(CLI::App& command, bool offer_skip_validation = true);
   LoadProgramOptions ToOptions() const;
+  // --fragment or --no-fragment when one was given; otherwise the program's `; vs11: fragment=`
+  // metadata decides.
+  std::optional<bool> FragmentFlag() const;
 };
 
-// Loads and (unless skipped) validates; prints every diagnostic to stderr; throws CommandFailure{1}
-// when there are errors.
+// Loads and (unless skipped) validates, honouring the program's `; vs11: fragment=yes` metadata
+// unless a flag says otherwise; prints every diagnostic to stderr; throws CommandFailure{1} when
+// there are errors.
 Program LoadProgramOrFail(const std::string& path, const ProgramFlags& flags);
 
 // "--engine ref|batch|jit" (batch by default) and "--threads N".

@@ -72,8 +72,9 @@ void AddCountCommand(CLI::App& app) {
   command->footer(
       "Columns: executable instructions, instruction slots (macros and multi-slot instructions as the\n"
       "spec counts them), distinct constant, temporary and input registers, instructions executed per\n"
-      "vertex (vs_1_1 has no flow control: every instruction runs once), and the best of 5 timed runs\n"
-      "over 65536 normals on each engine (ref, batch, jit).\n\n"
+      "vertex (exec/v; vs_1_1 has no flow control: every instruction runs once), and the best of 5 timed\n"
+      "runs over 65536 normals on each engine (ref, batch, jit).\n"
+      "A program that does not load is reported on stderr and left out; the status is then 1.\n\n"
       "Examples:\n  vs11 count programs/*.vsh\n  vs11 count programs/sh9_irradiance.vsh --json");
   command->add_option("programs", args->programs, "Programs (.vsh or .vso)")->required();
   command->add_flag("--json", args->json, "Print a JSON array of objects instead of a table");
@@ -82,38 +83,49 @@ void AddCountCommand(CLI::App& app) {
   args->flags.AddTo(*command);
   command->callback([args] {
     nlohmann::json rows = nlohmann::json::array();
-    std::vector<Program> programs;
-    for (const std::string& path : args->programs) programs.push_back(LoadProgramOrFail(path, args->flags));
-    for (std::size_t p = 0; p < programs.size(); ++p) {
-      ProgramStats stats = ComputeStats(programs[p]);
-      nlohmann::json row = {{"file", args->programs[p]},         {"instructions", stats.instructions},
+    // A program that does not load is reported and skipped; the others are still counted.
+    std::vector<std::pair<std::string, Program>> programs;
+    bool any_failed = false;
+    for (const std::string& path : args->programs) {
+      try {
+        programs.emplace_back(path, LoadProgramOrFail(path, args->flags));
+      } catch (const CommandFailure&) {
+        any_failed = true;
+      }
+    }
+    for (const auto& [path, program] : programs) {
+      ProgramStats stats = ComputeStats(program);
+      nlohmann::json row = {{"file", path},                      {"instructions", stats.instructions},
                             {"slots", stats.slots},              {"constants", stats.constants},
                             {"temporaries", stats.temporaries},  {"inputs", stats.inputs},
                             {"dynamic_instructions_per_vertex", stats.instructions},
                             {"ns_per_vertex", nlohmann::json::object()}};
       if (!args->no_timing) {
         for (EngineKind kind : {EngineKind::kReference, EngineKind::kBatch, EngineKind::kJit}) {
-          row["ns_per_vertex"][std::string(EngineName(kind))] = MeasureNsPerVertex(kind, programs[p], args->threads);
+          row["ns_per_vertex"][std::string(EngineName(kind))] = MeasureNsPerVertex(kind, program, args->threads);
         }
       }
       rows.push_back(std::move(row));
     }
     if (args->json) {
       std::printf("%s\n", rows.dump(2).c_str());
+      if (any_failed) throw CommandFailure{1};
       return;
     }
-    std::printf("%-44s %6s %6s %6s %6s %6s %10s %10s %10s\n", "program", "instr", "slots", "const", "temps", "inputs",
-                "ref ns/v", "batch ns/v", "jit ns/v");
+    std::printf("%-44s %6s %6s %6s %6s %6s %6s %10s %10s %10s\n", "program", "instr", "slots", "const", "temps", "inputs",
+                "exec/v", "ref ns/v", "batch ns/v", "jit ns/v");
     for (const nlohmann::json& row : rows) {
       auto ns = [&](const char* engine) {
         return row["ns_per_vertex"].contains(engine) ? fmt::format("{:.2f}", row["ns_per_vertex"][engine].get<double>())
                                                      : std::string("-");
       };
-      std::printf("%-44s %6d %6d %6d %6d %6d %10s %10s %10s\n", row["file"].get<std::string>().c_str(),
+      std::printf("%-44s %6d %6d %6d %6d %6d %6d %10s %10s %10s\n", row["file"].get<std::string>().c_str(),
                   row["instructions"].get<int>(), row["slots"].get<int>(), row["constants"].get<int>(),
-                  row["temporaries"].get<int>(), row["inputs"].get<int>(), ns("ref").c_str(), ns("batch").c_str(),
+                  row["temporaries"].get<int>(), row["inputs"].get<int>(),
+                  row["dynamic_instructions_per_vertex"].get<int>(), ns("ref").c_str(), ns("batch").c_str(),
                   ns("jit").c_str());
     }
+    if (any_failed) throw CommandFailure{1};
   });
 }
 

@@ -15,12 +15,10 @@ namespace {
 
 // "v1" -> 1
 int InputRegisterFromName(const std::string& name) {
-  if (name.size() >= 2 && (name[0] == 'v' || name[0] == 'V')) {
-    int index = -1;
-    auto [ptr, ec] = std::from_chars(name.data() + 1, name.data() + name.size(), index);
-    if (ec == std::errc() && ptr == name.data() + name.size() && index >= 0 && index < kInputRegisterCount) return index;
-  }
-  Fail(fmt::format("'{}' is not an input register v0-v15", name));
+  std::string error;
+  std::optional<InputSpec> spec = ParseInputSpec(name + "=", error);
+  if (!spec) Fail(error);
+  return spec->reg;
 }
 
 int DeclaredNormalRegister(const Program& program) {
@@ -31,18 +29,18 @@ int DeclaredNormalRegister(const Program& program) {
 }
 
 ConstantBank LoadConstants(const std::vector<std::string>& files, const std::vector<std::string>& assignments,
-                           int count) {
+                           int count, std::vector<int>& assigned) {
   ConstantBank bank(count);
   for (const std::string& file : files) {
     std::optional<std::string> text = ReadWholeFile(file);
     if (!text) Fail(fmt::format("{}: cannot read the constants file", file));
     Diagnostics diagnostics;
-    ParseConstantsText(*text, file, bank, diagnostics);
+    ParseConstantsText(*text, file, bank, diagnostics, &assigned);
     std::fputs(diagnostics.ToString().c_str(), stderr);
     if (diagnostics.HasErrors()) throw CommandFailure{1};
   }
   for (const std::string& assignment : assignments) {
-    if (std::optional<std::string> error = ParseConstantAssignment(assignment, bank)) Fail("--const: " + *error);
+    if (std::optional<std::string> error = ParseConstantAssignment(assignment, bank, &assigned)) Fail("--const: " + *error);
   }
   return bank;
 }
@@ -60,19 +58,26 @@ void AddRunCommand(CLI::App& app) {
   auto args = std::make_shared<Args>();
   CLI::App* command = app.add_subcommand("run", "Run a vs_1_1 program over vertices and print its outputs as CSV");
   command->footer(
-      "Constants: def lines in the program win over --consts files, which come before --const flags.\n"
-      "Inputs: --input v1=FILE.csv (a vertex a row, 1-4 numbers; missing components read 0,0,0,1), or\n"
+      "Constants: def lines in the program win over --const flags, which win over --consts files (a\n"
+      "warning names every register a def overrides, and every one the program reads that nobody sets).\n"
+      "Inputs: --input v1=FILE.csv (a vertex a row, 1-4 numbers separated by ',' or blanks, or by ';';\n"
+      "inf, -inf and nan are numbers; missing components read 0,0,0,1; a first row of names is a\n"
+      "header), or columns by header name: --input v0=out.csv:oPos reads oPos.x..oPos.w into their\n"
+      "lanes, --input v0=out.csv:oD0.x,oD0.y,oD0.z fills x, y, z in that order; so the CSV this\n"
+      "command writes reads back. Or\n"
       "--sphere N: N unit normals spread evenly over the sphere, written into the register the program\n"
       "declares with dcl_normal, or the one named by --sphere-reg. Registers not supplied read (0,0,0,1).\n"
       "Outputs: CSV with a header naming each written output lane (raw values: the clamping D3D applies\n"
       "to oD0/oD1/oFog after the shader is not applied).\n\n"
       "Examples:\n"
       "  vs11 run programs/sh9_irradiance.vsh --fragment --consts out/constants.vsh --sphere 6 --sphere-reg v0\n"
-      "  vs11 run light.vsh --input v0=positions.csv --input v1=normals.csv --const c4=0,0,1,0 --out lit.csv");
+      "  vs11 run light.vsh --input v0=positions.csv --input v1=normals.csv --const c4=0,0,1,0 --out lit.csv\n"
+      "  vs11 run light.vsh --input v0=lit.csv:oPos --input v1=normals.csv --const c4=0,0,1,0");
   command->add_option("program", args->program, "Program (.vsh or .vso)")->required();
   command->add_option("--const", args->const_flags, "Constant register value, e.g. c4=1,0,0,1");
   command->add_option("--consts", args->consts_files, "File of `def c#, x, y, z, w` or `c# = x y z w` lines");
-  command->add_option("--input", args->input_flags, "Input register from a CSV file, e.g. v1=normals.csv");
+  command->add_option("--input", args->input_flags,
+                      "Input register from a CSV file, e.g. v1=normals.csv or v0=out.csv:oPos (columns by name)");
   command->add_option("--sphere", args->sphere, "Run over N unit normals spread over the sphere")->check(CLI::Range(1, 100000000));
   command->add_option("--sphere-reg", args->sphere_register, "Input register for --sphere normals (default: dcl_normal)");
   command->add_option("--out", args->out, "Write the CSV here (atomically) instead of stdout");
@@ -80,21 +85,22 @@ void AddRunCommand(CLI::App& app) {
   args->engine.AddTo(*command);
   command->callback([args] {
     Program program = LoadProgramOrFail(args->program, args->flags);
-    ConstantBank constants = LoadConstants(args->consts_files, args->const_flags, args->flags.constant_count);
+    std::vector<int> constants_given;
+    ConstantBank constants =
+        LoadConstants(args->consts_files, args->const_flags, args->flags.constant_count, constants_given);
 
     std::vector<std::pair<int, std::vector<Vec4f>>> supplied;
     for (const std::string& flag : args->input_flags) {
-      std::size_t equals = flag.find('=');
-      if (equals == std::string::npos) Fail(fmt::format("--input '{}': expected v#=FILE.csv", flag));
-      int reg = InputRegisterFromName(flag.substr(0, equals));
-      std::string file = flag.substr(equals + 1);
-      std::optional<std::string> text = ReadWholeFile(file);
-      if (!text) Fail(fmt::format("{}: cannot read the input file", file));
+      std::string error;
+      std::optional<InputSpec> spec = ParseInputSpec(flag, error);
+      if (!spec) Fail("--input " + error);
+      std::optional<std::string> text = ReadWholeFile(spec->file);
+      if (!text) Fail(fmt::format("{}: cannot read the input file", spec->file));
       Diagnostics diagnostics;
-      std::vector<Vec4f> rows = ParseVertexCsv(*text, file, diagnostics);
+      std::vector<Vec4f> rows = ParseVertexCsv(*text, spec->file, diagnostics, spec->columns);
       std::fputs(diagnostics.ToString().c_str(), stderr);
       if (diagnostics.HasErrors()) throw CommandFailure{1};
-      supplied.emplace_back(reg, std::move(rows));
+      supplied.emplace_back(spec->reg, std::move(rows));
     }
     CsvColumns prefix;
     if (args->sphere > 0) {
@@ -119,6 +125,9 @@ void AddRunCommand(CLI::App& app) {
     }
     std::vector<int> registers;
     for (const auto& entry : supplied) registers.push_back(entry.first);
+    for (const std::string& warning : UnsetRegisterWarnings(program, constants_given, registers)) {
+      std::fprintf(stderr, "%s: warning: %s\n", args->program.c_str(), warning.c_str());
+    }
     VertexArrays inputs = MakeInputArrays(count, registers);
     for (const auto& [reg, rows] : supplied) {
       for (std::size_t i = 0; i < count; ++i) {

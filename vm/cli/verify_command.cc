@@ -40,7 +40,8 @@ std::string ReferenceHelp() {
 }
 
 void RunVerify(const VerifyFlags& flags) {
-  irr::ProgramForVerify loaded = irr::LoadProgramForVerify(flags.program, flags.program_flags.ToOptions());
+  irr::ProgramForVerify loaded = irr::LoadProgramForVerify(flags.program, flags.program_flags.ToOptions(),
+                                                                flags.program_flags.FragmentFlag());
   std::fputs(loaded.diagnostics.ToString().c_str(), stderr);
   if (!loaded.program) throw CommandFailure{1};
 
