@@ -216,28 +216,24 @@ FinestWeights MakeFinestWeights(const std::vector<double>& solid_angles, int siz
   return weights;
 }
 
-// Face f of every level of `pyramid` (already sized). Level 0 is computed in double, stored as float
-// and summed (in double) into its parents; every coarser level is then the double sum of its four
+// Face f of levels 1.. of `pyramid` (already sized). Level 0 is computed in double and summed (in
+// double) into its parents; every coarser level is then the double sum of its four
 // double children, rounded to float once. The double sums of one face take 18 bytes per texel of
 // it (a sixth of a whole level 1).
 void BuildBasisFace(int f, const std::vector<double>& solid_angles, BasisPyramid& pyramid) {
   const int face_size = pyramid.face_size;
   const int count = static_cast<int>(pyramid.levels.size());
-  BasisLevel& finest = pyramid.levels[0];
   std::array<std::vector<double>, kSh9Coefficients> parent;
   const CubeFace face = kAllCubeFaces[f];
   const int parent_size = face_size / 2;
   for (auto& p : parent) p.assign(static_cast<std::size_t>(parent_size) * parent_size, 0.0);
   for (int y = 0; y < face_size; ++y) {
-    const std::size_t row = (static_cast<std::size_t>(f) * face_size + y) * face_size;
     const std::size_t parent_row = static_cast<std::size_t>(y / 2) * parent_size;
     for (int x = 0; x < face_size; ++x) {
       const std::array<double, kSh9Coefficients> basis = ShBasis(TexelDirection(face, x, y, face_size));
       const double solid_angle = solid_angles[static_cast<std::size_t>(y) * face_size + x];
       for (int i = 0; i < kSh9Coefficients; ++i) {
-        const double weight = basis[i] * solid_angle;
-        finest.weights[i][row + x] = static_cast<float>(weight);
-        if (parent_size > 0) parent[i][parent_row + x / 2] += weight;
+        if (parent_size > 0) parent[i][parent_row + x / 2] += basis[i] * solid_angle;
       }
     }
   }
@@ -373,6 +369,7 @@ std::optional<BasisPyramid> BuildBasisPyramid(int face_size, int threads) {
   for (int k = 0; k < count; ++k) {
     BasisLevel& level = pyramid.levels[k];
     level.size = face_size >> k;
+    if (k == 0) continue;  // level 0 is evaluated from texel coordinates (ProjectFinest), not stored
     for (auto& w : level.weights) w.assign(LevelTexels(level.size), 0.0f);
   }
   const std::vector<double> solid_angles = FaceSolidAngles(face_size);

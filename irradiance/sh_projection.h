@@ -59,7 +59,7 @@ bool RefillEnvironmentMips(const CubeMap& env, CubeMipChain& chain);
 // y_lm(child direction) * TexelSolidAngle(child). Units: steradians.
 struct BasisLevel {
   int size = 0;  // texels per face edge at this level
-  std::array<std::vector<float>, kSh9Coefficients> weights;
+  std::array<std::vector<float>, kSh9Coefficients> weights;  // empty at level 0 (not stored)
 
   const float* Row(int index, int face, int y) const {
     return weights[index].data() + (static_cast<std::size_t>(face) * size + y) * size;
@@ -95,13 +95,15 @@ struct BasisPyramid {
 };
 
 // Samples the nine basis functions times the exact solid angle at every finest texel and sums them
-// 2 x 2 up to 1 x 1, and fills `finest` (BuildFinestWeights). The sums are formed in double (never from already rounded floats) and each
-// stored value is rounded to float once. Returns std::nullopt when `face_size` is not a positive
-// power of two. The six faces are built by up to `threads` (>= 1, asserted) threads, the calling
-// one among them, with the same result for any count. Memory: 6 size^2 x 9 floats at level 0
-// (about 14 MB at 256, 906 MB at 2048) plus a third more for the coarser levels; while building, a
-// table of one face's solid angles (8 bytes per texel of a face) and, per thread, one face's level 1
-// in double (18 bytes per texel of a face): 27 MB at 1024 with one thread, 46 MB with two.
+// 2 x 2 up to 1 x 1, and fills `finest` (BuildFinestWeights). Level 0's own weights are not stored
+// (levels[0].weights are empty; ProjectLevel evaluates level 0 from texel coordinates). The sums are
+// formed in double (never from already rounded floats) and each stored value is rounded to float
+// once. Returns std::nullopt when `face_size` is not a positive power of two. The six faces are
+// built by up to `threads` (>= 1, asserted) threads, the calling one among them, with the same
+// result for any count. Memory: 6 size^2 x 9 floats / 3 for levels 1.. (about 5 MB at 256, 302 MB at
+// 2048) plus 12 bytes per texel of a face for `finest`; while building, a table of one face's solid
+// angles (8 bytes per texel of a face) and, per thread, one face's level 1 in double (18 bytes per
+// texel of a face): 27 MB at 1024 with one thread, 46 MB with two.
 std::optional<BasisPyramid> BuildBasisPyramid(int face_size, int threads = 1);
 
 // Level 0 is ProjectFinest(env.levels[0], basis.finest). Coarser levels: the sum over the texels of
