@@ -78,13 +78,14 @@ struct FinestWeights {
 FinestWeights BuildFinestWeights(int face_size);
 
 // Level-0 projection without a pyramid: the same as ProjectLevel(chain, basis, 0), where `weights`
-// are BuildFinestWeights(env.face_size) (asserted by size). The basis is evaluated from each texel's
-// coordinates in SIMD float instead of read from memory, so the cost is close to that of reading
-// the texels once (bench/README.md). Precision: every term radiance x (q, q r, q r s, q r^2 or
-// q r^2 s) is formed in float and summed in float lanes over at most 16 terms per lane, then in
-// double (never one float sum over the map, which the stability report shows failing at 2048^2);
-// the result stays within 1e-6 of the largest coefficient of ProjectDirect, tested up to 2048 with a
-// 1e6 sun. Results differ between SIMD targets (AVX-512, AVX2, ...) by float rounding only.
+// are BuildFinestWeights(env.face_size) (asserted by size). The basis is evaluated from each
+// texel's coordinates in SIMD float instead of read from memory: about 3x the time of merely
+// reading the texels once, measured with AVX-512 (bench/README.md, "Issue #14"). Precision: every
+// term radiance x (q, q r, q r s, q r^2 or q r^2 s) is formed in float and summed in float lanes
+// over at most 16 terms per lane, then in double (never one float sum over the map, which the
+// stability report shows failing at 2048^2); the result stays within 1e-6 of the largest
+// coefficient of ProjectDirect, tested up to 2048 with a 1e6 sun. Results differ between SIMD
+// targets (AVX-512, AVX2, ...) by float rounding only.
 Sh9Rgb ProjectFinest(const CubeMap& env, const FinestWeights& weights);
 
 // Built once per face size and reused for every environment of that size (paper section 3.3 step 1).

@@ -110,7 +110,7 @@ void AddBatchCommand(CLI::App& app) {
       "Examples:\n"
       "  irrmap batch 'panoramas/*.exr' -o sh.jsonl\n"
       "  irrmap batch --list files.txt -o sh.jsonl --per-file sh/ --layout latlong --face-size 128\n"
-      "  irrmap batch 'data/**.hdr' -o part-3.jsonl --shard 3/16 --resume\n");
+      "  irrmap batch 'data/*/*.hdr' -o part-3.jsonl --shard 3/16 --resume\n");
   batch->add_option("INPUT", arguments->options.inputs, "environment files or glob patterns (quote them)");
   batch->add_option("--list", arguments->options.list_files,
                     "a file of inputs, one path or pattern per line (# comments); may repeat")
