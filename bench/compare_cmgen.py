@@ -37,6 +37,14 @@ status 2 if a tool fails.
 
 Times are medians of --runs whole-process wall times (fork to exit), with the peak resident memory
 (ru_maxrss from wait4) of the median run.
+
+--datasets adds two throughput measurements after the table (goals of issue #14):
+  batch   --batch-files copies of each built-in's NAME_hcross.exr at --face-size (100 files at 256 by
+          default), coefficients from level 0 (the work cmgen does): one `irrmap batch` process (every
+          core) against a shell-style loop of one cmgen process per file, and a loop of ten
+          `irrmap --coefficients-only` processes (what per-file start-up costs irrmap)
+  single  one sky EXR at --single-face-size (1024): `irrmap --level 0 --coefficients-only` and cmgen,
+          each the median of --runs processes
 """
 import argparse
 import os
@@ -122,6 +130,11 @@ def main():
     parser.add_argument("--env", action="append", help="built-ins to compare (default: all)")
     parser.add_argument("--formats", default="exr,hdr,dds,latlong",
                         help="comma-separated, from exr, hdr, dds, latlong (exr first gives the source column)")
+    parser.add_argument("--datasets", action="store_true",
+                        help="also measure irrmap batch against a loop of cmgen processes, and one large file")
+    parser.add_argument("--batch-files", type=int, default=100, help="files of the batch measurement (default 100)")
+    parser.add_argument("--single-face-size", type=int, default=1024,
+                        help="face size of the single-file measurement (default 1024)")
     args = parser.parse_args()
 
     build = Path(args.build)
@@ -191,9 +204,82 @@ def main():
             print(f"{name:<11} {ours_path.name:<20} {theirs_path.name:<20} {100 * difference:>11.4f}% "
                   f"{ours_vs_source:>13} {theirs_vs_source:>12} {irrmap_time:>9.3f} {cmgen_time:>8.3f} "
                   f"{irrmap_rss:>10.1f} {cmgen_rss:>9.1f}{mark}")
+    if args.datasets:
+        status = measure_datasets(args, writer, irrmap, cmgen, work, sign)
+        if status:
+            return status
     if failed:
         print(f"agreement above {100 * args.tolerance:g} %: {', '.join(failed)}")
         return 1
+    return 0
+
+
+def run_loop(commands):
+    """Wall time (s) of running `commands` one after the other, as a shell loop does."""
+    start = time.perf_counter()
+    for command in commands:
+        run_timed(command)
+    return time.perf_counter() - start
+
+
+def measure_datasets(args, writer, irrmap, cmgen, work, sign):
+    """The batch and single-file goals; returns 2 if a tool fails."""
+    import json
+    data = work / "dataset"
+    data.mkdir()
+    sources = sorted(work.glob("*_hcross.exr"))
+    files = []
+    for i in range(args.batch_files):
+        target = data / f"env{i:04d}.exr"
+        shutil.copyfile(sources[i % len(sources)], target)
+        files.append(target)
+    try:
+        out = work / "batch.jsonl"
+        batch_times = []
+        for _ in range(args.runs):
+            out.unlink(missing_ok=True)
+            batch_times.append(run_timed([irrmap, "batch", str(data / "*.exr"), "-o", out, "--level", "0"])[0])
+        cmgen_loop = [[cmgen, "-q", "--sh=3", "--sh-window=no", f"--sh-output={work / f'loop_{f.stem}.txt'}", f]
+                      for f in files]
+        # Per-file start-up is the same for every file: ten of them show it.
+        irrmap_loop = [[irrmap, f, "--level", "0", "--coefficients-only", "--out", work / f"loop_{f.stem}"]
+                       for f in files[:10]]
+        cmgen_time = statistics.median(run_loop(cmgen_loop) for _ in range(args.runs))
+        irrmap_loop_time = statistics.median(run_loop(irrmap_loop) for _ in range(args.runs))
+    except RuntimeError as error:
+        print(f"compare_cmgen: {error}", file=sys.stderr)
+        return 2
+    batch_time = statistics.median(batch_times)
+    records = {Path(json.loads(line)["input"]).stem: json.loads(line)["coefficients"]
+               for line in out.read_text().splitlines()}
+    worst = max(agreement(records[f.stem], read_cmgen(work / f"loop_{f.stem}.txt"), sign) for f in files)
+    n = len(files)
+    print(f"\n{n} EXR maps at face {args.face_size}, level 0, medians of {args.runs} runs "
+          f"({os.cpu_count()} cores; irrmap batch uses all, each cmgen process runs on its own):")
+    print(f"  irrmap batch (1 process)      {batch_time:8.3f} s  {n / batch_time:7.1f} files/s")
+    print(f"  cmgen loop ({n} processes)    {cmgen_time:8.3f} s  {n / cmgen_time:7.1f} files/s  "
+          f"batch is {cmgen_time / batch_time:.2f}x faster (goal >= 3x)")
+    m = len(irrmap_loop)
+    print(f"  irrmap loop ({m} processes)    {irrmap_loop_time:8.3f} s  {m / irrmap_loop_time:7.1f} files/s  "
+          f"per process {1000 * irrmap_loop_time / m:.0f} ms against {1000 * batch_time / n:.0f} ms per file in batch")
+    print(f"  batch against cmgen: largest difference {100 * worst:.4f}% of L00")
+
+    size = args.single_face_size
+    single = work / "single"
+    subprocess.run([writer, single, "--face-size", str(size), "--env", "sky"], check=True)
+    exr = single / "sky_hcross.exr"
+    try:
+        ours_time, ours_rss = median_run([irrmap, exr, "--level", "0", "--coefficients-only", "--out",
+                                          single / "irrmap"], args.runs)
+        theirs_time, theirs_rss = median_run([cmgen, "-q", "--sh=3", "--sh-window=no",
+                                              f"--sh-output={single / 'cmgen.txt'}", exr], args.runs)
+    except RuntimeError as error:
+        print(f"compare_cmgen: {error}", file=sys.stderr)
+        return 2
+    difference = agreement(read_irrmap(single / "irrmap" / "coeffs.json"), read_cmgen(single / "cmgen.txt"), sign)
+    print(f"\none EXR at face {size}, level 0, --coefficients-only, median of {args.runs} processes:")
+    print(f"  irrmap {ours_time:7.3f} s {ours_rss:7.1f} MB   cmgen {theirs_time:7.3f} s {theirs_rss:7.1f} MB   "
+          f"irrmap/cmgen {ours_time / theirs_time:.2f} (goal <= 1)   difference {100 * difference:.4f}%")
     return 0
 
 

@@ -3,11 +3,14 @@
 
 #include <algorithm>
 #include <atomic>
+#include <cmath>
 #include <cassert>
 #include <cstddef>
 #include <cstring>
 #include <mutex>
 #include <thread>
+
+#include "irradiance/projection_kernels.h"
 
 namespace vs11::irradiance {
 namespace {
@@ -125,46 +128,113 @@ bool HasPyramidShape(const CubeMipChain& chain, int face_size) {
   return true;
 }
 
+static_assert(sizeof(glm::vec3) == 3 * sizeof(float), "kernels read rows of texels as interleaved floats");
+const float* PixelFloats(const Image& image, int y) { return &image.at(0, y).x; }
+float* PixelFloats(Image& image, int y) { return &image.at(0, y).x; }
+
 // Each texel of `coarse` (half the size of `fine`) becomes the float mean of its 2 x 2 children.
 void HalveFace(const Image& fine, Image& coarse) {
   for (int y = 0; y < coarse.height; ++y) {
-    for (int x = 0; x < coarse.width; ++x) {
-      const glm::vec3 sum = (fine.at(2 * x, 2 * y) + fine.at(2 * x + 1, 2 * y)) +
-                            (fine.at(2 * x, 2 * y + 1) + fine.at(2 * x + 1, 2 * y + 1));
-      coarse.at(x, y) = 0.25f * sum;
-    }
+    kernels::HalveRowPair(PixelFloats(fine, 2 * y), PixelFloats(fine, 2 * y + 1), PixelFloats(coarse, y),
+                          coarse.width);
   }
+}
+
+// Levels 2.. of face f of a chain already shaped as a pyramid, from its level 1. Level by level
+// within one face: a face's level 1 (a twelfth of level 0's bytes) is still in cache.
+void FillLevelsFromTwo(CubeMipChain& chain, int f) {
+  for (std::size_t k = 2; k < chain.levels.size(); ++k) HalveFace(chain.levels[k - 1].faces[f], chain.levels[k].faces[f]);
 }
 
 // Levels 1.. of a chain already shaped as a pyramid, from its level 0.
 void FillCoarserLevels(CubeMipChain& chain) {
-  for (std::size_t k = 1; k < chain.levels.size(); ++k) {
-    for (int f = 0; f < kCubeFaceCount; ++f) HalveFace(chain.levels[k - 1].faces[f], chain.levels[k].faces[f]);
+  if (chain.levels.size() < 2) return;
+  for (int f = 0; f < kCubeFaceCount; ++f) {
+    HalveFace(chain.levels[0].faces[f], chain.levels[1].faces[f]);
+    FillLevelsFromTwo(chain, f);
   }
 }
 
-// Face f of every level of `pyramid` (already sized). Level 0 is computed in double, stored as float
-// and summed (in double) into its parents; every coarser level is then the double sum of its four
+// The face coordinate (s or t) of the centre of texel `i` of `size`, as in TexelDirection.
+double FaceCoordinate(int i, int size) { return 2.0 * (i + 0.5) / size - 1.0; }
+
+// Direction of a texel of `face` at (s, t), before normalisation, as e(t) + s beta with
+// e(t) = alpha + t gamma: each component of FaceDirection is linear in 1, s and t.
+struct FaceLinearForm {
+  glm::dvec3 alpha, beta, gamma;
+};
+
+FaceLinearForm LinearFormOf(CubeFace face) {
+  const glm::dvec3 alpha = FaceDirection(face, 0.0, 0.0);
+  return {alpha, FaceDirection(face, 1.0, 0.0) - alpha, FaceDirection(face, 0.0, 1.0) - alpha};
+}
+
+// Adds one face's contribution to the nine coefficients from its moments (CubeMoments). With
+// e(t) = alpha + t gamma, the unit direction is r (e + s beta): q y_lm is q times a constant, q r
+// times a linear form in s, or q r^2 times a quadratic form in s, whose factors are polynomials in
+// t, matched here with the moments' sums over rows weighted by 1, t and t^2.
+void AddFaceFromMoments(const kernels::FaceMomentSums& m, const FaceLinearForm& form,
+                        std::array<glm::dvec3, kSh9Coefficients>& sums) {
+  const glm::dvec3 a = form.alpha, b = form.beta, g = form.gamma;
+  auto moment = [&](int power, int k) { return glm::dvec3(m[power][3 * k], m[power][3 * k + 1], m[power][3 * k + 2]); };
+  const glm::dvec3 q = moment(0, 0);
+  auto linear = [&](int i) { return a[i] * moment(0, 1) + g[i] * moment(1, 1) + b[i] * moment(0, 2); };
+  // sum L q r^2 s^2 = sum L q - (1 + t^2) sum L q r^2, since r^2 (1 + s^2 + t^2) = 1.
+  const glm::dvec3 qr2ss = moment(0, 0) - moment(0, 3) - moment(2, 3);
+  auto quadratic = [&](int i, int j) {
+    return a[i] * a[j] * moment(0, 3) + (a[i] * g[j] + g[i] * a[j]) * moment(1, 3) + g[i] * g[j] * moment(2, 3) +
+           (a[i] * b[j] + b[i] * a[j]) * moment(0, 4) + (g[i] * b[j] + b[i] * g[j]) * moment(1, 4) +
+           b[i] * b[j] * qr2ss;
+  };
+  sums[ShIndex(0, 0)] += kShN0 * q;
+  sums[ShIndex(1, -1)] += kShN1 * linear(1);
+  sums[ShIndex(1, 0)] += kShN1 * linear(2);
+  sums[ShIndex(1, 1)] += kShN1 * linear(0);
+  sums[ShIndex(2, -2)] += kShN2 * quadratic(0, 1);
+  sums[ShIndex(2, -1)] += kShN2 * quadratic(1, 2);
+  sums[ShIndex(2, 0)] += kShN3 * (3.0 * quadratic(2, 2) - q);
+  sums[ShIndex(2, 1)] += kShN2 * quadratic(0, 2);
+  sums[ShIndex(2, 2)] += kShN4 * (quadratic(0, 0) - quadratic(1, 1));
+}
+
+// The finest level's per-texel weights of one face (see FinestWeights), from its solid angles.
+FinestWeights MakeFinestWeights(const std::vector<double>& solid_angles, int size) {
+  FinestWeights weights;
+  weights.q.resize(solid_angles.size());
+  weights.qr.resize(solid_angles.size());
+  weights.qr2.resize(solid_angles.size());
+  for (int y = 0; y < size; ++y) {
+    const double t = FaceCoordinate(y, size);
+    for (int x = 0; x < size; ++x) {
+      const double s = FaceCoordinate(x, size);
+      const std::size_t i = static_cast<std::size_t>(y) * size + x;
+      const double r2 = 1.0 / (1.0 + s * s + t * t);
+      weights.q[i] = static_cast<float>(solid_angles[i]);
+      weights.qr[i] = static_cast<float>(solid_angles[i] * std::sqrt(r2));
+      weights.qr2[i] = static_cast<float>(solid_angles[i] * r2);
+    }
+  }
+  return weights;
+}
+
+// Face f of levels 1.. of `pyramid` (already sized). Level 0 is computed in double and summed (in
+// double) into its parents; every coarser level is then the double sum of its four
 // double children, rounded to float once. The double sums of one face take 18 bytes per texel of
 // it (a sixth of a whole level 1).
 void BuildBasisFace(int f, const std::vector<double>& solid_angles, BasisPyramid& pyramid) {
   const int face_size = pyramid.face_size;
   const int count = static_cast<int>(pyramid.levels.size());
-  BasisLevel& finest = pyramid.levels[0];
   std::array<std::vector<double>, kSh9Coefficients> parent;
   const CubeFace face = kAllCubeFaces[f];
   const int parent_size = face_size / 2;
   for (auto& p : parent) p.assign(static_cast<std::size_t>(parent_size) * parent_size, 0.0);
   for (int y = 0; y < face_size; ++y) {
-    const std::size_t row = (static_cast<std::size_t>(f) * face_size + y) * face_size;
     const std::size_t parent_row = static_cast<std::size_t>(y / 2) * parent_size;
     for (int x = 0; x < face_size; ++x) {
       const std::array<double, kSh9Coefficients> basis = ShBasis(TexelDirection(face, x, y, face_size));
       const double solid_angle = solid_angles[static_cast<std::size_t>(y) * face_size + x];
       for (int i = 0; i < kSh9Coefficients; ++i) {
-        const double weight = basis[i] * solid_angle;
-        finest.weights[i][row + x] = static_cast<float>(weight);
-        if (parent_size > 0) parent[i][parent_row + x / 2] += weight;
+        if (parent_size > 0) parent[i][parent_row + x / 2] += basis[i] * solid_angle;
       }
     }
   }
@@ -193,7 +263,34 @@ void BuildBasisFace(int f, const std::vector<double>& solid_angles, BasisPyramid
   }
 }
 
+// Solid angles of every texel of a face of `size` (the same on all six faces), row-major.
+std::vector<double> FaceSolidAngles(int size) {
+  std::vector<double> solid_angles(static_cast<std::size_t>(size) * size);
+  for (int y = 0; y < size; ++y) {
+    for (int x = 0; x < size; ++x) solid_angles[static_cast<std::size_t>(y) * size + x] = TexelSolidAngle(x, y, size);
+  }
+  return solid_angles;
+}
+
 }  // namespace
+
+FinestWeights BuildFinestWeights(int face_size) {
+  assert(face_size >= 0);
+  return MakeFinestWeights(FaceSolidAngles(face_size), face_size);
+}
+
+Sh9Rgb ProjectFinest(const CubeMap& map, const FinestWeights& weights) {
+  const int size = map.face_size;
+  assert(weights.q.size() == static_cast<std::size_t>(size) * size);
+  Sh9Rgb sh;
+  if (size == 0) return sh;
+  kernels::CubeTexels texels;
+  for (int f = 0; f < kCubeFaceCount; ++f) texels[f] = PixelFloats(map.faces[f], 0);
+  kernels::CubeMomentSums moments;
+  kernels::CubeMoments(texels, {weights.q.data(), weights.qr.data(), weights.qr2.data()}, size, moments);
+  for (int f = 0; f < kCubeFaceCount; ++f) AddFaceFromMoments(moments[f], LinearFormOf(kAllCubeFaces[f]), sh.coefficients);
+  return sh;
+}
 
 Sh9Rgb ProjectDirect(const CubeMap& env) {
   const int size = env.face_size;
@@ -242,11 +339,24 @@ bool RefillEnvironmentMips(const CubeMap& env, CubeMipChain& chain) {
     chain.levels.reserve(count);
     for (int k = 0; k < count; ++k) chain.levels.emplace_back(env.face_size >> k);
   }
-  for (int f = 0; f < kCubeFaceCount; ++f) {
-    // Same size and capacity: the copy reuses the level's pixel buffer.
-    chain.levels[0].faces[f].pixels = env.faces[f].pixels;
+  if (count == 1) {
+    chain.levels[0].faces = env.faces;
+    return true;
   }
-  FillCoarserLevels(chain);
+  // One pass over the environment: each pair of rows is copied into level 0 and, while still in
+  // cache, halved into level 1.
+  const int size = env.face_size;
+  const std::size_t row_bytes = static_cast<std::size_t>(size) * sizeof(glm::vec3);
+  for (int f = 0; f < kCubeFaceCount; ++f) {
+    const Image& source = env.faces[f];
+    Image& finest = chain.levels[0].faces[f];
+    for (int y = 0; y < size; y += 2) {
+      std::memcpy(PixelFloats(finest, y), PixelFloats(source, y), 2 * row_bytes);
+      kernels::HalveRowPair(PixelFloats(finest, y), PixelFloats(finest, y + 1),
+                            PixelFloats(chain.levels[1].faces[f], y / 2), size / 2);
+    }
+    FillLevelsFromTwo(chain, f);
+  }
   return true;
 }
 
@@ -261,14 +371,11 @@ std::optional<BasisPyramid> BuildBasisPyramid(int face_size, int threads,
   for (int k = 0; k < count; ++k) {
     BasisLevel& level = pyramid.levels[k];
     level.size = face_size >> k;
+    if (k == 0) continue;  // level 0 is evaluated from texel coordinates (ProjectFinest), not stored
     for (auto& w : level.weights) w.assign(LevelTexels(level.size), 0.0f);
   }
-  std::vector<double> solid_angles(static_cast<std::size_t>(face_size) * face_size);
-  for (int y = 0; y < face_size; ++y) {
-    for (int x = 0; x < face_size; ++x) {
-      solid_angles[static_cast<std::size_t>(y) * face_size + x] = TexelSolidAngle(x, y, face_size);
-    }
-  }
+  const std::vector<double> solid_angles = FaceSolidAngles(face_size);
+  pyramid.finest = MakeFinestWeights(solid_angles, face_size);
   // Faces write disjoint parts of every level, so they are built in parallel, each worker taking
   // the next face left; the result does not depend on `threads`.
   std::atomic<int> next_face = 0;
@@ -295,6 +402,7 @@ Sh9Rgb ProjectLevel(const CubeMipChain& env, const BasisPyramid& basis, int leve
   assert(level >= 0 && level < static_cast<int>(env.levels.size()) &&
          level < static_cast<int>(basis.levels.size()));
   const CubeMap& map = env.levels[level];
+  if (level == 0) return ProjectFinest(map, basis.finest);
   const BasisLevel& weights = basis.levels[level];
   const int size = map.face_size;
   assert(weights.size == size);

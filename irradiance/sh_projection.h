@@ -60,40 +60,66 @@ bool RefillEnvironmentMips(const CubeMap& env, CubeMipChain& chain);
 // y_lm(child direction) * TexelSolidAngle(child). Units: steradians.
 struct BasisLevel {
   int size = 0;  // texels per face edge at this level
-  std::array<std::vector<float>, kSh9Coefficients> weights;
+  std::array<std::vector<float>, kSh9Coefficients> weights;  // empty at level 0 (not stored)
 
   const float* Row(int index, int face, int y) const {
     return weights[index].data() + (static_cast<std::size_t>(face) * size + y) * size;
   }
 };
 
+// What level-0 projection needs besides the texels, for each texel of one face (the same on all
+// six), row-major, formed in double and rounded to float once: its exact solid angle q
+// (TexelSolidAngle), q r and q r^2 with r = 1 / sqrt(1 + s^2 + t^2) (s, t: its centre's face
+// coordinates). 12 bytes per texel of a face: 12 MB at 1024.
+struct FinestWeights {
+  std::vector<float> q, qr, qr2;
+};
+
+// FinestWeights for faces of `face_size` (>= 0).
+FinestWeights BuildFinestWeights(int face_size);
+
+// Level-0 projection without a pyramid: the same as ProjectLevel(chain, basis, 0), where `weights`
+// are BuildFinestWeights(env.face_size) (asserted by size). The basis is evaluated from each
+// texel's coordinates in SIMD float instead of read from memory: about 3x the time of merely
+// reading the texels once, measured with AVX-512 (bench/README.md, "Issue #14"). Precision: every
+// term radiance x (q, q r, q r s, q r^2 or q r^2 s) is formed in float and summed in float lanes
+// over at most 16 terms per lane, then in double (never one float sum over the map, which the
+// stability report shows failing at 2048^2); the result stays within 1e-6 of the largest
+// coefficient of ProjectDirect, tested up to 2048 with a 1e6 sun. Results differ between SIMD
+// targets (AVX-512, AVX2, ...) by float rounding only.
+Sh9Rgb ProjectFinest(const CubeMap& env, const FinestWeights& weights);
+
 // Built once per face size and reused for every environment of that size (paper section 3.3 step 1).
 struct BasisPyramid {
   int face_size = 0;              // size of level 0
   std::vector<BasisLevel> levels;  // LevelCount(face_size) levels, level k of size face_size >> k
+  FinestWeights finest;             // what ProjectLevel reads at level 0
 };
 
 // Samples the nine basis functions times the exact solid angle at every finest texel and sums them
-// 2 x 2 up to 1 x 1. The sums are formed in double (never from already rounded floats) and each
-// stored value is rounded to float once. Returns std::nullopt when `face_size` is not a positive
-// power of two. The six faces are built by up to `threads` (>= 1, asserted) threads, the calling
-// one among them, with the same result for any count. Memory: 6 size^2 x 9 floats at level 0
-// (about 14 MB at 256, 906 MB at 2048) plus a third more for the coarser levels; while building, a
-// table of one face's solid angles (8 bytes per texel of a face) and, per thread, one face's level 1
-// in double (18 bytes per texel of a face): 27 MB at 1024 with one thread, 46 MB with two.
+// 2 x 2 up to 1 x 1, and fills `finest` (BuildFinestWeights). Level 0's own weights are not stored
+// (levels[0].weights are empty; ProjectLevel evaluates level 0 from texel coordinates). The sums are
+// formed in double (never from already rounded floats) and each stored value is rounded to float
+// once. Returns std::nullopt when `face_size` is not a positive power of two. The six faces are
+// built by up to `threads` (>= 1, asserted) threads, the calling one among them, with the same
+// result for any count. Memory: 6 size^2 x 9 floats / 3 for levels 1.. (about 5 MB at 256, 302 MB at
+// 2048) plus 12 bytes per texel of a face for `finest`; while building, a table of one face's solid
+// angles (8 bytes per texel of a face) and, per thread, one face's level 1 in double (18 bytes per
+// texel of a face): 27 MB at 1024 with one thread, 46 MB with two.
 // `progress`, when set, is called with the fraction done after each face (from the worker threads,
 // one call at a time).
 std::optional<BasisPyramid> BuildBasisPyramid(int face_size, int threads = 1,
                                               const std::function<void(double)>& progress = {});
 
-// sum over the texels of `level` of mean radiance (float) x summed basis weight (float), each
-// product exact in double, summed in double per face row (8 fixed lane-wise partial sums folded in
-// a fixed order, so the result is deterministic) and then in double over rows. The hot path of a
-// real-time update: no allocation per texel, structure-of-arrays rows of the nine weights, and an
-// inner loop written with GCC vector extensions, run with AVX2 when the CPU has it (the SSE2 and
-// AVX2 kernels add in the same order and give the same bits). Cost: 6 (size >> level)^2 x 27
-// multiply-adds; measured about 3.5 ms of CPU time for level 0 of a 256 map and 0.6 ms for level 1
-// (64 x 64 is level 2), on a busy AMD EPYC virtual machine.
+// Level 0 is ProjectFinest(env.levels[0], basis.finest). Coarser levels: the sum over the texels of
+// `level` of mean radiance (float) x summed basis weight (float), each product exact in double,
+// summed in double per face row (8 fixed lane-wise partial sums folded in a fixed order, so the
+// result is deterministic) and then in double over rows. The hot path of a real-time update: no
+// allocation per texel, structure-of-arrays rows of the nine weights, and an inner loop written
+// with GCC vector extensions, run with AVX2 when the CPU has it (the SSE2 and AVX2 kernels add in
+// the same order and give the same bits). Cost: 6 (size >> level)^2 x 27 multiply-adds; measured
+// about 0.6 ms of CPU time for level 1 of a 256 map (64 x 64 is level 2), on a busy AMD EPYC
+// virtual machine.
 // Preconditions (asserted): env.levels[0].face_size == basis.face_size and
 // 0 <= level < env.levels.size() and level < basis.levels.size().
 Sh9Rgb ProjectLevel(const CubeMipChain& env, const BasisPyramid& basis, int level);

@@ -6,8 +6,8 @@
 //
 //   BM_Frame/direct_cpu  ProjectScalarDouble at full resolution + EvalTable1Scalar per vertex (no VM);
 //                        recomputes every texel's direction, basis and solid angle each frame
-//   BM_Frame/plain_cpu   ProjectPlainLoop (full resolution, the basis pyramid's precomputed level-0
-//                        weights, as vm_full reads them) + EvalTable1Scalar per vertex (no VM)
+//   BM_Frame/plain_cpu   ProjectPlainLoop (full resolution, the precomputed solid angles vm_full
+//                        reads) + EvalTable1Scalar per vertex (no VM)
 //   BM_Frame/vm_full     ProjectLevel level 0 (no mip pyramid needed) + batch engine running
 //                        programs/sh9_irradiance.vsh
 //   BM_Frame/vm_64       mip pyramid + ProjectLevel of the 64 x 64 level + batch engine
@@ -92,7 +92,7 @@ int LevelOf(FrameCase c) {
 irradiance::Sh9Rgb FrameCoefficients(const FrameFixture& f, FrameCase c, int index, irradiance::CubeMipChain& mips) {
   const int level = LevelOf(c);
   if (c == FrameCase::kDirectCpu) return ProjectScalarDouble(f.skies[index]);
-  if (c == FrameCase::kPlainCpu) return ProjectPlainLoop(f.skies[index], f.basis.levels[0]);
+  if (c == FrameCase::kPlainCpu) return ProjectPlainLoop(f.skies[index], f.basis.finest);
   if (level == 0) return irradiance::ProjectLevel(f.single_level[index], f.basis, 0);
   irradiance::RefillEnvironmentMips(f.skies[index], mips);
   return irradiance::ProjectLevel(mips, f.basis, level);

@@ -66,25 +66,26 @@ inline irradiance::Sh9Rgb ProjectScalarDouble(const irradiance::CubeMap& env) {
   return sh;
 }
 
-// The fair baseline: the same precomputation as the fast path (the basis pyramid's level 0: each
-// texel's nine basis values times its exact solid angle, as floats), read by a plain scalar loop
-// that sums radiance x weight in double, texel by texel. It leaves out what ProjectScalarDouble
-// recomputes every call (direction, basis, four atan2 per texel) and what ProjectLevel adds (SIMD
-// over structure-of-arrays rows, fixed partial sums). The weights are built once, outside the
-// timed loop, as they are for ProjectLevel; BM_BasisPyramidBuild times that build.
-inline irradiance::Sh9Rgb ProjectPlainLoop(const irradiance::CubeMap& env, const irradiance::BasisLevel& level0) {
-  assert(env.face_size == level0.size);
-  irradiance::Sh9Rgb sh;
+// The fair baseline: the precomputation the fast path reads (the exact solid angle of each texel of
+// a face, BasisPyramid::finest.q, built once outside the timed loop, as it is for ProjectLevel), used
+// by a plain scalar loop: each texel's direction and nine basis values are computed on the spot
+// (a normalisation and a polynomial, as level 0 evaluates them from texel coordinates), and
+// radiance x basis x solid angle is summed in double, texel by texel. It leaves out what
+// ProjectScalarDouble recomputes every call (four atan2 per texel for the solid angle) and what
+// ProjectLevel adds (SIMD float moments per row). BM_BasisPyramidBuild times the one-off build.
+inline irradiance::Sh9Rgb ProjectPlainLoop(const irradiance::CubeMap& env, const irradiance::FinestWeights& finest) {
   const int size = env.face_size;
-  std::size_t texel = 0;  // (face * size + y) * size + x, as BasisLevel stores it
+  assert(finest.q.size() == static_cast<std::size_t>(size) * size);
+  irradiance::Sh9Rgb sh;
   for (irradiance::CubeFace face : irradiance::kAllCubeFaces) {
     const irradiance::Image& image = env.face(face);
     for (int y = 0; y < size; ++y) {
-      for (int x = 0; x < size; ++x, ++texel) {
-        const glm::dvec3 radiance(image.at(x, y));
-        for (int i = 0; i < irradiance::kSh9Coefficients; ++i) {
-          sh.coefficients[i] += radiance * static_cast<double>(level0.weights[i][texel]);
-        }
+      for (int x = 0; x < size; ++x) {
+        const glm::dvec3 direction = irradiance::TexelDirection(face, x, y, size);
+        const std::array<double, irradiance::kSh9Coefficients> basis = irradiance::ShBasis(direction);
+        const double solid_angle = finest.q[static_cast<std::size_t>(y) * size + x];
+        const glm::dvec3 weighted = glm::dvec3(image.at(x, y)) * solid_angle;
+        for (int i = 0; i < irradiance::kSh9Coefficients; ++i) sh.coefficients[i] += weighted * basis[i];
       }
     }
   }

@@ -6,6 +6,7 @@ void AddSubcommands(CLI::App& app) {
   // `irrmap chart` and `irrmap stability` register here, one Add...Command(app) line each.
   AddChartCommand(app);
   AddStabilityCommand(app);
+  AddBatchCommand(app);
 }
 
 }  // namespace vs11::irradiance::cli

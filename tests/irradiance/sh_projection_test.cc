@@ -159,7 +159,11 @@ TEST(ShProjection, BasisPyramidLevelsAreSumsOfTheirChildren) {
   const std::optional<BasisPyramid> pyramid = BuildBasisPyramid(kSize);
   ASSERT_TRUE(pyramid.has_value());
   ASSERT_EQ(pyramid->levels.size(), 5u);
-  const BasisLevel& finest = pyramid->levels[0];
+  // Level 0 is not stored: each weight is y_lm(dir) dOmega, rounded to float as the levels are.
+  EXPECT_TRUE(pyramid->levels[0].weights[0].empty());
+  auto finest = [&](int i, int f, int y, int x) {
+    return static_cast<float>(ShBasis(TexelDirection(kAllCubeFaces[f], x, y, kSize))[i] * TexelSolidAngle(x, y, kSize));
+  };
   for (int k = 1; k < 5; ++k) {
     const BasisLevel& level = pyramid->levels[k];
     ASSERT_EQ(level.size, kSize >> k);
@@ -172,7 +176,7 @@ TEST(ShProjection, BasisPyramidLevelsAreSumsOfTheirChildren) {
             double magnitude = 0.0;
             for (int cy = 0; cy < block; ++cy) {
               for (int cx = 0; cx < block; ++cx) {
-                const double w = finest.Row(i, f, y * block + cy)[x * block + cx];
+                const double w = finest(i, f, y * block + cy, x * block + cx);
                 sum += w;
                 magnitude += std::abs(w);
               }
@@ -183,12 +187,14 @@ TEST(ShProjection, BasisPyramidLevelsAreSumsOfTheirChildren) {
       }
     }
   }
-  // Level 0 is y_lm(dir) dOmega.
-  const auto basis = ShBasis(TexelDirection(CubeFace::kNegativeY, 3, 11, kSize));
-  const double solid_angle = TexelSolidAngle(3, 11, kSize);
-  for (int i = 0; i < kSh9Coefficients; ++i) {
-    EXPECT_EQ(finest.Row(i, 3, 11)[3], static_cast<float>(basis[i] * solid_angle));
-  }
+  // What level 0 keeps: the texel's solid angle q and q r, q r^2 (r = 1 / |(s, t, 1)|).
+  const double q = TexelSolidAngle(3, 11, kSize);
+  const double s = 2.0 * 3.5 / kSize - 1.0, t = 2.0 * 11.5 / kSize - 1.0;
+  const std::size_t i = 11 * kSize + 3;
+  EXPECT_EQ(pyramid->finest.q[i], static_cast<float>(q));
+  const double r2 = 1.0 / (1.0 + s * s + t * t);
+  EXPECT_EQ(pyramid->finest.qr[i], static_cast<float>(q * std::sqrt(r2)));
+  EXPECT_EQ(pyramid->finest.qr2[i], static_cast<float>(q * r2));
 }
 
 TEST(ShProjection, BasisPyramidIsTheSameForAnyThreadCount) {
