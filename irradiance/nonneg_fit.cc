@@ -65,18 +65,25 @@ glm::dvec3 Descend(const Sh9Rgb& sh, int c, glm::dvec3 n, double scale) {
   return n;
 }
 
+// The `count` lowest of `normals`, lowest first.
+std::vector<glm::dvec3> LowestPoints(const Sh9Rgb& sh, int c, std::span<const glm::dvec3> normals, int count) {
+  std::vector<double> values(normals.size());
+  for (std::size_t i = 0; i < normals.size(); ++i) values[i] = ChannelIrradiance(sh, c, normals[i]);
+  std::vector<std::size_t> order(normals.size());
+  std::iota(order.begin(), order.end(), 0);
+  const std::size_t k = std::min<std::size_t>(static_cast<std::size_t>(count), normals.size());
+  std::partial_sort(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(k), order.end(),
+                    [&](std::size_t a, std::size_t b) { return values[a] < values[b]; });
+  std::vector<glm::dvec3> lowest;
+  for (std::size_t i = 0; i < k; ++i) lowest.push_back(normals[order[i]]);
+  return lowest;
+}
+
 // The local minima reached from the `starts` lowest of `normals`.
 std::vector<glm::dvec3> LocalMinima(const Sh9Rgb& sh, int c, std::span<const glm::dvec3> normals, int starts,
                                     double scale) {
-  std::vector<std::size_t> order(normals.size());
-  std::iota(order.begin(), order.end(), 0);
-  const std::size_t count = std::min<std::size_t>(static_cast<std::size_t>(starts), normals.size());
-  std::partial_sort(order.begin(), order.begin() + static_cast<std::ptrdiff_t>(count), order.end(),
-                    [&](std::size_t a, std::size_t b) {
-                      return ChannelIrradiance(sh, c, normals[a]) < ChannelIrradiance(sh, c, normals[b]);
-                    });
   std::vector<glm::dvec3> minima;
-  for (std::size_t i = 0; i < count; ++i) minima.push_back(Descend(sh, c, normals[order[i]], scale));
+  for (const glm::dvec3& n : LowestPoints(sh, c, normals, starts)) minima.push_back(Descend(sh, c, n, scale));
   return minima;
 }
 
@@ -171,20 +178,19 @@ NonNegativeFit FitNonNegative(const Sh9Rgb& sh, std::span<const glm::dvec3> norm
   fit.coefficients = sh;
   for (int c = 0; c < 3; ++c) {
     const double largest = LargestIrradiance(sh, c, normals);
-    std::vector<glm::dvec3> directions(normals.begin(), normals.end());
+    // An exchange method: only a few constraints are active at the optimum (at most nine), so
+    // instead of all of `normals` each round adds the lowest negative directions of the current fit
+    // and the minima below them; a round that finds none ends the fit.
+    std::vector<glm::dvec3> directions;
     for (int round = 0; round < kNonNegativeFitMaxRounds; ++round) {
-      // Negative directions of the current fit: the lowest of the set and the minima between them.
-      bool negative = false;
+      const std::size_t before = directions.size();
+      for (const glm::dvec3& n : LowestPoints(fit.coefficients, c, normals, kRoundStarts)) {
+        if (ChannelIrradiance(fit.coefficients, c, n) < -kNegativeTolerance * largest) directions.push_back(n);
+      }
       for (const glm::dvec3& n : LocalMinima(fit.coefficients, c, normals, kRoundStarts, largest)) {
-        if (ChannelIrradiance(fit.coefficients, c, n) < -kNegativeTolerance * largest) {
-          directions.push_back(n);
-          negative = true;
-        }
+        if (ChannelIrradiance(fit.coefficients, c, n) < -kNegativeTolerance * largest) directions.push_back(n);
       }
-      for (const glm::dvec3& n : normals) {
-        negative = negative || ChannelIrradiance(fit.coefficients, c, n) < -kNegativeTolerance * largest;
-      }
-      if (!negative) break;
+      if (directions.size() == before) break;
       Sh9Rgb channel = sh;  // each round fits the original coefficients with more constraints
       fit.solver_ok = SolveChannel(channel, c, directions, kNonNegativeMargin * largest) && fit.solver_ok;
       for (int i = 0; i < kSh9Coefficients; ++i) fit.coefficients.coefficients[i][c] = channel.coefficients[i][c];

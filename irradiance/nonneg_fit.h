@@ -7,9 +7,11 @@
 // u_lm = A_l L_lm this is the Euclidean projection of u onto a polyhedral cone: a small quadratic
 // program with nine unknowns and as many linear inequalities as directions. NLopt's SLSQP solves it
 // (its quasi-Newton matrix starts as the identity, the objective's exact Hessian up to a factor, so
-// its first quadratic subproblem is already the whole problem). Between the directions a quadratic
-// could still dip below zero, so the fit is repeated with the local minima of E' on the sphere
-// (found by descent from the lowest directions) added as constraints until none is negative; what
+// its first quadratic subproblem is already the whole problem). Only a few constraints are active
+// at the optimum, so the fit is an exchange method: each round adds the lowest negative directions
+// of the current fit and the local minima of E' on the sphere below them (found by descent), until
+// none is negative (a few dozen constraints instead of a thousand: SLSQP's cost grows with their
+// number); what
 // the solver's tolerance leaves below zero (about 1e-7 of the peak) is then lifted by raising the
 // constant term.
 //
@@ -29,7 +31,7 @@ namespace vs11::irradiance {
 
 // Directions of the first round (SphereNormals), and the most rounds of added minima.
 inline constexpr int kNonNegativeFitNormals = 1000;
-inline constexpr int kNonNegativeFitMaxRounds = 6;
+inline constexpr int kNonNegativeFitMaxRounds = 40;
 // E' >= kNonNegativeMargin x (largest |E| at the directions) at the constraints, so that rounding
 // does not leave -1e-16 crumbs where the fit touches zero.
 inline constexpr double kNonNegativeMargin = 1e-9;
@@ -43,7 +45,8 @@ struct NonNegativeFit {
 };
 
 // The fit for each channel of `sh`; channels already non-negative at `normals` and at the minima
-// are returned unchanged. `normals` unit vectors (the first round's constraint directions).
+// are returned unchanged. `normals` unit vectors: where each round looks for negative irradiance
+// (and starts its descents).
 NonNegativeFit FitNonNegative(const Sh9Rgb& sh, std::span<const glm::dvec3> normals);
 
 // One solve of the quadratic program per channel with E' >= 0 exactly at `directions` (no margin,

@@ -187,6 +187,30 @@ TEST(NonNegativeFit, BeatsDeringOnEverySmallLight) {
   }
 }
 
+// The exchange method ends near the optimum of the full problem: its distance from the unwindowed
+// terms is at least that of the fit constrained at all 1000 directions at once (it satisfies those
+// constraints and more) and at most 2 % above it.
+TEST(NonNegativeFit, ExchangeRoundsReachTheFullProblemsOptimum) {
+  const std::vector<glm::dvec3> normals = SphereNormals(kNonNegativeFitNormals);
+  for (double radius : {20.0, 3.0, 0.5}) {
+    SpotParams params;
+    params.angular_radius_degrees = radius;
+    const Sh9Rgb sh = ProjectDirect(MakeSpot(64, params));
+    const Sh9Rgb exchange = FitNonNegative(sh);
+    const Sh9Rgb full = FitNonNegativeAt(sh, normals);
+    for (int c = 0; c < 3; ++c) {
+      double exchange_distance = 0.0, full_distance = 0.0;
+      const Vec9 u = ToU(sh, c), e = ToU(exchange, c), f = ToU(full, c);
+      for (int k = 0; k < kSh9Coefficients; ++k) {
+        exchange_distance += (e[k] - u[k]) * (e[k] - u[k]);
+        full_distance += (f[k] - u[k]) * (f[k] - u[k]);
+      }
+      EXPECT_GE(exchange_distance, full_distance * (1.0 - 1e-6)) << radius;
+      EXPECT_LE(exchange_distance, full_distance * 1.02) << radius;
+    }
+  }
+}
+
 // Among all non-negative nine-term irradiances the fit is the nearest, so deringing (one of them)
 // is never nearer to the unwindowed terms.
 TEST(NonNegativeFit, IsNearerToTheNineTermsThanDeringing) {
