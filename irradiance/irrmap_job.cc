@@ -271,12 +271,15 @@ nlohmann::ordered_json CoefficientsJson(const IrrmapReport& report, const Irrmap
                                     {"error_vs_full_order2", report.program_vs_full_order2}};
   if (!options.coefficients_only) program["max_relative_error"] = report.program_error.max_relative;
   nlohmann::ordered_json registers = nlohmann::ordered_json::object();
-  for (const NamedRegister& r : report.program_constants) registers[r.name] = {r.value.x, r.value.y, r.value.z, r.value.w};
+  for (const NamedRegister& r : report.program_constants) {
+    registers[r.name] = {r.value.x, r.value.y, r.value.z, r.value.w};
+  }
   program["constants"] = std::move(registers);
   json["program"] = std::move(program);
   nlohmann::ordered_json estimates = nlohmann::ordered_json::array();
   for (const ProgramLevelEstimate& e : report.program_estimates) {
-    estimates.push_back({{"order", std::string(Info(e.order).name)}, {"level", e.level}, {"estimated_error", e.estimated}});
+    estimates.push_back(
+        {{"order", std::string(Info(e.order).name)}, {"level", e.level}, {"estimated_error", e.estimated}});
   }
   json["program_estimates"] = std::move(estimates);
   nlohmann::ordered_json levels = nlohmann::ordered_json::array();
@@ -576,8 +579,9 @@ std::optional<std::string> RunIrrmap(const IrrmapOptions& options, IrrmapReport&
     report.program_constants = PackShOrder(report.coefficients, report.order);
     return PackTable1(report.coefficients);
   });
-  report.program_vs_full_order2 = IrradianceDifference(ReduceToOrder(report.coefficients, report.order),
-                                                       report.levels[0].coefficients, SphereNormals(kLevelErrorNormals));
+  report.program_vs_full_order2 =
+      IrradianceDifference(ReduceToOrder(report.coefficients, report.order), report.levels[0].coefficients,
+                           SphereNormals(kLevelErrorNormals));
 
   std::string program_error;
   std::optional<PaperProgram> program = Timed(report, "program", [&] { return PaperProgram::Load(program_error); });

@@ -21,7 +21,7 @@ using Row = std::array<double, kSh9Coefficients>;
 constexpr double kNegativeTolerance = 1e-12;
 // Descent along the sphere: steps, and the gradient size (relative to the largest |E|) at which a
 // point counts as a minimum.
-constexpr int kDescentSteps = 200;
+constexpr int kDescentSteps = 80;
 constexpr double kDescentStop = 1e-13;
 // Stopping rules of SLSQP: x is of order 1 (scaled by the largest irradiance coefficient).
 constexpr double kSolverXTolerance = 1e-12;
@@ -31,9 +31,15 @@ constexpr double kConstraintTolerance = 1e-14;
 // (from the lowest of kLiftNormals directions).
 constexpr int kRoundStarts = 16;
 constexpr int kLiftNormals = 8000;
-constexpr int kLiftStarts = 64;
+constexpr int kLiftStarts = 32;
 
-double ChannelIrradiance(const Sh9Rgb& sh, int channel, glm::dvec3 n) { return IrradianceEq7(sh, n)[channel]; }
+// Eq. (7) of one channel only (the fit's descents evaluate it hundreds of thousands of times).
+double ChannelIrradiance(const Sh9Rgb& sh, int c, glm::dvec3 n) {
+  auto L = [&](int l, int m) { return sh.at(l, m)[c]; };
+  return kShC0 * L(0, 0) - kShC3 * L(2, 0) + kShC1 * (L(1, -1) * n.y + L(1, 0) * n.z + L(1, 1) * n.x) +
+         kShC2 * (L(2, -2) * n.x * n.y + L(2, -1) * n.y * n.z + L(2, 1) * n.x * n.z) +
+         3.0 * kShC3 * L(2, 0) * n.z * n.z + kShC4 * L(2, 2) * (n.x * n.x - n.y * n.y);
+}
 
 // Gradient of eq. (7) of one channel with respect to (x, y, z).
 glm::dvec3 ChannelGradient(const Sh9Rgb& sh, int c, glm::dvec3 n) {

@@ -185,7 +185,8 @@ LevelStudy MeasureLevels(std::string environment, const CubeMap& env, const Basi
 
   study.pairs = EstimateProgramLevelErrors(levels, estimated, SphereNormals(kLevelErrorNormals));
   for (const ProgramLevelEstimate& pair : study.pairs) {
-    study.pair_errors.push_back(IrradianceDifference(ReduceToOrder(levels[pair.level], pair.order), levels[0], normals));
+    study.pair_errors.push_back(
+        IrradianceDifference(ReduceToOrder(levels[pair.level], pair.order), levels[0], normals));
   }
   const ProgramPick pick = PickProgram(study, max_error);
   study.program = pick.choice;

@@ -232,10 +232,10 @@ std::string LevelsSection(const StabilityReport& r) {
   std::string out = fmt::format(
       "## 2. Coarse mip levels\n\n"
       "Max relative error of each level's irradiance against level 0's (full resolution, {0}x{0} faces), at {1} "
-      "normals. `irrmap --max-error E` picks the coarsest level whose *estimated* error (2 x the difference "
+      "normals. `irrmap --max-error E` picks the coarsest level whose *estimated* error ({2:g} x the difference "
       "between the level and the next finer one; no level 0, no ground truth) stays under E, every finer level "
       "included.\n\n| environment |",
-      r.options.face_size, r.options.error_normals);
+      r.options.face_size, r.options.error_normals, kLevelErrorEstimateFactor);
   std::string rule = "|---|";
   for (const LevelRow& row : r.levels.front().rows) {
     out += fmt::format(" {0}x{0} |", row.size);
