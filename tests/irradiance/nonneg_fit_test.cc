@@ -31,6 +31,14 @@ Vec9 ToU(const Sh9Rgb& sh, int c) {
   return u;
 }
 
+// Squared irradiance distance over the sphere between two coefficient sets, one channel.
+double SquaredDistance(const Sh9Rgb& a, const Sh9Rgb& b, int c) {
+  const Vec9 u = ToU(a, c), v = ToU(b, c);
+  double sum = 0.0;
+  for (int k = 0; k < kSh9Coefficients; ++k) sum += (u[k] - v[k]) * (u[k] - v[k]);
+  return sum;
+}
+
 // Solves the k x k system a x = b in place by Gaussian elimination with partial pivoting; false when
 // it is (numerically) singular.
 bool Solve(std::vector<std::vector<double>> a, std::vector<double>& b) {
@@ -199,12 +207,8 @@ TEST(NonNegativeFit, ExchangeRoundsReachTheFullProblemsOptimum) {
     const Sh9Rgb exchange = FitNonNegative(sh);
     const Sh9Rgb full = FitNonNegativeAt(sh, normals);
     for (int c = 0; c < 3; ++c) {
-      double exchange_distance = 0.0, full_distance = 0.0;
-      const Vec9 u = ToU(sh, c), e = ToU(exchange, c), f = ToU(full, c);
-      for (int k = 0; k < kSh9Coefficients; ++k) {
-        exchange_distance += (e[k] - u[k]) * (e[k] - u[k]);
-        full_distance += (f[k] - u[k]) * (f[k] - u[k]);
-      }
+      const double exchange_distance = SquaredDistance(exchange, sh, c);
+      const double full_distance = SquaredDistance(full, sh, c);
       EXPECT_GE(exchange_distance, full_distance * (1.0 - 1e-6)) << radius;
       EXPECT_LE(exchange_distance, full_distance * 1.02) << radius;
     }
@@ -222,13 +226,7 @@ TEST(NonNegativeFit, IsNearerToTheNineTermsThanDeringing) {
     const Sh9Rgb fit = FitNonNegative(sh);
     const Sh9Rgb dering = ApplyShWindow(sh, LaplacianWindowFactors(DeringLambda(sh, normals)));
     for (int c = 0; c < 3; ++c) {
-      double fit_distance = 0.0, dering_distance = 0.0;
-      const Vec9 u = ToU(sh, c), f = ToU(fit, c), d = ToU(dering, c);
-      for (int k = 0; k < kSh9Coefficients; ++k) {
-        fit_distance += (f[k] - u[k]) * (f[k] - u[k]);
-        dering_distance += (d[k] - u[k]) * (d[k] - u[k]);
-      }
-      EXPECT_LT(fit_distance, dering_distance) << radius;
+      EXPECT_LT(SquaredDistance(fit, sh, c), SquaredDistance(dering, sh, c)) << radius;
     }
   }
 }
