@@ -131,7 +131,8 @@ int main(int argc, char** argv) {
       ->capture_default_str();
   app.add_option("--window", options.window,
                  "window on the coefficients against ringing from small bright lights: none, hanning, lanczos "
-                 "(of --window-width bands) or dering (the mildest window that makes the irradiance non-negative)")
+                 "(of --window-width bands), dering (the mildest window that makes the irradiance non-negative) or nonneg "
+                 "(not a window: the nearest nine terms whose irradiance is non-negative everywhere)")
       ->capture_default_str();
   app.add_option("--window-width", options.window_width, "width of the hanning and lanczos windows, in bands")
       ->capture_default_str();
