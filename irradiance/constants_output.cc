@@ -6,6 +6,7 @@
 #include <cassert>
 #include <cmath>
 #include <cstddef>
+#include <vector>
 
 #include <fmt/format.h>
 
@@ -72,23 +73,32 @@ std::string Table1Contents(int index) {
   return fmt::format("(c1 {0}11, c1 {0}1-1, c1 {0}10, c0 {0}00 - c3 {0}20)", c);
 }
 
-std::string ConstantsDefText(const SevenConstants& constants, int base_register,
-                             std::string_view header_comment) {
+std::string RegisterDefText(std::span<const NamedRegister> registers, int base_register,
+                            std::string_view header_comment) {
   assert(base_register >= 0);
   std::string out;
   if (!header_comment.empty()) out += PrefixLines(header_comment, "; ");
-  std::array<std::string, kRegisterCount> defs;
+  std::vector<std::string> defs;
   std::size_t width = 0;
-  for (int i = 0; i < kRegisterCount; ++i) {
-    const glm::vec4& v = constants.registers[i];
-    defs[i] = fmt::format("def c{}, {}, {}, {}, {}", base_register + i, FormatFloat(v.x), FormatFloat(v.y),
-                          FormatFloat(v.z), FormatFloat(v.w));
-    width = std::max(width, defs[i].size());
+  for (std::size_t i = 0; i < registers.size(); ++i) {
+    const glm::vec4& v = registers[i].value;
+    defs.push_back(fmt::format("def c{}, {}, {}, {}, {}", base_register + static_cast<int>(i), FormatFloat(v.x),
+                               FormatFloat(v.y), FormatFloat(v.z), FormatFloat(v.w)));
+    width = std::max(width, defs.back().size());
   }
-  for (int i = 0; i < kRegisterCount; ++i) {  // comments in one column
-    out += fmt::format("{:<{}}  ; {} = {}\n", defs[i], width, SevenConstants::kNames[i], Table1Contents(i));
+  for (std::size_t i = 0; i < registers.size(); ++i) {  // comments in one column
+    out += fmt::format("{:<{}}  ; {} = {}\n", defs[i], width, registers[i].name, registers[i].contents);
   }
   return out;
+}
+
+std::string ConstantsDefText(const SevenConstants& constants, int base_register,
+                             std::string_view header_comment) {
+  std::vector<NamedRegister> registers;
+  for (int i = 0; i < kRegisterCount; ++i) {
+    registers.push_back({SevenConstants::kNames[i], Table1Contents(i), constants.registers[i]});
+  }
+  return RegisterDefText(registers, base_register, header_comment);
 }
 
 std::string ConstantsCppHeader(const SevenConstants& constants, std::string_view namespace_name,

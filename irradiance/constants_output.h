@@ -9,6 +9,7 @@
 //   cC        c4 R22     c4 G22      c4 B22      0 (unused)
 #pragma once
 
+#include <span>
 #include <string>
 #include <string_view>
 
@@ -29,6 +30,17 @@ std::string Table1Contents(int index);
 // version line) and by vs11::ParseConstantsText (`vs11 run --consts`). base_register >= 0.
 std::string ConstantsDefText(const SevenConstants& constants, int base_register = 0,
                              std::string_view header_comment = {});
+
+// The same layout for any list of registers (the reduced orders' programs, irradiance/sh_order.h):
+//   def c<base + i>, x, y, z, w  ; <name> = <contents>
+// ConstantsDefText is this with the seven Table 1 registers.
+struct NamedRegister {
+  std::string name;      // "cAr"
+  std::string contents;  // "(c1 R11, c1 R1-1, c1 R10, c0 R00)"
+  glm::vec4 value{0.0f};
+};
+std::string RegisterDefText(std::span<const NamedRegister> registers, int base_register = 0,
+                            std::string_view header_comment = {});
 
 // A self-contained C++ header:
 //   inline constexpr float kCAr[4] = {0.25f, -1.0f, 3e-05f, 1.5f};  // c1 R11, ...

@@ -107,11 +107,19 @@ CubeMap MakeConstant(int face_size, glm::vec3 radiance) {
   return CubeMap(face_size, radiance);
 }
 
-std::vector<std::string> BuiltinEnvironmentNames() { return {"constant", "sky", "spot", "studio"}; }
+CubeMap MakeGradient(int face_size, const GradientParams& p) {
+  const glm::dvec3 direction = glm::normalize(p.direction);
+  return CubeMapFromFunction(face_size, [&](glm::dvec3 d) {
+    return p.mean_radiance + p.slope * static_cast<float>(glm::dot(d, direction));
+  });
+}
+
+std::vector<std::string> BuiltinEnvironmentNames() { return {"constant", "gradient", "sky", "spot", "studio"}; }
 
 std::optional<CubeMap> MakeBuiltinEnvironment(std::string_view name, int face_size) {
   if (face_size < 1) return std::nullopt;
   if (name == "constant") return MakeConstant(face_size);
+  if (name == "gradient") return MakeGradient(face_size);
   if (name == "sky") return MakeSky(face_size);
   if (name == "spot") return MakeSpot(face_size);
   if (name == "studio") return MakeStudio(face_size);

@@ -75,7 +75,17 @@ CubeMap MakeSpot(int face_size, const SpotParams& params = {});
 // Radiance `radiance` in every direction (a white furnace when it is grey); irradiance is pi times it.
 CubeMap MakeConstant(int face_size, glm::vec3 radiance = glm::vec3(1.0f));
 
-// "constant", "sky", "spot", "studio".
+struct GradientParams {
+  glm::vec3 mean_radiance{0.45f, 0.5f, 0.6f};
+  glm::vec3 slope{0.25f, 0.3f, 0.4f};  // per channel, <= mean_radiance so nothing is negative
+  glm::dvec3 direction{0.3, 0.9, 0.3}; // brightest way (normalised when used)
+};
+// A smooth gradient: radiance mean + slope (d . direction), linear in the direction, so its SH
+// bands above 1 vanish (up to the cube map's texel averaging) and the three-instruction order-1
+// program (irradiance/sh_order.h) is exact for it. Precondition: face_size >= 1.
+CubeMap MakeGradient(int face_size, const GradientParams& params = {});
+
+// "constant", "gradient", "sky", "spot", "studio".
 std::vector<std::string> BuiltinEnvironmentNames();
 
 // The named environment with default parameters, or std::nullopt for an unknown name or a

@@ -20,11 +20,17 @@
 //                    level, each repeated for timing), "projection" (the chosen level's update),
 //                    "constants", "program" (assembling it), "irradiance_map", "ground_truth",
 //                    "level_errors", "preview"}}; the final "write" is in IrrmapReport only
-//   constants.vsh    the seven registers as `def` lines at the registers the program reads
+//                    "order", "program": {"name", "file", "slots", "estimated_error",
+//                    "error_vs_full_order2", "max_relative_error" (vs the truth), "constants":
+//                    {"cE" | "cAr" ...: [x, y, z, w]}}, "program_estimates": [{"order", "level",
+//                    "estimated_error"}, ...]
+//   program.vsh      the chosen program (irradiance/sh_order.h): sh_order0.vsh, sh_order1.vsh,
+//                    sh_zh3.vsh or the paper's sh9_irradiance.vsh
+//   constants.vsh    its registers as `def` lines at the registers the program reads
 //                    (`vs11 run --consts constants.vsh`, or paste into a program)
-//   irradiance.exr   the irradiance cube map, horizontal cross, 32-bit float, map_size per face
+//   irradiance.exr   the chosen program's irradiance cube map, horizontal cross, 32-bit float, map_size per face
 //   preview.png      see irradiance/preview.h
-// All four are first written to hidden temporaries in out_dir and renamed into place only when all
+// All of them are first written to hidden temporaries in out_dir and renamed into place only when all
 // of them were written, so a failure leaves no partial output.
 #pragma once
 
@@ -42,6 +48,7 @@
 #include "irradiance/ground_truth.h"
 #include "irradiance/level_choice.h"
 #include "irradiance/sh9.h"
+#include "irradiance/sh_order.h"
 #include "vm/machine.h"
 #include "vm/program.h"
 
@@ -73,6 +80,10 @@ struct IrrmapOptions {
   // Otherwise the level is the coarsest whose error against level 0, estimated from adjacent
   // levels, stays under this fraction (CoarsestLevelWithin, irradiance/level_choice.h).
   double max_error = kDefaultMaxLevelError;
+  // The program (irradiance/sh_order.h): "auto" picks the cheapest (program, level) pair within
+  // max_error (ChooseProgramAndLevel); a ShOrderInfo name fixes it (the level is then still picked
+  // by max_error unless `level` is set). With `level` set, "auto" means order2, the paper's program.
+  std::string order = "auto";
   std::string window = "none";      // ShWindowName names, applied to every level's coefficients
   double window_width = kDefaultWindowWidth;  // bands, for hanning and lanczos
   std::filesystem::path out_dir = "out";
@@ -122,7 +133,17 @@ struct IrrmapReport {
   int level = 0;            // the chosen level
   int threads = 0;          // worker threads used
   Sh9Rgb coefficients;      // of the chosen level
-  SevenConstants constants;
+  SevenConstants constants;  // PackTable1 of them
+  // The chosen program and its constants (PackShOrder of `coefficients`), what its estimate said,
+  // and every (program, level) estimate.
+  ShOrder order = ShOrder::kOrder2;
+  double order_estimated_error = 0.0;
+  std::vector<NamedRegister> program_constants;
+  std::vector<ProgramLevelEstimate> program_estimates;
+  // The chosen program's irradiance against the ground truth (not with coefficients_only), and
+  // against order 2 at level 0 (IrradianceDifference, always).
+  ErrorStats program_error;
+  double program_vs_full_order2 = 0.0;
   std::vector<LevelReport> levels;  // every level, 0 first
   std::vector<Timing> timings;      // in the order the stages ran
   std::vector<std::filesystem::path> files;  // written, once everything succeeded
@@ -159,16 +180,23 @@ class PaperProgram {
   // programs/sh9_irradiance_unit10.vsh, which takes PackUnitSphere10 constants).
   static std::optional<PaperProgram> LoadEmbedded(std::string_view file_name, std::string_view text,
                                                   std::string& error);
+  // The program of an order (Info(order).program_file, embedded).
+  static std::optional<PaperProgram> LoadOrder(ShOrder order, std::string& error);
+  // The text of an embedded program by file name ("sh_order1.vsh"); empty when there is none.
+  static std::string_view EmbeddedText(std::string_view file_name);
 
   const Program& program() const { return program_; }
   int normal_register() const { return normal_register_; }  // v#
   int output_slot() const { return output_slot_; }          // OutputSlot
   int constant_base() const { return constant_base_; }      // c# of cAr
 
-  // The constant bank with the seven registers at constant_base().
+  // The constant bank with the seven registers (or any list of them) from constant_base() on.
   ConstantBank Constants(const SevenConstants& constants) const;
+  ConstantBank Constants(std::span<const NamedRegister> registers) const;
   // Runs the program once per normal (as (x, y, z, 1) in floats) and returns the output's rgb.
   std::vector<glm::dvec3> Irradiance(const SevenConstants& constants, std::span<const glm::dvec3> normals,
+                                     EngineKind engine, const EngineOptions& engine_options = {}) const;
+  std::vector<glm::dvec3> Irradiance(const ConstantBank& bank, std::span<const glm::dvec3> normals,
                                      EngineKind engine, const EngineOptions& engine_options = {}) const;
 
  private:

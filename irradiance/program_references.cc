@@ -14,6 +14,7 @@
 #include <nlohmann/json.hpp>
 
 #include "irradiance/ground_truth.h"
+#include "irradiance/sh_order.h"
 #include "vm/program_file.h"
 
 namespace vs11::irradiance {
@@ -207,13 +208,23 @@ std::string RegisterList(const ProgramMetadata& meta, int base) {
 
 // ---- sh9 --------------------------------------------------------------------------------------------
 
+std::optional<ShOrder> ReducedOrder(Sh9Packing packing) {
+  switch (packing) {
+    case Sh9Packing::kOrder0: return ShOrder::kOrder0;
+    case Sh9Packing::kOrder1: return ShOrder::kOrder1;
+    case Sh9Packing::kZh3: return ShOrder::kZh3;
+    default: return std::nullopt;
+  }
+}
+
 std::optional<ReferenceCase> BuildSh9(const ProgramMetadata& meta, const ReferenceOptions& options,
                                       std::string& error) {
   Sh9Packing packing = Sh9Packing::kTable1;
   if (!meta.packing.empty()) {
     std::optional<Sh9Packing> parsed = Sh9PackingFromName(meta.packing);
     if (!parsed) {
-      error = fmt::format("unknown sh9 packing '{}' (table1, unit_sphere10, matrix or basis)", meta.packing);
+      error = fmt::format("unknown sh9 packing '{}' (table1, unit_sphere10, matrix, basis, order0, order1 or zh3)",
+                          meta.packing);
       return std::nullopt;
     }
     packing = *parsed;
@@ -232,14 +243,28 @@ std::optional<ReferenceCase> BuildSh9(const ProgramMetadata& meta, const Referen
     }
     registers.push_back(*meta.position);
   }
-  const int register_count = packing == Sh9Packing::kMatrix ? 12 : packing == Sh9Packing::kBasis ? 9 : 7;
+  const std::optional<ShOrder> reduced = ReducedOrder(packing);
+  const int register_count = reduced                           ? Info(*reduced).constant_registers
+                             : packing == Sh9Packing::kMatrix ? 12
+                             : packing == Sh9Packing::kBasis  ? 9
+                                                              : 7;
   std::optional<Setup> setup = Begin(meta, options, register_count, registers, count, error);
   if (!setup) return std::nullopt;
   ReferenceCase& rc = setup->rc;
   CaseWriter writer(rc, setup->base);
 
-  const Sh9Rgb& sh = options.coefficients;
+  // A reduced order's program computes the irradiance of the reduced coefficients.
+  const Sh9Rgb sh = reduced ? ReduceToOrder(options.coefficients, *reduced) : options.coefficients;
   switch (packing) {
+    case Sh9Packing::kOrder0:
+    case Sh9Packing::kOrder1:
+    case Sh9Packing::kZh3: {
+      const std::vector<NamedRegister> registers = PackShOrder(options.coefficients, *reduced);
+      for (std::size_t i = 0; i < registers.size(); ++i) {
+        writer.SetConstant(static_cast<int>(i), glm::dvec4(registers[i].value));
+      }
+      break;
+    }
     case Sh9Packing::kTable1:
     case Sh9Packing::kUnitSphere10: {
       SevenConstants k = packing == Sh9Packing::kTable1 ? PackTable1(sh) : PackUnitSphere10(sh);
@@ -552,7 +577,9 @@ std::optional<ReferenceCase> BuildAllInstructions(const ProgramMetadata& meta, c
 }
 
 constexpr std::array<ReferenceInfo, 6> kReferences = {{
-    {"sh9", "SH irradiance E(n) by eq. (6) (packings table1, unit_sphere10, matrix, basis); oPos with transform=",
+    {"sh9",
+     "SH irradiance E(n) by eq. (6) (packings table1, unit_sphere10, matrix, basis, order0, order1, zh3); oPos "
+     "with transform=",
      BuildSh9},
     {"directional_light", "ambient + diffuse in oD0, Blinn-Phong specular via lit in oD1, oPos", BuildDirectionalLight},
     {"point_light", "point light with dst/rcp attenuation into oD0, oPos", BuildPointLight},
@@ -568,6 +595,9 @@ std::optional<Sh9Packing> Sh9PackingFromName(std::string_view name) {
   if (name == "unit_sphere10") return Sh9Packing::kUnitSphere10;
   if (name == "matrix") return Sh9Packing::kMatrix;
   if (name == "basis") return Sh9Packing::kBasis;
+  if (name == "order0") return Sh9Packing::kOrder0;
+  if (name == "order1") return Sh9Packing::kOrder1;
+  if (name == "zh3") return Sh9Packing::kZh3;
   return std::nullopt;
 }
 
@@ -577,6 +607,9 @@ std::string_view Sh9PackingName(Sh9Packing packing) {
     case Sh9Packing::kUnitSphere10: return "unit_sphere10";
     case Sh9Packing::kMatrix: return "matrix";
     case Sh9Packing::kBasis: return "basis";
+    case Sh9Packing::kOrder0: return "order0";
+    case Sh9Packing::kOrder1: return "order1";
+    case Sh9Packing::kZh3: return "zh3";
   }
   return "?";
 }

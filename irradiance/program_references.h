@@ -7,7 +7,7 @@
 // line, read from the raw text (before preprocessing) by ParseProgramMetadata (irradiance/verify.h):
 //
 //   ; vs11: reference=sh9            which reference (see References())
-//   ; vs11: packing=table1           sh9: table1 | unit_sphere10 | matrix | basis
+//   ; vs11: packing=table1           sh9: table1 | unit_sphere10 | matrix | basis | order0 | order1 | zh3
 //   ; vs11: normal=v0                input register of the normal (sh9: (x, y, z, 1))
 //   ; vs11: position=v0              input register of the position (x, y, z, 1)
 //   ; vs11: weights=v1               skinning: blend weights (x, y)
@@ -62,6 +62,9 @@ enum class Sh9Packing {
   kUnitSphere10,  // PackUnitSphere10: 10 instructions, exact on unit normals only
   kMatrix,        // Ramamoorthi & Hanrahan's E(n) = n^T M n, three 4x4 matrices (PackMatrix)
   kBasis,         // the nine basis functions summed with weights A_l L_lm (PackBasis)
+  kOrder0,        // reduced orders (irradiance/sh_order.h, PackShOrder): band 0 only, 1 register
+  kOrder1,        // bands 0 and 1, 3 registers
+  kZh3,           // bands 0 and 1 plus band 2's zonal part around the linear band's axis, 5 registers
 };
 std::optional<Sh9Packing> Sh9PackingFromName(std::string_view name);
 std::string_view Sh9PackingName(Sh9Packing packing);

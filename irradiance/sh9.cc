@@ -139,19 +139,21 @@ std::string_view ShWindowName(ShWindow window) {
     case ShWindow::kHanning: return "hanning";
     case ShWindow::kLanczos: return "lanczos";
     case ShWindow::kDering: return "dering";
+    case ShWindow::kNonNegative: return "nonneg";
   }
   return "none";
 }
 
 std::optional<ShWindow> ParseShWindow(std::string_view name) {
-  for (ShWindow window : {ShWindow::kNone, ShWindow::kHanning, ShWindow::kLanczos, ShWindow::kDering}) {
+  for (ShWindow window :
+       {ShWindow::kNone, ShWindow::kHanning, ShWindow::kLanczos, ShWindow::kDering, ShWindow::kNonNegative}) {
     if (ShWindowName(window) == name) return window;
   }
   return std::nullopt;
 }
 
 std::array<double, kSh9Bands> ShWindowFactors(ShWindow window, double width) {
-  assert(window != ShWindow::kDering);
+  assert(window != ShWindow::kDering && window != ShWindow::kNonNegative);
   std::array<double, kSh9Bands> factors = {1.0, 1.0, 1.0};
   if (window == ShWindow::kNone) return factors;
   assert(width > 0.0);

@@ -105,15 +105,17 @@ enum class ShWindow {
   kDering,   // Sloan's deringing: w_l = 1 / (1 + lambda l^2 (l + 1)^2) (the window minimising the
              // squared error plus lambda times the squared Laplacian), with the smallest lambda
              // that makes this environment's irradiance non-negative in every direction
+  kNonNegative,  // not a window: the coefficients refitted, each on its own, to the nearest nine-term
+                 // irradiance that is non-negative everywhere (FitNonNegative, irradiance/nonneg_fit.h)
 };
 
-// "none", "hanning", "lanczos", "dering".
+// "none", "hanning", "lanczos", "dering", "nonneg".
 std::string_view ShWindowName(ShWindow window);
 std::optional<ShWindow> ParseShWindow(std::string_view name);
 
 // w_0, w_1, w_2 of kHanning or kLanczos for a width > 0 (asserted) in bands; 1, 1, 1 for kNone.
 // A width of 3 (l_max + 1) is the narrowest that keeps band 2; larger widths attenuate less.
-// kDering has no fixed factors (see DeringWindowFactors); asserted.
+// kDering and kNonNegative have no fixed factors (see DeringLambda, FitNonNegative); asserted.
 std::array<double, kSh9Bands> ShWindowFactors(ShWindow window, double width);
 
 // The factors 1 / (1 + lambda l^2 (l + 1)^2) for a lambda >= 0.

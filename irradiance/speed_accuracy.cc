@@ -24,6 +24,8 @@ using Clock = std::chrono::steady_clock;
 
 // A 1 x 1 level takes microseconds: cap the runs of one batch so the sweep cannot stall on it.
 constexpr int kMaxRunsPerBatch = 100000;
+// The coarse level of the chart's order panel (the level irrmap picks for the sky).
+constexpr int kOrderChartLevelSize = 16;
 // Environment colours of the chart (gnuplot's default palette is hard to tell apart past four).
 constexpr std::array<const char*, 8> kColours = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd",
                                                  "#ff7f0e", "#8c564b", "#17becf", "#7f7f7f"};
@@ -109,6 +111,12 @@ std::optional<std::string> RunSpeedAccuracySweep(const SpeedAccuracyOptions& opt
   std::string program_error;
   const std::optional<PaperProgram> program = PaperProgram::Load(program_error);
   if (!program) return program_error;
+  std::vector<PaperProgram> order_programs;  // the reduced orders, kAllShOrders order
+  for (std::size_t o = 0; o + 1 < kAllShOrders.size(); ++o) {
+    std::optional<PaperProgram> loaded = PaperProgram::LoadOrder(kAllShOrders[o], program_error);
+    if (!loaded) return program_error;
+    order_programs.push_back(std::move(*loaded));
+  }
   const std::vector<glm::dvec3> normals = SphereNormals(options.error_normals);
 
   std::optional<BasisPyramid> basis;  // rebuilt only when the face size changes
@@ -128,7 +136,7 @@ std::optional<std::string> RunSpeedAccuracySweep(const SpeedAccuracyOptions& opt
     const std::vector<glm::dvec3> truth = GroundTruthIrradiance(cube, normals, threads);
     for (ProjectionMethod method : kAllProjectionMethods) {
       for (int level = 0; level < LevelCount(cube.face_size); ++level) {
-        SpeedAccuracyPoint point{name, method, level, cube.face_size >> level, 0.0, {}};
+        SpeedAccuracyPoint point{name, method, level, cube.face_size >> level, ShOrder::kOrder2, 0.0, {}};
         Sh9Rgb coefficients;
         point.update_ms = MedianBatchMs(options, [&] {
           coefficients = method == ProjectionMethod::kMipPyramid ? ProjectLevel(mips, *basis, level)
@@ -138,6 +146,17 @@ std::optional<std::string> RunSpeedAccuracySweep(const SpeedAccuracyOptions& opt
             program->Irradiance(PackTable1(coefficients), normals, EngineKind::kBatch, engine_options);
         point.error = CompareIrradiance(estimate, truth, normals);
         result.points.push_back(point);
+        if (method != ProjectionMethod::kMipPyramid) continue;
+        for (std::size_t o = 0; o + 1 < kAllShOrders.size(); ++o) {
+          SpeedAccuracyPoint reduced = point;
+          reduced.order = kAllShOrders[o];
+          const PaperProgram& order_program = order_programs[o];
+          reduced.error = CompareIrradiance(
+              order_program.Irradiance(order_program.Constants(PackShOrder(coefficients, reduced.order)), normals,
+                                       EngineKind::kBatch, engine_options),
+              truth, normals);
+          result.points.push_back(reduced);
+        }
       }
     }
   }
@@ -145,7 +164,8 @@ std::optional<std::string> RunSpeedAccuracySweep(const SpeedAccuracyOptions& opt
 }
 
 std::string SpeedAccuracyCsv(const SpeedAccuracyResult& result) {
-  std::string csv = "environment,method,level,size,update_ms,mips_ms,mean_relative_error,max_relative_error\n";
+  std::string csv =
+      "environment,method,level,size,update_ms,mips_ms,mean_relative_error,max_relative_error,order,slots\n";
   for (const SpeedAccuracyPoint& point : result.points) {
     double mips_ms = 0.0;
     for (const SpeedAccuracyEnvironment& environment : result.environments) {
@@ -153,9 +173,9 @@ std::string SpeedAccuracyCsv(const SpeedAccuracyResult& result) {
     }
     std::string name = point.environment;
     std::replace(name.begin(), name.end(), ',', '_');  // keep the columns unambiguous
-    csv += fmt::format("{},{},{},{},{:.6g},{:.6g},{:.6g},{:.6g}\n", name, ProjectionMethodName(point.method),
+    csv += fmt::format("{},{},{},{},{:.6g},{:.6g},{:.6g},{:.6g},{},{}\n", name, ProjectionMethodName(point.method),
                        point.level, point.size, point.update_ms, mips_ms, point.error.mean_relative,
-                       point.error.max_relative);
+                       point.error.max_relative, Info(point.order).name, Info(point.order).slots);
   }
   return csv;
 }
@@ -173,7 +193,9 @@ GnuplotChart SpeedAccuracyChart(const SpeedAccuracyResult& result) {
       chart.data += fmt::format("# {} {}: update_ms mean_relative_error_percent level\n", environment.name,
                                 ProjectionMethodName(method));
       for (const SpeedAccuracyPoint& point : result.points) {
-        if (point.environment != environment.name || point.method != method) continue;
+        if (point.environment != environment.name || point.method != method || point.order != ShOrder::kOrder2) {
+          continue;
+        }
         chart.data += fmt::format("{:.6g} {:.6g} {}\n", point.update_ms, 100.0 * point.error.mean_relative,
                                   point.level);
       }
@@ -193,17 +215,60 @@ GnuplotChart SpeedAccuracyChart(const SpeedAccuracyResult& result) {
     const std::string size = fmt::format("{0}x{0}", environment.face_size);
     if (face_sizes.find(size) == std::string::npos) face_sizes += (face_sizes.empty() ? "" : ", ") + size;
   }
+  // Right panel: error against slots per vertex, per environment, at level 0 and at 16x16.
+  std::string order_plots;
+  for (std::size_t e = 0; e < result.environments.size(); ++e) {
+    const SpeedAccuracyEnvironment& environment = result.environments[e];
+    const std::string colour = GnuplotQuote(kColours[e % kColours.size()]);
+    for (int size : {environment.face_size, kOrderChartLevelSize}) {
+      if (size > environment.face_size || (size == kOrderChartLevelSize && size == environment.face_size)) continue;
+      std::string data = fmt::format("# {} orders from {}x{}: slots mean_relative_error_percent order\n",
+                                     environment.name, size, size);
+      bool any = false;
+      for (ShOrder order : kAllShOrders) {
+        for (const SpeedAccuracyPoint& point : result.points) {
+          if (point.environment == environment.name && point.method == ProjectionMethod::kMipPyramid &&
+              point.size == size && point.order == order) {
+            data += fmt::format("{} {:.6g} {}\n", Info(order).slots, 100.0 * point.error.mean_relative,
+                                Info(order).name);
+            any = true;
+          }
+        }
+      }
+      if (!any) continue;
+      chart.data += data + "\n\n";
+      const bool full = size == environment.face_size;
+      {
+        order_plots += fmt::format(
+            "{}datafile index {} using 1:2 with linespoints lc rgb {} dt {} pt {} ps 0.8 title {}",
+            order_plots.empty() ? "" : ", \\\n  ", block, colour, full ? 1 : 2, full ? 7 : 6,
+            GnuplotQuote(fmt::format("{} from {}x{}", environment.name, size, size)));
+      }
+      ++block;
+    }
+  }
+  chart.width = 1600;
   chart.script = fmt::format(
+      "set multiplot layout 1,2\n"
       "set logscale xy\n"
       "set grid xtics ytics mxtics mytics lc rgb '#dddddd'\n"
       "set format y '%g'\n"
       "set xlabel 'time per coefficient update, ms (log scale; mips built beforehand)'\n"
       "set ylabel 'mean relative irradiance error, % (log scale)'\n"
       "set title {}\n"
-      "set key below maxrows 2\n"
-      "plot {}\n",
+      "set key below maxrows 3\n"
+      "plot {}\n"
+      "unset logscale x\n"
+      "set xrange [0:12]\n"
+      "set xtics ('order0' 1, 'order1' 3, 'zh3' 6, 'order2' 11)\n"
+      "set xlabel 'instruction slots per vertex of the program'\n"
+      "set title {}\n"
+      "plot {}\n"
+      "unset multiplot\n",
       GnuplotQuote(fmt::format("SH9 coefficients from each mip level (labels: level), faces {}", face_sizes)),
-      plots.empty() ? "NaN notitle" : plots);
+      plots.empty() ? "NaN notitle" : plots,
+      GnuplotQuote("Each program's error against its cost per vertex (the update time is the same projection's)"),
+      order_plots.empty() ? "NaN notitle" : order_plots);
   return chart;
 }
 

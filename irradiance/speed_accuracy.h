@@ -9,6 +9,10 @@
 //   kDirectOnLevel  ProjectDirect(level k's map): the basis evaluated at the coarse texel centres, as
 //                   if level k were the environment itself; at level 0 this is the plain
 //                   full-resolution projection (the reference irrmap checks ProjectLevel(0) against)
+// The order dimension (irradiance/sh_order.h): for kMipPyramid, every level also gives points for
+// the reduced programs (order0, order1, zh3), their irradiance computed by their own vs_1_1 program
+// from the same coefficients; their update time is the same projection's (the reduction is a few
+// multiplications), and what they save is slots per vertex.
 // The update time excludes building the mips (done once per environment change, the same for every
 // level and method; reported per environment as mips_ms) and the basis pyramid (once per face size).
 #pragma once
@@ -49,6 +53,7 @@ struct SpeedAccuracyPoint {
   ProjectionMethod method = ProjectionMethod::kMipPyramid;
   int level = 0;
   int size = 0;              // face size at the level
+  ShOrder order = ShOrder::kOrder2;  // the program evaluating the coefficients
   double update_ms = 0.0;    // median batch mean of one projection
   ErrorStats error;
 };
@@ -61,7 +66,9 @@ struct SpeedAccuracyEnvironment {
 
 struct SpeedAccuracyResult {
   std::vector<SpeedAccuracyEnvironment> environments;
-  std::vector<SpeedAccuracyPoint> points;  // environment, then method, then level from 0
+  // Environment, then method, then level from 0, each mip level's order-2 point followed by its
+  // reduced orders' points.
+  std::vector<SpeedAccuracyPoint> points;
   std::vector<std::string> warnings;
 };
 
@@ -74,12 +81,14 @@ std::optional<std::string> RunSpeedAccuracySweep(const SpeedAccuracyOptions& opt
                                                  const SpeedAccuracyProgress& progress = {});
 
 // One header line, then one line per point:
-//   environment,method,level,size,update_ms,mips_ms,mean_relative_error,max_relative_error
+//   environment,method,level,size,update_ms,mips_ms,mean_relative_error,max_relative_error,order,slots
 std::string SpeedAccuracyCsv(const SpeedAccuracyResult& result);
 
-// Time per update (log x) against mean relative error in percent (log y): one colour per
-// environment, solid lines for kMipPyramid and dashed for kDirectOnLevel, each point labelled by its
-// level.
+// Two panels. Left: time per update (log x) against mean relative error in percent (log y) of the
+// paper's program (order 2): one colour per environment, solid lines for kMipPyramid and dashed for
+// kDirectOnLevel, each point labelled by its level. Right: slots per vertex of each order's program
+// (1, 3, 6, 11) against the mean relative error from the full-resolution coefficients (solid) and
+// from the 16x16 level (dashed, where the face size has one), one colour per environment.
 GnuplotChart SpeedAccuracyChart(const SpeedAccuracyResult& result);
 
 // The file names written into an output folder.

@@ -13,6 +13,7 @@
 #include <fmt/format.h>
 
 #include "irradiance/environments.h"
+#include "irradiance/nonneg_fit.h"
 #include "irradiance/irrmap_job.h"
 #include "irradiance/level_choice.h"
 #include "programs/embedded_programs.h"
@@ -92,7 +93,8 @@ std::vector<WindowVariant> ReportWindowVariants() {
   return {{ShWindow::kNone, 0.0},
           {ShWindow::kHanning, kReportWindowWidth},
           {ShWindow::kLanczos, kReportWindowWidth},
-          {ShWindow::kDering, 0.0}};
+          {ShWindow::kDering, 0.0},
+          {ShWindow::kNonNegative, 0.0}};
 }
 
 std::vector<WindowedError> MeasureWindows(const Sh9Rgb& sh, std::span<const glm::dvec3> normals,
@@ -104,9 +106,16 @@ std::vector<WindowedError> MeasureWindows(const Sh9Rgb& sh, std::span<const glm:
   for (const WindowVariant& variant : variants) {
     WindowedError row;
     row.variant = variant;
-    row.factors = variant.window == ShWindow::kDering ? LaplacianWindowFactors(DeringLambda(sh, normals))
-                                                      : ShWindowFactors(variant.window, variant.width);
-    const std::vector<glm::dvec3> estimate = Eq7At(ApplyShWindow(sh, row.factors), normals);
+    Sh9Rgb windowed;
+    if (variant.window == ShWindow::kNonNegative) {
+      row.factors = {1.0, 1.0, 1.0};
+      windowed = FitNonNegative(sh);
+    } else {
+      row.factors = variant.window == ShWindow::kDering ? LaplacianWindowFactors(DeringLambda(sh, normals))
+                                                        : ShWindowFactors(variant.window, variant.width);
+      windowed = ApplyShWindow(sh, row.factors);
+    }
+    const std::vector<glm::dvec3> estimate = Eq7At(windowed, normals);
     row.error = CompareIrradiance(estimate, truth, normals, kFloorFraction);
     row.lowest_over_peak = peak > 0.0 ? LowestComponent(estimate) / peak : 0.0;
     row.absolute_over_peak = peak > 0.0 ? row.error.max_absolute / peak : 0.0;
@@ -173,7 +182,34 @@ LevelStudy MeasureLevels(std::string environment, const CubeMap& env, const Basi
   study.pick_meets = study.rows[study.picked].error_vs_full <= max_error;
   const std::size_t coarser = static_cast<std::size_t>(study.picked) + 1;
   study.coarser_fails = coarser == study.rows.size() || study.rows[coarser].error_vs_full > max_error;
+
+  study.pairs = EstimateProgramLevelErrors(levels, estimated, SphereNormals(kLevelErrorNormals));
+  for (const ProgramLevelEstimate& pair : study.pairs) {
+    study.pair_errors.push_back(
+        IrradianceDifference(ReduceToOrder(levels[pair.level], pair.order), levels[0], normals));
+  }
+  const ProgramPick pick = PickProgram(study, max_error);
+  study.program = pick.choice;
+  study.program_error = pick.error;
+  study.program_meets = pick.error <= max_error;
+  study.program_vs_truth = CompareIrradiance(
+      Eq7At(ReduceToOrder(levels[pick.choice.level], pick.choice.order), normals), truth, kFloorFraction);
   return study;
+}
+
+ProgramPick PickProgram(const LevelStudy& study, double max_error, double factor) {
+  std::vector<double> level_estimates;
+  for (const LevelRow& row : study.rows) level_estimates.push_back(row.estimated);
+  std::vector<ProgramLevelEstimate> pairs = study.pairs;
+  for (ProgramLevelEstimate& pair : pairs) {
+    pair.estimated = level_estimates[static_cast<std::size_t>(pair.level)] + factor * pair.order_difference;
+  }
+  ProgramPick pick;
+  pick.choice = ChooseProgramAndLevel(pairs, level_estimates, max_error);
+  for (std::size_t i = 0; i < pairs.size(); ++i) {
+    if (pairs[i].order == pick.choice.order && pairs[i].level == pick.choice.level) pick.error = study.pair_errors[i];
+  }
+  return pick;
 }
 
 std::vector<SpotPlacementRow> MeasureSpotPlacement(double radius_degrees, const BasisPyramid& basis,

@@ -19,6 +19,7 @@
 #include "irradiance/cube_map.h"
 #include "irradiance/ground_truth.h"
 #include "irradiance/sh9.h"
+#include "irradiance/sh_order.h"
 #include "irradiance/sh_projection.h"
 #include "vm/machine.h"
 
@@ -34,7 +35,10 @@ struct WindowVariant {
 };
 
 // The windows the report compares, in this order: none, hanning and lanczos of width
-// kReportWindowWidth, dering (the report relies on none first and dering last).
+// kReportWindowWidth, dering, and the non-negative fit (the report relies on none first and on
+// kDeringVariant and kNonNegativeVariant).
+inline constexpr std::size_t kDeringVariant = 3;
+inline constexpr std::size_t kNonNegativeVariant = 4;
 inline constexpr double kReportWindowWidth = 4.0;
 std::vector<WindowVariant> ReportWindowVariants();
 
@@ -91,7 +95,24 @@ struct LevelStudy {
   int picked = 0;                   // CoarsestLevelWithin(estimated, max_error)
   bool pick_meets = false;          // rows[picked].error_vs_full <= max_error
   bool coarser_fails = false;       // the next coarser level exceeds max_error (true at the 1x1 end)
+
+  // The (program, level) choice (irradiance/sh_order.h) for the same max_error: every pair's
+  // estimate (as irrmap makes it) and its true error against order 2 at level 0, in the same order.
+  std::vector<ProgramLevelEstimate> pairs;
+  std::vector<double> pair_errors;
+  ProgramChoice program;
+  double program_error = 0.0;  // the pick's true error against order 2 at level 0
+  bool program_meets = false;  // program_error <= max_error
+  ErrorStats program_vs_truth;  // the pick against the ground truth
 };
+
+// The pick of ChooseProgramAndLevel among study.pairs for `max_error` with the estimates remade
+// with `factor` (kOrderErrorEstimateFactor: irrmap's own), and its true error.
+struct ProgramPick {
+  ProgramChoice choice;
+  double error = 0.0;
+};
+ProgramPick PickProgram(const LevelStudy& study, double max_error, double factor = kOrderErrorEstimateFactor);
 
 // Every level of `env` (face size a power of two equal to basis.face_size; asserted) with
 // `max_error` for the pick. `normals` are those of the errors against level 0 and the truth; the

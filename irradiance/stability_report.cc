@@ -33,6 +33,7 @@ constexpr int kMaxFaceSize = 4096;
 // Spots of other sizes in the level study, and the sun of a sky variant.
 constexpr std::array<double, 3> kLevelSpotRadii = {10.0, 1.0, 0.5};
 constexpr double kSmallSunRadiusDegrees = 0.5;
+constexpr std::array<float, 4> kFaintLightPowers = {0.005f, 0.01f, 0.02f, 0.05f};
 constexpr std::array<double, 9> kNormalLengths = {0.5, 0.9, 0.99, 0.999, 1.0, 1.001, 1.01, 1.1, 2.0};
 constexpr std::array<double, 7> kScales = {1.0, 1e-20, 1e-30, 1e-36, 1e-38, 1e-40, 1e-43};
 constexpr std::array<double, 2> kHdrSunRadiances = {1e3, 1e6};
@@ -42,13 +43,7 @@ constexpr std::array<double, 5> kReliabilityTargets = {0.001, 0.0025, 0.005, 0.0
 
 bool IsPowerOfTwo(int n) { return n > 0 && std::has_single_bit(static_cast<unsigned>(n)); }
 
-std::string Percent(double fraction) {
-  if (!std::isfinite(fraction)) return "inf";
-  const double p = 100.0 * fraction;
-  if (p != 0.0 && std::abs(p) < 0.001) return fmt::format("{:.1e} %", p);
-  if (std::abs(p) >= 100.0) return fmt::format("{:.0f} %", p);
-  return fmt::format("{:.3g} %", p);
-}
+std::string Percent(double fraction) { return ReportPercent(fraction); }
 
 std::string Factors(const std::array<double, kSh9Bands>& f) { return fmt::format("{:.3f}, {:.3f}", f[1], f[2]); }
 
@@ -98,6 +93,19 @@ void RunLevels(StabilityReport& report, std::span<const glm::dvec3> normals, con
   SkyParams sky;
   sky.sun_angular_radius_degrees = kSmallSunRadiusDegrees;
   environments.emplace_back(fmt::format("sky, sun {:g} deg", kSmallSunRadiusDegrees), MakeSky(o.face_size, sky));
+  // Where the order choice is close: the gradient (order 1 exact) with a faint light whose band 2
+  // makes order 1's error pass the targets one after the other.
+  for (float power : kFaintLightPowers) {
+    SpotParams light;
+    light.angular_radius_degrees = 10.0;
+    light.irradiance = glm::vec3(power);
+    CubeMap env = MakeGradient(o.face_size);
+    const CubeMap spot = MakeSpot(o.face_size, light);
+    for (int f = 0; f < kCubeFaceCount; ++f) {
+      for (std::size_t i = 0; i < env.faces[f].pixels.size(); ++i) env.faces[f].pixels[i] += spot.faces[f].pixels[i];
+    }
+    environments.emplace_back(fmt::format("gradient + light {:g}", power), std::move(env));
+  }
   const double steps = static_cast<double>(environments.size()) + 1.0;
   for (std::size_t i = 0; i < environments.size(); ++i) {
     if (progress) progress("mip levels", i / steps);
@@ -206,7 +214,7 @@ std::string SweepSection(const StabilityReport& r) {
       "| window | w1, w2 | spot max | spot mean | spot abs / peak | spot lowest | sky max | sky mean | "
       "sky abs / peak | sky lowest |\n|---|---|---|---|---|---|---|---|---|---|\n",
       r.sweep.back().radius_degrees, Percent(r.sweep.back().windows.front().absolute_over_peak),
-      Percent(r.sweep.back().windows.back().absolute_over_peak), r.widths_radius_degrees);
+      Percent(r.sweep.back().windows[kDeringVariant].absolute_over_peak), r.widths_radius_degrees);
   for (std::size_t i = 0; i < r.widths_spot.size(); ++i) {
     const WindowedError& s = r.widths_spot[i];
     const WindowedError& k = r.widths_sky[i];
@@ -224,10 +232,10 @@ std::string LevelsSection(const StabilityReport& r) {
   std::string out = fmt::format(
       "## 2. Coarse mip levels\n\n"
       "Max relative error of each level's irradiance against level 0's (full resolution, {0}x{0} faces), at {1} "
-      "normals. `irrmap --max-error E` picks the coarsest level whose *estimated* error (2 x the difference "
+      "normals. `irrmap --max-error E` picks the coarsest level whose *estimated* error ({2:g} x the difference "
       "between the level and the next finer one; no level 0, no ground truth) stays under E, every finer level "
       "included.\n\n| environment |",
-      r.options.face_size, r.options.error_normals);
+      r.options.face_size, r.options.error_normals, kLevelErrorEstimateFactor);
   std::string rule = "|---|";
   for (const LevelRow& row : r.levels.front().rows) {
     out += fmt::format(" {0}x{0} |", row.size);
@@ -416,6 +424,14 @@ GnuplotChart LevelsChart(const StabilityReport& r) {
 
 }  // namespace
 
+std::string ReportPercent(double fraction) {
+  if (!std::isfinite(fraction)) return "inf";
+  const double p = 100.0 * fraction;
+  if (p != 0.0 && std::abs(p) < 0.001) return fmt::format("{:.1e} %", p);
+  if (std::abs(p) >= 100.0) return fmt::format("{:.0f} %", p);
+  return fmt::format("{:.3g} %", p);
+}
+
 std::optional<std::string> RunStability(const StabilityOptions& options, StabilityReport& report,
                                         const StabilityProgress& progress) {
   report = StabilityReport{};
@@ -439,6 +455,11 @@ std::optional<std::string> RunStability(const StabilityOptions& options, Stabili
                                        : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   const std::vector<glm::dvec3> normals = SphereNormals(options.error_normals);
   Section(report, "light sweep and windows", [&] { RunSweep(report, normals, progress); });
+  Section(report, "windows and the non-negative fit on the built-ins", [&] {
+    if (progress) progress("built-ins", 0.0);
+    RunWindowCases(report, normals);
+    if (progress) progress("built-ins", 1.0);
+  });
   Section(report, "mip levels", [&] { RunLevels(report, normals, progress); });
   std::optional<std::string> error;
   Section(report, "precision", [&] { error = RunPrecision(report, normals, progress); });
@@ -452,7 +473,7 @@ std::string FormatStabilityMarkdown(const StabilityReport& r) {
       "--max-error {:g}` ({} threads). Every number below is recomputed by that command; the regression tests "
       "(tests/irradiance/stability_test.cc) check each finding at smaller sizes.\n\n",
       r.options.face_size, r.options.precision_face_size, r.options.error_normals, r.options.max_error, r.threads);
-  out += SweepSection(r) + LevelsSection(r) + PrecisionSection(r);
+  out += SweepSection(r) + NonNegativeSection(r) + LevelsSection(r) + OrderChoiceSection(r) + PrecisionSection(r);
   out += "Time per section:";
   for (const auto& [name, seconds] : r.seconds) out += fmt::format(" {} {:.1f} s;", name, seconds);
   return out + "\n";

@@ -1,5 +1,6 @@
 // The stability report of `irrmap stability --out DIR`: runs every measurement of stability.h at
-// report sizes and writes DIR/stability.md (tables and findings) with the charts it embeds,
+// report sizes (with the non-negative fit and the order choice, stability_orders.cc) and writes
+// DIR/stability.md (tables and findings) with the charts it embeds,
 // DIR/sweep.png (error against light size per window), DIR/ringing.png (lowest irradiance against
 // light size) and DIR/levels.png (error of each mip level per environment), drawn by gnuplot.
 #pragma once
@@ -43,6 +44,14 @@ struct StabilityReport {
   std::vector<ScaledRun> scaled;
   std::vector<HdrResult> hdr;
   ZeroEnvironmentResult zero;
+  // Every window and the non-negative fit on the built-ins and on lat-long probes (stability_orders.cc),
+  // and the fit's time per environment change (median of kFitTimingRuns, ms) for each of them.
+  struct WindowCase {
+    std::string environment;
+    std::vector<WindowedError> windows;  // ReportWindowVariants() order
+    double fit_ms = 0.0;
+  };
+  std::vector<WindowCase> window_cases;
   std::vector<std::pair<std::string, double>> seconds;  // time per section
 };
 
@@ -51,6 +60,15 @@ using StabilityProgress = std::function<void(std::string_view stage, double frac
 // Runs every measurement. nullopt on success, else what went wrong (bad option, program load).
 std::optional<std::string> RunStability(const StabilityOptions& options, StabilityReport& report,
                                         const StabilityProgress& progress = {});
+
+// "1.23 %", "3.1e-04 %", "inf": a fraction as the report prints it.
+std::string ReportPercent(double fraction);
+
+// Sections of the markdown written in irradiance/stability_orders.cc: the non-negative fit against
+// the windows on the sweep, and the (program, level) choice on the level study's environments.
+std::string NonNegativeSection(const StabilityReport& report);
+void RunWindowCases(StabilityReport& report, std::span<const glm::dvec3> normals);
+std::string OrderChoiceSection(const StabilityReport& report);
 
 // The markdown of the report; charts are referenced by their file names beside it.
 std::string FormatStabilityMarkdown(const StabilityReport& report);

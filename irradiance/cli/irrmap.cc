@@ -29,16 +29,19 @@ std::string JoinNames() {
 
 std::string Footer() {
   return fmt::format(
-      "Outputs (in --out DIR, created if needed; all four are written to temporaries and renamed into\n"
+      "Outputs (in --out DIR, created if needed; all are written to temporaries and renamed into\n"
       "place only when all succeeded, so a failed run leaves no partial file):\n"
       "  coeffs.json     the 9 RGB SH coefficients (L00, L1-1, L10, L11, L2-2, L2-1, L20, L21, L22),\n"
       "                  level (and level_choice, max_error), window, face_size, layout, the 7\n"
       "                  constants, every level's errors and estimated error, timings_ms\n"
-      "  constants.vsh   the paper's Table 1 registers as def lines at c0..c6 (cAr cAg cAb cBr cBg cBb\n"
-      "                  cC), for `vs11 run programs/sh9_irradiance.vsh --fragment --consts\n"
-      "                  constants.vsh --sphere 6 --sphere-reg v0` (the program writes no oPos)\n"
+      "                  (order, program: name, file, slots, estimated error; every pair's estimate)\n"
+      "  program.vsh     the chosen vs_1_1 program (see Orders below)\n"
+      "  constants.vsh   its constant registers as def lines from c0 on; for the paper's program the\n"
+      "                  Table 1 registers c0..c6 (cAr cAg cAb cBr cBg cBb cC), for `vs11 run\n"
+      "                  program.vsh --fragment --consts constants.vsh --sphere 6 --sphere-reg v0`\n"
+      "                  (the program writes no oPos)\n"
       "  irradiance.exr  irradiance cube map (horizontal cross, float), every texel computed by the\n"
-      "                  paper's vs_1_1 program on the emulated machine\n"
+      "                  chosen vs_1_1 program on the emulated machine\n"
       "  preview.png     diffuse spheres as in the paper's Fig. 3: exact convolution, SH9 from full\n"
       "                  resolution, from the 64x64 and 16x16 levels (and the chosen one, marked *),\n"
       "                  relative-error images under them and the environment beside them\n"
@@ -57,12 +60,18 @@ std::string Footer() {
       "level whose error against level 0 stays under --max-error (0.5 %), estimated as 1.4 x its\n"
       "difference from the next finer level, every finer level passing too: the sky of 256x256 faces\n"
       "gets 16x16, the spot 128x128, a constant environment 1x1 (the paper fixes {0}x{0}: Fig. 3).\n"
+      "\n"
+      "Orders: the program is the cheapest (slots per vertex, then update time) whose estimated error\n"
+      "against the nine terms at level 0 stays under --max-error: order0 (1 slot, constant), order1\n"
+      "(3 slots, bands 0-1), zh3 (6 slots, bands 0-1 plus one zonal band-2 term) or order2 (the paper's\n"
+      "11 slots). The constant environment gets order0, the gradient order1, the spot order2.\n"
       "--window trades ringing (negative irradiance opposite a small bright light) against blur;\n"
       "`irrmap stability` measures both.\n"
       "\n"
       "Examples:\n"
       "  irrmap                                       # built-in sky, 256x256 faces, level by --max-error, out/\n"
       "  irrmap spot --window dering                  # the spot light without negative irradiance\n"
+      "  irrmap gradient                              # a smooth gradient: the 3-slot order1 program\n"
       "  irrmap studio --face-size 128 --level 3      # built-in studio, coefficients from 16x16\n"
       "  irrmap probe.hdr --layout angular --face-size 256 --out probe-out\n"
       "  irrmap 'sky_{{face}}.exr' --engine ref         # six face files, reference engine\n"
@@ -118,9 +127,14 @@ int main(int argc, char** argv) {
                  "from adjacent levels, stays under this fraction (0.005 = 0.5 %)")
       ->capture_default_str()
       ->excludes(level_option);
+  app.add_option("--order", options.order,
+                 fmt::format("program: auto (the cheapest within --max-error; order2 when --level is given) or "
+                             "one of {}", vs11::irradiance::ShOrderNames()))
+      ->capture_default_str();
   app.add_option("--window", options.window,
                  "window on the coefficients against ringing from small bright lights: none, hanning, lanczos "
-                 "(of --window-width bands) or dering (the mildest window that makes the irradiance non-negative)")
+                 "(of --window-width bands), dering (the mildest window that makes the irradiance non-negative) or nonneg "
+                 "(not a window: the nearest nine terms whose irradiance is non-negative everywhere)")
       ->capture_default_str();
   app.add_option("--window-width", options.window_width, "width of the hanning and lanczos windows, in bands")
       ->capture_default_str();

@@ -41,8 +41,9 @@ void AddStabilityCommand(CLI::App& app) {
   CLI::App* command = app.add_subcommand(
       "stability",
       "Where the nine-coefficient method fails, measured: a light swept from 90 to 0.25 degrees at constant power "
-      "(ringing, and the windows against it), the error each mip level adds for every built-in environment and "
-      "the --max-error level pick, and precision (float sums, non-unit and zero normals, denormal constants, HDR "
+      "(ringing, and the windows and the non-negative fit against it, also on the built-ins and lat-long probes), "
+      "the error each mip level adds for every built-in environment, the --max-error level pick and the "
+      "(program, level) pick with its hit rate, and precision (float sums, non-unit and zero normals, denormal constants, HDR "
       "radiance). Writes DIR/stability.md with the charts sweep.png, ringing.png and levels.png (gnuplot) beside "
       "it. About a minute at the defaults on two cores; a progress bar is shown when stderr is a terminal.");
   // Its own footer: CLI11 copies the parent's, which describes the main job's outputs.

@@ -106,16 +106,16 @@ TEST(Irrmap, PaperProgramReadsItsRegistersFromTheMetadataAndMatchesEq6) {
   }
 }
 
-TEST_F(IrrmapJob, WritesTheFourFilesForASmallBuiltin) {
+TEST_F(IrrmapJob, WritesTheFiveFilesForASmallBuiltin) {
   options_.environment = "sky";
   ASSERT_EQ(RunIrrmap(options_, report_), std::nullopt);
   const fs::path out = options_.out_dir;
-  for (const char* name : {"coeffs.json", "constants.vsh", "irradiance.exr", "preview.png"}) {
+  for (const char* name : {"coeffs.json", "constants.vsh", "program.vsh", "irradiance.exr", "preview.png"}) {
     EXPECT_TRUE(fs::is_regular_file(out / name)) << name;
   }
-  EXPECT_EQ(report_.files.size(), 4u);
+  EXPECT_EQ(report_.files.size(), 5u);
   // Nothing else (no temporaries).
-  EXPECT_EQ(std::distance(fs::directory_iterator(out), fs::directory_iterator()), 4);
+  EXPECT_EQ(std::distance(fs::directory_iterator(out), fs::directory_iterator()), 5);
 
   // coeffs.json: the documented keys, and the coefficients of the chosen level.
   const nlohmann::json json = nlohmann::json::parse(ReadText(out / "coeffs.json"));
@@ -185,7 +185,7 @@ TEST_F(IrrmapJob, CoefficientsOnlyWritesTheSameCoefficientsAndNoMore) {
   std::vector<std::string> names;
   for (const auto& entry : fs::directory_iterator(options_.out_dir)) names.push_back(entry.path().filename());
   std::sort(names.begin(), names.end());
-  EXPECT_EQ(names, (std::vector<std::string>{"coeffs.json", "constants.vsh"}));
+  EXPECT_EQ(names, (std::vector<std::string>{"coeffs.json", "constants.vsh", "program.vsh"}));
   EXPECT_EQ(report_.TimingMs("ground_truth"), 0.0);
   const nlohmann::json json = nlohmann::json::parse(ReadText(options_.out_dir / "coeffs.json"));
   EXPECT_FALSE(json["levels"][0].contains("mean_relative_error"));

@@ -51,6 +51,9 @@ constexpr ExpectedSize kSizes[] = {
     {"sh9_irradiance_basis", 15, 15, 9, 5},
     {"sh9_vertex_od0", 12, 15, 11, 4},
     {"sh9_vertex_ot0_hdr", 12, 15, 11, 4},
+    {"sh_order0", 1, 1, 1, 0},
+    {"sh_order1", 3, 3, 3, 0},
+    {"sh_zh3", 6, 6, 5, 2},
 };
 
 TEST(Programs, DirectoryHoldsEveryDocumentedProgram) {
@@ -58,7 +61,7 @@ TEST(Programs, DirectoryHoldsEveryDocumentedProgram) {
   for (const char* expected : {"sh9_irradiance", "sh9_irradiance_as_printed", "sh9_irradiance_unit10",
                                "sh9_irradiance_matrix", "sh9_irradiance_basis", "sh9_vertex_od0",
                                "sh9_vertex_ot0_hdr", "directional_light", "point_light", "fog", "skinning",
-                               "all_instructions"}) {
+                               "all_instructions", "sh_order0", "sh_order1", "sh_zh3"}) {
     EXPECT_NE(std::find(names.begin(), names.end(), expected), names.end()) << expected;
   }
 }

@@ -35,9 +35,9 @@ SpeedAccuracyOptions FastOptions(std::vector<std::string> environments) {
 }
 
 const SpeedAccuracyPoint& Find(const SpeedAccuracyResult& result, std::string_view environment,
-                               ProjectionMethod method, int level) {
+                               ProjectionMethod method, int level, ShOrder order = ShOrder::kOrder2) {
   const auto it = std::find_if(result.points.begin(), result.points.end(), [&](const SpeedAccuracyPoint& p) {
-    return p.environment == environment && p.method == method && p.level == level;
+    return p.environment == environment && p.method == method && p.level == level && p.order == order;
   });
   EXPECT_NE(it, result.points.end()) << environment << " level " << level;
   return *it;
@@ -47,7 +47,8 @@ TEST(SpeedAccuracy, SweepsEveryLevelOfEachMethodForEachEnvironment) {
   SpeedAccuracyResult result;
   ASSERT_EQ(RunSpeedAccuracySweep(FastOptions({"constant", "sky"}), result), std::nullopt);
   const int levels = LevelCount(kFaceSize);
-  ASSERT_EQ(result.points.size(), static_cast<std::size_t>(2 * 2 * levels));
+  // Per environment: every direct level, and every mip level with each of the four programs.
+  ASSERT_EQ(result.points.size(), static_cast<std::size_t>(2 * (1 + 4) * levels));
   ASSERT_EQ(result.environments.size(), 2u);
   for (const SpeedAccuracyPoint& point : result.points) {
     EXPECT_EQ(point.size, kFaceSize >> point.level);
@@ -63,6 +64,11 @@ TEST(SpeedAccuracy, SweepsEveryLevelOfEachMethodForEachEnvironment) {
   // At level 0 both methods are the full-resolution projection.
   EXPECT_NEAR(Find(result, "sky", ProjectionMethod::kMipPyramid, 0).error.mean_relative,
               Find(result, "sky", ProjectionMethod::kDirectOnLevel, 0).error.mean_relative, 1e-6);
+  // The order dimension: the constant environment is exact with one slot; the sky needs band 2.
+  EXPECT_NEAR(Find(result, "constant", ProjectionMethod::kMipPyramid, 0, ShOrder::kOrder0).error.max_relative,
+              furnace_error, kWhiteFurnaceRelative);
+  EXPECT_GT(Find(result, "sky", ProjectionMethod::kMipPyramid, 0, ShOrder::kOrder1).error.mean_relative,
+            Find(result, "sky", ProjectionMethod::kMipPyramid, 0).error.mean_relative);
   // Six texels cannot hold the sky's sun: the 1 x 1 level is far worse than full resolution.
   EXPECT_GT(Find(result, "sky", ProjectionMethod::kMipPyramid, levels - 1).error.mean_relative,
             2.0 * Find(result, "sky", ProjectionMethod::kMipPyramid, 0).error.mean_relative);
@@ -73,7 +79,9 @@ TEST(SpeedAccuracy, CsvHasAHeaderAndOneLinePerPoint) {
   ASSERT_EQ(RunSpeedAccuracySweep(FastOptions({"spot"}), result), std::nullopt);
   const std::string csv = SpeedAccuracyCsv(result);
   EXPECT_THAT(csv, StartsWith("environment,method,level,size,update_ms,mips_ms,mean_relative_error,"
-                              "max_relative_error\n"));
+                              "max_relative_error,order,slots\n"));
+  EXPECT_THAT(csv, HasSubstr("\nspot,mip,0,8,"));
+  EXPECT_THAT(csv, HasSubstr(",zh3,6\n"));
   EXPECT_EQ(static_cast<std::size_t>(std::count(csv.begin(), csv.end(), '\n')), result.points.size() + 1);
   EXPECT_THAT(csv, HasSubstr("\nspot,mip,0,8,"));
   EXPECT_THAT(csv, HasSubstr("\nspot,direct,3,1,"));
@@ -88,7 +96,11 @@ TEST(SpeedAccuracy, ChartHasOneSolidAndOneDashedCurvePerEnvironment) {
   EXPECT_THAT(chart.script, HasSubstr("'studio (direct on level)'"));
   EXPECT_THAT(chart.script, HasSubstr("with labels"));
   EXPECT_THAT(chart.script, HasSubstr("index 3 using"));
-  EXPECT_THAT(chart.script, Not(HasSubstr("index 4 using")));
+  // The order panel: one curve per environment from full resolution (8x8 faces have no 16x16 level).
+  EXPECT_THAT(chart.script, HasSubstr("set multiplot layout 1,2"));
+  EXPECT_THAT(chart.script, HasSubstr("'studio from 8x8'"));
+  EXPECT_THAT(chart.script, HasSubstr("index 5 using"));
+  EXPECT_THAT(chart.script, Not(HasSubstr("index 6 using")));
 }
 
 TEST(SpeedAccuracy, WritesCsvSvgAndPngAndNothingElse) {

@@ -171,7 +171,15 @@ TEST(StabilityTest, MaxErrorPickIsRightOnEveryBuiltin) {
       const LevelStudy study =
           MeasureLevels(name, *MakeBuiltinEnvironment(name, size), *basis, normals, kDefaultMaxLevelError, 2);
       EXPECT_TRUE(study.pick_meets) << name << " at " << size;
-      EXPECT_TRUE(study.coarser_fails) << name << " at " << size;
+      // The gradient's level errors grow fourfold per level, so the true error of the next coarser
+      // level is 4/3 of its difference while the estimate is 1.4 times it: that level may still
+      // meet E with an estimate just above it (the pick is safe, one level finer than it might be).
+      if (name != "gradient") {
+        EXPECT_TRUE(study.coarser_fails) << name << " at " << size;
+      }
+      // The (program, level) pick meets the target against order 2 at level 0, too.
+      EXPECT_TRUE(study.program_meets) << name << " at " << size << ": " << study.program_error;
+      EXPECT_EQ(study.pair_errors.size(), study.pairs.size());
     }
   }
 }
