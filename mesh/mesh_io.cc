@@ -1,7 +1,10 @@
 #include "mesh/mesh_io.h"
 
 #include <algorithm>
+#include <charconv>
 #include <cmath>
+#include <fstream>
+#include <string_view>
 #include <map>
 #include <mutex>
 #include <system_error>
@@ -96,22 +99,25 @@ std::vector<PlacedMesh> PlaceMeshes(const aiScene& scene) {
   std::vector<PlacedMesh> placed;
   std::vector<bool> referenced(scene.mNumMeshes, false);
   std::vector<const aiNode*> stack;
+  if (scene.mMeshes == nullptr) return placed;
   if (scene.mRootNode != nullptr) stack.push_back(scene.mRootNode);
   while (!stack.empty()) {
     const aiNode* node = stack.back();
     stack.pop_back();
-    for (unsigned i = 0; i < node->mNumMeshes; ++i) {
+    for (unsigned i = 0; node->mMeshes != nullptr && i < node->mNumMeshes; ++i) {
       const unsigned index = node->mMeshes[i];
-      if (index >= scene.mNumMeshes || scene.mMeshes[index] == nullptr) continue;
+      if (index >= scene.mNumMeshes || scene.mMeshes[index] == nullptr || scene.mMeshes[index]->mVertices == nullptr) {
+        continue;
+      }
       placed.push_back({scene.mMeshes[index], node});
       referenced[index] = true;
     }
-    for (unsigned i = node->mNumChildren; i-- > 0;) {
+    for (unsigned i = node->mChildren != nullptr ? node->mNumChildren : 0; i-- > 0;) {
       if (node->mChildren[i] != nullptr) stack.push_back(node->mChildren[i]);
     }
   }
   for (unsigned i = 0; i < scene.mNumMeshes; ++i) {
-    if (!referenced[i] && scene.mMeshes[i] != nullptr) placed.push_back({scene.mMeshes[i], nullptr});
+    if (!referenced[i] && scene.mMeshes[i] != nullptr && scene.mMeshes[i]->mVertices != nullptr) placed.push_back({scene.mMeshes[i], nullptr});
   }
   return placed;
 }
@@ -215,7 +221,7 @@ class MeshBuilder {
     }
     for (unsigned f = 0; f < m.mNumFaces; ++f) {
       const aiFace& face = m.mFaces[f];
-      if (face.mNumIndices != 3) continue;  // points and lines (triangulation leaves nothing larger)
+      if (face.mNumIndices != 3 || face.mIndices == nullptr) continue;  // points and lines (triangulation leaves nothing larger)
       for (int k = 0; k < 3; ++k) {
         if (face.mIndices[k] >= m.mNumVertices) {
           return fmt::format("mesh '{}': face {} refers to vertex {} of {}", part.mesh_name, f, face.mIndices[k],
@@ -250,7 +256,7 @@ class MeshBuilder {
     std::vector<std::vector<std::pair<float, int>>> influences(m.mNumVertices);
     for (unsigned b = 0; b < m.mNumBones; ++b) {
       const aiBone* bone = m.mBones[b];
-      if (bone == nullptr) continue;
+      if (bone == nullptr || (bone->mNumWeights > 0 && bone->mWeights == nullptr)) continue;
       const int index = PaletteIndex(*bone);
       for (unsigned w = 0; w < bone->mNumWeights; ++w) {
         const aiVertexWeight& weight = bone->mWeights[w];
@@ -354,8 +360,48 @@ class AssimpMessages : public Assimp::LogStream {
   static constexpr std::size_t kMaxMessages = 20;
 };
 
+// Assimp's OFF and PLY readers allocate from the vertex and face counts in the header before they
+// read the data (a 309-byte OFF file declaring 35 billion vertices runs for minutes). A count
+// larger than the file's size cannot be honest, whatever the encoding: refuse it first.
+std::optional<std::string> CheckHeaderCounts(std::string_view head, std::uintmax_t file_size) {
+  auto too_many = [&](std::uintmax_t count, const char* what) -> std::optional<std::string> {
+    if (count <= file_size) return std::nullopt;
+    return fmt::format("the header declares {} {}, more than a {}-byte file can hold", count, what, file_size);
+  };
+  auto number_at = [&](std::size_t& at) -> std::optional<std::uintmax_t> {
+    while (at < head.size() && (head[at] == ' ' || head[at] == '\t' || head[at] == '\r' || head[at] == '\n')) ++at;
+    std::uintmax_t value = 0;
+    auto [ptr, ec] = std::from_chars(head.data() + at, head.data() + head.size(), value);
+    if (ec != std::errc()) return std::nullopt;
+    at = static_cast<std::size_t>(ptr - head.data());
+    return value;
+  };
+  if (head.starts_with("OFF") || head.starts_with("NOFF") || head.starts_with("COFF") || head.starts_with("STOFF")) {
+    std::size_t at = head.find_first_of(" \t\r\n");
+    if (at == std::string_view::npos) return std::nullopt;
+    std::optional<std::uintmax_t> vertices = number_at(at), faces = number_at(at);
+    if (vertices) {
+      if (auto error = too_many(*vertices, "vertices")) return error;
+    }
+    if (faces) return too_many(*faces, "faces");
+    return std::nullopt;
+  }
+  if (head.starts_with("ply")) {
+    for (std::size_t at = head.find("element "); at != std::string_view::npos; at = head.find("element ", at)) {
+      at = head.find_first_of(" \t", at + 8);
+      if (at == std::string_view::npos) break;
+      if (std::optional<std::uintmax_t> count = number_at(at)) {
+        if (auto error = too_many(*count, "elements")) return error;
+      }
+    }
+  }
+  return std::nullopt;
+}
+
 unsigned PostProcessFlags(const MeshLoadOptions& options) {
-  unsigned flags = aiProcess_Triangulate | aiProcess_ValidateDataStructure;
+  // No aiProcess_ValidateDataStructure: it refuses sound files for things vs11 does not read (a
+  // light without a node, a point cloud without faces). MeshBuilder checks what it reads itself.
+  unsigned flags = aiProcess_Triangulate;
   if (options.compute_normals) flags |= aiProcess_GenSmoothNormals;
   if (options.compute_tangents) flags |= aiProcess_CalcTangentSpace;
   return flags;
@@ -407,6 +453,13 @@ MeshLoadResult LoadMesh(const std::filesystem::path& path, const MeshLoadOptions
   if (size > kMaxMeshFileBytes) {
     return {std::nullopt, fmt::format("{}: {} bytes, over the {}-byte limit for mesh files", name, size, kMaxMeshFileBytes)};
   }
+  {
+    std::ifstream in(path, std::ios::binary);
+    std::string head(4096, '\0');
+    in.read(head.data(), static_cast<std::streamsize>(head.size()));
+    head.resize(static_cast<std::size_t>(in.gcount()));
+    if (std::optional<std::string> message = CheckHeaderCounts(head, size)) return {std::nullopt, name + ": " + *message};
+  }
   std::lock_guard lock(assimp_logger_mutex);
   AssimpMessages messages;
   Assimp::Importer importer;
@@ -418,6 +471,8 @@ MeshLoadResult LoadMeshFromMemory(std::span<const std::uint8_t> bytes, const std
                                   const MeshLoadOptions& options) {
   if (bytes.empty()) return {std::nullopt, "<memory>: no bytes"};
   if (bytes.size() > kMaxMeshFileBytes) return {std::nullopt, "<memory>: over the size limit for mesh files"};
+  const std::string_view head(reinterpret_cast<const char*>(bytes.data()), std::min<std::size_t>(bytes.size(), 4096));
+  if (std::optional<std::string> message = CheckHeaderCounts(head, bytes.size())) return {std::nullopt, "<memory>: " + *message};
   std::lock_guard lock(assimp_logger_mutex);
   AssimpMessages messages;
   Assimp::Importer importer;

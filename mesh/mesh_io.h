@@ -34,9 +34,11 @@ inline constexpr int kMaxTexCoordSets = 8;  // Assimp's AI_MAX_NUMBER_OF_TEXTURE
 inline constexpr int kMaxColorSets = 8;     // AI_MAX_NUMBER_OF_COLOR_SETS
 inline constexpr int kMaxBonesPerVertex = 4;
 
-// Refused before anything of the mesh is allocated by vs11 (Assimp's parse comes first and is
-// bounded by the file size): files over kMaxMeshFileBytes, and scenes whose joined parts hold more
-// than kMaxMeshVertices vertices or kMaxMeshTriangles triangles.
+// Refused before anything of the mesh is allocated by vs11: files over kMaxMeshFileBytes (checked
+// before Assimp reads them), OFF and PLY headers declaring more vertices, faces or elements than the
+// file has bytes (before Assimp reads them: its readers allocate from those counts), and scenes
+// whose joined parts hold more than kMaxMeshVertices vertices or kMaxMeshTriangles triangles
+// (after Assimp's parse, before vs11's arrays).
 inline constexpr std::uintmax_t kMaxMeshFileBytes = std::uintmax_t{1} << 30;  // 1 GiB
 inline constexpr std::size_t kMaxMeshVertices = std::size_t{1} << 26;         // 67,108,864
 inline constexpr std::size_t kMaxMeshTriangles = std::size_t{1} << 27;
@@ -111,8 +113,10 @@ struct MeshLoadResult {
 // triangulated; points and lines keep their vertices but add no triangles. Vertices are not merged
 // or reordered: each part's vertices appear in the order Assimp gives them (the file's order for
 // indexed formats), and a mesh placed by several nodes appears once per node. Errors (never thrown):
-// unreadable or oversized files, Assimp's parse and validation errors (indices out of range, ...),
-// scenes without a triangle or point, limits above.
+// unreadable or oversized files, Assimp's parse errors, face indices or bone weights naming a
+// vertex the mesh does not have, scenes without a vertex, limits above. Assimp's own warnings
+// (triangles it dropped, ...) come first in Mesh::warnings. LoadMesh and LoadMeshFromMemory may be
+// called from several threads; Assimp's logger makes them take turns.
 MeshLoadResult LoadMesh(const std::filesystem::path& path, const MeshLoadOptions& options = {});
 
 // The same from memory (the fuzz target's entry); `format_hint` is an extension such as "obj" or

@@ -8,6 +8,7 @@
 #include "irradiance/ground_truth.h"
 #include "vm/cli/cli_support.h"
 #include "vm/cli/commands.h"
+#include "vm/cli/vertex_sources.h"
 #include "vm/vertex_io.h"
 
 namespace vs11::cli {
@@ -56,6 +57,7 @@ void AddRunCommand(CLI::App& app) {
     int sphere = 0;
     ProgramFlags flags;
     EngineFlags engine;
+    VertexSourceFlags sources;
   };
   auto args = std::make_shared<Args>();
   CLI::App* command = app.add_subcommand("run", "Run a vs_1_1 program over vertices and print its outputs as CSV");
@@ -78,6 +80,7 @@ void AddRunCommand(CLI::App& app) {
   command->add_option("--out", args->out, "Write the CSV here (atomically) instead of stdout");
   args->flags.AddTo(*command);
   args->engine.AddTo(*command);
+  args->sources.AddTo(*command);
   command->callback([args] {
     Program program = LoadProgramOrFail(args->program, args->flags);
     ConstantBank constants = LoadConstants(args->consts_files, args->const_flags, args->flags.constant_count);
@@ -110,7 +113,8 @@ void AddRunCommand(CLI::App& app) {
       prefix.header = {name + ".x", name + ".y", name + ".z"};
       supplied.emplace_back(reg, std::move(rows));
     }
-    if (supplied.empty()) Fail("no vertices: give --input v#=FILE.csv or --sphere N");
+    VertexSources sources = CollectVertexSources(args->sources, program, constants, supplied);
+    if (supplied.empty()) Fail("no vertices: give --input v#=FILE.csv, --sphere N, --mesh, --npy or --buffer");
     std::size_t count = supplied.front().second.size();
     for (const auto& [reg, rows] : supplied) {
       if (rows.size() != count) {
@@ -127,6 +131,8 @@ void AddRunCommand(CLI::App& app) {
     }
     VertexArrays outputs = MakeOutputArrays(count, program);
     MakeEngine(args->engine.Kind(), program, constants, args->engine.Options())->Run(inputs, outputs);
+    WriteVertexOutputs(args->sources, sources, program, outputs);
+    if (args->out.empty() && args->sources.WritesOutputFiles()) return;
     std::string csv = FormatOutputCsv(program, outputs, prefix);
     if (args->out.empty()) {
       std::fputs(csv.c_str(), stdout);
