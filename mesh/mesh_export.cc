@@ -121,7 +121,7 @@ std::optional<std::string> ExportMesh(const Mesh& mesh, const ExportAttributes& 
                                       const std::filesystem::path& path) {
   std::string extension = path.extension().string();
   for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
-  const char* format = extension == ".ply" ? "plyb" : extension == ".glb" ? "glb2" : nullptr;
+  const char* format = extension == ".ply" ? "ply" : extension == ".glb" ? "glb2" : nullptr;
   if (format == nullptr) return fmt::format("{}: --out-mesh writes .ply or .glb files", path.string());
   auto check = [&](const std::vector<Vec4f>* values) { return values == nullptr || values->size() == mesh.vertex_count; };
   bool sizes_match = check(attributes.color);

@@ -23,7 +23,8 @@ struct ExportAttributes {
   std::string note;
 };
 
-// The format comes from the extension: .ply (binary little-endian PLY) or .glb (binary glTF 2.0).
+// The format comes from the extension: .ply (ASCII PLY: Assimp 5.2's binary PLY exporter writes
+// float colours under a uchar header, a file no reader can read) or .glb (binary glTF 2.0).
 // Positions, normals and triangles are the mesh's own (root space, joined: one mesh, one node with
 // the identity transform). Each array in `attributes` must hold mesh.vertex_count values. The file
 // is written atomically. Returns an error message on failure.

@@ -399,21 +399,63 @@ std::optional<std::string> CheckHeaderCounts(std::string_view head, std::uintmax
 }
 
 unsigned PostProcessFlags(const MeshLoadOptions& options) {
-  // No aiProcess_ValidateDataStructure: it refuses sound files for things vs11 does not read (a
-  // light without a node, a point cloud without faces). MeshBuilder checks what it reads itself.
   unsigned flags = aiProcess_Triangulate;
   if (options.compute_normals) flags |= aiProcess_GenSmoothNormals;
   if (options.compute_tangents) flags |= aiProcess_CalcTangentSpace;
   return flags;
 }
 
+// What Assimp's post-processing steps and MeshBuilder index without checking. Assimp's own
+// aiProcess_ValidateDataStructure checks this too, but it also refuses sound files for things vs11
+// does not read (a light without a node, a point cloud without faces), so the scene is read with
+// no post-processing, checked here, and post-processed after (a face index past the vertices
+// crashes aiProcess_Triangulate).
+std::optional<std::string> CheckSceneIndices(const aiScene& scene) {
+  if (scene.mNumMeshes > 0 && scene.mMeshes == nullptr) return "the scene lists meshes it does not hold";
+  for (unsigned i = 0; i < scene.mNumMeshes; ++i) {
+    const aiMesh* m = scene.mMeshes[i];
+    if (m == nullptr) return fmt::format("mesh {} is missing", i);
+    if (m->mNumVertices > 0 && m->mVertices == nullptr) return fmt::format("mesh '{}' has no vertex positions", m->mName.C_Str());
+    if (m->mNumFaces > 0 && m->mFaces == nullptr) return fmt::format("mesh '{}' lists faces it does not hold", m->mName.C_Str());
+    for (unsigned f = 0; f < m->mNumFaces; ++f) {
+      const aiFace& face = m->mFaces[f];
+      if (face.mNumIndices > 0 && face.mIndices == nullptr) return fmt::format("mesh '{}': face {} has no indices", m->mName.C_Str(), f);
+      for (unsigned k = 0; k < face.mNumIndices; ++k) {
+        if (face.mIndices[k] >= m->mNumVertices) {
+          return fmt::format("mesh '{}': face {} refers to vertex {} of {}", m->mName.C_Str(), f, face.mIndices[k],
+                             m->mNumVertices);
+        }
+      }
+    }
+    if (m->mNumBones > 0 && m->mBones == nullptr) return fmt::format("mesh '{}' lists bones it does not hold", m->mName.C_Str());
+    for (unsigned b = 0; b < m->mNumBones; ++b) {
+      const aiBone* bone = m->mBones[b];
+      if (bone == nullptr || (bone->mNumWeights > 0 && bone->mWeights == nullptr)) {
+        return fmt::format("mesh '{}': bone {} is missing its weights", m->mName.C_Str(), b);
+      }
+      for (unsigned w = 0; w < bone->mNumWeights; ++w) {
+        if (bone->mWeights[w].mVertexId >= m->mNumVertices) {
+          return fmt::format("mesh '{}': bone '{}' weights vertex {} of {}", m->mName.C_Str(), bone->mName.C_Str(),
+                             bone->mWeights[w].mVertexId, m->mNumVertices);
+        }
+      }
+    }
+  }
+  return std::nullopt;
+}
+
+// `scene` as read with no post-processing.
 MeshLoadResult FromScene(const aiScene* scene, Assimp::Importer& importer, const std::string& name,
                          const MeshLoadOptions& options, AssimpMessages& messages) {
-  if (scene == nullptr) {
+  auto assimp_error = [&] {
     std::string reason = importer.GetErrorString();
     if (reason.empty()) reason = "Assimp could not read it";
-    return {std::nullopt, fmt::format("{}: {}", name, reason)};
-  }
+    return MeshLoadResult{std::nullopt, fmt::format("{}: {}", name, reason)};
+  };
+  if (scene == nullptr) return assimp_error();
+  if (std::optional<std::string> error = CheckSceneIndices(*scene)) return {std::nullopt, fmt::format("{}: {}", name, *error)};
+  scene = importer.ApplyPostProcessing(PostProcessFlags(options));
+  if (scene == nullptr) return assimp_error();
   MeshLoadResult result = MeshBuilder(*scene, options).Build();
   if (!result.ok()) {
     result.error = fmt::format("{}: {}", name, result.error);
@@ -463,7 +505,7 @@ MeshLoadResult LoadMesh(const std::filesystem::path& path, const MeshLoadOptions
   std::lock_guard lock(assimp_logger_mutex);
   AssimpMessages messages;
   Assimp::Importer importer;
-  const aiScene* scene = importer.ReadFile(name, PostProcessFlags(options));
+  const aiScene* scene = importer.ReadFile(name, 0);
   return FromScene(scene, importer, name, options, messages);
 }
 
@@ -476,8 +518,7 @@ MeshLoadResult LoadMeshFromMemory(std::span<const std::uint8_t> bytes, const std
   std::lock_guard lock(assimp_logger_mutex);
   AssimpMessages messages;
   Assimp::Importer importer;
-  const aiScene* scene = importer.ReadFileFromMemory(bytes.data(), bytes.size(), PostProcessFlags(options),
-                                                     format_hint.c_str());
+  const aiScene* scene = importer.ReadFileFromMemory(bytes.data(), bytes.size(), 0, format_hint.c_str());
   return FromScene(scene, importer, "<memory>", options, messages);
 }
 
