@@ -9,6 +9,7 @@
 #include "vm/cli/cli_support.h"
 #include "vm/cli/commands.h"
 #include "vm/cli/trace_output.h"
+#include "vm/cli/vertex_sources.h"
 #include "vm/vertex_io.h"
 
 namespace vs11::cli {
@@ -58,6 +59,7 @@ void AddRunCommand(CLI::App& app) {
     ProgramFlags flags;
     EngineFlags engine;
     TraceFlags trace;
+    VertexSourceFlags sources;
   };
   auto args = std::make_shared<Args>();
   CLI::App* command = app.add_subcommand("run", "Run a vs_1_1 program over vertices and print its outputs as CSV");
@@ -85,6 +87,7 @@ void AddRunCommand(CLI::App& app) {
   args->flags.AddTo(*command);
   args->engine.AddTo(*command);
   args->trace.AddTo(*command);
+  args->sources.AddTo(*command);
   command->callback([args] {
     Program program = LoadProgramOrFail(args->program, args->flags);
     ConstantBank constants = LoadConstants(args->consts_files, args->const_flags, args->flags.constant_count);
@@ -117,7 +120,8 @@ void AddRunCommand(CLI::App& app) {
       prefix.header = {name + ".x", name + ".y", name + ".z"};
       supplied.emplace_back(reg, std::move(rows));
     }
-    if (supplied.empty()) Fail("no vertices: give --input v#=FILE.csv or --sphere N");
+    VertexSources sources = CollectVertexSources(args->sources, program, constants, supplied);
+    if (supplied.empty()) Fail("no vertices: give --input v#=FILE.csv, --sphere N, --mesh, --npy or --buffer");
     std::size_t count = supplied.front().second.size();
     for (const auto& [reg, rows] : supplied) {
       if (rows.size() != count) {
@@ -136,8 +140,9 @@ void AddRunCommand(CLI::App& app) {
     MakeEngine(args->engine.Kind(), program, constants, args->engine.Options())->Run(inputs, outputs);
     if (args->trace.active()) {
       ReportTraces(args->trace, args->program, program, constants, inputs, outputs, EngineName(args->engine.Kind()));
-      if (args->out.empty()) return;
     }
+    WriteVertexOutputs(args->sources, sources, program, outputs);
+    if (args->out.empty() && (args->sources.WritesOutputFiles() || args->trace.active())) return;
     std::string csv = FormatOutputCsv(program, outputs, prefix);
     if (args->out.empty()) {
       std::fputs(csv.c_str(), stdout);
