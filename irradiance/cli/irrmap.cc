@@ -9,6 +9,7 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include "irradiance/mesh_input/mesh_geometry_io.h"
 #include "irradiance/cli/subcommands.h"
 #include "irradiance/environments.h"
 #include "irradiance/irrmap_job.h"
@@ -65,7 +66,8 @@ std::string Footer() {
       "  irrmap studio --face-size 128 --level 3    built-in studio, coefficients from 16x16\n"
       "  irrmap probe.hdr --layout angular --face-size 256 --out probe-out\n"
       "  irrmap 'sky_{{face}}.exr' --engine ref       six face files, reference engine\n"
-      "  irrmap cross.exr --map-size 64 --threads 2\n",
+      "  irrmap cross.exr --map-size 64 --threads 2\n"
+      "  irrmap studio --face-size 64 --mesh /usr/share/assimp/models/PLY/Wuson.ply --out wuson\n",
       vs11::irradiance::kRecommendedLevelSize);
 }
 
@@ -90,6 +92,7 @@ int main(int argc, char** argv) {
   vs11::irradiance::IrrmapOptions options;
   std::string out_dir = options.out_dir.string();
   std::string font;
+  std::string mesh_file;
   int level = 0;
 
   CLI::App app{fmt::format(
@@ -140,6 +143,12 @@ int main(int argc, char** argv) {
                "(each level computed once, not timed repeatedly)");
   app.add_option("--font", font, fmt::format("TrueType font of the preview labels (default {})",
                                              vs11::irradiance::kDefaultPreviewFont));
+  app.add_option("--mesh", mesh_file,
+                 "also light this mesh (any format Assimp reads, with normals) as the paper's Fig. 3: mesh.ply "
+                 "(8-bit vertex colours, tone mapped as mesh.png) and mesh.png (program | exact | relative error)");
+  app.add_option("--mesh-truth-limit", options.mesh_truth_vertex_limit,
+                 "meshes with more vertices get no exact irradiance (0 = no limit)")
+      ->capture_default_str();
   vs11::irradiance::cli::AddSubcommands(app);
   try {
     app.parse(argc, argv);
@@ -157,6 +166,16 @@ int main(int argc, char** argv) {
   options.out_dir = out_dir;
   options.font = font;
   if (app.count("--level") > 0) options.level = level;
+  if (!mesh_file.empty()) {
+    std::vector<std::string> mesh_warnings;
+    options.mesh.emplace();
+    std::optional<std::string> mesh_error = vs11::irradiance::LoadMeshGeometry(mesh_file, *options.mesh, mesh_warnings);
+    for (const std::string& warning : mesh_warnings) fmt::print(stderr, "irrmap: warning: {}\n", warning);
+    if (mesh_error) {
+      fmt::print(stderr, "irrmap: error: {}\n", *mesh_error);
+      return kJobError;
+    }
+  }
 
   const auto start = std::chrono::steady_clock::now();
   vs11::irradiance::IrrmapReport report;
