@@ -112,7 +112,16 @@ Vec4f FetchSource(const SourceOperand& source, int row, const ConstantBank& cons
   Vec4f value;
   for (int lane = 0; lane < 4; ++lane) {
     float v = base[source.swizzle[lane]];
-    value[lane] = source.negate ? -v : v;
+    if (source.negate) {
+      v = -v;
+#if defined(__x86_64__)
+      // As the batch kernels' Negate: keeps the compiler from folding a + (-b) into a - b, which
+      // would return b's NaN with its sign unflipped (seen once FetchSource became visible to
+      // the tracer and GCC inlined it differently).
+      asm("" : "+x"(v));
+#endif
+    }
+    value[lane] = v;
   }
   return value;
 }
