@@ -44,6 +44,8 @@ constexpr std::string_view kConstantsFile = "constants.vsh";
 constexpr std::string_view kProgramFile = "program.vsh";
 constexpr std::string_view kIrradianceFile = "irradiance.exr";
 constexpr std::string_view kPreviewFile = "preview.png";
+constexpr std::string_view kMeshFile = "mesh.ply";
+constexpr std::string_view kMeshPictureFile = "mesh.png";
 // Each level's coefficient update is repeated until this much time has passed (or kMaxTimingRuns
 // runs), and the mean is reported: a 1 x 1 level takes a few microseconds.
 constexpr double kMinTimingMs = 20.0;
@@ -304,6 +306,22 @@ nlohmann::ordered_json CoefficientsJson(const IrrmapReport& report, const Irrmap
     levels.push_back(std::move(row));
   }
   json["levels"] = std::move(levels);
+  if (report.mesh) {
+    const MeshReport& mesh = *report.mesh;
+    nlohmann::ordered_json row = {{"file", mesh.file},
+                                  {"vertex_count", mesh.vertex_count},
+                                  {"triangle_count", mesh.triangle_count},
+                                  {"unusable_normals", mesh.unusable_normals},
+                                  {"ms_per_evaluation", mesh.ms_per_evaluation},
+                                  {"ns_per_vertex", mesh.vertex_count > 0 ? mesh.ms_per_evaluation * 1e6 / mesh.vertex_count : 0.0},
+                                  {"exact", mesh.has_truth}};
+    if (mesh.has_truth) {
+      row["max_relative_error"] = mesh.error.max_relative;
+      row["mean_relative_error"] = mesh.error.mean_relative;
+      row["error_scale"] = mesh.error_scale;
+    }
+    json["mesh"] = std::move(row);
+  }
   nlohmann::ordered_json timings = nlohmann::ordered_json::object();
   for (const Timing& timing : report.timings) timings[timing.name] = timing.ms;
   json["timings_ms"] = std::move(timings);
@@ -608,7 +626,26 @@ std::optional<std::string> RunIrrmap(const IrrmapOptions& options, IrrmapReport&
   if (!chosen_program) return program_error;
   const ConstantBank chosen_bank = chosen_program->Constants(report.program_constants);
 
-  if (options.coefficients_only) return WriteJobOutputs(options, checked, *chosen_program, {}, report);
+  std::vector<PendingOutput> extra_outputs;
+  MeshLighting lighting;
+  if (options.mesh) {
+    lighting = Timed(report, "mesh", [&] {
+      MeshLightingOptions mesh_options{checked.engine, engine_options, checked.threads, options.mesh_truth_vertex_limit,
+                                       kMeshPanelSize};
+      return LightMesh(*options.mesh, *program, report.constants, mips->levels[0], mesh_options);
+    });
+    for (std::string& warning : lighting.warnings) report.warnings.push_back(std::move(warning));
+    report.mesh = MeshReport{options.mesh->name, options.mesh->positions.size(), options.mesh->indices.size() / 3,
+                             lighting.ms_per_evaluation, lighting.unusable_normals, !lighting.truth.empty(), lighting.error, lighting.exposure,
+                             lighting.error_scale};
+    extra_outputs.push_back({kMeshFile, [&](const fs::path& path) {
+                              return options.mesh->write ? options.mesh->write(path, lighting.display_colors)
+                                                         : std::optional<std::string>("no mesh writer");
+                            }});
+    extra_outputs.push_back({kMeshPictureFile, [&](const fs::path& path) { return WriteImage(lighting.picture, path); }});
+  }
+
+  if (options.coefficients_only) return WriteJobOutputs(options, checked, *chosen_program, std::move(extra_outputs), report);
 
   // The irradiance cube map: the chosen program once per texel direction.
   CubeMap irradiance_map(options.map_size);
@@ -623,9 +660,8 @@ std::optional<std::string> RunIrrmap(const IrrmapOptions& options, IrrmapReport&
   });
 
   if (options.no_ground_truth) {
-    return WriteJobOutputs(
-        options, checked, *chosen_program,
-        {{kIrradianceFile, [&](const fs::path& path) { return WriteCrossExr(irradiance_map, path); }}}, report);
+    extra_outputs.push_back({kIrradianceFile, [&](const fs::path& path) { return WriteCrossExr(irradiance_map, path); }});
+    return WriteJobOutputs(options, checked, *chosen_program, std::move(extra_outputs), report);
   }
 
   // Ground truth at the error normals and at the preview's grid, in one pass.
@@ -677,10 +713,9 @@ std::optional<std::string> RunIrrmap(const IrrmapOptions& options, IrrmapReport&
   });
   for (std::string& warning : preview.warnings) report.warnings.push_back(std::move(warning));
 
-  return WriteJobOutputs(options, checked, *chosen_program,
-                         {{kIrradianceFile, [&](const fs::path& path) { return WriteCrossExr(irradiance_map, path); }},
-                          {kPreviewFile, [&](const fs::path& path) { return WriteImage(preview.image, path); }}},
-                         report);
+  extra_outputs.push_back({kIrradianceFile, [&](const fs::path& path) { return WriteCrossExr(irradiance_map, path); }});
+  extra_outputs.push_back({kPreviewFile, [&](const fs::path& path) { return WriteImage(preview.image, path); }});
+  return WriteJobOutputs(options, checked, *chosen_program, std::move(extra_outputs), report);
 }
 
 // ---- Formatting ------------------------------------------------------------------------------------

@@ -30,6 +30,13 @@
 //                    (`vs11 run --consts constants.vsh`, or paste into a program)
 //   irradiance.exr   the chosen program's irradiance cube map, horizontal cross, 32-bit float, map_size per face
 //   preview.png      see irradiance/preview.h
+//   with a mesh (IrrmapOptions::mesh), also:
+//   mesh.ply         the mesh with 8-bit vertex colours: the program's irradiance after the preview's
+//                    tone mapping (brightest vertex at kSphereWhite, then sRGB)
+//   mesh.png         the mesh lit by the program | by the exact irradiance | the relative error
+//                    (irradiance/mesh_lighting.h); coeffs.json gains "mesh": {"file", "vertex_count",
+//                    "triangle_count", "unusable_normals", "ms_per_evaluation", "ns_per_vertex", "exact" and, with it,
+//                    "max_relative_error", "mean_relative_error", "error_scale"}
 // All of them are first written to hidden temporaries in out_dir and renamed into place only when all
 // of them were written, so a failure leaves no partial output.
 #pragma once
@@ -47,6 +54,7 @@
 
 #include "irradiance/ground_truth.h"
 #include "irradiance/level_choice.h"
+#include "irradiance/mesh_lighting.h"
 #include "irradiance/sh9.h"
 #include "irradiance/sh_order.h"
 #include "vm/machine.h"
@@ -101,6 +109,23 @@ struct IrrmapOptions {
   bool no_ground_truth = false;
   // --face-size was given: a cube-map file, which keeps its own face size, then gets a warning.
   bool face_size_given = false;
+  // --mesh: also light this mesh (irradiance/mesh_lighting.h) and write mesh.ply and mesh.png, with
+  // its statistics under "mesh" in coeffs.json.
+  std::optional<MeshGeometry> mesh;
+  std::size_t mesh_truth_vertex_limit = kDefaultMeshTruthVertexLimit;
+};
+
+// The mesh's line in coeffs.json ("mesh": {...}).
+struct MeshReport {
+  std::string file;
+  std::size_t vertex_count = 0;
+  std::size_t triangle_count = 0;
+  double ms_per_evaluation = 0.0;  // the program over every vertex, engine run only
+  std::size_t unusable_normals = 0;  // zero or non-finite normals, left out of `error`
+  bool has_truth = false;
+  ErrorStats error;                // against the exact irradiance per vertex normal
+  double exposure = 0.0;
+  double error_scale = 0.0;
 };
 
 // Whether files can be created in `out_dir` (or in the folder that would hold it, when it does
@@ -148,6 +173,7 @@ struct IrrmapReport {
   std::vector<Timing> timings;      // in the order the stages ran
   std::vector<std::filesystem::path> files;  // written, once everything succeeded
   std::vector<std::string> warnings;
+  std::optional<MeshReport> mesh;
 
   // The time of a stage, or 0 when it did not run.
   double TimingMs(std::string_view name) const;

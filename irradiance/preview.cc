@@ -80,15 +80,6 @@ std::string Percent(double fraction) {
   return percent >= 100.0 ? fmt::format("{:.0f}%", percent) : fmt::format("{:.3g}%", percent);
 }
 
-// Per pixel: max over channels of |e - t| / max(|t|, floor).
-double RelativeError(glm::dvec3 estimate, glm::dvec3 truth, double floor) {
-  double worst = 0.0;
-  for (int c = 0; c < 3; ++c) {
-    worst = std::max(worst, std::abs(estimate[c] - truth[c]) / std::max(std::abs(truth[c]), floor));
-  }
-  return worst;
-}
-
 void Blit(const Image& source, Image& target, int x0, int y0) {
   for (int y = 0; y < source.height; ++y) {
     for (int x = 0; x < source.width; ++x) {
@@ -229,6 +220,14 @@ glm::dvec3 HemisphereGrid::Sample(glm::dvec3 normal) const {
   const glm::dvec3 upper = value(i0, j0) * (1.0 - b) + value(i0, j1) * b;
   const glm::dvec3 lower = value(i0 + 1, j0) * (1.0 - b) + value(i0 + 1, j1) * b;
   return upper * (1.0 - a) + lower * a;
+}
+
+double RelativeError(glm::dvec3 estimate, glm::dvec3 truth, double floor) {
+  double worst = 0.0;
+  for (int c = 0; c < 3; ++c) {
+    worst = std::max(worst, std::abs(estimate[c] - truth[c]) / std::max(std::abs(truth[c]), floor));
+  }
+  return worst;
 }
 
 glm::vec3 ErrorRamp(double t) {

@@ -127,6 +127,9 @@ PreviewResult RenderPreview(const SpherePixels& sphere, const PreviewPanel& trut
                             std::span<const PreviewPanel> estimates, const CubeMap& environment,
                             const PreviewOptions& options = {});
 
+// The relative error of one sample: max over r, g, b of |e - t| / max(|t|, floor).
+double RelativeError(glm::dvec3 estimate, glm::dvec3 truth, double floor);
+
 // The colour ramp of the error images (viridis, 5 stops) at t in [0, 1] (clamped), linear RGB.
 glm::vec3 ErrorRamp(double t);
 

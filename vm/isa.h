@@ -102,6 +102,8 @@ struct OpcodeInfo {
     }
   }
   constexpr bool has_dest() const { return shape != OperandShape::kNone; }
+  // Destination lanes the result can reach before the write mask: a matrix fills one lane per row.
+  constexpr int result_lanes() const { return kind == ResultKind::kMatrix ? matrix_rows : 4; }
   // Parameter tokens after the instruction token (vs_1_1 has no length field: §4.3).
   constexpr int parameter_tokens() const {
     switch (shape) {

@@ -7,26 +7,6 @@
 namespace vs11 {
 namespace {
 
-Vec4f ReadRegister(const RegisterRef& reg, int row, const ConstantBank& constants, const VertexState& state) {
-  long index = static_cast<long>(reg.index) + row;
-  switch (reg.file) {
-    case RegisterFile::kConst: return constants.Read(index + (reg.relative ? state.a0 : 0));
-    case RegisterFile::kTemp: return index < kTempRegisterCount ? state.temps[index] : Vec4f{};
-    case RegisterFile::kInput: return index < kInputRegisterCount ? state.inputs[index] : Vec4f{};
-    default: return Vec4f{};  // outputs and a0 are not readable (the validator rejects such sources)
-  }
-}
-
-Vec4f FetchSource(const SourceOperand& source, int row, const ConstantBank& constants, const VertexState& state) {
-  Vec4f base = ReadRegister(source.reg, row, constants, state);
-  Vec4f value;
-  for (int lane = 0; lane < 4; ++lane) {
-    float v = base[source.swizzle[lane]];
-    value[lane] = source.negate ? -v : v;
-  }
-  return value;
-}
-
 // Writes the lanes of `value` selected by the mask (and, for matrices, by the row count).
 void StoreDest(const DestOperand& dest, const Vec4f& value, int lane_count, VertexState& state) {
   Vec4f* target = nullptr;
@@ -56,7 +36,6 @@ void Execute(const Instruction& instruction, const ConstantBank& constants, Vert
   std::array<Vec4f, 3> src{};
   for (int s = 0; s < info.source_count(); ++s) src[s] = FetchSource(instruction.sources[s], 0, constants, state);
   Vec4f result{};
-  int lane_count = 4;
   if constexpr (requires { Semantics::Lane(0.0f, 0.0f, 0.0f); }) {
     for (int lane = 0; lane < 4; ++lane) result[lane] = Semantics::Lane(src[0][lane], src[1][lane], src[2][lane]);
   } else if constexpr (requires { Semantics::Scalar(0.0f); }) {
@@ -69,11 +48,10 @@ void Execute(const Instruction& instruction, const ConstantBank& constants, Vert
     for (int row = 0; row < info.matrix_rows; ++row) {
       result[row] = DotOfWidth(info.dot_width, src[0], FetchSource(instruction.sources[1], row, constants, state));
     }
-    lane_count = info.matrix_rows;
   } else {
     return;  // nop, dcl, def
   }
-  StoreDest(instruction.dest, result, lane_count, state);
+  StoreDest(instruction.dest, result, info.result_lanes(), state);
 }
 
 // Checks at compile time that each row's kernel has the form its ResultKind says.
@@ -100,19 +78,10 @@ class ReferenceEngine final : public Engine {
   }
 
   void Run(const VertexArrays& inputs, VertexArrays& outputs) override {
-    std::vector<int> input_registers = inputs.registers();
     std::vector<int> output_slots = outputs.registers();
     VertexState state;
     for (std::size_t i = 0; i < inputs.count(); ++i) {
-      state.inputs.fill(kDefaultInput);
-      for (int reg : input_registers) {
-        for (int c = 0; c < 4; ++c) state.inputs[reg][c] = inputs.lane(reg, c)[i];
-      }
-      state.temps = {};
-      state.a0 = 0;
-      for (int slot = 0; slot < kOutputSlotCount; ++slot) {
-        state.outputs[slot] = written_[slot].bits() ? Vec4f{} : UnwrittenOutputValue(slot);
-      }
+      StartVertex(inputs, i, written_, state);
       RunVertex(program_, constants_, state);
       for (int slot : output_slots) {
         for (int c = 0; c < 4; ++c) outputs.lane(slot, c)[i] = state.outputs[slot][c];
@@ -128,6 +97,48 @@ class ReferenceEngine final : public Engine {
 
 }  // namespace
 
+Vec4f ReadRegister(const RegisterRef& reg, int row, const ConstantBank& constants, const VertexState& state) {
+  long index = static_cast<long>(reg.index) + row;
+  switch (reg.file) {
+    case RegisterFile::kConst: return constants.Read(index + (reg.relative ? state.a0 : 0));
+    case RegisterFile::kTemp: return index < kTempRegisterCount ? state.temps[index] : Vec4f{};
+    case RegisterFile::kInput: return index < kInputRegisterCount ? state.inputs[index] : Vec4f{};
+    default: return Vec4f{};  // outputs and a0 are not readable (the validator rejects such sources)
+  }
+}
+
+Vec4f FetchSource(const SourceOperand& source, int row, const ConstantBank& constants, const VertexState& state) {
+  Vec4f base = ReadRegister(source.reg, row, constants, state);
+  Vec4f value;
+  for (int lane = 0; lane < 4; ++lane) {
+    float v = base[source.swizzle[lane]];
+    if (source.negate) {
+      v = -v;
+#if defined(__x86_64__)
+      // As the batch kernels' Negate: keeps the compiler from folding a + (-b) into a - b, which
+      // would return b's NaN with its sign unflipped (seen once FetchSource became visible to
+      // the tracer and GCC inlined it differently).
+      asm("" : "+x"(v));
+#endif
+    }
+    value[lane] = v;
+  }
+  return value;
+}
+
+void StartVertex(const VertexArrays& inputs, std::size_t vertex, const std::array<WriteMask, kOutputSlotCount>& written,
+                 VertexState& state) {
+  state.inputs.fill(kDefaultInput);
+  for (int reg : inputs.registers()) {
+    for (int c = 0; c < 4; ++c) state.inputs[reg][c] = inputs.lane(reg, c)[vertex];
+  }
+  state.temps = {};
+  state.a0 = 0;
+  for (int slot = 0; slot < kOutputSlotCount; ++slot) {
+    state.outputs[slot] = written[slot].bits() ? Vec4f{} : UnwrittenOutputValue(slot);
+  }
+}
+
 int AddressFromFloat(float x) {
   float whole = std::floor(x);
   if (!(whole > -kAddressLimit)) return -kAddressLimit;  // NaN lands here too
@@ -135,14 +146,18 @@ int AddressFromFloat(float x) {
   return static_cast<int>(whole);
 }
 
-void RunVertex(const Program& program, const ConstantBank& constants, VertexState& state) {
-  for (const Instruction& instruction : program.instructions) {
+void RunVertex(const Program& program, const ConstantBank& constants, VertexState& state,
+               InstructionObserver* observer) {
+  for (std::size_t i = 0; i < program.instructions.size(); ++i) {
+    const Instruction& instruction = program.instructions[i];
+    if (observer != nullptr) observer->Before(static_cast<int>(i), state);
     switch (instruction.opcode) {
 #define VS11_EXECUTE_CASE(name, ...) \
   case Opcode::k##name: Execute<semantics::name##Semantics>(instruction, constants, state); break;
       VS11_OPCODES(VS11_EXECUTE_CASE)
 #undef VS11_EXECUTE_CASE
     }
+    if (observer != nullptr) observer->After(static_cast<int>(i), state);
   }
 }
 

@@ -9,6 +9,7 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
+#include "irradiance/mesh_input/mesh_geometry_io.h"
 #include "irradiance/cli/subcommands.h"
 #include "irradiance/environments.h"
 #include "irradiance/irrmap_job.h"
@@ -76,7 +77,8 @@ std::string Footer() {
       "  irrmap probe.hdr --layout angular --face-size 256 --out probe-out\n"
       "  irrmap 'sky_{{face}}.exr' --engine ref         # six face files, reference engine\n"
       "  irrmap cross.exr --map-size 64 --threads 2\n"
-      "  irrmap sky --face-size 512 --no-ground-truth   # coefficients and irradiance.exr, no error table\n",
+      "  irrmap sky --face-size 512 --no-ground-truth   # coefficients and irradiance.exr, no error table\n"
+      "  irrmap studio --face-size 64 --mesh /usr/share/assimp/models/PLY/Wuson.ply --out wuson\n",
       vs11::irradiance::kRecommendedLevelSize);
 }
 
@@ -101,6 +103,7 @@ int main(int argc, char** argv) {
   vs11::irradiance::IrrmapOptions options;
   std::string out_dir = options.out_dir.string();
   std::string font;
+  std::string mesh_file;
   int level = 0;
 
   CLI::App app{fmt::format(
@@ -160,6 +163,12 @@ int main(int argc, char** argv) {
                "skip the brute-force ground truth (most of a default run's time): no error columns and no "
                "preview.png; coeffs.json, constants.vsh and irradiance.exr are written");
   app.set_version_flag("--version", "irrmap 0.1.0");
+  app.add_option("--mesh", mesh_file,
+                 "also light this mesh (any format Assimp reads, with normals) as the paper's Fig. 3: mesh.ply "
+                 "(8-bit vertex colours, tone mapped as mesh.png) and mesh.png (program | exact | relative error)");
+  app.add_option("--mesh-truth-limit", options.mesh_truth_vertex_limit,
+                 "meshes with more vertices get no exact irradiance (0 = no limit)")
+      ->capture_default_str();
   vs11::irradiance::cli::AddSubcommands(app);
   try {
     app.parse(argc, argv);
@@ -182,6 +191,16 @@ int main(int argc, char** argv) {
   options.font = font;
   if (app.count("--level") > 0) options.level = level;
   options.face_size_given = app.count("--face-size") > 0;
+  if (!mesh_file.empty()) {
+    std::vector<std::string> mesh_warnings;
+    options.mesh.emplace();
+    std::optional<std::string> mesh_error = vs11::irradiance::LoadMeshGeometry(mesh_file, *options.mesh, mesh_warnings);
+    for (const std::string& warning : mesh_warnings) fmt::print(stderr, "irrmap: warning: {}\n", warning);
+    if (mesh_error) {
+      fmt::print(stderr, "irrmap: error: {}\n", *mesh_error);
+      return kJobError;
+    }
+  }
 
   const auto start = std::chrono::steady_clock::now();
   vs11::irradiance::IrrmapReport report;

@@ -8,6 +8,8 @@
 #include "irradiance/ground_truth.h"
 #include "vm/cli/cli_support.h"
 #include "vm/cli/commands.h"
+#include "vm/cli/trace_output.h"
+#include "vm/cli/vertex_sources.h"
 #include "vm/vertex_io.h"
 
 namespace vs11::cli {
@@ -54,6 +56,8 @@ void AddRunCommand(CLI::App& app) {
     int sphere = 0;
     ProgramFlags flags;
     EngineFlags engine;
+    TraceFlags trace;
+    VertexSourceFlags sources;
   };
   auto args = std::make_shared<Args>();
   CLI::App* command = app.add_subcommand("run", "Run a vs_1_1 program over vertices and print its outputs as CSV");
@@ -68,9 +72,13 @@ void AddRunCommand(CLI::App& app) {
       "--sphere N: N unit normals spread evenly over the sphere, written into the register the program\n"
       "declares with dcl_normal, or the one named by --sphere-reg. Registers not supplied read (0,0,0,1).\n"
       "Outputs: CSV with a header naming each written output lane (raw values: the clamping D3D applies\n"
-      "to oD0/oD1/oFog after the shader is not applied).\n\n"
+      "to oD0/oD1/oFog after the shader is not applied).\n"
+      "Debugging: --trace 0,5 prints vertices 0 and 5 instruction by instruction (source line, values\n"
+      "read, lanes written) on the reference engine, beside the --engine's outputs, which must be identical\n"
+      "(exit 1 if not); the CSV then goes only to --out. --trace-json FILE writes the same record as JSON.\n\n"
       "Examples:\n"
       "  vs11 run programs/sh9_irradiance.vsh --fragment --consts out/constants.vsh --sphere 6 --sphere-reg v0\n"
+      "  vs11 run programs/sh9_irradiance.vsh --fragment --consts out/constants.vsh --sphere 6 --sphere-reg v0 --trace 2\n"
       "  vs11 run light.vsh --input v0=positions.csv --input v1=normals.csv --const c4=0,0,1,0 --out lit.csv\n"
       "  vs11 run light.vsh --input v0=lit.csv:oPos --input v1=normals.csv --const c4=0,0,1,0");
   command->add_option("program", args->program, "Program (.vsh or .vso)")->required();
@@ -83,6 +91,8 @@ void AddRunCommand(CLI::App& app) {
   command->add_option("--out", args->out, "Write the CSV here (atomically) instead of stdout");
   args->flags.AddTo(*command);
   args->engine.AddTo(*command);
+  args->trace.AddTo(*command);
+  args->sources.AddTo(*command);
   command->callback([args] {
     Program program = LoadProgramOrFail(args->program, args->flags);
     std::vector<int> constants_given;
@@ -116,7 +126,8 @@ void AddRunCommand(CLI::App& app) {
       prefix.header = {name + ".x", name + ".y", name + ".z"};
       supplied.emplace_back(reg, std::move(rows));
     }
-    if (supplied.empty()) Fail("no vertices: give --input v#=FILE.csv or --sphere N");
+    VertexSources sources = CollectVertexSources(args->sources, program, constants, supplied);
+    if (supplied.empty()) Fail("no vertices: give --input v#=FILE.csv, --sphere N, --mesh, --npy or --buffer");
     std::size_t count = supplied.front().second.size();
     for (const auto& [reg, rows] : supplied) {
       if (rows.size() != count) {
@@ -136,6 +147,11 @@ void AddRunCommand(CLI::App& app) {
     }
     VertexArrays outputs = MakeOutputArrays(count, program);
     MakeEngine(args->engine.Kind(), program, constants, args->engine.Options())->Run(inputs, outputs);
+    if (args->trace.active()) {
+      ReportTraces(args->trace, args->program, program, constants, inputs, outputs, EngineName(args->engine.Kind()));
+    }
+    WriteVertexOutputs(args->sources, sources, program, outputs);
+    if (args->out.empty() && (args->sources.WritesOutputFiles() || args->trace.active())) return;
     std::string csv = FormatOutputCsv(program, outputs, prefix);
     if (args->out.empty()) {
       std::fputs(csv.c_str(), stdout);

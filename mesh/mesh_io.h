@@ -1,0 +1,127 @@
+// Meshes read through Assimp into per-vertex attribute arrays, ready to bind to input registers.
+//
+// Coordinates: every part (one Assimp mesh under one node) is moved into the scene's root space by
+// its node's global transform, unless MeshLoadOptions::transform_to_world is false:
+//   position  -> M p (w = 1)
+//   normal    -> normalize(inverse(transpose(M3)) n), M3 the upper 3x3 of M (w = 1)
+//   tangent, binormal -> normalize(M3 t)
+// computed in double precision, then rounded to float. Skinned parts (parts with bones) are NOT
+// moved: glTF ignores the transform of a skinned mesh's node, and Assimp's bone offset matrices map
+// from the mesh's own space; their bones' skin matrices (Mesh::bones) carry the vertices to root
+// space instead. MeshPart::transform always holds the node's global transform, so a caller that
+// loads with transform_to_world = false can apply it (or its inverse transpose) itself.
+//
+// Every attribute array holds one Vec4f per vertex, or is empty when no part of the mesh has it. The
+// components a file does not supply are filled as a D3D vertex declaration expands a short element:
+// (x, y, z) -> (x, y, z, 1), (u, v) -> (u, v, 0, 1). A part lacking an attribute that another part
+// has reads kDefaultInput (0, 0, 0, 1) there.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "vm/machine.h"
+
+namespace vs11::mesh {
+
+inline constexpr int kMaxTexCoordSets = 8;  // Assimp's AI_MAX_NUMBER_OF_TEXTURECOORDS
+inline constexpr int kMaxColorSets = 8;     // AI_MAX_NUMBER_OF_COLOR_SETS
+inline constexpr int kMaxBonesPerVertex = 4;
+
+// Refused before anything of the mesh is allocated by vs11: files over kMaxMeshFileBytes (checked
+// before Assimp reads them), OFF and PLY headers declaring more vertices, faces or elements than the
+// file has bytes (before Assimp reads them: its readers allocate from those counts), and scenes
+// whose joined parts hold more than kMaxMeshVertices vertices or kMaxMeshTriangles triangles
+// (after Assimp's parse, before vs11's arrays).
+inline constexpr std::uintmax_t kMaxMeshFileBytes = std::uintmax_t{1} << 30;  // 1 GiB
+inline constexpr std::size_t kMaxMeshVertices = std::size_t{1} << 26;         // 67,108,864
+inline constexpr std::size_t kMaxMeshTriangles = std::size_t{1} << 27;
+
+// Row-major 4x4 (m[row][column]); a column vector is transformed as m * v.
+using Matrix4d = std::array<std::array<double, 4>, 4>;
+Matrix4d IdentityMatrix();
+
+struct MeshPart {
+  std::string mesh_name;  // Assimp's aiMesh::mName
+  std::string node_name;  // the node that places it
+  Matrix4d transform;     // the node's global transform (root space <- mesh space)
+  bool transformed = false;  // attributes were moved by `transform` (see above)
+  bool skinned = false;
+  std::size_t first_vertex = 0, vertex_count = 0;
+  std::size_t first_index = 0, index_count = 0;  // into Mesh::indices (3 per triangle)
+};
+
+struct Bone {
+  std::string name;
+  // Root space <- mesh space at the scene's rest pose: the bone node's global transform times the
+  // bone's offset (inverse bind) matrix. Skinned position = sum_i weight_i * skin[index_i] * p.
+  Matrix4d skin;
+};
+
+enum class Attribute {
+  kPosition, kNormal, kTangent, kBinormal, kTexCoord, kColor, kBlendWeight, kBlendIndices
+};
+
+struct Mesh {
+  std::size_t vertex_count = 0;
+  std::vector<Vec4f> positions;  // always present
+  std::vector<Vec4f> normals;
+  std::vector<Vec4f> tangents;
+  std::vector<Vec4f> binormals;  // Assimp's bitangents
+  std::array<std::vector<Vec4f>, kMaxTexCoordSets> texcoords;  // UV set n
+  std::array<int, kMaxTexCoordSets> texcoord_components{};    // 1-3 as the file gives them, 0 = absent
+  std::array<std::vector<Vec4f>, kMaxColorSets> colors;        // RGBA
+  // The (up to) four largest bone influences of each vertex, largest first; unused slots weight 0,
+  // index 0. Indices are into `bones`, as floats. Vertices with more than four influences keep
+  // four, renormalised to sum 1 (a warning counts them).
+  std::vector<Vec4f> blend_weights;
+  std::vector<Vec4f> blend_indices;
+  std::vector<Bone> bones;
+
+  std::vector<std::uint32_t> indices;  // triangles, 3 indices each, into the joined vertex arrays
+  std::vector<MeshPart> parts;         // in scene-graph order (depth first), vertices in file order
+  std::vector<std::string> warnings;   // e.g. "3 vertices have NaN or infinite attributes"
+  std::size_t nonfinite_vertex_count = 0;
+
+  // The array for an attribute (set = UV or colour set); nullptr when the mesh has none.
+  const std::vector<Vec4f>* Find(Attribute attribute, int set = 0) const;
+};
+
+struct MeshLoadOptions {
+  bool transform_to_world = true;
+  // Generate smooth normals for parts without any (Assimp's aiProcess_GenSmoothNormals). Existing
+  // normals are never replaced.
+  bool compute_normals = false;
+  // Generate tangents and binormals from UV set 0 for parts without them (aiProcess_CalcTangentSpace).
+  bool compute_tangents = false;
+};
+
+// Either a mesh or a message that names the file and says what is wrong.
+struct MeshLoadResult {
+  std::optional<Mesh> mesh;
+  std::string error;
+  bool ok() const { return mesh.has_value(); }
+};
+
+// Loads any format Assimp 5.2 reads (OBJ, PLY, glTF/GLB, FBX, Collada, 3DS, STL, ...). Polygons are
+// triangulated; points and lines keep their vertices but add no triangles. Vertices are not merged
+// or reordered: each part's vertices appear in the order Assimp gives them (the file's order for
+// indexed formats), and a mesh placed by several nodes appears once per node. Errors (never thrown):
+// unreadable or oversized files, Assimp's parse errors, face indices or bone weights naming a
+// vertex the mesh does not have, scenes without a vertex, limits above. Assimp's own warnings
+// (triangles it dropped, ...) come first in Mesh::warnings. LoadMesh and LoadMeshFromMemory may be
+// called from several threads; Assimp's logger makes them take turns.
+MeshLoadResult LoadMesh(const std::filesystem::path& path, const MeshLoadOptions& options = {});
+
+// The same from memory (the fuzz target's entry); `format_hint` is an extension such as "obj" or
+// "glb" (Assimp's pHint), or empty to let Assimp guess from the content.
+MeshLoadResult LoadMeshFromMemory(std::span<const std::uint8_t> bytes, const std::string& format_hint,
+                                  const MeshLoadOptions& options = {});
+
+}  // namespace vs11::mesh

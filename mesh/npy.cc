@@ -1,0 +1,198 @@
+#include "mesh/npy.h"
+
+#include <bit>
+#include <charconv>
+#include <cstring>
+
+#include <fmt/format.h>
+
+#include "vm/program_file.h"
+
+namespace vs11::mesh {
+namespace {
+
+static_assert(std::endian::native == std::endian::little, "the .npy reader and writer assume a little-endian host");
+
+constexpr char kMagic[] = "\x93NUMPY";
+constexpr std::size_t kMagicSize = 6;
+
+// A cursor over the header's Python dict literal: {'descr': '<f4', 'fortran_order': False, 'shape': (3, 4), }
+class HeaderParser {
+ public:
+  explicit HeaderParser(std::string_view text) : text_(text) {}
+
+  std::optional<std::string> Parse(std::string& descr, bool& fortran_order, std::vector<std::size_t>& shape) {
+    bool seen_descr = false, seen_order = false, seen_shape = false;
+    if (!Take('{')) return "the header is not a dict";
+    while (true) {
+      SkipSpace();
+      if (Take('}')) break;
+      std::optional<std::string> key = String();
+      if (!key) return "expected a quoted key in the header";
+      if (!Take(':')) return fmt::format("expected ':' after '{}'", *key);
+      if (*key == "descr") {
+        std::optional<std::string> value = String();
+        if (!value) return "'descr' is not a string";
+        descr = *value;
+        seen_descr = true;
+      } else if (*key == "fortran_order") {
+        SkipSpace();
+        if (Word("True")) fortran_order = true;
+        else if (Word("False")) fortran_order = false;
+        else return "'fortran_order' is neither True nor False";
+        seen_order = true;
+      } else if (*key == "shape") {
+        if (std::optional<std::string> error = Tuple(shape)) return error;
+        seen_shape = true;
+      } else {
+        return fmt::format("unknown header key '{}'", *key);
+      }
+      SkipSpace();
+      if (Take(',')) continue;
+      if (Take('}')) break;
+      return "expected ',' or '}' in the header";
+    }
+    SkipSpace();
+    if (pos_ != text_.size()) return "text after the header's dict";
+    if (!seen_descr || !seen_order || !seen_shape) return "the header lacks descr, fortran_order or shape";
+    return std::nullopt;
+  }
+
+ private:
+  void SkipSpace() {
+    while (pos_ < text_.size() && (text_[pos_] == ' ' || text_[pos_] == '\n' || text_[pos_] == '\t')) ++pos_;
+  }
+  bool Take(char c) {
+    SkipSpace();
+    if (pos_ < text_.size() && text_[pos_] == c) {
+      ++pos_;
+      return true;
+    }
+    return false;
+  }
+  bool Word(std::string_view word) {
+    if (text_.substr(pos_, word.size()) != word) return false;
+    pos_ += word.size();
+    return true;
+  }
+  std::optional<std::string> String() {
+    SkipSpace();
+    if (pos_ >= text_.size() || (text_[pos_] != '\'' && text_[pos_] != '"')) return std::nullopt;
+    const char quote = text_[pos_++];
+    const std::size_t end = text_.find(quote, pos_);
+    if (end == std::string_view::npos) return std::nullopt;
+    std::string value(text_.substr(pos_, end - pos_));
+    pos_ = end + 1;
+    return value;
+  }
+  std::optional<std::string> Tuple(std::vector<std::size_t>& shape) {
+    shape.clear();
+    if (!Take('(')) return "'shape' is not a tuple";
+    while (true) {
+      SkipSpace();
+      if (Take(')')) return std::nullopt;
+      std::size_t value = 0;
+      auto [ptr, ec] = std::from_chars(text_.data() + pos_, text_.data() + text_.size(), value);
+      if (ec != std::errc()) return "'shape' holds something other than a non-negative integer";
+      pos_ = static_cast<std::size_t>(ptr - text_.data());
+      shape.push_back(value);
+      if (shape.size() > 2) return "'shape' has more than two dimensions";
+      if (Take(',')) continue;
+      if (Take(')')) return std::nullopt;
+      return "expected ',' or ')' in 'shape'";
+    }
+  }
+
+  std::string_view text_;
+  std::size_t pos_ = 0;
+};
+
+std::uint32_t ReadLittle(const std::uint8_t* p, int bytes) {
+  std::uint32_t value = 0;
+  for (int i = bytes - 1; i >= 0; --i) value = (value << 8) | p[i];
+  return value;
+}
+
+}  // namespace
+
+Vec4f NpyArray::Row(std::size_t row) const {
+  Vec4f out = kDefaultInput;
+  for (int c = 0; c < columns; ++c) out[c] = values[row * static_cast<std::size_t>(columns) + c];
+  return out;
+}
+
+NpyResult ParseNpy(std::span<const std::uint8_t> bytes, const std::string& name) {
+  auto fail = [&](const std::string& message) { return NpyResult{std::nullopt, fmt::format("{}: {}", name, message)}; };
+  if (bytes.size() < kMagicSize + 4 || std::memcmp(bytes.data(), kMagic, kMagicSize) != 0) {
+    return fail("not a .npy file (no \\x93NUMPY magic)");
+  }
+  const int major = bytes[6];
+  if (major < 1 || major > 3) return fail(fmt::format("unsupported .npy format version {}.{}", major, bytes[7]));
+  const int length_bytes = major == 1 ? 2 : 4;
+  const std::size_t prefix = kMagicSize + 2 + static_cast<std::size_t>(length_bytes);
+  if (bytes.size() < prefix) return fail("truncated header");
+  const std::size_t header_length = ReadLittle(bytes.data() + 8, length_bytes);
+  if (header_length > kMaxNpyHeaderBytes || header_length > bytes.size() - prefix) return fail("truncated or oversized header");
+  const std::string_view header(reinterpret_cast<const char*>(bytes.data() + prefix), header_length);
+  std::string descr;
+  bool fortran_order = false;
+  std::vector<std::size_t> shape;
+  if (std::optional<std::string> error = HeaderParser(header).Parse(descr, fortran_order, shape)) return fail(*error);
+  if (descr != "<f4") return fail(fmt::format("dtype '{}' is not float32 ('<f4'): convert with .astype('<f4')", descr));
+  if (shape.empty()) return fail("a scalar, not an array of vertices");
+  const std::size_t rows = shape[0];
+  const std::size_t columns = shape.size() == 2 ? shape[1] : 1;
+  if (columns < 1 || columns > 4) return fail(fmt::format("shape ({}, {}): each row needs 1 to 4 values", rows, columns));
+  if (rows > kMaxNpyRows) return fail(fmt::format("{} rows, over the limit of {}", rows, kMaxNpyRows));
+  const std::size_t data_bytes = rows * columns * sizeof(float);
+  const std::size_t available = bytes.size() - prefix - header_length;
+  if (available != data_bytes) {
+    return fail(fmt::format("shape ({}, {}) needs {} bytes of data, the file has {}", rows, columns, data_bytes, available));
+  }
+  NpyArray array;
+  array.rows = rows;
+  array.columns = static_cast<int>(columns);
+  array.values.resize(rows * columns);
+  const std::uint8_t* data = bytes.data() + prefix + header_length;
+  if (!fortran_order || columns == 1) {
+    if (data_bytes > 0) std::memcpy(array.values.data(), data, data_bytes);
+  } else {
+    for (std::size_t c = 0; c < columns; ++c) {
+      for (std::size_t r = 0; r < rows; ++r) {
+        std::memcpy(&array.values[r * columns + c], data + (c * rows + r) * sizeof(float), sizeof(float));
+      }
+    }
+  }
+  return {std::move(array), ""};
+}
+
+NpyResult ReadNpy(const std::filesystem::path& path) {
+  std::error_code error;
+  const std::uintmax_t size = std::filesystem::file_size(path, error);
+  if (error) return {std::nullopt, fmt::format("{}: cannot read the file", path.string())};
+  if (size > kMaxNpyHeaderBytes + 16 + kMaxNpyRows * 16) {
+    return {std::nullopt, fmt::format("{}: {} bytes, larger than any array within the row limit", path.string(), size)};
+  }
+  std::optional<std::string> text = ReadWholeFile(path);
+  if (!text) return {std::nullopt, fmt::format("{}: cannot read the file", path.string())};
+  return ParseNpy({reinterpret_cast<const std::uint8_t*>(text->data()), text->size()}, path.string());
+}
+
+std::vector<std::uint8_t> FormatNpy(const NpyArray& array) {
+  std::string header = fmt::format("{{'descr': '<f4', 'fortran_order': False, 'shape': ({}, {}), }}", array.rows,
+                                   array.columns);
+  const std::size_t unpadded = kMagicSize + 4 + header.size() + 1;
+  header.append((64 - unpadded % 64) % 64, ' ');
+  header.push_back('\n');
+  std::vector<std::uint8_t> bytes(kMagic, kMagic + kMagicSize);
+  bytes.push_back(1);
+  bytes.push_back(0);
+  bytes.push_back(static_cast<std::uint8_t>(header.size() & 0xFF));
+  bytes.push_back(static_cast<std::uint8_t>(header.size() >> 8));
+  bytes.insert(bytes.end(), header.begin(), header.end());
+  const auto* data = reinterpret_cast<const std::uint8_t*>(array.values.data());
+  bytes.insert(bytes.end(), data, data + array.values.size() * sizeof(float));
+  return bytes;
+}
+
+}  // namespace vs11::mesh

@@ -1,0 +1,42 @@
+// NumPy .npy files of float32 vertex data: shape (N,) or (N, k) with k 1-4, little-endian.
+// The reader is strict: format versions 1.0-3.0, descr '<f4' only (what numpy writes for float32
+// on every common machine), C or Fortran order, the data exactly N*k*4 bytes after the header.
+// Anything else is an error naming the file and what is wrong; nothing is allocated for a shape
+// the file's size cannot hold or beyond kMaxNpyRows.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "vm/machine.h"
+
+namespace vs11::mesh {
+
+inline constexpr std::size_t kMaxNpyRows = std::size_t{1} << 26;  // as kMaxMeshVertices
+inline constexpr std::size_t kMaxNpyHeaderBytes = 65536;
+
+struct NpyArray {
+  std::size_t rows = 0;
+  int columns = 1;           // k; 1 for shape (N,)
+  std::vector<float> values;  // row-major, rows * columns
+  Vec4f Row(std::size_t row) const;  // missing components from kDefaultInput (0, 0, 0, 1)
+};
+
+struct NpyResult {
+  std::optional<NpyArray> array;
+  std::string error;
+  bool ok() const { return array.has_value(); }
+};
+
+NpyResult ParseNpy(std::span<const std::uint8_t> bytes, const std::string& name);
+NpyResult ReadNpy(const std::filesystem::path& path);
+
+// Version 1.0, '<f4', C order, shape (rows, columns), header padded to 64 bytes.
+std::vector<std::uint8_t> FormatNpy(const NpyArray& array);
+
+}  // namespace vs11::mesh

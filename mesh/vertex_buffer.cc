@@ -1,0 +1,79 @@
+#include "mesh/vertex_buffer.h"
+
+#include <charconv>
+#include <cstring>
+
+#include <fmt/format.h>
+
+namespace vs11::mesh {
+namespace {
+
+template <typename T>
+bool ParseNumber(std::string_view text, T& value) {
+  auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+  return ec == std::errc() && ptr == text.data() + text.size();
+}
+
+}  // namespace
+
+std::optional<std::string> ParseBufferElement(std::string_view text, BufferElement& element) {
+  const std::size_t equals = text.find('=');
+  const std::size_t colon = text.find(':', equals == std::string_view::npos ? 0 : equals);
+  if (equals == std::string_view::npos || colon == std::string_view::npos) {
+    return fmt::format("--element '{}': expected v#=OFFSET:COUNT, e.g. v3=12:3", text);
+  }
+  std::optional<int> reg = InputRegisterFromName(text.substr(0, equals));
+  if (!reg) return fmt::format("--element '{}': '{}' is not an input register v0-v15", text, text.substr(0, equals));
+  element.reg = *reg;
+  if (!ParseNumber(text.substr(equals + 1, colon - equals - 1), element.offset)) {
+    return fmt::format("--element '{}': the offset is not a byte count", text);
+  }
+  if (!ParseNumber(text.substr(colon + 1), element.components) || element.components < 1 || element.components > 4) {
+    return fmt::format("--element '{}': the count must be 1 to 4 floats", text);
+  }
+  return std::nullopt;
+}
+
+std::optional<std::string> ReadInterleaved(std::span<const std::uint8_t> bytes, std::size_t stride,
+                                           const std::vector<BufferElement>& elements, const std::string& name,
+                                           RegisterData& registers) {
+  if (stride == 0 || stride > kMaxBufferStride) return fmt::format("--stride {}: must be 1 to {} bytes", stride, kMaxBufferStride);
+  if (elements.empty()) return "--buffer needs at least one --element v#=OFFSET:COUNT";
+  for (const BufferElement& e : elements) {
+    if (e.offset + 4 * static_cast<std::size_t>(e.components) > stride) {
+      return fmt::format("--element v{}={}:{} ends at byte {}, past the {}-byte stride", e.reg, e.offset, e.components,
+                         e.offset + 4 * e.components, stride);
+    }
+  }
+  if (bytes.size() % stride != 0) {
+    return fmt::format("{}: {} bytes is not a whole number of {}-byte vertices", name, bytes.size(), stride);
+  }
+  const std::size_t count = bytes.size() / stride;
+  if (count == 0) return fmt::format("{}: the buffer is empty", name);
+  for (const BufferElement& e : elements) {
+    std::vector<Vec4f> values(count, kDefaultInput);
+    for (std::size_t v = 0; v < count; ++v) {
+      std::memcpy(values[v].data(), bytes.data() + v * stride + e.offset, 4 * static_cast<std::size_t>(e.components));
+    }
+    std::erase_if(registers, [&](const auto& entry) { return entry.first == e.reg; });
+    registers.emplace_back(e.reg, std::move(values));
+  }
+  return std::nullopt;
+}
+
+std::vector<std::uint8_t> FormatInterleaved(const std::vector<InterleavedColumn>& columns, std::size_t count) {
+  std::size_t stride = 0;
+  for (const InterleavedColumn& column : columns) stride += 4 * static_cast<std::size_t>(column.components);
+  std::vector<std::uint8_t> bytes(stride * count);
+  std::uint8_t* out = bytes.data();
+  for (std::size_t v = 0; v < count; ++v) {
+    for (const InterleavedColumn& column : columns) {
+      const std::size_t size = 4 * static_cast<std::size_t>(column.components);
+      std::memcpy(out, (*column.values)[v].data(), size);
+      out += size;
+    }
+  }
+  return bytes;
+}
+
+}  // namespace vs11::mesh

@@ -1,0 +1,43 @@
+// Raw interleaved float32 vertex buffers, described as D3D describes one: a stride in bytes and,
+// for each element, its register, byte offset and float count:
+//   --buffer verts.bin --stride 32 --element v0=0:3 --element v3=12:3
+// Little-endian floats, no header. The file must hold a whole number of vertices.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "mesh/vertex_binding.h"
+
+namespace vs11::mesh {
+
+inline constexpr std::size_t kMaxBufferStride = 4096;
+
+struct BufferElement {
+  int reg = 0;              // v#
+  std::size_t offset = 0;   // bytes from the start of the vertex
+  int components = 4;       // 1-4 floats; the rest read from kDefaultInput (0, 0, 0, 1)
+};
+
+// "v3=12:3" -> {3, 12, 3}. Returns an error message on failure.
+std::optional<std::string> ParseBufferElement(std::string_view text, BufferElement& element);
+
+// Reads every element of every vertex into `registers` (appended, one entry per element).
+std::optional<std::string> ReadInterleaved(std::span<const std::uint8_t> bytes, std::size_t stride,
+                                           const std::vector<BufferElement>& elements, const std::string& name,
+                                           RegisterData& registers);
+
+// One column of an interleaved output: `components` floats taken from `values`.
+struct InterleavedColumn {
+  const std::vector<Vec4f>* values;
+  int components;
+};
+// Vertex after vertex, the columns in order, each `components` floats (stride = 4 * sum).
+std::vector<std::uint8_t> FormatInterleaved(const std::vector<InterleavedColumn>& columns, std::size_t count);
+
+}  // namespace vs11::mesh

@@ -1,0 +1,94 @@
+#include "mesh/npy.h"
+
+#include <cstring>
+#include <limits>
+#include <string>
+
+#include <gtest/gtest.h>
+
+namespace vs11::mesh {
+namespace {
+
+std::vector<std::uint8_t> Bytes(const std::string& text) { return {text.begin(), text.end()}; }
+
+// A version 1.0 file with the given header dict and data bytes.
+std::vector<std::uint8_t> NpyWithHeader(const std::string& dict, std::size_t data_bytes, int major = 1) {
+  std::string header = dict + "\n";
+  std::vector<std::uint8_t> bytes = Bytes(std::string("\x93NUMPY", 6));
+  bytes.push_back(static_cast<std::uint8_t>(major));
+  bytes.push_back(0);
+  const int length_bytes = major == 1 ? 2 : 4;
+  for (int i = 0; i < length_bytes; ++i) bytes.push_back(static_cast<std::uint8_t>(header.size() >> (8 * i)));
+  bytes.insert(bytes.end(), header.begin(), header.end());
+  bytes.resize(bytes.size() + data_bytes, 0);
+  return bytes;
+}
+
+TEST(Npy, FormatThenParseIsExactForEveryFloat) {
+  NpyArray array;
+  array.rows = 5;
+  array.columns = 3;
+  array.values = {0.0f, -0.0f, 1.0f, std::numeric_limits<float>::denorm_min(), std::numeric_limits<float>::max(),
+                  -1e-30f, std::numeric_limits<float>::infinity(), 3.25f, -7.5f, 0.1f, 1e30f, -2.0f,
+                  std::numeric_limits<float>::quiet_NaN(), 5.0f, 6.0f};
+  std::vector<std::uint8_t> bytes = FormatNpy(array);
+  ASSERT_EQ(bytes.size() % 64, (array.values.size() * 4) % 64);  // header padded to 64 bytes
+  NpyResult parsed = ParseNpy(bytes, "a.npy");
+  ASSERT_TRUE(parsed.ok()) << parsed.error;
+  EXPECT_EQ(parsed.array->rows, 5u);
+  EXPECT_EQ(parsed.array->columns, 3);
+  ASSERT_EQ(parsed.array->values.size(), array.values.size());
+  EXPECT_EQ(std::memcmp(parsed.array->values.data(), array.values.data(), array.values.size() * 4), 0);
+  EXPECT_EQ(parsed.array->Row(1), (Vec4f{std::numeric_limits<float>::denorm_min(), std::numeric_limits<float>::max(),
+                                         -1e-30f, 1.0f}));  // the fourth component from (0, 0, 0, 1)
+}
+
+TEST(Npy, ReadsVectorsFortranOrderAndLaterVersions) {
+  std::vector<std::uint8_t> vector = NpyWithHeader("{'descr': '<f4', 'fortran_order': False, 'shape': (2,), }", 8);
+  NpyResult one = ParseNpy(vector, "v.npy");
+  ASSERT_TRUE(one.ok()) << one.error;
+  EXPECT_EQ(one.array->columns, 1);
+  EXPECT_EQ(one.array->Row(0), (Vec4f{0, 0, 0, 1}));
+
+  std::vector<std::uint8_t> fortran = NpyWithHeader("{'shape': (2, 2), 'fortran_order': True, 'descr': '<f4'}", 16, 2);
+  const float column_major[4] = {1, 2, 3, 4};  // columns (1, 2) and (3, 4)
+  std::memcpy(fortran.data() + fortran.size() - 16, column_major, 16);
+  NpyResult f = ParseNpy(fortran, "f.npy");
+  ASSERT_TRUE(f.ok()) << f.error;
+  EXPECT_EQ(f.array->values, (std::vector<float>{1, 3, 2, 4}));
+}
+
+TEST(Npy, RefusesAnythingButFloat32RowsOfOneToFour) {
+  const struct {
+    std::vector<std::uint8_t> bytes;
+    const char* message;
+  } cases[] = {
+      {Bytes("not numpy at all"), "magic"},
+      {NpyWithHeader("{'descr': '<f8', 'fortran_order': False, 'shape': (2, 3), }", 48), "not float32"},
+      {NpyWithHeader("{'descr': '>f4', 'fortran_order': False, 'shape': (2, 3), }", 24), "not float32"},
+      {NpyWithHeader("{'descr': '<f4', 'fortran_order': False, 'shape': (2, 5), }", 40), "1 to 4"},
+      {NpyWithHeader("{'descr': '<f4', 'fortran_order': False, 'shape': (2, 3, 1), }", 24), "more than two"},
+      {NpyWithHeader("{'descr': '<f4', 'fortran_order': False, 'shape': (2, 3), }", 20), "needs 24 bytes"},
+      {NpyWithHeader("{'descr': '<f4', 'fortran_order': False, 'shape': (2, 3), }", 28), "needs 24 bytes"},
+      {NpyWithHeader("{'descr': '<f4', 'fortran_order': False, 'shape': (), }", 4), "scalar"},
+      {NpyWithHeader("{'descr': '<f4', 'shape': (2, 3), }", 24), "lacks"},
+      {NpyWithHeader("{'descr': '<f4', 'fortran_order': Maybe, 'shape': (2, 3), }", 24), "neither True"},
+      {NpyWithHeader("{'descr': '<f4', 'fortran_order': False, 'shape': (-2, 3), }", 24), "non-negative"},
+      {NpyWithHeader("{'descr': '<f4', 'fortran_order': False, 'shape': (99999999999, 3), }", 24), "over the limit"},
+      {NpyWithHeader("{'descr': '<f4', 'fortran_order': False, 'shape': (2, 3), 'extra': 1}", 24), "unknown header key"},
+      {NpyWithHeader("{'descr': '<f4', 'fortran_order': False, 'shape': (2, 3), }", 24, 4), "version 4"},
+  };
+  for (const auto& c : cases) {
+    NpyResult result = ParseNpy(c.bytes, "bad.npy");
+    EXPECT_FALSE(result.ok()) << c.message;
+    EXPECT_NE(result.error.find(c.message), std::string::npos) << result.error;
+    EXPECT_EQ(result.error.rfind("bad.npy: ", 0), 0u) << result.error;
+  }
+  std::vector<std::uint8_t> truncated = NpyWithHeader("{'descr': '<f4', 'fortran_order': False, 'shape': (2, 3), }", 24);
+  for (std::size_t size = 0; size < 20; ++size) {
+    EXPECT_FALSE(ParseNpy(std::span(truncated).first(size), "cut.npy").ok()) << size;
+  }
+}
+
+}  // namespace
+}  // namespace vs11::mesh
