@@ -485,6 +485,11 @@ const std::vector<Vec4f>* Mesh::Find(Attribute attribute, int set) const {
   return array != nullptr && !array->empty() ? array : nullptr;
 }
 
+bool IsMeshFileExtension(const std::string& extension) {
+  if (extension.empty()) return false;
+  return Assimp::Importer().IsExtensionSupported(extension[0] == '.' ? extension : "." + extension);
+}
+
 MeshLoadResult LoadMesh(const std::filesystem::path& path, const MeshLoadOptions& options) {
   const std::string name = path.string();
   std::error_code error;

@@ -119,6 +119,9 @@ struct MeshLoadResult {
 // called from several threads; Assimp's logger makes them take turns.
 MeshLoadResult LoadMesh(const std::filesystem::path& path, const MeshLoadOptions& options = {});
 
+// Whether Assimp has an importer for files with this extension (".obj", "glb"; case-insensitive).
+bool IsMeshFileExtension(const std::string& extension);
+
 // The same from memory (the fuzz target's entry); `format_hint` is an extension such as "obj" or
 // "glb" (Assimp's pHint), or empty to let Assimp guess from the content.
 MeshLoadResult LoadMeshFromMemory(std::span<const std::uint8_t> bytes, const std::string& format_hint,
