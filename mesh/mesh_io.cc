@@ -410,16 +410,23 @@ unsigned PostProcessFlags(const MeshLoadOptions& options) {
 // does not read (a light without a node, a point cloud without faces), so the scene is read with
 // no post-processing, checked here, and post-processed after (a face index past the vertices
 // crashes aiProcess_Triangulate).
-std::optional<std::string> CheckSceneIndices(const aiScene& scene) {
+// Also rewrites each mesh's mPrimitiveTypes from its faces: aiProcess_Triangulate trusts the
+// POLYGON bit and aborts (an ai_assert in Debian's build) when no face is a polygon after all.
+std::optional<std::string> CheckSceneIndices(aiScene& scene) {
   if (scene.mNumMeshes > 0 && scene.mMeshes == nullptr) return "the scene lists meshes it does not hold";
   for (unsigned i = 0; i < scene.mNumMeshes; ++i) {
-    const aiMesh* m = scene.mMeshes[i];
+    aiMesh* m = scene.mMeshes[i];
     if (m == nullptr) return fmt::format("mesh {} is missing", i);
     if (m->mNumVertices > 0 && m->mVertices == nullptr) return fmt::format("mesh '{}' has no vertex positions", m->mName.C_Str());
     if (m->mNumFaces > 0 && m->mFaces == nullptr) return fmt::format("mesh '{}' lists faces it does not hold", m->mName.C_Str());
+    unsigned primitive_types = 0;
     for (unsigned f = 0; f < m->mNumFaces; ++f) {
       const aiFace& face = m->mFaces[f];
-      if (face.mNumIndices > 0 && face.mIndices == nullptr) return fmt::format("mesh '{}': face {} has no indices", m->mName.C_Str(), f);
+      if (face.mNumIndices == 0 || face.mIndices == nullptr) return fmt::format("mesh '{}': face {} has no indices", m->mName.C_Str(), f);
+      primitive_types |= face.mNumIndices == 1   ? aiPrimitiveType_POINT
+                         : face.mNumIndices == 2 ? aiPrimitiveType_LINE
+                         : face.mNumIndices == 3 ? aiPrimitiveType_TRIANGLE
+                                                 : aiPrimitiveType_POLYGON;
       for (unsigned k = 0; k < face.mNumIndices; ++k) {
         if (face.mIndices[k] >= m->mNumVertices) {
           return fmt::format("mesh '{}': face {} refers to vertex {} of {}", m->mName.C_Str(), f, face.mIndices[k],
@@ -427,6 +434,7 @@ std::optional<std::string> CheckSceneIndices(const aiScene& scene) {
         }
       }
     }
+    m->mPrimitiveTypes = primitive_types;
     if (m->mNumBones > 0 && m->mBones == nullptr) return fmt::format("mesh '{}' lists bones it does not hold", m->mName.C_Str());
     for (unsigned b = 0; b < m->mNumBones; ++b) {
       const aiBone* bone = m->mBones[b];
@@ -453,7 +461,8 @@ MeshLoadResult FromScene(const aiScene* scene, Assimp::Importer& importer, const
     return MeshLoadResult{std::nullopt, fmt::format("{}: {}", name, reason)};
   };
   if (scene == nullptr) return assimp_error();
-  if (std::optional<std::string> error = CheckSceneIndices(*scene)) return {std::nullopt, fmt::format("{}: {}", name, *error)};
+  // The importer owns the scene and hands it out as const; the check repairs its primitive flags.
+  if (std::optional<std::string> error = CheckSceneIndices(*const_cast<aiScene*>(scene))) return {std::nullopt, fmt::format("{}: {}", name, *error)};
   scene = importer.ApplyPostProcessing(PostProcessFlags(options));
   if (scene == nullptr) return assimp_error();
   MeshLoadResult result = MeshBuilder(*scene, options).Build();
