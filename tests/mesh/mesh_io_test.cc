@@ -195,3 +195,19 @@ TEST(LoadMesh, FuzzerFoundOffWithAPolygonFlagAndNoPolygonLoads) {
 
 }  // namespace
 }  // namespace vs11::mesh
+
+namespace vs11::mesh {
+namespace {
+
+// fuzz_mesh: a PLY header with an element without properties and no end_header made Assimp's PLY
+// reader loop without end. The header is checked before Assimp reads the file.
+TEST(LoadMesh, FuzzerFoundPlyWithoutEndHeaderIsRefusedAtOnce) {
+  const std::filesystem::path file =
+      std::filesystem::path(VS11_SOURCE_DIR) / "tests/fuzz/seeds/fuzz_mesh/ply_element_without_property.ply";
+  MeshLoadResult result = LoadMesh(file);
+  EXPECT_FALSE(result.ok());
+  EXPECT_NE(result.error.find("no PLY end_header"), std::string::npos) << result.error;
+}
+
+}  // namespace
+}  // namespace vs11::mesh
