@@ -170,11 +170,6 @@ TEST(LoadMesh, FromMemoryReadsAnObj) {
   EXPECT_EQ(result.mesh->normals.size(), result.mesh->vertex_count);
 }
 
-}  // namespace
-}  // namespace vs11::mesh
-
-namespace vs11::mesh {
-namespace {
 
 // fuzz_mesh: an OFF file whose faces are no polygons while Assimp's reader flags the mesh as
 // holding polygons made aiProcess_Triangulate abort (ai_assert). The flags are rebuilt from the
@@ -193,11 +188,6 @@ TEST(LoadMesh, FuzzerFoundOffWithAPolygonFlagAndNoPolygonLoads) {
   }
 }
 
-}  // namespace
-}  // namespace vs11::mesh
-
-namespace vs11::mesh {
-namespace {
 
 // fuzz_mesh: a PLY header with an element without properties and no end_header made Assimp's PLY
 // reader loop without end. The header is checked before Assimp reads the file.
