@@ -363,6 +363,46 @@ class AssimpMessages : public Assimp::LogStream {
 // Assimp's OFF and PLY readers allocate from the vertex and face counts in the header before they
 // read the data (a 309-byte OFF file declaring 35 billion vertices runs for minutes). A count
 // larger than the file's size cannot be honest, whatever the encoding: refuse it first.
+constexpr std::size_t kHeaderBytes = 65536;
+
+// Assimp 5.2's PLY reader loops without end on some malformed headers (fuzz_mesh: an element with
+// no property and no end_header). The header is checked first: every element with a property and
+// a count the file can hold, end_header within `head`.
+std::optional<std::string> CheckPlyHeader(std::string_view head, std::uintmax_t file_size) {
+  std::size_t line_start = 0;
+  bool element_open = false, element_has_property = true;
+  while (line_start < head.size()) {
+    std::size_t line_end = head.find('\n', line_start);
+    if (line_end == std::string_view::npos) break;
+    std::string_view line = head.substr(line_start, line_end - line_start);
+    while (!line.empty() && (line.back() == '\r' || line.back() == ' ' || line.back() == '\t')) line.remove_suffix(1);
+    line_start = line_end + 1;
+    const std::string_view keyword = line.substr(0, line.find(' '));
+    if (keyword == "end_header") {
+      if (element_open && !element_has_property) return "a PLY element has no property";
+      return std::nullopt;
+    }
+    if (keyword == "element") {
+      if (element_open && !element_has_property) return "a PLY element has no property";
+      element_open = true;
+      element_has_property = false;
+      const std::size_t count_at = line.rfind(' ');
+      std::uintmax_t count = 0;
+      auto [ptr, ec] = std::from_chars(line.data() + count_at + 1, line.data() + line.size(), count);
+      if (count_at == std::string_view::npos || ec != std::errc() || ptr != line.data() + line.size()) {
+        return fmt::format("PLY header line '{}' has no element count", line);
+      }
+      if (count > file_size) {
+        return fmt::format("the header declares {} elements, more than a {}-byte file can hold", count, file_size);
+      }
+    } else if (keyword == "property") {
+      if (!element_open) return "a PLY property comes before any element";
+      element_has_property = true;
+    }  // other lines (comments without the keyword, as some exporters write) are skipped, as Assimp does
+  }
+  return "no PLY end_header in the first 64 KB";
+}
+
 std::optional<std::string> CheckHeaderCounts(std::string_view head, std::uintmax_t file_size) {
   auto too_many = [&](std::uintmax_t count, const char* what) -> std::optional<std::string> {
     if (count <= file_size) return std::nullopt;
@@ -386,15 +426,7 @@ std::optional<std::string> CheckHeaderCounts(std::string_view head, std::uintmax
     if (faces) return too_many(*faces, "faces");
     return std::nullopt;
   }
-  if (head.starts_with("ply")) {
-    for (std::size_t at = head.find("element "); at != std::string_view::npos; at = head.find("element ", at)) {
-      at = head.find_first_of(" \t", at + 8);
-      if (at == std::string_view::npos) break;
-      if (std::optional<std::uintmax_t> count = number_at(at)) {
-        if (auto error = too_many(*count, "elements")) return error;
-      }
-    }
-  }
+  if (head.starts_with("ply")) return CheckPlyHeader(head, file_size);
   return std::nullopt;
 }
 
@@ -410,16 +442,23 @@ unsigned PostProcessFlags(const MeshLoadOptions& options) {
 // does not read (a light without a node, a point cloud without faces), so the scene is read with
 // no post-processing, checked here, and post-processed after (a face index past the vertices
 // crashes aiProcess_Triangulate).
-std::optional<std::string> CheckSceneIndices(const aiScene& scene) {
+// Also rewrites each mesh's mPrimitiveTypes from its faces: aiProcess_Triangulate trusts the
+// POLYGON bit and aborts (an ai_assert in Debian's build) when no face is a polygon after all.
+std::optional<std::string> CheckSceneIndices(aiScene& scene) {
   if (scene.mNumMeshes > 0 && scene.mMeshes == nullptr) return "the scene lists meshes it does not hold";
   for (unsigned i = 0; i < scene.mNumMeshes; ++i) {
-    const aiMesh* m = scene.mMeshes[i];
+    aiMesh* m = scene.mMeshes[i];
     if (m == nullptr) return fmt::format("mesh {} is missing", i);
     if (m->mNumVertices > 0 && m->mVertices == nullptr) return fmt::format("mesh '{}' has no vertex positions", m->mName.C_Str());
     if (m->mNumFaces > 0 && m->mFaces == nullptr) return fmt::format("mesh '{}' lists faces it does not hold", m->mName.C_Str());
+    unsigned primitive_types = 0;
     for (unsigned f = 0; f < m->mNumFaces; ++f) {
       const aiFace& face = m->mFaces[f];
-      if (face.mNumIndices > 0 && face.mIndices == nullptr) return fmt::format("mesh '{}': face {} has no indices", m->mName.C_Str(), f);
+      if (face.mNumIndices == 0 || face.mIndices == nullptr) return fmt::format("mesh '{}': face {} has no indices", m->mName.C_Str(), f);
+      primitive_types |= face.mNumIndices == 1   ? aiPrimitiveType_POINT
+                         : face.mNumIndices == 2 ? aiPrimitiveType_LINE
+                         : face.mNumIndices == 3 ? aiPrimitiveType_TRIANGLE
+                                                 : aiPrimitiveType_POLYGON;
       for (unsigned k = 0; k < face.mNumIndices; ++k) {
         if (face.mIndices[k] >= m->mNumVertices) {
           return fmt::format("mesh '{}': face {} refers to vertex {} of {}", m->mName.C_Str(), f, face.mIndices[k],
@@ -427,6 +466,7 @@ std::optional<std::string> CheckSceneIndices(const aiScene& scene) {
         }
       }
     }
+    m->mPrimitiveTypes = primitive_types;
     if (m->mNumBones > 0 && m->mBones == nullptr) return fmt::format("mesh '{}' lists bones it does not hold", m->mName.C_Str());
     for (unsigned b = 0; b < m->mNumBones; ++b) {
       const aiBone* bone = m->mBones[b];
@@ -453,7 +493,8 @@ MeshLoadResult FromScene(const aiScene* scene, Assimp::Importer& importer, const
     return MeshLoadResult{std::nullopt, fmt::format("{}: {}", name, reason)};
   };
   if (scene == nullptr) return assimp_error();
-  if (std::optional<std::string> error = CheckSceneIndices(*scene)) return {std::nullopt, fmt::format("{}: {}", name, *error)};
+  // The importer owns the scene and hands it out as const; the check repairs its primitive flags.
+  if (std::optional<std::string> error = CheckSceneIndices(*const_cast<aiScene*>(scene))) return {std::nullopt, fmt::format("{}: {}", name, *error)};
   scene = importer.ApplyPostProcessing(PostProcessFlags(options));
   if (scene == nullptr) return assimp_error();
   MeshLoadResult result = MeshBuilder(*scene, options).Build();
@@ -485,6 +526,11 @@ const std::vector<Vec4f>* Mesh::Find(Attribute attribute, int set) const {
   return array != nullptr && !array->empty() ? array : nullptr;
 }
 
+bool IsMeshFileExtension(const std::string& extension) {
+  if (extension.empty()) return false;
+  return Assimp::Importer().IsExtensionSupported(extension[0] == '.' ? extension : "." + extension);
+}
+
 MeshLoadResult LoadMesh(const std::filesystem::path& path, const MeshLoadOptions& options) {
   const std::string name = path.string();
   std::error_code error;
@@ -497,7 +543,7 @@ MeshLoadResult LoadMesh(const std::filesystem::path& path, const MeshLoadOptions
   }
   {
     std::ifstream in(path, std::ios::binary);
-    std::string head(4096, '\0');
+    std::string head(kHeaderBytes, '\0');
     in.read(head.data(), static_cast<std::streamsize>(head.size()));
     head.resize(static_cast<std::size_t>(in.gcount()));
     if (std::optional<std::string> message = CheckHeaderCounts(head, size)) return {std::nullopt, name + ": " + *message};
@@ -513,7 +559,7 @@ MeshLoadResult LoadMeshFromMemory(std::span<const std::uint8_t> bytes, const std
                                   const MeshLoadOptions& options) {
   if (bytes.empty()) return {std::nullopt, "<memory>: no bytes"};
   if (bytes.size() > kMaxMeshFileBytes) return {std::nullopt, "<memory>: over the size limit for mesh files"};
-  const std::string_view head(reinterpret_cast<const char*>(bytes.data()), std::min<std::size_t>(bytes.size(), 4096));
+  const std::string_view head(reinterpret_cast<const char*>(bytes.data()), std::min<std::size_t>(bytes.size(), kHeaderBytes));
   if (std::optional<std::string> message = CheckHeaderCounts(head, bytes.size())) return {std::nullopt, "<memory>: " + *message};
   std::lock_guard lock(assimp_logger_mutex);
   AssimpMessages messages;

@@ -117,7 +117,14 @@ struct MeshLoadResult {
 // vertex the mesh does not have, scenes without a vertex, limits above. Assimp's own warnings
 // (triangles it dropped, ...) come first in Mesh::warnings. LoadMesh and LoadMeshFromMemory may be
 // called from several threads; Assimp's logger makes them take turns.
+// Known limits of Assimp 5.2 that vs11 does not guard against (found by tests/fuzz/fuzz_mesh): a
+// mutated Collada file makes its XML reader loop for minutes, and a corrupt compressed DirectX .x
+// file crashes its reader. Faces and headers that crashed or hung Assimp elsewhere are checked
+// first (CheckSceneIndices, the OFF and PLY header checks in mesh_io.cc).
 MeshLoadResult LoadMesh(const std::filesystem::path& path, const MeshLoadOptions& options = {});
+
+// Whether Assimp has an importer for files with this extension (".obj", "glb"; case-insensitive).
+bool IsMeshFileExtension(const std::string& extension);
 
 // The same from memory (the fuzz target's entry); `format_hint` is an extension such as "obj" or
 // "glb" (Assimp's pHint), or empty to let Assimp guess from the content.

@@ -2,13 +2,17 @@
 //   CORPUS_DIR/fuzz_assembler    programs/*.vsh and tests/data/disasm/*.vsh
 //   CORPUS_DIR/fuzz_bytecode     the same programs assembled (without validation) to bytecode
 //   CORPUS_DIR/fuzz_environment  tiny images, one per layout and format (.hdr .exr .png .tif)
+//   CORPUS_DIR/fuzz_mesh         assimp-testmodels files under 16 KB
+//   CORPUS_DIR/fuzz_npy          .npy files of 1 to 4 columns
 // plus, for each target, the committed files in tests/fuzz/seeds/<target>/.
+#include <cctype>
 #include <cstdio>
 #include <filesystem>
 #include <string>
 #include <vector>
 
 #include "irradiance/environment_io.h"
+#include "mesh/npy.h"
 #include "vm/assembler.h"
 #include "vm/bytecode.h"
 #include "vm/program_file.h"
@@ -74,6 +78,40 @@ bool WriteImageSeeds(const fs::path& dir) {
 
 }  // namespace
 
+// Debian's assimp-testmodels files under 16 KB that hold everything in one file.
+bool WriteMeshSeeds(const fs::path& dir) {
+  const fs::path models = "/usr/share/assimp/models";
+  if (!fs::is_directory(models)) {
+    std::fprintf(stderr, "make_fuzz_seeds: %s missing (install assimp-testmodels)\n", models.c_str());
+    return false;
+  }
+  int count = 0;
+  for (const auto& entry : fs::recursive_directory_iterator(models)) {
+    if (!entry.is_regular_file() || entry.file_size() == 0 || entry.file_size() > 16384) continue;
+    std::string extension = entry.path().extension().string();
+    for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+    if (extension != ".obj" && extension != ".ply" && extension != ".off" && extension != ".stl" &&
+        extension != ".gltf" && extension != ".glb" && extension != ".dae" && extension != ".3ds" &&
+        extension != ".x" && extension != ".ac" && extension != ".smd" && extension != ".fbx") {
+      continue;
+    }
+    fs::copy_file(entry.path(), dir / ("seed" + std::to_string(count++) + extension), fs::copy_options::overwrite_existing);
+  }
+  return count > 0;
+}
+
+bool WriteNpySeeds(const fs::path& dir) {
+  bool ok = true;
+  for (int columns = 1; columns <= 4; ++columns) {
+    vs11::mesh::NpyArray array;
+    array.rows = 3;
+    array.columns = columns;
+    for (int i = 0; i < 3 * columns; ++i) array.values.push_back(0.5f * static_cast<float>(i) - 1.0f);
+    ok &= WriteOrComplain(dir / ("rows" + std::to_string(columns) + ".npy"), vs11::mesh::FormatNpy(array));
+  }
+  return ok;
+}
+
 int main(int argc, char** argv) {
   if (argc != 3) {
     std::fprintf(stderr, "usage: make_fuzz_seeds SOURCE_DIR CORPUS_DIR\n");
@@ -81,7 +119,7 @@ int main(int argc, char** argv) {
   }
   fs::path source_dir = argv[1], corpus_dir = argv[2];
   bool ok = true;
-  for (const char* target : {"fuzz_assembler", "fuzz_bytecode", "fuzz_environment"}) {
+  for (const char* target : {"fuzz_assembler", "fuzz_bytecode", "fuzz_environment", "fuzz_mesh", "fuzz_npy"}) {
     fs::create_directories(corpus_dir / target);
     fs::path committed = source_dir / "tests" / "fuzz" / "seeds" / target;
     if (fs::is_directory(committed)) {
@@ -90,5 +128,7 @@ int main(int argc, char** argv) {
   }
   ok &= WriteProgramSeeds(source_dir, corpus_dir);
   ok &= WriteImageSeeds(corpus_dir / "fuzz_environment");
+  ok &= WriteMeshSeeds(corpus_dir / "fuzz_mesh");
+  ok &= WriteNpySeeds(corpus_dir / "fuzz_npy");
   return ok ? 0 : 1;
 }

@@ -2,6 +2,8 @@
 
 #include <cmath>
 #include <filesystem>
+#include <fstream>
+#include <iterator>
 
 #include <gtest/gtest.h>
 
@@ -166,6 +168,35 @@ TEST(LoadMesh, FromMemoryReadsAnObj) {
   ASSERT_TRUE(result.ok()) << result.error;
   EXPECT_EQ(result.mesh->indices.size(), 6u);  // the quad triangulated
   EXPECT_EQ(result.mesh->normals.size(), result.mesh->vertex_count);
+}
+
+
+// fuzz_mesh: an OFF file whose faces are no polygons while Assimp's reader flags the mesh as
+// holding polygons made aiProcess_Triangulate abort (ai_assert). The flags are rebuilt from the
+// faces before post-processing.
+TEST(LoadMesh, FuzzerFoundOffWithAPolygonFlagAndNoPolygonLoads) {
+  const std::filesystem::path file =
+      std::filesystem::path(VS11_SOURCE_DIR) / "tests/fuzz/seeds/fuzz_mesh/off_polygon_flag_without_polygons.off";
+  std::ifstream in(file, std::ios::binary);
+  const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  ASSERT_FALSE(bytes.empty());
+  MeshLoadResult result = LoadMeshFromMemory({reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size()}, "");
+  if (result.ok()) {
+    for (std::uint32_t index : result.mesh->indices) EXPECT_LT(index, result.mesh->vertex_count);
+  } else {
+    EXPECT_FALSE(result.error.empty());
+  }
+}
+
+
+// fuzz_mesh: a PLY header with an element without properties and no end_header made Assimp's PLY
+// reader loop without end. The header is checked before Assimp reads the file.
+TEST(LoadMesh, FuzzerFoundPlyWithoutEndHeaderIsRefusedAtOnce) {
+  const std::filesystem::path file =
+      std::filesystem::path(VS11_SOURCE_DIR) / "tests/fuzz/seeds/fuzz_mesh/ply_element_without_property.ply";
+  MeshLoadResult result = LoadMesh(file);
+  EXPECT_FALSE(result.ok());
+  EXPECT_NE(result.error.find("no PLY end_header"), std::string::npos) << result.error;
 }
 
 }  // namespace

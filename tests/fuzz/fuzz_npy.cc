@@ -1,0 +1,25 @@
+// libFuzzer target: arbitrary bytes as a .npy file through mesh::ParseNpy, and as a raw interleaved
+// buffer through mesh::ReadInterleaved (the first byte picks the stride, elements at 0 and 4).
+#include <cstddef>
+#include <cstdint>
+#include <span>
+
+#include "mesh/npy.h"
+#include "mesh/vertex_buffer.h"
+
+extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
+  const std::span<const std::uint8_t> bytes(data, size);
+  vs11::mesh::NpyResult npy = vs11::mesh::ParseNpy(bytes, "fuzz.npy");
+  if (npy.ok()) {
+    // What parsed writes back and parses to the same values.
+    vs11::mesh::NpyResult again = vs11::mesh::ParseNpy(vs11::mesh::FormatNpy(*npy.array), "again.npy");
+    if (!again.ok() || again.array->rows != npy.array->rows || again.array->columns != npy.array->columns) __builtin_trap();
+  }
+  if (size > 0) {
+    const std::size_t stride = 1 + data[0] % 64;
+    vs11::mesh::RegisterData registers;
+    const std::vector<vs11::mesh::BufferElement> elements = {{0, 0, 1}, {1, 4, 3}};
+    (void)vs11::mesh::ReadInterleaved(bytes.subspan(1), stride, elements, "fuzz.bin", registers);
+  }
+  return 0;
+}
