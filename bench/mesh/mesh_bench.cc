@@ -17,7 +17,7 @@
 #include <benchmark/benchmark.h>
 
 #include "bench/bench_common.h"
-#include "mesh/mesh_io.h"
+#include "vm/mesh/mesh_io.h"
 #include "vm/machine.h"
 
 namespace vs11::bench {

@@ -4,8 +4,8 @@
 
 #include <fmt/format.h>
 
-#include "mesh/mesh_export.h"
-#include "mesh/mesh_io.h"
+#include "vm/mesh/mesh_export.h"
+#include "vm/mesh/mesh_io.h"
 
 namespace vs11::irradiance {
 

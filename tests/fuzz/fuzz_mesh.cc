@@ -4,7 +4,7 @@
 #include <cstddef>
 #include <cstdint>
 
-#include "mesh/mesh_io.h"
+#include "vm/mesh/mesh_io.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   vs11::mesh::MeshLoadOptions options;

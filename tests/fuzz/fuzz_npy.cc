@@ -4,8 +4,8 @@
 #include <cstdint>
 #include <span>
 
-#include "mesh/npy.h"
-#include "mesh/vertex_buffer.h"
+#include "vm/mesh/npy.h"
+#include "vm/mesh/vertex_buffer.h"
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::span<const std::uint8_t> bytes(data, size);

@@ -12,7 +12,7 @@
 #include <vector>
 
 #include "irradiance/environment_io.h"
-#include "mesh/npy.h"
+#include "vm/mesh/npy.h"
 #include "vm/assembler.h"
 #include "vm/bytecode.h"
 #include "vm/program_file.h"

@@ -18,7 +18,7 @@
 #include "irradiance/preview.h"
 #include "irradiance/sh_projection.h"
 #include "irradiance/mesh_input/mesh_geometry_io.h"
-#include "mesh/mesh_io.h"
+#include "vm/mesh/mesh_io.h"
 #include "tests/run_tool.h"
 
 namespace vs11::irradiance {

@@ -10,8 +10,8 @@
 
 #include <gtest/gtest.h>
 
-#include "mesh/mesh_io.h"
-#include "mesh/npy.h"
+#include "vm/mesh/mesh_io.h"
+#include "vm/mesh/npy.h"
 #include "tests/mesh/mesh_test_support.h"
 #include "tests/run_tool.h"
 

@@ -7,8 +7,8 @@
 
 #include <gtest/gtest.h>
 
-#include "mesh/mesh_io.h"
-#include "mesh/npy.h"
+#include "vm/mesh/mesh_io.h"
+#include "vm/mesh/npy.h"
 #include "tests/mesh/mesh_test_support.h"
 #include "tests/run_tool.h"
 #include "vm/program_file.h"

@@ -7,9 +7,9 @@
 
 #include <fmt/format.h>
 
-#include "mesh/mesh_export.h"
-#include "mesh/npy.h"
-#include "mesh/vertex_buffer.h"
+#include "vm/mesh/mesh_export.h"
+#include "vm/mesh/npy.h"
+#include "vm/mesh/vertex_buffer.h"
 #include "vm/cli/cli_support.h"
 #include "vm/program_file.h"
 

@@ -8,8 +8,8 @@
 
 #include <CLI/CLI.hpp>
 
-#include "mesh/mesh_io.h"
-#include "mesh/vertex_binding.h"
+#include "vm/mesh/mesh_io.h"
+#include "vm/mesh/vertex_binding.h"
 #include "vm/machine.h"
 
 namespace vs11::cli {

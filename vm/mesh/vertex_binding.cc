@@ -1,4 +1,4 @@
-#include "mesh/vertex_binding.h"
+#include "vm/mesh/vertex_binding.h"
 
 #include <charconv>
 

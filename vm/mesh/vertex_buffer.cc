@@ -1,4 +1,4 @@
-#include "mesh/vertex_buffer.h"
+#include "vm/mesh/vertex_buffer.h"
 
 #include <charconv>
 #include <cstring>

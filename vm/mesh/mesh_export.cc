@@ -1,4 +1,4 @@
-#include "mesh/mesh_export.h"
+#include "vm/mesh/mesh_export.h"
 
 #include <algorithm>
 #include <cstring>

@@ -1,4 +1,4 @@
-#include "mesh/npy.h"
+#include "vm/mesh/npy.h"
 
 #include <bit>
 #include <charconv>

@@ -7,7 +7,7 @@
 #include <string>
 #include <vector>
 
-#include "mesh/mesh_io.h"
+#include "vm/mesh/mesh_io.h"
 
 namespace vs11::mesh {
 

@@ -14,7 +14,7 @@
 #include <utility>
 #include <vector>
 
-#include "mesh/mesh_io.h"
+#include "vm/mesh/mesh_io.h"
 #include "vm/machine.h"
 #include "vm/program.h"
 

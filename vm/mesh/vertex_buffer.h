@@ -12,7 +12,7 @@
 #include <string_view>
 #include <vector>
 
-#include "mesh/vertex_binding.h"
+#include "vm/mesh/vertex_binding.h"
 
 namespace vs11::mesh {
 

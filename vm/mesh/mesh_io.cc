@@ -1,4 +1,4 @@
-#include "mesh/mesh_io.h"
+#include "vm/mesh/mesh_io.h"
 
 #include <algorithm>
 #include <charconv>
