@@ -20,6 +20,7 @@
 #include <string>
 #include <vector>
 
+#include <fmt/format.h>
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -47,7 +48,8 @@ void WriteText(const fs::path& path, const std::string& text) {
 CommandResult RunShell(const fs::path& dir, const std::string& command) {
   const fs::path script = dir / ".example.sh";
   WriteText(script, command + "\n");
-  const std::string line = "cd '" + dir.string() + "' && PATH='" + (kBinary / "vm").string() + ":" +
+  // The README's Slurm job script reads the variables Slurm sets for each array task.
+  const std::string line = "cd '" + dir.string() + "' && SLURM_ARRAY_TASK_ID=3 SLURM_CPUS_PER_TASK=2 PATH='" + (kBinary / "vm").string() + ":" +
                            (kBinary / "irradiance").string() + "':\"$PATH\" bash .example.sh 2>&1";
   CommandResult result;
   FILE* pipe = popen(line.c_str(), "r");
@@ -101,6 +103,35 @@ const std::map<std::string, std::function<void(const fs::path&)>>& Fixtures() {
        [](const fs::path& dir) { WriteEnvironment(dir / "cross.exr", EnvironmentLayout::kHorizontalCross); }},
       {"sky_{face}.exr",
        [](const fs::path& dir) { WriteEnvironment(dir / "sky_{face}.exr", EnvironmentLayout::kFaces); }},
+      // irrmap batch's inputs: globs, list files, and the run's own shard of a dataset.
+      {"panoramas/*.exr",
+       [](const fs::path& dir) {
+         fs::create_directories(dir / "panoramas");
+         for (const char* name : {"a.exr", "b.exr"}) WriteEnvironment(dir / "panoramas" / name, EnvironmentLayout::kHorizontalCross);
+       }},
+      {"files.txt",  // --layout latlong in the example
+       [](const fs::path& dir) {
+         WriteEnvironment(dir / "hall.exr", EnvironmentLayout::kLatLong);
+         WriteEnvironment(dir / "yard.exr", EnvironmentLayout::kLatLong);
+         WriteText(dir / "files.txt", "hall.exr\nyard.exr\n");
+       }},
+      {"all.txt",
+       [](const fs::path& dir) {
+         for (int i = 0; i < 4; ++i) WriteEnvironment(dir / fmt::format("env{}.exr", i), EnvironmentLayout::kHorizontalCross);
+         WriteText(dir / "all.txt", "env*.exr\n");
+       }},
+      {"data/*/*.hdr",  // --shard 3/16: the fourth file is the shard's
+       [](const fs::path& dir) {
+         for (int i = 0; i < 4; ++i) {
+           fs::create_directories(dir / "data" / fmt::format("set{}", i));
+           WriteEnvironment(dir / "data" / fmt::format("set{}", i) / "probe.hdr", EnvironmentLayout::kHorizontalCross);
+         }
+       }},
+      {"wuson_out/oPos.npy",  // as the example before it writes them with --out-npy wuson_out
+       [](const fs::path& dir) {
+         MakeWithTool(dir, "vs11 run programs/directional_light.vsh --mesh /usr/share/assimp/models/PLY/Wuson.ply "
+                           "--const c8=0,0,5,1 --out-npy wuson_out");
+       }},
   };
   return *fixtures;
 }
@@ -205,6 +236,7 @@ std::vector<std::string> SubcommandNames(const std::string& help) {
 const std::vector<HelpPage> kHelpPages = {
     {"vs11", ""},    {"vs11", "asm"},       {"vs11", "disasm"}, {"vs11", "validate"},  {"vs11", "run"},
     {"vs11", "count"}, {"vs11", "verify"},  {"irrmap", ""},     {"irrmap", "chart"},   {"irrmap", "stability"},
+    {"irrmap", "batch"},
 };
 
 TEST(DocumentedExamples, EveryHelpPageIsInTheList) {
@@ -310,6 +342,12 @@ TEST_P(DocumentedReadmeCommands, RunAsWrittenOrAreCheckedSynopses) {
     std::vector<std::string> lines;
     bool synopsis = false;
     for (std::string line : block.lines) {
+      // A command continues on the next line after a trailing backslash, as in a shell.
+      if (!lines.empty() && !lines.back().empty() && lines.back().back() == '\\') {
+        lines.back().back() = ' ';
+        lines.back() += line.substr(std::min(line.find_first_not_of(' '), line.size()));
+        continue;
+      }
       std::string command = CommandOf(line);
       if (command.empty()) {
         // A synopsis continues on indented lines.

@@ -55,7 +55,7 @@ class RenderTables(unittest.TestCase):
         self.assertIn("one measurement each (no repetitions)", result.stdout)
         self.assertIn("| 65536 |  | 2.00 | 1.00 |", result.stdout)
         self.assertIn("| fog | 21 | 100.0 |  | 10.00 |  | 10x |", result.stdout)
-        self.assertIn("| vm_full | 3.00 | 3.00 | 20.0 | 34 | 1.62 | 8.00 % |", result.stdout)
+        self.assertIn("| vm_full | 3.00 | 3.00 | 20.0 |  | 34 | 1.62 | 8.00 % |", result.stdout)
         self.assertIn("| 0 | 3 |  |", result.stdout)
 
     def test_repetitions_without_aggregates_take_the_median(self):
