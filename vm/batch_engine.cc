@@ -113,7 +113,7 @@ class BatchEngine final : public Engine {
         threads_(static_cast<std::size_t>(std::max(1, options.threads))) {
     if (compile_program) {
       std::string why_not;
-      compiled_ = jit::Compile(program, why_not);
+      compiled_ = jit::Compile(program, why_not, options.jit_isa);
     }
     SetConstants(api_constants);
   }

@@ -77,8 +77,8 @@ class VertexArrays {
 VertexArrays MakeInputArrays(std::size_t count, std::span<const int> input_registers);
 VertexArrays MakeOutputArrays(std::size_t count, const Program& program);  // the slots the program writes
 
-// kJit: the batch engine running the program compiled to x86-64 AVX2 code (vm/jit_compiler.h), or
-// its kernels on a CPU without AVX2.
+// kJit: the batch engine running the program compiled to x86-64 code (vm/jit_compiler.h), AVX-512
+// or AVX2, or its kernels on a CPU without AVX2.
 enum class EngineKind { kReference, kBatch, kJit };
 std::optional<EngineKind> EngineKindFromName(std::string_view name);  // "ref" | "reference" | "batch" | "jit"
 std::string_view EngineName(EngineKind kind);
@@ -93,8 +93,13 @@ class Engine {
   virtual void SetConstants(const ConstantBank& api_constants) = 0;
 };
 
+// The instruction set the jit engine compiles to: the best the CPU has, or one forced (for tests and
+// benchmarks). A forced set the CPU lacks leaves the program on the batch kernels.
+enum class JitIsa { kBest, kAvx2, kAvx512 };
+
 struct EngineOptions {
   int threads = 1;  // batch engine: split large calls over this many threads
+  JitIsa jit_isa = JitIsa::kBest;
 };
 
 // `program` must be well formed (Decode accepted it); validation is the caller's choice. Temporaries
