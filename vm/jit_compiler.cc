@@ -135,7 +135,8 @@ constexpr std::uint32_t kLaneMask = (1u << kGroupShift) - 1;
 
 class Tracer {
  public:
-  explicit Tracer(int group) : group_(static_cast<std::uint32_t>(group) << kGroupShift) {
+  Tracer(int group, std::span<const UniformInput> uniform_inputs)
+      : group_(static_cast<std::uint32_t>(group) << kGroupShift), uniform_inputs_(uniform_inputs) {
     const Float zero = Zero();
     for (auto& temp : temps_) temp.fill(zero);
   }
@@ -206,8 +207,13 @@ class Tracer {
       case RegisterFile::kInput:
         if (index >= kInputRegisterCount) break;
         for (int c = 0; c < 4; ++c) {
-          value[c] = {jit::Trace(Op::kInput, kNoArg, kNoArg, kNoArg,
-                                 static_cast<std::uint32_t>(batch::InputLane(static_cast<int>(index), c)) | group_)};
+          const auto uniform = std::ranges::find_if(uniform_inputs_, [&](const UniformInput& u) {
+            return u.reg == index && u.component == c;
+          });
+          value[c] = uniform != uniform_inputs_.end()
+                         ? Constant(Float{}, uniform->value)
+                         : Float{jit::Trace(Op::kInput, kNoArg, kNoArg, kNoArg,
+                                            static_cast<std::uint32_t>(batch::InputLane(static_cast<int>(index), c)) | group_)};
         }
         break;
       default: break;  // outputs and a0 are not readable
@@ -280,6 +286,7 @@ class Tracer {
   Int address_;
   bool address_written_ = false;
   std::uint32_t group_;
+  std::span<const UniformInput> uniform_inputs_;
 };
 
 // ---- register allocation and code --------------------------------------------------------------------
@@ -685,11 +692,11 @@ constexpr int kMinLoopRegisters = 4;
 // the CPU has independent work while a chain waits on its latencies.
 constexpr int kLongChain = 24;
 
-Graph TraceProgram(const Program& program, int groups) {
+Graph TraceProgram(const Program& program, int groups, std::span<const UniformInput> uniform_inputs) {
   Graph graph;
   tracing = &graph;
   std::vector<Tracer> tracers;
-  for (int group = 0; group < groups; ++group) tracers.emplace_back(group);
+  for (int group = 0; group < groups; ++group) tracers.emplace_back(group, uniform_inputs);
   for (const Instruction& instruction : program.instructions) {
     for (Tracer& tracer : tracers) tracer.Trace(instruction);
   }
@@ -735,7 +742,8 @@ std::string_view IsaName(JitIsa isa) {
   return "best";
 }
 
-std::unique_ptr<CompiledProgram> Compile(const Program& program, std::string& why_not, JitIsa isa) {
+std::unique_ptr<CompiledProgram> Compile(const Program& program, std::string& why_not, JitIsa isa,
+                                         std::span<const UniformInput> uniform_inputs) {
   const std::vector<JitIsa> supported = SupportedIsas();
   if (supported.empty()) {
     why_not = "the CPU has no AVX2";
@@ -747,13 +755,13 @@ std::unique_ptr<CompiledProgram> Compile(const Program& program, std::string& wh
     return nullptr;
   }
   const VectorShape shape = isa == JitIsa::kAvx512 ? kAvx512Shape : kAvx2Shape;
-  Graph graph = TraceProgram(program, 1);
+  Graph graph = TraceProgram(program, 1, uniform_inputs);
   int groups = 1;
   // Two groups, with AVX2 or AVX-512: four groups of 16 spilled more than they hid (measured on
   // all_instructions, 1.6 vs 2.8 ms per 65536 vertices), and one group of 16 was slower still.
   if (LongestChain(graph) >= kLongChain) {
     groups = 2;
-    graph = TraceProgram(program, groups);
+    graph = TraceProgram(program, groups, uniform_inputs);
   }
   static_assert(batch::kVertexGranule % 64 == 0, "an iteration takes at most 64 vertices");
   try {

@@ -12,6 +12,7 @@
 // (vm/batch_plan.h), so it slots into the batch engine in place of its kernel steps.
 #pragma once
 
+#include <bit>
 #include <cstddef>
 #include <memory>
 #include <cstdint>
@@ -53,9 +54,22 @@ class CompiledProgram {
 std::vector<JitIsa> SupportedIsas();
 std::string_view IsaName(JitIsa isa);  // "best", "avx2", "avx512"
 
+// An input lane that holds one value in every vertex (VertexArrays::uniform): compiled in, not read.
+struct UniformInput {
+  int reg;
+  int component;
+  float value;
+  friend bool operator==(const UniformInput& a, const UniformInput& b) {  // NaNs by their bits
+    return a.reg == b.reg && a.component == b.component &&
+           std::bit_cast<std::uint32_t>(a.value) == std::bit_cast<std::uint32_t>(b.value);
+  }
+};
+
 // Compiles `program` (well formed, as Decode accepts) for `isa` (kBest: the last of SupportedIsas).
+// The code never reads the `uniform_inputs` lanes.
 // nullptr, with `why_not` set, when the CPU lacks that instruction set (or has no AVX2 at all) or,
 // should it ever happen, code generation fails.
-std::unique_ptr<CompiledProgram> Compile(const Program& program, std::string& why_not, JitIsa isa = JitIsa::kBest);
+std::unique_ptr<CompiledProgram> Compile(const Program& program, std::string& why_not, JitIsa isa = JitIsa::kBest,
+                                         std::span<const UniformInput> uniform_inputs = {});
 
 }  // namespace vs11::jit

@@ -47,7 +47,7 @@ ProgramCase FallbackCase() {
     std::copy(normals.x.begin(), normals.x.end(), c.inputs.lane(reg, 0));
     std::copy(normals.y.begin(), normals.y.end(), c.inputs.lane(reg, 1));
     std::copy(normals.z.begin(), normals.z.end(), c.inputs.lane(reg, 2));
-    std::fill_n(c.inputs.lane(reg, 3), kProgramVertices, 1.0f);
+    c.inputs.FillUniform(reg, 3, 1.0f);
   }
   std::mt19937_64 rng(kBenchSeed);
   std::uniform_real_distribution<float> uniform(-1.0f, 1.0f);
@@ -106,7 +106,7 @@ const bool kRegistered = [] {
     // /jit is the CPU's best instruction set; the narrower ones it also runs are measured too.
     const std::vector<JitIsa> isas = jit::SupportedIsas();
     for (std::size_t k = 0; k + 1 < isas.size(); ++k) {
-      add("jit_" + std::string(jit::IsaName(isas[k])), EngineKind::kJit, {.jit_isa = isas[k]});
+      add(std::string("jit_").append(jit::IsaName(isas[k])), EngineKind::kJit, {.jit_isa = isas[k]});
     }
   }
   return true;

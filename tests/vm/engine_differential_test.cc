@@ -20,6 +20,7 @@
 #include <random>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -296,11 +297,16 @@ class ProgramGenerator {
     return bank;
   }
 
+  // Some lanes hold one value throughout (VertexArrays::FillUniform), which the jit compiles in.
   VertexArrays Inputs(std::size_t count) {
     VertexArrays inputs = MakeInputArrays(count, kInputs);
     for (int reg : kInputs) {
       for (int c = 0; c < 4; ++c) {
-        for (std::size_t i = 0; i < count; ++i) inputs.lane(reg, c)[i] = Value();
+        if (Chance(12)) {
+          inputs.FillUniform(reg, c, Value());
+        } else {
+          for (std::size_t i = 0; i < count; ++i) inputs.lane(reg, c)[i] = Value();
+        }
       }
     }
     return inputs;
@@ -435,7 +441,7 @@ TEST_P(EngineDifferential, RandomProgramsMatchBitForBit) {
 class JitDifferential : public testing::TestWithParam<JitIsa> {
  protected:
   EngineUnderTest Engine() const { return {EngineKind::kJit, GetParam()}; }
-  std::string Label() const { return "jit " + std::string(jit::IsaName(GetParam())); }
+  std::string Label() const { return std::string("jit ").append(jit::IsaName(GetParam())); }
 };
 INSTANTIATE_TEST_SUITE_P(SupportedIsas, JitDifferential, testing::ValuesIn(jit::SupportedIsas()),
                          [](const testing::TestParamInfo<JitIsa>& info) { return std::string(jit::IsaName(info.param)); });
@@ -453,13 +459,63 @@ TEST(JitIsas, TheTestsCoverEveryInstructionSetTheCpuHas) {
   }
   EXPECT_EQ(jit::SupportedIsas(), expected);
   std::string covered;
-  for (JitIsa isa : jit::SupportedIsas()) covered += " " + std::string(jit::IsaName(isa));
+  for (JitIsa isa : jit::SupportedIsas()) covered.append(" ").append(jit::IsaName(isa));
   std::printf("[ jit ] instruction sets covered:%s\n", covered.empty() ? " none (no AVX2: batch kernels)" : covered.c_str());
 }
 
 TEST_P(JitDifferential, EveryOpcodeMaskSwizzleNegationAndSpecialValue) { SweepEveryOpcode(Engine(), Label().c_str()); }
 
 TEST_P(JitDifferential, LoneNaNOperandKeepsItsBits) { CheckLoneNaNOperands(Engine(), Label().c_str()); }
+
+// A lane's uniform value is a promise that ends when the lane is written through lane(): the same
+// engine then reads the new values. Output lanes the program leaves alone are rewritten only when
+// they may have changed.
+TEST_P(JitDifferential, UniformLanesFollowTheirPromise) {
+  Program program;
+  // oD0.xyz = v0.w * c0 + v1 (oD0.w untouched); with v0.w uniform 2 the product is compiled in.
+  program.instructions.push_back(MakeInstruction(Opcode::kMad, {Output(static_cast<int>(OutputSlot::kDiffuse)), WriteMask(0x7)},
+                                                 {Src(Input(0), Swizzle(0xFF)), Src(Const(0)), Src(Input(1))}));
+  ConstantBank constants;
+  constants[0] = {1.5f, -2.0f, 0.25f, 8.0f};
+  const std::size_t count = 1000;
+  VertexArrays inputs = MakeInputArrays(count, kInputs);
+  inputs.FillUniform(0, 3, 2.0f);
+  for (std::size_t i = 0; i < count; ++i) {
+    for (int c = 0; c < 4; ++c) inputs.lane(1, c)[i] = static_cast<float>(i) * 0.5f - static_cast<float>(c);
+  }
+  std::unique_ptr<vs11::Engine> engine = MakeEngine(EngineKind::kJit, program, constants, {.jit_isa = GetParam()});
+  const auto check = [&](const char* when) {
+    VertexArrays expected = MakeOutputArrays(count, program);
+    MakeReferenceEngine(program, constants)->Run(inputs, expected);
+    VertexArrays actual = MakeOutputArrays(count, program);
+    actual.lane(static_cast<int>(OutputSlot::kDiffuse), 3)[7] = 42.0f;  // a stale value: must be rewritten
+    engine->Run(inputs, actual);
+    for (int c = 0; c < 4; ++c) {
+      for (std::size_t i = 0; i < count; ++i) {
+        ASSERT_EQ(Bits(std::as_const(actual).lane(static_cast<int>(OutputSlot::kDiffuse), c)[i]),
+                  Bits(std::as_const(expected).lane(static_cast<int>(OutputSlot::kDiffuse), c)[i]))
+            << when << ": oD0." << kLaneLetters[c] << " of vertex " << i;
+      }
+    }
+  };
+  check("v0.w uniform 2");
+  inputs.lane(0, 3)[500] = -3.0f;  // the promise ends
+  check("v0.w written");
+  inputs.FillUniform(0, 3, std::bit_cast<float>(0x7FC12345u));  // a NaN, compiled in with its bits
+  check("v0.w uniform NaN");
+}
+
+TEST(VertexArraysUniform, FillMarksAndWritingThroughLaneUnmarks) {
+  const int registers[] = {0};
+  VertexArrays inputs = MakeInputArrays(4, registers);
+  EXPECT_EQ(std::as_const(inputs).uniform(0, 3), 1.0f);  // the default w nobody supplied
+  EXPECT_EQ(std::as_const(inputs).uniform(0, 0), 0.0f);
+  inputs.lane(0, 0)[2] = 5.0f;
+  EXPECT_FALSE(inputs.uniform(0, 0).has_value());
+  inputs.FillUniform(0, 0, -1.0f);
+  EXPECT_EQ(inputs.uniform(0, 0), -1.0f);
+  EXPECT_EQ(std::as_const(inputs).lane(0, 0)[2], -1.0f);
+}
 
 TEST_P(JitDifferential, RandomProgramsMatchBitForBit) {
   const JitCoverage coverage = CompareRandomPrograms(Engine(), Label().c_str());
