@@ -68,9 +68,8 @@ void FillLane(float* lane, std::size_t count, float value) {
 // The state one thread runs batches with: the lane table and the lanes the engine owns (the plan's
 // arena lanes, then a padded copy of each input and output lane for a batch shorter than kBatchSize).
 struct Workspace {
-  Workspace(const BatchPlan& plan, std::size_t spill_floats)
+  explicit Workspace(const BatchPlan& plan)
       : arena_lanes(plan.arena_lanes),
-        spill(hwy::AllocateAligned<float>(std::max<std::size_t>(1, spill_floats))),
         arena(hwy::AllocateAligned<float>(
             (plan.arena_lanes + plan.input_lanes.size() + plan.output_lanes.size()) * kLaneStride)),
         address(hwy::AllocateAligned<std::int32_t>(kBatchSize)),
@@ -89,9 +88,15 @@ struct Workspace {
   float* ArenaLane(std::size_t lane) { return arena.get() + lane * kLaneStride; }
   float* InputCopy(std::size_t k) { return ArenaLane(arena_lanes + k); }
   float* OutputCopy(std::size_t k) { return ArenaLane(arena_lanes + input_arrays.size() + k); }
+  void ReserveSpill(std::size_t floats) {
+    if (floats <= spill_floats) return;
+    spill = hwy::AllocateAligned<float>(floats);
+    spill_floats = floats;
+  }
 
   std::size_t arena_lanes;
   hwy::AlignedFreeUniquePtr<float[]> spill;  // the compiled program's spilled registers
+  std::size_t spill_floats = 0;
   hwy::AlignedFreeUniquePtr<float[]> arena;
   hwy::AlignedFreeUniquePtr<std::int32_t[]> address;
   std::vector<const float*> read_lanes;
@@ -110,10 +115,16 @@ class BatchEngine final : public Engine {
       : program_(program),
         plan_(BuildBatchPlan(program, *HWY_DYNAMIC_DISPATCH(GetKernelTable)())),
         written_(WrittenOutputLanes(program)),
-        threads_(static_cast<std::size_t>(std::max(1, options.threads))) {
+        threads_(static_cast<std::size_t>(std::max(1, options.threads))),
+        isa_(options.jit_isa) {
     if (compile_program) {
       std::string why_not;
-      compiled_ = jit::Compile(program, why_not);
+      variants_.emplace_back(std::vector<jit::UniformInput>{}, jit::Compile(program, why_not, options.jit_isa));
+      if (variants_.back().second) {
+        compiled_ = variants_.back().second.get();
+      } else {
+        variants_.clear();
+      }
     }
     SetConstants(api_constants);
   }
@@ -134,9 +145,13 @@ class BatchEngine final : public Engine {
     if (count == 0) return;
 
     const std::size_t threads = std::min(threads_, std::max<std::size_t>(1, count / kMinVerticesPerThread));
-    while (workspaces_.size() < threads) workspaces_.emplace_back(plan_, compiled_ ? compiled_->spill_floats() : 0);
+    if (compiled_) SelectCompiled(inputs);
+    while (workspaces_.size() < threads) workspaces_.emplace_back(plan_);
+    for (std::size_t t = 0; t < threads && compiled_; ++t) workspaces_[t].ReserveSpill(compiled_->spill_floats());
+    // Taking the output lanes writes `outputs`' bookkeeping: done here, before any thread starts.
+    for (std::size_t t = 0; t < threads; ++t) BindOutputs(workspaces_[t], outputs);
     if (threads == 1) {
-      RunRange(workspaces_[0], inputs, outputs, 0, count);
+      RunRange(workspaces_[0], inputs, 0, count);
       return;
     }
     // Contiguous ranges of whole batches, so only the last range has a short batch.
@@ -144,24 +159,41 @@ class BatchEngine final : public Engine {
     std::vector<std::thread> workers;
     for (std::size_t t = 1; t < threads && t * per_thread < count; ++t) {
       const std::size_t begin = t * per_thread, end = std::min(count, begin + per_thread);
-      workers.emplace_back([this, t, begin, end, &inputs, &outputs] {
-        RunRange(workspaces_[t], inputs, outputs, begin, end);
-      });
+      workers.emplace_back([this, t, begin, end, &inputs] { RunRange(workspaces_[t], inputs, begin, end); });
     }
-    RunRange(workspaces_[0], inputs, outputs, 0, std::min(count, per_thread));
+    RunRange(workspaces_[0], inputs, 0, std::min(count, per_thread));
     for (std::thread& worker : workers) worker.join();
   }
 
  private:
-  void RunRange(Workspace& workspace, const VertexArrays& inputs, VertexArrays& outputs, std::size_t begin,
-                std::size_t end) const {
-    // Absent inputs read (0, 0, 0, 1) and absent outputs go to scratch, in every batch.
-    for (std::size_t k = 0; k < plan_.input_lanes.size(); ++k) {
-      const std::uint16_t lane = plan_.input_lanes[k];
+  // The compiled program for this run's inputs: the input lanes that hold one value throughout
+  // (absent registers' defaults, lanes VertexArrays::FillUniform filled) are compiled in, not read.
+  void SelectCompiled(const VertexArrays& inputs) {
+    std::vector<jit::UniformInput> uniform;
+    for (const std::uint16_t lane : plan_.input_lanes) {
       const int reg = (lane - kInputLaneBase) / 4, c = (lane - kInputLaneBase) % 4;
-      workspace.input_arrays[k] = inputs.has(reg) ? inputs.lane(reg, c) : nullptr;
-      if (!inputs.has(reg)) workspace.read_lanes[lane] = workspace.read_lanes[kDefaultInput[c] == 0.0f ? kZeroLane : kOneLane];
+      if (!inputs.has(reg)) {
+        uniform.push_back({reg, c, kDefaultInput[c]});
+      } else if (const std::optional<float> value = inputs.uniform(reg, c)) {
+        uniform.push_back({reg, c, *value});
+      }
     }
+    for (const auto& [key, compiled] : variants_) {
+      if (key == uniform) {
+        compiled_ = compiled.get();
+        return;
+      }
+    }
+    std::string why_not;
+    std::unique_ptr<jit::CompiledProgram> compiled = jit::Compile(program_, why_not, isa_, uniform);
+    if (!compiled) return;  // keep the one that reads every lane
+    if (variants_.size() == kMaxVariants) variants_.erase(variants_.begin() + 1);  // the first reads every lane
+    variants_.emplace_back(std::move(uniform), std::move(compiled));
+    compiled_ = variants_.back().second.get();
+  }
+
+  // Absent outputs go to scratch, in every batch.
+  void BindOutputs(Workspace& workspace, VertexArrays& outputs) const {
     for (std::size_t k = 0; k < plan_.output_lanes.size(); ++k) {
       const std::uint16_t lane = plan_.output_lanes[k];
       const int slot = (lane - kOutputLaneBase) / 4, c = (lane - kOutputLaneBase) % 4;
@@ -169,14 +201,28 @@ class BatchEngine final : public Engine {
       if (!outputs.has(slot)) workspace.read_lanes[lane] = workspace.write_lanes[lane] = workspace.OutputCopy(k);
     }
 
-    // Output lanes no instruction stores keep the reference engine's initial value.
+    // Output lanes no instruction stores keep the reference engine's initial value (written unless
+    // the lane is known to hold it already).
     workspace.unstored.clear();
     for (int slot = 0; slot < kOutputSlotCount; ++slot) {
       if (!outputs.has(slot)) continue;
       const Vec4f initial = written_[slot].bits() ? Vec4f{} : UnwrittenOutputValue(slot);
       for (int c = 0; c < 4; ++c) {
-        if (!(plan_.stored_lanes[slot] & (1 << c))) workspace.unstored.emplace_back(outputs.lane(slot, c), initial[c]);
+        if (plan_.stored_lanes[slot] & (1 << c)) continue;
+        const std::optional<float> holds = outputs.uniform(slot, c);
+        if (holds && std::bit_cast<std::uint32_t>(*holds) == std::bit_cast<std::uint32_t>(initial[c])) continue;
+        workspace.unstored.emplace_back(outputs.lane(slot, c), initial[c]);
       }
+    }
+  }
+
+  void RunRange(Workspace& workspace, const VertexArrays& inputs, std::size_t begin, std::size_t end) const {
+    // Absent inputs read (0, 0, 0, 1), in every batch.
+    for (std::size_t k = 0; k < plan_.input_lanes.size(); ++k) {
+      const std::uint16_t lane = plan_.input_lanes[k];
+      const int reg = (lane - kInputLaneBase) / 4, c = (lane - kInputLaneBase) % 4;
+      workspace.input_arrays[k] = inputs.has(reg) ? inputs.lane(reg, c) : nullptr;
+      if (!inputs.has(reg)) workspace.read_lanes[lane] = workspace.read_lanes[kDefaultInput[c] == 0.0f ? kZeroLane : kOneLane];
     }
 
     Frame frame{workspace.read_lanes.data(), workspace.write_lanes.data(), constants_.data(),
@@ -185,9 +231,9 @@ class BatchEngine final : public Engine {
     // takes every whole granule at once, when it reads and writes only the caller's arrays (an absent
     // input's constant lane and an absent output's scratch lane hold one batch). A short rest runs on
     // padded copies.
+    // (The compiled program reads no absent input: their values are compiled in.)
     const bool whole_range =
-        compiled_ && std::ranges::none_of(workspace.input_arrays, [](const float* a) { return a == nullptr; }) &&
-        std::ranges::none_of(workspace.output_arrays, [](const float* a) { return a == nullptr; });
+        compiled_ && std::ranges::none_of(workspace.output_arrays, [](const float* a) { return a == nullptr; });
     for (std::size_t start = begin, n = 0; start < end; start += n) {
       const std::size_t left = end - start;
       bool full;
@@ -240,7 +286,12 @@ class BatchEngine final : public Engine {
   std::size_t threads_;
   std::vector<float> constants_;
   std::int32_t constant_count_ = 0;
-  std::unique_ptr<jit::CompiledProgram> compiled_;  // null: the plan's kernels run the program
+  // Compiled programs by the input lanes compiled in as constants (the first: none); null
+  // compiled_: the plan's kernels run the program.
+  static constexpr std::size_t kMaxVariants = 8;
+  JitIsa isa_;
+  std::vector<std::pair<std::vector<jit::UniformInput>, std::unique_ptr<jit::CompiledProgram>>> variants_;
+  const jit::CompiledProgram* compiled_ = nullptr;
   std::vector<Workspace> workspaces_;
 };
 

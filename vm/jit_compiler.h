@@ -1,5 +1,6 @@
-// The jit engine's compiler: a whole vs_1_1 program becomes one x86-64 AVX2 loop (xbyak) that runs
-// it on 8 vertices per iteration (2 x 8 for long dependency chains) with the values in registers.
+// The jit engine's compiler: a whole vs_1_1 program becomes one x86-64 loop (xbyak) that runs it on
+// a vector of vertices per iteration (16 in zmm registers with AVX-512, 8 in ymm with AVX2; several
+// vectors interleaved for long dependency chains) with the values in registers.
 // The batch engine's kernels store every instruction's result to memory and load it back in the
 // next step; this loop does not, which is what the batch engine loses to hand-written SIMD code.
 //
@@ -11,14 +12,17 @@
 // (vm/batch_plan.h), so it slots into the batch engine in place of its kernel steps.
 #pragma once
 
+#include <bit>
 #include <cstddef>
 #include <memory>
 #include <cstdint>
 #include <optional>
 #include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
+#include "vm/machine.h"
 #include "vm/program.h"
 
 namespace vs11::jit {
@@ -42,10 +46,30 @@ class CompiledProgram {
   // The machine code, and how many values the register allocator had to spill (for tests and notes).
   virtual std::span<const std::uint8_t> code() const = 0;
   virtual int spilled_values() const = 0;
+  virtual JitIsa isa() const = 0;                // kAvx2 or kAvx512
+  virtual int vertices_per_iteration() const = 0;  // lanes x interleaved vertex groups
 };
 
-// Compiles `program` (well formed, as Decode accepts). nullptr, with `why_not` set, when the CPU has
-// no AVX2 (or, should it ever happen, code generation fails).
-std::unique_ptr<CompiledProgram> Compile(const Program& program, std::string& why_not);
+// The instruction sets this CPU (and its operating system) runs, from narrowest to widest.
+std::vector<JitIsa> SupportedIsas();
+std::string_view IsaName(JitIsa isa);  // "best", "avx2", "avx512"
+
+// An input lane that holds one value in every vertex (VertexArrays::uniform): compiled in, not read.
+struct UniformInput {
+  int reg;
+  int component;
+  float value;
+  friend bool operator==(const UniformInput& a, const UniformInput& b) {  // NaNs by their bits
+    return a.reg == b.reg && a.component == b.component &&
+           std::bit_cast<std::uint32_t>(a.value) == std::bit_cast<std::uint32_t>(b.value);
+  }
+};
+
+// Compiles `program` (well formed, as Decode accepts) for `isa` (kBest: the last of SupportedIsas).
+// The code never reads the `uniform_inputs` lanes.
+// nullptr, with `why_not` set, when the CPU lacks that instruction set (or has no AVX2 at all) or,
+// should it ever happen, code generation fails.
+std::unique_ptr<CompiledProgram> Compile(const Program& program, std::string& why_not, JitIsa isa = JitIsa::kBest,
+                                         std::span<const UniformInput> uniform_inputs = {});
 
 }  // namespace vs11::jit

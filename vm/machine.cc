@@ -81,6 +81,12 @@ VertexArrays::VertexArrays(std::size_t count, std::span<const int> registers, in
     if (reg >= 0 && reg < register_space && slot_of_[reg] < 0) slot_of_[reg] = slots++;
   }
   data_.assign(static_cast<std::size_t>(slots) * 4 * count, 0.0f);
+  uniform_.assign(static_cast<std::size_t>(slots) * 4, 0.0f);
+}
+
+void VertexArrays::FillUniform(int reg, int component, float value) {
+  std::fill_n(lane(reg, component), count_, value);
+  uniform_[Index(reg, component)] = value;
 }
 
 std::vector<int> VertexArrays::registers() const {
@@ -94,7 +100,7 @@ std::vector<int> VertexArrays::registers() const {
 VertexArrays MakeInputArrays(std::size_t count, std::span<const int> input_registers) {
   VertexArrays arrays(count, input_registers, kInputRegisterCount);
   for (int reg : arrays.registers()) {
-    for (int c = 0; c < 4; ++c) std::fill_n(arrays.lane(reg, c), count, kDefaultInput[c]);
+    for (int c = 0; c < 4; ++c) arrays.FillUniform(reg, c, kDefaultInput[c]);
   }
   return arrays;
 }
@@ -105,6 +111,8 @@ VertexArrays MakeOutputArrays(std::size_t count, const Program& program) {
   for (int slot = 0; slot < kOutputSlotCount; ++slot) {
     if (written[slot].bits() != 0) slots.push_back(slot);
   }
+  // Every lane starts as uniform 0, the value of a lane the program leaves alone in a register it
+  // writes (oD0.a beside oD0.rgb): the engines need not store those again on every run.
   return VertexArrays(count, slots, kOutputSlotCount);
 }
 

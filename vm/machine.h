@@ -54,31 +54,43 @@ std::array<WriteMask, kOutputSlotCount> WrittenOutputLanes(const Program& progra
 
 // Vertex data as structure of arrays: lane (register, component) is `count` consecutive floats.
 // Registers that are not present read kDefaultInput.
+//
+// A lane filled by FillUniform is known to hold one value in every vertex until it is written
+// through the non-const lane(): an engine may then use the value instead of reading the lane (the
+// jit engine compiles it in, as the w of 1 nobody supplied) or rewriting it (an unwritten output
+// lane that already holds its value), with the same results.
 class VertexArrays {
  public:
   VertexArrays() = default;
   VertexArrays(std::size_t count, std::span<const int> registers, int register_space);
   std::size_t count() const { return count_; }
   bool has(int reg) const { return reg >= 0 && reg < static_cast<int>(slot_of_.size()) && slot_of_[reg] >= 0; }
-  float* lane(int reg, int component) { return data_.data() + Offset(reg, component); }
-  const float* lane(int reg, int component) const { return data_.data() + Offset(reg, component); }
+  float* lane(int reg, int component) {
+    uniform_[Index(reg, component)].reset();  // the caller may write through the pointer
+    return data_.data() + Index(reg, component) * count_;
+  }
+  const float* lane(int reg, int component) const { return data_.data() + Index(reg, component) * count_; }
   std::vector<int> registers() const;
 
+  void FillUniform(int reg, int component, float value);
+  std::optional<float> uniform(int reg, int component) const { return uniform_[Index(reg, component)]; }
+
  private:
-  std::size_t Offset(int reg, int component) const {
-    return (static_cast<std::size_t>(slot_of_[reg]) * 4 + component) * count_;
+  std::size_t Index(int reg, int component) const {
+    return static_cast<std::size_t>(slot_of_[reg]) * 4 + static_cast<std::size_t>(component);
   }
   std::size_t count_ = 0;
   std::vector<int> slot_of_;
   std::vector<float> data_;
+  std::vector<std::optional<float>> uniform_;  // per lane
 };
 
 // Inputs: registers v0..v15. Outputs: the OutputSlot values.
 VertexArrays MakeInputArrays(std::size_t count, std::span<const int> input_registers);
 VertexArrays MakeOutputArrays(std::size_t count, const Program& program);  // the slots the program writes
 
-// kJit: the batch engine running the program compiled to x86-64 AVX2 code (vm/jit_compiler.h), or
-// its kernels on a CPU without AVX2.
+// kJit: the batch engine running the program compiled to x86-64 code (vm/jit_compiler.h), AVX-512
+// or AVX2, or its kernels on a CPU without AVX2.
 enum class EngineKind { kReference, kBatch, kJit };
 std::optional<EngineKind> EngineKindFromName(std::string_view name);  // "ref" | "reference" | "batch" | "jit"
 std::string_view EngineName(EngineKind kind);
@@ -93,8 +105,13 @@ class Engine {
   virtual void SetConstants(const ConstantBank& api_constants) = 0;
 };
 
+// The instruction set the jit engine compiles to: the best the CPU has, or one forced (for tests and
+// benchmarks). A forced set the CPU lacks leaves the program on the batch kernels.
+enum class JitIsa { kBest, kAvx2, kAvx512 };
+
 struct EngineOptions {
   int threads = 1;  // batch engine: split large calls over this many threads
+  JitIsa jit_isa = JitIsa::kBest;
 };
 
 // `program` must be well formed (Decode accepted it); validation is the caller's choice. Temporaries

@@ -4,19 +4,24 @@
 //
 //   BM_Irradiance_Reference/N     reference engine
 //   BM_Irradiance_Batch/N         batch engine, threads = 1
-//   BM_Irradiance_Jit/N           jit engine (the program compiled to AVX2 code), threads = 1
+//   BM_Irradiance_Jit/N           jit engine (the program compiled for the CPU's best instruction set),
+//                                 threads = 1
+//   BM_Irradiance_Jit_<isa>/N     the same, forced to avx2 or avx512 (each the CPU supports)
+//   BM_Irradiance_JitThreads/N/threads:T  jit engine on T threads (wall-clock time)
 //   BM_Irradiance_NativeScalar/N  EvalTable1Scalar (no vectorisation)
 //   BM_Irradiance_NativeSimd/N    EvalTable1Simd (AVX-512 / AVX2 / SSE2 by multi-versioning)
 
 #include <array>
 #include <cstddef>
 #include <memory>
+#include <string>
 #include <vector>
 
 #include <benchmark/benchmark.h>
 
 #include "bench/bench_common.h"
 #include "irradiance/sh9.h"
+#include "vm/jit_compiler.h"
 #include "vm/machine.h"
 
 namespace vs11::bench {
@@ -97,14 +102,15 @@ void EvalTable1Simd(const irradiance::SevenConstants& constants, const float* x,
 
 namespace {
 
-void RunEngine(benchmark::State& state, EngineKind kind) {
+void RunEngine(benchmark::State& state, EngineKind kind, EngineOptions options = {}) {
   const std::size_t count = static_cast<std::size_t>(state.range(0));
   const irradiance::ProgramForVerify loaded = LoadBenchProgram(ProgramPath("sh9_irradiance.vsh"));
   const Program& program = *loaded.program;
   const ConstantBank bank = Table1Bank(irradiance::PackTable1(BenchCoefficients()));
-  const VertexArrays inputs = NormalInputs(RandomUnitNormals(count));
+  VertexArrays inputs = NormalInputs(RandomUnitNormals(count));
+  inputs.FillUniform(0, 3, 1.0f);  // w is no data: a lane of 1s, as irrmap leaves it (NormalInputs writes it)
   VertexArrays outputs = MakeOutputArrays(count, program);
-  std::unique_ptr<Engine> engine = MakeEngine(kind, program, bank, EngineOptions{.threads = 1});
+  std::unique_ptr<Engine> engine = MakeEngine(kind, program, bank, options);
   for (auto _ : state) {
     engine->Run(inputs, outputs);
     benchmark::DoNotOptimize(outputs.lane(static_cast<int>(OutputSlot::kDiffuse), 0));
@@ -116,6 +122,9 @@ void RunEngine(benchmark::State& state, EngineKind kind) {
 void BM_Irradiance_Reference(benchmark::State& state) { RunEngine(state, EngineKind::kReference); }
 void BM_Irradiance_Batch(benchmark::State& state) { RunEngine(state, EngineKind::kBatch); }
 void BM_Irradiance_Jit(benchmark::State& state) { RunEngine(state, EngineKind::kJit); }
+void BM_Irradiance_JitThreads(benchmark::State& state) {
+  RunEngine(state, EngineKind::kJit, {.threads = static_cast<int>(state.range(1))});
+}
 
 template <auto kEval>
 void RunNative(benchmark::State& state) {
@@ -138,9 +147,22 @@ void BM_Irradiance_NativeSimd(benchmark::State& state) { RunNative<EvalTable1Sim
 BENCHMARK(BM_Irradiance_Reference)->VS11_IRRADIANCE_SIZES;
 BENCHMARK(BM_Irradiance_Batch)->VS11_IRRADIANCE_SIZES;
 BENCHMARK(BM_Irradiance_Jit)->VS11_IRRADIANCE_SIZES;
+// The threads' time is the wall clock's: CPU time would count the calling thread only.
+BENCHMARK(BM_Irradiance_JitThreads)->ArgNames({"", "threads"})->Args({1 << 20, 1})->Args({1 << 20, 2})->UseRealTime();
 BENCHMARK(BM_Irradiance_NativeScalar)->VS11_IRRADIANCE_SIZES;
 BENCHMARK(BM_Irradiance_NativeSimd)->VS11_IRRADIANCE_SIZES;
 #undef VS11_IRRADIANCE_SIZES
+
+// Each instruction set the CPU runs, forced, so that one run on an AVX-512 machine measures both.
+const bool kIsasRegistered = [] {
+  for (JitIsa isa : jit::SupportedIsas()) {
+    const std::string name = std::string("BM_Irradiance_Jit_").append(jit::IsaName(isa));
+    benchmark::RegisterBenchmark(name.c_str(), [isa](benchmark::State& state) {
+      RunEngine(state, EngineKind::kJit, {.jit_isa = isa});
+    })->Arg(1024)->Arg(65536)->Arg(1 << 20);
+  }
+  return true;
+}();
 
 }  // namespace
 }  // namespace vs11::bench

@@ -2,6 +2,8 @@
 // sh9 references add their 14 fixed normals), items_per_second = vertices per second, and the
 // program's instruction-slot count (vm/program.h ComputeStats) as the counter "slots".
 //
+// /jit runs the CPU's best jit instruction set; /jit_avx2 is added where AVX-512 is the best.
+//
 // Inputs and constants come from the program's reference (irradiance/program_references.h, named by
 // its `; vs11: reference=` line). A program without a usable reference gets (x, y, z, 1) unit normals
 // in every input register v0..v15 and random constants in [-1, 1].
@@ -21,6 +23,7 @@
 #include "bench/bench_common.h"
 #include "irradiance/program_references.h"
 #include "irradiance/verify.h"
+#include "vm/jit_compiler.h"
 #include "vm/machine.h"
 #include "vm/program.h"
 
@@ -44,7 +47,7 @@ ProgramCase FallbackCase() {
     std::copy(normals.x.begin(), normals.x.end(), c.inputs.lane(reg, 0));
     std::copy(normals.y.begin(), normals.y.end(), c.inputs.lane(reg, 1));
     std::copy(normals.z.begin(), normals.z.end(), c.inputs.lane(reg, 2));
-    std::fill_n(c.inputs.lane(reg, 3), kProgramVertices, 1.0f);
+    c.inputs.FillUniform(reg, 3, 1.0f);
   }
   std::mt19937_64 rng(kBenchSeed);
   std::uniform_real_distribution<float> uniform(-1.0f, 1.0f);
@@ -68,13 +71,13 @@ ProgramCase CaseFor(const irradiance::ProgramMetadata& metadata) {
   return FallbackCase();
 }
 
-void RunProgram(benchmark::State& state, const std::filesystem::path& path, EngineKind kind) {
+void RunProgram(benchmark::State& state, const std::filesystem::path& path, EngineKind kind, EngineOptions options) {
   const irradiance::ProgramForVerify loaded = LoadBenchProgram(path);
   const Program& program = *loaded.program;
   const ProgramCase c = CaseFor(loaded.metadata);
   const std::size_t count = c.inputs.count();
   VertexArrays outputs = MakeOutputArrays(count, program);
-  std::unique_ptr<Engine> engine = MakeEngine(kind, program, c.constants, EngineOptions{.threads = 1});
+  std::unique_ptr<Engine> engine = MakeEngine(kind, program, c.constants, options);
   for (auto _ : state) {
     engine->Run(c.inputs, outputs);
     benchmark::ClobberMemory();
@@ -91,11 +94,19 @@ const bool kRegistered = [] {
   }
   std::sort(paths.begin(), paths.end());
   for (const auto& path : paths) {
-    for (EngineKind kind : {EngineKind::kReference, EngineKind::kBatch, EngineKind::kJit}) {
-      const std::string name = "BM_Program/" + path.stem().string() + "/" + std::string(EngineName(kind));
-      benchmark::RegisterBenchmark(name.c_str(), [path, kind](benchmark::State& state) {
-        RunProgram(state, path, kind);
+    const auto add = [&path](const std::string& label, EngineKind kind, EngineOptions options) {
+      const std::string name = "BM_Program/" + path.stem().string() + "/" + label;
+      benchmark::RegisterBenchmark(name.c_str(), [path, kind, options](benchmark::State& state) {
+        RunProgram(state, path, kind, options);
       })->Unit(benchmark::kMicrosecond);
+    };
+    for (EngineKind kind : {EngineKind::kReference, EngineKind::kBatch, EngineKind::kJit}) {
+      add(std::string(EngineName(kind)), kind, {});
+    }
+    // /jit is the CPU's best instruction set; the narrower ones it also runs are measured too.
+    const std::vector<JitIsa> isas = jit::SupportedIsas();
+    for (std::size_t k = 0; k + 1 < isas.size(); ++k) {
+      add(std::string("jit_").append(jit::IsaName(isas[k])), EngineKind::kJit, {.jit_isa = isas[k]});
     }
   }
   return true;

@@ -142,7 +142,7 @@ int main(int argc, char** argv) {
   app.add_option("--window-width", options.window_width, "width of the hanning and lanczos windows, in bands")
       ->capture_default_str();
   app.add_option("--out", out_dir, "output directory")->capture_default_str();
-  app.add_option("--engine", options.engine, "vertex machine engine: ref (reference, scalar), batch (SIMD kernels) or jit (compiled to AVX2 code)")
+  app.add_option("--engine", options.engine, "vertex machine engine: ref (reference, scalar), batch (SIMD kernels) or jit (compiled to AVX-512 or AVX2 code; batch kernels without AVX2)")
       ->capture_default_str();
   app.add_option("--threads", options.threads, "worker threads (0 = every core)")->capture_default_str();
   app.add_option("--map-size", options.map_size,

@@ -1,6 +1,7 @@
 // The batch engine against the reference engine, bit for bit (NaN equals NaN only with the same
 // bits), on every Highway target this build compiled and the CPU supports, and the jit engine (the
-// program compiled to AVX2 code) likewise:
+// program compiled to machine code) likewise at every instruction set the CPU supports (AVX2,
+// AVX-512), each forced in turn:
 //  * every executable opcode x write masks x swizzles x negations x operand files, over vertices
 //    whose lanes run through the special values (signed zeros, denormals, infinities, NaNs, the
 //    limits of exp and of a0);
@@ -19,6 +20,7 @@
 #include <random>
 #include <sstream>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -63,14 +65,20 @@ struct Comparison {
 
 bool IsNaN(float x) { return x != x; }
 
+// The engine compared with the reference: its kind and, for the jit, the instruction set forced.
+struct EngineUnderTest {
+  EngineKind kind;
+  JitIsa jit_isa = JitIsa::kBest;
+};
+
 // Runs `program` on both engines and compares every output lane.
 Comparison CompareEngines(const Program& program, const ConstantBank& constants, const VertexArrays& inputs,
-                          NanBits nan_bits, EngineKind kind) {
+                          NanBits nan_bits, EngineUnderTest engine) {
   const std::size_t count = inputs.count();
   VertexArrays expected = MakeOutputArrays(count, program);
   VertexArrays actual = MakeOutputArrays(count, program);
   MakeReferenceEngine(program, constants)->Run(inputs, expected);
-  MakeEngine(kind, program, constants)->Run(inputs, actual);
+  MakeEngine(engine.kind, program, constants, {.jit_isa = engine.jit_isa})->Run(inputs, actual);
   Comparison result;
   for (int slot : expected.registers()) {
     for (int c = 0; c < 4; ++c) {
@@ -84,7 +92,7 @@ Comparison CompareEngines(const Program& program, const ConstantBank& constants,
         if (!result.difference.empty()) continue;
         std::ostringstream message;
         message << OutputSlotName(slot) << "." << kLaneLetters[c] << " of vertex " << i << " of " << count
-                << ": " << EngineName(kind) << " " << got << " (0x" << std::hex << Bits(got) << "), reference " << want << " (0x"
+                << ": " << EngineName(engine.kind) << " " << got << " (0x" << std::hex << Bits(got) << "), reference " << want << " (0x"
                 << Bits(want) << std::dec << ")\ninputs:";
         for (int reg : inputs.registers()) {
           message << " v" << reg << "=(";
@@ -143,7 +151,7 @@ HWY_TARGET_INSTANTIATE_TEST_SUITE_P(EngineDifferential);
 
 // ---- the sweep --------------------------------------------------------------------------------------
 
-void SweepEveryOpcode(EngineKind kind, const char* label) {
+void SweepEveryOpcode(EngineUnderTest engine, const char* label) {
   const std::vector<float>& special = SpecialValues();
   const std::size_t n = special.size();
   // Vertex i pairs every special value of v0 with every one of v1 (v2 and v3 vary too), lane by lane
@@ -206,7 +214,7 @@ void SweepEveryOpcode(EngineKind kind, const char* label) {
             code.push_back(MakeInstruction(Opcode::kMov, {Output(static_cast<int>(OutputSlot::kTexCoord0)), WriteMask()},
                                            {Src(Temp(2))}));
             ++programs;
-            const Comparison comparison = CompareEngines(program, constants, inputs, NanBits::kAnyNaN, kind);
+            const Comparison comparison = CompareEngines(program, constants, inputs, NanBits::kAnyNaN, engine);
             ASSERT_TRUE(comparison.difference.empty()) << comparison.difference;
             nan_bit_mismatches += comparison.nan_bit_mismatches;
           }
@@ -219,12 +227,12 @@ void SweepEveryOpcode(EngineKind kind, const char* label) {
 }
 
 TEST_P(EngineDifferential, EveryOpcodeMaskSwizzleNegationAndSpecialValue) {
-  SweepEveryOpcode(EngineKind::kBatch, hwy::TargetName(GetParam()));
+  SweepEveryOpcode({EngineKind::kBatch}, hwy::TargetName(GetParam()));
 }
 
 // Every operand position of every opcode, negated or not, carrying one NaN (quiet or signalling, either
 // sign, with a payload) in one lane while every other value is ordinary: the result's bits must match.
-void CheckLoneNaNOperands(EngineKind kind, const char* label) {
+void CheckLoneNaNOperands(EngineUnderTest engine, const char* label) {
   const std::uint32_t nans[] = {0x7FC12345u, 0xFFC0ABCDu, 0x7F800001u, 0xFF812345u};
   const float ordinary[3][4] = {{0.75f, -1.5f, 2.0f, 3.25f}, {-0.5f, 4.0f, 1.25f, -2.0f}, {1.5f, 0.25f, -3.0f, 5.0f}};
   const int inputs_used[] = {0, 1, 2, 3, 4};  // m4x4 rows of v1 reach v4
@@ -253,7 +261,7 @@ void CheckLoneNaNOperands(EngineKind kind, const char* label) {
         Program program;
         program.instructions.push_back(op);
         ++programs;
-        const Comparison comparison = CompareEngines(program, ConstantBank(), inputs, NanBits::kExact, kind);
+        const Comparison comparison = CompareEngines(program, ConstantBank(), inputs, NanBits::kExact, engine);
         ASSERT_TRUE(comparison.difference.empty()) << comparison.difference;
       }
     }
@@ -262,7 +270,7 @@ void CheckLoneNaNOperands(EngineKind kind, const char* label) {
 }
 
 TEST_P(EngineDifferential, LoneNaNOperandKeepsItsBits) {
-  CheckLoneNaNOperands(EngineKind::kBatch, hwy::TargetName(GetParam()));
+  CheckLoneNaNOperands({EngineKind::kBatch}, hwy::TargetName(GetParam()));
 }
 
 // ---- random programs --------------------------------------------------------------------------------
@@ -289,11 +297,16 @@ class ProgramGenerator {
     return bank;
   }
 
+  // Some lanes hold one value throughout (VertexArrays::FillUniform), which the jit compiles in.
   VertexArrays Inputs(std::size_t count) {
     VertexArrays inputs = MakeInputArrays(count, kInputs);
     for (int reg : kInputs) {
       for (int c = 0; c < 4; ++c) {
-        for (std::size_t i = 0; i < count; ++i) inputs.lane(reg, c)[i] = Value();
+        if (Chance(12)) {
+          inputs.FillUniform(reg, c, Value());
+        } else {
+          for (std::size_t i = 0; i < count; ++i) inputs.lane(reg, c)[i] = Value();
+        }
       }
     }
     return inputs;
@@ -388,7 +401,7 @@ struct JitCoverage {
 };
 
 // For kJit, also says how many programs ran as machine code.
-JitCoverage CompareRandomPrograms(EngineKind kind, const char* label) {
+JitCoverage CompareRandomPrograms(EngineUnderTest engine, const char* label) {
   const int programs = RandomProgramCount();
   ProgramGenerator generator(20240611);
   std::size_t vertices = 0, nan_bit_mismatches = 0;
@@ -402,13 +415,13 @@ JitCoverage CompareRandomPrograms(EngineKind kind, const char* label) {
                                           : std::uniform_int_distribution<std::size_t>(1, 100)(sizes);
     vertices += count;
     const Comparison comparison =
-        CompareEngines(program, constants, generator.Inputs(count), NanBits::kAnyNaN, kind);
+        CompareEngines(program, constants, generator.Inputs(count), NanBits::kAnyNaN, engine);
     EXPECT_TRUE(comparison.difference.empty()) << "random program " << k << ": " << comparison.difference;
     if (!comparison.difference.empty()) return coverage;
     nan_bit_mismatches += comparison.nan_bit_mismatches;
-    if (kind != EngineKind::kJit) continue;
+    if (engine.kind != EngineKind::kJit) continue;
     std::string why_not;
-    if (const auto compiled = jit::Compile(program, why_not)) {
+    if (const auto compiled = jit::Compile(program, why_not, engine.jit_isa)) {
       ++coverage.compiled;
       if (compiled->spilled_values() > 0) ++coverage.spilling;
     }
@@ -419,33 +432,97 @@ JitCoverage CompareRandomPrograms(EngineKind kind, const char* label) {
 }
 
 TEST_P(EngineDifferential, RandomProgramsMatchBitForBit) {
-  CompareRandomPrograms(EngineKind::kBatch, hwy::TargetName(GetParam()));
+  CompareRandomPrograms({EngineKind::kBatch}, hwy::TargetName(GetParam()));
 }
 
 // ---- the jit engine -----------------------------------------------------------------------------------
 
-bool CpuHasAvx2() {
-  std::string why_not;
-  return jit::Compile(Program(), why_not) != nullptr;
+// One instance per instruction set the CPU runs, so none is left untested where it exists.
+class JitDifferential : public testing::TestWithParam<JitIsa> {
+ protected:
+  EngineUnderTest Engine() const { return {EngineKind::kJit, GetParam()}; }
+  std::string Label() const { return std::string("jit ").append(jit::IsaName(GetParam())); }
+};
+INSTANTIATE_TEST_SUITE_P(SupportedIsas, JitDifferential, testing::ValuesIn(jit::SupportedIsas()),
+                         [](const testing::TestParamInfo<JitIsa>& info) { return std::string(jit::IsaName(info.param)); });
+// A CPU without AVX2 has no instance: there the jit engine runs the batch kernels, tested above.
+GTEST_ALLOW_UNINSTANTIATED_PARAMETERIZED_TEST(JitDifferential);
+
+// The instruction sets the jit tests cover are the ones the CPU reports (a jit that failed to detect
+// AVX-512 would otherwise leave its code untested without a word).
+TEST(JitIsas, TheTestsCoverEveryInstructionSetTheCpuHas) {
+  std::vector<JitIsa> expected;
+  __builtin_cpu_init();
+  if (__builtin_cpu_supports("avx2")) expected.push_back(JitIsa::kAvx2);
+  if (__builtin_cpu_supports("avx2") && __builtin_cpu_supports("avx512f") && __builtin_cpu_supports("avx512dq")) {
+    expected.push_back(JitIsa::kAvx512);
+  }
+  EXPECT_EQ(jit::SupportedIsas(), expected);
+  std::string covered;
+  for (JitIsa isa : jit::SupportedIsas()) covered.append(" ").append(jit::IsaName(isa));
+  std::printf("[ jit ] instruction sets covered:%s\n", covered.empty() ? " none (no AVX2: batch kernels)" : covered.c_str());
 }
 
-TEST(JitDifferential, EveryOpcodeMaskSwizzleNegationAndSpecialValue) {
-  if (!CpuHasAvx2()) GTEST_SKIP() << "this CPU has no AVX2: the jit engine runs the batch kernels";
-  SweepEveryOpcode(EngineKind::kJit, "jit");
+TEST_P(JitDifferential, EveryOpcodeMaskSwizzleNegationAndSpecialValue) { SweepEveryOpcode(Engine(), Label().c_str()); }
+
+TEST_P(JitDifferential, LoneNaNOperandKeepsItsBits) { CheckLoneNaNOperands(Engine(), Label().c_str()); }
+
+// A lane's uniform value is a promise that ends when the lane is written through lane(): the same
+// engine then reads the new values. Output lanes the program leaves alone are rewritten only when
+// they may have changed.
+TEST_P(JitDifferential, UniformLanesFollowTheirPromise) {
+  Program program;
+  // oD0.xyz = v0.w * c0 + v1 (oD0.w untouched); with v0.w uniform 2 the product is compiled in.
+  program.instructions.push_back(MakeInstruction(Opcode::kMad, {Output(static_cast<int>(OutputSlot::kDiffuse)), WriteMask(0x7)},
+                                                 {Src(Input(0), Swizzle(0xFF)), Src(Const(0)), Src(Input(1))}));
+  ConstantBank constants;
+  constants[0] = {1.5f, -2.0f, 0.25f, 8.0f};
+  const std::size_t count = 1000;
+  VertexArrays inputs = MakeInputArrays(count, kInputs);
+  inputs.FillUniform(0, 3, 2.0f);
+  for (std::size_t i = 0; i < count; ++i) {
+    for (int c = 0; c < 4; ++c) inputs.lane(1, c)[i] = static_cast<float>(i) * 0.5f - static_cast<float>(c);
+  }
+  std::unique_ptr<vs11::Engine> engine = MakeEngine(EngineKind::kJit, program, constants, {.jit_isa = GetParam()});
+  const auto check = [&](const char* when) {
+    VertexArrays expected = MakeOutputArrays(count, program);
+    MakeReferenceEngine(program, constants)->Run(inputs, expected);
+    VertexArrays actual = MakeOutputArrays(count, program);
+    actual.lane(static_cast<int>(OutputSlot::kDiffuse), 3)[7] = 42.0f;  // a stale value: must be rewritten
+    engine->Run(inputs, actual);
+    for (int c = 0; c < 4; ++c) {
+      for (std::size_t i = 0; i < count; ++i) {
+        ASSERT_EQ(Bits(std::as_const(actual).lane(static_cast<int>(OutputSlot::kDiffuse), c)[i]),
+                  Bits(std::as_const(expected).lane(static_cast<int>(OutputSlot::kDiffuse), c)[i]))
+            << when << ": oD0." << kLaneLetters[c] << " of vertex " << i;
+      }
+    }
+  };
+  check("v0.w uniform 2");
+  inputs.lane(0, 3)[500] = -3.0f;  // the promise ends
+  check("v0.w written");
+  inputs.FillUniform(0, 3, std::bit_cast<float>(0x7FC12345u));  // a NaN, compiled in with its bits
+  check("v0.w uniform NaN");
 }
 
-TEST(JitDifferential, LoneNaNOperandKeepsItsBits) {
-  if (!CpuHasAvx2()) GTEST_SKIP() << "this CPU has no AVX2: the jit engine runs the batch kernels";
-  CheckLoneNaNOperands(EngineKind::kJit, "jit");
+TEST(VertexArraysUniform, FillMarksAndWritingThroughLaneUnmarks) {
+  const int registers[] = {0};
+  VertexArrays inputs = MakeInputArrays(4, registers);
+  EXPECT_EQ(std::as_const(inputs).uniform(0, 3), 1.0f);  // the default w nobody supplied
+  EXPECT_EQ(std::as_const(inputs).uniform(0, 0), 0.0f);
+  inputs.lane(0, 0)[2] = 5.0f;
+  EXPECT_FALSE(inputs.uniform(0, 0).has_value());
+  inputs.FillUniform(0, 0, -1.0f);
+  EXPECT_EQ(inputs.uniform(0, 0), -1.0f);
+  EXPECT_EQ(std::as_const(inputs).lane(0, 0)[2], -1.0f);
 }
 
-TEST(JitDifferential, RandomProgramsMatchBitForBit) {
-  if (!CpuHasAvx2()) GTEST_SKIP() << "this CPU has no AVX2: the jit engine runs the batch kernels";
-  const JitCoverage coverage = CompareRandomPrograms(EngineKind::kJit, "jit");
+TEST_P(JitDifferential, RandomProgramsMatchBitForBit) {
+  const JitCoverage coverage = CompareRandomPrograms(Engine(), Label().c_str());
   // Every program compiles (so none ran on the batch kernels instead), and enough of them keep more
-  // than 16 values alive that the spill path runs too.
-  std::printf("[ jit ] %d of %d random programs compiled, %d of them spilling registers\n", coverage.compiled,
-              RandomProgramCount(), coverage.spilling);
+  // values alive than there are registers that the spill path runs too.
+  std::printf("[ %s ] %d of %d random programs compiled, %d of them spilling registers\n", Label().c_str(),
+              coverage.compiled, RandomProgramCount(), coverage.spilling);
   EXPECT_EQ(coverage.compiled, RandomProgramCount());
   EXPECT_GT(coverage.spilling, RandomProgramCount() / 20);
 }

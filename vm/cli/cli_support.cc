@@ -60,13 +60,13 @@ Program LoadProgramOrFail(const std::string& path, const ProgramFlags& flags) {
 void EngineFlags::AddTo(CLI::App& command) {
   command.add_option("--engine", engine,
                      "Execution engine: ref (scalar reference), batch (SIMD kernels) or jit (the program compiled to "
-                     "AVX2 code; batch kernels on a CPU without AVX2)")
+                     "AVX-512 or AVX2 code; the batch kernels on a CPU without AVX2). All three give the same bits")
       ->check(CLI::IsMember({"ref", "reference", "batch", "jit"}))
       ->capture_default_str();
   command.add_option("--threads", threads, "Threads for the batch and jit engines")->check(CLI::Range(1, 256))->capture_default_str();
 }
 
-EngineKind EngineFlags::Kind() const { return EngineKindFromName(engine).value_or(EngineKind::kBatch); }
+EngineKind EngineFlags::Kind() const { return EngineKindFromName(engine).value_or(EngineKind::kJit); }
 
 void Fail(const std::string& message) {
   std::fprintf(stderr, "error: %s\n", message.c_str());

@@ -35,9 +35,9 @@ struct ProgramFlags {
 // there are errors.
 Program LoadProgramOrFail(const std::string& path, const ProgramFlags& flags);
 
-// "--engine ref|batch|jit" (batch by default) and "--threads N".
+// "--engine ref|batch|jit" (jit by default: batch kernels where the CPU has no AVX2) and "--threads N".
 struct EngineFlags {
-  std::string engine = "batch";
+  std::string engine = "jit";
   int threads = 1;
   void AddTo(CLI::App& command);
   EngineKind Kind() const;
