@@ -46,10 +46,11 @@ inline const ProjectionFixture& SkyFixture(int face_size) {
   return *slot;
 }
 
-// The baseline projection: for every full-resolution texel, its direction, the nine basis functions
-// and its exact solid angle are computed on the spot, and radiance x basis x solid angle is summed
-// in double, one texel at a time.
-inline irradiance::Sh9Rgb ProjectScalarDouble(const irradiance::CubeMap& env) {
+// Radiance x basis x solid angle summed in double, one full-resolution texel at a time, with each
+// texel's direction and nine basis values computed on the spot; `solid_angle(x, y, size)` gives the
+// texel's solid angle (the same on every face).
+template <class SolidAngle>
+irradiance::Sh9Rgb ProjectTexelByTexel(const irradiance::CubeMap& env, SolidAngle solid_angle) {
   irradiance::Sh9Rgb sh;
   const int size = env.face_size;
   for (irradiance::CubeFace face : irradiance::kAllCubeFaces) {
@@ -58,7 +59,7 @@ inline irradiance::Sh9Rgb ProjectScalarDouble(const irradiance::CubeMap& env) {
       for (int x = 0; x < size; ++x) {
         const glm::dvec3 direction = irradiance::TexelDirection(face, x, y, size);
         const std::array<double, irradiance::kSh9Coefficients> basis = irradiance::ShBasis(direction);
-        const glm::dvec3 weighted = glm::dvec3(image.at(x, y)) * irradiance::TexelSolidAngle(x, y, size);
+        const glm::dvec3 weighted = glm::dvec3(image.at(x, y)) * solid_angle(x, y, size);
         for (int i = 0; i < irradiance::kSh9Coefficients; ++i) sh.coefficients[i] += weighted * basis[i];
       }
     }
@@ -66,30 +67,22 @@ inline irradiance::Sh9Rgb ProjectScalarDouble(const irradiance::CubeMap& env) {
   return sh;
 }
 
+// The obvious baseline: every texel's exact solid angle (four atan2) is computed on the spot too.
+inline irradiance::Sh9Rgb ProjectScalarDouble(const irradiance::CubeMap& env) {
+  return ProjectTexelByTexel(env, [](int x, int y, int size) { return irradiance::TexelSolidAngle(x, y, size); });
+}
+
 // The fair baseline: the precomputation the fast path reads (the exact solid angle of each texel of
 // a face, BasisPyramid::finest.q, built once outside the timed loop, as it is for ProjectLevel), used
-// by a plain scalar loop: each texel's direction and nine basis values are computed on the spot
-// (a normalisation and a polynomial, as level 0 evaluates them from texel coordinates), and
-// radiance x basis x solid angle is summed in double, texel by texel. It leaves out what
+// by a plain scalar loop: direction and basis per texel on the spot (a normalisation and a
+// polynomial, as level 0 evaluates them from texel coordinates). It leaves out what
 // ProjectScalarDouble recomputes every call (four atan2 per texel for the solid angle) and what
 // ProjectLevel adds (SIMD float moments per row). BM_BasisPyramidBuild times the one-off build.
 inline irradiance::Sh9Rgb ProjectPlainLoop(const irradiance::CubeMap& env, const irradiance::FinestWeights& finest) {
-  const int size = env.face_size;
-  assert(finest.q.size() == static_cast<std::size_t>(size) * size);
-  irradiance::Sh9Rgb sh;
-  for (irradiance::CubeFace face : irradiance::kAllCubeFaces) {
-    const irradiance::Image& image = env.face(face);
-    for (int y = 0; y < size; ++y) {
-      for (int x = 0; x < size; ++x) {
-        const glm::dvec3 direction = irradiance::TexelDirection(face, x, y, size);
-        const std::array<double, irradiance::kSh9Coefficients> basis = irradiance::ShBasis(direction);
-        const double solid_angle = finest.q[static_cast<std::size_t>(y) * size + x];
-        const glm::dvec3 weighted = glm::dvec3(image.at(x, y)) * solid_angle;
-        for (int i = 0; i < irradiance::kSh9Coefficients; ++i) sh.coefficients[i] += weighted * basis[i];
-      }
-    }
-  }
-  return sh;
+  assert(finest.q.size() == static_cast<std::size_t>(env.face_size) * env.face_size);
+  return ProjectTexelByTexel(env, [&finest](int x, int y, int size) {
+    return static_cast<double>(finest.q[static_cast<std::size_t>(y) * size + x]);
+  });
 }
 
 }  // namespace vs11::bench
