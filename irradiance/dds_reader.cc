@@ -55,7 +55,6 @@ constexpr std::uint32_t kPixelFormatRgb = 0x40;         // DDPF_RGB
 constexpr std::uint32_t kPixelFormatLuminance = 0x20000;  // DDPF_LUMINANCE
 constexpr std::uint32_t kCaps2Cubemap = 0x200;          // DDSCAPS2_CUBEMAP
 constexpr std::uint32_t kCaps2AllFaces = 0xfc00;        // DDSCAPS2_CUBEMAP_POSITIVEX .. NEGATIVEZ
-constexpr std::uint32_t kCaps2FirstFace = 0x400;
 constexpr std::uint32_t kCaps2Volume = 0x200000;        // DDSCAPS2_VOLUME
 constexpr std::uint32_t kMiscTextureCube = 0x4;         // D3D11_RESOURCE_MISC_TEXTURECUBE
 constexpr std::uint32_t kDimensionTexture2D = 3;        // D3D10_RESOURCE_DIMENSION_TEXTURE2D

@@ -87,7 +87,9 @@ void ReadNpyInputs(const VertexSourceFlags& flags, mesh::RegisterData& supplied)
     std::vector<Vec4f> rows(result.array->rows);
     for (std::size_t i = 0; i < rows.size(); ++i) rows[i] = result.array->Row(i);
     WarnNonFinite(file, rows);
-    std::erase_if(supplied, [&](const auto& entry) { return entry.first == reg; });
+    // A structured binding cannot be captured before C++20's P1091 (clang 14 lacks it).
+    const auto& target = reg;
+    std::erase_if(supplied, [&target](const auto& entry) { return entry.first == target; });
     supplied.emplace_back(reg, std::move(rows));
   }
 }
