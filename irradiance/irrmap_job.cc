@@ -631,7 +631,7 @@ std::optional<std::string> RunIrrmap(const IrrmapOptions& options, IrrmapReport&
   if (options.mesh) {
     lighting = Timed(report, "mesh", [&] {
       MeshLightingOptions mesh_options{checked.engine, engine_options, checked.threads, options.mesh_truth_vertex_limit,
-                                       kMeshPanelSize};
+                                       options.mesh_panel_size};
       return LightMesh(*options.mesh, *program, report.constants, mips->levels[0], mesh_options);
     });
     for (std::string& warning : lighting.warnings) report.warnings.push_back(std::move(warning));

@@ -113,6 +113,7 @@ struct IrrmapOptions {
   // its statistics under "mesh" in coeffs.json.
   std::optional<MeshGeometry> mesh;
   std::size_t mesh_truth_vertex_limit = kDefaultMeshTruthVertexLimit;
+  int mesh_panel_size = kMeshPanelSize;  // pixels of each of mesh.png's three panels
 };
 
 // The mesh's line in coeffs.json ("mesh": {...}).
