@@ -25,7 +25,9 @@
 #include <cmath>
 #include <cstdio>
 #include <cstring>
+#include <filesystem>
 #include <fstream>
+#include <iterator>
 #include <functional>
 #include <memory>
 #include <optional>
@@ -206,8 +208,10 @@ json Agreement(const Case& c, const std::vector<float>& gl_outputs) {
   const int stride = OutputFloats(*c.spec);
   double worst = 0.0, worst_abs = 0.0;
   std::size_t identical = 0, total = 0;
+  json by_output = json::object();
   int offset = 0;
   for (const OutputBinding& output : c.spec->outputs) {
+    const std::size_t identical_before = identical;
     for (int lane = 0; lane < output.components; ++lane) {
       const float* ours = c.vs11_outputs.lane(static_cast<int>(output.slot), lane);
       for (std::size_t v = 0; v < count; ++v) {
@@ -220,10 +224,13 @@ json Agreement(const Case& c, const std::vector<float>& gl_outputs) {
       }
     }
     offset += output.components;
+    by_output[output.varying] = static_cast<double>(identical - identical_before) /
+                                static_cast<double>(count * static_cast<std::size_t>(output.components));
   }
   return {{"max_scaled_difference", worst},
           {"max_abs_difference", worst_abs},
-          {"identical_fraction", static_cast<double>(identical) / static_cast<double>(total)}};
+          {"identical_fraction", static_cast<double>(identical) / static_cast<double>(total)},
+          {"identical_fraction_by_output", by_output}};
 }
 
 // A timed workload: `run(calls)` processes every vertex `calls` times.
@@ -263,6 +270,9 @@ json Measure(const std::vector<Case>& cases, std::optional<int> lp_threads, int 
     return {{"error", fmt::format("GL_RENDERER is '{}', not llvmpipe", *renderer)}, {"renderer", *renderer}};
   }
   json result = {{"renderer", *renderer}, {"programs", json::array()}};
+  // llvmpipe starts its rasteriser threads with the context: the count shows LP_NUM_THREADS at work.
+  result["process_threads"] = std::distance(std::filesystem::directory_iterator("/proc/self/task"),
+                                            std::filesystem::directory_iterator());
   for (const Case& c : cases) {
     const std::vector<GlAttribute> attributes = Attributes(c);
     std::vector<std::string> varyings;
@@ -362,7 +372,10 @@ bool PrintReport(const json& report) {
   fmt::print("shading = llvmpipe - passthrough; e2e = llvmpipe / vs11 jit; speed-up = shading / vs11 jit\n");
   for (const json& setting : report["settings"]) {
     fmt::print("\nllvmpipe, LP_NUM_THREADS={}: {}\n\n", ThreadsLabel(setting),
-               setting.contains("renderer") ? setting["renderer"].get<std::string>() : "no renderer");
+               setting.contains("renderer") ? fmt::format("{}, {} threads in its process",
+                                                          setting["renderer"].get<std::string>(),
+                                                          setting["process_threads"].get<int>())
+                                            : "no renderer");
     fmt::print("| vertices | program | llvmpipe | passthrough | shading | vs11 jit | vs11 batch | e2e | speed-up | goal "
                "| max scaled diff | bit-equal |\n|---|---|---|---|---|---|---|---|---|---|---|---|\n");
     for (const json& row : setting["rows"]) {
@@ -412,7 +425,9 @@ int Run(const Options& options) {
       fmt::print(stderr, "compare_llvmpipe: {} vertices, llvmpipe with LP_NUM_THREADS={}\n", count,
                  ThreadsLabel(setting));
       const json results = InChild([&] { return Measure(cases, threads, options.repetitions); });
-      if (results.contains("renderer")) setting["renderer"] = results["renderer"];
+      for (const char* key : {"renderer", "process_threads"}) {
+        if (results.contains(key)) setting[key] = results[key];
+      }
       for (std::size_t i = 0; i < cases.size(); ++i) {
         json row = {{"vertices", count}, {"program", cases[i].spec->name}, {"goal", cases[i].spec->goal}};
         if (results.contains("error")) {
