@@ -462,12 +462,16 @@ int main(int argc, char** argv) {
   vs11::bench::llvmpipe::Options options;
   CLI::App app{"vs11 against Mesa's llvmpipe: the paper's vertex program, directional_light and skinning on the "
                "same inputs, timed side by side (ns per vertex) and their outputs compared"};
-  app.add_option("--vertices", options.vertices, "vertex counts to run")->check(CLI::Range(1, 1 << 24));
+  app.add_option("--vertices", options.vertices, "vertex counts to run")
+      ->check(CLI::Range(1, 1 << 24))
+      ->capture_default_str();
   app.add_option("--repetitions", options.repetitions, "timed repetitions per figure (the median is reported)")
-      ->check(CLI::Range(1, 1000));
+      ->check(CLI::Range(1, 1000))
+      ->capture_default_str();
   app.add_option("--tolerance", options.tolerance,
                  "largest |llvmpipe - vs11| / max(1, |vs11|) accepted on any output lane")
-      ->check(CLI::PositiveNumber);
+      ->check(CLI::PositiveNumber)
+      ->capture_default_str();
   app.add_option("--json", options.json_path, "also write every figure to this JSON file");
   app.footer("Exit status: 0 success, 1 llvmpipe unavailable or its outputs out of tolerance, 2 a usage error.\n\n"
              "Examples:\n"
