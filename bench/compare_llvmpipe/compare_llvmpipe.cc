@@ -13,16 +13,17 @@
 //
 // Times are ns per vertex, medians of --repetitions, each repetition at least 2^20 vertices (many
 // draws or Run calls for the small counts), after one untimed warm-up repetition; a llvmpipe
-// repetition ends with glFinish. The four workloads of a program take turns, one repetition each per
+// repetition ends with glFinish. --cpu-time measures the CPU time of the whole process instead of
+// wall time. The four workloads of a program take turns, one repetition each per
 // round; the shading alone is the median of the rounds' (llvmpipe - passthrough). llvmpipe's outputs are read back once per program and compared
 // with vs11's jit outputs: the largest |difference| / max(1, |vs11|) over every output lane must stay
 // within --tolerance.
 
 #include <sys/wait.h>
+#include <time.h>
 #include <unistd.h>
 
 #include <algorithm>
-#include <chrono>
 #include <cmath>
 #include <cstdio>
 #include <cstring>
@@ -245,24 +246,31 @@ double Median(std::vector<double> values) {
   return values[values.size() / 2];
 }
 
+// Wall time, or the CPU time of every thread of the process (llvmpipe's included), in ns. On a
+// machine shared beyond its cores, CPU time leaves out the time the process waits for a core.
+double NowNs(bool cpu_time) {
+  timespec now{};
+  clock_gettime(cpu_time ? CLOCK_PROCESS_CPUTIME_ID : CLOCK_MONOTONIC, &now);
+  return static_cast<double>(now.tv_sec) * 1e9 + static_cast<double>(now.tv_nsec);
+}
+
 // Times the workloads in turns (one repetition of each per round, after one untimed round), so that
 // the machine's changing load falls on all of them alike; samples[r] is round r's ns per vertex.
-void TimeInTurns(std::vector<Timed>& workloads, std::size_t count, int repetitions) {
+void TimeInTurns(std::vector<Timed>& workloads, std::size_t count, int repetitions, bool cpu_time) {
   const int calls = static_cast<int>(std::max<std::size_t>(1, kVerticesPerRepetition / count));
   for (Timed& w : workloads) w.run(calls);
   for (int r = 0; r < repetitions; ++r) {
     for (Timed& w : workloads) {
-      const auto start = std::chrono::steady_clock::now();
+      const double start = NowNs(cpu_time);
       w.run(calls);
-      const std::chrono::duration<double, std::nano> elapsed = std::chrono::steady_clock::now() - start;
-      w.samples.push_back(elapsed.count() / (static_cast<double>(calls) * static_cast<double>(count)));
+      w.samples.push_back((NowNs(cpu_time) - start) / (static_cast<double>(calls) * static_cast<double>(count)));
     }
   }
 }
 
 // In the child: for every case, llvmpipe's agreement with vs11, then llvmpipe's shader, its
 // passthrough, vs11's jit and vs11's batch engine timed in turns. {"error": ...} when anything fails.
-json Measure(const std::vector<Case>& cases, std::optional<int> lp_threads, int repetitions) {
+json Measure(const std::vector<Case>& cases, std::optional<int> lp_threads, int repetitions, bool cpu_time) {
   std::string error;
   const std::optional<std::string> renderer = CreateLlvmpipeContext(lp_threads, error);
   if (!renderer) return {{"error", "cannot create the llvmpipe context: " + error}};
@@ -301,7 +309,7 @@ json Measure(const std::vector<Case>& cases, std::optional<int> lp_threads, int 
     };
     std::vector<Timed> workloads = {{draw(*shaded), {}}, {draw(*passthrough), {}},
                                     {engine_run(EngineKind::kJit), {}}, {engine_run(EngineKind::kBatch), {}}};
-    TimeInTurns(workloads, c.inputs.count(), repetitions);
+    TimeInTurns(workloads, c.inputs.count(), repetitions, cpu_time);
     if (!drawn) return {{"error", fmt::format("{}: {}", c.spec->name, error)}};
     entry["llvmpipe"] = Median(workloads[0].samples);
     entry["passthrough"] = Median(workloads[1].samples);
@@ -352,6 +360,7 @@ json InChild(Measure&& measure) {
 struct Options {
   std::vector<std::size_t> vertices = {1024, 65536, 1048576};
   int repetitions = 15;
+  bool cpu_time = false;
   double tolerance = 1e-5;
   std::string json_path;
 };
@@ -372,8 +381,9 @@ std::string LoadAverage() {
 bool PrintReport(const json& report) {
   const double tolerance = report["tolerance"];
   bool ok = true;
-  fmt::print("vs11 jit ISA: {}; load average at the start: {}; ns per vertex, medians of {}\n",
-             report["isa"].get<std::string>(), report["load"].get<std::string>(), report["repetitions"].get<int>());
+  fmt::print("vs11 jit ISA: {}; load average at the start: {}; ns per vertex ({}), medians of {}\n",
+             report["isa"].get<std::string>(), report["load"].get<std::string>(), report["clock"].get<std::string>(),
+             report["repetitions"].get<int>());
   fmt::print("shading = median over rounds of (llvmpipe - passthrough); e2e = llvmpipe / vs11 jit; "
              "speed-up = shading / vs11 jit\n");
   for (const json& setting : report["settings"]) {
@@ -411,6 +421,7 @@ int Run(const Options& options) {
   json report = {{"isa", isas.empty() ? std::string("none (batch kernels)") : std::string(jit::IsaName(isas.back()))},
                  {"load", LoadAverage()},
                  {"repetitions", options.repetitions},
+                 {"clock", options.cpu_time ? "process CPU time" : "wall"},
                  {"tolerance", options.tolerance},
                  {"settings", json::array({{{"lp_threads", 1}}, {{"lp_threads", nullptr}}})}};
   for (json& setting : report["settings"]) setting["rows"] = json::array();
@@ -430,7 +441,7 @@ int Run(const Options& options) {
           setting["lp_threads"].is_null() ? std::nullopt : std::optional<int>(setting["lp_threads"].get<int>());
       fmt::print(stderr, "compare_llvmpipe: {} vertices, llvmpipe with LP_NUM_THREADS={}\n", count,
                  ThreadsLabel(setting));
-      const json results = InChild([&] { return Measure(cases, threads, options.repetitions); });
+      const json results = InChild([&] { return Measure(cases, threads, options.repetitions, options.cpu_time); });
       for (const char* key : {"renderer", "process_threads"}) {
         if (results.contains(key)) setting[key] = results[key];
       }
@@ -472,6 +483,9 @@ int main(int argc, char** argv) {
                  "largest |llvmpipe - vs11| / max(1, |vs11|) accepted on any output lane")
       ->check(CLI::PositiveNumber)
       ->capture_default_str();
+  app.add_flag("--cpu-time", options.cpu_time,
+               "time by the process's CPU time (every thread) instead of wall time: steadier on a machine shared "
+               "beyond its cores");
   app.add_option("--json", options.json_path, "also write every figure to this JSON file");
   app.footer("Exit status: 0 success, 1 llvmpipe unavailable or its outputs out of tolerance, 2 a usage error.\n\n"
              "Examples:\n"
