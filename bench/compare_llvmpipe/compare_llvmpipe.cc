@@ -298,7 +298,7 @@ json Measure(const std::vector<Case>& cases, std::optional<int> lp_threads, int 
 
     bool drawn = true;
     const auto draw = [&](TransformFeedbackRun& run) {
-      return [&](int calls) { drawn = run.Draw(calls, error) && drawn; };
+      return [&drawn, &error, target = &run](int calls) { drawn = target->Draw(calls, error) && drawn; };
     };
     VertexArrays vs11_outputs = MakeOutputArrays(c.inputs.count(), *c.program);
     const auto engine_run = [&](EngineKind kind) {
