@@ -147,6 +147,7 @@ constexpr NotRun kNotRun[] = {
     {"build-asan/", "needs the sanitizer build"},
     {"cmake ", "configures or builds the project itself"},
     {"build/bench/vs11_bench", "a benchmark run: minutes"},
+    {"build/bench/vs11_compare_llvmpipe --cpu-time", "the full llvmpipe comparison: minutes"},
     {"python3 bench/compare_cmgen.py", "needs Filament's cmgen and minutes"},
     {"irrmap stability", "about a minute of work on two cores; tests/irradiance/stability_test.cc covers it"},
 };

@@ -1,0 +1,225 @@
+#include "bench/compare_llvmpipe/gl_runner.h"
+
+#include <EGL/egl.h>
+#include <EGL/eglext.h>
+#include <GLES3/gl3.h>
+
+#include <cstdlib>
+#include <cstring>
+
+#include <fmt/format.h>
+
+namespace vs11::bench::llvmpipe {
+namespace {
+
+bool HasExtension(const char* list, const char* name) {
+  if (list == nullptr) return false;
+  const std::size_t length = std::strlen(name);
+  for (const char* p = std::strstr(list, name); p != nullptr; p = std::strstr(p + 1, name)) {
+    if ((p == list || p[-1] == ' ') && (p[length] == ' ' || p[length] == '\0')) return true;
+  }
+  return false;
+}
+
+std::string EglErrorText(const char* call) { return fmt::format("{} failed (EGL error 0x{:04X})", call, eglGetError()); }
+
+bool GlOk(const char* what, std::string& error) {
+  const GLenum code = glGetError();
+  if (code == GL_NO_ERROR) return true;
+  error = fmt::format("{}: GL error 0x{:04X}", what, code);
+  return false;
+}
+
+GLuint CompileShader(GLenum kind, const std::string& source, std::string& error) {
+  const GLuint shader = glCreateShader(kind);
+  const char* text = source.c_str();
+  glShaderSource(shader, 1, &text, nullptr);
+  glCompileShader(shader);
+  GLint ok = GL_FALSE;
+  glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
+  if (ok == GL_TRUE) return shader;
+  char log[2048] = {};
+  glGetShaderInfoLog(shader, sizeof log, nullptr, log);
+  error = fmt::format("shader does not compile: {}", log);
+  glDeleteShader(shader);
+  return 0;
+}
+
+// ES 3.0 needs a fragment shader to link a program, even when rasterisation is discarded.
+constexpr char kFragmentSource[] = "#version 300 es\nprecision highp float;\nout vec4 colour;\n"
+                                   "void main() { colour = vec4(0.0); }\n";
+
+}  // namespace
+
+std::optional<std::string> CreateLlvmpipeContext(std::optional<int> lp_threads, std::string& error) {
+  setenv("LIBGL_ALWAYS_SOFTWARE", "1", 1);
+  setenv("GALLIUM_DRIVER", "llvmpipe", 1);
+  if (lp_threads) {
+    setenv("LP_NUM_THREADS", std::to_string(*lp_threads).c_str(), 1);
+  } else {
+    unsetenv("LP_NUM_THREADS");
+  }
+  const char* client_extensions = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
+  if (!HasExtension(client_extensions, "EGL_MESA_platform_surfaceless")) {
+    error = "EGL has no EGL_MESA_platform_surfaceless (is Mesa's libegl-mesa0 installed?)";
+    return std::nullopt;
+  }
+  EGLDisplay display = eglGetPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
+  if (display == EGL_NO_DISPLAY) {
+    error = EglErrorText("eglGetPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA)");
+    return std::nullopt;
+  }
+  EGLint major = 0, minor = 0;
+  if (eglInitialize(display, &major, &minor) != EGL_TRUE) {
+    error = EglErrorText("eglInitialize on the surfaceless platform");
+    return std::nullopt;
+  }
+  const char* display_extensions = eglQueryString(display, EGL_EXTENSIONS);
+  for (const char* needed : {"EGL_KHR_no_config_context", "EGL_KHR_surfaceless_context"}) {
+    if (!HasExtension(display_extensions, needed)) {
+      error = fmt::format("the surfaceless EGL display lacks {}", needed);
+      return std::nullopt;
+    }
+  }
+  if (eglBindAPI(EGL_OPENGL_ES_API) != EGL_TRUE) {
+    error = EglErrorText("eglBindAPI(EGL_OPENGL_ES_API)");
+    return std::nullopt;
+  }
+  const EGLint context_attributes[] = {EGL_CONTEXT_MAJOR_VERSION, 3, EGL_CONTEXT_MINOR_VERSION, 0, EGL_NONE};
+  EGLContext context = eglCreateContext(display, EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT, context_attributes);
+  if (context == EGL_NO_CONTEXT) {
+    error = EglErrorText("eglCreateContext (OpenGL ES 3.0)");
+    return std::nullopt;
+  }
+  if (eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, context) != EGL_TRUE) {
+    error = EglErrorText("eglMakeCurrent without a surface");
+    return std::nullopt;
+  }
+  GLuint framebuffer = 0, renderbuffer = 0;
+  glGenFramebuffers(1, &framebuffer);
+  glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
+  glGenRenderbuffers(1, &renderbuffer);
+  glBindRenderbuffer(GL_RENDERBUFFER, renderbuffer);
+  glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, 1, 1);
+  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, renderbuffer);
+  if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
+    error = "the 1x1 framebuffer object is not complete";
+    return std::nullopt;
+  }
+  glEnable(GL_RASTERIZER_DISCARD);
+  if (!GlOk("setting up the framebuffer", error)) return std::nullopt;
+  const char* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
+  return std::string(renderer != nullptr ? renderer : "(none)");
+}
+
+std::unique_ptr<TransformFeedbackRun> TransformFeedbackRun::Create(const std::string& vertex_source,
+                                                                   const std::vector<std::string>& varyings,
+                                                                   int output_floats,
+                                                                   const std::vector<GlAttribute>& attributes,
+                                                                   const std::vector<float>& constants,
+                                                                   std::string& error) {
+  std::unique_ptr<TransformFeedbackRun> run(new TransformFeedbackRun());
+  const GLuint vertex = CompileShader(GL_VERTEX_SHADER, vertex_source, error);
+  if (vertex == 0) return nullptr;
+  const GLuint fragment = CompileShader(GL_FRAGMENT_SHADER, kFragmentSource, error);
+  if (fragment == 0) return nullptr;
+  run->program_ = glCreateProgram();
+  glAttachShader(run->program_, vertex);
+  glAttachShader(run->program_, fragment);
+  std::vector<const char*> names;
+  for (const std::string& v : varyings) names.push_back(v.c_str());
+  glTransformFeedbackVaryings(run->program_, static_cast<GLsizei>(names.size()), names.data(), GL_INTERLEAVED_ATTRIBS);
+  glLinkProgram(run->program_);
+  glDeleteShader(vertex);
+  glDeleteShader(fragment);
+  GLint ok = GL_FALSE;
+  glGetProgramiv(run->program_, GL_LINK_STATUS, &ok);
+  if (ok != GL_TRUE) {
+    char log[2048] = {};
+    glGetProgramInfoLog(run->program_, sizeof log, nullptr, log);
+    error = fmt::format("program does not link: {}", log);
+    return nullptr;
+  }
+  glUseProgram(run->program_);
+  if (!constants.empty()) {
+    const GLint location = glGetUniformLocation(run->program_, "c");
+    if (location < 0) {
+      error = "the shader has no uniform vec4 c[]";
+      return nullptr;
+    }
+    glUniform4fv(location, static_cast<GLsizei>(constants.size() / 4), constants.data());
+  }
+
+  glGenVertexArrays(1, &run->vertex_array_);
+  glBindVertexArray(run->vertex_array_);
+  for (const GlAttribute& attribute : attributes) {
+    GLuint buffer = 0;
+    glGenBuffers(1, &buffer);
+    run->input_buffers_.push_back(buffer);
+    glBindBuffer(GL_ARRAY_BUFFER, buffer);
+    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(attribute.data.size() * sizeof(float)),
+                 attribute.data.data(), GL_STATIC_DRAW);
+    glVertexAttribPointer(static_cast<GLuint>(attribute.location), attribute.components, GL_FLOAT, GL_FALSE, 0,
+                          nullptr);
+    glEnableVertexAttribArray(static_cast<GLuint>(attribute.location));
+    run->vertex_count_ = attribute.data.size() / static_cast<std::size_t>(attribute.components);
+  }
+  run->output_floats_ = output_floats;
+  glGenBuffers(1, &run->output_buffer_);
+  glBindBuffer(GL_TRANSFORM_FEEDBACK_BUFFER, run->output_buffer_);
+  glBufferData(GL_TRANSFORM_FEEDBACK_BUFFER,
+               static_cast<GLsizeiptr>(run->vertex_count_ * static_cast<std::size_t>(output_floats) * sizeof(float)),
+               nullptr, GL_STREAM_READ);
+  glGenQueries(1, &run->query_);
+  if (!GlOk("creating the buffers", error)) return nullptr;
+  return run;
+}
+
+TransformFeedbackRun::~TransformFeedbackRun() {
+  glDeleteQueries(1, &query_);
+  glDeleteBuffers(1, &output_buffer_);
+  glDeleteBuffers(static_cast<GLsizei>(input_buffers_.size()), input_buffers_.data());
+  glDeleteVertexArrays(1, &vertex_array_);
+  glDeleteProgram(program_);
+}
+
+bool TransformFeedbackRun::Draw(int draws, std::string& error) {
+  glUseProgram(program_);
+  glBindVertexArray(vertex_array_);
+  glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, output_buffer_);
+  for (int i = 0; i < draws; ++i) {
+    glBeginTransformFeedback(GL_POINTS);
+    glDrawArrays(GL_POINTS, 0, static_cast<GLsizei>(vertex_count_));
+    glEndTransformFeedback();
+  }
+  glFinish();
+  return GlOk("drawing with transform feedback", error);
+}
+
+std::optional<std::vector<float>> TransformFeedbackRun::DrawAndRead(std::string& error) {
+  glBeginQuery(GL_TRANSFORM_FEEDBACK_PRIMITIVES_WRITTEN, query_);
+  if (!Draw(1, error)) return std::nullopt;
+  glEndQuery(GL_TRANSFORM_FEEDBACK_PRIMITIVES_WRITTEN);
+  GLuint written = 0;
+  glGetQueryObjectuiv(query_, GL_QUERY_RESULT, &written);
+  if (written != vertex_count_) {
+    error = fmt::format("transform feedback wrote {} of {} vertices", written, vertex_count_);
+    return std::nullopt;
+  }
+  const std::size_t floats = vertex_count_ * static_cast<std::size_t>(output_floats_);
+  glBindBuffer(GL_TRANSFORM_FEEDBACK_BUFFER, output_buffer_);
+  const void* mapped = glMapBufferRange(GL_TRANSFORM_FEEDBACK_BUFFER, 0,
+                                        static_cast<GLsizeiptr>(floats * sizeof(float)), GL_MAP_READ_BIT);
+  if (mapped == nullptr) {
+    GlOk("glMapBufferRange", error);
+    if (error.empty()) error = "glMapBufferRange returned no pointer";
+    return std::nullopt;
+  }
+  std::vector<float> outputs(floats);
+  std::memcpy(outputs.data(), mapped, floats * sizeof(float));
+  glUnmapBuffer(GL_TRANSFORM_FEEDBACK_BUFFER);
+  if (!GlOk("reading the transform-feedback buffer", error)) return std::nullopt;
+  return outputs;
+}
+
+}  // namespace vs11::bench::llvmpipe

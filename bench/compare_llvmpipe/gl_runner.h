@@ -1,0 +1,55 @@
+// Mesa's llvmpipe as a vertex-shader engine: an OpenGL ES 3.0 context on EGL's surfaceless platform,
+// and vertex shaders run over vertex buffers with transform feedback and GL_RASTERIZER_DISCARD.
+#pragma once
+
+#include <cstddef>
+#include <memory>
+#include <optional>
+#include <string>
+#include <vector>
+
+namespace vs11::bench::llvmpipe {
+
+// Creates the context and makes it current for the calling thread. llvmpipe is forced through the
+// environment (LIBGL_ALWAYS_SOFTWARE=1, GALLIUM_DRIVER=llvmpipe), which Mesa reads when the display
+// is initialised; `lp_threads`, when set, goes to LP_NUM_THREADS the same way. A surfaceless context
+// has no default framebuffer, so a 1x1 framebuffer object is bound: without one every draw fails with
+// GL_INVALID_FRAMEBUFFER_OPERATION. Returns GL_RENDERER, or nullopt with `error` set.
+std::optional<std::string> CreateLlvmpipeContext(std::optional<int> lp_threads, std::string& error);
+
+// One vertex attribute: `components` floats per vertex, vertex after vertex, at `location`.
+struct GlAttribute {
+  int location = 0;
+  int components = 4;
+  std::vector<float> data;
+};
+
+// A linked program with its inputs in buffers and a transform-feedback buffer for its outputs
+// (`varyings`, interleaved, `output_floats` floats per vertex).
+class TransformFeedbackRun {
+ public:
+  // Compiles and links; nullopt with `error` holding the info log on failure.
+  static std::unique_ptr<TransformFeedbackRun> Create(const std::string& vertex_source,
+                                                      const std::vector<std::string>& varyings, int output_floats,
+                                                      const std::vector<GlAttribute>& attributes,
+                                                      const std::vector<float>& constants, std::string& error);
+  ~TransformFeedbackRun();
+  TransformFeedbackRun(const TransformFeedbackRun&) = delete;
+  TransformFeedbackRun& operator=(const TransformFeedbackRun&) = delete;
+
+  // Issues `draws` draws of every vertex, then waits for them (glFinish). False with `error` set
+  // when GL reports an error.
+  bool Draw(int draws, std::string& error);
+  // Draws once, checks that every vertex reached the buffer, and returns the outputs (output_floats
+  // per vertex); nullopt with `error` set otherwise.
+  std::optional<std::vector<float>> DrawAndRead(std::string& error);
+
+ private:
+  TransformFeedbackRun() = default;
+  unsigned program_ = 0, vertex_array_ = 0, output_buffer_ = 0, query_ = 0;
+  std::vector<unsigned> input_buffers_;
+  std::size_t vertex_count_ = 0;
+  int output_floats_ = 0;
+};
+
+}  // namespace vs11::bench::llvmpipe
