@@ -492,6 +492,12 @@ MeshLoadResult FromScene(const aiScene* scene, Assimp::Importer& importer, const
   auto assimp_error = [&] {
     std::string reason = importer.GetErrorString();
     if (reason.empty()) reason = "Assimp could not read it";
+    // Assimp turns every exception into its message; a corrupt size field makes some readers ask
+    // for tens of gigabytes (tests/fuzz/seeds/fuzz_mesh/*_allocates_*).
+    if (reason == "std::bad_alloc") {
+      reason = "Assimp ran out of memory reading it (std::bad_alloc): the file is corrupt, or needs more than "
+               "the loader's memory limit";
+    }
     return MeshLoadResult{std::nullopt, fmt::format("{}: {}", name, reason)};
   };
   if (scene == nullptr) return assimp_error();

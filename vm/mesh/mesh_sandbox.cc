@@ -57,6 +57,7 @@ void WriteAll(const char* data, std::size_t size) {
   }
 }
 
+#ifndef VS11_UNDER_ASAN
 // The address space in use now (the limit is set above it: the parent's mappings stay).
 std::uintmax_t AddressSpaceInUse() {
   std::ifstream statm("/proc/self/statm");
@@ -64,6 +65,7 @@ std::uintmax_t AddressSpaceInUse() {
   statm >> pages;
   return pages * static_cast<std::uintmax_t>(sysconf(_SC_PAGESIZE));
 }
+#endif
 
 void PrepareChild(int write_fd, std::uintmax_t memory_limit) {
   for (int signal = 1; signal < NSIG; ++signal) {
@@ -212,8 +214,10 @@ MeshLoadResult RunSandboxed(const std::string& name, std::uintmax_t input_bytes,
   for (;;) {
     const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now()).count();
     if (left <= 0) {
-      refusal = fmt::format("reading {} did not finish within {} s (the time limit; the file may be corrupt, or "
-                            "raise the limit with --mesh-timeout)", name, seconds);
+      const bool in_vs11 = DecodeChildReply(reply).last_stage == static_cast<char>(LoadStage::kVs11);
+      refusal = fmt::format("reading {} did not finish within {} s ({}; the file may be corrupt, or raise the "
+                            "time limit with --mesh-timeout)", name, seconds,
+                            in_vs11 ? "in vs11's conversion, after Assimp read it" : "in Assimp's reader");
       break;
     }
     pollfd wait_for = {fds[0], POLLIN, 0};
