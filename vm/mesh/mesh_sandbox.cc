@@ -95,6 +95,11 @@ void PrepareChild(int write_fd, std::uintmax_t memory_limit) {
 #endif
 }
 
+std::string OutOfMemory(std::uintmax_t memory_limit) {
+  return fmt::format("out of memory while reading it (the reading process may use {} MiB more than the tool)",
+                     memory_limit >> 20);
+}
+
 [[noreturn]] void RunChild(int write_fd, std::uintmax_t memory_limit,
                            const std::function<MeshLoadResult(const StageReporter&)>& load) {
   PrepareChild(write_fd, memory_limit);
@@ -105,11 +110,16 @@ void PrepareChild(int write_fd, std::uintmax_t memory_limit) {
       WriteAll(&byte, 1);
     });
   } catch (const std::bad_alloc&) {
-    result = {std::nullopt, "out of memory while reading it (the limit is MeshLoadOptions::memory_limit_bytes)"};
+    result = {std::nullopt, OutOfMemory(memory_limit)};
   } catch (const std::exception& e) {
     result = {std::nullopt, fmt::format("reading it failed: {}", e.what())};
   }
-  const std::string record = EncodeReplyRecord(result);
+  std::string record;
+  try {
+    record = EncodeReplyRecord(result);
+  } catch (const std::bad_alloc&) {
+    record = EncodeReplyRecord({std::nullopt, OutOfMemory(memory_limit)});
+  }
   WriteAll(record.data(), record.size());
   _exit(0);
 }
