@@ -104,6 +104,7 @@ int main(int argc, char** argv) {
   std::string out_dir = options.out_dir.string();
   std::string font;
   std::string mesh_file;
+  double mesh_timeout = 0;
   int level = 0;
 
   CLI::App app{fmt::format(
@@ -166,6 +167,10 @@ int main(int argc, char** argv) {
   app.add_option("--mesh", mesh_file,
                  "also light this mesh (any format Assimp reads, with normals) as the paper's Fig. 3: mesh.ply "
                  "(8-bit vertex colours, tone mapped as mesh.png) and mesh.png (program | exact | relative error)");
+  app.add_option("--mesh-timeout", mesh_timeout,
+                 "stop reading --mesh after this many seconds (default 60 plus 1 per MiB): Assimp reads in a "
+                 "separate process, and some corrupt files make it loop")
+      ->check(CLI::PositiveNumber);
   app.add_option("--mesh-truth-limit", options.mesh_truth_vertex_limit,
                  "meshes with more vertices get no exact irradiance (0 = no limit)")
       ->capture_default_str();
@@ -194,7 +199,8 @@ int main(int argc, char** argv) {
   if (!mesh_file.empty()) {
     std::vector<std::string> mesh_warnings;
     options.mesh.emplace();
-    std::optional<std::string> mesh_error = vs11::irradiance::LoadMeshGeometry(mesh_file, *options.mesh, mesh_warnings);
+    std::optional<std::string> mesh_error =
+        vs11::irradiance::LoadMeshGeometry(mesh_file, *options.mesh, mesh_warnings, mesh_timeout);
     for (const std::string& warning : mesh_warnings) fmt::print(stderr, "irrmap: warning: {}\n", warning);
     if (mesh_error) {
       fmt::print(stderr, "irrmap: error: {}\n", *mesh_error);

@@ -10,8 +10,10 @@
 namespace vs11::irradiance {
 
 std::optional<std::string> LoadMeshGeometry(const std::string& path, MeshGeometry& geometry,
-                                            std::vector<std::string>& warnings) {
-  mesh::MeshLoadResult loaded = mesh::LoadMesh(path);
+                                            std::vector<std::string>& warnings, double timeout_seconds) {
+  mesh::MeshLoadOptions options;
+  options.timeout_seconds = timeout_seconds;
+  mesh::MeshLoadResult loaded = mesh::LoadMesh(path, options);
   if (!loaded.ok()) return loaded.error;
   auto source = std::make_shared<const mesh::Mesh>(std::move(*loaded.mesh));
   for (const std::string& warning : source->warnings) warnings.push_back(fmt::format("{}: {}", path, warning));

@@ -3,6 +3,7 @@
 //   CORPUS_DIR/fuzz_bytecode     the same programs assembled (without validation) to bytecode
 //   CORPUS_DIR/fuzz_environment  tiny images, one per layout and format (.hdr .exr .png .tif)
 //   CORPUS_DIR/fuzz_mesh         assimp-testmodels files under 16 KB
+//   CORPUS_DIR/fuzz_mesh_wire    the sandboxed mesh loader's replies for those that load
 //   CORPUS_DIR/fuzz_npy          .npy files of 1 to 4 columns
 // plus, for each target, the committed files in tests/fuzz/seeds/<target>/.
 #include <cctype>
@@ -12,6 +13,8 @@
 #include <vector>
 
 #include "irradiance/environment_io.h"
+#include "vm/mesh/mesh_io.h"
+#include "vm/mesh/mesh_wire.h"
 #include "vm/mesh/npy.h"
 #include "vm/assembler.h"
 #include "vm/bytecode.h"
@@ -100,6 +103,25 @@ bool WriteMeshSeeds(const fs::path& dir) {
   return count > 0;
 }
 
+// The sandboxed loader's replies (stage bytes and a record, mesh_wire.h) for the mesh seeds that
+// load, and one error reply.
+std::span<const std::uint8_t> AsBytes(const std::string& text) {
+  return {reinterpret_cast<const std::uint8_t*>(text.data()), text.size()};
+}
+
+bool WriteMeshReplySeeds(const fs::path& mesh_seeds, const fs::path& dir) {
+  int count = 0;
+  for (const auto& entry : fs::directory_iterator(mesh_seeds)) {
+    if (count == 24) break;
+    vs11::mesh::MeshLoadResult loaded = vs11::mesh::LoadMesh(entry.path());
+    if (!loaded.ok()) continue;
+    const std::string reply = "AVAV" + vs11::mesh::EncodeReplyRecord(loaded);
+    if (!WriteOrComplain(dir / ("reply" + std::to_string(count++) + ".bin"), AsBytes(reply))) return false;
+  }
+  const std::string error = "AV" + vs11::mesh::EncodeReplyRecord({std::nullopt, "the scene holds no mesh with vertices"});
+  return count > 0 && WriteOrComplain(dir / "error.bin", AsBytes(error));
+}
+
 bool WriteNpySeeds(const fs::path& dir) {
   bool ok = true;
   for (int columns = 1; columns <= 4; ++columns) {
@@ -119,7 +141,7 @@ int main(int argc, char** argv) {
   }
   fs::path source_dir = argv[1], corpus_dir = argv[2];
   bool ok = true;
-  for (const char* target : {"fuzz_assembler", "fuzz_bytecode", "fuzz_environment", "fuzz_mesh", "fuzz_npy"}) {
+  for (const char* target : {"fuzz_assembler", "fuzz_bytecode", "fuzz_environment", "fuzz_mesh", "fuzz_mesh_wire", "fuzz_npy"}) {
     fs::create_directories(corpus_dir / target);
     fs::path committed = source_dir / "tests" / "fuzz" / "seeds" / target;
     if (fs::is_directory(committed)) {
@@ -129,6 +151,7 @@ int main(int argc, char** argv) {
   ok &= WriteProgramSeeds(source_dir, corpus_dir);
   ok &= WriteImageSeeds(corpus_dir / "fuzz_environment");
   ok &= WriteMeshSeeds(corpus_dir / "fuzz_mesh");
+  ok &= WriteMeshReplySeeds(corpus_dir / "fuzz_mesh", corpus_dir / "fuzz_mesh_wire");
   ok &= WriteNpySeeds(corpus_dir / "fuzz_npy");
   return ok ? 0 : 1;
 }

@@ -2,7 +2,8 @@
 // --mesh` with programs/directional_light.vsh (dcl_position, dcl_normal). A model that loads with
 // normals must run and write one oD0 row per vertex; one without normals must be refused with the
 // --compute-normals hint; one that does not load must be refused with an error naming it. Nothing
-// may crash or hang (the process exits 0 or 1).
+// may crash or hang (the process exits 0 or 1). Models with normals but only points or lines run
+// here and are refused by irrmap --mesh (tests/irradiance/mesh_lighting_test.cc says which).
 #include <algorithm>
 #include <filesystem>
 #include <string>

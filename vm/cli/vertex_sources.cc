@@ -53,6 +53,7 @@ std::optional<mesh::Mesh> LoadBoundMesh(const VertexSourceFlags& flags, const Pr
   mesh::MeshLoadOptions options;
   options.compute_normals = flags.compute_normals;
   options.compute_tangents = flags.compute_tangents;
+  options.timeout_seconds = flags.mesh_timeout;
   mesh::MeshLoadResult loaded = mesh::LoadMesh(flags.mesh, options);
   if (!loaded.ok()) Fail(loaded.error);
   for (const std::string& warning : loaded.mesh->warnings) Warn(fmt::format("{}: {}", flags.mesh, warning));
@@ -225,6 +226,10 @@ void VertexSourceFlags::AddTo(CLI::App& command) {
   command.add_option("--mesh", mesh, "Vertices from a mesh file (OBJ, PLY, glTF/GLB, FBX, Collada, 3DS, ...)");
   command.add_option("--bind", binds, "Mesh attribute for an input register, e.g. v0=position,v3=normal,v7=texcoord0 "
                                       "(default: the program's dcl_* declarations)");
+  command.add_option("--mesh-timeout", mesh_timeout,
+                     "Stop reading --mesh after this many seconds (default 60 plus 1 per MiB): Assimp reads in a "
+                     "separate process, and some corrupt files make it loop")
+      ->check(CLI::PositiveNumber);
   command.add_flag("--compute-normals", compute_normals, "Generate smooth normals for meshes without them");
   command.add_flag("--compute-tangents", compute_tangents, "Generate tangents and binormals from texcoord0");
   command.add_option("--blend-index-scale", blend_index_scale,

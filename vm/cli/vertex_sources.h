@@ -19,6 +19,7 @@ struct VertexSourceFlags {
   std::vector<std::string> binds;
   bool compute_normals = false;
   bool compute_tangents = false;
+  double mesh_timeout = 0;  // seconds; 0 = the loader's default
   float blend_index_scale = 1.0f;
   std::string bone_palette;  // "c6"
   std::vector<std::string> npy_inputs;  // v#=FILE.npy

@@ -17,6 +17,8 @@
 #include <assimp/scene.h>
 #include <fmt/format.h>
 
+#include "vm/mesh/mesh_sandbox.h"
+
 namespace vs11::mesh {
 namespace {
 
@@ -486,17 +488,26 @@ std::optional<std::string> CheckSceneIndices(aiScene& scene) {
 
 // `scene` as read with no post-processing.
 MeshLoadResult FromScene(const aiScene* scene, Assimp::Importer& importer, const std::string& name,
-                         const MeshLoadOptions& options, AssimpMessages& messages) {
+                         const MeshLoadOptions& options, AssimpMessages& messages, const internal::StageReporter& report) {
   auto assimp_error = [&] {
     std::string reason = importer.GetErrorString();
     if (reason.empty()) reason = "Assimp could not read it";
+    // Assimp turns every exception into its message; a corrupt size field makes some readers ask
+    // for tens of gigabytes (tests/fuzz/seeds/fuzz_mesh/*_allocates_*).
+    if (reason == "std::bad_alloc") {
+      reason = "Assimp ran out of memory reading it (std::bad_alloc): the file is corrupt, or needs more than "
+               "the loader's memory limit";
+    }
     return MeshLoadResult{std::nullopt, fmt::format("{}: {}", name, reason)};
   };
   if (scene == nullptr) return assimp_error();
+  report(internal::LoadStage::kVs11);
   // The importer owns the scene and hands it out as const; the check repairs its primitive flags.
   if (std::optional<std::string> error = CheckSceneIndices(*const_cast<aiScene*>(scene))) return {std::nullopt, fmt::format("{}: {}", name, *error)};
+  report(internal::LoadStage::kAssimp);
   scene = importer.ApplyPostProcessing(PostProcessFlags(options));
   if (scene == nullptr) return assimp_error();
+  report(internal::LoadStage::kVs11);
   MeshLoadResult result = MeshBuilder(*scene, options).Build();
   if (!result.ok()) {
     result.error = fmt::format("{}: {}", name, result.error);
@@ -505,6 +516,13 @@ MeshLoadResult FromScene(const aiScene* scene, Assimp::Importer& importer, const
     warnings.insert(warnings.begin(), messages.messages.begin(), messages.messages.end());
   }
   return result;
+}
+
+// What is checked before Assimp sees a file: its size and the header counts above.
+std::optional<std::string> CheckBeforeAssimp(std::span<const std::uint8_t> head, std::uintmax_t size) {
+  if (size == 0) return "the file is empty";
+  if (size > kMaxMeshFileBytes) return fmt::format("{} bytes, over the {}-byte limit for mesh files", size, kMaxMeshFileBytes);
+  return CheckHeaderCounts({reinterpret_cast<const char*>(head.data()), head.size()}, size);
 }
 
 }  // namespace
@@ -537,35 +555,51 @@ MeshLoadResult LoadMesh(const std::filesystem::path& path, const MeshLoadOptions
   if (!std::filesystem::is_regular_file(path, error)) return {std::nullopt, name + ": no such file"};
   const std::uintmax_t size = std::filesystem::file_size(path, error);
   if (error) return {std::nullopt, fmt::format("{}: cannot read its size ({})", name, error.message())};
-  if (size == 0) return {std::nullopt, name + ": the file is empty"};
-  if (size > kMaxMeshFileBytes) {
-    return {std::nullopt, fmt::format("{}: {} bytes, over the {}-byte limit for mesh files", name, size, kMaxMeshFileBytes)};
-  }
+  std::vector<std::uint8_t> head(std::min<std::uintmax_t>(size, kHeaderBytes));
   {
     std::ifstream in(path, std::ios::binary);
-    std::string head(kHeaderBytes, '\0');
-    in.read(head.data(), static_cast<std::streamsize>(head.size()));
+    in.read(reinterpret_cast<char*>(head.data()), static_cast<std::streamsize>(head.size()));
     head.resize(static_cast<std::size_t>(in.gcount()));
-    if (std::optional<std::string> message = CheckHeaderCounts(head, size)) return {std::nullopt, name + ": " + *message};
   }
-  std::lock_guard lock(assimp_logger_mutex);
-  AssimpMessages messages;
-  Assimp::Importer importer;
-  const aiScene* scene = importer.ReadFile(name, 0);
-  return FromScene(scene, importer, name, options, messages);
+  if (std::optional<std::string> message = CheckBeforeAssimp(head, size)) return {std::nullopt, name + ": " + *message};
+  return internal::RunSandboxed(name, size, options, [&](const internal::StageReporter& report) {
+    return internal::LoadMeshInProcess(path, options, report);
+  });
 }
 
 MeshLoadResult LoadMeshFromMemory(std::span<const std::uint8_t> bytes, const std::string& format_hint,
                                   const MeshLoadOptions& options) {
   if (bytes.empty()) return {std::nullopt, "<memory>: no bytes"};
-  if (bytes.size() > kMaxMeshFileBytes) return {std::nullopt, "<memory>: over the size limit for mesh files"};
-  const std::string_view head(reinterpret_cast<const char*>(bytes.data()), std::min<std::size_t>(bytes.size(), kHeaderBytes));
-  if (std::optional<std::string> message = CheckHeaderCounts(head, bytes.size())) return {std::nullopt, "<memory>: " + *message};
+  if (std::optional<std::string> message = CheckBeforeAssimp(bytes.first(std::min(bytes.size(), kHeaderBytes)), bytes.size())) {
+    return {std::nullopt, "<memory>: " + *message};
+  }
+  return internal::RunSandboxed("<memory>", bytes.size(), options, [&](const internal::StageReporter& report) {
+    return internal::LoadMeshFromMemoryInProcess(bytes, format_hint, options, report);
+  });
+}
+
+namespace internal {
+
+// In the sandbox's child a single thread runs; the lock serves in-process callers (the fuzz target).
+MeshLoadResult LoadMeshInProcess(const std::filesystem::path& path, const MeshLoadOptions& options,
+                                 const StageReporter& report) {
   std::lock_guard lock(assimp_logger_mutex);
+  report(LoadStage::kAssimp);
+  AssimpMessages messages;
+  Assimp::Importer importer;
+  const aiScene* scene = importer.ReadFile(path.string(), 0);
+  return FromScene(scene, importer, path.string(), options, messages, report);
+}
+
+MeshLoadResult LoadMeshFromMemoryInProcess(std::span<const std::uint8_t> bytes, const std::string& format_hint,
+                                           const MeshLoadOptions& options, const StageReporter& report) {
+  std::lock_guard lock(assimp_logger_mutex);
+  report(LoadStage::kAssimp);
   AssimpMessages messages;
   Assimp::Importer importer;
   const aiScene* scene = importer.ReadFileFromMemory(bytes.data(), bytes.size(), 0, format_hint.c_str());
-  return FromScene(scene, importer, "<memory>", options, messages);
+  return FromScene(scene, importer, "<memory>", options, messages, report);
 }
 
+}  // namespace internal
 }  // namespace vs11::mesh
