@@ -80,7 +80,10 @@ VertexArrays::VertexArrays(std::size_t count, std::span<const int> registers, in
   for (int reg : registers) {
     if (reg >= 0 && reg < register_space && slot_of_[reg] < 0) slot_of_[reg] = slots++;
   }
-  data_.assign(static_cast<std::size_t>(slots) * 4 * count, 0.0f);
+  constexpr std::size_t kFloatsPerLine = 16;
+  stride_ = (count + kFloatsPerLine - 1) / kFloatsPerLine * kFloatsPerLine;
+  if (count > kFloatsPerLine && (stride_ / kFloatsPerLine) % 2 == 0) stride_ += kFloatsPerLine;
+  data_.assign(static_cast<std::size_t>(slots) * 4 * stride_, 0.0f);
   uniform_.assign(static_cast<std::size_t>(slots) * 4, 0.0f);
 }
 
