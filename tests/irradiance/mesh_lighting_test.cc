@@ -46,17 +46,7 @@ double ConstantTruthError(int face_size) {
 }
 
 
-class MeshLightingTest : public ::testing::Test {
- protected:
-  void SetUp() override {
-    dir_ = fs::path(::testing::TempDir()) /
-           ("vs11_mesh_lighting_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
-  }
-  void TearDown() override { fs::remove_all(dir_); }
-  fs::path dir_;
-};
+using MeshLightingTest = vs11::testing::ToolFolderTest;
 
 // The files are those tests/mesh/assimp_models_test.cc runs through `vs11 run --mesh`: every file
 // whose extension Assimp reads (IsMeshFileExtension, which includes the .xml of Ogre, Collada and

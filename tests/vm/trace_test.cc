@@ -38,26 +38,17 @@ constexpr const char* kMainSource =
 constexpr const char* kIncludedSource = "mov a0.x, c10.x\n";
 constexpr const char* kConstants = "c0 = 1 0 0 0\nc1 = 0 1 0 0\nc2 = 0 0 1 0\nc3 = 0 0 0 1\nc4 = 10 20 30 40\n";
 
-class TraceTest : public ::testing::Test {
+class TraceTest : public vs11::testing::ToolFolderTest {
  protected:
   void SetUp() override {
-    dir_ = fs::path(::testing::TempDir()) /
-           ("vs11_trace_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
+    ToolFolderTest::SetUp();
     main_ = Write("main.vsh", kMainSource);
     Write("step.inc", kIncludedSource);
     constants_ = Write("k.txt", kConstants);
     inputs_ = Write("v0.csv", "0,0,0,1\n1,2,3,4\n");
   }
-  void TearDown() override { fs::remove_all(dir_); }
-  std::string Write(const std::string& name, const std::string& text) {
-    std::ofstream(dir_ / name, std::ios::binary) << text;
-    return (dir_ / name).string();
-  }
   std::string RunArgs() const { return main_ + " --consts " + constants_ + " --input v0=" + inputs_; }
 
-  fs::path dir_;
   std::string main_, constants_, inputs_;
 };
 
