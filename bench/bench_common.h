@@ -16,11 +16,11 @@
 #include <string_view>
 #include <vector>
 
-#include "irradiance/program_references.h"
-#include "irradiance/sh9.h"
-#include "irradiance/verify.h"
-#include "vm/machine.h"
-#include "vm/program.h"
+#include "irradiance/report/program_references.h"
+#include "irradiance/report/verify.h"
+#include "irradiance/sh/sh9.h"
+#include "vm/core/machine.h"
+#include "vm/core/program.h"
 
 namespace vs11::bench {
 

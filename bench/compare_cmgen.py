@@ -56,7 +56,7 @@ import sys
 import time
 from pathlib import Path
 
-# (l, m) in our coefficient order (irradiance/sh9.h).
+# (l, m) in our coefficient order (irradiance/sh/sh9.h).
 LM = [(0, 0), (1, -1), (1, 0), (1, 1), (2, -2), (2, -1), (2, 0), (2, 1), (2, 2)]
 # Coefficients odd in x: y_lm(-x, y, z) = -y_lm(x, y, z) for x, xy, xz.
 ODD_IN_X = {(1, 1), (2, -2), (2, 1)}

@@ -18,9 +18,9 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
-#include "irradiance/environment_io.h"
-#include "irradiance/environments.h"
-#include "vm/program_file.h"
+#include "irradiance/io/environment_io.h"
+#include "irradiance/io/environments.h"
+#include "vm/asm/program_file.h"
 
 namespace {
 

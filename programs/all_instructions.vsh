@@ -1,7 +1,7 @@
 ; all_instructions.vsh - uses every vs_1_1 instruction at least once (nop mov add sub mad mul rcp rsq
 ; dp3 dp4 min max slt sge exp log lit dst frc m4x4 m4x3 m3x4 m3x3 m3x2 expp logp, plus dcl and def),
 ; each in a way whose result reaches an output, so that the reference (all_instructions in
-; irradiance/program_references.cc, the spec's formulas of section 3.3 in double) checks it.
+; irradiance/report/program_references.cc, the spec's formulas of section 3.3 in double) checks it.
 ;
 ; Inputs:    v0 = position (x, y, z, 1), v1 = normal (x, y, z, 1),
 ;            v2 = (u, v, s, t) with u in [-2, 3] and v in [0.1, 4]

@@ -10,7 +10,7 @@
 ; Outputs:   oPos, oD0 (rgba), oD1 (rgba)
 ; Constants: c0..c3 WORLDVIEWPROJ, c4..c6 WORLD (4x3), c7 L (unit, towards the light),
 ;            c8 EYE (world), c9 DIFFUSE, c10 SPECULAR, c11 AMBIENT, c12.w POWER (specular exponent)
-; Temporaries: r0..r5. Reference: directional_light (irradiance/program_references.cc).
+; Temporaries: r0..r5. Reference: directional_light (irradiance/report/program_references.cc).
 ; The exponent goes through lit's pow approximation (exp2(power log2 N.H)); the error stays well
 ; below the 1e-5 tolerance.
 ;

@@ -9,7 +9,7 @@
 ; Inputs:    v0 = position (x, y, z, 1)
 ; Outputs:   oPos, oFog
 ; Constants: c0..c3 WORLDVIEWPROJ, c4..c6 WORLDVIEW (4x3), c7 FOG = (0, k1, k2, 0)
-; Temporaries: r0..r4. Reference: fog (irradiance/program_references.cc).
+; Temporaries: r0..r4. Reference: fog (irradiance/report/program_references.cc).
 ;
 ; vs11: reference=fog
 ; vs11: position=v0

@@ -9,7 +9,7 @@
 ; Outputs:   oPos, oD0 (rgba)
 ; Constants: c0..c3 WORLDVIEWPROJ, c4..c6 WORLD (4x3, rotation with uniform scale + translation),
 ;            c7 LIGHT_POS (world), c8 ATTEN = (a0, a1, a2, 0), c9 DIFFUSE, c10 AMBIENT
-; Temporaries: r0..r6. Reference: point_light (irradiance/program_references.cc).
+; Temporaries: r0..r6. Reference: point_light (irradiance/report/program_references.cc).
 ;
 ; vs11: reference=point_light
 ; vs11: position=v0

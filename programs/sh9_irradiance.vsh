@@ -10,7 +10,7 @@
 ; Output:    oD0.rgb = E(n); oD0.a is not written. D3D clamps oD0 to [0, 1] after the shader; the
 ;            vs11 machine reports the raw (unclamped) value, which is what is verified here.
 ; Constants: c0..c6 = cAr cAg cAb cBr cBg cBb cC, the paper's Table 1 (PackTable1 in
-;            irradiance/sh9.h): cA = (c1 L11, c1 L1-1, c1 L10, c0 L00 - c3 L20),
+;            irradiance/sh/sh9.h): cA = (c1 L11, c1 L1-1, c1 L10, c0 L00 - c3 L20),
 ;            cB = (c2 L2-2, c2 L2-1, 3 c3 L20, c2 L21), cC = (c4 R22, c4 G22, c4 B22, -).
 ; Temporaries: r0 (where the paper writes r0), r1, r2, r3. 11 instructions, 11 slots.
 ;

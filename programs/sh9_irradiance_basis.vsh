@@ -7,7 +7,7 @@
 ;   E_ch = dp4(B0, W0_ch) + dp4(B1, W1_ch) + y22 W2.ch
 ; Inputs:    v0 = the unit normal (x, y, z, 1)
 ; Output:    oD0.rgb = E(n) (raw, unclamped). oD0.a not written.
-; Constants (PackBasis in irradiance/program_references.h):
+; Constants (PackBasis in irradiance/report/program_references.h):
 ;   c0 = (n0, n1, n2, n3)   c1 = (n4, 3, -1, 0)
 ;   c2..c4 = W0 per channel = (A0 L00, A1 L1-1, A1 L10, A1 L11)
 ;   c5..c7 = W1 per channel = (A2 L2-2, A2 L2-1, A2 L20, A2 L21)

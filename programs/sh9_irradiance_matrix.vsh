@@ -1,6 +1,6 @@
 ; sh9_irradiance_matrix.vsh - SH irradiance in Ramamoorthi & Hanrahan's matrix form (SIGGRAPH 2001,
 ; eq. 12): E(n) = n^T M n per channel, n = (x, y, z, 1), M a symmetric 4x4 matrix built from their
-; constants k1..k5 and the nine coefficients (PackMatrix in irradiance/program_references.h):
+; constants k1..k5 and the nine coefficients (PackMatrix in irradiance/report/program_references.h):
 ;
 ;       | k1 L22    k1 L2-2   k1 L21   k2 L11          |   k1 = 0.429043  k2 = 0.511664
 ;   M = | k1 L2-2  -k1 L22    k1 L2-1  k2 L1-1         |   k3 = 0.743125  k4 = 0.886227

@@ -3,7 +3,7 @@
 ; On the unit sphere z^2 = 1 - x^2 - y^2, so the 3 c3 L20 z^2 term of eq. (7) folds into the constant,
 ; the x^2 and the y^2 terms, and the quadratic terms become (xy, yz, zx, xx) plus one yy term:
 ;   E(n) = dp4((x, y, z, 1), cA') + dp4((xy, yz, zx, xx), cB') + cC'.rgb * yy
-; with (PackUnitSphere10 in irradiance/sh9.h)
+; with (PackUnitSphere10 in irradiance/sh/sh9.h)
 ;   cA' = (c1 L11, c1 L1-1, c1 L10, c0 L00 + 2 c3 L20)
 ;   cB' = (c2 L2-2, c2 L2-1, c2 L21, c4 L22 - 3 c3 L20)
 ;   cC' = (-c4 L22 - 3 c3 L20 per channel, -)

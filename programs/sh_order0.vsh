@@ -6,7 +6,7 @@
 ; target (a white furnace, an overcast sky seen through a diffuse surface).
 ; Inputs:    v0 = the normal (read by nothing; declared so the sh9 reference can feed it)
 ; Output:    oD0.rgb = E (raw; D3D would clamp oD0 to [0, 1]). oD0.a not written.
-; Constants: c0 = (c0 R00, c0 G00, c0 B00, unused)   (PackShOrder in irradiance/sh_order.h)
+; Constants: c0 = (c0 R00, c0 G00, c0 B00, unused)   (PackShOrder in irradiance/sh/sh_order.h)
 ; Temporaries: none. 1 instruction, 1 slot.
 ; Fragment: no oPos (see sh9_irradiance.vsh).
 ;

@@ -7,7 +7,7 @@
 ; harmonic along a, whose irradiance is A2 z n3 (3 (a.n)^2 - 1). So
 ;   E(n) = dp4((x, y, z, 1), cA) + cZ.rgb * (a.n)^2
 ;   cA = (c1 L11, c1 L1-1, c1 L10, c0 L00 - A2 n3 z),  cZ = 3 A2 n3 z per channel,  cAxis = (a, 0)
-; (PackShOrder in irradiance/sh_order.h). Exact when band 2 is zonal around a (one light, or a
+; (PackShOrder in irradiance/sh/sh_order.h). Exact when band 2 is zonal around a (one light, or a
 ; sky around its sun's axis); loses band 2's other parts.
 ; Inputs:    v0 = the unit normal (x, y, z, 1)
 ; Output:    oD0.rgb = E(n) (raw). oD0.a not written.

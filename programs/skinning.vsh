@@ -8,7 +8,7 @@
 ; Outputs:   oPos, oD0 (rgba; raw, D3D would clamp to [0, 1])
 ; Constants: c0..c3 VIEWPROJ, c4 L (unit, towards the light, w = 0), c5 DIFFUSE,
 ;            c6..c29 PALETTE: bone b in c[6 + 3b] .. c[8 + 3b], 8 bones
-; Temporaries: r0..r4. Reference: skinning (irradiance/program_references.cc).
+; Temporaries: r0..r4. Reference: skinning (irradiance/report/program_references.cc).
 ;
 ; vs11: reference=skinning
 ; vs11: position=v0

@@ -24,8 +24,8 @@
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
-#include "irradiance/environment_io.h"
-#include "irradiance/environments.h"
+#include "irradiance/io/environment_io.h"
+#include "irradiance/io/environments.h"
 #include "tests/run_tool.h"
 
 namespace {
@@ -149,7 +149,7 @@ constexpr NotRun kNotRun[] = {
     {"build/bench/vs11_bench", "a benchmark run: minutes"},
     {"build/bench/vs11_compare_llvmpipe --cpu-time", "the full llvmpipe comparison: minutes"},
     {"python3 bench/compare_cmgen.py", "needs Filament's cmgen and minutes"},
-    {"irrmap stability", "about a minute of work on two cores; tests/irradiance/stability_test.cc covers it"},
+    {"irrmap stability", "about a minute of work on two cores; tests/irradiance/report/stability_test.cc covers it"},
 };
 
 // Examples whose documented outcome is a failed check.

@@ -35,7 +35,7 @@ execute_process(COMMAND "${WORK_DIR}/build/vs11_consumer" RESULT_VARIABLE status
 if(status)
   message(FATAL_ERROR "the consumer failed: ${status}")
 endif()
-if(NOT EXISTS "${WORK_DIR}/prefix/include/vs11/vm/machine.h" OR EXISTS "${WORK_DIR}/prefix/include/vm")
+if(NOT EXISTS "${WORK_DIR}/prefix/include/vs11/vm/core/machine.h" OR EXISTS "${WORK_DIR}/prefix/include/vm")
   message(FATAL_ERROR "the headers are not installed under include/vs11/ alone")
 endif()
 if(NOT EXISTS "${WORK_DIR}/prefix/bin/vs11")

@@ -1,7 +1,7 @@
 // vs11 against Mesa's llvmpipe on the same vertex programs, inputs and constants, in one run.
 //
 // For each vertex count, each program (the paper's sh9_irradiance, directional_light, skinning) is
-// built from its reference's inputs and constants (irradiance/program_references.h) and run
+// built from its reference's inputs and constants (irradiance/report/program_references.h) and run
 //  * by llvmpipe, as the GLSL translation in shaders.h, through transform feedback with the
 //    rasterizer discarded, once with LP_NUM_THREADS=1 and once with Mesa's default thread count;
 //  * by llvmpipe as a `passthrough` shader with the program's inputs and outputs and no arithmetic:
@@ -43,11 +43,12 @@
 #include "bench/bench_common.h"
 #include "bench/compare_llvmpipe/gl_runner.h"
 #include "bench/compare_llvmpipe/shaders.h"
-#include "irradiance/program_references.h"
-#include "irradiance/verify.h"
-#include "vm/jit_compiler.h"
-#include "vm/machine.h"
-#include "vm/program_file.h"
+#include "irradiance/report/program_references.h"
+#include "irradiance/report/verify.h"
+#include "vm/asm/program_file.h"
+#include "vm/core/machine.h"
+#include "vm/engines/engine_factory.h"
+#include "vm/engines/jit_compiler.h"
 
 namespace vs11::bench::llvmpipe {
 namespace {

@@ -1,7 +1,7 @@
 // The vs_1_1 programs of programs/ as GLSL ES 3.00 vertex shaders, written as a vs_1_1 translator
 // (Wine's, DXVK's) would: each instruction becomes the same float operations in the same order.
 //
-// Where GLSL cannot promise the same rounding as vs11 (vm/semantics.h):
+// Where GLSL cannot promise the same rounding as vs11 (vm/core/semantics.h):
 //  * dp3/dp4 are spelled out left to right, a.x*b.x + a.y*b.y + ..., as vs11 computes them; GLSL's
 //    dot() leaves the order open. GLSL ES 3.00 has no `precise` (that is ES 3.20), so the compiler
 //    may still fuse a product into the following sum (one fma) or reassociate: the outputs may then

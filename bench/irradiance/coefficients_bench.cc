@@ -18,8 +18,8 @@
 #include <benchmark/benchmark.h>
 
 #include "bench/irradiance/projection_fixture.h"
-#include "irradiance/environments.h"
-#include "irradiance/sh_projection.h"
+#include "irradiance/io/environments.h"
+#include "irradiance/sh/sh_projection.h"
 
 namespace vs11::bench {
 namespace {

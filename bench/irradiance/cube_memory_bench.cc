@@ -51,7 +51,7 @@ HWY_AFTER_NAMESPACE();
 #include <benchmark/benchmark.h>
 
 #include "bench/irradiance/projection_fixture.h"
-#include "irradiance/cube_map.h"
+#include "irradiance/io/cube_map.h"
 
 namespace vs11::bench {
 namespace {

@@ -29,11 +29,12 @@
 
 #include "bench/bench_common.h"
 #include "bench/irradiance/projection_fixture.h"
-#include "irradiance/environments.h"
-#include "irradiance/ground_truth.h"
-#include "irradiance/sh9.h"
-#include "irradiance/sh_projection.h"
-#include "vm/machine.h"
+#include "irradiance/io/environments.h"
+#include "irradiance/sh/ground_truth.h"
+#include "irradiance/sh/sh9.h"
+#include "irradiance/sh/sh_projection.h"
+#include "vm/core/machine.h"
+#include "vm/engines/engine_factory.h"
 
 namespace vs11::bench {
 namespace {

@@ -12,10 +12,10 @@
 #include <memory>
 #include <optional>
 
-#include "irradiance/cube_map.h"
-#include "irradiance/environments.h"
-#include "irradiance/sh9.h"
-#include "irradiance/sh_projection.h"
+#include "irradiance/io/cube_map.h"
+#include "irradiance/io/environments.h"
+#include "irradiance/sh/sh9.h"
+#include "irradiance/sh/sh_projection.h"
 
 namespace vs11::bench {
 

@@ -1,7 +1,7 @@
 // Cost per environment change of making the nine terms non-negative (wall time, UseRealTime), from
 // the coefficients of a spot light of the given radius (64 x 64 faces, projected once):
 //
-//   BM_NonNegativeFit/<radius>   FitNonNegative (irradiance/nonneg_fit.h): the constrained fit
+//   BM_NonNegativeFit/<radius>   FitNonNegative (irradiance/sh/nonneg_fit.h): the constrained fit
 //   BM_Dering/<radius>           DeringLambda + ApplyShWindow: Sloan's deringing window, for scale
 //   BM_NonNegativeFit/0          the default sky, which needs no fit (the check alone)
 //   BM_ProgramChoice             EstimateProgramLevelErrors + ChooseProgramAndLevel for the levels
@@ -11,12 +11,12 @@
 
 #include <vector>
 
-#include "irradiance/environments.h"
-#include "irradiance/ground_truth.h"
-#include "irradiance/level_choice.h"
-#include "irradiance/nonneg_fit.h"
-#include "irradiance/sh_order.h"
-#include "irradiance/sh_projection.h"
+#include "irradiance/io/environments.h"
+#include "irradiance/sh/ground_truth.h"
+#include "irradiance/sh/level_choice.h"
+#include "irradiance/sh/nonneg_fit.h"
+#include "irradiance/sh/sh_order.h"
+#include "irradiance/sh/sh_projection.h"
 
 namespace vs11::bench {
 namespace {

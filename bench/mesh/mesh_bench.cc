@@ -17,8 +17,9 @@
 #include <benchmark/benchmark.h>
 
 #include "bench/bench_common.h"
+#include "vm/core/machine.h"
+#include "vm/engines/engine_factory.h"
 #include "vm/mesh/mesh_io.h"
-#include "vm/machine.h"
 
 namespace vs11::bench {
 namespace {

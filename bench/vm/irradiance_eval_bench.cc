@@ -20,9 +20,10 @@
 #include <benchmark/benchmark.h>
 
 #include "bench/bench_common.h"
-#include "irradiance/sh9.h"
-#include "vm/jit_compiler.h"
-#include "vm/machine.h"
+#include "irradiance/sh/sh9.h"
+#include "vm/core/machine.h"
+#include "vm/engines/engine_factory.h"
+#include "vm/engines/jit_compiler.h"
 
 namespace vs11::bench {
 namespace {

@@ -1,10 +1,10 @@
 // Every program of programs/*.vsh on each engine: BM_Program/<name>/<engine>, 65 536 vertices (the
 // sh9 references add their 14 fixed normals), items_per_second = vertices per second, and the
-// program's instruction-slot count (vm/program.h ComputeStats) as the counter "slots".
+// program's instruction-slot count (vm/core/program.h ComputeStats) as the counter "slots".
 //
 // /jit runs the CPU's best jit instruction set; /jit_avx2 is added where AVX-512 is the best.
 //
-// Inputs and constants come from the program's reference (irradiance/program_references.h, named by
+// Inputs and constants come from the program's reference (irradiance/report/program_references.h, named by
 // its `; vs11: reference=` line). A program without a usable reference gets (x, y, z, 1) unit normals
 // in every input register v0..v15 and random constants in [-1, 1].
 
@@ -21,11 +21,12 @@
 #include <benchmark/benchmark.h>
 
 #include "bench/bench_common.h"
-#include "irradiance/program_references.h"
-#include "irradiance/verify.h"
-#include "vm/jit_compiler.h"
-#include "vm/machine.h"
-#include "vm/program.h"
+#include "irradiance/report/program_references.h"
+#include "irradiance/report/verify.h"
+#include "vm/core/machine.h"
+#include "vm/core/program.h"
+#include "vm/engines/engine_factory.h"
+#include "vm/engines/jit_compiler.h"
 
 namespace vs11::bench {
 namespace {

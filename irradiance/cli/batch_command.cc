@@ -1,5 +1,5 @@
 // `irrmap batch`: coefficients and constants of many environment files in one process
-// (irradiance/batch_job.h), with a progress line on stderr and a summary of the failures.
+// (irradiance/jobs/batch_job.h), with a progress line on stderr and a summary of the failures.
 #include <unistd.h>
 
 #include <chrono>
@@ -11,8 +11,8 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
-#include "irradiance/batch_job.h"
 #include "irradiance/cli/subcommands.h"
+#include "irradiance/jobs/batch_job.h"
 
 namespace vs11::irradiance::cli {
 namespace {

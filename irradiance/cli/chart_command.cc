@@ -1,4 +1,4 @@
-// `irrmap chart`: the speed/accuracy sweep (irradiance/speed_accuracy.h) written as a CSV and a
+// `irrmap chart`: the speed/accuracy sweep (irradiance/report/speed_accuracy.h) written as a CSV and a
 // gnuplot chart.
 #include <cstdio>
 #include <memory>
@@ -9,8 +9,8 @@
 #include <fmt/format.h>
 
 #include "irradiance/cli/subcommands.h"
-#include "irradiance/irrmap_job.h"
-#include "irradiance/speed_accuracy.h"
+#include "irradiance/jobs/irrmap_job.h"
+#include "irradiance/report/speed_accuracy.h"
 
 namespace vs11::irradiance::cli {
 namespace {

@@ -1,5 +1,5 @@
 // irrmap: irradiance environment map of one environment by the method of Ai, Peng & Zhang 2008.
-// Parses the command line and calls RunIrrmap (irradiance/irrmap_job.h), which does all the work.
+// Parses the command line and calls RunIrrmap (irradiance/jobs/irrmap_job.h), which does all the work.
 #include <unistd.h>
 
 #include <chrono>
@@ -9,11 +9,11 @@
 #include <CLI/CLI.hpp>
 #include <fmt/format.h>
 
-#include "irradiance/mesh_input/mesh_geometry_io.h"
 #include "irradiance/cli/subcommands.h"
-#include "irradiance/environments.h"
-#include "irradiance/irrmap_job.h"
-#include "irradiance/preview.h"
+#include "irradiance/io/environments.h"
+#include "irradiance/jobs/irrmap_job.h"
+#include "irradiance/mesh_input/mesh_geometry_io.h"
+#include "irradiance/render/preview.h"
 
 namespace {
 

@@ -1,5 +1,5 @@
 // `irrmap stability`: parses its options and calls RunStability / WriteStabilityReport
-// (irradiance/stability_report.h), which do all the work.
+// (irradiance/report/stability_report.h), which do all the work.
 #include <unistd.h>
 
 #include <cstdio>
@@ -9,8 +9,8 @@
 #include <fmt/format.h>
 
 #include "irradiance/cli/subcommands.h"
-#include "irradiance/irrmap_job.h"
-#include "irradiance/stability_report.h"
+#include "irradiance/jobs/irrmap_job.h"
+#include "irradiance/report/stability_report.h"
 
 namespace vs11::irradiance::cli {
 namespace {

@@ -6,7 +6,7 @@
 #include <string>
 #include <vector>
 
-#include "irradiance/mesh_lighting.h"
+#include "irradiance/jobs/mesh_lighting.h"
 
 namespace vs11::irradiance {
 

@@ -9,7 +9,7 @@
 #include <fstream>
 #include <string>
 
-#include "irradiance/environment_io.h"
+#include "irradiance/io/environment_io.h"
 
 namespace {
 

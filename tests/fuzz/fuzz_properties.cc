@@ -7,10 +7,10 @@
 
 #include <fmt/format.h>
 
-#include "vm/assembler.h"
-#include "vm/bytecode.h"
-#include "vm/disassembler.h"
-#include "vm/validator.h"
+#include "vm/asm/assembler.h"
+#include "vm/asm/bytecode.h"
+#include "vm/asm/disassembler.h"
+#include "vm/asm/validator.h"
 
 namespace vs11::fuzz {
 namespace {

@@ -1,5 +1,5 @@
 // What the fuzz targets check, shared with the unit tests that replay the inputs they found
-// (tests/vm/fuzz_regression_test.cc). Each returns nullopt when the input was handled properly
+// (tests/vm/asm/fuzz_regression_test.cc). Each returns nullopt when the input was handled properly
 // (accepted or refused with diagnostics), otherwise what went wrong. Crashes and sanitizer reports
 // need no return value: they stop the process.
 #pragma once
@@ -15,7 +15,7 @@ namespace vs11::fuzz {
 // Source text through the preprocessor, assembler and validator. `#include "self.vsh"` reads the
 // input itself (so cycles and deep nesting are reachable), "empty.vsh" is empty, anything else is
 // missing. Whatever assembles must decode, and its disassembly must assemble, validation included,
-// to the same tokens (the round trip vm/disassembler.h promises).
+// to the same tokens (the round trip vm/asm/disassembler.h promises).
 std::optional<std::string> CheckSource(std::string_view text);
 
 // Bytes as a .vso token stream through the decoder, validator and disassembler. A stream that

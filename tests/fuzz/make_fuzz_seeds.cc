@@ -12,13 +12,13 @@
 #include <string>
 #include <vector>
 
-#include "irradiance/environment_io.h"
+#include "irradiance/io/environment_io.h"
+#include "vm/asm/assembler.h"
+#include "vm/asm/bytecode.h"
+#include "vm/asm/program_file.h"
 #include "vm/mesh/mesh_io.h"
 #include "vm/mesh/mesh_wire.h"
 #include "vm/mesh/npy.h"
-#include "vm/assembler.h"
-#include "vm/bytecode.h"
-#include "vm/program_file.h"
 
 namespace {
 

@@ -4,10 +4,10 @@
 
 #include <fmt/format.h>
 
-#include "vm/bytecode.h"
+#include "vm/asm/bytecode.h"
+#include "vm/asm/disassembler.h"
 #include "vm/cli/cli_support.h"
 #include "vm/cli/commands.h"
-#include "vm/disassembler.h"
 
 namespace vs11::cli {
 

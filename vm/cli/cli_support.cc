@@ -4,7 +4,7 @@
 
 #include <fmt/format.h>
 
-#include "irradiance/verify.h"
+#include "irradiance/report/verify.h"
 #include "vm/cli/commands.h"
 
 namespace vs11::cli {

@@ -8,8 +8,8 @@
 
 #include <CLI/CLI.hpp>
 
-#include "vm/machine.h"
-#include "vm/program_file.h"
+#include "vm/asm/program_file.h"
+#include "vm/core/machine.h"
 
 namespace vs11::cli {
 

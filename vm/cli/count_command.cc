@@ -8,9 +8,10 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
-#include "irradiance/ground_truth.h"
+#include "irradiance/sh/ground_truth.h"
 #include "vm/cli/cli_support.h"
 #include "vm/cli/commands.h"
+#include "vm/engines/engine_factory.h"
 
 namespace vs11::cli {
 namespace {

@@ -5,12 +5,13 @@
 
 #include <fmt/format.h>
 
-#include "irradiance/ground_truth.h"
+#include "irradiance/sh/ground_truth.h"
 #include "vm/cli/cli_support.h"
 #include "vm/cli/commands.h"
 #include "vm/cli/trace_output.h"
 #include "vm/cli/vertex_sources.h"
-#include "vm/vertex_io.h"
+#include "vm/engines/engine_factory.h"
+#include "vm/io/vertex_io.h"
 
 namespace vs11::cli {
 namespace {

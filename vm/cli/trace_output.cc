@@ -6,12 +6,12 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
+#include "vm/asm/disassembler.h"
+#include "vm/asm/lexer.h"
+#include "vm/asm/program_file.h"
 #include "vm/cli/cli_support.h"
 #include "vm/cli/commands.h"
-#include "vm/disassembler.h"
-#include "vm/lexer.h"
-#include "vm/program_file.h"
-#include "vm/trace.h"
+#include "vm/engines/trace.h"
 
 namespace vs11::cli {
 namespace {

@@ -1,4 +1,4 @@
-// `vs11 run --trace V[,V...] [--trace-json FILE]`: the shader debugger's flags and output (vm/trace.h).
+// `vs11 run --trace V[,V...] [--trace-json FILE]`: the shader debugger's flags and output (vm/engines/trace.h).
 #pragma once
 
 #include <cstddef>
@@ -8,7 +8,7 @@
 
 #include <CLI/CLI.hpp>
 
-#include "vm/machine.h"
+#include "vm/core/machine.h"
 
 namespace vs11::cli {
 

@@ -1,5 +1,5 @@
 // `vs11 verify`: runs a program and compares it with its double-precision reference, or compares two
-// engines bit for bit. The work is in irradiance/verify.h; this file only maps flags onto it.
+// engines bit for bit. The work is in irradiance/report/verify.h; this file only maps flags onto it.
 #include <cstdio>
 #include <memory>
 #include <optional>
@@ -7,8 +7,8 @@
 
 #include <fmt/format.h>
 
-#include "irradiance/program_references.h"
-#include "irradiance/verify.h"
+#include "irradiance/report/program_references.h"
+#include "irradiance/report/verify.h"
 #include "vm/cli/cli_support.h"
 #include "vm/cli/commands.h"
 

@@ -7,11 +7,11 @@
 
 #include <fmt/format.h>
 
+#include "vm/asm/program_file.h"
+#include "vm/cli/cli_support.h"
 #include "vm/mesh/mesh_export.h"
 #include "vm/mesh/npy.h"
 #include "vm/mesh/vertex_buffer.h"
-#include "vm/cli/cli_support.h"
-#include "vm/program_file.h"
 
 namespace vs11::cli {
 namespace {

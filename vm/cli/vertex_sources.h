@@ -8,9 +8,9 @@
 
 #include <CLI/CLI.hpp>
 
+#include "vm/core/machine.h"
 #include "vm/mesh/mesh_io.h"
 #include "vm/mesh/vertex_binding.h"
-#include "vm/machine.h"
 
 namespace vs11::cli {
 

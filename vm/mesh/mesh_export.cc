@@ -10,7 +10,7 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
-#include "vm/program_file.h"
+#include "vm/asm/program_file.h"
 
 namespace vs11::mesh {
 namespace {

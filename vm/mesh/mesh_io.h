@@ -26,7 +26,7 @@
 #include <string>
 #include <vector>
 
-#include "vm/machine.h"
+#include "vm/core/machine.h"
 
 namespace vs11::mesh {
 

@@ -6,7 +6,7 @@
 
 #include <fmt/format.h>
 
-#include "vm/program_file.h"
+#include "vm/asm/program_file.h"
 
 namespace vs11::mesh {
 namespace {

@@ -14,9 +14,9 @@
 #include <utility>
 #include <vector>
 
+#include "vm/core/machine.h"
+#include "vm/core/program.h"
 #include "vm/mesh/mesh_io.h"
-#include "vm/machine.h"
-#include "vm/program.h"
 
 namespace vs11::mesh {
 

@@ -1,0 +1,749 @@
+#include "irradiance/io/environment_io.h"
+
+// The system fmt goes first so that OpenImageIO's headers reuse it instead of their bundled copy.
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <atomic>
+#include <cassert>
+#include <cctype>
+#include <cmath>
+#include <cstdint>
+#include <exception>
+#include <numbers>
+#include <random>
+#include <system_error>
+#include <utility>
+
+#include <OpenImageIO/imageio.h>
+
+#include "irradiance/io/dds_reader.h"
+
+namespace vs11::irradiance {
+namespace {
+
+namespace fs = std::filesystem;
+using Layout = EnvironmentLayout;
+
+// One row per layout: its name, what it is called in messages, and for single-image layouts the
+// aspect ratio columns:rows that kAuto detects it by (0:0 for layouts that are not one image).
+struct LayoutInfo {
+  Layout layout;
+  std::string_view name;
+  std::string_view description;
+  int aspect_columns;
+  int aspect_rows;
+};
+constexpr std::array<LayoutInfo, 8> kLayoutInfo = {{
+    {Layout::kAuto, "auto", "automatic", 0, 0},
+    {Layout::kFaces, "faces", "six face files", 0, 0},
+    {Layout::kHorizontalCross, "hcross", "horizontal cross", 4, 3},
+    {Layout::kVerticalCross, "vcross", "vertical cross", 3, 4},
+    {Layout::kHorizontalStrip, "hstrip", "horizontal strip", 6, 1},
+    {Layout::kVerticalStrip, "vstrip", "vertical strip", 1, 6},
+    {Layout::kLatLong, "latlong", "lat-long map", 2, 1},
+    {Layout::kAngular, "angular", "angular map", 1, 1},
+}};
+
+const LayoutInfo& Info(Layout layout) {
+  for (const LayoutInfo& info : kLayoutInfo) {
+    if (info.layout == layout) return info;
+  }
+  assert(false && "every layout has a row in kLayoutInfo");
+  return kLayoutInfo[0];
+}
+
+// Where each face sits in a layout made of square cells (see the diagrams in the header).
+struct FaceCell {
+  int column;
+  int row;
+  bool rotated_180;
+};
+struct CubeGrid {
+  Layout layout;
+  int columns;
+  int rows;
+  std::array<FaceCell, kCubeFaceCount> cells;  // CubeFace order
+};
+constexpr std::array<CubeGrid, 4> kCubeGrids = {{
+    {Layout::kHorizontalCross,
+     4,
+     3,
+     {{{2, 1, false}, {0, 1, false}, {1, 0, false}, {1, 2, false}, {1, 1, false}, {3, 1, false}}}},
+    {Layout::kVerticalCross,
+     3,
+     4,
+     {{{2, 1, false}, {0, 1, false}, {1, 0, false}, {1, 2, false}, {1, 1, false}, {1, 3, true}}}},
+    {Layout::kHorizontalStrip,
+     6,
+     1,
+     {{{0, 0, false}, {1, 0, false}, {2, 0, false}, {3, 0, false}, {4, 0, false}, {5, 0, false}}}},
+    {Layout::kVerticalStrip,
+     1,
+     6,
+     {{{0, 0, false}, {0, 1, false}, {0, 2, false}, {0, 3, false}, {0, 4, false}, {0, 5, false}}}},
+}};
+
+const CubeGrid* FindCubeGrid(Layout layout) {
+  for (const CubeGrid& grid : kCubeGrids) {
+    if (grid.layout == layout) return &grid;
+  }
+  return nullptr;
+}
+
+// Formats written as linear floats; everything else is written as 8-bit sRGB.
+constexpr std::array<std::string_view, 5> kFloatExtensions = {".exr", ".hdr", ".tif", ".tiff",
+                                                              ".pfm"};
+constexpr double kByteMax = 255.0;
+// IEC 61966-2-1 sRGB transfer function constants.
+constexpr double kSrgbDecodeThreshold = 0.04045;
+constexpr double kSrgbEncodeThreshold = 0.0031308;
+constexpr double kSrgbLinearSlope = 12.92;
+constexpr double kSrgbOffset = 0.055;
+constexpr double kSrgbGamma = 2.4;
+// Size of the exported lat-long (kExportScale N x kExportScale N / 2) and angular maps relative to
+// the face size N: a little finer than the cube's centre texels (pi / (2 N) against 2 / N radians).
+constexpr int kExportScale = 4;
+// What the DDS reader reports for a cube map with every face.
+constexpr std::string_view kCubeTextureFormat = "CubeFace Environment";
+constexpr std::string_view kAllDdsCubeSides = "+x -x +y -y +z -z";
+
+LoadResult Failure(std::string message) {
+  LoadResult result;
+  result.error = std::move(message);
+  return result;
+}
+
+ImageReadResult ReadFailure(std::string message) {
+  ImageReadResult result;
+  result.error = std::move(message);
+  return result;
+}
+
+std::string Lower(std::string text) {
+  std::transform(text.begin(), text.end(), text.begin(),
+                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
+  return text;
+}
+
+std::string AcceptedAspectRatios() {
+  std::string text;
+  for (const LayoutInfo& info : kLayoutInfo) {
+    if (info.aspect_columns == 0) continue;
+    if (!text.empty()) text += ", ";
+    text += fmt::format("{}:{} {}", info.aspect_columns, info.aspect_rows, info.description);
+  }
+  return text;
+}
+
+std::optional<Layout> DetectLayout(int width, int height) {
+  for (const LayoutInfo& info : kLayoutInfo) {
+    if (info.aspect_columns == 0) continue;
+    if (static_cast<std::int64_t>(width) * info.aspect_rows ==
+        static_cast<std::int64_t>(height) * info.aspect_columns) {
+      return info.layout;
+    }
+  }
+  return std::nullopt;
+}
+
+// Whether a width x height image can hold `layout` (kAuto: any layout DetectLayout finds; kFaces:
+// one square face). Checked on the header's size before any pixel is read, and again on the image.
+std::optional<std::string> CheckLayoutSize(Layout layout, int width, int height) {
+  if (layout == Layout::kAuto) {
+    if (DetectLayout(width, height)) return std::nullopt;
+    return fmt::format("cannot detect the layout of a {} x {} image: the accepted aspect ratios are {}",
+                       width, height, AcceptedAspectRatios());
+  }
+  if (layout == Layout::kFaces) {
+    if (width == height) return std::nullopt;
+    return fmt::format("a cube face must be square, got {} x {}", width, height);
+  }
+  const LayoutInfo& info = Info(layout);
+  if (const CubeGrid* grid = FindCubeGrid(layout)) {
+    const int size = width / grid->columns;
+    if (size > 0 && width == grid->columns * size && height == grid->rows * size) return std::nullopt;
+    return fmt::format("a {} must be {}N x {}N pixels for a face size N, got {} x {}", info.description,
+                       grid->columns, grid->rows, width, height);
+  }
+  if (static_cast<std::int64_t>(width) * info.aspect_rows == static_cast<std::int64_t>(height) * info.aspect_columns) {
+    return std::nullopt;
+  }
+  return fmt::format("a {} must have an aspect ratio of {}:{}, got {} x {}", info.description, info.aspect_columns,
+                     info.aspect_rows, width, height);
+}
+
+// ---- Reading -----------------------------------------------------------------------------------
+
+bool IsFloatType(OIIO::TypeDesc type) {
+  return type.basetype == OIIO::TypeDesc::FLOAT || type.basetype == OIIO::TypeDesc::HALF ||
+         type.basetype == OIIO::TypeDesc::DOUBLE;
+}
+
+std::string OiioMessage(std::string message) {
+  while (!message.empty() && (message.back() == '\n' || message.back() == ' ')) message.pop_back();
+  return message.empty() ? std::string("no details from OpenImageIO") : message;
+}
+
+// Whether OpenImageIO has a reader for the extension of `path` ("extension_list" is
+// "openexr:exr,sxr,mxr;tiff:tif,tiff,...").
+bool IsKnownImageExtension(const fs::path& path) {
+  std::string extension = Lower(path.extension().string());
+  if (extension.empty()) return false;
+  extension.erase(0, 1);  // the dot
+  const std::string list = OIIO::get_string_attribute("extension_list");
+  std::size_t begin = 0;
+  while (begin < list.size()) {
+    std::size_t end = list.find_first_of(":,;", begin);
+    if (end == std::string::npos) end = list.size();
+    const std::string_view token(list.data() + begin, end - begin);
+    const bool is_format_name = end < list.size() && list[end] == ':';
+    if (!is_format_name && token == extension) return true;
+    begin = end + 1;
+  }
+  return false;
+}
+
+// The bytes of pixels a file must hold when they are stored uncompressed, as in PFM and in TIFF
+// without compression (one sample of 8 bits or more per channel, no palette); nullopt for other
+// files. Checked before the pixel buffer is allocated: OpenImageIO reads a short uncompressed TIFF
+// without failing, and a tiny file must not make us allocate what its header claims.
+std::optional<std::uint64_t> UncompressedPixelBytes(const OIIO::ImageInput& input,
+                                                    const OIIO::ImageSpec& spec) {
+  const std::string format = Lower(input.format_name());
+  const bool pfm = format == "pnm" && spec.format == OIIO::TypeDesc::FLOAT;
+  constexpr int kPhotometricPalette = 3;
+  const bool raw_tiff =
+      format == "tiff" &&
+      Lower(std::string(spec.get_string_attribute("compression", "none"))) == "none" &&
+      spec.get_int_attribute("oiio:BitsPerSample", 0) >= 8 &&
+      spec.get_int_attribute("tiff:PhotometricInterpretation", 0) < kPhotometricPalette;
+  if (!pfm && !raw_tiff) return std::nullopt;
+  return static_cast<std::uint64_t>(spec.image_bytes(/*native=*/true));
+}
+
+// The largest ratio of pixel data to file size a compressed file may declare, per format. A header
+// of a few bytes can claim an image of up to kMaxImagePixels, and OpenImageIO (and this loader)
+// allocate the whole image before finding the data missing: gigabytes for a 400-byte EXR or PNG.
+// Each bound is about the most that format's coding reaches on a constant image: deflate (PNG;
+// EXR zip, zips, pxr24, piz's Huffman with run lengths stays below it) 1032:1; Radiance HDR's run
+// lengths 127 bytes in 2; EXR rle 128 bytes in 2; EXR b44a 32 bytes in 3; EXR dwaa/dwab run-length
+// code the transformed blocks and deflate them again, 32 x 1032. Other formats get deflate's bound:
+// an image that compresses further (a BMP ending in its end-of-image code) is refused with a message
+// saying so.
+double MaxCompressionRatio(std::string_view format, std::string_view compression) {
+  constexpr double kDeflate = 1032;
+  if (format == "hdr") return 64;
+  if (format == "openexr") {
+    if (compression.starts_with("none")) return 1;
+    if (compression.starts_with("rle")) return 64;
+    if (compression.starts_with("b44")) return 11;
+    if (compression.starts_with("dwa")) return 32 * kDeflate;
+  }
+  return kDeflate;
+}
+
+// Refuses, from the header alone, a compressed file too small for the image it declares (see
+// MaxCompressionRatio). The pixel data is counted low: one channel per pixel, at the file's
+// smallest sample size, so that no image its format can really store is refused.
+std::optional<std::string> CheckCompressionRatio(const OIIO::ImageInput& input, const OIIO::ImageSpec& spec,
+                                                 std::uintmax_t file_size) {
+  const std::string format = Lower(input.format_name());
+  const std::string compression = Lower(std::string(spec.get_string_attribute("compression", "")));
+  int bits_per_sample = spec.get_int_attribute("oiio:BitsPerSample", static_cast<int>(spec.format.size() * 8));
+  if (format == "openexr") bits_per_sample = 16;  // half, the smallest EXR sample
+  if (format == "hdr") bits_per_sample = 8;       // one byte of RGBE
+  const double pixel_bytes = static_cast<double>(spec.width) * spec.height * std::max(bits_per_sample, 1) / 8;
+  const double ratio = MaxCompressionRatio(format, compression);
+  if (pixel_bytes <= ratio * static_cast<double>(file_size)) return std::nullopt;
+  return fmt::format(
+      "corrupt or truncated file: its header declares a {} x {} image, at least {:.0f} bytes of pixels, "
+      "which {} bytes of {}{} cannot hold (more than the {:.0f}:1 this format's compression reaches)",
+      spec.width, spec.height, pixel_bytes, file_size, format, compression.empty() ? "" : " " + compression,
+      ratio);
+}
+
+// `expected`: the layout the image must fit, checked on the header's size before the pixels are
+// read, so that a small file claiming a huge image of a useless shape allocates nothing; nullopt
+// for any shape (ReadImage). A DDS cube map is always accepted (it is read as a vertical strip).
+ImageReadResult ReadImageUnchecked(const fs::path& path, std::optional<Layout> expected) {
+  std::error_code ec;
+  const fs::file_status status = fs::status(path, ec);
+  if (ec || !fs::exists(status))
+    return ReadFailure(fmt::format("{}: file not found", path.string()));
+  if (!fs::is_regular_file(status)) {
+    return ReadFailure(fmt::format("{}: not a regular file", path.string()));
+  }
+  const std::uintmax_t file_size = fs::file_size(path, ec);
+  if (file_size == 0 && !ec) return ReadFailure(fmt::format("{}: file is empty", path.string()));
+
+  DdsReadResult dds = ReadDds(path, kMaxImagePixels);
+  switch (dds.outcome) {
+    case DdsReadResult::Outcome::kError:
+      return ReadFailure(fmt::format("{}: {}", path.string(), dds.error));
+    case DdsReadResult::Outcome::kRead: {
+      ImageReadResult result;
+      result.image = std::move(dds.image);
+      result.is_dds_cube_map = dds.is_cube_map;
+      return result;
+    }
+    case DdsReadResult::Outcome::kNotDds:
+    case DdsReadResult::Outcome::kLeaveToOpenImageIo:
+      break;
+  }
+
+  auto input = OIIO::ImageInput::open(path.string());
+  if (!input) {
+    const std::string oiio_error = OiioMessage(OIIO::geterror());
+    if (!IsKnownImageExtension(path)) {
+      return ReadFailure(
+          fmt::format("{}: unsupported image format ({})", path.string(), oiio_error));
+    }
+    return ReadFailure(fmt::format(
+        "{}: cannot read: corrupt or truncated file, or a variant OpenImageIO does not read ({})",
+        path.string(), oiio_error));
+  }
+  const OIIO::ImageSpec spec = input->spec();
+  if (spec.width <= 0 || spec.height <= 0 || spec.depth != 1 || spec.nchannels <= 0) {
+    return ReadFailure(fmt::format("{}: zero-size image ({} x {} pixels, {} channels)",
+                                   path.string(), spec.width, spec.height, spec.nchannels));
+  }
+  const std::size_t pixel_count = static_cast<std::size_t>(spec.width) * spec.height;
+  if (spec.width > static_cast<int>(kMaxImagePixels) || pixel_count > kMaxImagePixels) {
+    return ReadFailure(
+        fmt::format("{}: image of {} x {} pixels is larger than the {} pixels accepted",
+                    path.string(), spec.width, spec.height, kMaxImagePixels));
+  }
+  const bool dds_cube_map = Lower(input->format_name()) == "dds" &&
+                            std::string(spec.get_string_attribute("textureformat")) == kCubeTextureFormat;
+  if (expected && !dds_cube_map) {
+    if (std::optional<std::string> error = CheckLayoutSize(*expected, spec.width, spec.height)) {
+      return ReadFailure(fmt::format("{}: {}", path.string(), *error));
+    }
+  }
+  if (const std::optional<std::uint64_t> needed = UncompressedPixelBytes(*input, spec);
+      needed && !ec && file_size < *needed) {
+    return ReadFailure(fmt::format(
+        "{}: truncated file: {} bytes, but the {} x {} uncompressed pixels its header declares "
+        "take {}",
+        path.string(), file_size, spec.width, spec.height, *needed));
+  }
+
+  if (!ec && !UncompressedPixelBytes(*input, spec)) {
+    if (std::optional<std::string> error = CheckCompressionRatio(*input, spec, file_size)) {
+      return ReadFailure(fmt::format("{}: {}", path.string(), *error));
+    }
+  }
+
+  ImageReadResult result;
+  if (dds_cube_map) {
+    const std::string sides(spec.get_string_attribute("dds:CubeMapSides"));
+    if (sides != kAllDdsCubeSides || spec.height != 6 * spec.width) {
+      return ReadFailure(
+          fmt::format("{}: DDS cube map has faces \"{}\", all six (\"{}\") are needed",
+                      path.string(), sides, kAllDdsCubeSides));
+    }
+    result.is_dds_cube_map = true;
+  }
+
+  const int channels = std::min(spec.nchannels, 3);
+  std::vector<float> data(pixel_count * channels);
+  // Some readers (TIFF, DDS, BMP) return true for a short file and only record the error.
+  if (!input->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, data.data()) ||
+      input->has_error()) {
+    return ReadFailure(fmt::format("{}: cannot read pixels, corrupt or truncated file ({})",
+                                   path.string(), OiioMessage(input->geterror())));
+  }
+  input->close();
+
+  // Integer data holds sRGB-encoded values unless the reader says it is linear.
+  const bool decode_srgb =
+      !IsFloatType(spec.format) &&
+      Lower(std::string(spec.get_string_attribute("oiio:ColorSpace"))) != "linear";
+  Image image(spec.width, spec.height);
+  for (std::size_t i = 0; i < pixel_count; ++i) {
+    glm::vec3 rgb;
+    for (int c = 0; c < 3; ++c) {
+      float value = data[i * channels + (channels == 3 ? c : 0)];
+      if (decode_srgb) value = static_cast<float>(SrgbToLinear(value));
+      rgb[c] = value;
+    }
+    image.pixels[i] = rgb;
+  }
+  result.image = std::move(image);
+  return result;
+}
+
+CubeMap ExtractFaces(const Image& image, const CubeGrid& grid, int size) {
+  CubeMap cube(size);
+  for (CubeFace face : kAllCubeFaces) {
+    const FaceCell& cell = grid.cells[static_cast<int>(face)];
+    Image& out = cube.face(face);
+    for (int y = 0; y < size; ++y) {
+      for (int x = 0; x < size; ++x) {
+        const int sx = cell.rotated_180 ? size - 1 - x : x;
+        const int sy = cell.rotated_180 ? size - 1 - y : y;
+        out.at(x, y) = image.at(cell.column * size + sx, cell.row * size + sy);
+      }
+    }
+  }
+  return cube;
+}
+
+std::string ReplaceToken(std::string_view pattern, std::string_view replacement) {
+  std::string out(pattern);
+  for (std::size_t at = out.find(kFaceToken); at != std::string::npos;
+       at = out.find(kFaceToken, at + replacement.size())) {
+    out.replace(at, kFaceToken.size(), replacement);
+  }
+  return out;
+}
+
+std::string SanitizeWarning(std::size_t changed, std::size_t total, std::string_view what) {
+  return fmt::format("{}: {} of {} texels had NaN, infinite or negative values, set to 0", what,
+                     changed, total);
+}
+
+LoadResult LoadFaces(const fs::path& path) {
+  const std::string pattern = path.string();
+  if (pattern.find(kFaceToken) == std::string::npos) {
+    return Failure(
+        fmt::format("{}: the six-face layout needs a path containing \"{}\"", pattern, kFaceToken));
+  }
+  LoadedEnvironment environment;
+  environment.layout = Layout::kFaces;
+  std::string first_name;
+  for (CubeFace face : kAllCubeFaces) {
+    const int index = static_cast<int>(face);
+    const std::string short_name = ReplaceToken(pattern, kFaceFileNames[index]);
+    const std::string signed_name = ReplaceToken(pattern, kSignedFaceFileNames[index]);
+    std::error_code ec;
+    const std::string& name = fs::exists(short_name, ec) ? short_name : signed_name;
+    if (!fs::exists(name, ec)) {
+      return Failure(fmt::format("missing the {} face: neither {} nor {} exists",
+                                 CubeFaceName(face), short_name, signed_name));
+    }
+    ImageReadResult read = ReadImageUnchecked(name, Layout::kFaces);
+    if (!read.ok()) return Failure(fmt::format("{} face: {}", CubeFaceName(face), read.error));
+    Image& image = *read.image;
+    if (image.width != image.height) {
+      return Failure(fmt::format("{} face ({}) is {} x {} pixels: faces must be square",
+                                 CubeFaceName(face), name, image.width, image.height));
+    }
+    if (face == CubeFace::kPositiveX) {
+      environment.cube = CubeMap(image.width);
+      first_name = name;
+    } else if (image.width != environment.cube.face_size) {
+      return Failure(fmt::format(
+          "{} face ({}) is {} x {} pixels but the +x face ({}) is {} x {}: mismatched face sizes",
+          CubeFaceName(face), name, image.width, image.height, first_name,
+          environment.cube.face_size, environment.cube.face_size));
+    }
+    if (const std::size_t changed = SanitizeRadiance(image); changed > 0) {
+      environment.warnings.push_back(SanitizeWarning(changed, image.pixels.size(), name));
+    }
+    environment.cube.face(face) = std::move(image);
+  }
+  LoadResult result;
+  result.environment = std::move(environment);
+  return result;
+}
+
+// ---- Writing -----------------------------------------------------------------------------------
+
+bool HasFloatExtension(const fs::path& path) {
+  const std::string extension = Lower(path.extension().string());
+  return std::find(kFloatExtensions.begin(), kFloatExtensions.end(), extension) !=
+         kFloatExtensions.end();
+}
+
+fs::path TemporaryPath(const fs::path& path) {
+  static std::atomic<std::uint64_t> counter{0};
+  static const std::uint64_t seed = std::random_device{}();
+  const std::string name = fmt::format(".{}.tmp{:x}-{}{}", path.filename().string(), seed,
+                                       counter.fetch_add(1), path.extension().string());
+  return path.parent_path() / name;
+}
+
+void RemoveQuietly(const fs::path& path) {
+  std::error_code ec;
+  fs::remove(path, ec);
+}
+
+// Writes `image` to a new temporary file beside `path` in `format` (an OpenImageIO format name, or
+// empty for the one `path`'s extension names). Returns the temporary's path, or sets `error`.
+std::optional<fs::path> WriteTemporary(const Image& image, const fs::path& path,
+                                       std::string_view format, std::string& error) {
+  if (image.width <= 0 || image.height <= 0 ||
+      image.pixels.size() != static_cast<std::size_t>(image.width) * image.height) {
+    error = fmt::format("{}: cannot write a zero-size image", path.string());
+    return std::nullopt;
+  }
+  const bool as_float = format == "openexr" || (format.empty() && HasFloatExtension(path));
+  auto output = OIIO::ImageOutput::create(format.empty() ? path.string() : std::string(format));
+  if (!output) {
+    error = fmt::format("{}: unsupported output format ({})", path.string(),
+                        OiioMessage(OIIO::geterror()));
+    return std::nullopt;
+  }
+  OIIO::ImageSpec spec(image.width, image.height, 3,
+                       as_float ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8);
+  spec.attribute("oiio:ColorSpace", as_float ? "Linear" : "sRGB");
+  if (std::string_view(output->format_name()) == "openexr") spec.attribute("compression", "zip");
+
+  std::vector<float> floats;
+  std::vector<std::uint8_t> bytes;
+  const void* data = nullptr;
+  if (as_float) {
+    floats.reserve(image.pixels.size() * 3);
+    for (const glm::vec3& p : image.pixels) floats.insert(floats.end(), {p.r, p.g, p.b});
+    data = floats.data();
+  } else {
+    bytes.reserve(image.pixels.size() * 3);
+    for (const glm::vec3& p : image.pixels) {
+      for (int c = 0; c < 3; ++c) {
+        const double value =
+            std::isnan(p[c]) ? 0.0 : std::clamp(static_cast<double>(p[c]), 0.0, 1.0);
+        bytes.push_back(static_cast<std::uint8_t>(std::lround(LinearToSrgb(value) * kByteMax)));
+      }
+    }
+    data = bytes.data();
+  }
+
+  const fs::path temporary = TemporaryPath(path);
+  if (!output->open(temporary.string(), spec)) {
+    error =
+        fmt::format("{}: cannot create file ({})", path.string(), OiioMessage(output->geterror()));
+    RemoveQuietly(temporary);
+    return std::nullopt;
+  }
+  const bool written =
+      output->write_image(as_float ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8, data);
+  const bool closed = output->close();
+  if (!written || !closed) {
+    error = fmt::format("{}: write failed ({})", path.string(), OiioMessage(output->geterror()));
+    RemoveQuietly(temporary);
+    return std::nullopt;
+  }
+  return temporary;
+}
+
+// Renames finished temporaries over their targets; on failure removes the remaining temporaries.
+std::optional<std::string> Commit(const std::vector<std::pair<fs::path, fs::path>>& renames) {
+  for (std::size_t i = 0; i < renames.size(); ++i) {
+    std::error_code ec;
+    fs::rename(renames[i].first, renames[i].second, ec);
+    if (ec) {
+      for (std::size_t j = i; j < renames.size(); ++j) RemoveQuietly(renames[j].first);
+      return fmt::format("{}: cannot rename the finished file into place ({})",
+                         renames[i].second.string(), ec.message());
+    }
+  }
+  return std::nullopt;
+}
+
+std::optional<std::string> WriteAtomically(const Image& image, const fs::path& path,
+                                           std::string_view format) {
+  try {
+    std::string error;
+    const std::optional<fs::path> temporary = WriteTemporary(image, path, format, error);
+    if (!temporary) return error;
+    return Commit({{*temporary, path}});
+  } catch (const std::exception& e) {
+    return fmt::format("{}: {}", path.string(), e.what());
+  }
+}
+
+}  // namespace
+
+// ---- Public ------------------------------------------------------------------------------------
+
+std::optional<EnvironmentLayout> ParseLayout(std::string_view name) {
+  for (const LayoutInfo& info : kLayoutInfo) {
+    if (info.name == name) return info.layout;
+  }
+  return std::nullopt;
+}
+
+std::string_view LayoutName(EnvironmentLayout layout) { return Info(layout).name; }
+
+double SrgbToLinear(double encoded) {
+  if (encoded <= kSrgbDecodeThreshold) return encoded / kSrgbLinearSlope;
+  return std::pow((encoded + kSrgbOffset) / (1.0 + kSrgbOffset), kSrgbGamma);
+}
+
+double LinearToSrgb(double linear) {
+  if (linear <= kSrgbEncodeThreshold) return linear * kSrgbLinearSlope;
+  return (1.0 + kSrgbOffset) * std::pow(linear, 1.0 / kSrgbGamma) - kSrgbOffset;
+}
+
+std::size_t SanitizeRadiance(Image& image) {
+  std::size_t changed = 0;
+  for (glm::vec3& p : image.pixels) {
+    bool any = false;
+    for (int c = 0; c < 3; ++c) {
+      if (!std::isfinite(p[c]) || p[c] < 0.0f) {
+        p[c] = 0.0f;
+        any = true;
+      }
+    }
+    changed += any ? 1 : 0;
+  }
+  return changed;
+}
+
+Image CubeMapToImage(const CubeMap& cube, EnvironmentLayout layout) {
+  assert(cube.face_size > 0);
+  const int n = cube.face_size;
+  if (const CubeGrid* grid = FindCubeGrid(layout)) {
+    Image image(grid->columns * n, grid->rows * n);
+    for (CubeFace face : kAllCubeFaces) {
+      const FaceCell& cell = grid->cells[static_cast<int>(face)];
+      for (int y = 0; y < n; ++y) {
+        for (int x = 0; x < n; ++x) {
+          const int sx = cell.rotated_180 ? n - 1 - x : x;
+          const int sy = cell.rotated_180 ? n - 1 - y : y;
+          image.at(cell.column * n + sx, cell.row * n + sy) = cube.face(face).at(x, y);
+        }
+      }
+    }
+    return image;
+  }
+  if (layout == Layout::kLatLong) {
+    Image image(kExportScale * n, kExportScale * n / 2);
+    for (int y = 0; y < image.height; ++y) {
+      for (int x = 0; x < image.width; ++x) {
+        image.at(x, y) = SampleCubeMap(
+            cube, LatLongDirection((x + 0.5) / image.width, (y + 0.5) / image.height));
+      }
+    }
+    return image;
+  }
+  assert(layout == Layout::kAngular);
+  Image image(kExportScale * n, kExportScale * n);
+  for (int y = 0; y < image.height; ++y) {
+    for (int x = 0; x < image.width; ++x) {
+      const double a = 2.0 * (x + 0.5) / image.width - 1.0;
+      const double b = 1.0 - 2.0 * (y + 0.5) / image.height;
+      if (a * a + b * b > 1.0) continue;  // outside the disk
+      image.at(x, y) = SampleCubeMap(cube, AngularDirection(a, b));
+    }
+  }
+  return image;
+}
+
+ImageReadResult ReadImage(const std::filesystem::path& path) {
+  try {
+    return ReadImageUnchecked(path, std::nullopt);
+  } catch (const std::exception& e) {
+    return ReadFailure(fmt::format("{}: {}", path.string(), e.what()));
+  }
+}
+
+LoadResult EnvironmentFromImage(Image image, EnvironmentLayout layout, int face_size) {
+  try {
+    if (image.width <= 0 || image.height <= 0 ||
+        image.pixels.size() != static_cast<std::size_t>(image.width) * image.height) {
+      return Failure(fmt::format("zero-size image ({} x {} pixels)", image.width, image.height));
+    }
+    if (layout == Layout::kFaces) {
+      return Failure(fmt::format(
+          "the six-face layout reads six files: pass a path containing \"{}\"", kFaceToken));
+    }
+    if (std::optional<std::string> error = CheckLayoutSize(layout, image.width, image.height)) {
+      return Failure(std::move(*error));
+    }
+    if (layout == Layout::kAuto) layout = *DetectLayout(image.width, image.height);
+
+    LoadedEnvironment environment;
+    environment.layout = layout;
+    if (const std::size_t changed = SanitizeRadiance(image); changed > 0) {
+      environment.warnings.push_back(SanitizeWarning(changed, image.pixels.size(), "image"));
+    }
+    if (const CubeGrid* grid = FindCubeGrid(layout)) {
+      environment.cube = ExtractFaces(image, *grid, image.width / grid->columns);
+    } else {
+      if (face_size < 1 || face_size > kMaxFaceSize) {
+        return Failure(fmt::format("face size {} is outside [1, {}]", face_size, kMaxFaceSize));
+      }
+      environment.cube = layout == Layout::kLatLong ? ResampleLatLong(image, face_size)
+                                                    : ResampleAngular(image, face_size);
+    }
+    LoadResult result;
+    result.environment = std::move(environment);
+    return result;
+  } catch (const std::exception& e) {
+    return Failure(fmt::format("cannot build the cube map: {}", e.what()));
+  }
+}
+
+LoadResult LoadEnvironment(const std::filesystem::path& path, const LoadOptions& options) {
+  try {
+    const bool face_pattern = path.string().find(kFaceToken) != std::string::npos;
+    if (options.layout == Layout::kFaces || (options.layout == Layout::kAuto && face_pattern)) {
+      return LoadFaces(path);
+    }
+    ImageReadResult read = ReadImageUnchecked(path, options.layout);
+    if (!read.ok()) return Failure(std::move(read.error));
+    Layout layout = options.layout;
+    if (read.is_dds_cube_map) {
+      if (layout != Layout::kAuto && layout != Layout::kVerticalStrip) {
+        return Failure(fmt::format(
+            "{}: a DDS cube map holds its six faces itself; its layout can only be auto or vstrip, "
+            "not {}",
+            path.string(), LayoutName(layout)));
+      }
+      layout = Layout::kVerticalStrip;
+    }
+    LoadResult result = EnvironmentFromImage(std::move(*read.image), layout, options.face_size);
+    if (!result.ok()) {
+      result.error = fmt::format("{}: {}", path.string(), result.error);
+      return result;
+    }
+    for (std::string& warning : result.environment->warnings) {
+      warning = fmt::format("{}: {}", path.string(), warning);
+    }
+    return result;
+  } catch (const std::exception& e) {
+    return Failure(fmt::format("{}: {}", path.string(), e.what()));
+  }
+}
+
+std::optional<std::string> WriteImage(const Image& image, const std::filesystem::path& path) {
+  return WriteAtomically(image, path, "");
+}
+
+std::optional<std::string> WriteCrossExr(const CubeMap& cube, const std::filesystem::path& path) {
+  if (cube.face_size <= 0) return fmt::format("{}: cannot write an empty cube map", path.string());
+  return WriteAtomically(CubeMapToImage(cube, Layout::kHorizontalCross), path, "openexr");
+}
+
+std::optional<std::string> WriteCubeMap(const CubeMap& cube, const std::filesystem::path& path,
+                                        EnvironmentLayout layout) {
+  if (cube.face_size <= 0) return fmt::format("{}: cannot write an empty cube map", path.string());
+  const std::string pattern = path.string();
+  const bool face_pattern = pattern.find(kFaceToken) != std::string::npos;
+  if (layout == Layout::kAuto) layout = face_pattern ? Layout::kFaces : Layout::kHorizontalCross;
+  if (layout != Layout::kFaces) return WriteAtomically(CubeMapToImage(cube, layout), path, "");
+  if (!face_pattern) {
+    return fmt::format("{}: writing six faces needs a path containing \"{}\"", pattern, kFaceToken);
+  }
+  try {
+    std::vector<std::pair<fs::path, fs::path>> renames;
+    for (CubeFace face : kAllCubeFaces) {
+      const fs::path target = ReplaceToken(pattern, kFaceFileNames[static_cast<int>(face)]);
+      std::string error;
+      const std::optional<fs::path> temporary = WriteTemporary(cube.face(face), target, "", error);
+      if (!temporary) {
+        for (const auto& [written, unused] : renames) RemoveQuietly(written);
+        return error;
+      }
+      renames.emplace_back(*temporary, target);
+    }
+    return Commit(renames);
+  } catch (const std::exception& e) {
+    return fmt::format("{}: {}", pattern, e.what());
+  }
+}
+
+}  // namespace vs11::irradiance

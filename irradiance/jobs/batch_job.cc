@@ -1,0 +1,322 @@
+// `irrmap batch`. See batch_job.h.
+#include "irradiance/jobs/batch_job.h"
+
+#include <glob.h>
+
+#include <algorithm>
+#include <atomic>
+#include <bit>
+#include <chrono>
+#include <cstdio>
+#include <fstream>
+#include <map>
+#include <memory>
+#include <mutex>
+#include <sstream>
+#include <thread>
+#include <utility>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "irradiance/io/environment_io.h"
+#include "irradiance/sh/constants_output.h"
+#include "irradiance/sh/ground_truth.h"
+#include "irradiance/sh/sh9.h"
+#include "irradiance/sh/sh_projection.h"
+#include "vm/asm/program_file.h"
+
+namespace vs11::irradiance {
+namespace {
+
+namespace fs = std::filesystem;
+
+bool IsPattern(const std::string& text) { return text.find_first_of("*?[") != std::string::npos; }
+
+// Appends the paths `pattern` matches (glob(3), sorted), or the path itself when it is no pattern.
+std::optional<std::string> AddExpanded(const std::string& input, std::vector<std::string>& out) {
+  if (!IsPattern(input)) {
+    out.push_back(input);  // a missing file is reported as that file's failure
+    return std::nullopt;
+  }
+  glob_t matches{};
+  const int status = glob(input.c_str(), GLOB_ERR, nullptr, &matches);
+  if (status == 0) {
+    for (std::size_t i = 0; i < matches.gl_pathc; ++i) out.emplace_back(matches.gl_pathv[i]);
+  }
+  globfree(&matches);
+  if (status == GLOB_NOMATCH) return fmt::format("pattern '{}' matches no file", input);
+  if (status != 0) return fmt::format("pattern '{}' cannot be expanded (a folder cannot be read)", input);
+  return std::nullopt;
+}
+
+std::string Trimmed(const std::string& line) {
+  const std::size_t first = line.find_first_not_of(" \t\r");
+  if (first == std::string::npos) return {};
+  return line.substr(first, line.find_last_not_of(" \t\r") - first + 1);
+}
+
+// The per-file output of `input`: its path with separators as "__", so that inputs of the same
+// name in different folders do not collide.
+std::string PerFileName(std::string input) {
+  if (input.starts_with("./")) input.erase(0, 2);
+  std::string name;
+  for (char c : input) name += c == '/' ? std::string("__") : std::string(1, c);
+  return name + ".json";
+}
+
+// Basis pyramids by face size, each built once, by the first worker that needs it.
+class BasisCache {
+ public:
+  std::shared_ptr<const BasisPyramid> Get(int face_size) {
+    std::lock_guard lock(mutex_);
+    std::shared_ptr<const BasisPyramid>& slot = pyramids_[face_size];
+    if (!slot) {
+      std::optional<BasisPyramid> built = BuildBasisPyramid(face_size);
+      if (built) slot = std::make_shared<const BasisPyramid>(std::move(*built));
+    }
+    return slot;
+  }
+
+ private:
+  std::mutex mutex_;
+  std::map<int, std::shared_ptr<const BasisPyramid>> pyramids_;
+};
+
+struct Job {
+  Job(const BatchOptions& batch_options, EnvironmentLayout file_layout) : options(batch_options), layout(file_layout) {}
+
+  const BatchOptions& options;
+  EnvironmentLayout layout;
+  BasisCache basis;
+  std::vector<glm::dvec3> error_normals = SphereNormals(kLevelErrorNormals);
+};
+
+// The record of one input, or the reason it has none.
+std::optional<std::string> ProcessInput(Job& job, const std::string& input, nlohmann::ordered_json& record) {
+  LoadOptions load;
+  load.layout = job.layout;
+  load.face_size = job.options.face_size;
+  LoadResult loaded = LoadEnvironment(input, load);
+  if (!loaded.ok()) return loaded.error;
+  const int face_size = loaded.environment->cube.face_size;
+  if (!std::has_single_bit(static_cast<unsigned>(face_size))) {
+    return fmt::format("face size {} is not a power of two (the mip pyramid needs one)", face_size);
+  }
+  const std::string layout(LayoutName(loaded.environment->layout));
+  std::optional<CubeMipChain> mips = BuildEnvironmentMips(std::move(loaded.environment->cube));
+  std::shared_ptr<const BasisPyramid> basis = job.basis.Get(face_size);
+  if (!mips || !basis) return fmt::format("cannot build the mip pyramids of face size {}", face_size);
+  const int level_count = LevelCount(face_size);
+  if (job.options.level && *job.options.level >= level_count) {
+    return fmt::format("--level {} is out of range: face size {} has levels 0 to {}", *job.options.level, face_size,
+                       level_count - 1);
+  }
+  std::vector<Sh9Rgb> levels;
+  for (int level = 0; level < level_count; ++level) levels.push_back(ProjectLevel(*mips, *basis, level));
+  const std::vector<double> estimated = EstimateLevelErrors(levels, job.error_normals);
+  const int level = job.options.level ? *job.options.level : CoarsestLevelWithin(estimated, job.options.max_error);
+  nlohmann::ordered_json coefficients = nlohmann::ordered_json::array();
+  for (const glm::dvec3& c : levels[level].coefficients) coefficients.push_back({c.r, c.g, c.b});
+  record = {{"input", input},
+            {"face_size", face_size},
+            {"layout", layout},
+            {"level", level},
+            {"level_size", face_size >> level},
+            {"estimated_error", estimated[level]},
+            {"coefficients", std::move(coefficients)},
+            {"constants", ConstantsJson(PackTable1(levels[level]))}};
+  return std::nullopt;
+}
+
+std::optional<std::string> CheckOptions(const BatchOptions& options, EnvironmentLayout& layout) {
+  std::optional<EnvironmentLayout> parsed = ParseLayout(options.layout);
+  if (!parsed) {
+    return fmt::format("unknown layout '{}' (use auto, faces, hcross, vcross, hstrip, vstrip, latlong or angular)",
+                       options.layout);
+  }
+  layout = *parsed;
+  if (options.shard_count < 1 || options.shard_index < 0 || options.shard_index >= options.shard_count) {
+    return fmt::format("--shard {}/{} is out of range: K/N with 0 <= K < N", options.shard_index, options.shard_count);
+  }
+  if (!std::has_single_bit(static_cast<unsigned>(std::max(options.face_size, 0))) || options.face_size > kMaxFaceSize) {
+    return fmt::format("--face-size {} must be a power of two from 1 to {}", options.face_size, kMaxFaceSize);
+  }
+  if (!(options.max_error > 0.0 && options.max_error < 1.0)) {
+    return fmt::format("--max-error {} is out of range: a fraction above 0 and below 1", options.max_error);
+  }
+  if (options.level && *options.level < 0) return fmt::format("--level {} is out of range: levels start at 0", *options.level);
+  if (options.threads < 0) return fmt::format("--threads {} must be >= 0 (0: every core)", options.threads);
+  if (options.output.empty()) return std::string("no output file given (-o FILE.jsonl)");
+  std::error_code ec;
+  if (fs::exists(options.output, ec) && !options.resume) {
+    return fmt::format("{} exists: pass --resume to continue it, or remove it", options.output.string());
+  }
+  return std::nullopt;
+}
+
+}  // namespace
+
+std::optional<std::pair<int, int>> ParseShard(const std::string& text) {
+  int index = 0, count = 0;
+  char slash = 0, extra = 0;
+  std::istringstream in(text);
+  if (!(in >> index >> slash >> count) || slash != '/' || (in >> extra)) return std::nullopt;
+  if (count < 1 || index < 0 || index >= count) return std::nullopt;
+  return std::pair{index, count};
+}
+
+std::vector<std::string> ExpandBatchInputs(const std::vector<std::string>& inputs,
+                                           const std::vector<fs::path>& list_files, std::string& error) {
+  std::vector<std::string> out;
+  for (const std::string& input : inputs) {
+    if (std::optional<std::string> problem = AddExpanded(input, out)) {
+      error = *problem;
+      return {};
+    }
+  }
+  for (const fs::path& list : list_files) {
+    std::ifstream in(list);
+    if (!in) {
+      error = fmt::format("cannot read the list file {}", list.string());
+      return {};
+    }
+    std::string line;
+    for (int number = 1; std::getline(in, line); ++number) {
+      const std::string entry = Trimmed(line);
+      if (entry.empty() || entry.starts_with('#')) continue;
+      if (std::optional<std::string> problem = AddExpanded(entry, out)) {
+        error = fmt::format("{}:{}: {}", list.string(), number, *problem);
+        return {};
+      }
+    }
+    if (in.bad()) {
+      error = fmt::format("cannot read the list file {}", list.string());
+      return {};
+    }
+  }
+  std::sort(out.begin(), out.end());
+  out.erase(std::unique(out.begin(), out.end()), out.end());
+  return out;
+}
+
+std::vector<std::string> ShardOf(const std::vector<std::string>& sorted_inputs, int index_of_shard, int count) {
+  std::vector<std::string> out;
+  for (std::size_t i = 0; i < sorted_inputs.size(); ++i) {
+    if (static_cast<int>(i % count) == index_of_shard) out.push_back(sorted_inputs[i]);
+  }
+  return out;
+}
+
+std::set<std::string> CompletedInputs(const fs::path& output, std::string& error) {
+  std::set<std::string> done;
+  std::error_code ec;
+  if (!fs::exists(output, ec)) return done;
+  std::ifstream in(output, std::ios::binary);
+  if (!in) {
+    error = fmt::format("cannot read {} to resume it", output.string());
+    return {};
+  }
+  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
+  in.close();
+  const std::size_t complete = text.rfind('\n') == std::string::npos ? 0 : text.rfind('\n') + 1;
+  if (complete < text.size()) {
+    fs::resize_file(output, complete, ec);
+    if (ec) {
+      error = fmt::format("cannot cut the unfinished last line off {} ({})", output.string(), ec.message());
+      return {};
+    }
+  }
+  std::size_t begin = 0;
+  for (int number = 1; begin < complete; ++number) {
+    const std::size_t end = text.find('\n', begin);
+    const std::string line = text.substr(begin, end - begin);
+    begin = end + 1;
+    if (Trimmed(line).empty()) continue;
+    const nlohmann::json record = nlohmann::json::parse(line, nullptr, false);
+    if (record.is_discarded() || !record.is_object() || !record.contains("input") || !record["input"].is_string()) {
+      error = fmt::format("{}:{}: not a record of irrmap batch (a JSON object with \"input\")", output.string(), number);
+      return {};
+    }
+    done.insert(record["input"].get<std::string>());
+  }
+  return done;
+}
+
+std::optional<std::string> RunBatch(const BatchOptions& options, BatchSummary& summary, const BatchProgress& progress,
+                                    const BatchFailureReport& report) {
+  const auto start = std::chrono::steady_clock::now();
+  summary = BatchSummary{};
+  EnvironmentLayout layout = EnvironmentLayout::kAuto;
+  if (std::optional<std::string> error = CheckOptions(options, layout)) return error;
+  std::string error;
+  const std::vector<std::string> all = ExpandBatchInputs(options.inputs, options.list_files, error);
+  if (!error.empty()) return error;
+  if (all.empty()) return std::string("no input files given");
+  const std::vector<std::string> shard = ShardOf(all, options.shard_index, options.shard_count);
+  summary.selected = shard.size();
+  const std::set<std::string> completed = options.resume ? CompletedInputs(options.output, error) : std::set<std::string>{};
+  if (!error.empty()) return error;
+  std::vector<std::string> todo;
+  for (const std::string& input : shard) {
+    if (completed.count(input) == 0) todo.push_back(input);
+  }
+  summary.resumed = shard.size() - todo.size();
+
+  std::error_code ec;
+  if (options.output.has_parent_path()) fs::create_directories(options.output.parent_path(), ec);
+  if (!options.per_file_dir.empty()) {
+    fs::create_directories(options.per_file_dir, ec);
+    if (ec) return fmt::format("cannot create {} ({})", options.per_file_dir.string(), ec.message());
+  }
+  std::unique_ptr<std::FILE, int (*)(std::FILE*)> out(std::fopen(options.output.c_str(), "ab"), &std::fclose);
+  if (!out) return fmt::format("cannot open {} for appending", options.output.string());
+
+  Job job(options, layout);
+  std::mutex mutex;  // guards `out`, `summary`, the callbacks and `failures`
+  std::vector<std::pair<std::size_t, BatchFailure>> failures;
+  std::atomic<std::size_t> next = 0;
+  std::size_t finished = 0;
+  std::optional<std::string> write_error;
+  auto work = [&] {
+    for (std::size_t i = next++; i < todo.size(); i = next++) {
+      nlohmann::ordered_json record;
+      std::optional<std::string> reason = ProcessInput(job, todo[i], record);
+      std::string line;
+      if (!reason) {
+        line = record.dump() + "\n";
+        if (!options.per_file_dir.empty()) {
+          const fs::path path = options.per_file_dir / PerFileName(todo[i]);
+          if (std::optional<std::string> problem = WriteFileAtomically(path, record.dump(2) + "\n")) {
+            reason = fmt::format("cannot write {}: {}", path.string(), *problem);
+          }
+        }
+      }
+      std::lock_guard lock(mutex);
+      if (reason) {
+        failures.push_back({i, {todo[i], *reason}});
+        if (report) report(failures.back().second);
+      } else if (std::fwrite(line.data(), 1, line.size(), out.get()) != line.size() || std::fflush(out.get()) != 0) {
+        write_error = fmt::format("cannot write to {}", options.output.string());
+        next = todo.size();  // stop: nothing more can be kept
+      } else {
+        ++summary.succeeded;
+      }
+      ++finished;
+      if (progress) progress(finished, todo.size());
+    }
+  };
+  const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
+  const std::size_t threads =
+      std::min<std::size_t>(todo.size(), options.threads > 0 ? static_cast<std::size_t>(options.threads) : cores);
+  std::vector<std::thread> workers;
+  for (std::size_t t = 1; t < threads; ++t) workers.emplace_back(work);
+  work();
+  for (std::thread& worker : workers) worker.join();
+  std::sort(failures.begin(), failures.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
+  for (auto& [index, failure] : failures) summary.failures.push_back(std::move(failure));
+  summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();
+  return write_error;
+}
+
+}  // namespace vs11::irradiance

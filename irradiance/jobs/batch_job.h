@@ -1,0 +1,85 @@
+// `irrmap batch`: the nine SH coefficients and the seven constants of many environment files in
+// one process, every core busy, one JSON Lines record per file.
+//
+// Inputs: paths, glob patterns (*, ?, [...]) and list files (one path or pattern per line, # starts
+// a comment), expanded, de-duplicated and sorted, so every run and every machine sees the same
+// order; --shard K/N then keeps the inputs whose index i in that order has i % N == K.
+//
+// Output: one line per finished input, appended and flushed as soon as it is done (an interrupted
+// run keeps every finished line):
+//   {"input": PATH, "face_size", "layout", "level", "level_size", "estimated_error",
+//    "coefficients": 9 x [r, g, b] (L00, L1-1, ..., L22), "constants": {"cAr": [x, y, z, w], ...}}
+// and optionally, per input, DIR/<input with '/' as '__'>.json holding the same record, written
+// atomically. A file that cannot be read or used is reported (its path and why) and skipped; the
+// others go on. --resume keeps the records already in the output and skips their inputs (a last
+// line cut off by an interruption is dropped first).
+#pragma once
+
+#include <cstddef>
+#include <filesystem>
+#include <functional>
+#include <optional>
+#include <set>
+#include <string>
+#include <vector>
+
+#include "irradiance/sh/level_choice.h"
+
+namespace vs11::irradiance {
+
+struct BatchOptions {
+  std::vector<std::string> inputs;  // paths or glob patterns
+  std::vector<std::filesystem::path> list_files;
+  std::filesystem::path output;       // the JSON Lines file
+  std::filesystem::path per_file_dir;  // empty: no per-file outputs
+  bool resume = false;
+  int shard_index = 0;  // K of --shard K/N, 0 <= K < N
+  int shard_count = 1;  // N
+  int threads = 0;      // 0: every core
+  std::string layout = "auto";
+  int face_size = 256;  // lat-long and angular maps are resampled to this
+  std::optional<int> level;
+  double max_error = kDefaultMaxLevelError;
+};
+
+struct BatchFailure {
+  std::string input;
+  std::string reason;
+};
+
+struct BatchSummary {
+  std::size_t selected = 0;  // inputs in this shard
+  std::size_t resumed = 0;   // already in the output, skipped
+  std::size_t succeeded = 0;
+  std::vector<BatchFailure> failures;  // in input order
+  double seconds = 0.0;
+};
+
+// Called after every finished input (done of total, where total excludes resumed inputs), from
+// whichever worker finished it, one call at a time.
+using BatchProgress = std::function<void(std::size_t done, std::size_t total)>;
+// Called for every failed input as it fails, one call at a time.
+using BatchFailureReport = std::function<void(const BatchFailure& failure)>;
+
+// Parses "K/N" (0 <= K < N); nullopt when it is not that.
+std::optional<std::pair<int, int>> ParseShard(const std::string& text);
+
+// Inputs and list files expanded, de-duplicated and sorted; `error` set (and the result empty) when
+// a list file cannot be read or a pattern or path matches nothing.
+std::vector<std::string> ExpandBatchInputs(const std::vector<std::string>& inputs,
+                                           const std::vector<std::filesystem::path>& list_files, std::string& error);
+
+// The inputs with index % count == index_of_shard.
+std::vector<std::string> ShardOf(const std::vector<std::string>& sorted_inputs, int index_of_shard, int count);
+
+// The "input" of every complete line of a JSON Lines output; a last line without its newline is cut
+// off the file (it was being written when a run stopped). `error` set when the file exists but
+// cannot be read, repaired or holds a complete line that is not a record.
+std::set<std::string> CompletedInputs(const std::filesystem::path& output, std::string& error);
+
+// Runs the batch. Returns a message for a problem with the options or the output file (nothing
+// processed); failures of single inputs go to summary.failures instead.
+std::optional<std::string> RunBatch(const BatchOptions& options, BatchSummary& summary,
+                                    const BatchProgress& progress = {}, const BatchFailureReport& report = {});
+
+}  // namespace vs11::irradiance

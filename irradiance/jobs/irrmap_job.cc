@@ -1,0 +1,687 @@
+// The irrmap job. See irrmap_job.h.
+#include "irradiance/jobs/irrmap_job.h"
+
+#include <unistd.h>
+
+#include <algorithm>
+#include <array>
+#include <bit>
+#include <cassert>
+#include <chrono>
+#include <cstddef>
+#include <functional>
+#include <memory>
+#include <random>
+#include <system_error>
+#include <thread>
+#include <type_traits>
+#include <utility>
+
+#include <fmt/format.h>
+#include <nlohmann/json.hpp>
+
+#include "irradiance/io/cube_map.h"
+#include "irradiance/io/environment_io.h"
+#include "irradiance/io/environments.h"
+#include "irradiance/render/preview.h"
+#include "irradiance/report/verify.h"
+#include "irradiance/sh/constants_output.h"
+#include "irradiance/sh/nonneg_fit.h"
+#include "irradiance/sh/sh_projection.h"
+#include "programs/embedded_programs.h"
+#include "vm/asm/assembler.h"
+#include "vm/asm/program_file.h"
+#include "vm/engines/engine_factory.h"
+
+namespace vs11::irradiance {
+namespace {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+// Output file names inside out_dir.
+constexpr std::string_view kCoefficientsFile = "coeffs.json";
+constexpr std::string_view kConstantsFile = "constants.vsh";
+constexpr std::string_view kProgramFile = "program.vsh";
+constexpr std::string_view kIrradianceFile = "irradiance.exr";
+constexpr std::string_view kPreviewFile = "preview.png";
+constexpr std::string_view kMeshFile = "mesh.ply";
+constexpr std::string_view kMeshPictureFile = "mesh.png";
+// Each level's coefficient update is repeated until this much time has passed (or kMaxTimingRuns
+// runs), and the mean is reported: a 1 x 1 level takes a few microseconds.
+constexpr double kMinTimingMs = 20.0;
+constexpr int kMaxTimingRuns = 1000;
+// The preview shows the levels whose faces have these sizes (besides level 0 and the chosen one),
+// the sizes of the paper's Fig. 3.
+constexpr std::array<int, 2> kPreviewLevelSizes = {64, 16};
+constexpr int kMaxSphereDiameter = 2048;
+constexpr int kMaxErrorNormals = 1 << 20;
+constexpr double kMaxWindowWidth = 1e6;
+
+double MillisecondsSince(Clock::time_point start) {
+  return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+}
+
+// Runs `stage`, appending its time to the report.
+template <class F>
+auto Timed(IrrmapReport& report, std::string name, F&& stage) {
+  const Clock::time_point start = Clock::now();
+  if constexpr (std::is_void_v<decltype(stage())>) {
+    stage();
+    report.timings.push_back({std::move(name), MillisecondsSince(start)});
+  } else {
+    auto result = stage();
+    report.timings.push_back({std::move(name), MillisecondsSince(start)});
+    return result;
+  }
+}
+
+bool IsPowerOfTwo(int n) { return n > 0 && std::has_single_bit(static_cast<unsigned>(n)); }
+
+std::string BuiltinList() {
+  std::string out;
+  for (const std::string& name : BuiltinEnvironmentNames()) out += (out.empty() ? "" : ", ") + name;
+  return out;
+}
+
+bool IsBuiltinName(std::string_view name) {
+  const std::vector<std::string> names = BuiltinEnvironmentNames();
+  return std::find(names.begin(), names.end(), name) != names.end();
+}
+
+// What the options say once checked.
+struct CheckedOptions {
+  EnvironmentLayout layout = EnvironmentLayout::kAuto;
+  EngineKind engine = EngineKind::kBatch;
+  ShWindow window = ShWindow::kNone;
+  std::optional<ShOrder> order;  // nullopt: chosen by max_error
+  bool builtin = false;
+  int threads = 1;
+};
+
+std::string LevelRange(int face_size) {
+  return fmt::format("face size {} has levels 0 ({}x{}) to {} (1x1)", face_size, face_size, face_size,
+                     LevelCount(face_size) - 1);
+}
+
+std::optional<std::string> CheckOptions(const IrrmapOptions& options, CheckedOptions& checked) {
+  std::optional<EnvironmentLayout> layout = ParseLayout(options.layout);
+  if (!layout) {
+    return fmt::format("unknown layout '{}' (use auto, faces, hcross, vcross, hstrip, vstrip, latlong or angular)",
+                       options.layout);
+  }
+  checked.layout = *layout;
+  std::optional<EngineKind> engine = EngineKindFromName(options.engine);
+  if (!engine) return fmt::format("unknown engine '{}' (use ref, batch or jit)", options.engine);
+  checked.engine = *engine;
+  std::optional<ShWindow> window = ParseShWindow(options.window);
+  if (!window) {
+    return fmt::format("unknown window '{}' (use none, hanning, lanczos, dering or nonneg)", options.window);
+  }
+  checked.window = *window;
+  if (options.order != "auto") {
+    checked.order = ParseShOrder(options.order);
+    if (!checked.order) return fmt::format("unknown order '{}' (use auto, {})", options.order, ShOrderNames());
+  } else if (options.level) {
+    checked.order = ShOrder::kOrder2;
+  }
+  if (!(options.window_width > 0.0) || options.window_width > kMaxWindowWidth) {
+    return fmt::format("--window-width {} is out of range: above 0, at most {}", options.window_width,
+                       kMaxWindowWidth);
+  }
+  if (!(options.max_error > 0.0 && options.max_error < 1.0)) {
+    return fmt::format("--max-error {} is out of range: a fraction above 0 and below 1 (0.005 = 0.5 %)",
+                       options.max_error);
+  }
+  if (!IsPowerOfTwo(options.face_size) || options.face_size > kMaxFaceSize) {
+    return fmt::format("--face-size {} must be a power of two from 1 to {} (the mip pyramid halves it down to 1x1)",
+                       options.face_size, kMaxFaceSize);
+  }
+  if (options.level && *options.level < 0) {
+    return fmt::format("--level {} is out of range: levels start at 0 (full resolution)", *options.level);
+  }
+  if (options.map_size < 1 || options.map_size > kMaxMapSize) {
+    return fmt::format("--map-size {} is out of range: 1 to {}", options.map_size, kMaxMapSize);
+  }
+  if (options.threads < 0) return fmt::format("--threads {} must be >= 0 (0: every core)", options.threads);
+  if (options.error_normals < 1 || options.error_normals > kMaxErrorNormals) {
+    return fmt::format("--error-normals {} is out of range: 1 to {}", options.error_normals, kMaxErrorNormals);
+  }
+  if (options.sphere_diameter < kMinPreviewSphereDiameter || options.sphere_diameter > kMaxSphereDiameter) {
+    return fmt::format("--sphere-size {} is out of range: {} to {}", options.sphere_diameter, kMinPreviewSphereDiameter,
+                       kMaxSphereDiameter);
+  }
+  if (options.out_dir.empty()) return std::string("the output directory is empty");
+  if (std::optional<std::string> error = CheckOutputFolder(options.out_dir)) return error;
+  if (options.environment.empty()) return std::string("no environment given");
+  std::error_code ec;
+  const bool exists = fs::exists(options.environment, ec);
+  checked.builtin = IsBuiltinName(options.environment) && !exists;
+  if (!checked.builtin && !exists && options.environment.find(kFaceToken) == std::string::npos) {
+    return fmt::format("environment '{}' is neither an existing file nor a built-in ({})", options.environment,
+                       BuiltinList());
+  }
+  if (checked.builtin && options.level && *options.level >= LevelCount(options.face_size)) {
+    return fmt::format("--level {} is out of range: {}", *options.level, LevelRange(options.face_size));
+  }
+  const unsigned cores = std::thread::hardware_concurrency();
+  checked.threads = options.threads > 0 ? options.threads : static_cast<int>(std::max(1u, cores));
+  return std::nullopt;
+}
+
+std::optional<std::string> LoadCube(const IrrmapOptions& options, const CheckedOptions& checked,
+                                    IrrmapReport& report, CubeMap& cube) {
+  if (checked.builtin) {
+    std::optional<CubeMap> made = MakeBuiltinEnvironment(options.environment, options.face_size);
+    if (!made) return fmt::format("cannot make the built-in environment '{}'", options.environment);
+    cube = std::move(*made);
+    report.environment = fmt::format("{} (built-in)", options.environment);
+    report.layout = "builtin";
+    if (checked.layout != EnvironmentLayout::kAuto) {
+      report.warnings.push_back(fmt::format("--layout {} ignored for a built-in environment", options.layout));
+    }
+    return std::nullopt;
+  }
+  LoadOptions load;
+  load.layout = checked.layout;
+  load.face_size = options.face_size;
+  LoadResult loaded = LoadEnvironment(options.environment, load);
+  if (!loaded.ok()) return loaded.error;
+  for (std::string& warning : loaded.environment->warnings) report.warnings.push_back(std::move(warning));
+  cube = std::move(loaded.environment->cube);
+  report.environment = options.environment;
+  report.layout = std::string(LayoutName(loaded.environment->layout));
+  const bool resampled = loaded.environment->layout == EnvironmentLayout::kLatLong ||
+                         loaded.environment->layout == EnvironmentLayout::kAngular;
+  if (options.face_size_given && !resampled && cube.face_size != options.face_size) {
+    report.warnings.push_back(fmt::format("--face-size {} ignored: {} is a cube map ({}) with faces of {}x{}; only "
+                                          "lat-long and angular maps are resampled",
+                                          options.face_size, options.environment, report.layout, cube.face_size,
+                                          cube.face_size));
+  }
+  if (!IsPowerOfTwo(cube.face_size)) {
+    return fmt::format("{}: face size {} is not a power of two; the mip pyramid needs exact 2x2 parents down to "
+                       "1x1 (resample the map, or give a lat-long map with --face-size)",
+                       options.environment, cube.face_size);
+  }
+  if (options.level && *options.level >= LevelCount(cube.face_size)) {
+    return fmt::format("--level {} is out of range: {}", *options.level, LevelRange(cube.face_size));
+  }
+  return std::nullopt;
+}
+
+// Mean time of ProjectLevel at one level, in ms, repeated until `min_ms` have passed.
+double TimeProjection(const CubeMipChain& mips, const BasisPyramid& basis, int level, Sh9Rgb& coefficients,
+                      double min_ms) {
+  const Clock::time_point start = Clock::now();
+  int runs = 0;
+  double elapsed = 0.0;
+  do {
+    coefficients = ProjectLevel(mips, basis, level);
+    ++runs;
+    elapsed = MillisecondsSince(start);
+  } while (elapsed < min_ms && runs < kMaxTimingRuns);
+  return elapsed / runs;
+}
+
+// Unit directions of every texel of a size^3 cube map, in CubeFace, row, column order.
+std::vector<glm::dvec3> CubeTexelDirections(int size) {
+  std::vector<glm::dvec3> directions;
+  directions.reserve(static_cast<std::size_t>(kCubeFaceCount) * size * size);
+  for (CubeFace face : kAllCubeFaces) {
+    for (int y = 0; y < size; ++y) {
+      for (int x = 0; x < size; ++x) directions.push_back(TexelDirection(face, x, y, size));
+    }
+  }
+  return directions;
+}
+
+// "SH9 from 64x64 (level 2)"; `chosen` adds " *".
+std::string PreviewLabel(const LevelReport& level, bool chosen) {
+  const std::string name = level.level == 0 ? fmt::format("SH9 from {0}x{0}", level.size)
+                                            : fmt::format("SH9 from {0}x{0} (level {1})", level.size, level.level);
+  return chosen ? name + " *" : name;
+}
+
+// Levels shown in the preview: 0, those of kPreviewLevelSizes, and the chosen one, in order.
+std::vector<int> PreviewLevels(const IrrmapReport& report) {
+  std::vector<int> levels = {0, report.level};
+  for (const LevelReport& level : report.levels) {
+    if (std::find(kPreviewLevelSizes.begin(), kPreviewLevelSizes.end(), level.size) != kPreviewLevelSizes.end()) {
+      levels.push_back(level.level);
+    }
+  }
+  std::sort(levels.begin(), levels.end());
+  levels.erase(std::unique(levels.begin(), levels.end()), levels.end());
+  return levels;
+}
+
+nlohmann::ordered_json CoefficientsJson(const IrrmapReport& report, const IrrmapOptions& options,
+                                        const CheckedOptions& checked) {
+  nlohmann::ordered_json json;
+  nlohmann::ordered_json rows = nlohmann::ordered_json::array();
+  for (const glm::dvec3& c : report.coefficients.coefficients) rows.push_back({c.r, c.g, c.b});
+  json["coefficients"] = std::move(rows);
+  json["level"] = report.level;
+  json["level_size"] = report.levels[report.level].size;
+  json["level_choice"] = options.level ? "level" : "max_error";
+  if (!options.level) json["max_error"] = options.max_error;
+  const std::array<double, kSh9Bands>& factors = report.levels[report.level].window_factors;
+  json["window"] = {{"name", std::string(ShWindowName(checked.window))},
+                    {"width", options.window_width},
+                    {"factors", {factors[0], factors[1], factors[2]}}};
+  json["face_size"] = report.face_size;
+  json["layout"] = report.layout;
+  json["environment"] = report.environment;
+  json["engine"] = std::string(EngineName(checked.engine));
+  json["map_size"] = options.map_size;
+  json["constants"] = ConstantsJson(report.constants);
+  const ShOrderInfo& order = Info(report.order);
+  json["order"] = std::string(order.name);
+  nlohmann::ordered_json program = {{"name", std::string(order.name)},
+                                    {"file", std::string(order.program_file)},
+                                    {"slots", order.slots},
+                                    {"estimated_error", report.order_estimated_error},
+                                    {"error_vs_full_order2", report.program_vs_full_order2}};
+  if (report.errors_measured) program["max_relative_error"] = report.program_error.max_relative;
+  nlohmann::ordered_json registers = nlohmann::ordered_json::object();
+  for (const NamedRegister& r : report.program_constants) {
+    registers[r.name] = {r.value.x, r.value.y, r.value.z, r.value.w};
+  }
+  program["constants"] = std::move(registers);
+  json["program"] = std::move(program);
+  nlohmann::ordered_json estimates = nlohmann::ordered_json::array();
+  for (const ProgramLevelEstimate& e : report.program_estimates) {
+    estimates.push_back(
+        {{"order", std::string(Info(e.order).name)}, {"level", e.level}, {"estimated_error", e.estimated}});
+  }
+  json["program_estimates"] = std::move(estimates);
+  nlohmann::ordered_json levels = nlohmann::ordered_json::array();
+  for (const LevelReport& level : report.levels) {
+    nlohmann::ordered_json row = {{"level", level.level}, {"size", level.size}, {"update_ms", level.update_ms}};
+    if (!options.coefficients_only && !options.no_ground_truth) {
+      row["max_relative_error"] = level.error.max_relative;
+      row["mean_relative_error"] = level.error.mean_relative;
+    }
+    row["estimated_error"] = level.estimated_error;
+    levels.push_back(std::move(row));
+  }
+  json["levels"] = std::move(levels);
+  if (report.mesh) {
+    const MeshReport& mesh = *report.mesh;
+    nlohmann::ordered_json row = {{"file", mesh.file},
+                                  {"vertex_count", mesh.vertex_count},
+                                  {"triangle_count", mesh.triangle_count},
+                                  {"unusable_normals", mesh.unusable_normals},
+                                  {"ms_per_evaluation", mesh.ms_per_evaluation},
+                                  {"ns_per_vertex", mesh.vertex_count > 0 ? mesh.ms_per_evaluation * 1e6 / mesh.vertex_count : 0.0},
+                                  {"exact", mesh.has_truth}};
+    if (mesh.has_truth) {
+      row["max_relative_error"] = mesh.error.max_relative;
+      row["mean_relative_error"] = mesh.error.mean_relative;
+      row["error_scale"] = mesh.error_scale;
+    }
+    json["mesh"] = std::move(row);
+  }
+  nlohmann::ordered_json timings = nlohmann::ordered_json::object();
+  for (const Timing& timing : report.timings) timings[timing.name] = timing.ms;
+  json["timings_ms"] = std::move(timings);
+  return json;
+}
+
+void RemoveQuietly(const fs::path& path) {
+  std::error_code ec;
+  fs::remove(path, ec);
+}
+
+// One output: written by `write` to a temporary path with the same extension, then renamed.
+struct PendingOutput {
+  std::string_view name;
+  std::function<std::optional<std::string>(const fs::path&)> write;
+};
+
+std::optional<std::string> WriteOutputs(const fs::path& out_dir, const std::vector<PendingOutput>& outputs,
+                                        std::vector<fs::path>& written) {
+  std::error_code ec;
+  fs::create_directories(out_dir, ec);
+  if (ec) return fmt::format("cannot create the output directory {} ({})", out_dir.string(), ec.message());
+  for (const PendingOutput& output : outputs) {  // a folder in the way would fail the last renames
+    if (fs::is_directory(out_dir / output.name, ec)) {
+      return fmt::format("cannot write {}: it is a directory", (out_dir / output.name).string());
+    }
+  }
+  std::random_device random;
+  const std::string tag = fmt::format(".irrmap-{:08x}-", random());
+  std::vector<std::pair<fs::path, fs::path>> renames;
+  auto discard = [&](std::size_t from) {
+    for (std::size_t i = from; i < renames.size(); ++i) RemoveQuietly(renames[i].first);
+  };
+  for (const PendingOutput& output : outputs) {
+    const fs::path target = out_dir / output.name;
+    const fs::path temporary = out_dir / (tag + std::string(output.name));
+    if (std::optional<std::string> error = output.write(temporary)) {
+      RemoveQuietly(temporary);
+      discard(0);
+      return fmt::format("cannot write {}: {}", target.string(), *error);
+    }
+    renames.emplace_back(temporary, target);
+  }
+  for (std::size_t i = 0; i < renames.size(); ++i) {
+    fs::rename(renames[i].first, renames[i].second, ec);
+    if (ec) {
+      discard(i);
+      return fmt::format("cannot rename the finished file into {} ({})", renames[i].second.string(), ec.message());
+    }
+    written.push_back(renames[i].second);
+  }
+  return std::nullopt;
+}
+
+std::string ConstantsFileComment(const IrrmapReport& report, const PaperProgram& program) {
+  if (report.order != ShOrder::kOrder2) {
+    const ShOrderInfo& order = Info(report.order);
+    return fmt::format(
+        "Irradiance constants for programs/{file} ({name}, {slots} slots; irradiance/sh/sh_order.h), written by "
+        "irrmap\nbeside it as program.vsh. Environment: {environment}, face size {face}, coefficients from level "
+        "{level} ({size}x{size}).\nEstimated error against the nine terms at level 0: {estimate:.3g} %.\n"
+        "Run with: vs11 run program.vsh --fragment --consts constants.vsh --sphere 6 --sphere-reg v{normal}",
+        fmt::arg("file", order.program_file), fmt::arg("name", order.name), fmt::arg("slots", order.slots),
+        fmt::arg("environment", report.environment), fmt::arg("face", report.face_size),
+        fmt::arg("level", report.level), fmt::arg("size", report.levels[report.level].size),
+        fmt::arg("estimate", 100.0 * report.order_estimated_error), fmt::arg("normal", program.normal_register()));
+  }
+  return fmt::format(
+      "Irradiance constants for programs/{file} (Ai, Peng & Zhang 2008, Table 1), written by irrmap\n"
+      "beside it as program.vsh.\n"
+      "Environment: {environment}, face size {face}, coefficients from level {level} ({size}x{size}).\n"
+      "c{first}..c{last} = cAr cAg cAb cBr cBg cBb cC; normal in v{normal}, irradiance in {output}.rgb.\n"
+      "Run with: vs11 run programs/{file} --fragment --consts constants.vsh --sphere 6 --sphere-reg v{normal}\n"
+      "(--fragment: the program is the irradiance part only and writes no oPos), or with the\n"
+      "complete shader programs/sh9_vertex_od0.vsh, which reads the same c0..c6.",
+      fmt::arg("file", Info(ShOrder::kOrder2).program_file), fmt::arg("environment", report.environment),
+      fmt::arg("face", report.face_size), fmt::arg("level", report.level),
+      fmt::arg("size", report.levels[report.level].size), fmt::arg("first", program.constant_base()),
+      fmt::arg("last", program.constant_base() + 6), fmt::arg("normal", program.normal_register()),
+      fmt::arg("output", OutputSlotName(program.output_slot())));
+}
+
+// Writes coeffs.json, constants.vsh and `more` into out_dir, all or none (WriteOutputs), timed as
+// "write"; the paths go to report.files.
+std::optional<std::string> WriteJobOutputs(const IrrmapOptions& options, const CheckedOptions& checked,
+                                           const PaperProgram& program, std::vector<PendingOutput> more,
+                                           IrrmapReport& report) {
+  const std::string coefficients_text = CoefficientsJson(report, options, checked).dump(2) + "\n";
+  const std::string constants_text =
+      report.order == ShOrder::kOrder2
+          ? ConstantsDefText(report.constants, program.constant_base(), ConstantsFileComment(report, program))
+          : RegisterDefText(report.program_constants, program.constant_base(), ConstantsFileComment(report, program));
+  const std::string_view program_text = PaperProgram::EmbeddedText(Info(report.order).program_file);
+  std::vector<PendingOutput> outputs = {
+      {kCoefficientsFile, [&](const fs::path& path) { return WriteFileAtomically(path, coefficients_text); }},
+      {kConstantsFile, [&](const fs::path& path) { return WriteFileAtomically(path, constants_text); }},
+      {kProgramFile, [&](const fs::path& path) { return WriteFileAtomically(path, program_text); }},
+  };
+  for (PendingOutput& output : more) outputs.push_back(std::move(output));
+  std::vector<fs::path> written;
+  std::optional<std::string> write_error =
+      Timed(report, "write", [&] { return WriteOutputs(options.out_dir, outputs, written); });
+  if (write_error) return write_error;
+  report.files = std::move(written);
+  return std::nullopt;
+}
+
+// Picks report.order and report.level (--order, --level, else by --max-error), marks the level,
+// records every level's and every (program, level) pair's estimated error, and applies the window
+// to every level's coefficients.
+void ChooseLevelAndWindow(const IrrmapOptions& options, const CheckedOptions& checked, IrrmapReport& report) {
+  std::vector<Sh9Rgb> coefficients;
+  for (const LevelReport& row : report.levels) coefficients.push_back(row.coefficients);
+  const std::vector<glm::dvec3> normals = SphereNormals(kLevelErrorNormals);
+  const std::vector<double> estimated = EstimateLevelErrors(coefficients, normals);
+  report.program_estimates = EstimateProgramLevelErrors(coefficients, estimated, normals);
+  std::vector<ShOrder> allowed;
+  if (checked.order) allowed.push_back(*checked.order);
+  const ProgramChoice choice = ChooseProgramAndLevel(report.program_estimates, estimated, options.max_error, allowed);
+  report.order = choice.order;
+  report.level = options.level ? *options.level : choice.level;
+  for (const ProgramLevelEstimate& pair : report.program_estimates) {
+    if (pair.order == report.order && pair.level == report.level) report.order_estimated_error = pair.estimated;
+  }
+  for (LevelReport& row : report.levels) {
+    row.chosen = row.level == report.level;
+    row.estimated_error = estimated[row.level];
+    if (checked.window == ShWindow::kNonNegative) {
+      row.coefficients = FitNonNegative(row.coefficients);
+      continue;
+    }
+    row.window_factors = checked.window == ShWindow::kDering
+                             ? LaplacianWindowFactors(DeringLambda(row.coefficients, normals))
+                             : ShWindowFactors(checked.window, options.window_width);
+    row.coefficients = ApplyShWindow(row.coefficients, row.window_factors);
+  }
+}
+
+}  // namespace
+
+int DefaultLevel(int face_size) {
+  assert(IsPowerOfTwo(face_size));
+  int level = 0;
+  while ((face_size >> level) > kRecommendedLevelSize) ++level;
+  return level;
+}
+
+double IrrmapReport::TimingMs(std::string_view name) const {
+  for (const Timing& timing : timings) {
+    if (timing.name == name) return timing.ms;
+  }
+  return 0.0;
+}
+
+
+// ---- RunIrrmap -------------------------------------------------------------------------------------
+
+std::optional<std::string> RunIrrmap(const IrrmapOptions& options, IrrmapReport& report,
+                                     const IrrmapProgress& progress) {
+  report = IrrmapReport{};
+  CheckedOptions checked;
+  if (std::optional<std::string> error = CheckOptions(options, checked)) return error;
+  report.threads = checked.threads;
+  const EngineOptions engine_options{checked.threads};
+
+  CubeMap cube;
+  // Loading has no fraction to report: the bar shows the stage at 0 % and at its end.
+  if (progress) progress("load", 0.0);
+  std::optional<std::string> load_error =
+      Timed(report, "load", [&] { return LoadCube(options, checked, report, cube); });
+  if (load_error) return load_error;
+  if (progress) progress("load", 1.0);
+  report.face_size = cube.face_size;
+
+  // The pyramid takes the map as its level 0 rather than a second copy; from here on `cube` holds
+  // only its face_size and the texels are mips->levels[0].
+  std::optional<CubeMipChain> mips =
+      Timed(report, "env_mips", [&] { return BuildEnvironmentMips(std::move(cube)); });
+  std::optional<BasisPyramid> basis =
+      Timed(report, "basis_pyramid", [&] {
+        std::function<void(double)> report_fraction;
+        if (progress) report_fraction = [&](double fraction) { progress("basis pyramid", fraction); };
+        return BuildBasisPyramid(cube.face_size, checked.threads, report_fraction);
+      });
+  if (!mips || !basis) return fmt::format("cannot build the mip pyramids of face size {}", cube.face_size);
+
+  // Every level's coefficients, each update timed on its own.
+  Timed(report, "level_updates", [&] {
+    const int level_count = LevelCount(cube.face_size);
+    for (int level = 0; level < level_count; ++level) {
+      LevelReport row;
+      row.level = level;
+      row.size = cube.face_size >> level;
+      row.update_ms = TimeProjection(*mips, *basis, level, row.coefficients,
+                                     options.coefficients_only ? 0.0 : kMinTimingMs);
+      report.levels.push_back(row);
+    }
+  });
+  ChooseLevelAndWindow(options, checked, report);
+  const LevelReport& chosen = report.levels[report.level];
+  report.coefficients = chosen.coefficients;
+  report.timings.push_back({"projection", chosen.update_ms});
+  report.constants = Timed(report, "constants", [&] {
+    report.program_constants = PackShOrder(report.coefficients, report.order);
+    return PackTable1(report.coefficients);
+  });
+  report.program_vs_full_order2 =
+      IrradianceDifference(ReduceToOrder(report.coefficients, report.order), report.levels[0].coefficients,
+                           SphereNormals(kLevelErrorNormals));
+
+  std::string program_error;
+  std::optional<PaperProgram> program = Timed(report, "program", [&] { return PaperProgram::Load(program_error); });
+  if (!program) return program_error;
+  std::optional<PaperProgram> chosen_program = PaperProgram::LoadOrder(report.order, program_error);
+  if (!chosen_program) return program_error;
+  const ConstantBank chosen_bank = chosen_program->Constants(report.program_constants);
+
+  std::vector<PendingOutput> extra_outputs;
+  MeshLighting lighting;
+  if (options.mesh) {
+    lighting = Timed(report, "mesh", [&] {
+      MeshLightingOptions mesh_options{checked.engine, engine_options, checked.threads, options.mesh_truth_vertex_limit,
+                                       options.mesh_panel_size};
+      return LightMesh(*options.mesh, *program, report.constants, mips->levels[0], mesh_options);
+    });
+    for (std::string& warning : lighting.warnings) report.warnings.push_back(std::move(warning));
+    report.mesh = MeshReport{options.mesh->name, options.mesh->positions.size(), options.mesh->indices.size() / 3,
+                             lighting.ms_per_evaluation, lighting.unusable_normals, !lighting.truth.empty(), lighting.error, lighting.exposure,
+                             lighting.error_scale};
+    extra_outputs.push_back({kMeshFile, [&](const fs::path& path) {
+                              return options.mesh->write ? options.mesh->write(path, lighting.display_colors)
+                                                         : std::optional<std::string>("no mesh writer");
+                            }});
+    extra_outputs.push_back({kMeshPictureFile, [&](const fs::path& path) { return WriteImage(lighting.picture, path); }});
+  }
+
+  if (options.coefficients_only) return WriteJobOutputs(options, checked, *chosen_program, std::move(extra_outputs), report);
+
+  // The irradiance cube map: the chosen program once per texel direction.
+  CubeMap irradiance_map(options.map_size);
+  Timed(report, "irradiance_map", [&] {
+    const std::vector<glm::dvec3> directions = CubeTexelDirections(options.map_size);
+    const std::vector<glm::dvec3> values =
+        chosen_program->Irradiance(chosen_bank, directions, checked.engine, engine_options);
+    std::size_t k = 0;
+    for (Image& face : irradiance_map.faces) {
+      for (glm::vec3& texel : face.pixels) texel = glm::vec3(values[k++]);
+    }
+  });
+
+  if (options.no_ground_truth) {
+    extra_outputs.push_back({kIrradianceFile, [&](const fs::path& path) { return WriteCrossExr(irradiance_map, path); }});
+    return WriteJobOutputs(options, checked, *chosen_program, std::move(extra_outputs), report);
+  }
+
+  // Ground truth at the error normals and at the preview's grid, in one pass.
+  const std::vector<glm::dvec3> error_normals = SphereNormals(options.error_normals);
+  HemisphereGrid grid;
+  std::vector<glm::dvec3> truth_normals = error_normals;
+  truth_normals.insert(truth_normals.end(), grid.normals().begin(), grid.normals().end());
+  std::vector<glm::dvec3> truth = Timed(report, "ground_truth", [&] {
+    std::function<void(double)> report_fraction;
+    if (progress) report_fraction = [&](double fraction) { progress("ground truth", fraction); };
+    return GroundTruthIrradiance(mips->levels[0], truth_normals, checked.threads, report_fraction);
+  });
+  const std::span<const glm::dvec3> error_truth(truth.data(), error_normals.size());
+  grid.SetValues(std::vector<glm::dvec3>(truth.begin() + static_cast<std::ptrdiff_t>(error_normals.size()), truth.end()));
+
+  Timed(report, "level_errors", [&] {
+    for (LevelReport& level : report.levels) {
+      const std::vector<glm::dvec3> estimate =
+          program->Irradiance(PackTable1(level.coefficients), error_normals, checked.engine, engine_options);
+      level.error = CompareIrradiance(estimate, error_truth, error_normals);
+    }
+    report.program_error = CompareIrradiance(
+        chosen_program->Irradiance(chosen_bank, error_normals, checked.engine, engine_options), error_truth,
+        error_normals);
+  });
+  report.errors_measured = true;
+
+  PreviewResult preview = Timed(report, "preview", [&] {
+    PreviewOptions preview_options;
+    preview_options.sphere_diameter = options.sphere_diameter;
+    if (!options.font.empty()) preview_options.font = options.font;
+    const SpherePixels sphere = MakeSpherePixels(options.sphere_diameter);
+    PreviewPanel truth_panel{"exact convolution", {}};
+    truth_panel.irradiance.reserve(sphere.normals.size());
+    for (const glm::dvec3& n : sphere.normals) truth_panel.irradiance.push_back(grid.Sample(n));
+    std::vector<PreviewPanel> panels;
+    const bool order2 = report.order == ShOrder::kOrder2;
+    for (int level : PreviewLevels(report)) {
+      const LevelReport& row = report.levels[level];
+      panels.push_back({PreviewLabel(row, row.chosen && order2),
+                        program->Irradiance(PackTable1(row.coefficients), sphere.normals, checked.engine,
+                                            engine_options)});
+    }
+    if (!order2) {  // the chosen program beside the nine terms it approximates
+      panels.push_back({fmt::format("{} from {}x{} *", Info(report.order).name, chosen.size, chosen.size),
+                        chosen_program->Irradiance(chosen_bank, sphere.normals, checked.engine, engine_options)});
+    }
+    return RenderPreview(sphere, truth_panel, panels, mips->levels[0], preview_options);
+  });
+  for (std::string& warning : preview.warnings) report.warnings.push_back(std::move(warning));
+
+  extra_outputs.push_back({kIrradianceFile, [&](const fs::path& path) { return WriteCrossExr(irradiance_map, path); }});
+  extra_outputs.push_back({kPreviewFile, [&](const fs::path& path) { return WriteImage(preview.image, path); }});
+  return WriteJobOutputs(options, checked, *chosen_program, std::move(extra_outputs), report);
+}
+
+// ---- Formatting ------------------------------------------------------------------------------------
+
+std::optional<std::string> CheckOutputFolder(const fs::path& out_dir) {
+  std::error_code ec;
+  // The folder itself, or the nearest existing folder above it, where it would be created.
+  fs::path existing = out_dir;
+  while (!existing.empty() && !fs::exists(existing, ec)) existing = existing.parent_path();
+  if (existing.empty()) existing = ".";
+  if (!fs::is_directory(existing, ec)) {
+    return fmt::format("cannot write into {}: {} is not a directory", out_dir.string(), existing.string());
+  }
+  if (::access(existing.c_str(), W_OK | X_OK) != 0) {
+    return fmt::format("cannot write into {}: {} is not writable", out_dir.string(), existing.string());
+  }
+  return std::nullopt;
+}
+
+std::string FormatLevelTable(const IrrmapReport& report) {
+  std::string out = fmt::format("  {:>5}  {:>11}  {:>11}  {:>11}  {:>12}  {:>12}", "level", "size", "update ms",
+                                "max rel err", "mean rel err", "est vs lvl 0");
+  for (ShOrder order : kAllShOrders) {
+    if (order != ShOrder::kOrder2) out += fmt::format("  {:>12}", fmt::format("est {}", Info(order).name));
+  }
+  out += "\n";
+  for (const LevelReport& level : report.levels) {
+    auto percent = [&](double fraction) {
+      return report.errors_measured ? fmt::format("{:>10.3f} %", 100.0 * fraction) : fmt::format("{:>12}", "-");
+    };
+    out += fmt::format("{} {:>5}  {:>11}  {:>11.4f}  {}  {}  {:>10.3f} %", level.chosen ? '*' : ' ', level.level,
+                       fmt::format("{0}x{0}", level.size), level.update_ms, percent(level.error.max_relative),
+                       percent(level.error.mean_relative), 100.0 * level.estimated_error);
+    for (const ProgramLevelEstimate& pair : report.program_estimates) {
+      if (pair.level == level.level && pair.order != ShOrder::kOrder2) {
+        out += fmt::format("  {:>10.3f} %", 100.0 * pair.estimated);
+      }
+    }
+    out += "\n";
+  }
+  const ShOrderInfo& order = Info(report.order);
+  out += fmt::format("  program: {} ({}, {} slots per vertex) from level {}, estimated {:.3f} % against the nine "
+                     "terms at level 0 (measured {:.3f} %)\n",
+                     order.name, order.program_file, order.slots, report.level, 100.0 * report.order_estimated_error,
+                     100.0 * report.program_vs_full_order2);
+  return out;
+}
+
+std::string FormatTimings(const IrrmapReport& report) {
+  std::string out;
+  for (const Timing& timing : report.timings) out += fmt::format("  {:<15} {:>10.3f} ms\n", timing.name, timing.ms);
+  return out;
+}
+
+}  // namespace vs11::irradiance

@@ -1,0 +1,198 @@
+// The `irrmap` job: the paper's whole procedure (section 3.3) on one environment map, with every
+// intermediate written out and measured.
+//
+//   load ENV ─> environment mip pyramid ─┐
+//   basis pyramid (once per face size) ──┴─> ProjectLevel(K) = 9 RGB coefficients
+//     ─> PackTable1 = the 7 constant registers ─> the paper's vertex program (sh9_irradiance.vsh) on
+//        the vs_1_1 machine, once per texel direction of the irradiance cube map
+//   plus: the coefficients of every level compared with brute-force integration (ground truth) over
+//   a dense set of normals, and a Fig. 3-like preview.
+//
+// Files written into IrrmapOptions::out_dir (created if needed):
+//   coeffs.json      {"coefficients": 9 x [r, g, b] (L00, L1-1, L10, L11, L2-2, L2-1, L20, L21,
+//                    L22, windowed), "level", "level_size", "level_choice" ("level" or
+//                    "max_error"), "max_error" (when picked by it), "window": {"name", "width",
+//                    "factors": [w0, w1, w2]}, "face_size", "layout", "environment", "engine",
+//                    "map_size", "constants": {"cAr": [x, y, z, w], ...}, "levels": [{"level",
+//                    "size", "update_ms", "max_relative_error", "mean_relative_error",
+//                    "estimated_error"}, ...],
+//                    "timings_ms": {"load", "env_mips", "basis_pyramid", "level_updates" (every
+//                    level, each repeated for timing), "projection" (the chosen level's update),
+//                    "constants", "program" (assembling it), "irradiance_map", "ground_truth",
+//                    "level_errors", "preview"}}; the final "write" is in IrrmapReport only
+//                    "order", "program": {"name", "file", "slots", "estimated_error",
+//                    "error_vs_full_order2", "max_relative_error" (vs the truth), "constants":
+//                    {"cE" | "cAr" ...: [x, y, z, w]}}, "program_estimates": [{"order", "level",
+//                    "estimated_error"}, ...]
+//   program.vsh      the chosen program (irradiance/sh/sh_order.h): sh_order0.vsh, sh_order1.vsh,
+//                    sh_zh3.vsh or the paper's sh9_irradiance.vsh
+//   constants.vsh    its registers as `def` lines at the registers the program reads
+//                    (`vs11 run --consts constants.vsh`, or paste into a program)
+//   irradiance.exr   the chosen program's irradiance cube map, horizontal cross, 32-bit float, map_size per face
+//   preview.png      see irradiance/render/preview.h
+//   with a mesh (IrrmapOptions::mesh), also:
+//   mesh.ply         the mesh with 8-bit vertex colours: the program's irradiance after the preview's
+//                    tone mapping (brightest vertex at kSphereWhite, then sRGB)
+//   mesh.png         the mesh lit by the program | by the exact irradiance | the relative error
+//                    (irradiance/jobs/mesh_lighting.h); coeffs.json gains "mesh": {"file", "vertex_count",
+//                    "triangle_count", "unusable_normals", "ms_per_evaluation", "ns_per_vertex", "exact" and, with it,
+//                    "max_relative_error", "mean_relative_error", "error_scale"}
+// All of them are first written to hidden temporaries in out_dir and renamed into place only when all
+// of them were written, so a failure leaves no partial output.
+#pragma once
+
+#include <array>
+#include <filesystem>
+#include <functional>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "irradiance/jobs/mesh_lighting.h"
+#include "irradiance/report/paper_program.h"
+#include "irradiance/sh/ground_truth.h"
+#include "irradiance/sh/level_choice.h"
+#include "irradiance/sh/sh9.h"
+#include "irradiance/sh/sh_order.h"
+#include "vm/core/machine.h"
+#include "vm/core/program.h"
+
+namespace vs11::irradiance {
+
+// The paper recommends computing the coefficients from the 64 x 64 level of a larger map (Fig. 3:
+// it looks as good as full resolution at a quarter of the cost per halving).
+inline constexpr int kRecommendedLevelSize = 64;
+// Default face size of the irradiance cube map: the irradiance is band-limited to l <= 2 (a
+// quadratic polynomial of the normal), so 32 texels per face with bilinear filtering resolve it.
+inline constexpr int kDefaultMapSize = 32;
+inline constexpr int kMaxMapSize = 1024;
+// Default width of the hanning and lanczos windows (w1, w2 = 0.854, 0.5 and 0.900, 0.637): the width
+// whose far-side dip is smallest for a point light (irrmap stability).
+inline constexpr double kDefaultWindowWidth = 4.0;
+
+// The level whose faces are kRecommendedLevelSize when the face is larger than that, else 0 (the
+// paper's fixed choice; irrmap picks by IrrmapOptions::max_error instead unless --level is given).
+// face_size a positive power of two (asserted).
+int DefaultLevel(int face_size);
+
+struct IrrmapOptions {
+  std::string environment = "sky";  // a file, a {face} pattern or a BuiltinEnvironmentNames() name
+  std::string layout = "auto";      // ParseLayout names; files only
+  int face_size = 256;              // built-ins; resampled lat-long and angular maps
+  std::optional<int> level;         // when set, max_error is not used
+  // Otherwise the level is the coarsest whose error against level 0, estimated from adjacent
+  // levels, stays under this fraction (CoarsestLevelWithin, irradiance/sh/level_choice.h).
+  double max_error = kDefaultMaxLevelError;
+  // The program (irradiance/sh/sh_order.h): "auto" picks the cheapest (program, level) pair within
+  // max_error (ChooseProgramAndLevel); a ShOrderInfo name fixes it (the level is then still picked
+  // by max_error unless `level` is set). With `level` set, "auto" means order2, the paper's program.
+  std::string order = "auto";
+  std::string window = "none";      // ShWindowName names, applied to every level's coefficients
+  double window_width = kDefaultWindowWidth;  // bands, for hanning and lanczos
+  std::filesystem::path out_dir = "out";
+  std::string engine = "jit";       // EngineKindFromName names
+  int threads = 0;                  // 0: std::thread::hardware_concurrency()
+  int map_size = kDefaultMapSize;   // irradiance cube map face size, 1..kMaxMapSize
+  int error_normals = kDefaultErrorNormals;
+  int sphere_diameter = 192;        // preview spheres, pixels (>= 16)
+  std::filesystem::path font;       // preview labels; empty = kDefaultPreviewFont
+  // Only coeffs.json (without the error columns) and constants.vsh: no irradiance map, ground truth,
+  // error table or preview, and each level's update is run once instead of repeated for timing.
+  bool coefficients_only = false;
+  // No brute-force ground truth (most of a default run's time): no error columns and no preview;
+  // coeffs.json, constants.vsh and irradiance.exr are still written.
+  bool no_ground_truth = false;
+  // --face-size was given: a cube-map file, which keeps its own face size, then gets a warning.
+  bool face_size_given = false;
+  // --mesh: also light this mesh (irradiance/jobs/mesh_lighting.h) and write mesh.ply and mesh.png, with
+  // its statistics under "mesh" in coeffs.json.
+  std::optional<MeshGeometry> mesh;
+  std::size_t mesh_truth_vertex_limit = kDefaultMeshTruthVertexLimit;
+  int mesh_panel_size = kMeshPanelSize;  // pixels of each of mesh.png's three panels
+};
+
+// The mesh's line in coeffs.json ("mesh": {...}).
+struct MeshReport {
+  std::string file;
+  std::size_t vertex_count = 0;
+  std::size_t triangle_count = 0;
+  double ms_per_evaluation = 0.0;  // the program over every vertex, engine run only
+  std::size_t unusable_normals = 0;  // zero or non-finite normals, left out of `error`
+  bool has_truth = false;
+  ErrorStats error;                // against the exact irradiance per vertex normal
+  double exposure = 0.0;
+  double error_scale = 0.0;
+};
+
+// Whether files can be created in `out_dir` (or in the folder that would hold it, when it does
+// not exist yet): nullopt if so, else why not. Checked before any work, so that a bad --out fails
+// at once rather than after the whole job.
+std::optional<std::string> CheckOutputFolder(const std::filesystem::path& out_dir);
+
+// One row of the level table.
+struct LevelReport {
+  int level = 0;
+  int size = 0;            // face size at this level
+  double update_ms = 0.0;  // ProjectLevel alone (the mips are not included), mean of repeated runs
+  ErrorStats error;        // the vertex program's irradiance against the ground truth
+  Sh9Rgb coefficients;     // windowed when a window is set
+  double estimated_error = 0.0;  // against level 0, from this level and the next finer (EstimateLevelErrors)
+  std::array<double, kSh9Bands> window_factors = {1.0, 1.0, 1.0};
+  bool chosen = false;
+};
+
+struct Timing {
+  std::string name;
+  double ms = 0.0;
+};
+
+struct IrrmapReport {
+  bool errors_measured = false;  // the levels' errors against the ground truth (not with --no-ground-truth)
+  std::string environment;  // "sky (built-in)" or the path
+  std::string layout;       // "builtin" or the layout read
+  int face_size = 0;
+  int level = 0;            // the chosen level
+  int threads = 0;          // worker threads used
+  Sh9Rgb coefficients;      // of the chosen level
+  SevenConstants constants;  // PackTable1 of them
+  // The chosen program and its constants (PackShOrder of `coefficients`), what its estimate said,
+  // and every (program, level) estimate.
+  ShOrder order = ShOrder::kOrder2;
+  double order_estimated_error = 0.0;
+  std::vector<NamedRegister> program_constants;
+  std::vector<ProgramLevelEstimate> program_estimates;
+  // The chosen program's irradiance against the ground truth (not with coefficients_only), and
+  // against order 2 at level 0 (IrradianceDifference, always).
+  ErrorStats program_error;
+  double program_vs_full_order2 = 0.0;
+  std::vector<LevelReport> levels;  // every level, 0 first
+  std::vector<Timing> timings;      // in the order the stages ran
+  std::vector<std::filesystem::path> files;  // written, once everything succeeded
+  std::vector<std::string> warnings;
+  std::optional<MeshReport> mesh;
+
+  // The time of a stage, or 0 when it did not run.
+  double TimingMs(std::string_view name) const;
+};
+
+// Progress of the long stages: `stage` is a short name ("ground truth"), `fraction` in [0, 1] never
+// decreases within a stage and reaches 1.
+using IrrmapProgress = std::function<void(std::string_view stage, double fraction)>;
+
+// Runs the job. Returns nullopt on success; otherwise a message saying what is wrong (bad option,
+// unreadable or unusable environment, write failure), in which case no output file is left behind
+// (out_dir may have been created). Options are checked before any work starts.
+std::optional<std::string> RunIrrmap(const IrrmapOptions& options, IrrmapReport& report,
+                                     const IrrmapProgress& progress = {});
+
+// The level table, one row per level (the chosen one marked with '*'):
+//   level   size     update ms   max rel err   mean rel err   est vs lvl 0
+std::string FormatLevelTable(const IrrmapReport& report);
+// "load 12.3 ms, env_mips 4.5 ms, ..." one stage per line.
+std::string FormatTimings(const IrrmapReport& report);
+
+}  // namespace vs11::irradiance

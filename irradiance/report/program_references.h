@@ -1,0 +1,149 @@
+// Scalar (double precision) references for the vertex programs in programs/: for each named reference
+// (`sh9`, `directional_light`, `point_light`, `fog`, `skinning`, `all_instructions`), the API constant
+// bank, the vertex inputs and the outputs the program should produce, computed in double from the
+// same float constants and inputs the vertex machine receives, without running the machine.
+//
+// A program says which reference checks it through METADATA lines in its comment header, one per
+// line, read from the raw text (before preprocessing) by ParseProgramMetadata (irradiance/report/verify.h):
+//
+//   ; vs11: reference=sh9            which reference (see References())
+//   ; vs11: packing=table1           sh9: table1 | unit_sphere10 | matrix | basis | order0 | order1 | zh3
+//   ; vs11: normal=v0                input register of the normal (sh9: (x, y, z, 1))
+//   ; vs11: position=v0              input register of the position (x, y, z, 1)
+//   ; vs11: weights=v1               skinning: blend weights (x, y)
+//   ; vs11: indices=v2               skinning: 3 x bone index (x, y), as floats
+//   ; vs11: texcoord=v2              all_instructions: texture coordinates (u, v, s, t)
+//   ; vs11: output=oD0               the output register compared first (the "primary" output)
+//   ; vs11: constants=c0             first constant register of the reference's layout
+//   ; vs11: transform=c7             sh9: first of the 4 rows of WORLDVIEWPROJ; oPos is then checked
+//   ; vs11: fragment=yes             the program computes a value only and writes no oPos; it is
+//                                    validated with every rule except "oPos must be written"
+//   ; vs11: tolerance=1e-5           default pass/fail tolerance (relative to the output's scale)
+//
+// programs/README.md documents the convention and each program's layout.
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include <glm/glm.hpp>
+
+#include "irradiance/sh/sh9.h"
+#include "vm/core/machine.h"
+
+namespace vs11::irradiance {
+
+// What a program's METADATA lines (or the command line) say. Unset fields take the reference's
+// defaults (listed with each reference in References()).
+struct ProgramMetadata {
+  std::string reference;
+  std::string packing;
+  std::optional<int> normal;     // input register number
+  std::optional<int> position;   // input register number
+  std::optional<int> weights;    // input register number
+  std::optional<int> indices;    // input register number
+  std::optional<int> texcoord;   // input register number
+  std::optional<int> output;     // OutputSlot value
+  std::optional<int> constants;  // constant register number
+  std::optional<int> transform;  // constant register number
+  bool fragment = false;
+  std::optional<double> tolerance;
+};
+
+// The sh9 packings (`; vs11: packing=...`).
+enum class Sh9Packing {
+  kTable1,        // the paper's seven registers (PackTable1), 11-instruction program
+  kUnitSphere10,  // PackUnitSphere10: 10 instructions, exact on unit normals only
+  kMatrix,        // Ramamoorthi & Hanrahan's E(n) = n^T M n, three 4x4 matrices (PackMatrix)
+  kBasis,         // the nine basis functions summed with weights A_l L_lm (PackBasis)
+  kOrder0,        // reduced orders (irradiance/sh/sh_order.h, PackShOrder): band 0 only, 1 register
+  kOrder1,        // bands 0 and 1, 3 registers
+  kZh3,           // bands 0 and 1 plus band 2's zonal part around the linear band's axis, 5 registers
+};
+std::optional<Sh9Packing> Sh9PackingFromName(std::string_view name);
+std::string_view Sh9PackingName(Sh9Packing packing);
+
+// Ramamoorthi & Hanrahan 2001, eq. (12): E(n) = n^T M n with n = (x, y, z, 1) and, per channel,
+//
+//       | k1 L22    k1 L2-2   k1 L21   k2 L11          |
+//   M = | k1 L2-2  -k1 L22    k1 L2-1  k2 L1-1         |
+//       | k1 L21    k1 L2-1   k3 L20   k2 L10          |
+//       | k2 L11    k2 L1-1   k2 L10   k4 L00 - k5 L20 |
+//
+// with their constants k1 = 0.429043 = c4, k2 = 0.511664 = c1 / 2, k3 = 0.743125 = 3 c3,
+// k4 = 0.886227 = c0, k5 = 0.247708 = c3 (the paper's c0..c4, irradiance/sh/sh9.h; exact here).
+// Registers 4 ch + row (ch = 0 red, 1 green, 2 blue) hold row `row` of the channel's M, for
+// `m4x4 r, v0, c[base + 4 ch]` followed by `dp4 out, r, v0`. Each entry is rounded to float once.
+std::array<glm::vec4, 12> PackMatrix(const Sh9Rgb& sh);
+
+// The naive packing of programs/sh9_irradiance_basis.vsh (9 registers):
+//   0: (n0, n1, n2, n3)        basis normalisation constants (sh9.h)
+//   1: (n4, 3, -1, 0)
+//   2 + ch: (A0 L00, A1 L1-1, A1 L10, A1 L11) of channel ch   weights of (y00, y1-1, y10, y11)
+//   5 + ch: (A2 L2-2, A2 L2-1, A2 L20, A2 L21) of channel ch  weights of (y2-2, y2-1, y20, y21)
+//   8: (A2 R22, A2 G22, A2 B22, 0)                             weights of y22
+std::array<glm::vec4, 9> PackBasis(const Sh9Rgb& sh);
+
+// Reproducible pseudo-random coefficients: L00 in [0.5, 2.5] per channel, the other eight in
+// [-0.5, 0.5]. Same result on every platform for a given seed (no std distributions).
+Sh9Rgb RandomCoefficients(std::uint64_t seed);
+
+// Parses {"coefficients": [[r, g, b] x 9]} in the order L00, L1-1, L10, L11, L2-2, L2-1, L20, L21,
+// L22 (ShIndex order). Other members are ignored. On failure returns nullopt and sets `error`.
+std::optional<Sh9Rgb> ParseCoefficientsJson(std::string_view text, std::string& error);
+// Reads and parses a file; errors name the file.
+std::optional<Sh9Rgb> LoadCoefficientsJson(const std::filesystem::path& path, std::string& error);
+
+// The values one output register must hold, per vertex, in double.
+struct ExpectedOutput {
+  int slot = 0;               // OutputSlot
+  WriteMask lanes;            // lanes compared
+  std::vector<glm::dvec4> values;  // one per vertex
+  double tolerance = 1e-5;    // default pass limit on the error relative to the output's scale
+};
+
+// An input register worth printing for the worst vertex ("normal", "position", ...).
+struct NamedInput {
+  int reg = 0;
+  std::string name;
+};
+
+// Everything needed to run a program and judge its results.
+struct ReferenceCase {
+  ConstantBank constants;
+  VertexArrays inputs;
+  std::vector<ExpectedOutput> expected;  // the primary output (metadata `output`) first
+  std::vector<NamedInput> named_inputs;
+  std::string description;               // "sh9 packing=table1 normal=v0 constants=c0 ..."
+};
+
+struct ReferenceOptions {
+  Sh9Rgb coefficients;   // sh9 only
+  int samples = 256;     // sh9: sphere normals (plus 14 fixed ones); others: random vertices
+  std::uint64_t seed = 1;
+  int constant_count = kDefaultConstantCount;
+};
+
+struct ReferenceInfo {
+  std::string_view name;
+  std::string_view summary;  // one line for --help and errors
+  // Builds the case; nullopt with `error` set when the metadata does not fit the reference.
+  std::optional<ReferenceCase> (*build)(const ProgramMetadata&, const ReferenceOptions&, std::string& error);
+};
+
+// Every reference, in a fixed order.
+std::span<const ReferenceInfo> References();
+const ReferenceInfo* FindReference(std::string_view name);
+// "sh9, directional_light, ..." for messages.
+std::string ReferenceNames();
+
+// The 14 fixed sh9 sample normals: the 6 axes, then the 8 normalised diagonals (+-1, +-1, +-1).
+std::vector<glm::dvec3> AxisAndDiagonalNormals();
+
+}  // namespace vs11::irradiance

@@ -1,0 +1,294 @@
+// The speed/accuracy sweep. See speed_accuracy.h.
+#include "irradiance/report/speed_accuracy.h"
+
+#include <algorithm>
+#include <array>
+#include <bit>
+#include <chrono>
+#include <system_error>
+#include <thread>
+
+#include <fmt/format.h>
+
+#include "irradiance/io/environment_io.h"
+#include "irradiance/io/environments.h"
+#include "irradiance/sh/ground_truth.h"
+#include "irradiance/sh/sh_projection.h"
+#include "vm/asm/program_file.h"
+
+namespace vs11::irradiance {
+namespace {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+
+// A 1 x 1 level takes microseconds: cap the runs of one batch so the sweep cannot stall on it.
+constexpr int kMaxRunsPerBatch = 100000;
+// The coarse level of the chart's order panel (the level irrmap picks for the sky).
+constexpr int kOrderChartLevelSize = 16;
+// Environment colours of the chart (gnuplot's default palette is hard to tell apart past four).
+constexpr std::array<const char*, 8> kColours = {"#1f77b4", "#d62728", "#2ca02c", "#9467bd",
+                                                 "#ff7f0e", "#8c564b", "#17becf", "#7f7f7f"};
+
+bool IsBuiltinName(std::string_view name) {
+  const std::vector<std::string> names = BuiltinEnvironmentNames();
+  return std::find(names.begin(), names.end(), name) != names.end();
+}
+
+// The environment as irrmap reads its ENV: an existing file or {face} pattern first, else a built-in.
+std::optional<std::string> LoadSweepEnvironment(const std::string& name, const SpeedAccuracyOptions& options,
+                                                EnvironmentLayout layout, CubeMap& cube,
+                                                std::vector<std::string>& warnings) {
+  std::error_code ec;
+  if (IsBuiltinName(name) && !fs::exists(name, ec)) {
+    std::optional<CubeMap> made = MakeBuiltinEnvironment(name, options.face_size);
+    if (!made) return fmt::format("cannot make the built-in environment '{}'", name);
+    cube = std::move(*made);
+    return std::nullopt;
+  }
+  LoadOptions load;
+  load.layout = layout;
+  load.face_size = options.face_size;
+  LoadResult loaded = LoadEnvironment(name, load);
+  if (!loaded.ok()) return loaded.error;
+  for (std::string& warning : loaded.environment->warnings) warnings.push_back(name + ": " + warning);
+  cube = std::move(loaded.environment->cube);
+  if (LevelCount(cube.face_size) == 0) {
+    return fmt::format("{}: face size {} is not a power of two; the mip pyramid needs exact 2x2 parents "
+                       "down to 1x1",
+                       name, cube.face_size);
+  }
+  return std::nullopt;
+}
+
+// The median over options.batches of the mean time of `update` in a batch, in ms.
+template <class F>
+double MedianBatchMs(const SpeedAccuracyOptions& options, F&& update) {
+  std::vector<double> means;
+  for (int batch = 0; batch < options.batches; ++batch) {
+    const Clock::time_point start = Clock::now();
+    int runs = 0;
+    double elapsed = 0.0;
+    do {
+      update();
+      ++runs;
+      elapsed = std::chrono::duration<double, std::milli>(Clock::now() - start).count();
+    } while (elapsed < options.min_batch_ms && runs < kMaxRunsPerBatch);
+    means.push_back(elapsed / runs);
+  }
+  std::sort(means.begin(), means.end());
+  return means[means.size() / 2];
+}
+
+std::optional<std::string> CheckOptions(const SpeedAccuracyOptions& options) {
+  if (!ParseLayout(options.layout)) return fmt::format("unknown layout '{}'", options.layout);
+  if (LevelCount(options.face_size) == 0 || options.face_size > kMaxFaceSize) {
+    return fmt::format("--face-size {} must be a power of two from 1 to {}", options.face_size, kMaxFaceSize);
+  }
+  if (options.error_normals < 1) return fmt::format("--error-normals {} must be >= 1", options.error_normals);
+  if (options.threads < 0) return fmt::format("--threads {} must be >= 0 (0: every core)", options.threads);
+  if (options.batches < 1) return fmt::format("--batches {} must be >= 1", options.batches);
+  if (!(options.min_batch_ms >= 0.0)) return fmt::format("--min-batch-ms {} must be >= 0", options.min_batch_ms);
+  return std::nullopt;
+}
+
+}  // namespace
+
+std::string_view ProjectionMethodName(ProjectionMethod method) {
+  return method == ProjectionMethod::kMipPyramid ? "mip" : "direct";
+}
+
+std::optional<std::string> RunSpeedAccuracySweep(const SpeedAccuracyOptions& options, SpeedAccuracyResult& result,
+                                                 const SpeedAccuracyProgress& progress) {
+  result = SpeedAccuracyResult{};
+  if (std::optional<std::string> error = CheckOptions(options)) return error;
+  const EnvironmentLayout layout = *ParseLayout(options.layout);
+  const std::vector<std::string> names =
+      options.environments.empty() ? BuiltinEnvironmentNames() : options.environments;
+  const int threads =
+      options.threads > 0 ? options.threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
+  const EngineOptions engine_options{threads};
+  std::string program_error;
+  const std::optional<PaperProgram> program = PaperProgram::Load(program_error);
+  if (!program) return program_error;
+  std::vector<PaperProgram> order_programs;  // the reduced orders, kAllShOrders order
+  for (std::size_t o = 0; o + 1 < kAllShOrders.size(); ++o) {
+    std::optional<PaperProgram> loaded = PaperProgram::LoadOrder(kAllShOrders[o], program_error);
+    if (!loaded) return program_error;
+    order_programs.push_back(std::move(*loaded));
+  }
+  const std::vector<glm::dvec3> normals = SphereNormals(options.error_normals);
+
+  std::optional<BasisPyramid> basis;  // rebuilt only when the face size changes
+  CubeMipChain mips;                  // refilled in place for every environment of one size
+  for (std::size_t e = 0; e < names.size(); ++e) {
+    const std::string& name = names[e];
+    if (progress) progress(name, static_cast<int>(e), static_cast<int>(names.size()));
+    CubeMap cube;
+    if (std::optional<std::string> error = LoadSweepEnvironment(name, options, layout, cube, result.warnings)) {
+      return error;
+    }
+    if (!basis || basis->face_size != cube.face_size) basis = BuildBasisPyramid(cube.face_size, threads);
+    SpeedAccuracyEnvironment environment{name, cube.face_size, 0.0};
+    environment.mips_ms = MedianBatchMs(options, [&] { RefillEnvironmentMips(cube, mips); });
+    result.environments.push_back(environment);
+
+    const std::vector<glm::dvec3> truth = GroundTruthIrradiance(cube, normals, threads);
+    for (ProjectionMethod method : kAllProjectionMethods) {
+      for (int level = 0; level < LevelCount(cube.face_size); ++level) {
+        SpeedAccuracyPoint point{name, method, level, cube.face_size >> level, ShOrder::kOrder2, 0.0, {}};
+        Sh9Rgb coefficients;
+        point.update_ms = MedianBatchMs(options, [&] {
+          coefficients = method == ProjectionMethod::kMipPyramid ? ProjectLevel(mips, *basis, level)
+                                                                 : ProjectDirect(mips.levels[level]);
+        });
+        const std::vector<glm::dvec3> estimate =
+            program->Irradiance(PackTable1(coefficients), normals, EngineKind::kBatch, engine_options);
+        point.error = CompareIrradiance(estimate, truth, normals);
+        result.points.push_back(point);
+        if (method != ProjectionMethod::kMipPyramid) continue;
+        for (std::size_t o = 0; o + 1 < kAllShOrders.size(); ++o) {
+          SpeedAccuracyPoint reduced = point;
+          reduced.order = kAllShOrders[o];
+          const PaperProgram& order_program = order_programs[o];
+          reduced.error = CompareIrradiance(
+              order_program.Irradiance(order_program.Constants(PackShOrder(coefficients, reduced.order)), normals,
+                                       EngineKind::kBatch, engine_options),
+              truth, normals);
+          result.points.push_back(reduced);
+        }
+      }
+    }
+  }
+  return std::nullopt;
+}
+
+std::string SpeedAccuracyCsv(const SpeedAccuracyResult& result) {
+  std::string csv =
+      "environment,method,level,size,update_ms,mips_ms,mean_relative_error,max_relative_error,order,slots\n";
+  for (const SpeedAccuracyPoint& point : result.points) {
+    double mips_ms = 0.0;
+    for (const SpeedAccuracyEnvironment& environment : result.environments) {
+      if (environment.name == point.environment) mips_ms = environment.mips_ms;
+    }
+    std::string name = point.environment;
+    std::replace(name.begin(), name.end(), ',', '_');  // keep the columns unambiguous
+    csv += fmt::format("{},{},{},{},{:.6g},{:.6g},{:.6g},{:.6g},{},{}\n", name, ProjectionMethodName(point.method),
+                       point.level, point.size, point.update_ms, mips_ms, point.error.mean_relative,
+                       point.error.max_relative, Info(point.order).name, Info(point.order).slots);
+  }
+  return csv;
+}
+
+GnuplotChart SpeedAccuracyChart(const SpeedAccuracyResult& result) {
+  GnuplotChart chart;
+  chart.width = 1000;
+  chart.height = 650;
+  std::string plots;
+  int block = 0;
+  for (std::size_t e = 0; e < result.environments.size(); ++e) {
+    const SpeedAccuracyEnvironment& environment = result.environments[e];
+    const std::string colour = GnuplotQuote(kColours[e % kColours.size()]);
+    for (ProjectionMethod method : kAllProjectionMethods) {
+      chart.data += fmt::format("# {} {}: update_ms mean_relative_error_percent level\n", environment.name,
+                                ProjectionMethodName(method));
+      for (const SpeedAccuracyPoint& point : result.points) {
+        if (point.environment != environment.name || point.method != method || point.order != ShOrder::kOrder2) {
+          continue;
+        }
+        chart.data += fmt::format("{:.6g} {:.6g} {}\n", point.update_ms, 100.0 * point.error.mean_relative,
+                                  point.level);
+      }
+      chart.data += "\n\n";
+      const bool mip = method == ProjectionMethod::kMipPyramid;
+      const std::string title = fmt::format("{} ({})", environment.name, mip ? "mip pyramid" : "direct on level");
+      plots += fmt::format(
+          "{}datafile index {} using 1:2 with linespoints lc rgb {} dt {} pt {} ps 0.8 title {}, "
+          "datafile index {} using 1:2:3 with labels offset char {},0.55 font ',8' tc rgb {} notitle",
+          plots.empty() ? "" : ", \\\n  ", block, colour, mip ? 1 : 2, mip ? 7 : 6, GnuplotQuote(title), block,
+          mip ? 0.6 : -0.6, colour);
+      ++block;
+    }
+  }
+  std::string face_sizes;
+  for (const SpeedAccuracyEnvironment& environment : result.environments) {
+    const std::string size = fmt::format("{0}x{0}", environment.face_size);
+    if (face_sizes.find(size) == std::string::npos) face_sizes += (face_sizes.empty() ? "" : ", ") + size;
+  }
+  // Right panel: error against slots per vertex, per environment, at level 0 and at 16x16.
+  std::string order_plots;
+  for (std::size_t e = 0; e < result.environments.size(); ++e) {
+    const SpeedAccuracyEnvironment& environment = result.environments[e];
+    const std::string colour = GnuplotQuote(kColours[e % kColours.size()]);
+    for (int size : {environment.face_size, kOrderChartLevelSize}) {
+      if (size > environment.face_size || (size == kOrderChartLevelSize && size == environment.face_size)) continue;
+      std::string data = fmt::format("# {} orders from {}x{}: slots mean_relative_error_percent order\n",
+                                     environment.name, size, size);
+      bool any = false;
+      for (ShOrder order : kAllShOrders) {
+        for (const SpeedAccuracyPoint& point : result.points) {
+          if (point.environment == environment.name && point.method == ProjectionMethod::kMipPyramid &&
+              point.size == size && point.order == order) {
+            data += fmt::format("{} {:.6g} {}\n", Info(order).slots, 100.0 * point.error.mean_relative,
+                                Info(order).name);
+            any = true;
+          }
+        }
+      }
+      if (!any) continue;
+      chart.data += data + "\n\n";
+      const bool full = size == environment.face_size;
+      {
+        order_plots += fmt::format(
+            "{}datafile index {} using 1:2 with linespoints lc rgb {} dt {} pt {} ps 0.8 title {}",
+            order_plots.empty() ? "" : ", \\\n  ", block, colour, full ? 1 : 2, full ? 7 : 6,
+            GnuplotQuote(fmt::format("{} from {}x{}", environment.name, size, size)));
+      }
+      ++block;
+    }
+  }
+  chart.width = 1600;
+  chart.script = fmt::format(
+      "set multiplot layout 1,2\n"
+      "set logscale xy\n"
+      "set grid xtics ytics mxtics mytics lc rgb '#dddddd'\n"
+      "set format y '%g'\n"
+      "set xlabel 'time per coefficient update, ms (log scale; mips built beforehand)'\n"
+      "set ylabel 'mean relative irradiance error, % (log scale)'\n"
+      "set title {}\n"
+      "set key below maxrows 3\n"
+      "plot {}\n"
+      "unset logscale x\n"
+      "set xrange [0:12]\n"
+      "set xtics ('order0' 1, 'order1' 3, 'zh3' 6, 'order2' 11)\n"
+      "set xlabel 'instruction slots per vertex of the program'\n"
+      "set title {}\n"
+      "plot {}\n"
+      "unset multiplot\n",
+      GnuplotQuote(fmt::format("SH9 coefficients from each mip level (labels: level), faces {}", face_sizes)),
+      plots.empty() ? "NaN notitle" : plots,
+      GnuplotQuote("Each program's error against its cost per vertex (the update time is the same projection's)"),
+      order_plots.empty() ? "NaN notitle" : order_plots);
+  return chart;
+}
+
+std::optional<std::string> WriteSpeedAccuracy(const SpeedAccuracyResult& result, const fs::path& out_dir,
+                                              std::vector<fs::path>& written) {
+  std::error_code ec;
+  fs::create_directories(out_dir, ec);
+  if (ec) return fmt::format("cannot create the output directory {} ({})", out_dir.string(), ec.message());
+  const fs::path csv = out_dir / kSpeedAccuracyCsv;
+  const std::vector<fs::path> images = {out_dir / kSpeedAccuracySvg, out_dir / kSpeedAccuracyPng};
+  for (const fs::path& path : {csv, images[0], images[1]}) {
+    if (fs::is_directory(path, ec)) return fmt::format("cannot write {}: it is a directory", path.string());
+  }
+  if (std::optional<std::string> error = RenderGnuplotChart(SpeedAccuracyChart(result), images)) return error;
+  if (std::optional<std::string> error = WriteFileAtomically(csv, SpeedAccuracyCsv(result))) {
+    for (const fs::path& image : images) fs::remove(image, ec);
+    return fmt::format("cannot write {}: {}", csv.string(), *error);
+  }
+  written = {csv, images[0], images[1]};
+  return std::nullopt;
+}
+
+}  // namespace vs11::irradiance

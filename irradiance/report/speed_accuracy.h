@@ -1,0 +1,106 @@
+// The speed/accuracy sweep behind `irrmap chart`: for each environment, every mip level x each
+// projection method, the time of one coefficient update against the mean relative error of the
+// irradiance the paper's program computes from those coefficients (the same error as irrmap's level
+// table: CompareIrradiance against GroundTruthIrradiance at SphereNormals).
+//
+// Methods (both from the mip pyramid's level k, whose faces are face_size >> k):
+//   kMipPyramid     ProjectLevel(k): the paper's acceleration, level k's mean radiance times the
+//                   basis pyramid (each weight the sum of the basis over the finest texels it covers)
+//   kDirectOnLevel  ProjectDirect(level k's map): the basis evaluated at the coarse texel centres, as
+//                   if level k were the environment itself; at level 0 this is the plain
+//                   full-resolution projection (the reference irrmap checks ProjectLevel(0) against)
+// The order dimension (irradiance/sh/sh_order.h): for kMipPyramid, every level also gives points for
+// the reduced programs (order0, order1, zh3), their irradiance computed by their own vs_1_1 program
+// from the same coefficients; their update time is the same projection's (the reduction is a few
+// multiplications), and what they save is slots per vertex.
+// The update time excludes building the mips (done once per environment change, the same for every
+// level and method; reported per environment as mips_ms) and the basis pyramid (once per face size).
+#pragma once
+
+#include <filesystem>
+#include <functional>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "irradiance/render/gnuplot.h"
+#include "irradiance/sh/ground_truth.h"
+#include "irradiance/report/paper_program.h"
+
+namespace vs11::irradiance {
+
+enum class ProjectionMethod { kMipPyramid, kDirectOnLevel };
+inline constexpr ProjectionMethod kAllProjectionMethods[] = {ProjectionMethod::kMipPyramid,
+                                                             ProjectionMethod::kDirectOnLevel};
+// "mip" and "direct" (the CSV's method column).
+std::string_view ProjectionMethodName(ProjectionMethod method);
+
+struct SpeedAccuracyOptions {
+  // Files, {face} patterns or built-in names, as irrmap's ENV; empty: every built-in.
+  std::vector<std::string> environments;
+  std::string layout = "auto";  // ParseLayout names; files only
+  int face_size = 256;          // built-ins, and cubes resampled from lat-long/angular maps
+  int error_normals = kDefaultErrorNormals;
+  int threads = 0;              // ground truth and the vertex program; 0: every core
+  // Timing: an update is repeated until min_batch_ms have passed (a batch), `batches` times; the
+  // median of the batch means is reported, which shrugs off a batch slowed by another process.
+  double min_batch_ms = 20.0;
+  int batches = 3;
+};
+
+struct SpeedAccuracyPoint {
+  std::string environment;  // as given (a built-in name or a path)
+  ProjectionMethod method = ProjectionMethod::kMipPyramid;
+  int level = 0;
+  int size = 0;              // face size at the level
+  ShOrder order = ShOrder::kOrder2;  // the program evaluating the coefficients
+  double update_ms = 0.0;    // median batch mean of one projection
+  ErrorStats error;
+};
+
+struct SpeedAccuracyEnvironment {
+  std::string name;
+  int face_size = 0;
+  double mips_ms = 0.0;  // one RefillEnvironmentMips of this environment (median batch mean)
+};
+
+struct SpeedAccuracyResult {
+  std::vector<SpeedAccuracyEnvironment> environments;
+  // Environment, then method, then level from 0, each mip level's order-2 point followed by its
+  // reduced orders' points.
+  std::vector<SpeedAccuracyPoint> points;
+  std::vector<std::string> warnings;
+};
+
+// Progress: the environment being measured (index from 0 of `count`).
+using SpeedAccuracyProgress = std::function<void(std::string_view environment, int index, int count)>;
+
+// Runs the sweep. nullopt on success, otherwise what is wrong (a bad option, an environment that
+// cannot be loaded or whose face size is not a power of two).
+std::optional<std::string> RunSpeedAccuracySweep(const SpeedAccuracyOptions& options, SpeedAccuracyResult& result,
+                                                 const SpeedAccuracyProgress& progress = {});
+
+// One header line, then one line per point:
+//   environment,method,level,size,update_ms,mips_ms,mean_relative_error,max_relative_error,order,slots
+std::string SpeedAccuracyCsv(const SpeedAccuracyResult& result);
+
+// Two panels. Left: time per update (log x) against mean relative error in percent (log y) of the
+// paper's program (order 2): one colour per environment, solid lines for kMipPyramid and dashed for
+// kDirectOnLevel, each point labelled by its level. Right: slots per vertex of each order's program
+// (1, 3, 6, 11) against the mean relative error from the full-resolution coefficients (solid) and
+// from the 16x16 level (dashed, where the face size has one), one colour per environment.
+GnuplotChart SpeedAccuracyChart(const SpeedAccuracyResult& result);
+
+// The file names written into an output folder.
+inline constexpr std::string_view kSpeedAccuracyCsv = "speed_accuracy.csv";
+inline constexpr std::string_view kSpeedAccuracySvg = "speed_accuracy.svg";
+inline constexpr std::string_view kSpeedAccuracyPng = "speed_accuracy.png";
+
+// Writes the three files into `out_dir` (created if needed). Each is written to a temporary and
+// renamed; if any fails, the ones already in place from this call are removed again. nullopt on
+// success, the paths written in `written`.
+std::optional<std::string> WriteSpeedAccuracy(const SpeedAccuracyResult& result, const std::filesystem::path& out_dir,
+                                              std::vector<std::filesystem::path>& written);
+
+}  // namespace vs11::irradiance

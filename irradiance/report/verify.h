@@ -1,0 +1,160 @@
+// Verification of vertex programs against their double-precision references
+// (irradiance/report/program_references.h), and bit-for-bit comparison of two execution engines.
+//
+//   vs11 verify programs/sh9_irradiance.vsh          -> LoadProgramForVerify + Verify
+//   vs11 verify PROGRAM --against-engine ref         -> LoadProgramForVerify + VerifyEngines
+//
+// Errors are measured per output register over the compared lanes of every vertex:
+//   absolute error  |actual - expected|
+//   relative error  absolute error / scale, scale = the largest |expected| over all vertices and
+//                   compared lanes of that output (1 if they are all 0)
+// An output passes when its maximum relative error is at most its tolerance; a program passes when
+// every checked output does.
+#pragma once
+
+#include <cstddef>
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "irradiance/report/program_references.h"
+#include "vm/asm/program_file.h"
+#include "vm/core/diagnostic.h"
+#include "vm/core/machine.h"
+#include "vm/core/program.h"
+
+namespace vs11::irradiance {
+
+// ---- metadata -------------------------------------------------------------------------------------
+
+struct MetadataResult {
+  ProgramMetadata metadata;
+  Diagnostics diagnostics;  // unknown keys, bad values (errors); repeated keys (warnings)
+};
+
+// Reads every `; vs11: key=value` (or `// vs11: key=value`) line of a program's raw text; see
+// program_references.h for the keys. Other comment lines are ignored.
+MetadataResult ParseProgramMetadata(std::string_view text, const std::string& file_name);
+
+// "v3" -> 3 (v0..v15); "c7" or "c[7]" -> 7 (any non-negative index); case-insensitive.
+std::optional<int> ParseInputRegister(std::string_view name);
+std::optional<int> ParseConstantRegister(std::string_view name);
+
+// ---- loading --------------------------------------------------------------------------------------
+
+struct ProgramForVerify {
+  std::optional<Program> program;  // set when loading (and validation, if asked) found no errors
+  ProgramMetadata metadata;        // empty for bytecode files
+  Diagnostics diagnostics;
+};
+
+// Loads a .vsh or bytecode file (vm/asm/program_file.h) and its metadata. With
+// options.assemble.validate, a program whose metadata says fragment=yes is validated with every rule
+// except "oPos must be written" (ValidatorOptions::require_position); any other program exactly as
+// LoadProgram does. `fragment`, when set (a command line's --fragment or --no-fragment), wins over
+// the metadata and over options.assemble.require_position.
+ProgramForVerify LoadProgramForVerify(const std::filesystem::path& path, const LoadProgramOptions& options = {},
+                                      std::optional<bool> fragment = std::nullopt);
+
+// Validates a program that is only part of a vertex shader (it computes a value and writes no
+// oPos): every vs_1_1 rule of the validator applies except the one demanding an oPos write.
+Diagnostics ValidateFragment(const Program& program, int constant_count, bool dx9_rules);
+
+// ---- verification against a reference ---------------------------------------------------------------
+
+inline constexpr double kDefaultVerifyTolerance = 1e-5;
+inline constexpr int kDefaultVerifySamples = 256;
+
+struct VerifyOptions {
+  EngineKind engine = EngineKind::kBatch;
+  EngineOptions engine_options;
+  std::optional<Sh9Rgb> coefficients;  // sh9; default RandomCoefficients(seed)
+  std::uint64_t seed = 1;
+  int samples = kDefaultVerifySamples;
+  std::optional<double> tolerance;     // overrides every output's own tolerance
+  int constant_count = kDefaultConstantCount;
+};
+
+struct InputValue {
+  std::string name;  // "normal"
+  int reg = 0;       // v#
+  Vec4f value{};
+};
+
+struct OutputReport {
+  int slot = 0;
+  WriteMask lanes;                  // compared lanes
+  WriteMask missing_lanes{0};       // compared lanes the program never writes (a failure)
+  double scale = 0.0;               // largest |expected|
+  double max_absolute = 0.0, rms_absolute = 0.0;
+  double max_relative = 0.0, rms_relative = 0.0;
+  double tolerance = kDefaultVerifyTolerance;
+  bool pass = false;
+  std::size_t worst_vertex = 0;
+  int worst_lane = 0;
+  glm::dvec4 expected{0.0};         // at the worst vertex
+  Vec4f actual{};                   // at the worst vertex
+  std::vector<InputValue> worst_inputs;  // the reference's named inputs at the worst vertex
+
+  std::string Name() const;         // "oD0.xyz"
+};
+
+struct VerifyReport {
+  std::string error;                 // set when nothing could be run (unknown reference, bad metadata)
+  std::string reference;
+  std::string description;           // the reference's own account of registers and packing
+  EngineKind engine = EngineKind::kBatch;
+  std::size_t vertices = 0;
+  std::uint64_t seed = 0;
+  std::vector<OutputReport> outputs;  // the primary output first
+  bool pass = false;
+};
+
+// Runs `program` on options.engine over the reference's inputs and compares the outputs.
+VerifyReport Verify(const Program& program, const ProgramMetadata& metadata, const VerifyOptions& options);
+
+// Human-readable report (several lines) and a JSON object, as `vs11 verify` prints them.
+std::string FormatVerifyReport(const VerifyReport& report);
+std::string VerifyReportJson(const VerifyReport& report);
+
+// ---- engine against engine ----------------------------------------------------------------------------
+
+struct EngineDifference {
+  std::size_t vertex = 0;
+  int slot = 0;
+  int lane = 0;
+  float a = 0.0f, b = 0.0f;
+};
+
+struct EngineComparison {
+  std::string error;
+  EngineKind a = EngineKind::kReference, b = EngineKind::kBatch;
+  std::string inputs;                // where the inputs came from: a reference or random values
+  std::size_t vertices = 0;
+  std::size_t lanes_compared = 0;    // vertices x every lane of every written output register
+  std::size_t differing_lanes = 0;   // lanes whose float bit patterns differ
+  std::optional<EngineDifference> first;
+  bool identical() const { return error.empty() && differing_lanes == 0; }
+};
+
+// Compares two output arrays of the same shape (same slots, same count) lane by lane, bit for bit.
+EngineComparison CompareOutputArrays(const VertexArrays& a, const VertexArrays& b);
+
+// Runs the program on both engines with the same constants and inputs and compares every lane of
+// every output register it writes, bit for bit (NaNs equal only with equal bits).
+EngineComparison CompareEngines(const Program& program, EngineKind a, EngineKind b, const ConstantBank& constants,
+                                const VertexArrays& inputs, const EngineOptions& engine_options = {});
+
+// The same with the inputs of the metadata's reference when it names one, otherwise reproducible
+// random inputs in [-2, 2] for every input register the program reads and random constants in
+// [-2, 2] for every constant register (options.seed, options.samples vertices).
+EngineComparison VerifyEngines(const Program& program, const ProgramMetadata& metadata, EngineKind a, EngineKind b,
+                               const VerifyOptions& options);
+
+std::string FormatEngineComparison(const EngineComparison& comparison);
+std::string EngineComparisonJson(const EngineComparison& comparison);
+
+}  // namespace vs11::irradiance

@@ -1,0 +1,198 @@
+// The projection's SIMD kernels, compiled once per Highway target (hwy/foreach_target.h) and
+// dispatched at run time. See irradiance/sh/projection_kernels.h.
+#undef HWY_TARGET_INCLUDE
+#define HWY_TARGET_INCLUDE "irradiance/sh/projection_kernels.cc"
+#include "hwy/foreach_target.h"  // IWYU pragma: keep
+
+#include <algorithm>
+#include <cstddef>
+
+#include "hwy/highway.h"
+#include "irradiance/sh/projection_kernels.h"
+
+HWY_BEFORE_NAMESPACE();
+namespace vs11::irradiance::kernels {
+namespace HWY_NAMESPACE {
+namespace hn = hwy::HWY_NAMESPACE;
+
+// Terms each float lane sums before the block's sums go into double (a block is this many vectors
+// of a row: 256 texels with AVX-512, 16 with the scalar target), the same precision on every target.
+constexpr int kTermsPerLane = 16;
+constexpr std::size_t kMaxFloatLanes = HWY_MAX_BYTES / sizeof(float);
+constexpr int kSums = kMomentSums;
+constexpr int kFaces = 6;
+
+// Per-texel weights of one face row (see FaceWeights).
+struct RowWeights {
+  const float* q;
+  const float* qr;
+  const float* qr2;
+};
+
+using DF = hn::ScalableTag<float>;
+using VF = hn::Vec<DF>;
+
+// The sum of the float lanes of `v` pairwise in double: lane j plus lane j + half, on half as many
+// double lanes.
+#if HWY_TARGET == HWY_SCALAR
+using DD = hn::Rebind<double, DF>;
+HWY_INLINE hn::Vec<DD> WidenedPairSums(VF v) { return hn::PromoteTo(DD(), v); }
+#else
+using DD = hn::Rebind<double, hn::Half<DF>>;
+HWY_INLINE hn::Vec<DD> WidenedPairSums(VF v) {
+  const hn::Half<DF> dh;
+  return hn::Add(hn::PromoteTo(DD(), hn::LowerHalf(dh, v)), hn::PromoteTo(DD(), hn::UpperHalf(dh, v)));
+}
+#endif
+using VD = hn::Vec<DD>;
+
+// One moment's running float sums, per channel. Named locals of this type (not an array of
+// vectors, which GCC keeps on the stack) stay in registers: 15 of 32 with AVX-512.
+struct ChannelSums {
+  VF red, green, blue;
+};
+
+HWY_INLINE void Accumulate(VF term, VF red, VF green, VF blue, ChannelSums& sums) {
+  sums.red = hn::MulAdd(term, red, sums.red);
+  sums.green = hn::MulAdd(term, green, sums.green);
+  sums.blue = hn::MulAdd(term, blue, sums.blue);
+}
+
+using LaneSums = double[kSums][kMaxFloatLanes];
+
+// Adds the moments of row y (face coordinate t) of one face into `face` (double lanes, kSums per
+// power of t). `row` is scratch, written before it is read.
+void AddRowMoments(const float* HWY_RESTRICT rgb, const RowWeights& weights, int size, double t,
+                   LaneSums& HWY_RESTRICT row, LaneSums* HWY_RESTRICT face) {
+  const DF df;
+  const DD dd;
+  const int lanes = static_cast<int>(hn::Lanes(df));
+  const VF one = hn::Set(df, 1.0f);
+  const VF texel_width = hn::Set(df, 2.0f / static_cast<float>(size));
+  const VF lane_step = hn::Set(df, static_cast<float>(lanes));
+  VF centre = hn::Iota(df, 0.5f);  // x + 0.5 for each lane's texel x
+  const int block_texels = kTermsPerLane * lanes;
+  for (int begin = 0; begin < size; begin += block_texels) {
+    const int end = std::min(size, begin + block_texels);
+    const VF zero = hn::Zero(df);
+    ChannelSums m0{zero, zero, zero}, m1 = m0, m2 = m0, m3 = m0, m4 = m0;
+    auto add_texels = [&](const float* HWY_RESTRICT texels, const float* q_row, const float* qr_row,
+                          const float* qr2_row) HWY_ATTR {
+      VF red, green, blue;
+      hn::LoadInterleaved3(df, texels, red, green, blue);
+      const VF q = hn::LoadU(df, q_row);
+      const VF qr = hn::LoadU(df, qr_row);
+      const VF qr2 = hn::LoadU(df, qr2_row);
+      const VF s = hn::Sub(hn::Mul(centre, texel_width), one);  // exact for power-of-two sizes
+      centre = hn::Add(centre, lane_step);
+      Accumulate(q, red, green, blue, m0);
+      Accumulate(qr, red, green, blue, m1);
+      Accumulate(hn::Mul(qr, s), red, green, blue, m2);
+      Accumulate(qr2, red, green, blue, m3);
+      Accumulate(hn::Mul(qr2, s), red, green, blue, m4);
+    };
+    int x = begin;
+    for (; x + lanes <= end; x += lanes) add_texels(rgb + 3 * x, weights.q + x, weights.qr + x, weights.qr2 + x);
+    if (x < end) {
+      // The row is shorter than a vector: the missing texels get radiance 0 and weights 0, and
+      // their (finite) s adds nothing.
+      HWY_ALIGN float rgb_tail[3 * kMaxFloatLanes] = {};
+      HWY_ALIGN float tails[3][kMaxFloatLanes] = {};
+      std::copy(rgb + 3 * x, rgb + 3 * end, rgb_tail);
+      std::copy(weights.q + x, weights.q + end, tails[0]);
+      std::copy(weights.qr + x, weights.qr + end, tails[1]);
+      std::copy(weights.qr2 + x, weights.qr2 + end, tails[2]);
+      add_texels(rgb_tail, tails[0], tails[1], tails[2]);
+    }
+    int i = 0;
+    for (const ChannelSums* m : {&m0, &m1, &m2, &m3, &m4}) {
+      for (VF v : {m->red, m->green, m->blue}) {
+        const VD widened = WidenedPairSums(v);
+        hn::Store(begin == 0 ? widened : hn::Add(hn::Load(dd, row[i]), widened), dd, row[i]);
+        ++i;
+      }
+    }
+  }
+  const VD powers[3] = {hn::Set(dd, 1.0), hn::Set(dd, t), hn::Set(dd, t * t)};
+  for (int p = 0; p < 3; ++p) {
+    for (int i = 0; i < kSums; ++i) {
+      hn::Store(hn::MulAdd(powers[p], hn::Load(dd, row[i]), hn::Load(dd, face[p][i])), dd, face[p][i]);
+    }
+  }
+}
+
+void CubeMoments(const CubeTexels& faces, const FaceWeights& weights, int size, CubeMomentSums& out) {
+  const DD dd;
+  // Row by row across the six faces, so that each row of weights is read from memory once.
+  HWY_ALIGN LaneSums sums[kFaces][3] = {};
+  HWY_ALIGN LaneSums row_scratch = {};
+  for (int y = 0; y < size; ++y) {
+    const std::size_t offset = static_cast<std::size_t>(y) * size;
+    const RowWeights row{weights.q + offset, weights.qr + offset, weights.qr2 + offset};
+    const double t = 2.0 * (y + 0.5) / size - 1.0;
+    for (int f = 0; f < kFaces; ++f) AddRowMoments(faces[f] + 3 * offset, row, size, t, row_scratch, sums[f]);
+  }
+  for (int f = 0; f < kFaces; ++f) {
+    for (int p = 0; p < 3; ++p) {
+      for (int i = 0; i < kSums; ++i) {
+        double sum = 0.0;
+        for (std::size_t j = 0; j < hn::Lanes(dd); ++j) sum += sums[f][p][i][j];
+        out[f][p][i] = sum;
+      }
+    }
+  }
+}
+
+void HalveRowPair(const float* HWY_RESTRICT upper, const float* HWY_RESTRICT lower, float* HWY_RESTRICT out,
+                  int out_width) {
+  int x = 0;
+#if HWY_TARGET != HWY_SCALAR
+  const DF df;
+  const int lanes = static_cast<int>(hn::Lanes(df));
+  const VF quarter = hn::Set(df, 0.25f);
+  // Sums texels 2x + 2j and 2x + 2j + 1 (j < lanes) of `row`, per channel.
+  auto pair_sums = [&](const float* row, VF& red, VF& green, VF& blue) {
+    VF r0, g0, b0, r1, g1, b1;
+    hn::LoadInterleaved3(df, row, r0, g0, b0);
+    hn::LoadInterleaved3(df, row + 3 * lanes, r1, g1, b1);
+    red = hn::Add(hn::ConcatEven(df, r1, r0), hn::ConcatOdd(df, r1, r0));
+    green = hn::Add(hn::ConcatEven(df, g1, g0), hn::ConcatOdd(df, g1, g0));
+    blue = hn::Add(hn::ConcatEven(df, b1, b0), hn::ConcatOdd(df, b1, b0));
+  };
+  for (; x + lanes <= out_width; x += lanes) {
+    VF ur, ug, ub, lr, lg, lb;
+    pair_sums(upper + 6 * x, ur, ug, ub);
+    pair_sums(lower + 6 * x, lr, lg, lb);
+    hn::StoreInterleaved3(hn::Mul(hn::Add(ur, lr), quarter), hn::Mul(hn::Add(ug, lg), quarter),
+                          hn::Mul(hn::Add(ub, lb), quarter), df, out + 3 * x);
+  }
+#endif
+  for (; x < out_width; ++x) {
+    for (int c = 0; c < 3; ++c) {
+      const float top = upper[6 * x + c] + upper[6 * x + 3 + c];
+      const float bottom = lower[6 * x + c] + lower[6 * x + 3 + c];
+      out[3 * x + c] = (top + bottom) * 0.25f;
+    }
+  }
+}
+
+}  // namespace HWY_NAMESPACE
+}  // namespace vs11::irradiance::kernels
+HWY_AFTER_NAMESPACE();
+
+#if HWY_ONCE
+namespace vs11::irradiance::kernels {
+
+HWY_EXPORT(CubeMoments);
+HWY_EXPORT(HalveRowPair);
+
+void CubeMoments(const CubeTexels& faces, const FaceWeights& weights, int size, CubeMomentSums& out) {
+  HWY_DYNAMIC_DISPATCH(CubeMoments)(faces, weights, size, out);
+}
+
+void HalveRowPair(const float* upper, const float* lower, float* out, int out_width) {
+  HWY_DYNAMIC_DISPATCH(HalveRowPair)(upper, lower, out, out_width);
+}
+
+}  // namespace vs11::irradiance::kernels
+#endif  // HWY_ONCE

@@ -1,0 +1,127 @@
+// Projection of a cube environment map onto the nine SH coefficients, directly (the reference) and
+// from mip levels (the paper's acceleration, section 3.2 step 2 and Fig. 2):
+//
+//   environment level k (mean radiance per texel)  x  basis level k (sum over the texel's 4^k
+//   finest children of y_lm(dir) dOmega)  summed over the 6 (size >> k)^2 texels  ~=  L_lm
+//
+// Level 0 of the mip product is exactly the direct projection (up to float storage); coarser levels
+// treat the radiance as constant over each 2^k x 2^k block, which blurs only what the nine
+// coefficients cannot hold anyway once the block is small compared with the band-2 lobes.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <functional>
+#include <optional>
+#include <vector>
+
+#include "irradiance/io/cube_map.h"
+#include "irradiance/sh/sh9.h"
+
+namespace vs11::irradiance {
+
+// L_lm = sum over every texel of radiance * y_lm(texel centre direction) * exact texel solid angle
+// (TexelSolidAngle). Any face size >= 0 (0 gives all zeros). Precision: each face row is summed in
+// double (the 27 running sums of one row), and the row sums are added into double totals, so a
+// 2048-texel face adds 2048 terms per row and 6 x 2048 rows, far from losing float-sized precision;
+// no Kahan compensation is used. Cost: O(6 size^2 x 9); the solid angles of a row are computed once
+// and shared by the six faces.
+Sh9Rgb ProjectDirect(const CubeMap& env);
+
+// Number of mip levels from size x size down to 1 x 1, i.e. log2(size) + 1, for a face size that is a
+// power of two; 0 when `face_size` is not a positive power of two.
+int LevelCount(int face_size);
+
+// An environment's mip pyramid: levels[0] is the map itself, levels[k] has faces of size >> k.
+struct CubeMipChain {
+  std::vector<CubeMap> levels;
+};
+
+// Builds the pyramid down to 1 x 1; each texel of level k + 1 is the mean (in float) of its 2 x 2
+// children in level k, per face (faces are not filtered across their edges, which is exact for a
+// box filter). Returns std::nullopt when the face size is not a positive power of two: odd sizes
+// have no exact 2 x 2 parentage, and dropping a row or column would silently lose light.
+std::optional<CubeMipChain> BuildEnvironmentMips(const CubeMap& env);
+// The same, taking `env` as level 0 instead of copying it (a map of 1024 faces is 75 MB). `env` is
+// left moved-from, its face_size unchanged.
+std::optional<CubeMipChain> BuildEnvironmentMips(CubeMap&& env);
+
+// The same pyramid written into `chain` in place, for an environment that changes every frame: no
+// allocation when `chain` already holds a pyramid of env's face size (one from BuildEnvironmentMips,
+// or one filled here before), so its memory is not freed and page-faulted in again per frame; the
+// result is bit-identical to BuildEnvironmentMips(env). Any other `chain` (empty, another size) is
+// reshaped first, which allocates once. Returns false, leaving `chain` unchanged, when the face size
+// is not a positive power of two.
+bool RefillEnvironmentMips(const CubeMap& env, CubeMipChain& chain);
+
+// One level of the basis pyramid: for each of the nine basis functions, a float per texel of the six
+// faces, stored structure-of-arrays as weights[index][(face * size + y) * size + x] (face in
+// CubeFace order), where the value is the sum over the texel's finest-level children of
+// y_lm(child direction) * TexelSolidAngle(child). Units: steradians.
+struct BasisLevel {
+  int size = 0;  // texels per face edge at this level
+  std::array<std::vector<float>, kSh9Coefficients> weights;  // empty at level 0 (not stored)
+
+  const float* Row(int index, int face, int y) const {
+    return weights[index].data() + (static_cast<std::size_t>(face) * size + y) * size;
+  }
+};
+
+// What level-0 projection needs besides the texels, for each texel of one face (the same on all
+// six), row-major, formed in double and rounded to float once: its exact solid angle q
+// (TexelSolidAngle), q r and q r^2 with r = 1 / sqrt(1 + s^2 + t^2) (s, t: its centre's face
+// coordinates). 12 bytes per texel of a face: 12 MB at 1024.
+struct FinestWeights {
+  std::vector<float> q, qr, qr2;
+};
+
+// FinestWeights for faces of `face_size` (>= 0).
+FinestWeights BuildFinestWeights(int face_size);
+
+// Level-0 projection without a pyramid: the same as ProjectLevel(chain, basis, 0), where `weights`
+// are BuildFinestWeights(env.face_size) (asserted by size). The basis is evaluated from each
+// texel's coordinates in SIMD float instead of read from memory: about 3x the time of merely
+// reading the texels once, measured with AVX-512 (bench/README.md, "Issue #14"). Precision: every
+// term radiance x (q, q r, q r s, q r^2 or q r^2 s) is formed in float and summed in float lanes
+// over at most 16 terms per lane, then in double (never one float sum over the map, which the
+// stability report shows failing at 2048^2); the result stays within 1e-6 of the largest
+// coefficient of ProjectDirect, tested up to 2048 with a 1e6 sun. Results differ between SIMD
+// targets (AVX-512, AVX2, ...) by float rounding only.
+Sh9Rgb ProjectFinest(const CubeMap& env, const FinestWeights& weights);
+
+// Built once per face size and reused for every environment of that size (paper section 3.3 step 1).
+struct BasisPyramid {
+  int face_size = 0;              // size of level 0
+  std::vector<BasisLevel> levels;  // LevelCount(face_size) levels, level k of size face_size >> k
+  FinestWeights finest;             // what ProjectLevel reads at level 0
+};
+
+// Samples the nine basis functions times the exact solid angle at every finest texel and sums them
+// 2 x 2 up to 1 x 1, and fills `finest` (BuildFinestWeights). Level 0's own weights are not stored
+// (levels[0].weights are empty; ProjectLevel evaluates level 0 from texel coordinates). The sums are
+// formed in double (never from already rounded floats) and each stored value is rounded to float
+// once. Returns std::nullopt when `face_size` is not a positive power of two. The six faces are
+// built by up to `threads` (>= 1, asserted) threads, the calling one among them, with the same
+// result for any count. Memory: 6 size^2 x 9 floats / 3 for levels 1.. (about 5 MB at 256, 302 MB at
+// 2048) plus 12 bytes per texel of a face for `finest`; while building, a table of one face's solid
+// angles (8 bytes per texel of a face) and, per thread, one face's level 1 in double (18 bytes per
+// texel of a face): 27 MB at 1024 with one thread, 46 MB with two.
+// `progress`, when set, is called with the fraction done after each face (from the worker threads,
+// one call at a time).
+std::optional<BasisPyramid> BuildBasisPyramid(int face_size, int threads = 1,
+                                              const std::function<void(double)>& progress = {});
+
+// Level 0 is ProjectFinest(env.levels[0], basis.finest). Coarser levels: the sum over the texels of
+// `level` of mean radiance (float) x summed basis weight (float), each product exact in double,
+// summed in double per face row (8 fixed lane-wise partial sums folded in a fixed order, so the
+// result is deterministic) and then in double over rows. The hot path of a real-time update: no
+// allocation per texel, structure-of-arrays rows of the nine weights, and an inner loop written
+// with GCC vector extensions, run with AVX2 when the CPU has it (the SSE2 and AVX2 kernels add in
+// the same order and give the same bits). Cost: 6 (size >> level)^2 x 27 multiply-adds; measured
+// about 0.6 ms of CPU time for level 1 of a 256 map (64 x 64 is level 2), on a busy AMD EPYC
+// virtual machine.
+// Preconditions (asserted): env.levels[0].face_size == basis.face_size and
+// 0 <= level < env.levels.size() and level < basis.levels.size().
+Sh9Rgb ProjectLevel(const CubeMipChain& env, const BasisPyramid& basis, int level);
+
+}  // namespace vs11::irradiance

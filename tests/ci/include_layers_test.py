@@ -1,0 +1,66 @@
+#!/usr/bin/env python3
+"""Includes point down only (README, Layout): a file includes its own folder or a lower layer.
+
+vm:          core <- asm, io <- engines <- mesh <- cli
+irradiance:  io <- sh <- render <- report <- jobs <- mesh_input <- cli
+The irradiance library sits above vm's library folders (core, asm, io, engines); only irrmap's mesh
+reader (irradiance/mesh_input) reaches vm/mesh, and only the vs11 tool (vm/cli) reaches irradiance.
+Folders on the same layer (asm and io) do not include each other.
+Usage: include_layers_test.py SOURCE_DIR. Prints each violation as file:line and exits 1 on any.
+"""
+import pathlib
+import re
+import sys
+
+# (folder, layer): a file may include from folders of a lower layer, or from its own folder.
+LAYERS = {
+    "vm/core": 0, "vm/asm": 1, "vm/io": 1, "vm/engines": 2, "vm/mesh": 3,
+    "irradiance/io": 4, "irradiance/sh": 5, "irradiance/render": 6, "irradiance/report": 7,
+    "irradiance/jobs": 8, "irradiance/mesh_input": 9, "irradiance/cli": 10, "vm/cli": 11,
+}
+# Exceptions to "any lower layer": vm/mesh is below the irradiance library's layers but only
+# mesh_input and the tools may use it (vs11_irradiance is installed without Assimp).
+ONLY_FROM = {"vm/mesh": {"vm/mesh", "irradiance/mesh_input", "irradiance/cli", "vm/cli"}}
+INCLUDE = re.compile(r'^\s*#\s*include\s+"((?:vm|irradiance)/[^"]+)"')
+
+
+def folder_of(path: str):
+    for folder in sorted(LAYERS, key=len, reverse=True):
+        if path.startswith(folder + "/"):
+            return folder
+    return None
+
+
+def main() -> int:
+    root = pathlib.Path(sys.argv[1])
+    violations = []
+    checked = 0
+    for top in ("vm", "irradiance"):
+        for source in sorted((root / top).rglob("*")):
+            if source.suffix not in (".h", ".cc"):
+                continue
+            relative = source.relative_to(root).as_posix()
+            here = folder_of(relative)
+            if here is None:
+                violations.append(f"{relative}: in no folder of the layering (add it to LAYERS)")
+                continue
+            checked += 1
+            for number, line in enumerate(source.read_text().splitlines(), 1):
+                match = INCLUDE.match(line)
+                if not match:
+                    continue
+                target = folder_of(match.group(1))
+                if target is None:
+                    violations.append(f"{relative}:{number}: includes {match.group(1)}, in no known folder")
+                elif target != here and (LAYERS[target] >= LAYERS[here] or
+                                         here not in ONLY_FROM.get(target, {here})):
+                    violations.append(f"{relative}:{number}: {here} (layer {LAYERS[here]}) includes "
+                                      f"{match.group(1)} ({target}, layer {LAYERS[target]}): includes point down only")
+    for violation in violations:
+        print(violation)
+    print(f"include layers: {checked} files checked, {len(violations)} violations")
+    return 1 if violations or checked == 0 else 0
+
+
+if __name__ == "__main__":
+    sys.exit(main())

@@ -1,0 +1,81 @@
+// irrmap's command line: --version, usage errors (status 2), the output folder checked before any
+// work, --face-size against a cube-map file, --no-ground-truth; and the basis pyramid's progress.
+#include <string>
+
+#include "irradiance/io/environments.h"
+#include "irradiance/sh/sh_projection.h"
+#include "tests/irradiance/io/environment_test_support.h"
+#include "tests/run_tool.h"
+
+namespace vs11::irradiance {
+namespace {
+
+using namespace envtest;
+using ::testing::HasSubstr;
+using ::testing::Not;
+using IrrmapUsage = TempFolderTest;
+using vs11::testing::CommandResult;
+using vs11::testing::RunIrrmap;
+
+TEST_F(IrrmapUsage, VersionAndUsageErrors) {
+  const CommandResult version = RunIrrmap("--version");
+  EXPECT_EQ(version.status, 0) << version.output;
+  EXPECT_THAT(version.output, HasSubstr("irrmap "));
+  const CommandResult flag = RunIrrmap("--frobnicate");
+  EXPECT_EQ(flag.status, 2);
+  EXPECT_THAT(flag.output, HasSubstr("--frobnicate"));
+  EXPECT_EQ(RunIrrmap("--face-size notanumber").status, 2);
+}
+
+TEST_F(IrrmapUsage, AnOutputPathThatIsAFileFailsBeforeAnyWork) {
+  WriteBytes(Path("afile"), "not a folder");
+  for (const std::string& command :
+       {fmt::format("--face-size 16 --coefficients-only --out '{}'", Path("afile").string()),
+        fmt::format("--face-size 16 --out '{}'", (Path("afile") / "below").string()),
+        fmt::format("chart sky --face-size 16 --out '{}'", Path("afile").string()),
+        fmt::format("stability --out '{}'", Path("afile").string())}) {
+    const CommandResult run = RunIrrmap(command);
+    EXPECT_EQ(run.status, 1) << command;
+    // The check's own message, not the writer's after the work (which would also print results).
+    EXPECT_THAT(run.output, HasSubstr("afile is not a directory")) << command << "\n" << run.output;
+    EXPECT_THAT(run.output, Not(HasSubstr("stage times"))) << command;
+    EXPECT_THAT(run.output, Not(HasSubstr("irrmap chart: sky"))) << command;  // the sweep's progress
+  }
+  EXPECT_EQ(ReadBytes(Path("afile")), "not a folder");
+}
+
+TEST_F(IrrmapUsage, FaceSizeWithACubeMapFileIsWarnedAbout) {
+  ASSERT_EQ(WriteCubeMap(MakeSky(8), Path("cross.exr"), EnvironmentLayout::kHorizontalCross), std::nullopt);
+  const std::string base = fmt::format("'{}' --coefficients-only --out '{}'", Path("cross.exr").string(),
+                                       Path("out").string());
+  const CommandResult warned = RunIrrmap(base + " --face-size 64");
+  EXPECT_EQ(warned.status, 0) << warned.output;
+  EXPECT_THAT(warned.output, HasSubstr("--face-size 64 ignored"));
+  EXPECT_THAT(warned.output, HasSubstr("faces of 8x8"));
+  EXPECT_THAT(RunIrrmap(base).output, Not(HasSubstr("ignored")));
+  EXPECT_THAT(RunIrrmap(base + " --face-size 8").output, Not(HasSubstr("ignored")));
+}
+
+TEST_F(IrrmapUsage, NoGroundTruthWritesTheMapButNoErrorsOrPreview) {
+  const CommandResult run =
+      RunIrrmap(fmt::format("sky --face-size 16 --map-size 4 --no-ground-truth --out '{}'", Path("out").string()));
+  ASSERT_EQ(run.status, 0) << run.output;
+  EXPECT_TRUE(fs::exists(Path("out") / "irradiance.exr"));
+  EXPECT_TRUE(fs::exists(Path("out") / "constants.vsh"));
+  EXPECT_FALSE(fs::exists(Path("out") / "preview.png"));
+  EXPECT_THAT(run.output, Not(HasSubstr("ground_truth")));
+  const std::string json = ReadBytes(Path("out") / "coeffs.json");
+  EXPECT_THAT(json, HasSubstr("estimated_error"));
+  EXPECT_THAT(json, Not(HasSubstr("max_relative_error")));
+}
+
+TEST(BasisPyramidProgress, ReportsEachFaceUpToOne) {
+  std::vector<double> fractions;
+  std::optional<BasisPyramid> pyramid = BuildBasisPyramid(8, 2, [&](double f) { fractions.push_back(f); });
+  ASSERT_TRUE(pyramid);
+  ASSERT_EQ(fractions.size(), 6u);
+  for (std::size_t i = 0; i < fractions.size(); ++i) EXPECT_DOUBLE_EQ(fractions[i], (i + 1) / 6.0);
+}
+
+}  // namespace
+}  // namespace vs11::irradiance

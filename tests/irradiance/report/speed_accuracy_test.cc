@@ -1,0 +1,136 @@
+#include "irradiance/report/speed_accuracy.h"
+
+#include <algorithm>
+#include <filesystem>
+#include <fstream>
+#include <iterator>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "irradiance/sh/sh_projection.h"
+
+namespace vs11::irradiance {
+namespace {
+
+namespace fs = std::filesystem;
+using ::testing::HasSubstr;
+using ::testing::StartsWith;
+
+constexpr int kFaceSize = 8;  // levels 0..3
+// A grey environment gives exactly L00 at every level of both methods, up to float storage of the
+// radiance and the basis weights and the float arithmetic of the vertex program, so every level's
+// error is the same (it is the ground truth's own: brute force over 8 x 8 faces is not exactly pi).
+constexpr double kWhiteFurnaceRelative = 1e-5;
+
+SpeedAccuracyOptions FastOptions(std::vector<std::string> environments) {
+  SpeedAccuracyOptions options;
+  options.environments = std::move(environments);
+  options.face_size = kFaceSize;
+  options.error_normals = 64;
+  options.threads = 1;
+  options.min_batch_ms = 0.0;
+  options.batches = 1;
+  return options;
+}
+
+const SpeedAccuracyPoint& Find(const SpeedAccuracyResult& result, std::string_view environment,
+                               ProjectionMethod method, int level, ShOrder order = ShOrder::kOrder2) {
+  const auto it = std::find_if(result.points.begin(), result.points.end(), [&](const SpeedAccuracyPoint& p) {
+    return p.environment == environment && p.method == method && p.level == level && p.order == order;
+  });
+  EXPECT_NE(it, result.points.end()) << environment << " level " << level;
+  return *it;
+}
+
+TEST(SpeedAccuracy, SweepsEveryLevelOfEachMethodForEachEnvironment) {
+  SpeedAccuracyResult result;
+  ASSERT_EQ(RunSpeedAccuracySweep(FastOptions({"constant", "sky"}), result), std::nullopt);
+  const int levels = LevelCount(kFaceSize);
+  // Per environment: every direct level, and every mip level with each of the four programs.
+  ASSERT_EQ(result.points.size(), static_cast<std::size_t>(2 * (1 + 4) * levels));
+  ASSERT_EQ(result.environments.size(), 2u);
+  for (const SpeedAccuracyPoint& point : result.points) {
+    EXPECT_EQ(point.size, kFaceSize >> point.level);
+    EXPECT_GT(point.update_ms, 0.0);
+  }
+  const double furnace_error = Find(result, "constant", ProjectionMethod::kMipPyramid, 0).error.max_relative;
+  EXPECT_LT(furnace_error, 0.01);
+  for (int level = 0; level < levels; ++level) {
+    for (ProjectionMethod method : kAllProjectionMethods) {
+      EXPECT_NEAR(Find(result, "constant", method, level).error.max_relative, furnace_error, kWhiteFurnaceRelative);
+    }
+  }
+  // At level 0 both methods are the full-resolution projection.
+  EXPECT_NEAR(Find(result, "sky", ProjectionMethod::kMipPyramid, 0).error.mean_relative,
+              Find(result, "sky", ProjectionMethod::kDirectOnLevel, 0).error.mean_relative, 1e-6);
+  // The order dimension: the constant environment is exact with one slot; the sky needs band 2.
+  EXPECT_NEAR(Find(result, "constant", ProjectionMethod::kMipPyramid, 0, ShOrder::kOrder0).error.max_relative,
+              furnace_error, kWhiteFurnaceRelative);
+  EXPECT_GT(Find(result, "sky", ProjectionMethod::kMipPyramid, 0, ShOrder::kOrder1).error.mean_relative,
+            Find(result, "sky", ProjectionMethod::kMipPyramid, 0).error.mean_relative);
+  // Six texels cannot hold the sky's sun: the 1 x 1 level is far worse than full resolution.
+  EXPECT_GT(Find(result, "sky", ProjectionMethod::kMipPyramid, levels - 1).error.mean_relative,
+            2.0 * Find(result, "sky", ProjectionMethod::kMipPyramid, 0).error.mean_relative);
+}
+
+TEST(SpeedAccuracy, CsvHasAHeaderAndOneLinePerPoint) {
+  SpeedAccuracyResult result;
+  ASSERT_EQ(RunSpeedAccuracySweep(FastOptions({"spot"}), result), std::nullopt);
+  const std::string csv = SpeedAccuracyCsv(result);
+  EXPECT_THAT(csv, StartsWith("environment,method,level,size,update_ms,mips_ms,mean_relative_error,"
+                              "max_relative_error,order,slots\n"));
+  EXPECT_THAT(csv, HasSubstr("\nspot,mip,0,8,"));
+  EXPECT_THAT(csv, HasSubstr(",zh3,6\n"));
+  EXPECT_EQ(static_cast<std::size_t>(std::count(csv.begin(), csv.end(), '\n')), result.points.size() + 1);
+  EXPECT_THAT(csv, HasSubstr("\nspot,mip,0,8,"));
+  EXPECT_THAT(csv, HasSubstr("\nspot,direct,3,1,"));
+}
+
+TEST(SpeedAccuracy, ChartHasOneSolidAndOneDashedCurvePerEnvironment) {
+  SpeedAccuracyResult result;
+  ASSERT_EQ(RunSpeedAccuracySweep(FastOptions({"sky", "studio"}), result), std::nullopt);
+  const GnuplotChart chart = SpeedAccuracyChart(result);
+  EXPECT_THAT(chart.script, HasSubstr("set logscale xy"));
+  EXPECT_THAT(chart.script, HasSubstr("'sky (mip pyramid)'"));
+  EXPECT_THAT(chart.script, HasSubstr("'studio (direct on level)'"));
+  EXPECT_THAT(chart.script, HasSubstr("with labels"));
+  EXPECT_THAT(chart.script, HasSubstr("index 3 using"));
+  // The order panel: one curve per environment from full resolution (8x8 faces have no 16x16 level).
+  EXPECT_THAT(chart.script, HasSubstr("set multiplot layout 1,2"));
+  EXPECT_THAT(chart.script, HasSubstr("'studio from 8x8'"));
+  EXPECT_THAT(chart.script, HasSubstr("index 5 using"));
+  EXPECT_THAT(chart.script, Not(HasSubstr("index 6 using")));
+}
+
+TEST(SpeedAccuracy, WritesCsvSvgAndPngAndNothingElse) {
+  SpeedAccuracyResult result;
+  ASSERT_EQ(RunSpeedAccuracySweep(FastOptions({"sky"}), result), std::nullopt);
+  const fs::path folder = fs::temp_directory_path() / "vs11_speed_accuracy_write";
+  fs::remove_all(folder);
+  std::vector<fs::path> written;
+  ASSERT_EQ(WriteSpeedAccuracy(result, folder / "nested", written), std::nullopt);
+  EXPECT_EQ(written.size(), 3u);
+  std::vector<std::string> names;
+  for (const auto& entry : fs::directory_iterator(folder / "nested")) names.push_back(entry.path().filename());
+  std::sort(names.begin(), names.end());
+  EXPECT_THAT(names, ::testing::ElementsAre("speed_accuracy.csv", "speed_accuracy.png", "speed_accuracy.svg"));
+  std::ifstream svg(folder / "nested" / "speed_accuracy.svg");
+  EXPECT_THAT(std::string(std::istreambuf_iterator<char>(svg), {}), HasSubstr("<svg"));
+  fs::remove_all(folder);
+}
+
+TEST(SpeedAccuracy, RejectsBadOptionsAndUnknownEnvironments) {
+  SpeedAccuracyResult result;
+  SpeedAccuracyOptions options = FastOptions({"sky"});
+  options.face_size = 6;
+  EXPECT_THAT(RunSpeedAccuracySweep(options, result).value_or(""), HasSubstr("power of two"));
+  options = FastOptions({"no_such_environment.exr"});
+  EXPECT_NE(RunSpeedAccuracySweep(options, result), std::nullopt);
+  options = FastOptions({"sky"});
+  options.batches = 0;
+  EXPECT_THAT(RunSpeedAccuracySweep(options, result).value_or(""), HasSubstr("--batches"));
+}
+
+}  // namespace
+}  // namespace vs11::irradiance

@@ -1,0 +1,181 @@
+#include "vm/io/vertex_io.h"
+
+#include <cmath>
+#include <limits>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "vm/asm/assembler.h"
+
+namespace vs11 {
+using ::testing::HasSubstr;
+namespace {
+
+TEST(VertexIo, ParsesDefLinesAndAssignments) {
+  ConstantBank bank;
+  Diagnostics diagnostics;
+  ParseConstantsText("; comment\ndef c4, 1, 2.5, -3, 4f\n c7 = 0.5 0.25\nc8 = 1, 2, 3, 4 // trailing\n", "k.txt", bank,
+                     diagnostics);
+  ASSERT_FALSE(diagnostics.HasErrors()) << diagnostics.ToString();
+  EXPECT_EQ(bank[4], (Vec4f{1, 2.5f, -3, 4}));
+  EXPECT_EQ(bank[7], (Vec4f{0.5f, 0.25f, 0, 0}));
+  EXPECT_EQ(bank[8], (Vec4f{1, 2, 3, 4}));
+}
+
+TEST(VertexIo, ReportsBadConstantLinesWithLineAndColumn) {
+  ConstantBank bank;
+  Diagnostics diagnostics;
+  ParseConstantsText("c1 = 1 2\nc2 = 1 x 3\nr3 = 1\nc200 = 1\nc4 1 2\nc5 = 1 2 3 4 5\n", "k.txt", bank, diagnostics);
+  ASSERT_EQ(diagnostics.error_count(), 5);
+  const auto& all = diagnostics.all();
+  EXPECT_EQ(all[0].loc.line, 2);
+  EXPECT_EQ(all[0].loc.column, 8);
+  EXPECT_NE(all[0].message.find("expected a number"), std::string::npos);
+  EXPECT_EQ(all[1].loc.line, 3);
+  EXPECT_NE(all[1].message.find("constant register"), std::string::npos);
+  EXPECT_EQ(all[2].loc.line, 4);
+  EXPECT_NE(all[2].message.find("beyond the 96"), std::string::npos);
+  EXPECT_EQ(all[3].loc.line, 5);
+  EXPECT_NE(all[3].message.find("'='"), std::string::npos);
+  EXPECT_EQ(all[4].loc.line, 6);
+  EXPECT_NE(all[4].message.find("more than four"), std::string::npos);
+}
+
+TEST(VertexIo, ConstantAssignmentFlag) {
+  ConstantBank bank;
+  EXPECT_FALSE(ParseConstantAssignment("c4=1,0,0,1", bank).has_value());
+  EXPECT_EQ(bank[4], (Vec4f{1, 0, 0, 1}));
+  std::optional<std::string> error = ParseConstantAssignment("c4=1,zz", bank);
+  ASSERT_TRUE(error.has_value());
+  EXPECT_NE(error->find("c4=1,zz"), std::string::npos);
+}
+
+TEST(VertexIo, CsvRowsFillMissingComponentsFromZeroZeroZeroOne) {
+  Diagnostics diagnostics;
+  std::vector<Vec4f> rows = ParseVertexCsv("x,y,z\n1,2\r\n3 4 5 6\n\n7\n", "in.csv", diagnostics);
+  ASSERT_FALSE(diagnostics.HasErrors()) << diagnostics.ToString();
+  ASSERT_EQ(rows.size(), 3u);
+  EXPECT_EQ(rows[0], (Vec4f{1, 2, 0, 1}));
+  EXPECT_EQ(rows[1], (Vec4f{3, 4, 5, 6}));
+  EXPECT_EQ(rows[2], (Vec4f{7, 0, 0, 1}));
+}
+
+TEST(VertexIo, CsvReportsTheFirstBadRowOnceWithTheCountOfTheRest) {
+  Diagnostics diagnostics;
+  ParseVertexCsv("1,2\n1,abc\n1,2,3,4,5\n7,q\n", "in.csv", diagnostics);
+  ASSERT_EQ(diagnostics.error_count(), 1) << diagnostics.ToString();
+  EXPECT_EQ(diagnostics.all()[0].loc.line, 2);
+  EXPECT_EQ(diagnostics.all()[0].loc.column, 3);
+  EXPECT_THAT(diagnostics.all()[0].message, HasSubstr("'abc'"));
+  EXPECT_THAT(diagnostics.all()[0].message, HasSubstr("and 2 more bad rows"));
+}
+
+TEST(VertexIo, CsvReadsInfinitiesAndNaN) {
+  Diagnostics diagnostics;
+  std::vector<Vec4f> rows = ParseVertexCsv("inf,-inf,nan,+inf\n-0,1.5f,1e-45,NaN\n", "in.csv", diagnostics);
+  ASSERT_FALSE(diagnostics.HasErrors()) << diagnostics.ToString();
+  ASSERT_EQ(rows.size(), 2u);  // the numeric first row is data, not a header
+  EXPECT_EQ(rows[0][0], std::numeric_limits<float>::infinity());
+  EXPECT_EQ(rows[0][1], -std::numeric_limits<float>::infinity());
+  EXPECT_TRUE(std::isnan(rows[0][2]));
+  EXPECT_EQ(rows[0][3], std::numeric_limits<float>::infinity());
+  EXPECT_TRUE(std::signbit(rows[1][0]));
+  EXPECT_EQ(rows[1][1], 1.5f);
+  EXPECT_EQ(rows[1][2], std::numeric_limits<float>::denorm_min());
+  EXPECT_TRUE(std::isnan(rows[1][3]));
+}
+
+TEST(VertexIo, CsvNumericFirstRowIsDataAndAMixedOneIsAnError) {
+  Diagnostics diagnostics;
+  EXPECT_EQ(ParseVertexCsv("1,2,3\n", "in.csv", diagnostics).size(), 1u);
+  ParseVertexCsv("x,2,3\n1,2,3\n", "mixed.csv", diagnostics);
+  ASSERT_EQ(diagnostics.error_count(), 1);
+  EXPECT_EQ(diagnostics.all()[0].loc.line, 1);
+}
+
+TEST(VertexIo, CsvDetectsSemicolonsAndRefusesDecimalCommas) {
+  Diagnostics diagnostics;
+  std::vector<Vec4f> rows = ParseVertexCsv("x;y;z\n1.5; 2;3\n", "in.csv", diagnostics);
+  ASSERT_FALSE(diagnostics.HasErrors()) << diagnostics.ToString();
+  ASSERT_EQ(rows.size(), 1u);
+  EXPECT_EQ(rows[0], (Vec4f{1.5f, 2, 3, 1}));
+  ParseVertexCsv("x;y\n1,5;2\n", "comma.csv", diagnostics);
+  ASSERT_EQ(diagnostics.error_count(), 1);
+  EXPECT_THAT(diagnostics.all()[0].message, HasSubstr("decimal"));
+  Diagnostics mixed;
+  ParseVertexCsv("1,2\n3;4\n", "mixed.csv", mixed);
+  ASSERT_EQ(mixed.error_count(), 1);
+  EXPECT_EQ(mixed.all()[0].loc.line, 2);
+}
+
+TEST(VertexIo, CsvTabsAndSpacesSeparate) {
+  Diagnostics diagnostics;
+  std::vector<Vec4f> rows = ParseVertexCsv("x\ty\n1\t2\n3   4\n", "in.csv", diagnostics);
+  ASSERT_FALSE(diagnostics.HasErrors()) << diagnostics.ToString();
+  ASSERT_EQ(rows.size(), 2u);
+  EXPECT_EQ(rows[1], (Vec4f{3, 4, 0, 1}));
+}
+
+TEST(VertexIo, CsvColumnsByPrefixAndByList) {
+  const std::string csv = "v0.x,oPos.x,oPos.y,oPos.z,oPos.w,oD0.x,oD0.z\n9,1,2,3,4,5,6\n";
+  Diagnostics diagnostics;
+  std::vector<Vec4f> position = ParseVertexCsv(csv, "out.csv", diagnostics, "oPos");
+  std::vector<Vec4f> colour = ParseVertexCsv(csv, "out.csv", diagnostics, "oD0");  // lanes x and z only
+  std::vector<Vec4f> listed = ParseVertexCsv(csv, "out.csv", diagnostics, "oD0.z,v0.x");
+  ASSERT_FALSE(diagnostics.HasErrors()) << diagnostics.ToString();
+  EXPECT_EQ(position, (std::vector<Vec4f>{{1, 2, 3, 4}}));
+  EXPECT_EQ(colour, (std::vector<Vec4f>{{5, 0, 6, 1}}));
+  EXPECT_EQ(listed, (std::vector<Vec4f>{{6, 9, 0, 1}}));
+  ParseVertexCsv(csv, "out.csv", diagnostics, "oT0");
+  ParseVertexCsv("1,2\n", "bare.csv", diagnostics, "x");
+  ASSERT_EQ(diagnostics.error_count(), 2);
+  EXPECT_THAT(diagnostics.all()[0].message, HasSubstr("oPos.x"));  // the columns there are
+  EXPECT_THAT(diagnostics.all()[1].message, HasSubstr("header"));
+}
+
+TEST(VertexIo, InputFlagSplitsRegisterFileAndColumns) {
+  std::string error;
+  std::optional<InputSpec> spec = ParseInputSpec("v3=out.csv:oD0.x,oD0.y", error);
+  ASSERT_TRUE(spec) << error;
+  EXPECT_EQ(spec->reg, 3);
+  EXPECT_EQ(spec->file, "out.csv");
+  EXPECT_EQ(spec->columns, "oD0.x,oD0.y");
+  spec = ParseInputSpec("v0=plain.csv", error);
+  ASSERT_TRUE(spec);
+  EXPECT_EQ(spec->columns, "");
+  EXPECT_FALSE(ParseInputSpec("v16=a.csv", error));
+  EXPECT_FALSE(ParseInputSpec("a.csv", error));
+}
+
+TEST(VertexIo, WarnsAboutRegistersNobodySetsAndDefsThatOverride) {
+  AssembleResult assembled = AssembleSource(
+      "vs_1_1\ndef c5, 1, 1, 1, 1\ndcl_position v0\ndcl_normal v1\nm4x4 oPos, v0, c0\nmov a0.x, c9.x\n"
+      "mul r0, v1, c5\nadd oD0, r0, c[a0.x + 20]\n",
+      "t.vsh", {});
+  ASSERT_TRUE(assembled.program) << assembled.diagnostics.ToString();
+  std::vector<std::string> warnings = UnsetRegisterWarnings(*assembled.program, {1, 5}, {0});
+  ASSERT_EQ(warnings.size(), 3u);
+  EXPECT_THAT(warnings[0], HasSubstr("c0, c2, c3, c9,"));  // not c1 (given), c5 (def) or c20 (relative)
+  EXPECT_THAT(warnings[1], HasSubstr("def of c5 overrides"));
+  EXPECT_THAT(warnings[2], HasSubstr("reads v1,"));
+  EXPECT_TRUE(UnsetRegisterWarnings(*assembled.program, {0, 1, 2, 3, 9}, {0, 1}).empty());
+}
+
+TEST(VertexIo, OutputCsvNamesWrittenLanes) {
+  AssembleResult assembled = AssembleSource("vs.1.1\nmov oPos, v0\nmov oD0.xz, v0\n", "t.vsh", {});
+  ASSERT_TRUE(assembled.program) << assembled.diagnostics.ToString();
+  VertexArrays outputs = MakeOutputArrays(1, *assembled.program);
+  outputs.lane(static_cast<int>(OutputSlot::kDiffuse), 2)[0] = 0.1f;
+  std::string csv = FormatOutputCsv(*assembled.program, outputs, {{"n"}, {{7.0f}}});
+  EXPECT_EQ(csv, "n,oPos.x,oPos.y,oPos.z,oPos.w,oD0.x,oD0.z\n7,0,0,0,0,0,0.1\n");
+}
+
+TEST(VertexIo, FloatsPrintShortestRoundTrip) {
+  EXPECT_EQ(FormatFloat(0.1f), "0.1");
+  EXPECT_EQ(FormatFloat(-std::numeric_limits<float>::infinity()), "-inf");
+  EXPECT_EQ(FormatFloat(std::numeric_limits<float>::quiet_NaN()), "nan");
+}
+
+}  // namespace
+}  // namespace vs11

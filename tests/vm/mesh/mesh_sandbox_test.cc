@@ -1,0 +1,210 @@
+// The sandboxed mesh loader (vm/mesh/mesh_sandbox.h): files that crashed or hung Assimp 5.2 under
+// tests/fuzz/fuzz_mesh give a clear error (and exit code 1 from the tools), a child that dies by a
+// signal is named with it, and the parent checks what the child sends (vm/mesh/mesh_wire.h).
+#include <signal.h>
+
+#include <chrono>
+#include <cstring>
+#include <filesystem>
+#include <string>
+
+#include <gtest/gtest.h>
+
+#include "tests/run_tool.h"
+#include "tests/vm/mesh/mesh_test_support.h"
+#include "vm/mesh/mesh_io.h"
+#include "vm/mesh/mesh_sandbox.h"
+#include "vm/mesh/mesh_wire.h"
+
+namespace vs11::mesh {
+namespace {
+
+namespace fs = std::filesystem;
+using Clock = std::chrono::steady_clock;
+using internal::LoadStage;
+
+// Inputs that crashed Assimp are fuzz seeds too; those that hang it are not (each would cost the
+// fuzz target its whole time limit at every start).
+const fs::path kFound = fs::path(VS11_SOURCE_DIR) / "tests/fuzz/seeds/fuzz_mesh";
+const fs::path kHangs = fs::path(VS11_SOURCE_DIR) / "tests/data/mesh";
+const std::string kProgram = std::string(VS11_SOURCE_DIR) + "/programs/directional_light.vsh";
+const std::string kWuson = std::string(vs11::testing::kAssimpModels) + "/PLY/Wuson.ply";
+
+double SecondsSince(Clock::time_point start) { return std::chrono::duration<double>(Clock::now() - start).count(); }
+
+// Found by fuzz_mesh (in fork mode, before the sandbox): Assimp's 3DS and text DirectX readers take
+// sizes from the file and allocate tens of gigabytes. Each must end in an error naming the file:
+// the child's memory limit makes the allocation fail, which Assimp reports; under AddressSanitizer
+// (no such limit) ASan's allocator refuses it and ends the child, which is named as a crash.
+TEST(MeshSandbox, FilesThatMadeAssimpAllocateTensOfGigabytesGiveAnError) {
+  for (const char* name : {"3ds_allocates_45gb.3ds", "3ds_allocates_46gb.3ds", "x_text_allocates_26gb.x"}) {
+    const fs::path file = kFound / name;
+    MeshLoadResult result = LoadMesh(file);
+    EXPECT_FALSE(result.ok()) << name;
+    EXPECT_FALSE(result.converter_crashed) << result.error;
+    const bool out_of_memory = result.error == file.string() + ": Assimp ran out of memory reading it "
+                                               "(std::bad_alloc): the file is corrupt, or needs more than the "
+                                               "loader's memory limit";
+    const bool crashed = result.error.starts_with("Assimp crashed reading " + file.string() + " (SIG");
+    EXPECT_TRUE(out_of_memory || crashed) << result.error;
+  }
+}
+
+// Found by fuzz_mesh: a mutated Collada file on which Assimp's XML reader loops (until the child's
+// memory limit, minutes later); by mutating test_cube_compressed.x: a compressed DirectX file on
+// which Assimp's reader loops.
+TEST(MeshSandbox, FilesThatHangAssimpStopAtTheTimeLimit) {
+  for (const char* name : {"collada_endless_loop.dae", "x_compressed_endless_loop.x"}) {
+    const fs::path file = kHangs / name;
+    MeshLoadOptions options;
+    options.timeout_seconds = 1.5;
+    const auto start = Clock::now();
+    MeshLoadResult result = LoadMesh(file, options);
+    EXPECT_FALSE(result.ok());
+    EXPECT_NE(result.error.find("reading " + file.string() + " did not finish within 1.5 s (in Assimp's reader"),
+              std::string::npos) << result.error;
+    EXPECT_LT(SecondsSince(start), 30.0);
+  }
+}
+
+TEST(MeshSandbox, ToolsExitWithCode1AndTheTimeoutError) {
+  const fs::path file = kHangs / "collada_endless_loop.dae";
+  auto run = vs11::testing::RunVs11("run " + kProgram + " --mesh " + file.string() + " --mesh-timeout 1");
+  EXPECT_EQ(run.status, 1) << run.output;
+  EXPECT_NE(run.output.find("did not finish within 1 s"), std::string::npos) << run.output;
+  EXPECT_NE(run.output.find("--mesh-timeout"), std::string::npos) << run.output;
+  for (const char* name : {"3ds_allocates_46gb.3ds", "x_text_allocates_26gb.x"}) {
+    run = vs11::testing::RunVs11("run " + kProgram + " --mesh " + (kFound / name).string());
+    EXPECT_EQ(run.status, 1) << run.output;
+    EXPECT_NE(run.output.find((kFound / name).string()), std::string::npos) << run.output;
+    EXPECT_TRUE(run.output.find("out of memory") != std::string::npos ||
+                run.output.find("Assimp crashed reading") != std::string::npos) << run.output;
+  }
+}
+
+TEST(MeshSandbox, IrrmapExitsWithCode1AndTheTimeoutError) {
+  const fs::path out = fs::path(::testing::TempDir()) / "vs11_mesh_sandbox_irrmap";
+  fs::remove_all(out);
+  auto run = vs11::testing::RunIrrmap("sky --face-size 16 --out " + out.string() + " --mesh " +
+                                      (kHangs / "collada_endless_loop.dae").string() + " --mesh-timeout 1");
+  EXPECT_EQ(run.status, 1) << run.output;
+  EXPECT_NE(run.output.find("did not finish within 1 s"), std::string::npos) << run.output;
+  fs::remove_all(out);
+}
+
+MeshLoadResult RaiseIn(LoadStage stage, int signal) {
+  return internal::RunSandboxed("test.obj", 100, {}, [&](const internal::StageReporter& report) {
+    report(stage);
+    raise(signal);
+    return MeshLoadResult{std::nullopt, "not reached"};
+  });
+}
+
+TEST(MeshSandbox, SignalDeathNamesTheFileAndTheSignal) {
+  MeshLoadResult result = RaiseIn(LoadStage::kAssimp, SIGSEGV);
+  EXPECT_EQ(result.error, "Assimp crashed reading test.obj (SIGSEGV); the file is corrupt or unsupported");
+  EXPECT_FALSE(result.converter_crashed);
+  result = RaiseIn(LoadStage::kAssimp, SIGBUS);
+  EXPECT_NE(result.error.find("(SIGBUS)"), std::string::npos) << result.error;
+  // A death in vs11's own code is vs11's bug, and says so.
+  result = RaiseIn(LoadStage::kVs11, SIGSEGV);
+  EXPECT_TRUE(result.converter_crashed);
+  EXPECT_NE(result.error.find("vs11 crashed converting test.obj"), std::string::npos) << result.error;
+}
+
+TEST(MeshSandbox, ChildErrorsAndExceptionsComeBackNamingTheFile) {
+  MeshLoadResult result = internal::RunSandboxed("a.obj", 10, {}, [](const internal::StageReporter&) {
+    return MeshLoadResult{std::nullopt, "no vertices"};
+  });
+  EXPECT_EQ(result.error, "a.obj: no vertices");
+  result = internal::RunSandboxed("a.obj", 10, {}, [](const internal::StageReporter&) -> MeshLoadResult {
+    throw std::bad_alloc();
+  });
+  EXPECT_NE(result.error.find("a.obj: out of memory"), std::string::npos) << result.error;
+}
+
+// 1 Mi vertices with normals (~36 MB through the pipe, far more than its buffer): the parent reads
+// while the child writes, and gets every value back.
+TEST(MeshSandbox, LargeMeshCrossesThePipeIntact) {
+  constexpr std::size_t kVertices = std::size_t{1} << 20;
+  MeshLoadResult result = internal::RunSandboxed("big", 10, {}, [](const internal::StageReporter& report) {
+    report(LoadStage::kVs11);
+    Mesh mesh;
+    mesh.vertex_count = kVertices;
+    for (std::size_t i = 0; i < kVertices; ++i) {
+      const float x = static_cast<float>(i);
+      mesh.positions.push_back({x, -x, 0.5f * x, 1.0f});
+      mesh.normals.push_back({0.0f, 0.0f, 1.0f, 1.0f});
+    }
+    for (std::uint32_t i = 0; i + 2 < kVertices; i += 3) mesh.indices.insert(mesh.indices.end(), {i, i + 1, i + 2});
+    mesh.parts.push_back({"m", "n", IdentityMatrix(), true, false, 0, kVertices, 0, mesh.indices.size()});
+    return MeshLoadResult{std::move(mesh), ""};
+  });
+  ASSERT_TRUE(result.ok()) << result.error;
+  ASSERT_EQ(result.mesh->vertex_count, kVertices);
+  ASSERT_EQ(result.mesh->positions.size(), kVertices);
+  EXPECT_EQ(result.mesh->positions[kVertices - 1][1], -static_cast<float>(kVertices - 1));
+  EXPECT_EQ(result.mesh->indices.back(), kVertices - 2);
+  EXPECT_TRUE(result.mesh->tangents.empty());
+}
+
+Mesh LoadWuson() {
+  MeshLoadResult result = LoadMesh(kWuson);
+  EXPECT_TRUE(result.ok()) << result.error;
+  return result.ok() ? *result.mesh : Mesh{};
+}
+
+std::span<const std::uint8_t> Bytes(const std::string& text) {
+  return {reinterpret_cast<const std::uint8_t*>(text.data()), text.size()};
+}
+
+TEST(MeshWire, RoundTripIsExact) {
+  const Mesh mesh = LoadWuson();
+  const std::string bytes = EncodeMesh(mesh);
+  std::string error;
+  std::optional<Mesh> back = DecodeMesh(Bytes(bytes), error);
+  ASSERT_TRUE(back) << error;
+  EXPECT_EQ(back->positions, mesh.positions);
+  EXPECT_EQ(back->normals, mesh.normals);
+  EXPECT_EQ(back->texcoords, mesh.texcoords);
+  EXPECT_EQ(back->texcoord_components, mesh.texcoord_components);
+  EXPECT_EQ(back->indices, mesh.indices);
+  EXPECT_EQ(back->warnings, mesh.warnings);
+  ASSERT_EQ(back->parts.size(), mesh.parts.size());
+  EXPECT_EQ(back->parts[0].transform, mesh.parts[0].transform);
+  EXPECT_EQ(EncodeMesh(*back), bytes);
+}
+
+TEST(MeshWire, DamagedBytesAreRefused) {
+  Mesh mesh = LoadWuson();
+  std::string error;
+  const std::string bytes = EncodeMesh(mesh);
+  EXPECT_FALSE(DecodeMesh(Bytes(bytes.substr(0, bytes.size() - 1)), error));
+  EXPECT_EQ(error, "the data ends early");
+  EXPECT_FALSE(DecodeMesh(Bytes(bytes + "x"), error));
+  EXPECT_EQ(error, "bytes after the mesh");
+  // A vertex count over the limit is refused from the count, before anything is allocated.
+  std::string huge = bytes;
+  const std::uint64_t too_many = kMaxMeshVertices + 1;
+  std::memcpy(huge.data() + 12, &too_many, sizeof too_many);
+  EXPECT_FALSE(DecodeMesh(Bytes(huge), error));
+  EXPECT_NE(error.find("over the limit"), std::string::npos) << error;
+  // An index past the vertices.
+  mesh.indices[5] = static_cast<std::uint32_t>(mesh.vertex_count);
+  EXPECT_FALSE(DecodeMesh(Bytes(EncodeMesh(mesh)), error));
+  EXPECT_NE(error.find("past the"), std::string::npos) << error;
+}
+
+TEST(MeshWire, ChildReplyNeedsAWholeRecord) {
+  const std::string record = EncodeReplyRecord({LoadWuson(), ""});
+  ChildReply reply = DecodeChildReply(Bytes("AVA" + record.substr(0, 20)));
+  EXPECT_FALSE(reply.complete);
+  EXPECT_EQ(reply.last_stage, 'A');
+  reply = DecodeChildReply(Bytes("AV" + record));
+  EXPECT_TRUE(reply.complete && reply.result.ok()) << reply.result.error;
+  reply = DecodeChildReply(Bytes("AVQ" + record));
+  EXPECT_TRUE(reply.malformed);
+}
+
+}  // namespace
+}  // namespace vs11::mesh

@@ -1,0 +1,580 @@
+#include "vm/asm/assembler.h"
+
+#include <fmt/format.h>
+
+#include <algorithm>
+#include <array>
+#include <bit>
+#include <cctype>
+#include <charconv>
+#include <cstdint>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "vm/asm/lexer.h"
+#include "vm/asm/validator.h"
+
+namespace vs11 {
+namespace {
+
+// Instruction modifiers of later shader models (§2.6), written as mnemonic suffixes: mov_sat.
+constexpr std::array<std::string_view, 9> kInstructionModifiers = {"sat", "pp", "centroid", "x2", "x4",
+                                                                   "x8",  "d2", "d4",       "d8"};
+// Source modifiers of pixel shaders and later models (§2.5), written as register suffixes: r0_abs.
+constexpr std::array<std::string_view, 8> kSourceModifierSuffixes = {"abs", "bias", "bx2", "x2",
+                                                                     "dz",  "dw",   "db",  "da"};
+// Mnemonics of other shader models (§4.7), named so that they get "not a vs_1_1 instruction" rather
+// than "unknown instruction".
+constexpr std::array<std::string_view, 59> kOtherModelMnemonics = {
+    "lrp",          "call",      "callnz",     "loop",       "ret",          "endloop",    "label",      "pow",
+    "crs",          "sgn",       "abs",        "nrm",        "sincos",       "rep",        "endrep",     "if",
+    "ifc",          "else",      "endif",      "break",      "breakc",       "mova",       "defb",       "defi",
+    "texcoord",     "texcrd",    "texkill",    "tex",        "texld",        "texldp",     "texldb",     "texbem",
+    "texbeml",      "texreg2ar", "texreg2gb",  "texm3x2pad", "texm3x2tex",   "texm3x3pad", "texm3x3tex", "texm3x3spec",
+    "texm3x3vspec", "cnd",       "texreg2rgb", "texdp3tex",  "texm3x2depth", "texdp3",     "texm3x3",    "texdepth",
+    "cmp",          "bem",       "dp2add",     "dsx",        "dsy",          "texldd",     "setp",       "texldl",
+    "breakp",       "phase",     "dp2"};
+
+// IEEE-754 single-precision patterns for the words def accepts besides numbers.
+constexpr std::uint32_t kFloatSignBit = 0x80000000u;
+constexpr std::uint32_t kQuietNanBits = 0x7FC00000u;
+constexpr std::uint32_t kInfinityBits = 0x7F800000u;
+
+template <std::size_t N>
+bool Contains(const std::array<std::string_view, N>& list, std::string_view word) {
+  return std::find(list.begin(), list.end(), word) != list.end();
+}
+
+// 2 bits per lane, lane x lowest: the packing Swizzle documents (vm/core/program.h).
+Swizzle SwizzleFromSelectors(const std::array<int, 4>& selectors) {
+  unsigned bits = 0;
+  for (int lane = 3; lane >= 0; --lane) bits = bits * 4 + static_cast<unsigned>(selectors[lane]);
+  return Swizzle(static_cast<std::uint8_t>(bits));
+}
+
+WriteMask MaskWithLane(WriteMask mask, int lane) {
+  return WriteMask(static_cast<std::uint8_t>(mask.bits() | (1u << lane)));
+}
+
+// What each operand position of an instruction holds, from its operand shape (§3.2 "form").
+enum class OperandKind { kDest, kSource, kFloat };
+
+std::vector<OperandKind> OperandKinds(const OpcodeInfo& info) {
+  constexpr int kDefValues = 4;
+  std::vector<OperandKind> kinds;
+  if (!info.has_dest()) return kinds;
+  kinds.push_back(OperandKind::kDest);
+  if (info.shape == OperandShape::kDefinition) {
+    kinds.insert(kinds.end(), kDefValues, OperandKind::kFloat);
+  } else {
+    kinds.insert(kinds.end(), info.source_count(), OperandKind::kSource);
+  }
+  return kinds;
+}
+
+std::string FormText(const std::vector<OperandKind>& kinds) {
+  std::string text;
+  for (OperandKind kind : kinds) {
+    if (!text.empty()) text += ", ";
+    text += kind == OperandKind::kDest ? "dest" : kind == OperandKind::kSource ? "src" : "float";
+  }
+  return text;
+}
+
+// Walks the tokens of one operand (or one statement).
+class Cursor {
+ public:
+  Cursor(std::span<const Token> tokens, int end_column) : tokens_(tokens), end_column_(end_column) {}
+
+  bool AtEnd() const { return pos_ >= tokens_.size(); }
+  bool NextIs(TokenKind kind, std::size_t ahead = 0) const {
+    return pos_ + ahead < tokens_.size() && tokens_[pos_ + ahead].kind == kind;
+  }
+  const Token& Peek() const { return tokens_[pos_]; }
+  const Token& Next() { return tokens_[pos_++]; }
+  bool Accept(TokenKind kind) {
+    if (!NextIs(kind)) return false;
+    ++pos_;
+    return true;
+  }
+  // Column of the next token, or just past the last one.
+  int column() const { return AtEnd() ? end_column_ : tokens_[pos_].column; }
+
+ private:
+  std::span<const Token> tokens_;
+  int end_column_;
+  std::size_t pos_ = 0;
+};
+
+int ColumnAfter(const Token& token) { return token.column + static_cast<int>(token.text.size()); }
+
+// Parses one statement (one lexed line). Each Parse* function reports its first error and returns
+// false; the caller then abandons the line.
+class StatementParser {
+ public:
+  StatementParser(const LexedLine& line, Diagnostics& diagnostics) : line_(line), diagnostics_(diagnostics) {}
+
+  bool ParseInstruction(Instruction& instruction) {
+    const std::vector<Token>& tokens = line_.tokens;
+    const Token& first = tokens.front();
+    if (first.kind == TokenKind::kPlus) {
+      return Fail(first, "co-issue ('+' before an instruction) is not available in vertex shaders");
+    }
+    if (first.kind == TokenKind::kLeftParen) return Fail(first, "predication ('(p0)') is not available in vs_1_1");
+    if (first.kind != TokenKind::kIdentifier)
+      return Fail(first, fmt::format("expected an instruction, found '{}'", first.text));
+    if (!ParseMnemonic(first, instruction)) return false;
+    std::vector<std::span<const Token>> operands;
+    if (!SplitOperands(std::span(tokens).subspan(1), operands)) return false;
+    // Operands are parsed before the count is checked, so that `mov r0 r1` points at the stray r1.
+    std::vector<OperandKind> kinds = OperandKinds(instruction.info());
+    int source = 0;
+    for (std::size_t i = 0; i < std::min(kinds.size(), operands.size()); ++i) {
+      Cursor cursor(operands[i], ColumnAfter(operands[i].back()));
+      bool ok = kinds[i] == OperandKind::kDest     ? ParseDest(cursor, WriteMask(instruction.info().default_mask),
+                                                               instruction.dest)
+                : kinds[i] == OperandKind::kSource ? ParseSource(cursor, instruction.sources[source++])
+                                                   : ParseFloat(cursor, instruction.def_bits[i - 1]);
+      if (!ok) return false;
+    }
+    if (operands.size() != kinds.size()) {
+      return Fail(first, fmt::format("{} takes {} operand{}{}, found {}", instruction.info().mnemonic, kinds.size(),
+                                     kinds.size() == 1 ? "" : "s",
+                                     kinds.empty() ? "" : fmt::format(" ({})", FormText(kinds)), operands.size()));
+    }
+    return true;
+  }
+
+ private:
+  // Records an error at `column` of this line; returns false so that callers can `return Fail(...)`.
+  bool Fail(int column, std::string message) {
+    diagnostics_.Error(SourceLoc{line_.loc.file, line_.loc.line, column}, std::move(message));
+    return false;
+  }
+  bool Fail(const Token& token, std::string message) { return Fail(token.column, std::move(message)); }
+
+  bool ParseMnemonic(const Token& token, Instruction& instruction) {
+    std::string name = ToLowerAscii(token.text);
+    constexpr std::string_view kDclPrefix = "dcl_";
+    if (name.starts_with(kDclPrefix)) {
+      instruction.opcode = Opcode::kDcl;
+      return ParseDclUsage(token, std::string_view(name).substr(kDclPrefix.size()), instruction);
+    }
+    if (std::optional<Opcode> opcode = OpcodeFromMnemonic(name); opcode && *opcode != Opcode::kDcl) {
+      instruction.opcode = *opcode;
+      return true;
+    }
+    if (name == Info(Opcode::kDcl).mnemonic) {
+      return Fail(token, "dcl needs a usage, as in dcl_position or dcl_texcoord1");
+    }
+    std::size_t underscore = name.find('_');
+    if (underscore != std::string::npos && OpcodeFromMnemonic(name.substr(0, underscore)) &&
+        Contains(kInstructionModifiers, std::string_view(name).substr(underscore + 1))) {
+      return Fail(token,
+                  fmt::format("instruction modifier '{}' is not available in vs_1_1", token.text.substr(underscore)));
+    }
+    if (Contains(kOtherModelMnemonics, name)) {
+      return Fail(token, fmt::format("'{}' is not a vs_1_1 instruction", token.text));
+    }
+    return Fail(token, fmt::format("unknown instruction '{}'", token.text));
+  }
+
+  // dcl_<usage>[index]: `rest` is what follows "dcl_", in lower case.
+  bool ParseDclUsage(const Token& token, std::string_view rest, Instruction& instruction) {
+    std::size_t digits = rest.size();
+    while (digits > 0 && std::isdigit(static_cast<unsigned char>(rest[digits - 1]))) --digits;
+    std::optional<int> usage = DeclUsageFromName(rest.substr(0, digits));
+    if (!usage) return Fail(token, fmt::format("unknown dcl usage '{}'", rest.substr(0, digits)));
+    instruction.usage = *usage;
+    instruction.usage_index = 0;
+    if (digits < rest.size()) {
+      std::string_view index = rest.substr(digits);
+      auto [ptr, ec] = std::from_chars(index.data(), index.data() + index.size(), instruction.usage_index);
+      if (ec != std::errc() || instruction.usage_index > kMaxDeclUsageIndex) {
+        return Fail(token, fmt::format("dcl usage index {} is out of range 0-{}", index, kMaxDeclUsageIndex));
+      }
+    }
+    return true;
+  }
+
+  bool SplitOperands(std::span<const Token> tokens, std::vector<std::span<const Token>>& operands) {
+    std::size_t begin = 0;
+    for (std::size_t i = 0; i <= tokens.size(); ++i) {
+      if (i < tokens.size() && tokens[i].kind != TokenKind::kComma) continue;
+      if (i == begin) {
+        if (i == tokens.size() && operands.empty()) return true;  // no operands at all
+        int column = i < tokens.size() ? tokens[i].column : ColumnAfter(tokens[i - 1]);
+        return Fail(column, "missing operand");
+      }
+      operands.push_back(tokens.subspan(begin, i - begin));
+      begin = i + 1;
+    }
+    return true;
+  }
+
+  bool ExpectEnd(const Cursor& cursor, std::string_view what) {
+    if (cursor.AtEnd()) return true;
+    return Fail(cursor.Peek(), fmt::format("unexpected '{}' after the {}", cursor.Peek().text, what));
+  }
+
+  // A written mask is emitted as written, on every register (Microsoft's assembler keeps
+  // `mov oFog.x, r0.x` as mask .x); without one the opcode's default mask applies (vm/core/isa.h).
+  bool ParseDest(Cursor& cursor, WriteMask default_mask, DestOperand& dest) {
+    if (cursor.NextIs(TokenKind::kMinus)) return Fail(cursor.Peek(), "a destination cannot be negated");
+    int column = cursor.column();
+    if (!ParseRegister(cursor, dest.reg)) return false;
+    if (dest.reg.relative) return Fail(column, "a destination cannot be relatively addressed");
+    dest.mask = default_mask;
+    if (cursor.Accept(TokenKind::kDot) && !ParseWriteMask(cursor, dest.mask)) return false;
+    return ExpectEnd(cursor, "destination");
+  }
+
+  bool ParseSource(Cursor& cursor, SourceOperand& source) {
+    source.negate = cursor.Accept(TokenKind::kMinus);
+    if (source.negate && cursor.NextIs(TokenKind::kMinus)) return Fail(cursor.Peek(), "double negation");
+    if (cursor.NextIs(TokenKind::kBang)) {
+      return Fail(cursor.Peek(), "the '!' source modifier is not available in vs_1_1 (only negation)");
+    }
+    if (cursor.NextIs(TokenKind::kInteger) && cursor.NextIs(TokenKind::kMinus, 1)) {
+      return Fail(cursor.Peek(), "the complement source modifier '1-' is not available in vs_1_1 (only negation)");
+    }
+    if (cursor.NextIs(TokenKind::kInteger) || cursor.NextIs(TokenKind::kFloat)) {
+      return Fail(cursor.Peek(),
+                  fmt::format("a source must be a register, not the number '{}' (use def)", cursor.Peek().text));
+    }
+    if (!ParseRegister(cursor, source.reg)) return false;
+    source.swizzle = Swizzle();
+    if (cursor.Accept(TokenKind::kDot) && !ParseSwizzle(cursor, source.swizzle)) return false;
+    return ExpectEnd(cursor, "source");
+  }
+
+  // r7, oPos, c[...], c4[...]: the name, then for constants an optional bracketed index.
+  bool ParseRegister(Cursor& cursor, RegisterRef& reg) {
+    if (cursor.AtEnd()) return Fail(cursor.column(), "expected a register");
+    const Token& name = cursor.Next();
+    if (name.kind != TokenKind::kIdentifier) {
+      return Fail(name, fmt::format("expected a register, found '{}'", name.text));
+    }
+    bool has_number = false;
+    if (!ResolveRegisterName(name, reg, has_number)) return false;
+    if (cursor.NextIs(TokenKind::kLeftBracket)) {
+      const Token& bracket = cursor.Next();
+      if (reg.file != RegisterFile::kConst) {
+        return Fail(bracket, fmt::format("only constant registers can be indexed with [...], not '{}'", name.text));
+      }
+      return ParseConstantIndex(cursor, bracket, reg);
+    }
+    if (!has_number) return Fail(name, fmt::format("register '{}' needs a number", name.text));
+    return true;
+  }
+
+  // Splits "oT3" into a spelling from kRegisterSpellings and its number.
+  bool ResolveRegisterName(const Token& name, RegisterRef& reg, bool& has_number) {
+    std::string_view text = name.text;
+    std::size_t letters = 0;
+    while (letters < text.size() && std::isalpha(static_cast<unsigned char>(text[letters]))) ++letters;
+    std::size_t digits = letters;
+    while (digits < text.size() && std::isdigit(static_cast<unsigned char>(text[digits]))) ++digits;
+    std::string_view rest = text.substr(digits);
+    if (rest.starts_with('_') && Contains(kSourceModifierSuffixes, ToLowerAscii(rest.substr(1)))) {
+      return Fail(name, fmt::format("source modifier '{}' is not available in vs_1_1 (only negation)", rest));
+    }
+    auto spelling = std::find_if(kRegisterSpellings.begin(), kRegisterSpellings.end(), [&](const auto& s) {
+      return EqualsIgnoringAsciiCase(s.name, text.substr(0, letters));
+    });
+    bool fixed = spelling != kRegisterSpellings.end() && spelling->fixed_index != RegisterSpelling::kNumbered;
+    if (spelling == kRegisterSpellings.end() || !rest.empty() || (fixed && digits > letters)) {
+      return Fail(name, fmt::format("unknown register '{}'", text));
+    }
+    reg = RegisterRef{spelling->file, fixed ? spelling->fixed_index : 0, false};
+    has_number = fixed || digits > letters;
+    if (fixed || digits == letters) return true;
+    return ParseRegisterNumber(name, text.substr(letters, digits - letters), reg.index);
+  }
+
+  bool ParseRegisterNumber(const Token& token, std::string_view digits, int& number) {
+    long long value = 0;
+    auto [ptr, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), value);
+    if (ec != std::errc() || value > kMaxConstantIndex) {
+      return Fail(token, fmt::format("register number {} does not fit the 11-bit register field (0-{})", digits,
+                                     kMaxConstantIndex));
+    }
+    number = static_cast<int>(value);
+    return true;
+  }
+
+  // After "c[" or "c<n>[": integers and at most one a0.x joined by + and -, then "]" (§2.2).
+  bool ParseConstantIndex(Cursor& cursor, const Token& bracket, RegisterRef& reg) {
+    long long total = reg.index;
+    int sign = 1;
+    bool expect_term = true;
+    bool first = true;
+    while (true) {
+      if (cursor.AtEnd()) return Fail(cursor.column(), "missing ']' after the constant index");
+      const Token& token = cursor.Next();
+      if (!expect_term) {
+        if (token.kind == TokenKind::kRightBracket) break;
+        if (token.kind != TokenKind::kPlus && token.kind != TokenKind::kMinus) {
+          return Fail(token, fmt::format("expected '+', '-' or ']' in the constant index, found '{}'", token.text));
+        }
+        sign = token.kind == TokenKind::kMinus ? -1 : 1;
+        expect_term = true;
+        continue;
+      }
+      if (first && (token.kind == TokenKind::kMinus || token.kind == TokenKind::kPlus)) {
+        sign = token.kind == TokenKind::kMinus ? -1 : 1;
+        first = false;
+        continue;
+      }
+      first = false;
+      if (token.kind == TokenKind::kInteger) {
+        int value = 0;
+        if (!ParseRegisterNumber(token, token.text, value)) return false;
+        total += sign * value;
+      } else if (token.kind == TokenKind::kIdentifier && EqualsIgnoringAsciiCase(token.text, kAddressRegisterName)) {
+        if (!ParseAddressLane(cursor, token, sign, reg.relative)) return false;
+      } else if (token.kind == TokenKind::kFloat) {
+        return Fail(token, fmt::format("a constant index must be an integer, not '{}'", token.text));
+      } else if (token.kind == TokenKind::kRightBracket) {
+        return Fail(token, "missing value in the constant index");
+      } else {
+        return Fail(token, fmt::format("a constant index may hold only integers and a0.x, not '{}'", token.text));
+      }
+      expect_term = false;
+    }
+    if (total < 0) return Fail(bracket, fmt::format("constant index {} is negative", total));
+    if (total > kMaxConstantIndex) {
+      return Fail(bracket, fmt::format("constant index {} does not fit the 11-bit register field (0-{})", total,
+                                       kMaxConstantIndex));
+    }
+    reg.index = static_cast<int>(total);
+    return true;
+  }
+
+  // After "a0" inside a constant index: ".x" (§1.5: `c0[a0]` is rejected by the native assembler).
+  bool ParseAddressLane(Cursor& cursor, const Token& a0, int sign, bool& relative) {
+    if (!cursor.Accept(TokenKind::kDot)) return Fail(a0, "relative addressing needs a0.x ('a0' alone is not accepted)");
+    if (!cursor.NextIs(TokenKind::kIdentifier) || !EqualsIgnoringAsciiCase(cursor.Peek().text, "x")) {
+      return Fail(cursor.column(), "only a0.x can index constants");
+    }
+    cursor.Next();
+    if (sign < 0) return Fail(a0, "a0.x cannot be subtracted in a constant index");
+    if (relative) return Fail(a0, "a0.x appears twice in the constant index");
+    relative = true;
+    return true;
+  }
+
+  bool ParseWriteMask(Cursor& cursor, WriteMask& mask) {
+    if (!cursor.NextIs(TokenKind::kIdentifier)) {
+      return Fail(cursor.column(), cursor.AtEnd()
+                                       ? std::string("empty write mask after '.'")
+                                       : fmt::format("expected write mask letters, found '{}'", cursor.Peek().text));
+    }
+    const Token& letters = cursor.Next();
+    mask = WriteMask(0);
+    int last = -1;
+    for (char letter : letters.text) {
+      int lane = LaneFromLetter(letter);
+      if (lane < 0) return Fail(letters, fmt::format("'{}' is not a write mask letter (xyzw or rgba)", letter));
+      if (mask.has(lane)) return Fail(letters, fmt::format("write mask '{}' repeats a component", letters.text));
+      if (lane < last) {
+        return Fail(letters, fmt::format("write mask '{}' is not in xyzw order", letters.text));
+      }
+      mask = MaskWithLane(mask, lane);
+      last = lane;
+    }
+    return true;
+  }
+
+  bool ParseSwizzle(Cursor& cursor, Swizzle& swizzle) {
+    constexpr std::size_t kLanes = 4;
+    if (!cursor.NextIs(TokenKind::kIdentifier)) {
+      return Fail(cursor.column(), cursor.AtEnd()
+                                       ? std::string("empty swizzle after '.'")
+                                       : fmt::format("expected swizzle letters, found '{}'", cursor.Peek().text));
+    }
+    const Token& letters = cursor.Next();
+    std::string_view text = letters.text;
+    if (std::size_t underscore = text.find('_');
+        underscore != std::string_view::npos &&
+        Contains(kSourceModifierSuffixes, ToLowerAscii(text.substr(underscore + 1)))) {
+      return Fail(letters, fmt::format("source modifier '{}' is not available in vs_1_1 (only negation)",
+                                       text.substr(underscore)));
+    }
+    if (text.size() > kLanes) return Fail(letters, fmt::format("swizzle '{}' has more than four components", text));
+    std::array<int, kLanes> selectors{};
+    for (std::size_t i = 0; i < kLanes; ++i) {
+      // §2.4: fewer than four letters repeat the last one.
+      char letter = text[std::min(i, text.size() - 1)];
+      selectors[i] = LaneFromLetter(letter);
+      if (selectors[i] < 0) return Fail(letters, fmt::format("'{}' is not a swizzle letter (xyzw or rgba)", letter));
+    }
+    swizzle = SwizzleFromSelectors(selectors);
+    return true;
+  }
+
+  // One def value: [+|-] number | nan | inf (§2.1 item 6), stored as raw IEEE bits.
+  bool ParseFloat(Cursor& cursor, std::uint32_t& bits) {
+    bool negative = false;
+    if (cursor.NextIs(TokenKind::kMinus) || cursor.NextIs(TokenKind::kPlus)) {
+      negative = cursor.Next().kind == TokenKind::kMinus;
+    }
+    if (cursor.AtEnd()) return Fail(cursor.column(), "expected a number");
+    const Token& token = cursor.Next();
+    if (token.kind == TokenKind::kIdentifier && EqualsIgnoringAsciiCase(token.text, "nan")) {
+      bits = kQuietNanBits;
+    } else if (token.kind == TokenKind::kIdentifier && EqualsIgnoringAsciiCase(token.text, "inf")) {
+      bits = kInfinityBits;
+    } else if (token.kind == TokenKind::kInteger || token.kind == TokenKind::kFloat) {
+      if (!ParseFloatBits(token, bits)) return false;
+    } else {
+      return Fail(token, fmt::format("expected a number, found '{}'", token.text));
+    }
+    if (negative) bits ^= kFloatSignBit;
+    return ExpectEnd(cursor, "number");
+  }
+
+  bool ParseFloatBits(const Token& token, std::uint32_t& bits) {
+    std::string_view text = token.text;
+    if (text.ends_with('f') || text.ends_with('F')) text.remove_suffix(1);
+    float value = 0;
+    auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+    if (ec == std::errc::result_out_of_range) {
+      double wide = 0;
+      std::from_chars(text.data(), text.data() + text.size(), wide);
+      if (wide > 1) return Fail(token, fmt::format("'{}' is too large for a 32-bit float", token.text));
+      diagnostics_.Warning(SourceLoc{line_.loc.file, line_.loc.line, token.column},
+                           fmt::format("'{}' is too small for a 32-bit float and becomes 0", token.text));
+      value = 0;
+    } else if (ec != std::errc() || ptr != text.data() + text.size()) {
+      return Fail(token, fmt::format("malformed number '{}'", token.text));
+    }
+    bits = std::bit_cast<std::uint32_t>(value);
+    return true;
+  }
+
+  const LexedLine& line_;
+  Diagnostics& diagnostics_;
+};
+
+// A version statement as written: "vs_1_1" is one token, "vs.1.1" three (vs . 1.1).
+struct VersionStatement {
+  std::string text;  // lower case: "vs_1_1", "vs.1.1", "ps_2_0", ...
+  std::size_t token_count = 0;
+};
+
+// The version statement that starts `line`, when the line is one (it names a vs or ps version).
+std::optional<VersionStatement> FindVersionStatement(const LexedLine& line) {
+  const std::vector<Token>& tokens = line.tokens;
+  if (tokens.front().kind != TokenKind::kIdentifier) return std::nullopt;
+  std::string name = ToLowerAscii(tokens.front().text);
+  if (!name.starts_with("vs") && !name.starts_with("ps")) return std::nullopt;
+  if (name.size() > 2 && name[2] == '_') return VersionStatement{name, 1};
+  bool dotted = name.size() == 2 && tokens.size() >= 3 && tokens[1].kind == TokenKind::kDot &&
+                (tokens[2].kind == TokenKind::kFloat || tokens[2].kind == TokenKind::kInteger);
+  if (!dotted) return std::nullopt;
+  return VersionStatement{name + "." + ToLowerAscii(tokens[2].text), 3};
+}
+
+class Assembler {
+ public:
+  explicit Assembler(AssembleResult& result) : result_(result) {}
+
+  void Line(const PreprocessedLine& line) {
+    int errors_before = result_.diagnostics.error_count();
+    LexedLine lexed = Lex(line, result_.diagnostics);
+    if (result_.diagnostics.error_count() != errors_before) {
+      seen_statement_ = true;  // a line, if a bad one: do not also report a missing version
+      return;
+    }
+    if (lexed.tokens.empty()) return;
+    if (std::optional<VersionStatement> version = FindVersionStatement(lexed)) {
+      ParseVersion(lexed, *version);
+    } else {
+      if (!seen_statement_) {
+        result_.diagnostics.Error(LocOf(lexed, lexed.tokens.front()),
+                                  "the first statement must be the version (vs_1_1 or vs.1.1)");
+      }
+      Instruction instruction;
+      if (StatementParser(lexed, result_.diagnostics).ParseInstruction(instruction)) {
+        program_.instructions.push_back(instruction);
+        program_.source_locs.push_back(LocOf(lexed, lexed.tokens.front()));
+      }
+    }
+    seen_statement_ = true;
+  }
+
+  void Finish(const std::string& file_name) {
+    if (!seen_statement_) {
+      result_.diagnostics.Error(SourceLoc{file_name, 1, 1}, "missing version statement (vs_1_1 or vs.1.1)");
+    }
+  }
+
+  Program& program() { return program_; }
+
+ private:
+  void ParseVersion(const LexedLine& line, const VersionStatement& version) {
+    SourceLoc loc = LocOf(line, line.tokens.front());
+    if (seen_statement_) {
+      result_.diagnostics.Error(loc, "the version statement must come first and only once");
+      return;
+    }
+    auto spelling = std::find_if(kVersionSpellings.begin(), kVersionSpellings.end(),
+                                 [&](const VersionSpelling& v) { return v.text == version.text; });
+    if (spelling == kVersionSpellings.end()) {
+      result_.diagnostics.Error(
+          loc, fmt::format("unsupported shader version '{}' (expected vs_1_1, vs.1.1 or vs.1.0)", version.text));
+      return;
+    }
+    if (line.tokens.size() > version.token_count) {
+      const Token& extra = line.tokens[version.token_count];
+      result_.diagnostics.Error(LocOf(line, extra), fmt::format("unexpected '{}' after the version", extra.text));
+      return;
+    }
+    program_.version = spelling->token;
+    result_.dx9_syntax = spelling->dx9;
+  }
+
+  AssembleResult& result_;
+  Program program_;
+  bool seen_statement_ = false;
+};
+
+}  // namespace
+
+AssembleResult AssembleSource(std::string_view text, const std::string& file_name, const AssembleOptions& options,
+                              const FileReader& reader) {
+  AssembleResult result;
+  PreprocessResult preprocessed = Preprocess(text, file_name, options.preprocess, reader);
+  result.diagnostics.Append(preprocessed.diagnostics);
+  Assembler assembler(result);
+  for (const PreprocessedLine& line : preprocessed.lines) assembler.Line(line);
+  assembler.Finish(file_name);
+  if (result.diagnostics.HasErrors()) return result;
+  if (options.validate) {
+    ValidatorOptions validator_options;
+    validator_options.constant_count = options.constant_count;
+    validator_options.require_position = options.require_position;
+    // A vs.1.1 program with a dcl follows the dcl rules too: its tokens are those of a DX9 program, and
+    // the same tokens loaded as bytecode (or disassembled, vm/asm/disassembler.h) get DX9 rules.
+    validator_options.dialect = result.dx9_syntax ? ValidatorOptions::Dialect::kDx9 : ValidatorOptions::Dialect::kAuto;
+    result.diagnostics.Append(Validate(assembler.program(), validator_options));
+    if (result.diagnostics.HasErrors()) return result;
+  }
+  result.program = std::move(assembler.program());
+  return result;
+}
+
+AssembleResult AssembleFile(const std::filesystem::path& path, const AssembleOptions& options) {
+  std::optional<std::string> text = ReadFileFromDisk(path);
+  if (!text) {
+    AssembleResult result;
+    result.diagnostics.Error(SourceLoc{path.string(), 0, 0}, "cannot read the file");
+    return result;
+  }
+  return AssembleSource(*text, path.string(), options, ReadFileFromDisk);
+}
+
+}  // namespace vs11

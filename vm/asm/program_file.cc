@@ -1,0 +1,116 @@
+#include "vm/asm/program_file.h"
+
+#include <unistd.h>
+
+#include <cstdio>
+#include <fstream>
+#include <random>
+#include <sstream>
+#include <system_error>
+
+#include <fmt/format.h>
+
+#include "vm/asm/bytecode.h"
+#include "vm/asm/validator.h"
+
+namespace vs11 {
+namespace {
+
+bool LooksLikeBytecode(const std::filesystem::path& path, std::string_view bytes) {
+  std::string extension = path.extension().string();
+  for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
+  if (extension == ".vso" || extension == ".cso" || extension == ".bin") return true;
+  // 0xFFFE01xx little-endian: xx 01 FE FF.
+  return bytes.size() >= 4 && static_cast<unsigned char>(bytes[1]) == 0x01 &&
+         static_cast<unsigned char>(bytes[2]) == 0xFE && static_cast<unsigned char>(bytes[3]) == 0xFF;
+}
+
+LoadedProgram LoadBytecode(const std::filesystem::path& path, std::string_view bytes, const LoadProgramOptions& options) {
+  LoadedProgram loaded;
+  loaded.from_bytecode = true;
+  std::span<const std::uint8_t> raw(reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size());
+  std::optional<std::vector<std::uint32_t>> words = WordsFromBytes(raw);
+  if (!words) {
+    loaded.diagnostics.Error({path.string()}, fmt::format("{} bytes is not a whole number of 32-bit tokens", bytes.size()));
+    return loaded;
+  }
+  DecodeResult decoded = Decode(*words);
+  for (Diagnostic d : decoded.diagnostics.all()) {
+    d.loc.file = path.string();
+    loaded.diagnostics.Add(std::move(d));
+  }
+  if (!decoded.program) return loaded;
+  if (options.assemble.validate) {
+    ValidatorOptions validator;
+    validator.constant_count = options.assemble.constant_count;
+    validator.require_position = options.assemble.require_position;
+    Diagnostics validation = Validate(*decoded.program, validator);
+    for (Diagnostic d : validation.all()) {
+      if (d.loc.file.empty()) d.loc.file = path.string();
+      loaded.diagnostics.Add(std::move(d));
+    }
+    if (loaded.diagnostics.HasErrors()) return loaded;
+  }
+  loaded.program = std::move(decoded.program);
+  return loaded;
+}
+
+}  // namespace
+
+std::optional<std::string> ReadWholeFile(const std::filesystem::path& path) {
+  std::error_code error;
+  if (std::filesystem::is_directory(path, error)) return std::nullopt;
+  std::ifstream in(path, std::ios::binary);
+  if (!in) return std::nullopt;
+  std::ostringstream content;
+  content << in.rdbuf();
+  if (in.bad()) return std::nullopt;
+  return std::move(content).str();
+}
+
+LoadedProgram LoadProgram(const std::filesystem::path& path, const LoadProgramOptions& options) {
+  std::optional<std::string> bytes = ReadWholeFile(path);
+  if (!bytes) {
+    LoadedProgram loaded;
+    loaded.diagnostics.Error({path.string()}, "cannot read the file (missing, unreadable or a folder)");
+    return loaded;
+  }
+  if (LooksLikeBytecode(path, *bytes)) return LoadBytecode(path, *bytes, options);
+  AssembleResult assembled = AssembleSource(*bytes, path.string(), options.assemble);
+  LoadedProgram loaded;
+  loaded.diagnostics = std::move(assembled.diagnostics);
+  if (!loaded.diagnostics.HasErrors()) loaded.program = std::move(assembled.program);
+  return loaded;
+}
+
+std::optional<std::string> WriteFileAtomically(const std::filesystem::path& path, std::string_view bytes) {
+  std::filesystem::path folder = path.parent_path().empty() ? std::filesystem::path(".") : path.parent_path();
+  std::filesystem::path temporary =
+      folder / fmt::format(".{}.tmp.{}.{}", path.filename().string(), ::getpid(), std::random_device{}());
+  {
+    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
+    if (!out) return fmt::format("{}: cannot create a file in {}", path.string(), folder.string());
+    out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
+    out.flush();
+    if (!out) {
+      out.close();
+      std::error_code ignored;
+      std::filesystem::remove(temporary, ignored);
+      return fmt::format("{}: write failed", path.string());
+    }
+  }
+  std::error_code error;
+  std::filesystem::rename(temporary, path, error);
+  if (error) {
+    std::error_code ignored;
+    std::filesystem::remove(temporary, ignored);
+    return fmt::format("{}: {}", path.string(), error.message());
+  }
+  return std::nullopt;
+}
+
+std::optional<std::string> WriteFileAtomically(const std::filesystem::path& path, std::span<const std::uint8_t> bytes) {
+  return WriteFileAtomically(path, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
+}
+
+}  // namespace vs11

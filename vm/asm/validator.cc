@@ -1,0 +1,687 @@
+#include "vm/asm/validator.h"
+
+#include <algorithm>
+#include <array>
+#include <cassert>
+#include <map>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <utility>
+#include <vector>
+
+#include <fmt/format.h>
+#include <fmt/ranges.h>
+
+#include "vm/asm/disassembler.h"
+
+namespace vs11 {
+namespace {
+
+// ---------------------------------------------------------------------------------------------
+// Lanes consumed by each source (§6.3). Written once, driven by the opcode table's ResultKind.
+
+constexpr int kLaneCount = 4;
+constexpr std::uint8_t kLaneX = 1 << 0;
+constexpr std::uint8_t kLaneY = 1 << 1;
+constexpr std::uint8_t kLaneZ = 1 << 2;
+constexpr std::uint8_t kLaneW = 1 << 3;
+constexpr std::uint8_t kLanesXyw = kLaneX | kLaneY | kLaneW;
+constexpr std::uint8_t kAllLanes = WriteMask::kAllLanes;
+
+// The source of m*x* that names the first row register of the matrix (§3.4: `m4x4 d, S, M`).
+constexpr int kMatrixOperand = 1;
+
+// kVector rows (lit, dst, expp, logp) share no lane formula, so for each of them this table lists
+// which lanes of each *swizzled* source every written destination lane needs (§3.3, §6.3).
+struct VectorLaneRule {
+  Opcode opcode;
+  bool scalar_source;  // reads one lane of s0 (its w selector) like kScalar rows (§3.1)
+  std::array<std::array<std::uint8_t, kLaneCount>, 2> needs;  // [source][destination lane]
+};
+constexpr std::array kVectorLaneRules = {
+    // lit: x, y, w whatever the mask (§6.3; the native per-lane rule is unconfirmed, §10.14).
+    VectorLaneRule{Opcode::kLit, false, {{{kLanesXyw, kLanesXyw, kLanesXyw, kLanesXyw}, {}}}},
+    // dst: r.x = 1, r.y = a.y * b.y, r.z = a.z, r.w = b.w.
+    VectorLaneRule{Opcode::kDst, false, {{{0, kLaneY, kLaneZ, 0}, {0, kLaneY, 0, kLaneW}}}},
+    // expp, logp: every result lane comes from the scalar w (§3.1, §3.3).
+    VectorLaneRule{Opcode::kExpp, true, {{{kLaneW, kLaneW, kLaneW, kLaneW}, {}}}},
+    VectorLaneRule{Opcode::kLogp, true, {{{kLaneW, kLaneW, kLaneW, kLaneW}, {}}}},
+};
+
+constexpr const VectorLaneRule* FindVectorLaneRule(Opcode opcode) {
+  for (const VectorLaneRule& rule : kVectorLaneRules) {
+    if (rule.opcode == opcode) return &rule;
+  }
+  return nullptr;
+}
+
+// Every kVector row of the opcode table must have a lane rule above.
+static_assert([] {
+  for (const OpcodeInfo& info : kOpcodeTable) {
+    if (info.kind == ResultKind::kVector && FindVectorLaneRule(info.opcode) == nullptr) return false;
+  }
+  return true;
+}());
+
+// Lanes 0 .. width-1.
+constexpr std::uint8_t LowLanes(int width) { return static_cast<std::uint8_t>((1u << width) - 1); }
+
+// Lanes of the swizzled source value (before the swizzle maps them onto register lanes).
+std::uint8_t NeededSwizzledLanes(const OpcodeInfo& info, int operand, WriteMask dest_mask) {
+  switch (info.kind) {
+    case ResultKind::kComponentwise:
+      return dest_mask.bits() & kAllLanes;
+    case ResultKind::kDotProduct:
+    case ResultKind::kMatrix:
+      return LowLanes(info.dot_width);
+    case ResultKind::kScalar:
+      return kLaneW;
+    case ResultKind::kVector: {
+      const VectorLaneRule* rule = FindVectorLaneRule(info.opcode);
+      assert(rule != nullptr && operand < 2);
+      std::uint8_t lanes = 0;
+      for (int lane = 0; lane < kLaneCount; ++lane) {
+        if (dest_mask.has(lane)) lanes |= rule->needs[operand][lane];
+      }
+      return lanes;
+    }
+    case ResultKind::kNoResult:
+      return 0;
+  }
+  return 0;
+}
+
+// Does the instruction compute from a single lane of its source (§3.1)?
+bool ReadsScalarSource(const OpcodeInfo& info) {
+  if (info.kind == ResultKind::kScalar) return true;
+  const VectorLaneRule* rule = FindVectorLaneRule(info.opcode);
+  return rule != nullptr && rule->scalar_source;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Register files (§1.1, §1.6, §6.2.1-2).
+
+constexpr int kUseConstantCount = -1;  // count = ValidatorOptions::constant_count
+
+struct RegisterFileRule {
+  RegisterFile file;
+  int count;      // registers 0 .. count-1 exist
+  bool readable;  // may be a source
+  bool writable;  // may be an instruction destination
+  std::string_view role;
+};
+constexpr std::array kRegisterFileRules = {
+    RegisterFileRule{RegisterFile::kTemp, kTempRegisterCount, true, true, "temporary"},
+    RegisterFileRule{RegisterFile::kInput, kInputRegisterCount, true, false, "input"},
+    RegisterFileRule{RegisterFile::kConst, kUseConstantCount, true, false, "constant"},
+    RegisterFileRule{RegisterFile::kAddress, 1, false, true, "address"},
+    RegisterFileRule{RegisterFile::kRasterOut, kRasterOutPointSize + 1, false, true, "output"},
+    RegisterFileRule{RegisterFile::kAttributeOut, kColorOutputCount, false, true, "output"},
+    RegisterFileRule{RegisterFile::kTexCoordOut, kTexCoordOutputCount, false, true, "output"},
+};
+
+const RegisterFileRule* FindRegisterFileRule(RegisterFile file) {
+  for (const RegisterFileRule& rule : kRegisterFileRules) {
+    if (rule.file == file) return &rule;
+  }
+  return nullptr;
+}
+
+// "r3", "oT1", "c5[a0.x]": the disassembler's spelling, so that messages match the listing.
+std::string RegisterName(const RegisterRef& reg) { return FormatSource(SourceOperand{reg, Swizzle(), false}); }
+
+// ".xz" for lanes {x, z}.
+std::string LaneSuffix(std::uint8_t lanes) {
+  std::string text = ".";
+  for (int lane = 0; lane < kLaneCount; ++lane) {
+    if (lanes & (1 << lane)) text += kLaneLetters[lane];
+  }
+  return text;
+}
+
+// The register a source reads for matrix row `row` (row 0 for ordinary sources).
+RegisterRef RowRegister(RegisterRef reg, int row) {
+  reg.index += row;
+  return reg;
+}
+
+// How many consecutive registers source `operand` reads: matrix_rows for the matrix operand.
+int RowsRead(const OpcodeInfo& info, int operand) {
+  return info.kind == ResultKind::kMatrix && operand == kMatrixOperand ? info.matrix_rows : 1;
+}
+
+// ---------------------------------------------------------------------------------------------
+// Destination mask rules of the opcode table (§3.2).
+
+bool MaskAllowed(MaskRule rule, WriteMask mask) {
+  switch (rule) {
+    case MaskRule::kAny:
+      return true;
+    case MaskRule::kYOrXy:
+      return mask.bits() == kLaneY || mask.bits() == (kLaneX | kLaneY);
+    case MaskRule::kXy:
+      return mask.bits() == (kLaneX | kLaneY);
+    case MaskRule::kXyz:
+      return mask.bits() == (kLaneX | kLaneY | kLaneZ);
+    case MaskRule::kXyzw:
+    case MaskRule::kFull:
+      return mask.is_full();
+  }
+  return false;
+}
+
+std::string_view MaskRuleText(MaskRule rule) {
+  switch (rule) {
+    case MaskRule::kAny:
+      return "any mask";
+    case MaskRule::kYOrXy:
+      return ".y or .xy";
+    case MaskRule::kXy:
+      return ".xy";
+    case MaskRule::kXyz:
+      return ".xyz";
+    case MaskRule::kXyzw:
+    case MaskRule::kFull:
+      return ".xyzw (no mask)";
+  }
+  return "";
+}
+
+// ---------------------------------------------------------------------------------------------
+
+class Validator {
+ public:
+  Validator(const Program& program, const ValidatorOptions& options)
+      : program_(program), options_(options), dx9_(UsesDx9Rules(program, options)) {
+    declared_at_.fill(-1);
+  }
+
+  Diagnostics Run() {
+    CheckVersion();
+    CollectDeclarations();
+    for (int i = 0; i < static_cast<int>(program_.instructions.size()); ++i) CheckInstruction(i);
+    if (options_.require_position) CheckPositionWritten();
+    return std::move(diagnostics_);
+  }
+
+ private:
+  static bool UsesDx9Rules(const Program& program, const ValidatorOptions& options) {
+    using Dialect = ValidatorOptions::Dialect;
+    if (options.dialect != Dialect::kAuto) return options.dialect == Dialect::kDx9;
+    return std::any_of(program.instructions.begin(), program.instructions.end(),
+                       [](const Instruction& instruction) { return instruction.opcode == Opcode::kDcl; });
+  }
+
+  const Instruction& At(int index) const { return program_.instructions[index]; }
+
+  // "dp4" when the instruction has a source line, "instruction 3 (dp4)" when it does not.
+  std::string Subject(int index) const {
+    const SourceLoc loc = program_.LocOf(index);
+    std::string_view mnemonic = At(index).info().mnemonic;
+    if (loc.line > 0) return std::string(mnemonic);
+    return fmt::format("instruction {} ({})", index, mnemonic);
+  }
+
+  void Error(int index, std::string_view message) { Report(Severity::kError, index, message); }
+  void Warning(int index, std::string_view message) { Report(Severity::kWarning, index, message); }
+  // At the source line, or for bytecode at the word of the instruction token.
+  void Report(Severity severity, int index, std::string_view message) {
+    diagnostics_.Add(Diagnostic{program_.LocOf(index), severity, fmt::format("{}: {}", Subject(index), message),
+                                program_.WordOffsetOf(index)});
+  }
+  // Whole-program problems point at the file only.
+  SourceLoc ProgramLoc() const {
+    return program_.source_locs.empty() ? SourceLoc{} : SourceLoc{program_.source_locs.front().file, 0, 0};
+  }
+
+  bool IsVersion10() const { return program_.version == kVersionVs10; }
+
+  // --- structure (§6.1) ------------------------------------------------------------------------
+
+  void CheckVersion() {
+    if (program_.version == kVersionVs11 || program_.version == kVersionVs10) return;
+    diagnostics_.Error(ProgramLoc(), fmt::format("version token 0x{:08X} is not vs_1_1 (0x{:08X}) or vs_1_0 "
+                                                 "(0x{:08X}); start the program with vs_1_1",
+                                                 program_.version, kVersionVs11, kVersionVs10));
+  }
+
+  void CheckPlacementAndSlots(int index) {
+    const OpcodeInfo& info = At(index).info();
+    if (!info.is_executable()) {
+      if (first_executable_ >= 0) {
+        Error(index, fmt::format("appears after the first executable instruction ({}); move every dcl and "
+                                 "def above it (§3.3)",
+                                 Where(first_executable_)));
+      }
+      return;
+    }
+    if (first_executable_ < 0) first_executable_ = index;
+    const int before = slots_;
+    slots_ += info.slots;
+    if (before <= kMaxInstructionSlots && slots_ > kMaxInstructionSlots) {
+      Error(index, fmt::format("takes the program to {} instruction slots, over the vs_1_1 limit of {} "
+                               "(macros count several slots: §2.7); shorten the program",
+                               slots_, kMaxInstructionSlots));
+    }
+  }
+
+  void CheckInstruction(int index) {
+    const Instruction& instruction = At(index);
+    CheckPlacementAndSlots(index);
+    if (instruction.opcode == Opcode::kDcl) {
+      CheckDeclaration(index);
+      return;
+    }
+    if (instruction.opcode == Opcode::kDef) {
+      CheckDefinition(index);
+      return;
+    }
+    if (!instruction.info().has_dest()) return;  // nop
+    CheckDestination(index);
+    CheckMask(index);
+    CheckSources(index);
+    CheckReadPorts(index);
+    CheckMatrixOperands(index);
+    CheckScalarSwizzle(index);
+    CheckTemporaryReads(index);
+    CheckInputDeclarations(index);
+    RecordWrites(index);
+  }
+
+  // --- register ranges and types (§6.2.1-2) ----------------------------------------------------
+
+  // Reports `reg` if its number does not exist; `what` says where it was used.
+  bool CheckRange(int index, const RegisterRef& reg, std::string_view what) {
+    const RegisterFileRule* rule = FindRegisterFileRule(reg.file);
+    if (rule == nullptr) {
+      Error(index,
+            fmt::format("{} has register type {}, which vs_1_1 does not have", what, static_cast<int>(reg.file)));
+      return false;
+    }
+    const int count = rule->count == kUseConstantCount ? options_.constant_count : rule->count;
+    if (reg.index >= 0 && reg.index < count) return true;
+    // Real vs_1_1 shaders use c100 and beyond on devices with 256 constants.
+    const std::string more_constants =
+        fmt::format("; for a device with more, give its count with --max-constants (e.g. --max-constants {})",
+                    std::max(256, reg.index + 1));
+    if (reg.relative) {
+      // Only the offset can be checked statically; a0.x is known at run time (§1.4).
+      Error(index, fmt::format("{} uses relative offset {}, outside 0-{} (the device has {} constants){}", what,
+                               reg.index, count - 1, count, more_constants));
+    } else if (reg.file == RegisterFile::kConst) {
+      Error(index, fmt::format("{} names {}, but the device has only c0-c{} (MaxVertexShaderConst = {}){}", what,
+                               RegisterName(reg), count - 1, count, more_constants));
+    } else {
+      RegisterRef last{reg.file, count - 1, false};
+      std::string range = count == 1 ? RegisterName(last)
+                                     : fmt::format("{}-{}", RegisterName({reg.file, 0, false}), RegisterName(last));
+      Error(index, fmt::format("{} names {}, which does not exist; vs_1_1 has {}", what, RegisterName(reg), range));
+    }
+    return false;
+  }
+
+  void CheckDestination(int index) {
+    const Instruction& instruction = At(index);
+    const RegisterRef& reg = instruction.dest.reg;
+    const RegisterFileRule* rule = FindRegisterFileRule(reg.file);
+    if (rule != nullptr && !rule->writable) {
+      Error(index, fmt::format("cannot write {}: {} registers are read-only; write a temporary (r#) or an "
+                               "output instead",
+                               RegisterName(reg), rule->role));
+      return;
+    }
+    if (reg.relative) Error(index, "relative addressing is not allowed on a destination in vs_1_1");
+    if (!CheckRange(index, reg, "the destination")) return;
+    if (reg.file != RegisterFile::kAddress) return;
+    if (IsVersion10()) Error(index, "writes a0, which vs_1_0 does not have; use vs_1_1 (§2.1)");
+    if (instruction.opcode != Opcode::kMov) Error(index, "cannot write a0; only mov can (mov a0.x, src)");
+  }
+
+  void CheckMask(int index) {
+    const Instruction& instruction = At(index);
+    const WriteMask mask = instruction.dest.mask;
+    if (mask.bits() == 0) {
+      Error(index,
+            fmt::format("has an empty write mask on {}; write at least one lane", RegisterName(instruction.dest.reg)));
+      return;
+    }
+    if (instruction.dest.reg.file == RegisterFile::kAddress) {
+      if (mask.bits() != kLaneX) {
+        Error(index, fmt::format("writes a0{}; a0 only has .x: write a0.x", LaneSuffix(mask.bits())));
+      }
+      return;
+    }
+    if (IsScalarOutput(instruction.dest.reg) && !(mask.bits() & kLaneX)) {
+      // Any mask is encodable and round-trips through text; but the rasterizer reads lane x only.
+      const std::string name = RegisterName(instruction.dest.reg);
+      Warning(index, fmt::format("writes {}{}, but only lane x of {} is used (§7), so this write has no effect; "
+                                 "write {} or {}.x",
+                                 name, LaneSuffix(mask.bits()), name, name, name));
+    }
+    const MaskRule rule = instruction.info().mask_rule;
+    if (!MaskAllowed(rule, mask)) {
+      Error(index, fmt::format("write mask {} is not allowed; {} must write {} (§3.2)", LaneSuffix(mask.bits()),
+                               instruction.info().mnemonic, MaskRuleText(rule)));
+    }
+  }
+
+  void CheckSources(int index) {
+    const Instruction& instruction = At(index);
+    const OpcodeInfo& info = instruction.info();
+    bool relative_reported = false;
+    for (int s = 0; s < info.source_count(); ++s) {
+      const RegisterRef& reg = instruction.sources[s].reg;
+      const std::string what = fmt::format("src{}", s);
+      const RegisterFileRule* rule = FindRegisterFileRule(reg.file);
+      if (rule != nullptr && !rule->readable) {
+        Error(index, reg.file == RegisterFile::kAddress
+                         ? "reads a0 as a source; a0 can only index constants, as c[a0.x + n]"
+                         : fmt::format("reads {}, but output registers are write-only; keep the value in a "
+                                       "temporary (r#) and read that",
+                                       RegisterName(reg)));
+        continue;
+      }
+      if (reg.relative && reg.file != RegisterFile::kConst) {
+        Error(index, fmt::format("{} uses relative addressing on {}; only constants can be addressed with a0.x", what,
+                                 RegisterName({reg.file, reg.index, false})));
+        continue;
+      }
+      for (int row = 0; row < RowsRead(info, s); ++row) {
+        if (!CheckRange(index, RowRegister(reg, row), what)) break;
+      }
+      if (reg.relative && !relative_reported) {
+        relative_reported = true;
+        CheckRelativeAddressing(index, reg);
+      }
+    }
+  }
+
+  void CheckRelativeAddressing(int index, const RegisterRef& reg) {
+    if (IsVersion10()) {
+      Error(index, fmt::format("reads {}, but vs_1_0 has no a0; use vs_1_1 (§2.1)", RegisterName(reg)));
+    } else if (!a0_written_) {
+      Error(index, fmt::format("reads {} before a0 is written; put `mov a0.x, <src>` earlier in the program",
+                               RegisterName(reg)));
+    }
+  }
+
+  // --- read ports (§1.7, §3.4) -----------------------------------------------------------------
+
+  // The sources read together: one group for ordinary instructions, one per expanded row of m*x*
+  // (row i reads s0 and the register s1 + i).
+  std::vector<std::vector<RegisterRef>> ReadPortGroups(const Instruction& instruction) const {
+    const OpcodeInfo& info = instruction.info();
+    std::vector<std::vector<RegisterRef>> groups;
+    if (info.kind == ResultKind::kMatrix) {
+      for (int row = 0; row < info.matrix_rows; ++row) {
+        groups.push_back({instruction.sources[0].reg, RowRegister(instruction.sources[kMatrixOperand].reg, row)});
+      }
+      return groups;
+    }
+    groups.emplace_back();
+    for (int s = 0; s < info.source_count(); ++s) groups.back().push_back(instruction.sources[s].reg);
+    return groups;
+  }
+
+  // The distinct registers of `file` in `group`, in operand order (RegisterRef equality: an absolute c5
+  // and a relative c5[a0.x] are different operands).
+  static std::vector<RegisterRef> DistinctRegisters(const std::vector<RegisterRef>& group, RegisterFile file) {
+    std::vector<RegisterRef> distinct;
+    for (const RegisterRef& reg : group) {
+      if (reg.file == file && std::find(distinct.begin(), distinct.end(), reg) == distinct.end()) {
+        distinct.push_back(reg);
+      }
+    }
+    return distinct;
+  }
+
+  void CheckReadPorts(int index) {
+    const Instruction& instruction = At(index);
+    const auto groups = ReadPortGroups(instruction);
+    constexpr std::array<std::pair<RegisterFile, std::string_view>, 2> kOnePortFiles = {
+        {{RegisterFile::kConst, "constant"}, {RegisterFile::kInput, "input"}}};
+    for (const auto& [file, role] : kOnePortFiles) {
+      for (int row = 0; row < static_cast<int>(groups.size()); ++row) {
+        const std::vector<RegisterRef> distinct = DistinctRegisters(groups[row], file);
+        if (distinct.size() < 2) continue;
+        ReportReadPort(index, row, groups.size() > 1, role, distinct);
+        break;  // one report per register file and instruction
+      }
+    }
+  }
+
+  void ReportReadPort(int index, int row, bool is_macro, std::string_view role,
+                      const std::vector<RegisterRef>& distinct) {
+    std::string where = is_macro ? fmt::format("row {} of the macro expansion (§3.4) ", row) : "";
+    std::vector<std::string> names;
+    bool absolute_and_relative = false;
+    for (const RegisterRef& reg : distinct) {
+      names.push_back(RegisterName(reg));
+      for (const RegisterRef& other : distinct) {
+        absolute_and_relative |= reg.index == other.index && reg.relative != other.relative;
+      }
+    }
+    // Unconfirmed (§10.8): we count an absolute and a relative constant as two operands.
+    std::string note = absolute_and_relative ? " (an absolute and a relative constant count as two)" : "";
+    const bool two = distinct.size() == 2;
+    Error(index, fmt::format("{}reads {} different {} registers ({}){}; vs_1_1 allows one per instruction "
+                             "— copy {} into {} first",
+                             where, two ? "two" : std::to_string(distinct.size()), role, fmt::join(names, ", "), note,
+                             two ? "one of them" : "all but one of them", two ? "a temporary" : "temporaries"));
+  }
+
+  // --- matrix macros (§3.3) --------------------------------------------------------------------
+
+  void CheckMatrixOperands(int index) {
+    const Instruction& instruction = At(index);
+    const OpcodeInfo& info = instruction.info();
+    if (info.kind != ResultKind::kMatrix) return;
+    const SourceOperand& matrix = instruction.sources[kMatrixOperand];
+    if (!matrix.swizzle.is_identity()) {
+      Error(index, fmt::format("the matrix operand {} cannot be swizzled; remove the swizzle",
+                               FormatSource(SourceOperand{matrix.reg, matrix.swizzle, false})));
+    }
+    if (matrix.negate) {
+      Error(index, fmt::format("the matrix operand -{} cannot be negated; negate the first source instead",
+                               RegisterName(matrix.reg)));
+    }
+    const RegisterRef& dest = instruction.dest.reg;
+    if (dest == instruction.sources[0].reg) {
+      Error(index, fmt::format("writes {}, which is also its first source; the expanded rows would read "
+                               "partly overwritten values (§3.4): write a different register",
+                               RegisterName(dest)));
+    }
+    for (int row = 0; row < info.matrix_rows; ++row) {
+      if (dest == RowRegister(matrix.reg, row)) {
+        Error(index, fmt::format("writes {}, which is also matrix row {} (§3.4); write a different register",
+                                 RegisterName(dest), row));
+      }
+    }
+  }
+
+  // --- scalar swizzle (§3.1) -------------------------------------------------------------------
+
+  void CheckScalarSwizzle(int index) {
+    const Instruction& instruction = At(index);
+    const OpcodeInfo& info = instruction.info();
+    if (!ReadsScalarSource(info)) return;
+    for (int s = 0; s < info.source_count(); ++s) {
+      const SourceOperand& source = instruction.sources[s];
+      if (source.swizzle.is_replicate()) continue;
+      Warning(index, fmt::format("reads a single lane, but {} has no replicate swizzle; the w lane is used "
+                                 "(§3.1) — write {}.w (or .x, .y, .z) to say which",
+                                 RegisterName(source.reg), RegisterName(source.reg)));
+    }
+  }
+
+  // --- data flow (§6.3) ------------------------------------------------------------------------
+
+  void CheckTemporaryReads(int index) {
+    const Instruction& instruction = At(index);
+    const OpcodeInfo& info = instruction.info();
+    std::array<std::uint8_t, kTempRegisterCount> missing{};
+    for (int s = 0; s < info.source_count(); ++s) {
+      const SourceOperand& source = instruction.sources[s];
+      if (source.reg.file != RegisterFile::kTemp) continue;
+      const std::uint8_t lanes = ConsumedLanes(info, s, instruction.dest.mask, source.swizzle);
+      for (int row = 0; row < RowsRead(info, s); ++row) {
+        const int reg = source.reg.index + row;
+        if (reg < 0 || reg >= kTempRegisterCount) continue;  // reported by CheckSources
+        missing[reg] |= lanes & ~written_lanes_[reg];
+      }
+    }
+    std::vector<std::string> unwritten;
+    for (int reg = 0; reg < kTempRegisterCount; ++reg) {
+      if (missing[reg] != 0) unwritten.push_back(fmt::format("r{}{}", reg, LaneSuffix(missing[reg])));
+    }
+    if (unwritten.empty()) return;
+    Error(index, fmt::format("reads {} before {} written; temporaries start undefined, so write {} lanes "
+                             "earlier in the program",
+                             fmt::join(unwritten, ", "), unwritten.size() == 1 ? "it is" : "they are",
+                             unwritten.size() == 1 ? "those" : "these"));
+  }
+
+  void CollectDeclarations() {
+    for (int i = 0; i < static_cast<int>(program_.instructions.size()); ++i) {
+      const RegisterRef& reg = At(i).dest.reg;
+      if (At(i).opcode != Opcode::kDcl || reg.file != RegisterFile::kInput) continue;
+      if (reg.index < 0 || reg.index >= kInputRegisterCount || declared_at_[reg.index] >= 0) continue;
+      declared_at_[reg.index] = i;
+    }
+  }
+
+  void CheckInputDeclarations(int index) {
+    if (!dx9_) return;
+    const Instruction& instruction = At(index);
+    const OpcodeInfo& info = instruction.info();
+    std::array<bool, kInputRegisterCount> reported{};
+    for (int s = 0; s < info.source_count(); ++s) {
+      const RegisterRef& base = instruction.sources[s].reg;
+      if (base.file != RegisterFile::kInput) continue;
+      for (int row = 0; row < RowsRead(info, s); ++row) {
+        const int reg = base.index + row;
+        if (reg < 0 || reg >= kInputRegisterCount || declared_at_[reg] >= 0 || reported[reg]) continue;
+        reported[reg] = true;
+        Error(index, fmt::format("reads v{0}, which has no dcl; DX9 vs_1_1 needs a declaration such as "
+                                 "`dcl_texcoord v{0}` before the first instruction (§1.2)",
+                                 reg));
+      }
+    }
+  }
+
+  void RecordWrites(int index) {
+    const Instruction& instruction = At(index);
+    const RegisterRef& reg = instruction.dest.reg;
+    const std::uint8_t mask = instruction.dest.mask.bits() & kAllLanes;
+    if (reg.relative) return;
+    if (reg.file == RegisterFile::kTemp && reg.index >= 0 && reg.index < kTempRegisterCount) {
+      written_lanes_[reg.index] |= mask;
+    } else if (reg.file == RegisterFile::kAddress) {
+      a0_written_ = true;  // any mov to a0 (even with a bad mask, reported already)
+    } else if (reg.file == RegisterFile::kRasterOut && reg.index == kRasterOutPosition && mask != 0) {
+      position_lanes_ |= mask;
+      last_position_write_ = index;
+    }
+  }
+
+  void CheckPositionWritten() {
+    if (position_lanes_ == 0) {
+      diagnostics_.Error(ProgramLoc(),
+                         "the program never writes oPos; every vertex shader must output a "
+                         "position (for example m4x4 oPos, v0, c0) (§6.3)");
+    } else if (position_lanes_ != kAllLanes) {
+      // Unconfirmed (§10.11): one source demands all four lanes, so this is only a warning.
+      Warning(last_position_write_,
+              fmt::format("oPos is written only in lanes {}; write all four lanes (x, y, z, w) of the "
+                          "position",
+                          LaneSuffix(position_lanes_)));
+    }
+  }
+
+  // --- dcl and def (§3.3, §6.2.8) --------------------------------------------------------------
+
+  void CheckDeclaration(int index) {
+    const Instruction& instruction = At(index);
+    const RegisterRef& reg = instruction.dest.reg;
+    if (reg.file != RegisterFile::kInput || reg.relative) {
+      Error(index, fmt::format("declares {}; dcl can only declare an input register v0-v{}", RegisterName(reg),
+                               kInputRegisterCount - 1));
+      return;
+    }
+    if (!CheckRange(index, reg, "the declaration")) return;
+    CheckMask(index);
+    const int usage_count = static_cast<int>(kDeclUsageNames.size());
+    if (instruction.usage < 0 || instruction.usage >= usage_count || instruction.usage_index < 0 ||
+        instruction.usage_index > kMaxDeclUsageIndex) {
+      Error(index, fmt::format("has usage {} index {}; usage must be 0-{} and index 0-{}", instruction.usage,
+                               instruction.usage_index, usage_count - 1, kMaxDeclUsageIndex));
+      return;
+    }
+    if (dx9_) CheckDuplicateDeclaration(index);
+  }
+
+  void CheckDuplicateDeclaration(int index) {
+    const Instruction& instruction = At(index);
+    const int reg = instruction.dest.reg.index;
+    if (declared_at_[reg] != index) {
+      Error(index, fmt::format("declares v{} a second time (first dcl: {}); declare each input once", reg,
+                               Where(declared_at_[reg])));
+    }
+    const std::string usage = fmt::format("dcl_{}{}", kDeclUsageNames[instruction.usage],
+                                          instruction.usage_index > 0 ? std::to_string(instruction.usage_index) : "");
+    const auto [it, inserted] =
+        usage_declared_at_.emplace(std::pair(instruction.usage, instruction.usage_index), index);
+    if (!inserted) {
+      Error(index, fmt::format("repeats {} (first used by {}); each usage and index can feed one input register", usage,
+                               Where(it->second)));
+    }
+  }
+
+  // "line 3" or "instruction 3".
+  std::string Where(int index) const {
+    const SourceLoc loc = program_.LocOf(index);
+    return loc.line > 0 ? fmt::format("line {}", loc.line) : fmt::format("instruction {}", index);
+  }
+
+  void CheckDefinition(int index) {
+    const RegisterRef& reg = At(index).dest.reg;
+    if (reg.file != RegisterFile::kConst || reg.relative) {
+      Error(index, fmt::format("defines {}; def can only set an absolute constant register c#", RegisterName(reg)));
+      return;
+    }
+    if (CheckRange(index, reg, "the definition")) CheckMask(index);
+  }
+
+  const Program& program_;
+  const ValidatorOptions options_;
+  const bool dx9_;
+  Diagnostics diagnostics_;
+
+  int first_executable_ = -1;
+  int slots_ = 0;
+  std::array<std::uint8_t, kTempRegisterCount> written_lanes_{};
+  bool a0_written_ = false;
+  std::uint8_t position_lanes_ = 0;
+  int last_position_write_ = -1;
+  std::array<int, kInputRegisterCount> declared_at_{};  // first dcl of each v#, or -1
+  std::map<std::pair<int, int>, int> usage_declared_at_;
+};
+
+}  // namespace
+
+std::uint8_t ConsumedLanes(const OpcodeInfo& info, int operand, WriteMask dest_mask, Swizzle swizzle) {
+  const std::uint8_t swizzled = NeededSwizzledLanes(info, operand, dest_mask);
+  std::uint8_t lanes = 0;
+  for (int lane = 0; lane < kLaneCount; ++lane) {
+    if (swizzled & (1 << lane)) lanes |= static_cast<std::uint8_t>(1 << swizzle[lane]);
+  }
+  return lanes;
+}
+
+Diagnostics Validate(const Program& program, const ValidatorOptions& options) {
+  assert(options.constant_count >= 1);
+  return Validator(program, options).Run();
+}
+
+}  // namespace vs11

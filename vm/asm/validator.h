@@ -1,0 +1,41 @@
+// Static checks a vs_1_1 program must pass before it may run: our re-implementation of what the D3D
+// runtime and the D3DX assembler check (../shared/spec/vs_1_1.md §6, with §1 and §3).
+//
+// The validator works on a decoded Program, so it serves both the assembler (which fills
+// Program::source_locs, letting diagnostics point at .vsh lines) and bytecode loaded from disk (no
+// source map: messages then name the instruction index instead).
+#pragma once
+
+#include <cstdint>
+
+#include "vm/core/diagnostic.h"
+#include "vm/core/isa.h"
+#include "vm/core/program.h"
+
+namespace vs11 {
+
+struct ValidatorOptions {
+  // D3DCAPS9.MaxVertexShaderConst (§1.4): constants c0 .. c[constant_count - 1] exist. Must be >= 1.
+  int constant_count = kDefaultConstantCount;
+  // kDx9: every v# read needs a dcl and dcls may not repeat (§1.2, §6.2.8). kDx8: no dcl needed.
+  // kAuto: DX9 rules when the program contains any dcl, DX8 rules otherwise.
+  enum class Dialect { kAuto, kDx8, kDx9 } dialect = Dialect::kAuto;
+  // A complete vertex shader must write oPos (§6.3). Off for a fragment: a piece of a shader checked on
+  // its own, such as the paper's 11-instruction irradiance program.
+  bool require_position = true;
+};
+
+// Checks `program` against every rule of §6 and returns all problems found (errors and warnings);
+// the program may be run when the result has no errors. Each diagnostic's loc is
+// program.LocOf(instruction index), or just the file for whole-program problems (missing oPos,
+// version). When an instruction has no source location the message starts with
+// "instruction N (mnemonic)". Bad input never asserts.
+Diagnostics Validate(const Program& program, const ValidatorOptions& options = {});
+
+// The lanes (bit i = lane i, as in WriteMask) of the register named by source `operand` that an
+// instruction described by `info` reads when it writes `dest_mask` and the operand carries
+// `swizzle` (§6.3). For the matrix operand of m*x* the result is what each row register is read in.
+// Used by the uninitialized-temporary check; exposed for tests and for tools that track liveness.
+std::uint8_t ConsumedLanes(const OpcodeInfo& info, int operand, WriteMask dest_mask, Swizzle swizzle);
+
+}  // namespace vs11

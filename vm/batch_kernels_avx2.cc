@@ -1,8 +1,0 @@
-// The batch engine's kernels compiled for Highway's AVX2 target (see vm/batch_kernels-inl.h).
-#include "hwy/detect_targets.h"
-
-#if HWY_TARGETS & HWY_AVX2
-#undef HWY_TARGET
-#define HWY_TARGET HWY_AVX2
-#include "vm/batch_kernels-inl.h"
-#endif

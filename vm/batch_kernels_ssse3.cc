@@ -1,8 +1,0 @@
-// The batch engine's kernels compiled for Highway's SSSE3 target (see vm/batch_kernels-inl.h).
-#include "hwy/detect_targets.h"
-
-#if HWY_TARGETS & HWY_SSSE3
-#undef HWY_TARGET
-#define HWY_TARGET HWY_SSSE3
-#include "vm/batch_kernels-inl.h"
-#endif

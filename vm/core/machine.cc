@@ -1,0 +1,136 @@
+#include "vm/core/machine.h"
+
+#include <algorithm>
+#include <cctype>
+#include <cstring>
+
+#include <fmt/format.h>
+
+
+namespace vs11 {
+
+ConstantBank ApplyDefinitions(const Program& program, ConstantBank api_constants) {
+  for (const Instruction& instruction : program.instructions) {
+    if (instruction.opcode != Opcode::kDef) continue;
+    int index = instruction.dest.reg.index;
+    if (index >= 0 && index < api_constants.size()) {
+      std::array<float, 4> values = instruction.def_values();
+      api_constants[index] = {values[0], values[1], values[2], values[3]};
+    }
+  }
+  return api_constants;
+}
+
+std::optional<int> OutputSlotOf(const RegisterRef& reg) {
+  switch (reg.file) {
+    case RegisterFile::kRasterOut:
+      if (reg.index >= 0 && reg.index <= kRasterOutPointSize) return reg.index;  // same order as OutputSlot
+      return std::nullopt;
+    case RegisterFile::kAttributeOut:
+      if (reg.index >= 0 && reg.index < kColorOutputCount) return static_cast<int>(OutputSlot::kDiffuse) + reg.index;
+      return std::nullopt;
+    case RegisterFile::kTexCoordOut:
+      if (reg.index >= 0 && reg.index < kTexCoordOutputCount) return static_cast<int>(OutputSlot::kTexCoord0) + reg.index;
+      return std::nullopt;
+    default: return std::nullopt;
+  }
+}
+
+std::string OutputSlotName(int slot) {
+  static constexpr std::array<const char*, 5> kFixedNames = {"oPos", "oFog", "oPts", "oD0", "oD1"};
+  if (slot < static_cast<int>(OutputSlot::kTexCoord0)) return kFixedNames[static_cast<std::size_t>(slot)];
+  return fmt::format("oT{}", slot - static_cast<int>(OutputSlot::kTexCoord0));
+}
+
+std::optional<int> OutputSlotFromName(std::string_view name) {
+  for (int slot = 0; slot < kOutputSlotCount; ++slot) {
+    std::string candidate = OutputSlotName(slot);
+    if (candidate.size() == name.size() &&
+        std::equal(candidate.begin(), candidate.end(), name.begin(), [](char a, char b) {
+          return std::tolower(static_cast<unsigned char>(a)) == std::tolower(static_cast<unsigned char>(b));
+        })) {
+      return slot;
+    }
+  }
+  return std::nullopt;
+}
+
+Vec4f UnwrittenOutputValue(int slot) {
+  if (slot == static_cast<int>(OutputSlot::kDiffuse)) return {1.0f, 1.0f, 1.0f, 1.0f};
+  if (slot == static_cast<int>(OutputSlot::kSpecular)) return {0.0f, 0.0f, 0.0f, 1.0f};
+  return {};
+}
+
+std::array<WriteMask, kOutputSlotCount> WrittenOutputLanes(const Program& program) {
+  std::array<std::uint8_t, kOutputSlotCount> bits{};
+  for (const Instruction& instruction : program.instructions) {
+    if (!instruction.info().is_executable() || !instruction.info().has_dest()) continue;
+    if (std::optional<int> slot = OutputSlotOf(instruction.dest.reg)) bits[*slot] |= instruction.dest.mask.bits();
+  }
+  std::array<WriteMask, kOutputSlotCount> masks;
+  for (int i = 0; i < kOutputSlotCount; ++i) masks[i] = WriteMask(bits[i]);
+  return masks;
+}
+
+VertexArrays::VertexArrays(std::size_t count, std::span<const int> registers, int register_space)
+    : count_(count), slot_of_(static_cast<std::size_t>(register_space), -1) {
+  int slots = 0;
+  for (int reg : registers) {
+    if (reg >= 0 && reg < register_space && slot_of_[reg] < 0) slot_of_[reg] = slots++;
+  }
+  constexpr std::size_t kFloatsPerLine = 16;
+  stride_ = (count + kFloatsPerLine - 1) / kFloatsPerLine * kFloatsPerLine;
+  if (count > kFloatsPerLine && (stride_ / kFloatsPerLine) % 2 == 0) stride_ += kFloatsPerLine;
+  data_.assign(static_cast<std::size_t>(slots) * 4 * stride_, 0.0f);
+  uniform_.assign(static_cast<std::size_t>(slots) * 4, 0.0f);
+}
+
+void VertexArrays::FillUniform(int reg, int component, float value) {
+  std::fill_n(lane(reg, component), count_, value);
+  uniform_[Index(reg, component)] = value;
+}
+
+std::vector<int> VertexArrays::registers() const {
+  std::vector<int> result;
+  for (int reg = 0; reg < static_cast<int>(slot_of_.size()); ++reg) {
+    if (slot_of_[reg] >= 0) result.push_back(reg);
+  }
+  return result;
+}
+
+VertexArrays MakeInputArrays(std::size_t count, std::span<const int> input_registers) {
+  VertexArrays arrays(count, input_registers, kInputRegisterCount);
+  for (int reg : arrays.registers()) {
+    for (int c = 0; c < 4; ++c) arrays.FillUniform(reg, c, kDefaultInput[c]);
+  }
+  return arrays;
+}
+
+VertexArrays MakeOutputArrays(std::size_t count, const Program& program) {
+  std::array<WriteMask, kOutputSlotCount> written = WrittenOutputLanes(program);
+  std::vector<int> slots;
+  for (int slot = 0; slot < kOutputSlotCount; ++slot) {
+    if (written[slot].bits() != 0) slots.push_back(slot);
+  }
+  // Every lane starts as uniform 0, the value of a lane the program leaves alone in a register it
+  // writes (oD0.a beside oD0.rgb): the engines need not store those again on every run.
+  return VertexArrays(count, slots, kOutputSlotCount);
+}
+
+std::optional<EngineKind> EngineKindFromName(std::string_view name) {
+  if (name == "ref" || name == "reference") return EngineKind::kReference;
+  if (name == "batch") return EngineKind::kBatch;
+  if (name == "jit") return EngineKind::kJit;
+  return std::nullopt;
+}
+
+std::string_view EngineName(EngineKind kind) {
+  switch (kind) {
+    case EngineKind::kReference: return "ref";
+    case EngineKind::kBatch: return "batch";
+    case EngineKind::kJit: return "jit";
+  }
+  return "batch";
+}
+
+}  // namespace vs11

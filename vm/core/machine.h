@@ -1,0 +1,138 @@
+// What goes into and comes out of a vs_1_1 program run: constant banks, vertex inputs and outputs, and
+// the engine interface both execution engines implement.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <memory>
+#include <new>
+#include <optional>
+#include <span>
+#include <string>
+#include <vector>
+
+#include "vm/core/program.h"
+
+namespace vs11 {
+
+using Vec4f = std::array<float, 4>;
+
+// What a vertex element does not supply reads as (0, 0, 0, 1) (§1.2).
+inline constexpr Vec4f kDefaultInput = {0.0f, 0.0f, 0.0f, 1.0f};
+
+// Constant registers c0..c(N-1), N = MaxVertexShaderConst (at least 96). Unset registers read 0.
+class ConstantBank {
+ public:
+  explicit ConstantBank(int count = kDefaultConstantCount) : values_(static_cast<std::size_t>(count), Vec4f{}) {}
+  int size() const { return static_cast<int>(values_.size()); }
+  Vec4f& operator[](int index) { return values_[static_cast<std::size_t>(index)]; }
+  const Vec4f& operator[](int index) const { return values_[static_cast<std::size_t>(index)]; }
+  // Out-of-range reads give (0, 0, 0, 0) (§1.4: the deterministic reading of "unpredictable").
+  Vec4f Read(long index) const { return index >= 0 && index < size() ? values_[static_cast<std::size_t>(index)] : Vec4f{}; }
+  const std::vector<Vec4f>& values() const { return values_; }
+
+ private:
+  std::vector<Vec4f> values_;
+};
+
+// The bank a program sees: the API's values with the program's def constants written over them (§3.3
+// def). A def beyond the bank is ignored (the validator rejects it).
+ConstantBank ApplyDefinitions(const Program& program, ConstantBank api_constants);
+
+// Output registers, flattened: oPos, oFog, oPts, oD0, oD1, oT0..oT7.
+enum class OutputSlot : int { kPosition, kFog, kPointSize, kDiffuse, kSpecular, kTexCoord0 };
+inline constexpr int kOutputSlotCount = 5 + kTexCoordOutputCount;
+std::optional<int> OutputSlotOf(const RegisterRef& reg);  // nullopt for non-output or out-of-range registers
+std::string OutputSlotName(int slot);                    // "oPos", "oD0", "oT3"
+std::optional<int> OutputSlotFromName(std::string_view name);  // case-insensitive
+
+// The value of an output lane the program never wrote (§7, implementation-defined; DXVK's choice):
+// oD0 = (1,1,1,1), oD1 = (0,0,0,1) when the register is not written at all; every other lane 0.
+Vec4f UnwrittenOutputValue(int slot);
+
+// Which output lanes a program writes (for CSV headers and for the defaults above).
+std::array<WriteMask, kOutputSlotCount> WrittenOutputLanes(const Program& program);
+
+// Vertex data as structure of arrays: lane (register, component) is `count` consecutive floats.
+// Registers that are not present read kDefaultInput.
+//
+// Each lane starts on a cache line, and consecutive lanes start an odd number of cache lines apart.
+// Lanes a whole number of pages apart (as `count` floats back to back are for a count that is a
+// multiple of 1024) put the same vertex of every lane in one cache set of L1 and L2, and an engine
+// that touches every lane at once (the jit's loop) then evicts its own lines: all_instructions ran
+// 3-4x slower at 65536 vertices than the same code on staggered lanes.
+//
+// A lane filled by FillUniform is known to hold one value in every vertex until it is written
+// through the non-const lane(): an engine may then use the value instead of reading the lane (the
+// jit engine compiles it in, as the w of 1 nobody supplied) or rewriting it (an unwritten output
+// lane that already holds its value), with the same results.
+class VertexArrays {
+ public:
+  VertexArrays() = default;
+  VertexArrays(std::size_t count, std::span<const int> registers, int register_space);
+  std::size_t count() const { return count_; }
+  bool has(int reg) const { return reg >= 0 && reg < static_cast<int>(slot_of_.size()) && slot_of_[reg] >= 0; }
+  float* lane(int reg, int component) {
+    uniform_[Index(reg, component)].reset();  // the caller may write through the pointer
+    return data_.data() + Index(reg, component) * stride_;
+  }
+  const float* lane(int reg, int component) const { return data_.data() + Index(reg, component) * stride_; }
+  std::vector<int> registers() const;
+
+  void FillUniform(int reg, int component, float value);
+  std::optional<float> uniform(int reg, int component) const { return uniform_[Index(reg, component)]; }
+
+ private:
+  std::size_t Index(int reg, int component) const {
+    return static_cast<std::size_t>(slot_of_[reg]) * 4 + static_cast<std::size_t>(component);
+  }
+  // std::allocator with the alignment of a cache line.
+  template <class T>
+  struct CacheLineAllocator {
+    using value_type = T;
+    static constexpr std::align_val_t kAlignment{64};
+    CacheLineAllocator() = default;
+    template <class U>
+    CacheLineAllocator(const CacheLineAllocator<U>&) {}  // NOLINT: rebinding converts implicitly
+    T* allocate(std::size_t n) { return static_cast<T*>(::operator new(n * sizeof(T), kAlignment)); }
+    void deallocate(T* p, std::size_t) { ::operator delete(p, kAlignment); }
+    friend bool operator==(const CacheLineAllocator&, const CacheLineAllocator&) { return true; }
+  };
+
+  std::size_t count_ = 0;
+  std::size_t stride_ = 0;  // floats from one lane's start to the next's
+  std::vector<int> slot_of_;
+  std::vector<float, CacheLineAllocator<float>> data_;
+  std::vector<std::optional<float>> uniform_;  // per lane
+};
+
+// Inputs: registers v0..v15. Outputs: the OutputSlot values.
+VertexArrays MakeInputArrays(std::size_t count, std::span<const int> input_registers);
+VertexArrays MakeOutputArrays(std::size_t count, const Program& program);  // the slots the program writes
+
+// kJit: the batch engine running the program compiled to x86-64 code (vm/engines/jit_compiler.h), AVX-512
+// or AVX2, or its kernels on a CPU without AVX2.
+enum class EngineKind { kReference, kBatch, kJit };
+std::optional<EngineKind> EngineKindFromName(std::string_view name);  // "ref" | "reference" | "batch" | "jit"
+std::string_view EngineName(EngineKind kind);
+
+// Runs one program with one constant bank over many vertices.
+class Engine {
+ public:
+  virtual ~Engine() = default;
+  // `outputs` must come from MakeOutputArrays for the same program and count. Lanes the program does
+  // not write get UnwrittenOutputValue.
+  virtual void Run(const VertexArrays& inputs, VertexArrays& outputs) = 0;
+  virtual void SetConstants(const ConstantBank& api_constants) = 0;
+};
+
+// The instruction set the jit engine compiles to: the best the CPU has, or one forced (for tests and
+// benchmarks). A forced set the CPU lacks leaves the program on the batch kernels.
+enum class JitIsa { kBest, kAvx2, kAvx512 };
+
+struct EngineOptions {
+  int threads = 1;  // batch engine: split large calls over this many threads
+  JitIsa jit_isa = JitIsa::kBest;
+};
+
+}  // namespace vs11

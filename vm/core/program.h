@@ -1,0 +1,154 @@
+// Value types for a decoded vs_1_1 program: registers, swizzles, masks, operands, instructions.
+// The token layout lives in vm/asm/bytecode.cc only; these types carry meaning, not bits.
+#pragma once
+
+#include <array>
+#include <bit>
+#include <cstdint>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include "vm/core/diagnostic.h"
+#include "vm/core/isa.h"
+
+namespace vs11 {
+
+// D3DSHADER_PARAM_REGISTER_TYPE values used by vs_1_1 (§4.6).
+enum class RegisterFile : std::uint8_t {
+  kTemp = 0,           // r#
+  kInput = 1,          // v#
+  kConst = 2,          // c#
+  kAddress = 3,        // a0
+  kRasterOut = 4,      // oPos (0), oFog (1), oPts (2)
+  kAttributeOut = 5,   // oD0, oD1
+  kTexCoordOut = 6,    // oT0-oT7
+};
+inline constexpr int kRasterOutPosition = 0;
+inline constexpr int kRasterOutFog = 1;
+inline constexpr int kRasterOutPointSize = 2;
+
+constexpr bool IsOutput(RegisterFile file) {
+  return file == RegisterFile::kRasterOut || file == RegisterFile::kAttributeOut ||
+         file == RegisterFile::kTexCoordOut;
+}
+
+struct RegisterRef {
+  RegisterFile file = RegisterFile::kTemp;
+  int index = 0;          // for a relative constant: the offset n of c[a0.x + n]
+  bool relative = false;  // c[a0.x + index]
+  friend constexpr bool operator==(const RegisterRef&, const RegisterRef&) = default;
+};
+
+// oFog and oPts hold one value: the rasterizer reads lane x only (§7). Any write mask is encodable.
+constexpr bool IsScalarOutput(const RegisterRef& reg) {
+  return reg.file == RegisterFile::kRasterOut && (reg.index == kRasterOutFog || reg.index == kRasterOutPointSize);
+}
+
+// Lane selectors packed as D3D does: two bits per lane, lane x in the low bits (§4.5).
+class Swizzle {
+ public:
+  static constexpr std::uint8_t kIdentityBits = 0xE4;  // .xyzw
+  constexpr Swizzle() = default;
+  constexpr explicit Swizzle(std::uint8_t bits) : bits_(bits) {}
+  static constexpr Swizzle Replicate(int lane) { return Swizzle(static_cast<std::uint8_t>(lane * 0x55)); }
+  constexpr int operator[](int lane) const { return (bits_ >> (2 * lane)) & 3; }
+  constexpr std::uint8_t bits() const { return bits_; }
+  constexpr bool is_identity() const { return bits_ == kIdentityBits; }
+  constexpr bool is_replicate() const { return (*this)[0] == (*this)[1] && (*this)[1] == (*this)[2] && (*this)[2] == (*this)[3]; }
+  friend constexpr bool operator==(Swizzle, Swizzle) = default;
+
+ private:
+  std::uint8_t bits_ = kIdentityBits;
+};
+
+// Destination lanes, bit i = lane i (x = 1, y = 2, z = 4, w = 8).
+class WriteMask {
+ public:
+  static constexpr std::uint8_t kAllLanes = 0xF;
+  constexpr WriteMask() = default;
+  constexpr explicit WriteMask(std::uint8_t bits) : bits_(bits) {}
+  constexpr bool has(int lane) const { return (bits_ >> lane) & 1; }
+  constexpr std::uint8_t bits() const { return bits_; }
+  constexpr bool is_full() const { return bits_ == kAllLanes; }
+  constexpr int count() const { return std::popcount(bits_); }
+  friend constexpr bool operator==(WriteMask, WriteMask) = default;
+
+ private:
+  std::uint8_t bits_ = kAllLanes;
+};
+
+struct SourceOperand {
+  RegisterRef reg;
+  Swizzle swizzle;
+  bool negate = false;
+  friend constexpr bool operator==(const SourceOperand&, const SourceOperand&) = default;
+};
+
+struct DestOperand {
+  RegisterRef reg;
+  WriteMask mask;
+  friend constexpr bool operator==(const DestOperand&, const DestOperand&) = default;
+};
+
+struct Instruction {
+  Opcode opcode = Opcode::kNop;
+  DestOperand dest;                       // unused by nop
+  std::array<SourceOperand, 3> sources;   // the first Info(opcode).source_count() are used
+  int usage = 0;                          // dcl: D3DDECLUSAGE value
+  int usage_index = 0;                    // dcl: 0-15
+  std::array<std::uint32_t, 4> def_bits{};  // def: the four floats as raw IEEE bits (kept exact)
+
+  const OpcodeInfo& info() const { return Info(opcode); }
+  std::array<float, 4> def_values() const {
+    return {std::bit_cast<float>(def_bits[0]), std::bit_cast<float>(def_bits[1]),
+            std::bit_cast<float>(def_bits[2]), std::bit_cast<float>(def_bits[3])};
+  }
+  friend bool operator==(const Instruction&, const Instruction&) = default;
+};
+
+// Comment tokens are kept so that disassembly and re-assembly lose nothing.
+struct CommentBlock {
+  int before_instruction = 0;  // index into Program::instructions it precedes
+  std::vector<std::uint32_t> words;
+  friend bool operator==(const CommentBlock&, const CommentBlock&) = default;
+};
+
+struct Program {
+  std::uint32_t version = kVersionVs11;
+  std::vector<Instruction> instructions;  // dcl and def included, in stream order
+  std::vector<CommentBlock> comments;
+  // Where each instruction came from, when assembled from text (same length as instructions), or empty.
+  std::vector<SourceLoc> source_locs;
+  // The word offset of each instruction token, when decoded from bytecode (same length as
+  // instructions), or empty.
+  std::vector<long> word_offsets;
+
+  SourceLoc LocOf(int instruction_index) const {
+    return instruction_index >= 0 && instruction_index < static_cast<int>(source_locs.size())
+               ? source_locs[instruction_index]
+               : SourceLoc{};
+  }
+  // -1 when unknown (Diagnostic::word_offset's convention).
+  long WordOffsetOf(int instruction_index) const {
+    return instruction_index >= 0 && instruction_index < static_cast<int>(word_offsets.size())
+               ? word_offsets[instruction_index]
+               : -1;
+  }
+};
+
+// Lane letters.
+inline constexpr std::array<char, 4> kLaneLetters = {'x', 'y', 'z', 'w'};
+
+// Static figures of a program used by `vs11 count` and programs/README.md.
+struct ProgramStats {
+  int instructions = 0;  // executable instructions (dcl/def excluded)
+  int slots = 0;         // §2.7 cost: macros and multi-slot instructions by the table
+  int constants = 0;     // distinct constant registers read (a relative operand counts its rows once each, by offset)
+  int temporaries = 0;   // distinct r# written or read
+  int inputs = 0;        // distinct v# read
+  bool uses_relative_addressing = false;
+};
+ProgramStats ComputeStats(const Program& program);
+
+}  // namespace vs11

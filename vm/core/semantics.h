@@ -1,0 +1,240 @@
+// The arithmetic of every vs_1_1 instruction, written once as templates over a lane type V.
+// The reference engine instantiates them with V = float (one vertex); the batch engine with a Highway
+// vector (many vertices). Both engines therefore round identically, which is what makes them equal bit
+// for bit. Kernels use only the operations below; a lane type provides them as free functions found by
+// ordinary or argument-dependent lookup (Highway's own ops for its vectors, the float overloads here).
+//
+// Source of every formula: ../shared/spec/vs_1_1.md §3.3.
+#pragma once
+
+#include <array>
+#include <bit>
+#include <cfloat>
+#include <cmath>
+#include <cstdint>
+
+namespace vs11::semantics {
+
+template <class V>
+using Vec4 = std::array<V, 4>;
+
+// ---- float lane operations ------------------------------------------------------------------------
+inline float Floor(float x) { return std::floor(x); }
+inline float Sqrt(float x) { return std::sqrt(x); }
+inline float Abs(float x) { return std::fabs(x); }
+inline bool IsNaN(float x) { return x != x; }
+inline float IfThenElse(bool condition, float yes, float no) { return condition ? yes : no; }
+inline float Constant(float /*like*/, float value) { return value; }
+inline std::int32_t ConstantInt(float /*like*/, std::int32_t value) { return value; }
+inline std::int32_t BitsOf(float x) { return std::bit_cast<std::int32_t>(x); }
+inline float FloatFromBits(std::int32_t bits) { return std::bit_cast<float>(bits); }
+// Truncates; callers guarantee the value is an integer within int32 range.
+inline std::int32_t ToInt(float x) { return static_cast<std::int32_t>(x); }
+inline float ToFloat(std::int32_t x) { return static_cast<float>(x); }
+template <int kBits>
+std::int32_t ShiftLeft(std::int32_t x) { return static_cast<std::int32_t>(static_cast<std::uint32_t>(x) << kBits); }
+template <int kBits>
+std::int32_t ShiftRight(std::int32_t x) { return x >> kBits; }  // arithmetic (C++20)
+
+// ---- named constants ------------------------------------------------------------------------------
+inline constexpr float kMaxFloat = FLT_MAX;            // rcp/rsq of 0, log of 0 (negated): §3.3, §8
+inline constexpr float kLitMaxPower = 127.9961f;       // 0x42FFFE01, the largest 8.8 fixed-point value
+inline constexpr std::int32_t kPartialPrecisionMask = static_cast<std::int32_t>(0xFFFFFF00u);  // expp/logp z
+inline constexpr std::int32_t kMantissaMask = 0x007FFFFF;
+inline constexpr std::int32_t kOneExponentBits = 0x3F800000;  // 1.0f: mantissa in [1, 2)
+inline constexpr int kMantissaBits = 23;
+inline constexpr std::int32_t kExponentBias = 127;
+
+// ---- transcendental helpers, shared so both engines round alike ------------------------------------
+
+// 2^e for an integral e in [-150, 128], as two exact power-of-two factors (each a normal float), so
+// results underflow and overflow the way a single IEEE multiply would.
+template <class V, class I>
+V ScaleByPowerOfTwo(V value, I e) {
+  I half = ShiftRight<1>(e);
+  I rest = e - half;
+  I bias = ConstantInt(value, kExponentBias);
+  V first = FloatFromBits(ShiftLeft<kMantissaBits>(half + bias));
+  V second = FloatFromBits(ShiftLeft<kMantissaBits>(rest + bias));
+  return (value * first) * second;
+}
+
+// Largest and smallest exponents worth computing: beyond them 2^x is +inf or rounds to +0.
+inline constexpr float kExp2Max = 128.0f;
+inline constexpr float kExp2Min = -150.0f;
+
+// 2^x to about 23 bits (spec asks 21): x = n + f with |f| <= 1/2, 2^f by its Taylor series to f^7
+// (truncation error (ln2/2)^8/8! < 1e-8), then scaled by 2^n. NaN gives NaN, +inf gives +inf, -inf 0.
+template <class V>
+V Exp2(V x) {
+  V clamped = IfThenElse(x < Constant(x, kExp2Max), x, Constant(x, kExp2Max));
+  clamped = IfThenElse(clamped > Constant(x, kExp2Min), clamped, Constant(x, kExp2Min));
+  V whole = Floor(clamped + Constant(x, 0.5f));
+  V f = clamped - whole;
+  // Coefficients (ln 2)^k / k!.
+  V p = Constant(x, 1.52527338e-5f);
+  p = p * f + Constant(x, 1.54035304e-4f);
+  p = p * f + Constant(x, 1.33335581e-3f);
+  p = p * f + Constant(x, 9.61812911e-3f);
+  p = p * f + Constant(x, 5.55041087e-2f);
+  p = p * f + Constant(x, 2.40226507e-1f);
+  p = p * f + Constant(x, 6.93147181e-1f);
+  p = p * f + Constant(x, 1.0f);
+  V result = ScaleByPowerOfTwo(p, ToInt(whole));
+  // x + x: a NaN comes out quiet, as from any IEEE operation. Passed through as it is, a signalling
+  // NaN whose payload sits in the 8 low bits would become +inf under expp's PartialPrecision mask.
+  return IfThenElse(IsNaN(x), x + x, result);
+}
+
+// log2(v) for v >= 0 to about 23 bits (spec asks 21): v = 2^e m with m in [sqrt(1/2), sqrt(2)), and
+// log2(m) = (2 / ln 2) atanh(t), t = (m - 1) / (m + 1), |t| < 0.172, by its odd series to t^9.
+// Denormals are scaled up first. 0 gives -FLT_MAX (§3.3 log), +inf gives +inf, NaN gives NaN.
+template <class V>
+V Log2(V v) {
+  const V kSmallestNormal = Constant(v, FLT_MIN);
+  auto denormal = v < kSmallestNormal;
+  V scaled = IfThenElse(denormal, v * Constant(v, 16777216.0f), v);  // 2^24
+  V exponent_offset = IfThenElse(denormal, Constant(v, 24.0f), Constant(v, 0.0f));
+  auto bits = BitsOf(scaled);
+  V e = ToFloat(ShiftRight<kMantissaBits>(bits) - ConstantInt(v, kExponentBias)) - exponent_offset;
+  V m = FloatFromBits((bits & ConstantInt(v, kMantissaMask)) | ConstantInt(v, kOneExponentBits));
+  auto above_sqrt2 = m > Constant(v, 1.41421356f);
+  m = IfThenElse(above_sqrt2, m * Constant(v, 0.5f), m);
+  e = IfThenElse(above_sqrt2, e + Constant(v, 1.0f), e);
+  V t = (m - Constant(v, 1.0f)) / (m + Constant(v, 1.0f));
+  V t2 = t * t;
+  // 2 / (k ln 2) for k = 9, 7, 5, 3, 1.
+  V p = Constant(v, 0.320598898f);
+  p = p * t2 + Constant(v, 0.412198583f);
+  p = p * t2 + Constant(v, 0.577078016f);
+  p = p * t2 + Constant(v, 0.961796694f);
+  p = p * t2 + Constant(v, 2.88539008f);
+  V result = e + p * t;
+  result = IfThenElse(v == Constant(v, 0.0f), Constant(v, -kMaxFloat), result);
+  result = IfThenElse(v == Constant(v, INFINITY), v, result);
+  return IfThenElse(IsNaN(v), v + v, result);  // quiet, as in Exp2 (logp's PartialPrecision)
+}
+
+// Clears the low 8 mantissa bits, as the reference rasterizer did for expp/logp's partial result.
+template <class V>
+V PartialPrecision(V x) {
+  return FloatFromBits(BitsOf(x) & ConstantInt(x, kPartialPrecisionMask));
+}
+
+template <class V, int kWidth>
+V Dot(const Vec4<V>& a, const Vec4<V>& b) {
+  V sum = a[0] * b[0];
+  for (int i = 1; i < kWidth; ++i) sum = sum + a[i] * b[i];  // left to right, unfused
+  return sum;
+}
+
+// ---- per-opcode kernels ---------------------------------------------------------------------------
+// One struct per row of VS11_OPCODES (vm/core/isa.h), named <Name>Semantics. Its member matches the row's
+// ResultKind: Lane (componentwise), Scalar (scalar: one value from the source's w lane), Vector
+// (vector). Dot products and matrices use Dot above with the row's dot width; nop/dcl/def do nothing.
+
+struct NopSemantics {};
+struct DclSemantics {};
+struct DefSemantics {};
+struct Dp3Semantics {};
+struct Dp4Semantics {};
+struct M4x4Semantics {};
+struct M4x3Semantics {};
+struct M3x4Semantics {};
+struct M3x3Semantics {};
+struct M3x2Semantics {};
+
+struct MovSemantics {
+  template <class V> static V Lane(V a, V, V) { return a; }
+};
+struct AddSemantics {
+  template <class V> static V Lane(V a, V b, V) { return a + b; }
+};
+struct SubSemantics {
+  template <class V> static V Lane(V a, V b, V) { return a - b; }
+};
+struct MulSemantics {
+  template <class V> static V Lane(V a, V b, V) { return a * b; }
+};
+struct MadSemantics {
+  template <class V> static V Lane(V a, V b, V c) { return a * b + c; }  // unfused: -ffp-contract=off
+};
+struct MinSemantics {
+  template <class V> static V Lane(V a, V b, V) { return IfThenElse(a < b, a, b); }
+};
+struct MaxSemantics {
+  template <class V> static V Lane(V a, V b, V) { return IfThenElse(a >= b, a, b); }
+};
+struct SltSemantics {
+  template <class V> static V Lane(V a, V b, V) { return IfThenElse(a < b, Constant(a, 1.0f), Constant(a, 0.0f)); }
+};
+struct SgeSemantics {
+  template <class V> static V Lane(V a, V b, V) { return IfThenElse(a >= b, Constant(a, 1.0f), Constant(a, 0.0f)); }
+};
+struct FrcSemantics {
+  template <class V> static V Lane(V a, V, V) { return a - Floor(a); }
+};
+
+struct RcpSemantics {
+  template <class V> static V Scalar(V f) {
+    V result = Constant(f, 1.0f) / f;
+    result = IfThenElse(f == Constant(f, 0.0f), Constant(f, kMaxFloat), result);  // -0 too
+    return IfThenElse(f == Constant(f, 1.0f), Constant(f, 1.0f), result);
+  }
+};
+struct RsqSemantics {
+  template <class V> static V Scalar(V s) {
+    V f = Abs(s);
+    V result = Constant(f, 1.0f) / Sqrt(f);
+    result = IfThenElse(f == Constant(f, 0.0f), Constant(f, kMaxFloat), result);
+    return IfThenElse(f == Constant(f, 1.0f), Constant(f, 1.0f), result);
+  }
+};
+struct ExpSemantics {
+  template <class V> static V Scalar(V f) { return Exp2(f); }
+};
+struct LogSemantics {
+  template <class V> static V Scalar(V f) { return Log2(Abs(f)); }
+};
+
+struct LitSemantics {
+  template <class V> static Vec4<V> Vector(const Vec4<V>& a, const Vec4<V>&) {
+    const V zero = Constant(a[0], 0.0f), one = Constant(a[0], 1.0f);
+    V power = IfThenElse(a[3] < Constant(a[0], kLitMaxPower), a[3], Constant(a[0], kLitMaxPower));
+    power = IfThenElse(power > Constant(a[0], -kLitMaxPower), power, Constant(a[0], -kLitMaxPower));
+    V specular = Exp2(power * Log2(a[1]));
+    auto lit = a[0] > zero;
+    return {one, IfThenElse(lit, a[0], zero), IfThenElse(lit, IfThenElse(a[1] > zero, specular, zero), zero), one};
+  }
+};
+struct DstSemantics {
+  template <class V> static Vec4<V> Vector(const Vec4<V>& a, const Vec4<V>& b) {
+    return {Constant(a[0], 1.0f), a[1] * b[1], a[2], b[3]};
+  }
+};
+struct ExppSemantics {
+  template <class V> static Vec4<V> Vector(const Vec4<V>& a, const Vec4<V>&) {
+    V w = a[3];
+    V whole = Floor(w);
+    // 2^floor(w) exactly: the clamp only decides where it saturates to +inf or 0.
+    V clamped = IfThenElse(whole < Constant(w, kExp2Max), whole, Constant(w, kExp2Max));
+    clamped = IfThenElse(clamped > Constant(w, kExp2Min), clamped, Constant(w, kExp2Min));
+    V power = ScaleByPowerOfTwo(Constant(w, 1.0f), ToInt(IfThenElse(IsNaN(w), Constant(w, 0.0f), clamped)));
+    power = IfThenElse(IsNaN(w), w, power);
+    return {power, w - whole, PartialPrecision(Exp2(w)), Constant(w, 1.0f)};
+  }
+};
+struct LogpSemantics {
+  template <class V> static Vec4<V> Vector(const Vec4<V>& a, const Vec4<V>&) {
+    V v = Abs(a[3]);
+    auto bits = BitsOf(v);
+    V exponent = ToFloat(ShiftRight<kMantissaBits>(bits) - ConstantInt(v, kExponentBias));
+    V mantissa = FloatFromBits((bits & ConstantInt(v, kMantissaMask)) | ConstantInt(v, kOneExponentBits));
+    auto zero = v == Constant(v, 0.0f);
+    const V lowest = Constant(v, -kMaxFloat), one = Constant(v, 1.0f);
+    return {IfThenElse(zero, lowest, exponent), IfThenElse(zero, one, mantissa),
+            IfThenElse(zero, lowest, PartialPrecision(Log2(v))), one};
+  }
+};
+
+}  // namespace vs11::semantics

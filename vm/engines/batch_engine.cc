@@ -1,0 +1,308 @@
+// The batch engine: the program is compiled once into a plan of kernel steps (vm/engines/batch_plan.h), and
+// Run applies each step to a batch of kBatchSize vertices at a time, structure of arrays. The
+// kernels are compiled for every Highway target, each in its own vm/batch_kernels_<target>.cc (see
+// vm/engines/batch_kernels-inl.h for why), and the best one the CPU supports is chosen when the engine is
+// made (HWY_DYNAMIC_DISPATCH).
+
+// Declare the per-target kernel tables once per Highway target.
+#undef HWY_TARGET_INCLUDE
+#define HWY_TARGET_INCLUDE "vm/engines/batch_engine.cc"
+#include "hwy/foreach_target.h"  // IWYU pragma: keep
+
+#include "hwy/highway.h"
+#include "vm/engines/batch_plan.h"
+
+namespace vs11::batch {
+namespace HWY_NAMESPACE {
+const KernelTable* GetKernelTable();  // defined by vm/batch_kernels_<target>.cc
+}  // namespace HWY_NAMESPACE
+}  // namespace vs11::batch
+
+#if HWY_ONCE
+
+#include <algorithm>
+#include <bit>
+#include <cassert>
+#include <cstdint>
+#include <cstring>
+#include <thread>
+#include <utility>
+#include <vector>
+
+#include "hwy/aligned_allocator.h"
+#include "hwy/cache_control.h"
+#include "vm/engines/batch_engine.h"
+#include "vm/engines/jit_compiler.h"
+
+namespace vs11 {
+namespace batch {
+
+// Every target Highway compiles for needs its vm/batch_kernels_<target>.cc.
+static_assert((HWY_TARGETS & ~(HWY_SCALAR | HWY_EMU128 | HWY_SSSE3 | HWY_SSE4 | HWY_AVX2 | HWY_AVX3)) == 0,
+              "add a vm/batch_kernels_<target>.cc for the new Highway target");
+HWY_EXPORT(GetKernelTable);
+
+namespace {
+
+// Below this many vertices per thread, starting a thread (tens of microseconds) costs more than it
+// saves.
+constexpr std::size_t kMinVerticesPerThread = 16384;
+
+// Floats from one arena lane to the next: a batch plus one cache line, so that lanes do not sit a
+// multiple of 4 KiB apart (loads would then wait on unrelated stores: "4K aliasing").
+constexpr std::size_t kFloatsPerCacheLine = 64 / sizeof(float);
+constexpr std::size_t kLaneStride = kBatchSize + kFloatsPerCacheLine;
+
+constexpr std::size_t RoundUp(std::size_t value, std::size_t multiple) {
+  return (value + multiple - 1) / multiple * multiple;
+}
+
+void FillLane(float* lane, std::size_t count, float value) {
+  if (std::bit_cast<std::uint32_t>(value) == 0) {
+    std::memset(lane, 0, count * sizeof(float));  // +0.0f: the C library's widest stores
+  } else {
+    std::fill_n(lane, count, value);
+  }
+}
+
+// The state one thread runs batches with: the lane table and the lanes the engine owns (the plan's
+// arena lanes, then a padded copy of each input and output lane for a batch shorter than kBatchSize).
+struct Workspace {
+  explicit Workspace(const BatchPlan& plan)
+      : arena_lanes(plan.arena_lanes),
+        arena(hwy::AllocateAligned<float>(
+            (plan.arena_lanes + plan.input_lanes.size() + plan.output_lanes.size()) * kLaneStride)),
+        address(hwy::AllocateAligned<std::int32_t>(kBatchSize)),
+        read_lanes(kArenaLaneBase + plan.arena_lanes, nullptr),
+        write_lanes(kArenaLaneBase + plan.arena_lanes, nullptr),
+        input_arrays(plan.input_lanes.size(), nullptr),
+        output_arrays(plan.output_lanes.size(), nullptr) {
+    unstored.reserve(4 * kOutputSlotCount);
+    std::fill_n(arena.get(), (plan.arena_lanes + input_arrays.size() + output_arrays.size()) * kLaneStride, 0.0f);
+    std::fill_n(ArenaLane(kOneLane - kArenaLaneBase), kBatchSize, 1.0f);
+    for (int lane = 0; lane < plan.arena_lanes; ++lane) {
+      read_lanes[kArenaLaneBase + lane] = write_lanes[kArenaLaneBase + lane] = ArenaLane(lane);
+    }
+  }
+
+  float* ArenaLane(std::size_t lane) { return arena.get() + lane * kLaneStride; }
+  float* InputCopy(std::size_t k) { return ArenaLane(arena_lanes + k); }
+  float* OutputCopy(std::size_t k) { return ArenaLane(arena_lanes + input_arrays.size() + k); }
+  void ReserveSpill(std::size_t floats) {
+    if (floats <= spill_floats) return;
+    spill = hwy::AllocateAligned<float>(floats);
+    spill_floats = floats;
+  }
+
+  std::size_t arena_lanes;
+  hwy::AlignedFreeUniquePtr<float[]> spill;  // the compiled program's spilled registers
+  std::size_t spill_floats = 0;
+  hwy::AlignedFreeUniquePtr<float[]> arena;
+  hwy::AlignedFreeUniquePtr<std::int32_t[]> address;
+  std::vector<const float*> read_lanes;
+  std::vector<float*> write_lanes;
+  // Per Run: the caller's array behind each plan input and output lane, nullptr when absent.
+  std::vector<const float*> input_arrays;
+  std::vector<float*> output_arrays;
+  // Per Run: output lanes no instruction stores, with the value they keep (filled batch by batch).
+  std::vector<std::pair<float*, float>> unstored;
+};
+
+class BatchEngine final : public Engine {
+ public:
+  BatchEngine(const Program& program, const ConstantBank& api_constants, const EngineOptions& options,
+              bool compile_program)
+      : program_(program),
+        plan_(BuildBatchPlan(program, *HWY_DYNAMIC_DISPATCH(GetKernelTable)())),
+        written_(WrittenOutputLanes(program)),
+        threads_(static_cast<std::size_t>(std::max(1, options.threads))),
+        isa_(options.jit_isa) {
+    if (compile_program) {
+      std::string why_not;
+      variants_.emplace_back(std::vector<jit::UniformInput>{}, jit::Compile(program, why_not, options.jit_isa));
+      if (variants_.back().second) {
+        compiled_ = variants_.back().second.get();
+      } else {
+        variants_.clear();
+      }
+    }
+    SetConstants(api_constants);
+  }
+
+  void SetConstants(const ConstantBank& api_constants) override {
+    const ConstantBank bank = ApplyDefinitions(program_, api_constants);
+    const int rows = std::max(bank.size(), plan_.max_static_constant + 1);
+    constants_.assign(4 * static_cast<std::size_t>(kFirstConstantRow + rows), 0.0f);
+    for (int reg = 0; reg < bank.size(); ++reg) {
+      for (int c = 0; c < 4; ++c) constants_[ConstantIndex(reg, c)] = bank[reg][c];
+    }
+    constant_count_ = bank.size();
+  }
+
+  void Run(const VertexArrays& inputs, VertexArrays& outputs) override {
+    const std::size_t count = inputs.count();
+    assert(outputs.count() >= count);
+    if (count == 0) return;
+
+    const std::size_t threads = std::min(threads_, std::max<std::size_t>(1, count / kMinVerticesPerThread));
+    if (compiled_) SelectCompiled(inputs);
+    while (workspaces_.size() < threads) workspaces_.emplace_back(plan_);
+    for (std::size_t t = 0; t < threads && compiled_; ++t) workspaces_[t].ReserveSpill(compiled_->spill_floats());
+    // Taking the output lanes writes `outputs`' bookkeeping: done here, before any thread starts.
+    for (std::size_t t = 0; t < threads; ++t) BindOutputs(workspaces_[t], outputs);
+    if (threads == 1) {
+      RunRange(workspaces_[0], inputs, 0, count);
+      return;
+    }
+    // Contiguous ranges of whole batches, so only the last range has a short batch.
+    const std::size_t per_thread = RoundUp((count + threads - 1) / threads, kBatchSize);
+    std::vector<std::thread> workers;
+    for (std::size_t t = 1; t < threads && t * per_thread < count; ++t) {
+      const std::size_t begin = t * per_thread, end = std::min(count, begin + per_thread);
+      workers.emplace_back([this, t, begin, end, &inputs] { RunRange(workspaces_[t], inputs, begin, end); });
+    }
+    RunRange(workspaces_[0], inputs, 0, std::min(count, per_thread));
+    for (std::thread& worker : workers) worker.join();
+  }
+
+ private:
+  // The compiled program for this run's inputs: the input lanes that hold one value throughout
+  // (absent registers' defaults, lanes VertexArrays::FillUniform filled) are compiled in, not read.
+  void SelectCompiled(const VertexArrays& inputs) {
+    std::vector<jit::UniformInput> uniform;
+    for (const std::uint16_t lane : plan_.input_lanes) {
+      const int reg = (lane - kInputLaneBase) / 4, c = (lane - kInputLaneBase) % 4;
+      if (!inputs.has(reg)) {
+        uniform.push_back({reg, c, kDefaultInput[c]});
+      } else if (const std::optional<float> value = inputs.uniform(reg, c)) {
+        uniform.push_back({reg, c, *value});
+      }
+    }
+    for (const auto& [key, compiled] : variants_) {
+      if (key == uniform) {
+        compiled_ = compiled.get();
+        return;
+      }
+    }
+    std::string why_not;
+    std::unique_ptr<jit::CompiledProgram> compiled = jit::Compile(program_, why_not, isa_, uniform);
+    if (!compiled) return;  // keep the one that reads every lane
+    if (variants_.size() == kMaxVariants) variants_.erase(variants_.begin() + 1);  // the first reads every lane
+    variants_.emplace_back(std::move(uniform), std::move(compiled));
+    compiled_ = variants_.back().second.get();
+  }
+
+  // Absent outputs go to scratch, in every batch.
+  void BindOutputs(Workspace& workspace, VertexArrays& outputs) const {
+    for (std::size_t k = 0; k < plan_.output_lanes.size(); ++k) {
+      const std::uint16_t lane = plan_.output_lanes[k];
+      const int slot = (lane - kOutputLaneBase) / 4, c = (lane - kOutputLaneBase) % 4;
+      workspace.output_arrays[k] = outputs.has(slot) ? outputs.lane(slot, c) : nullptr;
+      if (!outputs.has(slot)) workspace.read_lanes[lane] = workspace.write_lanes[lane] = workspace.OutputCopy(k);
+    }
+
+    // Output lanes no instruction stores keep the reference engine's initial value (written unless
+    // the lane is known to hold it already).
+    workspace.unstored.clear();
+    for (int slot = 0; slot < kOutputSlotCount; ++slot) {
+      if (!outputs.has(slot)) continue;
+      const Vec4f initial = written_[slot].bits() ? Vec4f{} : UnwrittenOutputValue(slot);
+      for (int c = 0; c < 4; ++c) {
+        if (plan_.stored_lanes[slot] & (1 << c)) continue;
+        const std::optional<float> holds = outputs.uniform(slot, c);
+        if (holds && std::bit_cast<std::uint32_t>(*holds) == std::bit_cast<std::uint32_t>(initial[c])) continue;
+        workspace.unstored.emplace_back(outputs.lane(slot, c), initial[c]);
+      }
+    }
+  }
+
+  void RunRange(Workspace& workspace, const VertexArrays& inputs, std::size_t begin, std::size_t end) const {
+    // Absent inputs read (0, 0, 0, 1), in every batch.
+    for (std::size_t k = 0; k < plan_.input_lanes.size(); ++k) {
+      const std::uint16_t lane = plan_.input_lanes[k];
+      const int reg = (lane - kInputLaneBase) / 4, c = (lane - kInputLaneBase) % 4;
+      workspace.input_arrays[k] = inputs.has(reg) ? inputs.lane(reg, c) : nullptr;
+      if (!inputs.has(reg)) workspace.read_lanes[lane] = workspace.read_lanes[kDefaultInput[c] == 0.0f ? kZeroLane : kOneLane];
+    }
+
+    Frame frame{workspace.read_lanes.data(), workspace.write_lanes.data(), constants_.data(),
+                workspace.address.get(), constant_count_, 0};
+    // The kernels go through L1-sized batches; the compiled loop keeps its values in registers and
+    // takes every whole granule at once, when it reads and writes only the caller's arrays (an absent
+    // input's constant lane and an absent output's scratch lane hold one batch). A short rest runs on
+    // padded copies.
+    // (The compiled program reads no absent input: their values are compiled in.)
+    const bool whole_range =
+        compiled_ && std::ranges::none_of(workspace.output_arrays, [](const float* a) { return a == nullptr; });
+    for (std::size_t start = begin, n = 0; start < end; start += n) {
+      const std::size_t left = end - start;
+      bool full;
+      if (whole_range && left >= kVertexGranule) {
+        n = left - left % kVertexGranule;
+        full = true;
+      } else {
+        n = std::min(kBatchSize, left);
+        full = n == kBatchSize;
+      }
+      for (std::size_t k = 0; k < plan_.input_lanes.size(); ++k) {
+        const float* array = workspace.input_arrays[k];
+        if (array == nullptr) continue;
+        if (!full) std::memcpy(workspace.InputCopy(k), array + start, n * sizeof(float));
+        workspace.read_lanes[plan_.input_lanes[k]] = full ? array + start : workspace.InputCopy(k);
+      }
+      for (std::size_t k = 0; k < plan_.output_lanes.size(); ++k) {
+        float* array = workspace.output_arrays[k];
+        if (array == nullptr) continue;
+        float* target = full ? array + start : workspace.OutputCopy(k);
+        workspace.read_lanes[plan_.output_lanes[k]] = workspace.write_lanes[plan_.output_lanes[k]] = target;
+      }
+      // The caller's arrays stream from memory: ask for the next batch while this one computes.
+      if (!whole_range && start + kBatchSize < end) {
+        for (const float* array : workspace.input_arrays) {
+          if (array == nullptr) continue;
+          for (std::size_t k = 0; k < kBatchSize; k += kFloatsPerCacheLine) hwy::Prefetch(array + start + kBatchSize + k);
+        }
+      }
+      frame.count = RoundUp(n, kVertexGranule);
+      if (compiled_) {
+        compiled_->Run({.read_lanes = frame.read_lanes, .write_lanes = frame.write_lanes, .constants = frame.constants,
+                        .count = frame.count, .literals = nullptr, .spill = workspace.spill.get(),
+                        .constant_count = frame.constant_count});
+      } else {
+        for (const Step& step : plan_.steps) step.kernel(step, frame);
+      }
+      for (const auto& [array, value] : workspace.unstored) FillLane(array + start, n, value);
+      if (full) continue;
+      for (std::size_t k = 0; k < plan_.output_lanes.size(); ++k) {
+        float* array = workspace.output_arrays[k];
+        if (array != nullptr) std::memcpy(array + start, workspace.OutputCopy(k), n * sizeof(float));
+      }
+    }
+  }
+
+  Program program_;
+  BatchPlan plan_;
+  std::array<WriteMask, kOutputSlotCount> written_;
+  std::size_t threads_;
+  std::vector<float> constants_;
+  std::int32_t constant_count_ = 0;
+  // Compiled programs by the input lanes compiled in as constants (the first: none); null
+  // compiled_: the plan's kernels run the program.
+  static constexpr std::size_t kMaxVariants = 8;
+  JitIsa isa_;
+  std::vector<std::pair<std::vector<jit::UniformInput>, std::unique_ptr<jit::CompiledProgram>>> variants_;
+  const jit::CompiledProgram* compiled_ = nullptr;
+  std::vector<Workspace> workspaces_;
+};
+
+}  // namespace
+}  // namespace batch
+
+std::unique_ptr<Engine> MakeBatchEngine(const Program& program, const ConstantBank& api_constants,
+                                        const EngineOptions& options, bool compile_program) {
+  return std::make_unique<batch::BatchEngine>(program, api_constants, options, compile_program);
+}
+
+}  // namespace vs11
+
+#endif  // HWY_ONCE

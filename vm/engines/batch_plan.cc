@@ -1,0 +1,367 @@
+#include "vm/engines/batch_plan.h"
+
+#include <algorithm>
+#include <cassert>
+#include <cstring>
+#include <optional>
+#include <span>
+
+#include "vm/engines/reference_engine.h"
+
+namespace vs11::batch {
+
+void CopyKernel(const Step& step, const Frame& frame) {
+  std::memcpy(frame.write_lanes[step.dest[0]], frame.read_lanes[step.sources[0][0].index],
+              frame.count * sizeof(float));
+}
+
+// Rare (one step per `mov a0.x`), so it calls the reference engine's conversion rather than a copy
+// of it: floor, clamp to +-2^20, NaN to -2^20.
+void AddressKernel(const Step& step, const Frame& frame) {
+  const float* value = frame.read_lanes[step.sources[0][0].index];
+  for (std::size_t i = 0; i < frame.count; ++i) frame.address[i] = AddressFromFloat(value[i]);
+}
+
+namespace {
+
+constexpr int kMaxSources = 3;
+constexpr int kMaxRows = 4;  // matrix rows, and rows one dot step computes
+
+constexpr Operand ArrayOperand(int lane) { return Operand{static_cast<std::uint32_t>(lane), true}; }
+constexpr Operand ZeroOperand() { return Operand{kZeroConstant, false}; }
+
+constexpr OperandKind KindOf(const Operand& operand, bool negate) {
+  if (!operand.is_array) return OperandKind::kBroadcast;
+  return negate ? OperandKind::kNegatedArray : OperandKind::kArray;
+}
+
+// Gives a group of operands that one kernel loads alike a single kind. Only statically-zero operands
+// (an unwritten temporary lane, a register past the end of its file) can be broadcasts next to arrays
+// in one group: they become reads of the zero lane, which negates to -0 just as a broadcast 0 does.
+OperandKind UnifyKind(std::span<Operand* const> operands, bool negate) {
+  bool any_array = false, any_broadcast = false;
+  for (const Operand* operand : operands) (operand->is_array ? any_array : any_broadcast) = true;
+  if (any_array && any_broadcast) {
+    for (Operand* operand : operands) {
+      if (operand->is_array) continue;
+      assert(operand->index == kZeroConstant);
+      *operand = ArrayOperand(kZeroLane);
+    }
+  }
+  if (!any_array) return OperandKind::kBroadcast;
+  return negate ? OperandKind::kNegatedArray : OperandKind::kArray;
+}
+
+Step CopyStep(std::uint16_t from, std::uint16_t to) {
+  Step step;
+  step.kernel = &CopyKernel;
+  step.sources[0][0] = ArrayOperand(from);
+  step.dest[0] = to;
+  return step;
+}
+
+class PlanBuilder {
+ public:
+  explicit PlanBuilder(const KernelTable& kernels) : kernels_(kernels) {
+    for (auto& reg : temp_lanes_) reg.fill(kNoLane);
+    for (auto& source : gather_lanes_) {
+      for (auto& row : source) row.fill(kNoLane);
+    }
+  }
+
+  BatchPlan Build(const Program& program) {
+    for (const Instruction& instruction : program.instructions) Compile(instruction);
+    for (int lane = 0; lane < 4 * kInputRegisterCount; ++lane) {
+      if (inputs_read_[lane]) plan_.input_lanes.push_back(static_cast<std::uint16_t>(InputLane(0, 0) + lane));
+    }
+    for (int slot = 0; slot < kOutputSlotCount; ++slot) {
+      for (int c = 0; c < 4; ++c) {
+        if (plan_.stored_lanes[slot] & (1 << c)) plan_.output_lanes.push_back(static_cast<std::uint16_t>(OutputLane(slot, c)));
+      }
+    }
+    return std::move(plan_);
+  }
+
+ private:
+  std::uint16_t NewArenaLane() { return static_cast<std::uint16_t>(kArenaLaneBase + plan_.arena_lanes++); }
+  std::uint16_t TempLane(int reg, int component) {
+    std::uint16_t& lane = temp_lanes_[reg][component];
+    if (lane == kNoLane) lane = NewArenaLane();
+    return lane;
+  }
+  std::uint16_t GatherLane(int source, int row, int component) {
+    std::uint16_t& lane = gather_lanes_[source][row][component];
+    if (lane == kNoLane) lane = NewArenaLane();
+    return lane;
+  }
+  std::uint16_t AddressValueLane() {
+    if (address_value_lane_ == kNoLane) address_value_lane_ = NewArenaLane();
+    return address_value_lane_;
+  }
+
+  // Component `component` of register `source.reg` + `row` as the reference engine's ReadRegister
+  // sees it at this point of the program. `slot` and `row` name the gather lanes of a relative read.
+  Operand Resolve(const SourceOperand& source, int slot, int row, int component) {
+    const RegisterRef& reg = source.reg;
+    const int index = reg.index + row;
+    switch (reg.file) {
+      case RegisterFile::kTemp:
+        if (index < 0 || index >= kTempRegisterCount || !temp_written_[index][component]) return ZeroOperand();
+        return ArrayOperand(TempLane(index, component));
+      case RegisterFile::kInput:
+        if (index < 0 || index >= kInputRegisterCount) return ZeroOperand();
+        inputs_read_[4 * index + component] = true;
+        return ArrayOperand(InputLane(index, component));
+      case RegisterFile::kConst:
+        if (reg.relative && address_written_) {
+          gathers_[slot][row] |= static_cast<std::uint8_t>(1 << component);
+          gather_base_[slot][row] = index;
+          return ArrayOperand(GatherLane(slot, row, component));
+        }
+        // Before any write to a0 a relative read uses a0 = 0 (VertexState::a0 starts at 0).
+        if (index < 0) return ZeroOperand();
+        plan_.max_static_constant = std::max(plan_.max_static_constant, index);
+        return Operand{ConstantIndex(index, component), false};
+      default:
+        return ZeroOperand();  // outputs and a0 read as 0 (the validator rejects such sources)
+    }
+  }
+
+  // The lanes an instruction stores, by component (kNoLane where the mask, the register file or a
+  // matrix's row count leaves the component alone), as the reference engine's StoreDest.
+  std::array<std::uint16_t, 4> DestLanes(const DestOperand& dest, int lane_count) {
+    std::array<std::uint16_t, 4> lanes = {kNoLane, kNoLane, kNoLane, kNoLane};
+    const RegisterRef& reg = dest.reg;
+    std::optional<int> slot = OutputSlotOf(reg);
+    for (int c = 0; c < lane_count; ++c) {
+      if (!dest.mask.has(c)) continue;
+      if (reg.file == RegisterFile::kTemp) {
+        if (reg.index >= 0 && reg.index < kTempRegisterCount) lanes[c] = TempLane(reg.index, c);
+      } else if (reg.file == RegisterFile::kAddress) {
+        if (c == 0) lanes[c] = AddressValueLane();
+      } else if (slot) {
+        lanes[c] = static_cast<std::uint16_t>(OutputLane(*slot, c));
+        plan_.stored_lanes[*slot] |= static_cast<std::uint8_t>(1 << c);
+      }
+    }
+    return lanes;
+  }
+
+  void Compile(const Instruction& instruction) {
+    const OpcodeInfo& info = instruction.info();
+    if (!info.is_executable() || info.kind == ResultKind::kNoResult) return;
+    const int lane_count = info.kind == ResultKind::kMatrix ? info.matrix_rows : 4;
+    const std::array<std::uint16_t, 4> dest = DestLanes(instruction.dest, lane_count);
+    if (std::all_of(dest.begin(), dest.end(), [](std::uint16_t lane) { return lane == kNoLane; })) return;
+
+    gathers_ = {};
+    steps_.clear();
+    switch (info.kind) {
+      case ResultKind::kComponentwise: CompileComponentwise(instruction, dest); break;
+      case ResultKind::kScalar: CompileScalar(instruction, dest); break;
+      case ResultKind::kDotProduct:
+      case ResultKind::kMatrix: CompileDot(instruction, dest); break;
+      case ResultKind::kVector: CompileVector(instruction, dest); break;
+      case ResultKind::kNoResult: break;
+    }
+    if (!steps_.empty()) {
+      EmitGathers();
+      plan_.steps.insert(plan_.steps.end(), steps_.begin(), steps_.end());
+      fusable_dot_ = fusable_candidate_;
+    }
+    fusable_candidate_ = false;
+
+    if (instruction.dest.reg.file == RegisterFile::kAddress && dest[0] != kNoLane) {
+      Step step;
+      step.kernel = &AddressKernel;
+      step.sources[0][0] = ArrayOperand(dest[0]);
+      plan_.steps.push_back(step);
+      address_written_ = true;
+      fusable_dot_ = false;
+    }
+    if (instruction.dest.reg.file == RegisterFile::kTemp) {
+      for (int c = 0; c < 4; ++c) {
+        if (dest[c] != kNoLane) temp_written_[instruction.dest.reg.index][c] = true;
+      }
+    }
+  }
+
+  void EmitGathers() {
+    for (int slot = 0; slot < kMaxSources; ++slot) {
+      for (int row = 0; row < kMaxRows; ++row) {
+        if (gathers_[slot][row] == 0) continue;
+        Step step;
+        step.kernel = kernels_.gather;
+        step.base = gather_base_[slot][row];
+        for (int c = 0; c < 4; ++c) {
+          if (gathers_[slot][row] & (1 << c)) step.dest[c] = gather_lanes_[slot][row][c];
+        }
+        plan_.steps.push_back(step);
+        fusable_dot_ = false;
+      }
+    }
+  }
+
+  // One step for all written lanes; its kernel loads every source of a vertex group before storing,
+  // so a destination that is also a source (add r0, r0.yzwx, r0) needs no copy.
+  void CompileComponentwise(const Instruction& instruction, const std::array<std::uint16_t, 4>& dest) {
+    const int arity = instruction.info().source_count();
+    Step step;
+    int lanes = 0;
+    for (int lane = 0; lane < 4; ++lane) {
+      if (dest[lane] == kNoLane) continue;
+      for (int s = 0; s < arity; ++s) {
+        const SourceOperand& source = instruction.sources[s];
+        step.sources[s][lanes] = Resolve(source, s, 0, source.swizzle[lane]);
+      }
+      step.dest[lanes++] = dest[lane];
+    }
+    int index = 0;
+    for (int s = 0, scale = 1; s < arity; ++s, scale *= kOperandKinds) {
+      std::array<Operand*, 4> group;
+      for (int l = 0; l < lanes; ++l) group[l] = &step.sources[s][l];
+      step.negate[s] = instruction.sources[s].negate;
+      index += scale * static_cast<int>(UnifyKind(std::span(group.data(), lanes), step.negate[s]));
+    }
+    step.kernel = kernels_.lane[static_cast<int>(instruction.opcode)][lanes - 1][index];
+    steps_.push_back(step);
+  }
+
+  // Computes the value once into the first written lane, then copies it to the others.
+  void AddReplicas(const std::array<std::uint16_t, 4>& dest) {
+    const std::uint16_t first = steps_.back().dest[0];
+    for (std::uint16_t lane : dest) {
+      if (lane != kNoLane && lane != first) steps_.push_back(CopyStep(first, lane));
+    }
+  }
+
+  // The caller has checked that `dest` stores at least one lane.
+  static std::uint16_t FirstLane(const std::array<std::uint16_t, 4>& dest) {
+    for (std::uint16_t lane : dest) {
+      if (lane != kNoLane) return lane;
+    }
+    return kNoLane;
+  }
+
+  void CompileScalar(const Instruction& instruction, const std::array<std::uint16_t, 4>& dest) {
+    const SourceOperand& source = instruction.sources[0];
+    Step step;
+    step.sources[0][0] = Resolve(source, 0, 0, source.swizzle[3]);  // §3.1: the swizzled w lane
+    step.negate[0] = source.negate;
+    step.kernel = kernels_.scalar[static_cast<int>(instruction.opcode)]
+                                 [static_cast<int>(KindOf(step.sources[0][0], source.negate))];
+    step.dest[0] = FirstLane(dest);
+    steps_.push_back(step);
+    AddReplicas(dest);
+  }
+
+  // dp3/dp4 (one row, replicated) and m*x* (a row per written lane) share the dot kernels. A dp that
+  // follows another dot step with the same vector operand joins it as one more row, so the vector is
+  // loaded once (the paper's three `dp4 r1.c, v0, c#` become one m4x3-like step).
+  void CompileDot(const Instruction& instruction, const std::array<std::uint16_t, 4>& dest) {
+    const OpcodeInfo& info = instruction.info();
+    const int width = info.dot_width;
+    const SourceOperand& vector = instruction.sources[0];
+    const SourceOperand& matrix = instruction.sources[1];
+    Step step;
+    std::array<Operand*, 4 * kMaxRows> group;
+    for (int c = 0; c < width; ++c) {
+      step.sources[0][c] = Resolve(vector, 0, 0, vector.swizzle[c]);
+      group[c] = &step.sources[0][c];
+    }
+    step.negate[0] = vector.negate;
+    const OperandKind vector_kind = UnifyKind(std::span(group.data(), width), vector.negate);
+
+    const bool is_matrix = info.kind == ResultKind::kMatrix;
+    int rows = 0;
+    for (int row = 0; row < (is_matrix ? info.matrix_rows : 1); ++row) {
+      const std::uint16_t lane = is_matrix ? dest[row] : FirstLane(dest);
+      if (lane == kNoLane) continue;
+      for (int c = 0; c < width; ++c) {
+        step.sources[1 + rows][c] = Resolve(matrix, 1, row, matrix.swizzle[c]);
+        group[rows * width + c] = &step.sources[1 + rows][c];
+      }
+      step.negate[1 + rows] = matrix.negate;
+      step.dest[rows++] = lane;
+    }
+    const OperandKind row_kind = UnifyKind(std::span(group.data(), rows * width), matrix.negate);
+    const int kinds = static_cast<int>(vector_kind) + kOperandKinds * static_cast<int>(row_kind);
+
+    const bool single = !is_matrix && std::count(dest.begin(), dest.end(), kNoLane) == 3 &&
+                        instruction.dest.reg.file != RegisterFile::kAddress;
+    if (single && TryJoinPreviousDot(step, width, kinds)) return;
+    step.kernel = kernels_.dot[width - 3][rows - 1][kinds];
+    steps_.push_back(step);
+    fusable_candidate_ = true;
+    fusable_width_ = width;
+    fusable_rows_ = rows;
+    fusable_kinds_ = kinds;
+    if (!is_matrix) {
+      AddReplicas(dest);
+      fusable_candidate_ = std::count(dest.begin(), dest.end(), kNoLane) == 3 &&
+                           instruction.dest.reg.file != RegisterFile::kAddress;
+    }
+  }
+
+  bool TryJoinPreviousDot(const Step& step, int width, int kinds) {
+    if (!fusable_dot_ || gathers_ != decltype(gathers_){} || fusable_rows_ >= kMaxRows) return false;
+    Step& previous = plan_.steps.back();
+    if (fusable_width_ != width || fusable_kinds_ != kinds || previous.negate[0] != step.negate[0]) return false;
+    for (int c = 0; c < width; ++c) {
+      if (!(previous.sources[0][c] == step.sources[0][c])) return false;
+    }
+    // The joined row reads its sources before the earlier rows store (one kernel loads first), so
+    // it must not read what they write.
+    for (int s = 0; s < 2; ++s) {
+      for (int c = 0; c < width; ++c) {
+        const Operand& operand = step.sources[s][c];
+        for (int row = 0; row < fusable_rows_; ++row) {
+          if (operand.is_array && operand.index == previous.dest[row]) return false;
+        }
+      }
+    }
+    previous.sources[1 + fusable_rows_] = step.sources[1];
+    previous.negate[1 + fusable_rows_] = step.negate[1];
+    previous.dest[fusable_rows_] = step.dest[0];
+    ++fusable_rows_;
+    previous.kernel = kernels_.dot[width - 3][fusable_rows_ - 1][kinds];
+    fusable_candidate_ = true;
+    return true;
+  }
+
+  void CompileVector(const Instruction& instruction, const std::array<std::uint16_t, 4>& dest) {
+    Step step;
+    for (int s = 0; s < instruction.info().source_count(); ++s) {
+      const SourceOperand& source = instruction.sources[s];
+      for (int c = 0; c < 4; ++c) step.sources[s][c] = Resolve(source, s, 0, source.swizzle[c]);
+      step.negate[s] = source.negate;
+    }
+    step.kernel = kernels_.vector[static_cast<int>(instruction.opcode)];
+    step.dest = dest;
+    steps_.push_back(step);
+  }
+
+  const KernelTable& kernels_;
+  BatchPlan plan_;
+  std::vector<Step> steps_;  // the current instruction's steps, after its gathers
+  std::array<std::array<bool, 4>, kTempRegisterCount> temp_written_{};
+  std::array<std::array<std::uint16_t, 4>, kTempRegisterCount> temp_lanes_;
+  std::array<std::array<std::array<std::uint16_t, 4>, kMaxRows>, kMaxSources> gather_lanes_;
+  std::array<std::array<std::uint8_t, kMaxRows>, kMaxSources> gathers_{};  // components to gather
+  std::array<std::array<int, kMaxRows>, kMaxSources> gather_base_{};
+  std::uint16_t address_value_lane_ = kNoLane;
+  bool address_written_ = false;
+  std::array<bool, 4 * kInputRegisterCount> inputs_read_{};
+  // The last step is a dot step another dp may join (see CompileDot).
+  bool fusable_dot_ = false;
+  bool fusable_candidate_ = false;
+  int fusable_width_ = 0, fusable_rows_ = 0, fusable_kinds_ = 0;
+};
+
+}  // namespace
+
+BatchPlan BuildBatchPlan(const Program& program, const KernelTable& kernels) {
+  return PlanBuilder(kernels).Build(program);
+}
+
+}  // namespace vs11::batch

@@ -1,0 +1,522 @@
+#include "vm/engines/jit_compiler.h"
+
+#include <algorithm>
+#include <array>
+#include <bit>
+#include <cstddef>
+#include <cstdint>
+#include <cstring>
+#include <limits>
+#include <map>
+#include <tuple>
+
+#include <xbyak/xbyak.h>
+#include <xbyak/xbyak_util.h>
+
+#include "vm/core/machine.h"
+#include "vm/engines/batch_plan.h"
+#include "vm/engines/jit_graph.h"
+
+namespace vs11::jit {
+namespace {
+
+// ---- register allocation and code --------------------------------------------------------------------
+
+// The one thing that differs between the instruction sets: how wide a vector is and how many there are.
+// The graph, the allocator and the schedule are the same; Emitter picks the encodings.
+struct VectorShape {
+  JitIsa isa;
+  int lanes;      // floats per vector register
+  int registers;  // vector registers
+  int bytes() const { return 4 * lanes; }
+};
+constexpr VectorShape kAvx2Shape{JitIsa::kAvx2, 8, 16};
+constexpr VectorShape kAvx512Shape{JitIsa::kAvx512, 16, 32};
+constexpr int kMaxVectorRegisters = 32;
+
+bool Rematerializable(Op op) {
+  return op == Op::kInput || op == Op::kConstant || op == Op::kLiteral || op == Op::kConstantCount;
+}
+
+class Emitter : public Xbyak::CodeGenerator {
+ public:
+  // `hoisted`: how many of the most used constants are loaded into registers once, before the loop,
+  // leaving the others to the values computed in it.
+  // `trial_buffer`: generate into this buffer (code_size bytes), only to count operations, instead
+  // of into executable pages.
+  Emitter(const std::vector<Node>& nodes, VectorShape shape, int groups, std::size_t code_size, int hoisted,
+          std::uint8_t* trial_buffer = nullptr)
+      // Written, then made read+execute (never writable and executable at once).
+      : Xbyak::CodeGenerator(code_size, trial_buffer != nullptr ? trial_buffer : Xbyak::DontSetProtectRWE),
+        nodes_(nodes),
+        shape_(shape),
+        wide_(shape.isa == JitIsa::kAvx512),
+        groups_(groups),
+        trial_(trial_buffer != nullptr),
+        spill_slot_(nodes.size(), -1),
+        hoisted_(static_cast<std::size_t>(hoisted)) {}
+
+  // Emits the whole function; the literal pool and the spill size are known afterwards.
+  // `streaming_stores`: outputs are stored around the caches (vmovntps; every output lane aligned
+  // to a vector), for calls whose outputs do not fit in them.
+  void Generate(bool streaming_stores = false) {
+    streaming_stores_ = streaming_stores;
+    const Registers& r = regs_;
+    FindUses();
+    const std::vector<int> pointer_lanes = KeepLanePointers();
+    for (std::size_t k = 0; k < pointer_lanes.size(); ++k) push(kLanePointerRegisters[k]);
+    mov(r.read_lanes, ptr[r.arguments + offsetof(RunArguments, read_lanes)]);
+    mov(r.write_lanes, ptr[r.arguments + offsetof(RunArguments, write_lanes)]);
+    mov(r.constants, ptr[r.arguments + offsetof(RunArguments, constants)]);
+    mov(r.end, ptr[r.arguments + offsetof(RunArguments, count)]);
+    shl(r.end, 2);
+    mov(r.literals, ptr[r.arguments + offsetof(RunArguments, literals)]);
+    mov(r.spill, ptr[r.arguments + offsetof(RunArguments, spill)]);
+    for (std::size_t k = 0; k < pointer_lanes.size(); ++k) {
+      const int lane = pointer_lanes[k];
+      mov(kLanePointerRegisters[k], ptr[(IsStoreLane(lane) ? r.write_lanes : r.read_lanes) + 8 * LaneIndex(lane)]);
+    }
+    HoistConstants();
+    loop_memory_operations_ = 0;  // the body's from here
+    xor_(r.offset, r.offset);
+    Xbyak::Label loop;
+    L(loop);
+    for (std::size_t n = 0; n < nodes_.size(); ++n) {
+      if (live_[n]) Emit(static_cast<int>(n));
+    }
+    add(r.offset, shape_.bytes() * groups_);
+    cmp(r.offset, r.end);
+    jb(loop, T_NEAR);
+    if (streaming_stores_) sfence();  // ordered before whatever tells another thread we are done
+    vzeroupper();
+    for (std::size_t k = pointer_lanes.size(); k-- > 0;) pop(kLanePointerRegisters[k]);
+    ret();
+    if (!trial_) setProtectModeRE();
+  }
+
+  const std::vector<float>& literals() const { return literals_; }
+  int spill_slots() const { return spill_slots_; }
+  VectorShape shape() const { return shape_; }
+  int groups() const { return groups_; }
+  int spilled_values() const { return spilled_values_; }
+  int spilled_masks() const { return spilled_masks_; }
+  std::size_t hoisted() const { return hoisted_; }  // after Generate: at most the constants there are
+  // Loads and stores in the loop body: what the number of hoisted constants is chosen by.
+  int loop_memory_operations() const { return loop_memory_operations_; }
+
+ private:
+  // Lane keys: loads and stores go through different tables, so a stored lane is told apart.
+  static constexpr int kStoreLaneFlag = 1 << 16;
+  static bool IsStoreLane(int key) { return (key & kStoreLaneFlag) != 0; }
+  static int LaneIndex(int key) { return key & (kStoreLaneFlag - 1); }
+  static int LaneKey(const Node& node) {
+    return static_cast<int>(node.immediate & kLaneMask) | (node.op == Op::kStore ? kStoreLaneFlag : 0);
+  }
+  // Callee-saved registers (pushed and popped), each holding one lane's address for the whole call.
+  inline static const std::array<Xbyak::Reg64, 6> kLanePointerRegisters = {
+      Xbyak::Reg64(Xbyak::Operand::RBX), Xbyak::Reg64(Xbyak::Operand::RBP), Xbyak::Reg64(Xbyak::Operand::R12),
+      Xbyak::Reg64(Xbyak::Operand::R13), Xbyak::Reg64(Xbyak::Operand::R14), Xbyak::Reg64(Xbyak::Operand::R15)};
+
+  // Chooses the lanes whose addresses live in registers (the most used ones); returns their keys.
+  std::vector<int> KeepLanePointers() {
+    std::map<int, int> uses;
+    for (std::size_t n = 0; n < nodes_.size(); ++n) {
+      const Node& node = nodes_[n];
+      if (!live_[n] || (node.op != Op::kInput && node.op != Op::kStore)) continue;
+      uses[LaneKey(node)] += std::max<int>(1, static_cast<int>(uses_[n].size()));
+    }
+    std::vector<std::pair<int, int>> by_use;
+    for (const auto& [key, count] : uses) by_use.emplace_back(count, key);
+    std::stable_sort(by_use.begin(), by_use.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+    std::vector<int> keys;
+    for (const auto& [count, key] : by_use) {
+      if (keys.size() == kLanePointerRegisters.size()) break;
+      lane_pointer_[key] = kLanePointerRegisters[keys.size()];
+      keys.push_back(key);
+    }
+    return keys;
+  }
+
+  // The address of this vertex group in a lane, loading the lane's address into `lane` if needed.
+  Xbyak::RegExp LaneAddress(const Node& node) {
+    const int group_offset = shape_.bytes() * static_cast<int>(node.immediate >> kGroupShift);
+    const auto it = lane_pointer_.find(LaneKey(node));
+    if (it != lane_pointer_.end()) return it->second + regs_.offset + group_offset;
+    ++loop_memory_operations_;
+    mov(regs_.lane, ptr[(node.op == Op::kStore ? regs_.write_lanes : regs_.read_lanes) + 8 * (node.immediate & kLaneMask)]);
+    return regs_.lane + regs_.offset + group_offset;
+  }
+
+  // Loads the most used constants into the top registers before the loop, for good.
+  void HoistConstants() {
+    std::vector<std::pair<int, int>> by_use;  // (uses, node)
+    for (std::size_t n = 0; n < nodes_.size(); ++n) {
+      const Op op = nodes_[n].op;
+      if (live_[n] && op != Op::kInput && Rematerializable(op)) by_use.emplace_back(uses_[n].size(), n);
+    }
+    std::stable_sort(by_use.begin(), by_use.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
+    hoisted_ = std::min(hoisted_, by_use.size());
+    available_registers_ = shape_.registers - static_cast<int>(hoisted_);
+    for (std::size_t k = 0; k < hoisted_; ++k) {
+      const int value = by_use[k].second;
+      Materialize(value, shape_.registers - 1 - static_cast<int>(k));
+      pinned_values_.push_back(value);
+    }
+  }
+  bool Hoisted(int value) const {
+    return std::find(pinned_values_.begin(), pinned_values_.end(), value) != pinned_values_.end();
+  }
+
+  void FindUses() {
+    live_.assign(nodes_.size(), false);
+    uses_.assign(nodes_.size(), {});
+    for (std::size_t n = nodes_.size(); n-- > 0;) {
+      if (nodes_[n].op == Op::kStore) live_[n] = true;
+      if (!live_[n]) continue;
+      for (int arg : nodes_[n].args) {
+        if (arg != kNoArg) live_[static_cast<std::size_t>(arg)] = true;
+      }
+    }
+    for (std::size_t n = 0; n < nodes_.size(); ++n) {
+      if (!live_[n]) continue;
+      for (int arg : nodes_[n].args) {
+        if (arg != kNoArg) uses_[static_cast<std::size_t>(arg)].push_back(static_cast<int>(n));
+      }
+    }
+    register_value_.fill(kNoArg);
+    where_.assign(nodes_.size(), kNoArg);
+  }
+
+  // The position of the next use of `value` after `position`, or "never".
+  int NextUse(int value, int position) const {
+    const std::vector<int>& uses = uses_[static_cast<std::size_t>(value)];
+    const auto it = std::upper_bound(uses.begin(), uses.end(), position);
+    return it == uses.end() ? std::numeric_limits<int>::max() : *it;
+  }
+
+  // A free register for `value`, evicting the value used farthest in the future (not one of `pinned`):
+  // a vector register, or for an AVX-512 mask a mask register.
+  int TakeRegister(int value, int position, const std::array<int, 3>& pinned) {
+    const bool mask = InMaskRegister(value);
+    const int first = mask ? kFirstMaskRegister : 0;
+    const int end = mask ? kMaskRegisterEnd : available_registers_;
+    for (int reg = first; reg < end; ++reg) {
+      if (register_value_[reg] == kNoArg) return reg;
+    }
+    int victim = -1, farthest = -1;
+    for (int reg = first; reg < end; ++reg) {
+      const int held = register_value_[reg];
+      if (std::find(pinned.begin(), pinned.end(), held) != pinned.end()) continue;
+      const int next = NextUse(held, position);
+      if (next > farthest) farthest = next, victim = reg;
+    }
+    const int held = register_value_[victim];
+    if (!Rematerializable(nodes_[static_cast<std::size_t>(held)].op) && spill_slot_[held] < 0) {
+      spill_slot_[held] = spill_slots_++;
+      ++spilled_values_;
+      spilled_masks_ += mask ? 1 : 0;
+      ++loop_memory_operations_;
+      const Xbyak::Address slot = ptr[regs_.spill + shape_.bytes() * spill_slot_[held]];
+      mask ? kmovw(slot, K(victim)) : vmovups(slot, V(victim));
+    }
+    where_[held] = kNoArg;
+    register_value_[victim] = kNoArg;
+    return victim;
+  }
+
+  // Loads a rematerializable or spilled value into `reg`.
+  void Materialize(int value, int reg) {
+    const Node& node = nodes_[static_cast<std::size_t>(value)];
+    ++loop_memory_operations_;
+    const Xbyak::Address spilled = ptr[regs_.spill + shape_.bytes() * spill_slot_[value]];
+    switch (node.op) {
+      case Op::kInput: vmovups(V(reg), ptr[LaneAddress(node)]); break;
+      case Op::kConstant: vbroadcastss(V(reg), ptr[regs_.constants + 4 * node.immediate]); break;
+      case Op::kLiteral: vbroadcastss(V(reg), ptr[regs_.literals + 4 * LiteralIndex(node.immediate)]); break;
+      case Op::kConstantCount: vpbroadcastd(V(reg), ptr[regs_.arguments + offsetof(RunArguments, constant_count)]); break;
+      default: InMaskRegister(value) ? kmovw(K(reg), spilled) : vmovups(V(reg), spilled); break;
+    }
+    where_[value] = reg;
+    register_value_[reg] = value;
+  }
+
+  int LiteralIndex(std::uint32_t bits) {
+    const auto it = literal_index_.find(bits);
+    if (it != literal_index_.end()) return it->second;
+    literals_.push_back(std::bit_cast<float>(bits));
+    return literal_index_[bits] = static_cast<int>(literals_.size()) - 1;
+  }
+
+  void Emit(int n) {
+    const Node& node = nodes_[static_cast<std::size_t>(n)];
+    if (Rematerializable(node.op)) return;  // loaded where it is used
+    // Operands into registers.
+    std::array<int, 3> in = {0, 0, 0};  // registers
+    for (int a = 0; a < 3; ++a) {
+      const int arg = node.args[a];
+      if (arg == kNoArg) continue;
+      if (where_[arg] == kNoArg) Materialize(arg, TakeRegister(arg, n, node.args));
+      in[a] = where_[arg];
+    }
+    if (node.op == Op::kGather) {
+      EmitGather(n, V(in[0]));
+      return;
+    }
+    // Operands used for the last time give their registers up before the result takes one.
+    for (int arg : node.args) {
+      if (arg != kNoArg && where_[arg] != kNoArg && !Hoisted(arg) && NextUse(arg, n) == std::numeric_limits<int>::max()) {
+        register_value_[where_[arg]] = kNoArg;
+        where_[arg] = kNoArg;
+      }
+    }
+    if (node.op == Op::kStore) {
+      ++loop_memory_operations_;
+      streaming_stores_ ? vmovntps(ptr[LaneAddress(node)], V(in[0])) : vmovups(ptr[LaneAddress(node)], V(in[0]));
+      return;
+    }
+    if (uses_[static_cast<std::size_t>(n)].empty()) return;
+    const int reg = TakeRegister(n, n, {kNoArg, kNoArg, kNoArg});
+    where_[n] = reg;
+    register_value_[reg] = n;
+    EmitOperation(node, reg, in);
+  }
+
+  // The operation itself, on registers `in` into `out`. AVX-512 keeps masks in mask registers, which
+  // selects use directly, and has no VEX-only forms (vroundps, vblendvps, vpand): the EVEX
+  // equivalents compute the same bits.
+  void EmitOperation(const Node& node, int out, const std::array<int, 3>& in) {
+    const Xbyak::Xmm a = V(in[0]), b = V(in[1]), c = V(in[2]), result = V(out);
+    const auto compare = [&](std::uint8_t predicate) {
+      wide_ ? vcmpps(K(out), a, b, predicate) : vcmpps(result, a, b, predicate);
+    };
+    switch (node.op) {
+      case Op::kAdd: vaddps(result, a, b); break;
+      case Op::kSub: vsubps(result, a, b); break;
+      case Op::kMul: vmulps(result, a, b); break;
+      case Op::kDiv: vdivps(result, a, b); break;
+      // Toward -inf, no precision exception.
+      case Op::kFloor: wide_ ? vrndscaleps(result, a, 0x09) : vroundps(result, a, 0x09); break;
+      case Op::kSqrt: vsqrtps(result, a); break;
+      // Ordered predicates: false when either side is NaN, as the C++ comparisons.
+      case Op::kLess: compare(0x11); break;          // LT_OQ
+      case Op::kGreater: compare(0x1E); break;       // GT_OQ
+      case Op::kGreaterEqual: compare(0x1D); break;  // GE_OQ
+      case Op::kEqual: compare(0x00); break;         // EQ_OQ
+      case Op::kUnordered: compare(0x03); break;     // UNORD_Q
+      case Op::kIntGreater: wide_ ? vpcmpgtd(K(out), a, b) : vpcmpgtd(result, a, b); break;
+      case Op::kMaskAnd: wide_ ? kandw(K(out), K(in[0]), K(in[1])) : vpand(result, a, b); break;
+      case Op::kSelect:  // mask ? yes : no
+        wide_ ? vblendmps(result | K(in[0]), c, b) : vblendvps(result, c, b, a);
+        break;
+      case Op::kSelectZero: wide_ ? vmovdqa32(result | K(in[0]) | T_z, b) : vpand(result, a, b); break;
+      case Op::kIntAdd: vpaddd(result, a, b); break;
+      case Op::kIntSub: vpsubd(result, a, b); break;
+      case Op::kAnd: wide_ ? vpandd(result, a, b) : vpand(result, a, b); break;
+      case Op::kOr: wide_ ? vpord(result, a, b) : vpor(result, a, b); break;
+      case Op::kXor: wide_ ? vpxord(result, a, b) : vpxor(result, a, b); break;
+      case Op::kShiftLeft: vpslld(result, a, static_cast<std::uint8_t>(node.immediate)); break;
+      case Op::kShiftRight: vpsrad(result, a, static_cast<std::uint8_t>(node.immediate)); break;
+      case Op::kToInt: vcvttps2dq(result, a); break;
+      case Op::kToFloat: vcvtdq2ps(result, a); break;
+      case Op::kInput: case Op::kConstant: case Op::kLiteral: case Op::kConstantCount: case Op::kGather:
+      case Op::kStore: break;  // handled by Emit
+    }
+  }
+
+  // vgatherdps wants its result and index in different registers and clears its mask (with AVX2 a
+  // third vector register, with AVX-512 k1), so the result and the mask are taken while the index
+  // still holds its register.
+  void EmitGather(int n, const Xbyak::Xmm& index) {
+    const Node& node = nodes_[static_cast<std::size_t>(n)];
+    const int index_value = node.args[0];
+    const int reg = TakeRegister(n, n, node.args);
+    where_[n] = reg;
+    register_value_[reg] = n;
+    const Xbyak::Address address = ptr[regs_.constants + index * 4 + 4 * static_cast<int>(node.immediate)];
+    if (wide_) {
+      kxnorw(k1, k1, k1);
+      vgatherdps(V(reg) | k1, address);
+    } else {
+      const Xbyak::Xmm mask = V(TakeRegister(n, n, {index_value, n, kNoArg}));
+      vpcmpeqd(mask, mask, mask);
+      vgatherdps(V(reg), address, mask);
+    }
+    ++loop_memory_operations_;
+    if (!Hoisted(index_value) && NextUse(index_value, n) == std::numeric_limits<int>::max()) {
+      register_value_[where_[index_value]] = kNoArg;
+      where_[index_value] = kNoArg;
+    }
+    if (uses_[static_cast<std::size_t>(n)].empty()) {
+      register_value_[reg] = kNoArg;
+      where_[n] = kNoArg;
+    }
+  }
+
+  // rdi: the RunArguments (System V's first argument); the others hold its fields, all scratch
+  // registers of the ABI. `offset` walks the batch in bytes up to `end`; `lane` holds a lane's address.
+  struct Registers {
+    Xbyak::Reg64 arguments, read_lanes, write_lanes, constants, literals, spill, offset, end, lane;
+  };
+  // Vector register `reg` at the shape's width.
+  Xbyak::Xmm V(int reg) const { return wide_ ? Xbyak::Xmm(Xbyak::Zmm(reg)) : Xbyak::Xmm(Xbyak::Ymm(reg)); }
+  // Register numbers from kMaskRegisterBase on are AVX-512's mask registers: k2..k7 hold masks (k0
+  // cannot mask an operation, k1 is the gathers' scratch).
+  static constexpr int kMaskRegisterBase = kMaxVectorRegisters;
+  static constexpr int kFirstMaskRegister = kMaskRegisterBase + 2;
+  static constexpr int kMaskRegisterEnd = kMaskRegisterBase + 8;
+  static Xbyak::Opmask K(int reg) { return Xbyak::Opmask(reg - kMaskRegisterBase); }
+  bool InMaskRegister(int value) const { return wide_ && IsMask(nodes_[static_cast<std::size_t>(value)].op); }
+
+  const std::vector<Node>& nodes_;
+  const VectorShape shape_;
+  const bool wide_;   // AVX-512
+  const int groups_;  // vertex groups (a vector each) per iteration
+  const bool trial_;
+  bool streaming_stores_ = false;
+  const Registers regs_{rdi, rsi, rdx, rcx, r8, r9, r10, r11, rax};
+  std::vector<bool> live_;
+  std::vector<std::vector<int>> uses_;
+  std::vector<int> where_;  // register of each value, kNoArg when not in one
+  std::array<int, kMaskRegisterEnd> register_value_{};  // value in each register, by number
+  std::vector<int> spill_slot_;
+  int spill_slots_ = 0;
+  int spilled_values_ = 0;
+  int spilled_masks_ = 0;
+  std::vector<float> literals_;
+  std::map<std::uint32_t, int> literal_index_;
+  std::size_t hoisted_;
+  int available_registers_ = 0;  // the shape's registers less the hoisted constants
+  std::vector<int> pinned_values_;
+  std::map<int, Xbyak::Reg64> lane_pointer_;  // by lane key
+  int loop_memory_operations_ = 0;
+};
+
+class AvxProgram final : public CompiledProgram {
+ public:
+  using Function = void (*)(const RunArguments*);
+
+  // The same loop twice: with cached stores and with streaming ones.
+  AvxProgram(std::unique_ptr<Emitter> cached, std::unique_ptr<Emitter> streaming, std::vector<int> stored_lanes)
+      : cached_(std::move(cached)),
+        streaming_(std::move(streaming)),
+        literals_(cached_->literals()),
+        spill_floats_(static_cast<std::size_t>(cached_->spill_slots()) * static_cast<std::size_t>(cached_->shape().lanes)),
+        stored_lanes_(std::move(stored_lanes)) {}
+
+  void Run(RunArguments arguments) const override {
+    arguments.literals = literals_.data();
+    const Emitter& emitter = Streams(arguments) ? *streaming_ : *cached_;
+    emitter.getCode<Function>()(&arguments);
+  }
+  std::size_t spill_floats() const override { return spill_floats_; }
+  std::span<const std::uint8_t> code() const override { return {cached_->getCode(), cached_->getSize()}; }
+  int spilled_values() const override { return cached_->spilled_values(); }
+  int spilled_masks() const override { return cached_->spilled_masks(); }
+  JitIsa isa() const override { return cached_->shape().isa; }
+  int vertices_per_iteration() const override { return cached_->shape().lanes * cached_->groups(); }
+
+ private:
+  // Large outputs, every lane aligned as vmovntps requires.
+  bool Streams(const RunArguments& arguments) const {
+    if (arguments.count * sizeof(float) * stored_lanes_.size() < kStreamingOutputBytes) return false;
+    const auto alignment = static_cast<std::uintptr_t>(cached_->shape().bytes());
+    return std::ranges::all_of(stored_lanes_, [&](int lane) {
+      return reinterpret_cast<std::uintptr_t>(arguments.write_lanes[lane]) % alignment == 0;
+    });
+  }
+
+  std::unique_ptr<Emitter> cached_, streaming_;
+  std::vector<float> literals_;
+  std::size_t spill_floats_;
+  std::vector<int> stored_lanes_;  // lane table indices
+};
+
+// Bytes of code per traced node, generously: an operation is one or two instructions, a reload or
+// spill adds one or two more (each at most 11 bytes).
+constexpr std::size_t kCodeBytesPerNode = 48;
+constexpr std::size_t kCodeBytesFixed = 512;
+// Vector registers always left to the loop's values (the others may hold constants for good).
+constexpr int kMinLoopRegisters = 4;
+// A program whose longest chain of dependent operations is at least this long (exp, log and lit's
+// series) runs several vertex groups per iteration, interleaved instruction by instruction, so that
+// the CPU has independent work while a chain waits on its latencies.
+constexpr int kLongChain = 24;
+
+
+}  // namespace
+
+std::vector<JitIsa> SupportedIsas() {
+  static const std::vector<JitIsa> supported = [] {
+    const Xbyak::util::Cpu cpu;
+    std::vector<JitIsa> isas;
+    if (!cpu.has(Xbyak::util::Cpu::tAVX2)) return isas;
+    isas.push_back(JitIsa::kAvx2);
+    // Everything the emitter uses at 512 bits (mask registers as words included) is AVX512F.
+    if (cpu.has(Xbyak::util::Cpu::tAVX512F)) isas.push_back(JitIsa::kAvx512);
+    return isas;
+  }();
+  return supported;
+}
+
+std::string_view IsaName(JitIsa isa) {
+  switch (isa) {
+    case JitIsa::kBest: return "best";
+    case JitIsa::kAvx2: return "avx2";
+    case JitIsa::kAvx512: return "avx512";
+  }
+  return "best";
+}
+
+std::unique_ptr<CompiledProgram> Compile(const Program& program, std::string& why_not, JitIsa isa,
+                                         std::span<const UniformInput> uniform_inputs) {
+  const std::vector<JitIsa> supported = SupportedIsas();
+  if (supported.empty()) {
+    why_not = "the CPU has no AVX2";
+    return nullptr;
+  }
+  if (isa == JitIsa::kBest) isa = supported.back();
+  if (std::ranges::find(supported, isa) == supported.end()) {
+    why_not = isa == JitIsa::kAvx512 ? "the CPU has no AVX-512 (F)" : "the CPU lacks the instruction set";
+    return nullptr;
+  }
+  const VectorShape shape = isa == JitIsa::kAvx512 ? kAvx512Shape : kAvx2Shape;
+  Graph graph = TraceProgram(program, 1, uniform_inputs);
+  int groups = 1;
+  // Two groups, with AVX2 or AVX-512: four groups of 16 spilled more than they hid (measured on
+  // all_instructions, 1.6 vs 2.8 ms per 65536 vertices), and one group of 16 was slower still.
+  if (LongestChain(graph) >= kLongChain) {
+    groups = 2;
+    graph = TraceProgram(program, groups, uniform_inputs);
+  }
+  static_assert(batch::kVertexGranule % 64 == 0, "an iteration takes at most 64 vertices");
+  try {
+    // Each constant kept in a register saves a load per iteration but takes a register from the
+    // loop's values, which may then be reloaded or spilled more: the count with the fewest loads
+    // and stores in the loop wins (code generation takes microseconds).
+    const std::size_t code_size = kCodeBytesFixed + kCodeBytesPerNode * graph.nodes().size();
+    std::vector<std::uint8_t> trial_buffer(code_size);
+    int best_hoisted = 0, fewest = std::numeric_limits<int>::max();
+    for (int hoisted = 0; hoisted <= shape.registers - kMinLoopRegisters && hoisted <= best_hoisted + 2; ++hoisted) {
+      Emitter trial(graph.nodes(), shape, groups, code_size, hoisted, trial_buffer.data());
+      trial.Generate();
+      if (trial.loop_memory_operations() < fewest) fewest = trial.loop_memory_operations(), best_hoisted = hoisted;
+      if (trial.hoisted() < static_cast<std::size_t>(hoisted)) break;  // no constants left to keep
+    }
+    auto cached = std::make_unique<Emitter>(graph.nodes(), shape, groups, code_size, best_hoisted);
+    cached->Generate();
+    auto streaming = std::make_unique<Emitter>(graph.nodes(), shape, groups, code_size, best_hoisted);
+    streaming->Generate(/*streaming_stores=*/true);
+    std::vector<int> stored_lanes;
+    for (const Node& node : graph.nodes()) {
+      if (node.op == Op::kStore) stored_lanes.push_back(static_cast<int>(node.immediate & kLaneMask));
+    }
+    std::ranges::sort(stored_lanes);
+    stored_lanes.erase(std::unique(stored_lanes.begin(), stored_lanes.end()), stored_lanes.end());
+    return std::make_unique<AvxProgram>(std::move(cached), std::move(streaming), std::move(stored_lanes));
+  } catch (const Xbyak::Error& error) {
+    why_not = std::string("code generation failed: ") + error.what();
+    return nullptr;
+  }
+}
+
+}  // namespace vs11::jit

@@ -1,0 +1,264 @@
+#include "vm/engines/jit_graph.h"
+
+#include <algorithm>
+#include <array>
+#include <bit>
+#include <cstdint>
+#include <limits>
+#include <optional>
+
+#include "vm/core/machine.h"
+#include "vm/core/semantics.h"
+#include "vm/engines/batch_plan.h"
+#include "vm/engines/reference_engine.h"
+
+namespace vs11::jit {
+namespace {
+
+// The graph being traced (TraceProgram sets it for its duration; tracing is single-threaded per call).
+thread_local Graph* tracing = nullptr;
+
+int Trace(Op op, int a = kNoArg, int b = kNoArg, int c = kNoArg, std::uint32_t immediate = 0) {
+  return tracing->Add(op, {a, b, c}, immediate);
+}
+
+// The lane types vm/core/semantics.h is instantiated with: handles to graph nodes, typed so that float,
+// integer and mask operations resolve as they do for float/int32/bool and Highway vectors.
+struct Float {
+  int id = kNoArg;
+};
+struct Int {
+  int id = kNoArg;
+};
+struct Mask {
+  int id = kNoArg;
+};
+
+inline Float operator+(Float a, Float b) { return {Trace(Op::kAdd, a.id, b.id)}; }
+inline Float operator-(Float a, Float b) { return {Trace(Op::kSub, a.id, b.id)}; }
+inline Float operator*(Float a, Float b) { return {Trace(Op::kMul, a.id, b.id)}; }
+inline Float operator/(Float a, Float b) { return {Trace(Op::kDiv, a.id, b.id)}; }
+inline Mask operator<(Float a, Float b) { return {Trace(Op::kLess, a.id, b.id)}; }
+inline Mask operator>(Float a, Float b) { return {Trace(Op::kGreater, a.id, b.id)}; }
+inline Mask operator>=(Float a, Float b) { return {Trace(Op::kGreaterEqual, a.id, b.id)}; }
+inline Mask operator==(Float a, Float b) { return {Trace(Op::kEqual, a.id, b.id)}; }
+inline Int operator+(Int a, Int b) { return {Trace(Op::kIntAdd, a.id, b.id)}; }
+inline Int operator-(Int a, Int b) { return {Trace(Op::kIntSub, a.id, b.id)}; }
+inline Int operator&(Int a, Int b) { return {Trace(Op::kAnd, a.id, b.id)}; }
+inline Int operator|(Int a, Int b) { return {Trace(Op::kOr, a.id, b.id)}; }
+
+inline Float Constant(Float, float value) { return {Trace(Op::kLiteral, kNoArg, kNoArg, kNoArg, std::bit_cast<std::uint32_t>(value))}; }
+inline Int ConstantInt(Float, std::int32_t value) {
+  return {Trace(Op::kLiteral, kNoArg, kNoArg, kNoArg, static_cast<std::uint32_t>(value))};
+}
+inline Int BitsOf(Float x) { return {x.id}; }
+inline Float FloatFromBits(Int x) { return {x.id}; }
+inline Float Floor(Float x) { return {Trace(Op::kFloor, x.id)}; }
+inline Float Sqrt(Float x) { return {Trace(Op::kSqrt, x.id)}; }
+inline Float Abs(Float x) { return FloatFromBits(BitsOf(x) & ConstantInt(x, 0x7FFFFFFF)); }
+inline Mask IsNaN(Float x) { return {Trace(Op::kUnordered, x.id, x.id)}; }
+inline Float IfThenElse(Mask condition, Float yes, Float no) { return {Trace(Op::kSelect, condition.id, yes.id, no.id)}; }
+inline Int ToInt(Float x) { return {Trace(Op::kToInt, x.id)}; }
+inline Float ToFloat(Int x) { return {Trace(Op::kToFloat, x.id)}; }
+template <int kBits>
+Int ShiftLeft(Int x) { return {Trace(Op::kShiftLeft, x.id, kNoArg, kNoArg, kBits)}; }
+template <int kBits>
+Int ShiftRight(Int x) { return {Trace(Op::kShiftRight, x.id, kNoArg, kNoArg, kBits)}; }
+inline Mask operator>(Int a, Int b) { return {Trace(Op::kIntGreater, a.id, b.id)}; }
+inline Mask operator&(Mask a, Mask b) { return {Trace(Op::kMaskAnd, a.id, b.id)}; }
+inline Int IfThenElseZero(Mask condition, Int value) { return {Trace(Op::kSelectZero, condition.id, value.id)}; }
+inline Int LiteralInt(std::int32_t value) { return ConstantInt(Float{}, value); }
+
+// -x as the reference engine negates: the sign bit flipped, NaNs included.
+inline Float Negate(Float x) {
+  return {Trace(Op::kXor, x.id, ConstantInt(x, std::numeric_limits<std::int32_t>::min()).id)};
+}
+
+using Vec4F = semantics::Vec4<Float>;
+
+
+class Tracer {
+ public:
+  Tracer(int group, std::span<const UniformInput> uniform_inputs)
+      : group_(static_cast<std::uint32_t>(group) << kGroupShift), uniform_inputs_(uniform_inputs) {
+    const Float zero = Zero();
+    for (auto& temp : temps_) temp.fill(zero);
+  }
+
+  void Trace(const Instruction& instruction) {
+    switch (instruction.opcode) {
+#define VS11_JIT_TRACE_CASE(name, ...) \
+  case Opcode::k##name: Execute<semantics::name##Semantics>(instruction); break;
+      VS11_OPCODES(VS11_JIT_TRACE_CASE)
+#undef VS11_JIT_TRACE_CASE
+    }
+  }
+
+  // A store of every output lane the program wrote, with its final value.
+  void StoreOutputs() {
+    for (int slot = 0; slot < kOutputSlotCount; ++slot) {
+      for (int c = 0; c < 4; ++c) {
+        if (outputs_[slot][c].id != kNoArg) {
+          jit::Trace(Op::kStore, outputs_[slot][c].id, kNoArg, kNoArg,
+                     static_cast<std::uint32_t>(batch::OutputLane(slot, c)) | group_);
+        }
+      }
+    }
+  }
+
+ private:
+  static Float Zero() { return Constant(Float{}, 0.0f); }
+
+  // c[a0.x + index] of every vertex, component by component (the batch engine's GatherKernel):
+  // registers outside the bank read row 0 of the constant table, which holds zeros.
+  Vec4F Gather(long index) const {
+    const Int register_index = address_ + LiteralInt(static_cast<std::int32_t>(index));
+    const Int count = {jit::Trace(Op::kConstantCount)};
+    const Mask in_range = (register_index > LiteralInt(-1)) & (count > register_index);
+    const Int row = IfThenElseZero(in_range, register_index + LiteralInt(batch::kFirstConstantRow));
+    const Int offset = ShiftLeft<2>(row);
+    Vec4F value;
+    for (int c = 0; c < 4; ++c) {
+      value[c] = {jit::Trace(Op::kGather, offset.id, kNoArg, kNoArg, static_cast<std::uint32_t>(c))};
+    }
+    return value;
+  }
+
+  // a0.x = AddressFromFloat(x), in the reference engine's order of tests (NaN fails both).
+  static Int AddressFrom(Float x) {
+    const Float whole = Floor(x);
+    const Float limit = Constant(x, static_cast<float>(kAddressLimit));
+    const Float below = IfThenElse(whole < limit, whole, limit);
+    return ToInt(IfThenElse(whole > Constant(x, -static_cast<float>(kAddressLimit)), below,
+                            Constant(x, -static_cast<float>(kAddressLimit))));
+  }
+
+  Vec4F ReadRegister(const RegisterRef& reg, int row) const {
+    const long index = static_cast<long>(reg.index) + row;
+    Vec4F value;
+    value.fill(Zero());
+    switch (reg.file) {
+      case RegisterFile::kConst:
+        if (reg.relative && address_written_) return Gather(index);
+        if (index < 0) break;  // before any write a0 is 0
+        for (int c = 0; c < 4; ++c) {
+          value[c] = {jit::Trace(Op::kConstant, kNoArg, kNoArg, kNoArg, batch::ConstantIndex(static_cast<int>(index), c))};
+        }
+        break;
+      case RegisterFile::kTemp:
+        if (index < kTempRegisterCount) value = temps_[static_cast<std::size_t>(index)];
+        break;
+      case RegisterFile::kInput:
+        if (index >= kInputRegisterCount) break;
+        for (int c = 0; c < 4; ++c) {
+          const auto uniform = std::ranges::find_if(uniform_inputs_, [&](const UniformInput& u) {
+            return u.reg == index && u.component == c;
+          });
+          value[c] = uniform != uniform_inputs_.end()
+                         ? Constant(Float{}, uniform->value)
+                         : Float{jit::Trace(Op::kInput, kNoArg, kNoArg, kNoArg,
+                                            static_cast<std::uint32_t>(batch::InputLane(static_cast<int>(index), c)) | group_)};
+        }
+        break;
+      default: break;  // outputs and a0 are not readable
+    }
+    return value;
+  }
+
+  Vec4F Fetch(const SourceOperand& source, int row) const {
+    const Vec4F base = ReadRegister(source.reg, row);
+    Vec4F value;
+    for (int lane = 0; lane < 4; ++lane) {
+      const Float v = base[source.swizzle[lane]];
+      value[lane] = source.negate ? Negate(v) : v;
+    }
+    return value;
+  }
+
+  void Store(const DestOperand& dest, const Vec4F& value, int lane_count) {
+    Vec4F* target = nullptr;
+    if (dest.reg.file == RegisterFile::kAddress) {
+      if (dest.mask.has(0)) {
+        address_ = AddressFrom(value[0]);
+        address_written_ = true;
+      }
+      return;
+    }
+    if (dest.reg.file == RegisterFile::kTemp) {
+      if (dest.reg.index < kTempRegisterCount) target = &temps_[static_cast<std::size_t>(dest.reg.index)];
+    } else if (std::optional<int> slot = OutputSlotOf(dest.reg)) {
+      target = &outputs_[static_cast<std::size_t>(*slot)];
+    }
+    if (target == nullptr) return;
+    for (int lane = 0; lane < lane_count; ++lane) {
+      if (dest.mask.has(lane)) (*target)[lane] = value[lane];
+    }
+  }
+
+  static Float DotOfWidth(int width, const Vec4F& a, const Vec4F& b) {
+    return width == 3 ? semantics::Dot<Float, 3>(a, b) : semantics::Dot<Float, 4>(a, b);
+  }
+
+  template <class Semantics>
+  void Execute(const Instruction& instruction) {
+    const OpcodeInfo& info = instruction.info();
+    std::array<Vec4F, 3> src{};
+    for (int s = 0; s < info.source_count(); ++s) src[s] = Fetch(instruction.sources[s], 0);
+    Vec4F result;
+    int lane_count = 4;
+    if constexpr (requires(Float v) { Semantics::Lane(v, v, v); }) {
+      for (int lane = 0; lane < 4; ++lane) result[lane] = Semantics::Lane(src[0][lane], src[1][lane], src[2][lane]);
+    } else if constexpr (requires(Float v) { Semantics::Scalar(v); }) {
+      result.fill(Semantics::Scalar(src[0][3]));
+    } else if constexpr (requires(Vec4F v) { Semantics::Vector(v, v); }) {
+      result = Semantics::Vector(src[0], src[1]);
+    } else if (info.kind == ResultKind::kDotProduct) {
+      result.fill(DotOfWidth(info.dot_width, src[0], src[1]));
+    } else if (info.kind == ResultKind::kMatrix) {
+      for (int row = 0; row < info.matrix_rows; ++row) {
+        result[row] = DotOfWidth(info.dot_width, src[0], Fetch(instruction.sources[1], row));
+      }
+      lane_count = info.matrix_rows;
+    } else {
+      return;  // nop, dcl, def
+    }
+    Store(instruction.dest, result, lane_count);
+  }
+
+  std::array<Vec4F, kTempRegisterCount> temps_{};
+  std::array<Vec4F, kOutputSlotCount> outputs_{};
+  Int address_;
+  bool address_written_ = false;
+  std::uint32_t group_;
+  std::span<const UniformInput> uniform_inputs_;
+};
+
+}  // namespace
+
+Graph TraceProgram(const Program& program, int groups, std::span<const UniformInput> uniform_inputs) {
+  Graph graph;
+  tracing = &graph;
+  std::vector<Tracer> tracers;
+  for (int group = 0; group < groups; ++group) tracers.emplace_back(group, uniform_inputs);
+  for (const Instruction& instruction : program.instructions) {
+    for (Tracer& tracer : tracers) tracer.Trace(instruction);
+  }
+  for (Tracer& tracer : tracers) tracer.StoreOutputs();
+  tracing = nullptr;
+  return graph;
+}
+
+// Operations on the longest dependency chain.
+int LongestChain(const Graph& graph) {
+  std::vector<int> depth(graph.nodes().size(), 0);
+  int longest = 0;
+  for (std::size_t n = 0; n < graph.nodes().size(); ++n) {
+    for (int arg : graph.nodes()[n].args) {
+      if (arg != kNoArg) depth[n] = std::max(depth[n], depth[static_cast<std::size_t>(arg)] + 1);
+    }
+    longest = std::max(longest, depth[n]);
+  }
+  return longest;
+}
+
+}  // namespace vs11::jit

@@ -1,0 +1,51 @@
+// The scalar reference interpreter: one vertex at a time, float32, exactly the spec's pseudo-code
+// (§3.1: all sources fetched before the masked store). The yardstick every other engine must equal.
+#pragma once
+
+#include <memory>
+
+#include "vm/core/machine.h"
+
+namespace vs11 {
+
+// The complete register state of one vertex while a program runs.
+struct VertexState {
+  std::array<Vec4f, kInputRegisterCount> inputs;
+  std::array<Vec4f, kTempRegisterCount> temps{};
+  std::array<Vec4f, kOutputSlotCount> outputs{};
+  int a0 = 0;
+};
+
+// a0.x = floor(x) (§1.5). NaN and values beyond +-2^20 become +-2^20, which puts every relative read
+// out of range, so it reads 0 (the bank holds at most 2048 registers).
+inline constexpr int kAddressLimit = 1 << 20;
+int AddressFromFloat(float x);
+
+// Sees the register state around every instruction RunVertex executes (the shader debugger in
+// vm/engines/trace.h). It only observes: the arithmetic stays in vm/core/semantics.h, run by RunVertex.
+class InstructionObserver {
+ public:
+  virtual ~InstructionObserver() = default;
+  virtual void Before(int instruction_index, const VertexState& state) = 0;
+  virtual void After(int instruction_index, const VertexState& state) = 0;
+};
+
+// Runs `program` (def constants already folded into `constants`) on one vertex.
+void RunVertex(const Program& program, const ConstantBank& constants, VertexState& state,
+               InstructionObserver* observer = nullptr);
+
+// Vertex `vertex` of `inputs` loaded into `state` as the engine starts it: unsupplied inputs read
+// kDefaultInput, temporaries and a0 0, outputs the program never writes UnwrittenOutputValue
+// (`written` = WrittenOutputLanes(program)).
+void StartVertex(const VertexArrays& inputs, std::size_t vertex, const std::array<WriteMask, kOutputSlotCount>& written,
+                 VertexState& state);
+
+// What the engine reads for a register (row > 0: the next registers of a matrix operand; relative
+// constants through state.a0; outputs and a0 read 0), and for a source operand after its swizzle and
+// negation.
+Vec4f ReadRegister(const RegisterRef& reg, int row, const ConstantBank& constants, const VertexState& state);
+Vec4f FetchSource(const SourceOperand& source, int row, const ConstantBank& constants, const VertexState& state);
+
+std::unique_ptr<Engine> MakeReferenceEngine(const Program& program, const ConstantBank& api_constants);
+
+}  // namespace vs11

@@ -1,0 +1,473 @@
+#include "vm/io/vertex_io.h"
+
+#include <algorithm>
+#include <cctype>
+#include <charconv>
+#include <cmath>
+#include <filesystem>
+#include <set>
+#include <system_error>
+
+#include <fmt/format.h>
+
+namespace vs11 {
+namespace {
+
+struct Cursor {
+  std::string_view line;
+  std::size_t pos = 0;
+
+  void SkipSeparators() {
+    while (pos < line.size() && (std::isspace(static_cast<unsigned char>(line[pos])) || line[pos] == ',')) ++pos;
+  }
+  bool AtEnd() {
+    SkipSeparators();
+    return pos >= line.size();
+  }
+  int column() const { return static_cast<int>(pos) + 1; }
+  std::optional<float> Number() {
+    SkipSeparators();
+    std::size_t end = pos;
+    while (end < line.size() && !std::isspace(static_cast<unsigned char>(line[end])) && line[end] != ',') ++end;
+    std::string_view token = line.substr(pos, end - pos);
+    if (!token.empty() && (token.back() == 'f' || token.back() == 'F') && token.size() > 1 &&
+        token.find_first_of("xX") == std::string_view::npos) {
+      token.remove_suffix(1);
+    }
+    if (!token.empty() && token.front() == '+') token.remove_prefix(1);
+    float value = 0.0f;
+    auto [ptr, ec] = std::from_chars(token.data(), token.data() + token.size(), value);
+    if (token.empty() || ec != std::errc() || ptr != token.data() + token.size()) return std::nullopt;
+    pos = end;
+    return value;
+  }
+};
+
+std::string_view StripComment(std::string_view line) {
+  for (std::string_view marker : {";", "//", "#"}) {
+    std::size_t at = line.find(marker);
+    if (at != std::string_view::npos) line = line.substr(0, at);
+  }
+  while (!line.empty() && std::isspace(static_cast<unsigned char>(line.back()))) line.remove_suffix(1);
+  return line;
+}
+
+std::vector<std::string_view> SplitLines(std::string_view text) {
+  std::vector<std::string_view> lines;
+  std::size_t start = 0;
+  while (start <= text.size()) {
+    std::size_t end = text.find('\n', start);
+    if (end == std::string_view::npos) end = text.size();
+    std::string_view line = text.substr(start, end - start);
+    if (!line.empty() && line.back() == '\r') line.remove_suffix(1);
+    lines.push_back(line);
+    start = end + 1;
+  }
+  return lines;
+}
+
+// Parses "c12" at the cursor; returns the index or an error text.
+std::optional<int> ConstantRegister(Cursor& cursor, std::string& error) {
+  cursor.SkipSeparators();
+  if (cursor.pos >= cursor.line.size() || std::tolower(static_cast<unsigned char>(cursor.line[cursor.pos])) != 'c') {
+    error = "expected a constant register such as c12";
+    return std::nullopt;
+  }
+  ++cursor.pos;
+  int index = 0;
+  auto [ptr, ec] = std::from_chars(cursor.line.data() + cursor.pos, cursor.line.data() + cursor.line.size(), index);
+  if (ec != std::errc() || ptr == cursor.line.data() + cursor.pos) {
+    error = "expected a register number after 'c'";
+    return std::nullopt;
+  }
+  cursor.pos = static_cast<std::size_t>(ptr - cursor.line.data());
+  return index;
+}
+
+// Reads up to four numbers into `values`; returns an error text on failure.
+std::optional<std::string> ReadValues(Cursor& cursor, Vec4f& values, int& column) {
+  values = {};
+  for (int i = 0; i < 4 && !cursor.AtEnd(); ++i) {
+    column = cursor.column();
+    std::optional<float> number = cursor.Number();
+    if (!number) return "expected a number";
+    values[i] = *number;
+  }
+  column = cursor.column();
+  if (!cursor.AtEnd()) return "more than four values";
+  return std::nullopt;
+}
+
+}  // namespace
+
+void ParseConstantsText(std::string_view text, const std::string& file_name, ConstantBank& bank,
+                        Diagnostics& diagnostics, std::vector<int>* assigned) {
+  std::vector<std::string_view> lines = SplitLines(text);
+  for (std::size_t n = 0; n < lines.size(); ++n) {
+    Cursor cursor{StripComment(lines[n])};
+    if (cursor.AtEnd()) continue;
+    int line_number = static_cast<int>(n) + 1;
+    auto error_at = [&](int column, std::string message) {
+      diagnostics.Error({file_name, line_number, column}, std::move(message));
+    };
+    std::string_view rest = cursor.line.substr(cursor.pos);
+    bool is_def = rest.size() > 3 && (rest.substr(0, 3) == "def" || rest.substr(0, 3) == "DEF") &&
+                  std::isspace(static_cast<unsigned char>(rest[3]));
+    if (is_def) cursor.pos += 3;
+    std::string error;
+    int register_column = (cursor.SkipSeparators(), cursor.column());
+    std::optional<int> index = ConstantRegister(cursor, error);
+    if (!index) {
+      error_at(register_column, error + (is_def ? "" : " (lines are `def c#, x, y, z, w` or `c# = x y z w`)"));
+      continue;
+    }
+    cursor.SkipSeparators();
+    if (!is_def) {
+      if (cursor.pos >= cursor.line.size() || cursor.line[cursor.pos] != '=') {
+        error_at(cursor.column(), "expected '=' after the register");
+        continue;
+      }
+      ++cursor.pos;
+    }
+    Vec4f values;
+    int column = 0;
+    if (std::optional<std::string> value_error = ReadValues(cursor, values, column)) {
+      error_at(column, *value_error);
+      continue;
+    }
+    if (*index < 0 || *index >= bank.size()) {
+      error_at(register_column, fmt::format("c{} is beyond the {} constant registers", *index, bank.size()));
+      continue;
+    }
+    bank[*index] = values;
+    if (assigned) assigned->push_back(*index);
+  }
+}
+
+std::optional<std::string> ParseConstantAssignment(std::string_view text, ConstantBank& bank,
+                                                   std::vector<int>* assigned) {
+  Diagnostics diagnostics;
+  ParseConstantsText(text, "--const", bank, diagnostics, assigned);
+  if (diagnostics.HasErrors()) return diagnostics.all().front().message + " in '" + std::string(text) + "'";
+  return std::nullopt;
+}
+
+namespace {
+
+// A cell as a float: decimal or exponent notation, a leading '+', a C-style trailing 'f', and the
+// special values inf, -inf and nan (the spec's special values must be feedable).
+enum class NumberError { kNone, kNotANumber, kOutOfRange };
+NumberError ParseNumber(std::string_view token, float& value) {
+  while (!token.empty() && std::isspace(static_cast<unsigned char>(token.front()))) token.remove_prefix(1);
+  while (!token.empty() && std::isspace(static_cast<unsigned char>(token.back()))) token.remove_suffix(1);
+  if (!token.empty() && token.front() == '+') token.remove_prefix(1);
+  if (token.empty()) return NumberError::kNotANumber;
+  auto parse = [&value](std::string_view text) {
+    auto [ptr, ec] = std::from_chars(text.data(), text.data() + text.size(), value);
+    if (ptr != text.data() + text.size()) return NumberError::kNotANumber;
+    if (ec == std::errc::result_out_of_range) return NumberError::kOutOfRange;
+    return ec == std::errc() ? NumberError::kNone : NumberError::kNotANumber;
+  };
+  NumberError error = parse(token);
+  if (error == NumberError::kNotANumber && token.size() > 1 && (token.back() == 'f' || token.back() == 'F') &&
+      std::isdigit(static_cast<unsigned char>(token[token.size() - 2]))) {
+    error = parse(token.substr(0, token.size() - 1));
+  }
+  return error;
+}
+
+struct Cell {
+  std::string_view text;
+  int column = 0;  // 1-based
+};
+
+// Cells of a line: separated by `separator` and/or blanks; empty cells between separators skipped.
+std::vector<Cell> SplitCells(std::string_view line, char separator) {
+  std::vector<Cell> cells;
+  std::size_t pos = 0;
+  auto is_separator = [&](char c) { return c == separator || std::isspace(static_cast<unsigned char>(c)); };
+  while (pos < line.size()) {
+    while (pos < line.size() && is_separator(line[pos])) ++pos;
+    std::size_t end = pos;
+    while (end < line.size() && !is_separator(line[end])) ++end;
+    if (end > pos) cells.push_back({line.substr(pos, end - pos), static_cast<int>(pos) + 1});
+    pos = end;
+  }
+  return cells;
+}
+
+// The first bad row is the error; later ones only add to its count, so that a file in the wrong
+// shape gives one message rather than one per row.
+class RowErrors {
+ public:
+  RowErrors(const std::string& file_name, Diagnostics& diagnostics) : file_(file_name), diagnostics_(diagnostics) {}
+  void Add(int line, int column, std::string message) {
+    if (count_++ == 0) first_ = {line, column, std::move(message)};
+  }
+  ~RowErrors() {
+    if (count_ == 0) return;
+    std::string more = count_ > 1 ? fmt::format(" (and {} more bad rows)", count_ - 1) : "";
+    diagnostics_.Error({file_, first_.line, first_.column}, first_.message + more);
+  }
+
+ private:
+  struct First {
+    int line = 0, column = 0;
+    std::string message;
+  };
+  const std::string& file_;
+  Diagnostics& diagnostics_;
+  int count_ = 0;
+  First first_;
+};
+
+// Which lane of the vertex each wanted column fills; empty = the row's first 1-4 numbers.
+struct ColumnChoice {
+  std::vector<std::pair<std::size_t, int>> cell_to_lane;  // (index of the cell in a row, lane)
+};
+
+std::optional<ColumnChoice> ChooseColumns(const std::vector<std::string>& header, std::string_view wanted,
+                                          std::string& error) {
+  auto names = [&header] { return fmt::format("{}", fmt::join(header, ", ")); };
+  if (header.empty()) {
+    error = fmt::format("columns '{}' asked for, but the file has no header row naming its columns", wanted);
+    return std::nullopt;
+  }
+  ColumnChoice choice;
+  bool is_list = wanted.find(',') != std::string_view::npos || wanted.find('.') != std::string_view::npos;
+  if (!is_list) {  // a prefix: NAME.x .. NAME.w go to their lanes
+    for (std::size_t i = 0; i < header.size(); ++i) {
+      for (int lane = 0; lane < 4; ++lane) {
+        if (header[i] == fmt::format("{}.{}", wanted, kLaneLetters[lane])) choice.cell_to_lane.emplace_back(i, lane);
+      }
+    }
+    if (choice.cell_to_lane.empty()) {
+      error = fmt::format("no column is named {}.x, {}.y, {}.z or {}.w (columns: {})", wanted, wanted, wanted, wanted,
+                          names());
+    }
+    return choice.cell_to_lane.empty() ? std::nullopt : std::optional(choice);
+  }
+  std::size_t start = 0;
+  while (start <= wanted.size()) {
+    std::size_t comma = std::min(wanted.find(',', start), wanted.size());
+    std::string_view name = wanted.substr(start, comma - start);
+    auto found = std::find(header.begin(), header.end(), name);
+    if (found == header.end()) {
+      error = fmt::format("no column is named '{}' (columns: {})", name, names());
+      return std::nullopt;
+    }
+    if (choice.cell_to_lane.size() == 4) {
+      error = fmt::format("more than four columns in '{}': a vertex register has four lanes", wanted);
+      return std::nullopt;
+    }
+    choice.cell_to_lane.emplace_back(static_cast<std::size_t>(found - header.begin()),
+                                     static_cast<int>(choice.cell_to_lane.size()));
+    start = comma + 1;
+  }
+  return choice;
+}
+
+}  // namespace
+
+std::vector<Vec4f> ParseVertexCsv(std::string_view text, const std::string& file_name, Diagnostics& diagnostics,
+                                  std::string_view columns) {
+  std::vector<Vec4f> rows;
+  std::vector<std::string_view> lines = SplitLines(text);
+  // The separator: ';' when the first non-empty line holds one, otherwise ',' (blanks and tabs
+  // separate in both). A ';' file often writes decimal commas, which are refused, not misread.
+  char separator = ',';
+  for (std::string_view line : lines) {
+    if (line.find_first_not_of(" \t") == std::string_view::npos) continue;
+    if (line.find(';') != std::string_view::npos) separator = ';';
+    break;
+  }
+  const char other = separator == ';' ? ',' : ';';
+  std::vector<std::string> header;
+  std::optional<ColumnChoice> choice;
+  bool first_row = true;
+  RowErrors errors(file_name, diagnostics);
+  for (std::size_t n = 0; n < lines.size(); ++n) {
+    const int line_number = static_cast<int>(n) + 1;
+    if (std::size_t at = lines[n].find(other); at != std::string_view::npos) {
+      errors.Add(line_number, static_cast<int>(at) + 1,
+                 separator == ';' ? "',' in a ';'-separated file: write decimals with '.' (1.5, not 1,5)"
+                                  : "';' in a ','-separated file: separate every row the same way");
+      continue;
+    }
+    std::vector<Cell> cells = SplitCells(lines[n], separator);
+    if (cells.empty()) continue;
+    std::vector<float> values(cells.size());
+    std::vector<NumberError> cell_errors(cells.size());
+    int numbers = 0;
+    for (std::size_t c = 0; c < cells.size(); ++c) {
+      cell_errors[c] = ParseNumber(cells[c].text, values[c]);
+      numbers += cell_errors[c] == NumberError::kNone;
+    }
+    if (first_row) {
+      first_row = false;
+      if (numbers == 0) {  // a header: names only
+        for (const Cell& cell : cells) header.emplace_back(cell.text);
+        if (!columns.empty()) {
+          std::string error;
+          choice = ChooseColumns(header, columns, error);
+          if (!choice) {
+            diagnostics.Error({file_name, line_number, 1}, error);
+            return {};
+          }
+        }
+        continue;
+      }
+      if (!columns.empty()) {
+        diagnostics.Error({file_name, line_number, 1},
+                          fmt::format("columns '{}' asked for, but the first row is numbers, not a header naming "
+                                      "the columns",
+                                      columns));
+        return {};
+      }
+    }
+    // The cells this row gives the vertex: the chosen columns, or all of them (at most four).
+    std::vector<std::pair<std::size_t, int>> wanted;
+    if (choice) {
+      wanted = choice->cell_to_lane;
+    } else {
+      for (std::size_t c = 0; c < cells.size(); ++c) wanted.emplace_back(c, static_cast<int>(c));
+    }
+    Vec4f row = kDefaultInput;
+    std::optional<std::string> error;
+    int error_column = 1;
+    for (auto [cell, lane] : wanted) {
+      if (cell >= cells.size()) {
+        error = fmt::format("the row has {} cells; column '{}' is cell {}", cells.size(), header[cell], cell + 1);
+        error_column = static_cast<int>(lines[n].size()) + 1;
+      } else if (cell_errors[cell] != NumberError::kNone) {
+        error = cell_errors[cell] == NumberError::kOutOfRange
+                    ? fmt::format("'{}' is beyond the float range", cells[cell].text)
+                    : fmt::format("expected a number, found '{}'", cells[cell].text);
+        error_column = cells[cell].column;
+      } else if (lane >= 4) {
+        error = fmt::format("{} numbers in a row: a vertex register holds at most four; name the columns to read "
+                            "with v#=FILE:NAME (the lanes NAME.x..NAME.w) or v#=FILE:COL1,COL2,...",
+                            cells.size());
+        error_column = cells[cell].column;
+      } else {
+        row[lane] = values[cell];
+        continue;
+      }
+      break;
+    }
+    if (error) {
+      errors.Add(line_number, error_column, std::move(*error));
+    } else {
+      rows.push_back(row);
+    }
+  }
+  return rows;
+}
+
+std::optional<InputSpec> ParseInputSpec(std::string_view flag, std::string& error) {
+  std::size_t equals = flag.find('=');
+  if (equals == std::string_view::npos) {
+    error = fmt::format("'{}': expected v#=FILE.csv or v#=FILE.csv:COLUMNS", flag);
+    return std::nullopt;
+  }
+  std::string_view name = flag.substr(0, equals);
+  int index = -1;
+  if (name.size() >= 2 && (name[0] == 'v' || name[0] == 'V')) {
+    auto [ptr, ec] = std::from_chars(name.data() + 1, name.data() + name.size(), index);
+    if (ec != std::errc() || ptr != name.data() + name.size()) index = -1;
+  }
+  if (index < 0 || index >= kInputRegisterCount) {
+    error = fmt::format("'{}' is not an input register v0-v15", name);
+    return std::nullopt;
+  }
+  InputSpec spec{index, std::string(flag.substr(equals + 1)), ""};
+  // FILE:COLUMNS, unless the whole text names a file (a path may hold ':').
+  std::size_t colon = spec.file.rfind(':');
+  std::error_code ignored;
+  if (colon != std::string::npos && !std::filesystem::exists(spec.file, ignored)) {
+    spec.columns = spec.file.substr(colon + 1);
+    spec.file.resize(colon);
+  }
+  return spec;
+}
+
+std::vector<std::string> UnsetRegisterWarnings(const Program& program, const std::vector<int>& constants_given,
+                                               const std::vector<int>& inputs_given) {
+  std::set<int> defined, constants_read, inputs_read;
+  for (const Instruction& instruction : program.instructions) {
+    const OpcodeInfo& info = instruction.info();
+    if (instruction.opcode == Opcode::kDef) defined.insert(instruction.dest.reg.index);
+    if (!info.is_executable()) continue;
+    for (int s = 0; s < info.source_count(); ++s) {
+      const RegisterRef& reg = instruction.sources[s].reg;
+      // The matrix operand of m*x* reads matrix_rows consecutive registers.
+      const int rows = (s == 1 && info.kind == ResultKind::kMatrix) ? info.matrix_rows : 1;
+      for (int row = 0; row < rows; ++row) {
+        if (reg.file == RegisterFile::kConst && !reg.relative) constants_read.insert(reg.index + row);
+        if (reg.file == RegisterFile::kInput) inputs_read.insert(reg.index + row);
+      }
+    }
+  }
+  const std::set<int> given(constants_given.begin(), constants_given.end());
+  auto names = [](char letter, const std::vector<int>& registers) {
+    std::vector<std::string> out;
+    for (int r : registers) out.push_back(fmt::format("{}{}", letter, r));
+    return fmt::format("{}", fmt::join(out, ", "));
+  };
+  std::vector<int> unset, overridden, missing;
+  for (int c : constants_read) {
+    if (!defined.contains(c) && !given.contains(c)) unset.push_back(c);
+  }
+  for (int c : given) {
+    if (defined.contains(c)) overridden.push_back(c);
+  }
+  for (int v : inputs_read) {
+    if (std::find(inputs_given.begin(), inputs_given.end(), v) == inputs_given.end()) missing.push_back(v);
+  }
+  std::vector<std::string> warnings;
+  if (!unset.empty()) {
+    warnings.push_back(fmt::format("the program reads {}, which no def, --consts or --const sets: {} 0, 0, 0, 0",
+                                   names('c', unset), unset.size() == 1 ? "it reads" : "they read"));
+  }
+  if (!overridden.empty()) {
+    warnings.push_back(fmt::format("the program's def of {} overrides the value given by --consts or --const "
+                                   "(def lines win)",
+                                   names('c', overridden)));
+  }
+  if (!missing.empty()) {
+    warnings.push_back(fmt::format("the program reads {}, which no --input or --sphere supplies: {} 0, 0, 0, 1",
+                                   names('v', missing), missing.size() == 1 ? "it reads" : "they read"));
+  }
+  return warnings;
+}
+
+std::string FormatFloat(float value) {
+  if (std::isnan(value)) return "nan";
+  if (std::isinf(value)) return value > 0 ? "inf" : "-inf";
+  return fmt::format("{}", value);  // fmt prints the shortest round-trip form
+}
+
+std::string FormatOutputCsv(const Program& program, const VertexArrays& outputs, const CsvColumns& prefix) {
+  std::array<WriteMask, kOutputSlotCount> written = WrittenOutputLanes(program);
+  std::vector<std::string> header = prefix.header;
+  std::vector<std::pair<int, int>> columns;
+  for (int slot : outputs.registers()) {
+    for (int lane = 0; lane < 4; ++lane) {
+      if (!written[slot].has(lane)) continue;
+      header.push_back(fmt::format("{}.{}", OutputSlotName(slot), kLaneLetters[lane]));
+      columns.emplace_back(slot, lane);
+    }
+  }
+  std::string out = fmt::format("{}\n", fmt::join(header, ","));
+  for (std::size_t i = 0; i < outputs.count(); ++i) {
+    std::vector<std::string> cells;
+    if (i < prefix.rows.size()) {
+      for (float v : prefix.rows[i]) cells.push_back(FormatFloat(v));
+    }
+    for (auto [slot, lane] : columns) cells.push_back(FormatFloat(outputs.lane(slot, lane)[i]));
+    out += fmt::format("{}\n", fmt::join(cells, ","));
+  }
+  return out;
+}
+
+}  // namespace vs11

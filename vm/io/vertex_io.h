@@ -1,0 +1,62 @@
+// Text formats around a program run: constant files, --const flags, vertex CSV in and out.
+#pragma once
+
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "vm/core/diagnostic.h"
+#include "vm/core/machine.h"
+
+namespace vs11 {
+
+// Constant files hold one register per line, either as a def line (`def c12, 1, 0, 0, 1`) or as
+// `c12 = 1 0 0 1` (commas optional). Blank lines and ; // # comments are skipped. Fewer than four
+// values leave the rest 0. Errors carry file:line:column; values land in `bank`.
+// `assigned`, when given, receives the index of every register a line set.
+void ParseConstantsText(std::string_view text, const std::string& file_name, ConstantBank& bank,
+                        Diagnostics& diagnostics, std::vector<int>* assigned = nullptr);
+
+// `c4=1,0,0,1` (the --const flag). Returns an error message on failure.
+std::optional<std::string> ParseConstantAssignment(std::string_view text, ConstantBank& bank,
+                                                   std::vector<int>* assigned = nullptr);
+
+// What a run should warn about before it starts, one message each: constant registers the program
+// reads (by absolute address; matrix rows included) that neither a def nor `constants_given` set
+// (they read 0), input registers it reads that are not in `inputs_given` (they read 0, 0, 0, 1), and
+// registers in `constants_given` that a def of the program overrides (def lines win).
+std::vector<std::string> UnsetRegisterWarnings(const Program& program, const std::vector<int>& constants_given,
+                                               const std::vector<int>& inputs_given);
+
+// Vertex CSV: one vertex a row. Cells are separated by ',' (or by ';' when the first row holds
+// one; a ',' is then refused as a likely decimal comma), and by blanks or tabs in either. Numbers
+// include inf, -inf and nan. A first row of names only is a header; a first row of numbers is data.
+// Without `columns` each row holds 1 to 4 numbers, missing components filled from kDefaultInput
+// (0, 0, 0, 1). `columns` picks cells by header name: "oPos" takes oPos.x..oPos.w into their lanes
+// (as `vs11 run` writes them), "a,b,c" (or one "name.x") fills lanes x, y, z... in that order.
+// Errors carry file:line:column; of many bad rows only the first is reported, with the count.
+std::vector<Vec4f> ParseVertexCsv(std::string_view text, const std::string& file_name, Diagnostics& diagnostics,
+                                  std::string_view columns = {});
+
+// The --input flag: "v1=FILE.csv" or "v1=FILE.csv:COLUMNS" (see ParseVertexCsv; a FILE that
+// exists as written, ':' and all, is taken whole). nullopt with `error` set when malformed.
+struct InputSpec {
+  int reg = 0;
+  std::string file;
+  std::string columns;
+};
+std::optional<InputSpec> ParseInputSpec(std::string_view flag, std::string& error);
+
+// Formats the written output lanes as CSV with a header `oPos.x,...,oD0.z`. `prefix_columns` (header,
+// per-row values) come first when given.
+struct CsvColumns {
+  std::vector<std::string> header;
+  std::vector<std::vector<float>> rows;
+};
+std::string FormatOutputCsv(const Program& program, const VertexArrays& outputs, const CsvColumns& prefix = {});
+
+// Shortest text that reads back as the same float.
+std::string FormatFloat(float value);
+
+}  // namespace vs11
