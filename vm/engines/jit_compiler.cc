@@ -68,7 +68,10 @@ class Emitter : public Xbyak::CodeGenerator {
     mov(r.read_lanes, ptr[r.arguments + offsetof(RunArguments, read_lanes)]);
     mov(r.write_lanes, ptr[r.arguments + offsetof(RunArguments, write_lanes)]);
     mov(r.constants, ptr[r.arguments + offsetof(RunArguments, constants)]);
+    // Whole iterations only, none when count is below one: CompiledProgram::Run computes the last
+    // count % vertices_per_iteration() vertices on padded copies.
     mov(r.end, ptr[r.arguments + offsetof(RunArguments, count)]);
+    and_(r.end, -vertices_per_iteration());
     shl(r.end, 2);
     mov(r.literals, ptr[r.arguments + offsetof(RunArguments, literals)]);
     mov(r.spill, ptr[r.arguments + offsetof(RunArguments, spill)]);
@@ -79,7 +82,9 @@ class Emitter : public Xbyak::CodeGenerator {
     HoistConstants();
     loop_memory_operations_ = 0;  // the body's from here
     xor_(r.offset, r.offset);
-    Xbyak::Label loop;
+    Xbyak::Label loop, done;
+    test(r.end, r.end);  // the body runs before the count is compared
+    jz(done, T_NEAR);
     L(loop);
     for (std::size_t n = 0; n < nodes_.size(); ++n) {
       if (live_[n]) Emit(static_cast<int>(n));
@@ -87,6 +92,7 @@ class Emitter : public Xbyak::CodeGenerator {
     add(r.offset, shape_.bytes() * groups_);
     cmp(r.offset, r.end);
     jb(loop, T_NEAR);
+    L(done);
     if (streaming_stores_) sfence();  // ordered before whatever tells another thread we are done
     vzeroupper();
     for (std::size_t k = pointer_lanes.size(); k-- > 0;) pop(kLanePointerRegisters[k]);
@@ -97,7 +103,11 @@ class Emitter : public Xbyak::CodeGenerator {
   const std::vector<float>& literals() const { return literals_; }
   int spill_slots() const { return spill_slots_; }
   VectorShape shape() const { return shape_; }
-  int groups() const { return groups_; }
+  // A power of two (8 or 16 lanes, one or two groups): the loop rounds the count down with a mask.
+  int vertices_per_iteration() const { return shape_.lanes * groups_; }
+  // The lane table entries the code loads from and stores to (sorted lane indices), after Generate.
+  std::vector<int> LoadedLanes() const { return LanesOf(Op::kInput); }
+  std::vector<int> StoredLanes() const { return LanesOf(Op::kStore); }
   int spilled_values() const { return spilled_values_; }
   int spilled_masks() const { return spilled_masks_; }
   std::size_t hoisted() const { return hoisted_; }  // after Generate: at most the constants there are
@@ -116,6 +126,16 @@ class Emitter : public Xbyak::CodeGenerator {
   inline static const std::array<Xbyak::Reg64, 6> kLanePointerRegisters = {
       Xbyak::Reg64(Xbyak::Operand::RBX), Xbyak::Reg64(Xbyak::Operand::RBP), Xbyak::Reg64(Xbyak::Operand::R12),
       Xbyak::Reg64(Xbyak::Operand::R13), Xbyak::Reg64(Xbyak::Operand::R14), Xbyak::Reg64(Xbyak::Operand::R15)};
+
+  std::vector<int> LanesOf(Op op) const {
+    std::vector<int> lanes;
+    for (std::size_t n = 0; n < nodes_.size(); ++n) {
+      if (live_[n] && nodes_[n].op == op) lanes.push_back(LaneIndex(LaneKey(nodes_[n])));
+    }
+    std::ranges::sort(lanes);
+    lanes.erase(std::unique(lanes.begin(), lanes.end()), lanes.end());
+    return lanes;
+  }
 
   // Chooses the lanes whose addresses live in registers (the most used ones); returns their keys.
   std::vector<int> KeepLanePointers() {
@@ -396,24 +416,28 @@ class AvxProgram final : public CompiledProgram {
   using Function = void (*)(const RunArguments*);
 
   // The same loop twice: with cached stores and with streaming ones.
-  AvxProgram(std::unique_ptr<Emitter> cached, std::unique_ptr<Emitter> streaming, std::vector<int> stored_lanes)
+  AvxProgram(std::unique_ptr<Emitter> cached, std::unique_ptr<Emitter> streaming)
       : cached_(std::move(cached)),
         streaming_(std::move(streaming)),
         literals_(cached_->literals()),
         spill_floats_(static_cast<std::size_t>(cached_->spill_slots()) * static_cast<std::size_t>(cached_->shape().lanes)),
-        stored_lanes_(std::move(stored_lanes)) {}
+        loaded_lanes_(cached_->LoadedLanes()),
+        stored_lanes_(cached_->StoredLanes()) {}
 
   void Run(RunArguments arguments) const override {
     arguments.literals = literals_.data();
+    const std::size_t per_iteration = static_cast<std::size_t>(vertices_per_iteration());
+    const std::size_t rest = arguments.count % per_iteration;
     const Emitter& emitter = Streams(arguments) ? *streaming_ : *cached_;
-    emitter.getCode<Function>()(&arguments);
+    emitter.getCode<Function>()(&arguments);  // the whole iterations
+    if (rest != 0) RunRest(arguments, arguments.count - rest, rest);
   }
   std::size_t spill_floats() const override { return spill_floats_; }
   std::span<const std::uint8_t> code() const override { return {cached_->getCode(), cached_->getSize()}; }
   int spilled_values() const override { return cached_->spilled_values(); }
   int spilled_masks() const override { return cached_->spilled_masks(); }
   JitIsa isa() const override { return cached_->shape().isa; }
-  int vertices_per_iteration() const override { return cached_->shape().lanes * cached_->groups(); }
+  int vertices_per_iteration() const override { return cached_->vertices_per_iteration(); }
 
  private:
   // Large outputs, every lane aligned as vmovntps requires.
@@ -425,10 +449,39 @@ class AvxProgram final : public CompiledProgram {
     });
   }
 
+  // The last `rest` vertices, fewer than an iteration, from `first` on: one iteration over padded
+  // copies of the lanes, of which the first `rest` vertices are copied in and out. (The batch
+  // engine never needs this: it passes whole granules of 64 vertices.)
+  void RunRest(const RunArguments& arguments, std::size_t first, std::size_t rest) const {
+    const std::size_t per_iteration = static_cast<std::size_t>(vertices_per_iteration());
+    std::vector<float> padded((loaded_lanes_.size() + stored_lanes_.size()) * per_iteration, 0.0f);
+    // The code reads only input and output entries of the lane table (vm/engines/batch_plan.h).
+    std::array<const float*, batch::kArenaLaneBase> read_lanes{};
+    std::array<float*, batch::kArenaLaneBase> write_lanes{};
+    float* next = padded.data();
+    for (const int lane : loaded_lanes_) {
+      std::copy_n(arguments.read_lanes[lane] + first, rest, next);
+      read_lanes[static_cast<std::size_t>(lane)] = next;
+      next += per_iteration;
+    }
+    for (const int lane : stored_lanes_) {
+      write_lanes[static_cast<std::size_t>(lane)] = next;
+      next += per_iteration;
+    }
+    RunArguments padded_arguments = arguments;
+    padded_arguments.read_lanes = read_lanes.data();
+    padded_arguments.write_lanes = write_lanes.data();
+    padded_arguments.count = per_iteration;
+    cached_->getCode<Function>()(&padded_arguments);
+    for (const int lane : stored_lanes_) {
+      std::copy_n(write_lanes[static_cast<std::size_t>(lane)], rest, arguments.write_lanes[lane] + first);
+    }
+  }
+
   std::unique_ptr<Emitter> cached_, streaming_;
   std::vector<float> literals_;
   std::size_t spill_floats_;
-  std::vector<int> stored_lanes_;  // lane table indices
+  std::vector<int> loaded_lanes_, stored_lanes_;  // lane table indices
 };
 
 // Bytes of code per traced node, generously: an operation is one or two instructions, a reload or
@@ -506,13 +559,7 @@ std::unique_ptr<CompiledProgram> Compile(const Program& program, std::string& wh
     cached->Generate();
     auto streaming = std::make_unique<Emitter>(graph.nodes(), shape, groups, code_size, best_hoisted);
     streaming->Generate(/*streaming_stores=*/true);
-    std::vector<int> stored_lanes;
-    for (const Node& node : graph.nodes()) {
-      if (node.op == Op::kStore) stored_lanes.push_back(static_cast<int>(node.immediate & kLaneMask));
-    }
-    std::ranges::sort(stored_lanes);
-    stored_lanes.erase(std::unique(stored_lanes.begin(), stored_lanes.end()), stored_lanes.end());
-    return std::make_unique<AvxProgram>(std::move(cached), std::move(streaming), std::move(stored_lanes));
+    return std::make_unique<AvxProgram>(std::move(cached), std::move(streaming));
   } catch (const Xbyak::Error& error) {
     why_not = std::string("code generation failed: ") + error.what();
     return nullptr;

@@ -32,7 +32,7 @@ struct RunArguments {
   const float* const* read_lanes;  // the lane table, for loads
   float* const* write_lanes;       // the lane table, for stores
   const float* constants;          // the constant table (rows as vm/engines/batch_plan.h lays them out)
-  std::size_t count;               // vertices, a multiple of 16
+  std::size_t count;               // vertices, any number (0 included): see CompiledProgram::Run
   const float* literals;           // filled in by CompiledProgram::Run
   float* spill;                    // spill_floats() floats of scratch, one buffer per thread
   std::int32_t constant_count;     // registers in the bank: relative reads outside [0, count) read 0
@@ -47,6 +47,12 @@ inline constexpr std::size_t kStreamingOutputBytes = std::size_t{1} << 20;
 class CompiledProgram {
  public:
   virtual ~CompiledProgram() = default;
+  // Computes vertices [0, count) of every lane and reads and writes nothing past them. The loop runs
+  // whole iterations of vertices_per_iteration() in the caller's arrays; the rest (count modulo it)
+  // runs once more on padded copies, slower: callers that want speed pass a multiple of
+  // vertices_per_iteration() (every multiple of batch::kVertexGranule, vm/engines/batch_plan.h, is one).
+  // Only the input and output entries of the lane table are read (batch::kInputLaneBase up to
+  // batch::kArenaLaneBase), and only those the program uses.
   virtual void Run(RunArguments arguments) const = 0;
   virtual std::size_t spill_floats() const = 0;
   // The machine code, and how many values the register allocator had to spill (for tests and notes).
@@ -54,7 +60,7 @@ class CompiledProgram {
   virtual int spilled_values() const = 0;
   virtual int spilled_masks() const = 0;  // of those, AVX-512 mask registers
   virtual JitIsa isa() const = 0;                // kAvx2 or kAvx512
-  virtual int vertices_per_iteration() const = 0;  // lanes x interleaved vertex groups
+  virtual int vertices_per_iteration() const = 0;  // lanes x interleaved vertex groups: 8, 16 or 32
 };
 
 // The instruction sets this CPU (and its operating system) runs, from narrowest to widest.
