@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <array>
 #include <bit>
+#include <cassert>
 #include <cstddef>
 #include <cstdint>
 #include <cstring>
@@ -33,6 +34,11 @@ struct VectorShape {
 constexpr VectorShape kAvx2Shape{JitIsa::kAvx2, 8, 16};
 constexpr VectorShape kAvx512Shape{JitIsa::kAvx512, 16, 32};
 constexpr int kMaxVectorRegisters = 32;
+// Vector registers always left to the loop's values (the others may hold constants for good).
+constexpr int kMinLoopRegisters = 4;
+// An operation's operands stay in their registers while its other operands and its result are
+// placed: the register allocator never evicts these.
+using PinnedValues = std::array<int, 3>;
 
 bool Rematerializable(Op op) {
   return op == Op::kInput || op == Op::kConstant || op == Op::kLiteral || op == Op::kConstantCount;
@@ -54,7 +60,9 @@ class Emitter : public Xbyak::CodeGenerator {
         groups_(groups),
         trial_(trial_buffer != nullptr),
         spill_slot_(nodes.size(), -1),
-        hoisted_(static_cast<std::size_t>(hoisted)) {}
+        hoisted_(static_cast<std::size_t>(hoisted)) {
+    assert(hoisted >= 0 && hoisted <= shape.registers - kMinLoopRegisters);
+  }
 
   // Emits the whole function; the literal pool and the spill size are known afterwards.
   // `streaming_stores`: outputs are stored around the caches (vmovntps; every output lane aligned
@@ -215,8 +223,10 @@ class Emitter : public Xbyak::CodeGenerator {
   }
 
   // A free register for `value`, evicting the value used farthest in the future (not one of `pinned`):
-  // a vector register, or for an AVX-512 mask a mask register.
-  int TakeRegister(int value, int position, const std::array<int, 3>& pinned) {
+  // a vector register, or for an AVX-512 mask a mask register. A pinned value holds one register at
+  // most, and each kind has more registers than there are pinned values (kMinLoopRegisters and the
+  // static_assert beside the mask registers), so there is always one to evict.
+  int TakeRegister(int value, int position, const PinnedValues& pinned) {
     const bool mask = InMaskRegister(value);
     const int first = mask ? kFirstMaskRegister : 0;
     const int end = mask ? kMaskRegisterEnd : available_registers_;
@@ -230,6 +240,7 @@ class Emitter : public Xbyak::CodeGenerator {
       const int next = NextUse(held, position);
       if (next > farthest) farthest = next, victim = reg;
     }
+    assert(victim >= 0 && "every register holds a pinned value");
     const int held = register_value_[victim];
     if (!Rematerializable(nodes_[static_cast<std::size_t>(held)].op) && spill_slot_[held] < 0) {
       spill_slot_[held] = spill_slots_++;
@@ -385,6 +396,10 @@ class Emitter : public Xbyak::CodeGenerator {
   static constexpr int kFirstMaskRegister = kMaskRegisterBase + 2;
   static constexpr int kMaskRegisterEnd = kMaskRegisterBase + 8;
   static Xbyak::Opmask K(int reg) { return Xbyak::Opmask(reg - kMaskRegisterBase); }
+  static_assert(kMaskRegisterEnd - kFirstMaskRegister > std::tuple_size_v<PinnedValues>,
+                "TakeRegister needs a mask register that holds no pinned value");
+  static_assert(kMinLoopRegisters > std::tuple_size_v<PinnedValues>,
+                "TakeRegister needs a vector register that holds no pinned value");
   bool InMaskRegister(int value) const { return wide_ && IsMask(nodes_[static_cast<std::size_t>(value)].op); }
 
   const std::vector<Node>& nodes_;
@@ -488,8 +503,6 @@ class AvxProgram final : public CompiledProgram {
 // spill adds one or two more (each at most 11 bytes).
 constexpr std::size_t kCodeBytesPerNode = 48;
 constexpr std::size_t kCodeBytesFixed = 512;
-// Vector registers always left to the loop's values (the others may hold constants for good).
-constexpr int kMinLoopRegisters = 4;
 // A program whose longest chain of dependent operations is at least this long (exp, log and lit's
 // series) runs several vertex groups per iteration, interleaved instruction by instruction, so that
 // the CPU has independent work while a chain waits on its latencies.
