@@ -48,17 +48,14 @@ class Emitter : public Xbyak::CodeGenerator {
  public:
   // `hoisted`: how many of the most used constants are loaded into registers once, before the loop,
   // leaving the others to the values computed in it.
-  // `trial_buffer`: generate into this buffer (code_size bytes), only to count operations, instead
-  // of into executable pages.
-  Emitter(const std::vector<Node>& nodes, VectorShape shape, int groups, std::size_t code_size, int hoisted,
-          std::uint8_t* trial_buffer = nullptr)
-      // Written, then made read+execute (never writable and executable at once).
-      : Xbyak::CodeGenerator(code_size, trial_buffer != nullptr ? trial_buffer : Xbyak::DontSetProtectRWE),
+  // The code is generated into `buffer`, plain memory: an Emitter lives only while Compile runs (it
+  // refers to Compile's graph), and ExecutableCode copies the code a compiled program keeps.
+  Emitter(const std::vector<Node>& nodes, VectorShape shape, int groups, int hoisted, std::span<std::uint8_t> buffer)
+      : Xbyak::CodeGenerator(buffer.size(), buffer.data()),
         nodes_(nodes),
         shape_(shape),
         wide_(shape.isa == JitIsa::kAvx512),
         groups_(groups),
-        trial_(trial_buffer != nullptr),
         spill_slot_(nodes.size(), -1),
         hoisted_(static_cast<std::size_t>(hoisted)) {
     assert(hoisted >= 0 && hoisted <= shape.registers - kMinLoopRegisters);
@@ -105,7 +102,6 @@ class Emitter : public Xbyak::CodeGenerator {
     vzeroupper();
     for (std::size_t k = pointer_lanes.size(); k-- > 0;) pop(kLanePointerRegisters[k]);
     ret();
-    if (!trial_) setProtectModeRE();
   }
 
   const std::vector<float>& literals() const { return literals_; }
@@ -406,7 +402,6 @@ class Emitter : public Xbyak::CodeGenerator {
   const VectorShape shape_;
   const bool wide_;   // AVX-512
   const int groups_;  // vertex groups (a vector each) per iteration
-  const bool trial_;
   bool streaming_stores_ = false;
   const Registers regs_{rdi, rsi, rdx, rcx, r8, r9, r10, r11, rax};
   std::vector<bool> live_;
@@ -426,39 +421,58 @@ class Emitter : public Xbyak::CodeGenerator {
   int loop_memory_operations_ = 0;
 };
 
+// Machine code in pages of its own: written, then made read+execute (never writable and executable
+// at once). The code is position independent (its jumps are relative), so it runs where it is copied.
+class ExecutableCode {
+ public:
+  explicit ExecutableCode(std::span<const std::uint8_t> bytes) : pages_(bytes.size(), Xbyak::DontSetProtectRWE) {
+    pages_.db(bytes.data(), bytes.size());
+    pages_.setProtectModeRE();
+  }
+  using Function = void (*)(const RunArguments*);
+  Function function() const { return pages_.getCode<Function>(); }
+  std::span<const std::uint8_t> bytes() const { return {pages_.getCode(), pages_.getSize()}; }
+
+ private:
+  Xbyak::CodeArray pages_;
+};
+
+// What a compiled program keeps of its emitters: the code, the literal pool, the lanes and the counts.
 class AvxProgram final : public CompiledProgram {
  public:
-  using Function = void (*)(const RunArguments*);
-
   // The same loop twice: with cached stores and with streaming ones.
-  AvxProgram(std::unique_ptr<Emitter> cached, std::unique_ptr<Emitter> streaming)
-      : cached_(std::move(cached)),
-        streaming_(std::move(streaming)),
-        literals_(cached_->literals()),
-        spill_floats_(static_cast<std::size_t>(cached_->spill_slots()) * static_cast<std::size_t>(cached_->shape().lanes)),
-        loaded_lanes_(cached_->LoadedLanes()),
-        stored_lanes_(cached_->StoredLanes()) {}
+  AvxProgram(const Emitter& cached, const Emitter& streaming)
+      : cached_(std::span<const std::uint8_t>(cached.getCode(), cached.getSize())),
+        streaming_(std::span<const std::uint8_t>(streaming.getCode(), streaming.getSize())),
+        literals_(cached.literals()),
+        spill_floats_(static_cast<std::size_t>(cached.spill_slots()) * static_cast<std::size_t>(cached.shape().lanes)),
+        loaded_lanes_(cached.LoadedLanes()),
+        stored_lanes_(cached.StoredLanes()),
+        spilled_values_(cached.spilled_values()),
+        spilled_masks_(cached.spilled_masks()),
+        isa_(cached.shape().isa),
+        vertices_per_iteration_(cached.vertices_per_iteration()),
+        vector_bytes_(cached.shape().bytes()) {}
 
   void Run(RunArguments arguments) const override {
     arguments.literals = literals_.data();
-    const std::size_t per_iteration = static_cast<std::size_t>(vertices_per_iteration());
+    const std::size_t per_iteration = static_cast<std::size_t>(vertices_per_iteration_);
     const std::size_t rest = arguments.count % per_iteration;
-    const Emitter& emitter = Streams(arguments) ? *streaming_ : *cached_;
-    emitter.getCode<Function>()(&arguments);  // the whole iterations
+    (Streams(arguments) ? streaming_ : cached_).function()(&arguments);  // the whole iterations
     if (rest != 0) RunRest(arguments, arguments.count - rest, rest);
   }
   std::size_t spill_floats() const override { return spill_floats_; }
-  std::span<const std::uint8_t> code() const override { return {cached_->getCode(), cached_->getSize()}; }
-  int spilled_values() const override { return cached_->spilled_values(); }
-  int spilled_masks() const override { return cached_->spilled_masks(); }
-  JitIsa isa() const override { return cached_->shape().isa; }
-  int vertices_per_iteration() const override { return cached_->vertices_per_iteration(); }
+  std::span<const std::uint8_t> code() const override { return cached_.bytes(); }
+  int spilled_values() const override { return spilled_values_; }
+  int spilled_masks() const override { return spilled_masks_; }
+  JitIsa isa() const override { return isa_; }
+  int vertices_per_iteration() const override { return vertices_per_iteration_; }
 
  private:
   // Large outputs, every lane aligned as vmovntps requires.
   bool Streams(const RunArguments& arguments) const {
     if (arguments.count * sizeof(float) * stored_lanes_.size() < kStreamingOutputBytes) return false;
-    const auto alignment = static_cast<std::uintptr_t>(cached_->shape().bytes());
+    const auto alignment = static_cast<std::uintptr_t>(vector_bytes_);
     return std::ranges::all_of(stored_lanes_, [&](int lane) {
       return reinterpret_cast<std::uintptr_t>(arguments.write_lanes[lane]) % alignment == 0;
     });
@@ -468,7 +482,7 @@ class AvxProgram final : public CompiledProgram {
   // copies of the lanes, of which the first `rest` vertices are copied in and out. (The batch
   // engine never needs this: it passes whole granules of 64 vertices.)
   void RunRest(const RunArguments& arguments, std::size_t first, std::size_t rest) const {
-    const std::size_t per_iteration = static_cast<std::size_t>(vertices_per_iteration());
+    const std::size_t per_iteration = static_cast<std::size_t>(vertices_per_iteration_);
     std::vector<float> padded((loaded_lanes_.size() + stored_lanes_.size()) * per_iteration, 0.0f);
     // The code reads only input and output entries of the lane table (vm/engines/batch_plan.h).
     std::array<const float*, batch::kArenaLaneBase> read_lanes{};
@@ -487,16 +501,20 @@ class AvxProgram final : public CompiledProgram {
     padded_arguments.read_lanes = read_lanes.data();
     padded_arguments.write_lanes = write_lanes.data();
     padded_arguments.count = per_iteration;
-    cached_->getCode<Function>()(&padded_arguments);
+    cached_.function()(&padded_arguments);
     for (const int lane : stored_lanes_) {
       std::copy_n(write_lanes[static_cast<std::size_t>(lane)], rest, arguments.write_lanes[lane] + first);
     }
   }
 
-  std::unique_ptr<Emitter> cached_, streaming_;
+  ExecutableCode cached_, streaming_;
   std::vector<float> literals_;
   std::size_t spill_floats_;
   std::vector<int> loaded_lanes_, stored_lanes_;  // lane table indices
+  int spilled_values_, spilled_masks_;
+  JitIsa isa_;
+  int vertices_per_iteration_;
+  int vector_bytes_;
 };
 
 // Bytes of code per traced node, generously: an operation is one or two instructions, a reload or
@@ -560,19 +578,20 @@ std::unique_ptr<CompiledProgram> Compile(const Program& program, std::string& wh
     // loop's values, which may then be reloaded or spilled more: the count with the fewest loads
     // and stores in the loop wins (code generation takes microseconds).
     const std::size_t code_size = kCodeBytesFixed + kCodeBytesPerNode * graph.nodes().size();
-    std::vector<std::uint8_t> trial_buffer(code_size);
+    std::vector<std::uint8_t> buffer(code_size);
     int best_hoisted = 0, fewest = std::numeric_limits<int>::max();
     for (int hoisted = 0; hoisted <= shape.registers - kMinLoopRegisters && hoisted <= best_hoisted + 2; ++hoisted) {
-      Emitter trial(graph.nodes(), shape, groups, code_size, hoisted, trial_buffer.data());
+      Emitter trial(graph.nodes(), shape, groups, hoisted, buffer);
       trial.Generate();
       if (trial.loop_memory_operations() < fewest) fewest = trial.loop_memory_operations(), best_hoisted = hoisted;
       if (trial.hoisted() < static_cast<std::size_t>(hoisted)) break;  // no constants left to keep
     }
-    auto cached = std::make_unique<Emitter>(graph.nodes(), shape, groups, code_size, best_hoisted);
-    cached->Generate();
-    auto streaming = std::make_unique<Emitter>(graph.nodes(), shape, groups, code_size, best_hoisted);
-    streaming->Generate(/*streaming_stores=*/true);
-    return std::make_unique<AvxProgram>(std::move(cached), std::move(streaming));
+    std::vector<std::uint8_t> streaming_buffer(code_size);
+    Emitter cached(graph.nodes(), shape, groups, best_hoisted, buffer);
+    cached.Generate();
+    Emitter streaming(graph.nodes(), shape, groups, best_hoisted, streaming_buffer);
+    streaming.Generate(/*streaming_stores=*/true);
+    return std::make_unique<AvxProgram>(cached, streaming);
   } catch (const Xbyak::Error& error) {
     why_not = std::string("code generation failed: ") + error.what();
     return nullptr;
