@@ -55,7 +55,7 @@ class AlignedFloats {
   AlignedFloats& operator=(const AlignedFloats&) = delete;
   AlignedFloats& operator=(AlignedFloats&&) = delete;
   ~AlignedFloats() {
-    if (data_ != nullptr) ::operator delete(data_, size_ * sizeof(float), kAlignment);
+    if (data_ != nullptr) ::operator delete(data_, kAlignment);  // unsized: clang has no sized delete by default
   }
   float* data() const { return data_; }
   std::size_t size() const { return size_; }
