@@ -2,9 +2,10 @@
 // vertex count (issue 19): for every instruction set the CPU runs, the compiled loop computes exactly
 // `count` vertices, bit for bit as the reference engine does, and reads and writes nothing past them.
 //
-// Each output lane is followed by sentinel floats that must keep their bits (a write past the end
-// fails here in any build), and each input lane is an allocation of exactly `count` floats (a read
-// past the end fails under AddressSanitizer).
+// Every lane ends where an inaccessible page begins, so a read or write past it faults in any build;
+// an output lane also holds sentinel floats between `count` and that page, which must keep their
+// bits. (AddressSanitizer does not see these accesses: it checks only the loads and stores the
+// compiler generated, not the jit's machine code.)
 #include "vm/engines/jit_compiler.h"
 
 #include <algorithm>
@@ -14,13 +15,13 @@
 #include <cstdint>
 #include <filesystem>
 #include <memory>
-#include <new>
 #include <random>
 #include <string>
-#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
+#include <sys/mman.h>
+#include <unistd.h>
 
 #include "vm/asm/assembler.h"
 #include "vm/asm/program_file.h"
@@ -39,32 +40,50 @@ std::uint32_t Bits(float x) { return std::bit_cast<std::uint32_t>(x); }
 constexpr std::size_t kLargeCount = 65536 + 33;
 constexpr std::size_t kCounts[] = {0, 1, 15, 16, 17, 31, 32, 33, kLargeCount};
 
-// Floats after each output lane that must keep their bits: twice the widest iteration (two
+// Floats after each output lane that must keep their bits: at least twice the widest iteration (two
 // interleaved groups of 16), so that an iteration run past the end lands in them.
 constexpr std::size_t kGuardFloats = 64;
 constexpr std::uint32_t kSentinelBits = 0xFFBADBADu;  // a NaN no program computes from finite inputs
+constexpr std::size_t kFloatsPerCacheLine = 64 / sizeof(float);
 
-// Floats aligned to a cache line (the streaming stores need vector-aligned lanes), allocated at
-// exactly the size asked for so that AddressSanitizer sees any access past it.
-class AlignedFloats {
+// `size` floats that end where an inaccessible page begins.
+class FloatsBeforeGuardPage {
  public:
-  explicit AlignedFloats(std::size_t size)
-      : size_(size), data_(static_cast<float*>(::operator new(size * sizeof(float), kAlignment))) {}
-  AlignedFloats(AlignedFloats&& other) noexcept : size_(other.size_), data_(std::exchange(other.data_, nullptr)) {}
-  AlignedFloats(const AlignedFloats&) = delete;
-  AlignedFloats& operator=(const AlignedFloats&) = delete;
-  AlignedFloats& operator=(AlignedFloats&&) = delete;
-  ~AlignedFloats() {
-    if (data_ != nullptr) ::operator delete(data_, kAlignment);  // unsized: clang has no sized delete by default
+  explicit FloatsBeforeGuardPage(std::size_t size) : size_(size) {
+    const auto page = static_cast<std::size_t>(sysconf(_SC_PAGESIZE));
+    const std::size_t data_bytes = (size * sizeof(float) + page - 1) / page * page;
+    mapped_bytes_ = data_bytes + page;
+    mapping_ = mmap(nullptr, mapped_bytes_, PROT_READ | PROT_WRITE, MAP_PRIVATE | MAP_ANONYMOUS, -1, 0);
+    if (mapping_ == MAP_FAILED) {
+      ADD_FAILURE() << "mmap of " << mapped_bytes_ << " bytes failed";
+      mapping_ = nullptr;
+      return;
+    }
+    std::byte* guard = static_cast<std::byte*>(mapping_) + data_bytes;
+    EXPECT_EQ(mprotect(guard, page, PROT_NONE), 0);
+    data_ = reinterpret_cast<float*>(guard) - size;
+  }
+  FloatsBeforeGuardPage(const FloatsBeforeGuardPage&) = delete;
+  FloatsBeforeGuardPage& operator=(const FloatsBeforeGuardPage&) = delete;
+  ~FloatsBeforeGuardPage() {
+    if (mapping_ != nullptr) munmap(mapping_, mapped_bytes_);
   }
   float* data() const { return data_; }
   std::size_t size() const { return size_; }
 
  private:
-  static constexpr std::align_val_t kAlignment{64};
   std::size_t size_;
-  float* data_;
+  std::size_t mapped_bytes_ = 0;
+  void* mapping_ = nullptr;
+  float* data_ = nullptr;
 };
+using Lane = std::unique_ptr<FloatsBeforeGuardPage>;
+
+// An output lane's floats: `count`, then at least kGuardFloats sentinels, the total a whole number
+// of cache lines so that the lane starts on one (the streaming stores need vector-aligned lanes).
+constexpr std::size_t OutputLaneFloats(std::size_t count) {
+  return (count + kGuardFloats + kFloatsPerCacheLine - 1) / kFloatsPerCacheLine * kFloatsPerCacheLine;
+}
 
 // The issue's program: exp has a long dependency chain, so AVX-512 runs two groups of 16 vertices
 // per iteration.
@@ -158,27 +177,27 @@ std::vector<float> ConstantTable(const ConstantBank& bank) {
   return table;
 }
 
-// Runs `compiled` over `inputs` through a lane table of its own: inputs copied into allocations of
-// exactly `count` floats, every output lane `count` floats plus kGuardFloats, all sentinels.
+// Runs `compiled` over `inputs` through a lane table of its own: inputs copied into `count` floats
+// before a guard page, every output lane OutputLaneFloats(count) sentinels before one.
 // Returns the output lanes by lane table index (kOutputLaneBase + 4 slot + c).
-std::vector<AlignedFloats> RunCompiled(const jit::CompiledProgram& compiled, const VertexArrays& inputs,
+std::vector<Lane> RunCompiled(const jit::CompiledProgram& compiled, const VertexArrays& inputs,
                                        const std::vector<float>& constants, std::int32_t constant_count) {
   const std::size_t count = inputs.count();
   std::vector<const float*> read_lanes(batch::kArenaLaneBase, nullptr);
   std::vector<float*> write_lanes(batch::kArenaLaneBase, nullptr);
-  std::vector<AlignedFloats> input_lanes;
+  std::vector<Lane> input_lanes;
   for (int reg = 0; reg < kInputRegisterCount; ++reg) {
     for (int c = 0; c < 4; ++c) {
-      AlignedFloats& lane = input_lanes.emplace_back(count);
-      std::copy_n(inputs.lane(reg, c), count, lane.data());
-      read_lanes[static_cast<std::size_t>(batch::InputLane(reg, c))] = lane.data();
+      const Lane& lane = input_lanes.emplace_back(std::make_unique<FloatsBeforeGuardPage>(count));
+      std::copy_n(inputs.lane(reg, c), count, lane->data());
+      read_lanes[static_cast<std::size_t>(batch::InputLane(reg, c))] = lane->data();
     }
   }
-  std::vector<AlignedFloats> output_lanes;
+  std::vector<Lane> output_lanes;
   for (int lane = batch::kOutputLaneBase; lane < batch::kArenaLaneBase; ++lane) {
-    AlignedFloats& output = output_lanes.emplace_back(count + kGuardFloats);
-    std::fill_n(output.data(), output.size(), std::bit_cast<float>(kSentinelBits));
-    read_lanes[static_cast<std::size_t>(lane)] = write_lanes[static_cast<std::size_t>(lane)] = output.data();
+    const Lane& output = output_lanes.emplace_back(std::make_unique<FloatsBeforeGuardPage>(OutputLaneFloats(count)));
+    std::fill_n(output->data(), output->size(), std::bit_cast<float>(kSentinelBits));
+    read_lanes[static_cast<std::size_t>(lane)] = write_lanes[static_cast<std::size_t>(lane)] = output->data();
   }
   std::vector<float> spill(compiled.spill_floats());
   compiled.Run({.read_lanes = read_lanes.data(), .write_lanes = write_lanes.data(), .constants = constants.data(),
@@ -214,12 +233,13 @@ TEST_P(JitCompiledLoop, ComputesExactlyCountVerticesAndNothingPastThem) {
       SCOPED_TRACE(testing::Message() << jit::IsaName(program_for_isa->isa()) << " ("
                                       << program_for_isa->vertices_per_iteration() << " vertices per iteration), "
                                       << count << " vertices");
-      const std::vector<AlignedFloats> actual = RunCompiled(*program_for_isa, inputs, constants, bank.size());
+      const std::vector<Lane> actual = RunCompiled(*program_for_isa, inputs, constants, bank.size());
       for (int slot = 0; slot < kOutputSlotCount; ++slot) {
         for (int c = 0; c < 4; ++c) {
-          const float* lane = actual[static_cast<std::size_t>(4 * slot + c)].data();
+          const FloatsBeforeGuardPage& lane_floats = *actual[static_cast<std::size_t>(4 * slot + c)];
+          const float* lane = lane_floats.data();
           const std::string name = OutputSlotName(slot) + "." + "xyzw"[c];
-          for (std::size_t i = count; i < count + kGuardFloats; ++i) {
+          for (std::size_t i = count; i < lane_floats.size(); ++i) {
             ASSERT_EQ(Bits(lane[i]), kSentinelBits) << name << " written at vertex " << i << ", past the end";
           }
           if (!written[slot].has(c)) {
