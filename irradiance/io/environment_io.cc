@@ -10,6 +10,7 @@
 #include <cmath>
 #include <cstdint>
 #include <exception>
+#include <mutex>
 #include <numbers>
 #include <random>
 #include <system_error>
@@ -174,6 +175,13 @@ std::optional<std::string> CheckLayoutSize(Layout layout, int width, int height)
 }
 
 // ---- Reading -----------------------------------------------------------------------------------
+
+// Held while OpenImageIO reads the pixels of a DDS cube map (see ReadImage): one per process,
+// because the state it protects is OpenImageIO's, which is one per process.
+std::mutex& DdsCubeReadMutex() {
+  static std::mutex mutex;
+  return mutex;
+}
 
 bool IsFloatType(OIIO::TypeDesc type) {
   return type.basetype == OIIO::TypeDesc::FLOAT || type.basetype == OIIO::TypeDesc::HALF ||
@@ -348,6 +356,13 @@ ImageReadResult ReadImageUnchecked(const fs::path& path, std::optional<Layout> e
 
   const int channels = std::min(spec.nchannels, 3);
   std::vector<float> data(pixel_count * channels);
+  // OpenImageIO 2.4's DDS reader serves a cube map's faces as tiles and remembers which face its
+  // buffer holds in function-level statics (DDSInput::read_native_tile's lastx/lasty/lastz), shared
+  // by every reader in the process: two cube maps read at once hand each other's face numbers over
+  // and copy a stale face. Every other reader keeps its state in its own object
+  // (environment_concurrency_test.cc reads every format from 4 threads), so only these reads wait.
+  std::unique_lock<std::mutex> dds_cube_read;
+  if (dds_cube_map) dds_cube_read = std::unique_lock(DdsCubeReadMutex());
   // Some readers (TIFF, DDS, BMP) return true for a short file and only record the error.
   if (!input->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, data.data()) ||
       input->has_error()) {
@@ -355,6 +370,7 @@ ImageReadResult ReadImageUnchecked(const fs::path& path, std::optional<Layout> e
                                    path.string(), OiioMessage(input->geterror())));
   }
   input->close();
+  if (dds_cube_read.owns_lock()) dds_cube_read.unlock();
 
   // Integer data holds sRGB-encoded values unless the reader says it is linear.
   const bool decode_srgb =
