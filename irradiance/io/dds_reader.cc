@@ -120,13 +120,11 @@ struct FourCcFormat {
   std::uint32_t code;
   Format format;
 };
-constexpr std::array<FourCcFormat, 11> kFourCcFormats = {{
+constexpr std::array<FourCcFormat, 9> kFourCcFormats = {{
     {116, {"A32B32G32R32F", 16, false, Decoder::kFloat32, 4}},
     {113, {"A16B16G16R16F", 8, false, Decoder::kHalf, 4}},
     {FourCc("DXT1"), {"DXT1", 8, true, Decoder::kOpenImageIo, 4}},
-    {FourCc("DXT2"), {"DXT2", 16, true, Decoder::kOpenImageIo, 4}},
     {FourCc("DXT3"), {"DXT3", 16, true, Decoder::kOpenImageIo, 4}},
-    {FourCc("DXT4"), {"DXT4", 16, true, Decoder::kOpenImageIo, 4}},
     {FourCc("DXT5"), {"DXT5", 16, true, Decoder::kOpenImageIo, 4}},
     {FourCc("ATI1"), {"ATI1", 8, true, Decoder::kOpenImageIo, 1}},
     {FourCc("BC4U"), {"BC4U", 8, true, Decoder::kOpenImageIo, 1}},
@@ -332,6 +330,14 @@ DdsReadResult ReadDds(const fs::path& path, std::size_t max_pixels) {
     }
   } else if (Word(header, kPixelFormatFlagsAt) & kPixelFormatFourCc) {
     const std::uint32_t code = Word(header, kFourCcAt);
+    if (code == FourCc("DXT2") || code == FourCc("DXT4")) {
+      // OpenImageIO 2.4.7 undoes their premultiplied alpha by dividing by it, and a texel whose
+      // alpha is 0 ends the process with SIGFPE. Nobody stores radiance premultiplied; DXT3 and
+      // DXT5 hold the same blocks without the premultiplication.
+      return Error(fmt::format("premultiplied-alpha DDS ({}) is not read: store the environment as "
+                               "DXT3/DXT5 (BC2/BC3) or another format",
+                               code == FourCc("DXT2") ? "DXT2" : "DXT4"));
+    }
     for (const FourCcFormat& entry : kFourCcFormats) {
       if (entry.code == code) format = entry.format;
     }

@@ -417,6 +417,19 @@ TEST_F(DdsReader, UncompressedFormatsThatHangOpenImageIoAreRefused) {
               kSrgbDecodeError);
 }
 
+// OpenImageIO 2.4.7 divides a premultiplied texel by its alpha: one texel of alpha 0 in a DXT2 or
+// DXT4 file ended the process with SIGFPE.
+TEST_F(DdsReader, PremultipliedAlphaDxt2AndDxt4AreRefusedNotDecoded) {
+  const std::vector<std::pair<std::uint32_t, std::string>> formats = {{FourCcCode("DXT2"), "DXT2"},
+                                                                       {FourCcCode("DXT4"), "DXT4"}};
+  for (const auto& [code, name] : formats) {
+    WriteBytes(Path("clear.dds"), DdsBytes(LegacyCube(4, code)) + std::string(6 * 16, '\0'));  // alpha 0
+    const std::string error = LoadError(Path("clear.dds"));
+    EXPECT_THAT(error, HasSubstr("clear.dds"));
+    EXPECT_THAT(error, HasSubstr("premultiplied-alpha DDS (" + name + ")"));
+  }
+}
+
 TEST_F(DdsReader, EightBitDdsCutShortIsReportedAsTruncated) {
   const std::string bytes =
       Dds8BitCube(4, {kAllCubeFaces.begin(), kAllCubeFaces.end()}, DdsTestBytes);
