@@ -22,6 +22,7 @@
 #include <cstddef>
 #include <filesystem>
 #include <string>
+#include <vector>
 
 #include "irradiance/io/cube_map.h"
 
@@ -37,8 +38,14 @@ struct DdsReadResult {
   };
   Outcome outcome = Outcome::kNotDds;
   Image image;               // kRead: linear RGB
-  bool is_cube_map = false;  // kRead: a cube map (always with all six faces)
+  bool is_cube_map = false;  // kRead, or kLeaveToOpenImageIo with stacked_faces: a cube map (all six faces)
   std::string error;         // kError: the problem, without the file name
+  // kLeaveToOpenImageIo, for a cube map whose faces stack into one plain image (square faces, a
+  // multiple of 4 texels for block-compressed formats): a DDS file in memory holding level 0 of the
+  // six faces as one image six faces high, for OpenImageIO to read in place of the file. OpenImageIO
+  // 2.4 reads a cube map by faces with process-wide state, so that two read at once swap faces
+  // (issue 18); a plain image it reads in one piece, safely beside other reads.
+  std::vector<unsigned char> stacked_faces;
 };
 
 // `max_pixels` bounds width x height x faces; larger headers are errors, nothing is allocated.
