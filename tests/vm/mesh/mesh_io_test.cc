@@ -199,5 +199,15 @@ TEST(LoadMesh, FuzzerFoundPlyWithoutEndHeaderIsRefusedAtOnce) {
   EXPECT_NE(result.error.find("no PLY end_header"), std::string::npos) << result.error;
 }
 
+// fuzz_mesh (UBSan): an "element" line without a space made the header check form a pointer past
+// the line's start from npos before it looked at the count.
+TEST(LoadMesh, FuzzerFoundPlyElementWithoutCountIsRefused) {
+  const std::filesystem::path file =
+      std::filesystem::path(VS11_SOURCE_DIR) / "tests/fuzz/seeds/fuzz_mesh/ply_element_without_count.ply";
+  MeshLoadResult result = LoadMesh(file);
+  EXPECT_FALSE(result.ok());
+  EXPECT_NE(result.error.find("PLY header line 'element' has no element count"), std::string::npos) << result.error;
+}
+
 }  // namespace
 }  // namespace vs11::mesh
