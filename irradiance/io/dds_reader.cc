@@ -120,13 +120,11 @@ struct FourCcFormat {
   std::uint32_t code;
   Format format;
 };
-constexpr std::array<FourCcFormat, 11> kFourCcFormats = {{
+constexpr std::array<FourCcFormat, 9> kFourCcFormats = {{
     {116, {"A32B32G32R32F", 16, false, Decoder::kFloat32, 4}},
     {113, {"A16B16G16R16F", 8, false, Decoder::kHalf, 4}},
     {FourCc("DXT1"), {"DXT1", 8, true, Decoder::kOpenImageIo, 4}},
-    {FourCc("DXT2"), {"DXT2", 16, true, Decoder::kOpenImageIo, 4}},
     {FourCc("DXT3"), {"DXT3", 16, true, Decoder::kOpenImageIo, 4}},
-    {FourCc("DXT4"), {"DXT4", 16, true, Decoder::kOpenImageIo, 4}},
     {FourCc("DXT5"), {"DXT5", 16, true, Decoder::kOpenImageIo, 4}},
     {FourCc("ATI1"), {"ATI1", 8, true, Decoder::kOpenImageIo, 1}},
     {FourCc("BC4U"), {"BC4U", 8, true, Decoder::kOpenImageIo, 1}},
@@ -248,6 +246,37 @@ void DecodePixels(const Format& format, const unsigned char* data, std::size_t c
   }
 }
 
+// BCn blocks cover 4 x 4 texels.
+constexpr std::uint64_t kBlockSide = 4;
+// OpenImageIO 2.4 refuses plain DDS images with a side above this.
+constexpr std::uint64_t kMaxPlainImageSide = 32768;
+
+// A DDS file holding level 0 of the six faces of the cube map in `file` as one plain image, the
+// faces stacked top to bottom in file order (+x -x +y -y +z -z): the header with six times the
+// height, one mip level and the cube map flags cleared, then each face's level 0 (they are `stride`
+// bytes apart in `file`, `face_bytes` long). Faces stack into a valid image when whole block rows
+// do, hence square faces a multiple of 4 texels high for block-compressed formats. Empty when the
+// file cannot be read.
+std::vector<unsigned char> StackedFacesFile(const Header& header, std::size_t data_offset, std::ifstream& file,
+                                            std::uint64_t stride, std::uint64_t face_bytes) {
+  std::vector<unsigned char> out(data_offset + 6 * face_bytes);
+  std::memcpy(out.data(), header.data(), data_offset);
+  const auto set_word = [&](std::size_t at, std::uint32_t value) {
+    for (int i = 0; i < 4; ++i) out[at + i] = static_cast<unsigned char>(value >> (8 * i));
+  };
+  set_word(kHeightAt, 6 * Word(header, kHeightAt));
+  set_word(kMipCountAt, 1);
+  set_word(kCaps2At, Word(header, kCaps2At) & ~(kCaps2Cubemap | kCaps2AllFaces));
+  if (data_offset == kDx10DataOffset) set_word(kMiscFlagAt, Word(header, kMiscFlagAt) & ~kMiscTextureCube);
+  for (std::uint64_t face = 0; face < 6; ++face) {
+    file.seekg(static_cast<std::streamoff>(data_offset + face * stride));
+    file.read(reinterpret_cast<char*>(out.data() + data_offset + face * face_bytes),
+              static_cast<std::streamsize>(face_bytes));
+    if (!file) return {};
+  }
+  return out;
+}
+
 }  // namespace
 
 DdsReadResult ReadDds(const fs::path& path, std::size_t max_pixels) {
@@ -332,6 +361,14 @@ DdsReadResult ReadDds(const fs::path& path, std::size_t max_pixels) {
     }
   } else if (Word(header, kPixelFormatFlagsAt) & kPixelFormatFourCc) {
     const std::uint32_t code = Word(header, kFourCcAt);
+    if (code == FourCc("DXT2") || code == FourCc("DXT4")) {
+      // OpenImageIO 2.4.7 undoes their premultiplied alpha by dividing by it, and a texel whose
+      // alpha is 0 ends the process with SIGFPE. Nobody stores radiance premultiplied; DXT3 and
+      // DXT5 hold the same blocks without the premultiplication.
+      return Error(fmt::format("premultiplied-alpha DDS ({}) is not read: store the environment as "
+                               "DXT3/DXT5 (BC2/BC3) or another format",
+                               code == FourCc("DXT2") ? "DXT2" : "DXT4"));
+    }
     for (const FourCcFormat& entry : kFourCcFormats) {
       if (entry.code == code) format = entry.format;
     }
@@ -372,7 +409,14 @@ DdsReadResult ReadDds(const fs::path& path, std::size_t max_pixels) {
           "decodes {}, would read one face only",
           caps2, format->name));
     }
-    return LeaveToOpenImageIo();
+    DdsReadResult result = LeaveToOpenImageIo();
+    const bool faces_stack = !format->block_compressed || width % kBlockSide == 0;
+    if (is_cube && faces_stack && faces * height <= kMaxPlainImageSide) {
+      result.is_cube_map = true;
+      result.stacked_faces = StackedFacesFile(header, data_offset, file, chain_bytes, level0_bytes);
+      if (result.stacked_faces.empty()) return Error("cannot read the pixels: the file shrank or cannot be read");
+    }
+    return result;
   }
 
   DdsReadResult result;

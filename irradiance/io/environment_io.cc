@@ -10,11 +10,13 @@
 #include <cmath>
 #include <cstdint>
 #include <exception>
+#include <mutex>
 #include <numbers>
 #include <random>
 #include <system_error>
 #include <utility>
 
+#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 
 #include "irradiance/io/dds_reader.h"
@@ -175,6 +177,13 @@ std::optional<std::string> CheckLayoutSize(Layout layout, int width, int height)
 
 // ---- Reading -----------------------------------------------------------------------------------
 
+// Held while OpenImageIO reads the pixels of a DDS cube map (see ReadImage): one per process,
+// because the state it protects is OpenImageIO's, which is one per process.
+std::mutex& DdsCubeReadMutex() {
+  static std::mutex mutex;
+  return mutex;
+}
+
 bool IsFloatType(OIIO::TypeDesc type) {
   return type.basetype == OIIO::TypeDesc::FLOAT || type.basetype == OIIO::TypeDesc::HALF ||
          type.basetype == OIIO::TypeDesc::DOUBLE;
@@ -292,7 +301,15 @@ ImageReadResult ReadImageUnchecked(const fs::path& path, std::optional<Layout> e
       break;
   }
 
-  auto input = OIIO::ImageInput::open(path.string());
+  // A DDS cube map whose faces stack is read as one plain image from memory (dds_reader.h).
+  std::optional<OIIO::Filesystem::IOMemReader> stacked_faces;
+  OIIO::ImageSpec open_config;
+  if (!dds.stacked_faces.empty()) {
+    stacked_faces.emplace(dds.stacked_faces.data(), dds.stacked_faces.size());
+    void* proxy = &*stacked_faces;
+    open_config.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy);
+  }
+  auto input = OIIO::ImageInput::open(path.string(), stacked_faces ? &open_config : nullptr);
   if (!input) {
     const std::string oiio_error = OiioMessage(OIIO::geterror());
     if (!IsKnownImageExtension(path)) {
@@ -314,8 +331,9 @@ ImageReadResult ReadImageUnchecked(const fs::path& path, std::optional<Layout> e
         fmt::format("{}: image of {} x {} pixels is larger than the {} pixels accepted",
                     path.string(), spec.width, spec.height, kMaxImagePixels));
   }
-  const bool dds_cube_map = Lower(input->format_name()) == "dds" &&
-                            std::string(spec.get_string_attribute("textureformat")) == kCubeTextureFormat;
+  const bool read_by_faces = Lower(input->format_name()) == "dds" &&
+                             std::string(spec.get_string_attribute("textureformat")) == kCubeTextureFormat;
+  const bool dds_cube_map = read_by_faces || (stacked_faces && dds.is_cube_map);
   if (expected && !dds_cube_map) {
     if (std::optional<std::string> error = CheckLayoutSize(*expected, spec.width, spec.height)) {
       return ReadFailure(fmt::format("{}: {}", path.string(), *error));
@@ -336,18 +354,27 @@ ImageReadResult ReadImageUnchecked(const fs::path& path, std::optional<Layout> e
   }
 
   ImageReadResult result;
-  if (dds_cube_map) {
+  if (read_by_faces) {
     const std::string sides(spec.get_string_attribute("dds:CubeMapSides"));
     if (sides != kAllDdsCubeSides || spec.height != 6 * spec.width) {
       return ReadFailure(
           fmt::format("{}: DDS cube map has faces \"{}\", all six (\"{}\") are needed",
                       path.string(), sides, kAllDdsCubeSides));
     }
-    result.is_dds_cube_map = true;
   }
+  result.is_dds_cube_map = dds_cube_map;
 
   const int channels = std::min(spec.nchannels, 3);
   std::vector<float> data(pixel_count * channels);
+  // OpenImageIO 2.4's DDS reader serves a cube map's faces as tiles and remembers which face its
+  // buffer holds in function-level statics (DDSInput::read_native_tile's lastx/lasty/lastz), shared
+  // by every reader in the process: two cube maps read at once hand each other's face numbers over
+  // and copy a stale face. Most cube maps are therefore read as stacked faces (above); those whose
+  // faces do not stack (BC faces not a multiple of 4 texels, faces over 5461 texels) are read by
+  // faces one at a time. Every other reader keeps its state in its own object
+  // (environment_concurrency_test.cc reads every format from 4 threads).
+  std::unique_lock<std::mutex> dds_cube_read;
+  if (read_by_faces) dds_cube_read = std::unique_lock(DdsCubeReadMutex());
   // Some readers (TIFF, DDS, BMP) return true for a short file and only record the error.
   if (!input->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, data.data()) ||
       input->has_error()) {
@@ -355,6 +382,7 @@ ImageReadResult ReadImageUnchecked(const fs::path& path, std::optional<Layout> e
                                    path.string(), OiioMessage(input->geterror())));
   }
   input->close();
+  if (dds_cube_read.owns_lock()) dds_cube_read.unlock();
 
   // Integer data holds sRGB-encoded values unless the reader says it is linear.
   const bool decode_srgb =

@@ -389,11 +389,11 @@ std::optional<std::string> CheckPlyHeader(std::string_view head, std::uintmax_t 
       element_open = true;
       element_has_property = false;
       const std::size_t count_at = line.rfind(' ');
+      const auto no_count = [&] { return fmt::format("PLY header line '{}' has no element count", line); };
+      if (count_at == std::string_view::npos) return no_count();  // before pointing past it
       std::uintmax_t count = 0;
       auto [ptr, ec] = std::from_chars(line.data() + count_at + 1, line.data() + line.size(), count);
-      if (count_at == std::string_view::npos || ec != std::errc() || ptr != line.data() + line.size()) {
-        return fmt::format("PLY header line '{}' has no element count", line);
-      }
+      if (ec != std::errc() || ptr != line.data() + line.size()) return no_count();
       if (count > file_size) {
         return fmt::format("the header declares {} elements, more than a {}-byte file can hold", count, file_size);
       }

@@ -32,6 +32,9 @@
 #if defined(__SANITIZE_ADDRESS__)
 #define VS11_UNDER_ASAN 1
 #endif
+#ifdef VS11_UNDER_ASAN
+#include <sanitizer/common_interface_defs.h>
+#endif
 
 namespace vs11::mesh::internal {
 namespace {
@@ -83,6 +86,13 @@ void PrepareChild(int write_fd, std::uintmax_t memory_limit) {
   }
   const rlimit no_core = {0, 0};
   setrlimit(RLIMIT_CORE, &no_core);
+#ifdef VS11_UNDER_ASAN
+  // A sanitizer's report ends in its death callback, which libFuzzer (tests/fuzz) sets to save the
+  // input being fuzzed as a crash-* file. Inherited across fork it would save one for a fault of
+  // Assimp in this child, which the parent reports as that file's load error: the child dies
+  // without it (the signals above are back to their defaults for the same reason).
+  __sanitizer_set_death_callback(nullptr);
+#endif
 #ifndef VS11_UNDER_ASAN
   const std::uintmax_t in_use = AddressSpaceInUse();
   if (in_use > 0) {

@@ -11,7 +11,8 @@
 //
 // The child of a threaded process holds only the forking thread: it calls nothing but the loader
 // (Assimp makes no threads of its own in 5.2, and glibc's malloc and ASan's allocator stay usable
-// after fork), resets every signal handler (the tool's, and libFuzzer's in the fuzz target), sends
+// after fork), resets every signal handler (the tool's, and libFuzzer's in the fuzz target) and,
+// under a sanitizer, the death callback (libFuzzer's saves the fuzzed input as a crash-* file), sends
 // its stdout to /dev/null (the tools' JSON output stays clean; Assimp's logger writes nowhere) and
 // keeps stderr (a sanitizer report in the child reaches the user), closes every other descriptor,
 // and dumps no core. It runs under an address-space limit (MeshLoadOptions::memory_limit_bytes),

@@ -12,6 +12,7 @@
 #include <vector>
 
 #include "irradiance/io/environment_io.h"
+#include "tests/irradiance/io/dds_test_files.h"
 #include "tests/irradiance/io/environment_test_support.h"
 
 namespace vs11::irradiance {
@@ -21,84 +22,8 @@ using namespace envtest;
 using testing::HasSubstr;
 using DdsReader = TempFolderTest;
 
-constexpr std::uint32_t kDdsdMipMapCount = 0x20000;
 constexpr float kSrgbDecodeError = 1e-6f;  // sRGB decode in double, rounded to float
 constexpr std::uint32_t kDdsCaps2Volume = 0x200000;
-constexpr std::uint32_t kDx10MiscTextureCube = 0x4;
-constexpr std::uint32_t kDx10Texture2D = 3;
-constexpr std::uint32_t kDx10Texture3D = 4;
-constexpr std::uint32_t kAllFaceBits = 0xfc00;
-constexpr std::uint32_t kD3dFmtA16B16G16R16F = 113;
-// DXGI_FORMAT codes.
-constexpr std::uint32_t kDxgiRgba32Float = 2;
-constexpr std::uint32_t kDxgiRgb32Float = 6;
-constexpr std::uint32_t kDxgiRgba16Float = 10;
-constexpr std::uint32_t kDxgiR11G11B10Float = 26;
-constexpr std::uint32_t kDxgiRgb9e5 = 67;
-constexpr std::uint32_t kDxgiBc6hUf16 = 95;
-constexpr std::uint32_t kDxgiBc6hSf16 = 96;
-constexpr std::uint32_t kFourCcDx10 = 0x30315844;  // "DX10"
-constexpr std::uint32_t kFourCcDxt1 = 0x31545844;  // "DXT1"
-
-// Every field of a DDS header that these tests vary.
-struct DdsFields {
-  std::uint32_t width = 2;
-  std::uint32_t height = 2;
-  std::uint32_t header_size = kDdsHeaderSize;
-  std::uint32_t mip_count = 1;
-  std::uint32_t caps2 = 0;
-  std::uint32_t four_cc = 0;  // with DDPF_FOURCC; "DX10" adds the DX10 header below
-  std::uint32_t dxgi_format = 0;
-  std::uint32_t dx10_misc = 0;
-  std::uint32_t dx10_dimension = kDx10Texture2D;
-  std::uint32_t dx10_array_size = 1;
-};
-
-std::string DdsBytes(const DdsFields& f) {
-  std::string bytes;
-  Append(bytes, kDdsMagic);
-  Append(bytes, f.header_size);
-  Append(bytes, kDdsdCapsHeightWidthPixelFormat | kDdsdMipMapCount);
-  Append(bytes, f.height);
-  Append(bytes, f.width);
-  Append(bytes, std::uint32_t{0});  // pitch or linear size: readers compute it
-  Append(bytes, std::uint32_t{0});  // depth
-  Append(bytes, f.mip_count);
-  for (int i = 0; i < 11; ++i) Append(bytes, std::uint32_t{0});
-  Append(bytes, kDdsPixelFormatSize);
-  Append(bytes, kDdpfFourCc);
-  Append(bytes, f.four_cc);
-  for (int i = 0; i < 5; ++i) Append(bytes, std::uint32_t{0});  // bit count, masks
-  Append(bytes, kDdsCapsComplexTexture);
-  Append(bytes, f.caps2);
-  for (int i = 0; i < 3; ++i) Append(bytes, std::uint32_t{0});
-  if (f.four_cc == kFourCcDx10) {
-    for (std::uint32_t word :
-         {f.dxgi_format, f.dx10_dimension, f.dx10_misc, f.dx10_array_size, std::uint32_t{0}}) {
-      Append(bytes, word);
-    }
-  }
-  return bytes;
-}
-
-DdsFields Dx10Cube(std::uint32_t size, std::uint32_t dxgi_format) {
-  DdsFields f;
-  f.width = f.height = size;
-  f.four_cc = kFourCcDx10;
-  f.dxgi_format = dxgi_format;
-  f.dx10_misc = kDx10MiscTextureCube;
-  f.caps2 = kDdsCaps2Cubemap | kAllFaceBits;  // as DirectXTex writes them too
-  return f;
-}
-
-DdsFields LegacyCube(std::uint32_t size, std::uint32_t four_cc) {
-  DdsFields f;
-  f.width = f.height = size;
-  f.four_cc = four_cc;
-  f.caps2 = kDdsCaps2Cubemap | kAllFaceBits;
-  return f;
-}
-
 std::uint16_t FloatToHalf(float value) {
   std::uint16_t half;
   OIIO::convert_pixel_values(OIIO::TypeDesc::FLOAT, &value, OIIO::TypeDesc::HALF, &half, 1);
@@ -231,9 +156,8 @@ TEST_F(DdsReader, DdsMipChainsArePassedOverToEachFaceLevelZero) {
 }
 
 // ---- BC6H --------------------------------------------------------------------------------------
-// Mode 11 (mode bits 00011): one region, endpoints stored directly with 10 bits per channel, then
-// sixteen 4-bit indices, the first (anchor) with its top bit implied 0. The unquantisation and
-// interpolation steps are those of the BC6H format reference.
+// Mode 11 (PackBc6hMode11 in dds_test_files.h). The unquantisation and interpolation steps are
+// those of the BC6H format reference.
 
 constexpr std::array<int, 16> kBc6hWeights = {0,  4,  9,  13, 17, 21, 26, 30,
                                               34, 38, 43, 47, 51, 55, 60, 64};
@@ -256,12 +180,6 @@ float Bc6hDecode(int q0, int q1, int index, bool is_signed) {
   if (!is_signed) return HalfToFloat(static_cast<std::uint16_t>((mixed * 31) >> 6));
   const int scaled = mixed < 0 ? -(((-mixed) * 31) >> 5) : (mixed * 31) >> 5;
   return HalfToFloat(static_cast<std::uint16_t>(scaled < 0 ? 0x8000 | -scaled : scaled));
-}
-
-void PutBits(std::array<std::uint8_t, 16>& block, int& position, std::uint32_t value, int count) {
-  for (int i = 0; i < count; ++i, ++position) {
-    if ((value >> i) & 1) block[position / 8] |= static_cast<std::uint8_t>(1 << (position % 8));
-  }
 }
 
 // Encodes a 4 x 4 block (row-major) and sets `decoded` to what a decoder must return for it.
@@ -310,15 +228,7 @@ std::array<std::uint8_t, 16> EncodeBc6hMode11(const std::array<glm::vec3, 16>& t
     std::swap(e0, e1);
     for (int& index : indices) index = 15 - index;
   }
-  std::array<std::uint8_t, 16> block{};
-  int position = 0;
-  PutBits(block, position, 0b00011, 5);
-  for (const std::array<int, 3>& endpoint : {e0, e1}) {
-    for (int c = 0; c < 3; ++c) PutBits(block, position, endpoint[c] & 0x3ff, 10);
-  }
-  for (int i = 0; i < 16; ++i) PutBits(block, position, indices[i], i == 0 ? 3 : 4);
-  EXPECT_EQ(position, 128);
-  return block;
+  return PackBc6hMode11(e0, e1, indices);
 }
 
 // A BC6H cube map of `source` and the cube a decoder must return for it. With `mip_tail`, each
@@ -505,6 +415,19 @@ TEST_F(DdsReader, UncompressedFormatsThatHangOpenImageIoAreRefused) {
   const LoadedEnvironment& grey = Load(Path("grey.dds"));
   EXPECT_NEAR(grey.cube.face(CubeFace::kNegativeZ).at(3, 3).g, SrgbToLinear(128 / 255.0),
               kSrgbDecodeError);
+}
+
+// OpenImageIO 2.4.7 divides a premultiplied texel by its alpha: one texel of alpha 0 in a DXT2 or
+// DXT4 file ended the process with SIGFPE.
+TEST_F(DdsReader, PremultipliedAlphaDxt2AndDxt4AreRefusedNotDecoded) {
+  const std::vector<std::pair<std::uint32_t, std::string>> formats = {{FourCcCode("DXT2"), "DXT2"},
+                                                                       {FourCcCode("DXT4"), "DXT4"}};
+  for (const auto& [code, name] : formats) {
+    WriteBytes(Path("clear.dds"), DdsBytes(LegacyCube(4, code)) + std::string(6 * 16, '\0'));  // alpha 0
+    const std::string error = LoadError(Path("clear.dds"));
+    EXPECT_THAT(error, HasSubstr("clear.dds"));
+    EXPECT_THAT(error, HasSubstr("premultiplied-alpha DDS (" + name + ")"));
+  }
 }
 
 TEST_F(DdsReader, EightBitDdsCutShortIsReportedAsTruncated) {

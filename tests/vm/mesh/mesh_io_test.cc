@@ -4,6 +4,9 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <string>
+#include <utility>
+#include <vector>
 
 #include <gtest/gtest.h>
 
@@ -189,14 +192,18 @@ TEST(LoadMesh, FuzzerFoundOffWithAPolygonFlagAndNoPolygonLoads) {
 }
 
 
-// fuzz_mesh: a PLY header with an element without properties and no end_header made Assimp's PLY
-// reader loop without end. The header is checked before Assimp reads the file.
-TEST(LoadMesh, FuzzerFoundPlyWithoutEndHeaderIsRefusedAtOnce) {
-  const std::filesystem::path file =
-      std::filesystem::path(VS11_SOURCE_DIR) / "tests/fuzz/seeds/fuzz_mesh/ply_element_without_property.ply";
-  MeshLoadResult result = LoadMesh(file);
-  EXPECT_FALSE(result.ok());
-  EXPECT_NE(result.error.find("no PLY end_header"), std::string::npos) << result.error;
+// fuzz_mesh: PLY headers checked before Assimp reads the file. An element without properties and
+// no end_header made Assimp's PLY reader loop without end; an "element" line without a space made
+// the check itself form a pointer from npos (UBSan).
+TEST(LoadMesh, FuzzerFoundPlyHeadersAreRefusedAtOnce) {
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"ply_element_without_property.ply", "no PLY end_header"},
+      {"ply_element_without_count.ply", "PLY header line 'element' has no element count"}};
+  for (const auto& [name, reason] : cases) {
+    MeshLoadResult result = LoadMesh(std::filesystem::path(VS11_SOURCE_DIR) / "tests/fuzz/seeds/fuzz_mesh" / name);
+    EXPECT_FALSE(result.ok()) << name;
+    EXPECT_NE(result.error.find(reason), std::string::npos) << result.error;
+  }
 }
 
 }  // namespace

@@ -4,11 +4,19 @@
 #include <signal.h>
 
 #include <chrono>
+#include <cstdlib>
 #include <cstring>
 #include <filesystem>
+#include <fstream>
 #include <string>
 
 #include <gtest/gtest.h>
+
+#if defined(__has_feature)
+#if __has_feature(address_sanitizer)
+#include <sanitizer/common_interface_defs.h>
+#endif
+#endif
 
 #include "tests/run_tool.h"
 #include "tests/vm/mesh/mesh_test_support.h"
@@ -111,6 +119,31 @@ TEST(MeshSandbox, SignalDeathNamesTheFileAndTheSignal) {
   EXPECT_TRUE(result.converter_crashed);
   EXPECT_NE(result.error.find("vs11 crashed converting test.obj"), std::string::npos) << result.error;
 }
+
+#if defined(__has_feature)
+#if __has_feature(address_sanitizer)
+// libFuzzer sets a sanitizer death callback that saves the input being fuzzed as a crash-* file
+// (tests/fuzz). A sanitizer report in the child (here ASan refusing an allocation larger than it
+// supports, as Assimp's corrupt-size reads provoke) ends the child without running it: the parent
+// reports the file as unreadable, and fuzz_mesh leaves no crash file that is not vs11's.
+fs::path DeathCallbackMarker() { return fs::path(::testing::TempDir()) / "mesh_sandbox_death_callback_ran"; }
+
+TEST(MeshSandbox, ChildDiesWithoutTheParentsSanitizerDeathCallback) {
+  fs::remove(DeathCallbackMarker());
+  __sanitizer_set_death_callback([] { std::ofstream(DeathCallbackMarker()) << "the child ran it\n"; });
+  const MeshLoadResult result = internal::RunSandboxed("test.obj", 100, {}, [](const internal::StageReporter& report) {
+    report(LoadStage::kAssimp);
+    volatile std::size_t beyond_asan = std::size_t{1} << 50;
+    void* volatile memory = std::malloc(beyond_asan);
+    std::free(memory);
+    return MeshLoadResult{std::nullopt, "not reached: ASan refuses the allocation"};
+  });
+  __sanitizer_set_death_callback(nullptr);
+  EXPECT_NE(result.error.find("Assimp crashed reading test.obj"), std::string::npos) << result.error;
+  EXPECT_FALSE(fs::exists(DeathCallbackMarker()));
+}
+#endif
+#endif
 
 TEST(MeshSandbox, ChildErrorsAndExceptionsComeBackNamingTheFile) {
   MeshLoadResult result = internal::RunSandboxed("a.obj", 10, {}, [](const internal::StageReporter&) {
