@@ -21,6 +21,7 @@
 #include "irradiance/io/environment_io.h"
 #include "irradiance/io/environments.h"
 #include "vm/asm/program_file.h"
+#include "vm/core/atomic_file.h"
 
 namespace {
 

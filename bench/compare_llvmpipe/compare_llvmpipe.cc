@@ -46,6 +46,7 @@
 #include "irradiance/report/program_references.h"
 #include "irradiance/report/verify.h"
 #include "vm/asm/program_file.h"
+#include "vm/core/atomic_file.h"
 #include "vm/core/machine.h"
 #include "vm/engines/engine_factory.h"
 #include "vm/engines/jit_compiler.h"

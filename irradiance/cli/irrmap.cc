@@ -3,6 +3,7 @@
 #include <unistd.h>
 
 #include <chrono>
+#include <optional>
 #include <cstdio>
 #include <string>
 
@@ -14,13 +15,13 @@
 #include "irradiance/jobs/irrmap_job.h"
 #include "irradiance/mesh_input/mesh_geometry_io.h"
 #include "irradiance/render/preview.h"
+#include "vm/cli/parse_command_line.h"
 
 namespace {
 
 constexpr int kProgressBarWidth = 30;
 // Exit status: 1 for a failed job, 2 for a command line that does not parse.
 constexpr int kJobError = 1;
-constexpr int kUsageError = 2;
 
 std::string JoinNames() {
   std::string out;
@@ -97,21 +98,24 @@ vs11::irradiance::IrrmapProgress TerminalProgress() {
   };
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+// What the default job's command line sets beyond IrrmapOptions.
+struct JobCommandLine {
   vs11::irradiance::IrrmapOptions options;
   std::string out_dir = options.out_dir.string();
   std::string font;
   std::string mesh_file;
   double mesh_timeout = 0;
   int level = 0;
+};
 
-  CLI::App app{fmt::format(
-      "irrmap: irradiance environment map of an environment, with 9 spherical-harmonic coefficients per\n"
-      "channel computed from a mip level of the cube map and evaluated by the paper's 11-instruction\n"
-      "vs_1_1 vertex program on the emulated machine (Ai, Peng & Zhang 2008).")};
-  app.footer(Footer());
+// The default job's options (`irrmap [ENV] ...`): one add_option per flag, hence its length.
+void AddJobOptions(CLI::App& app, JobCommandLine& line) {
+  vs11::irradiance::IrrmapOptions& options = line.options;
+  std::string& out_dir = line.out_dir;
+  std::string& font = line.font;
+  std::string& mesh_file = line.mesh_file;
+  double& mesh_timeout = line.mesh_timeout;
+  int& level = line.level;
   app.add_option("ENV", options.environment,
                  fmt::format("environment: an image file (any layout below), a six-face pattern holding "
                              "{{face}}, or a built-in: {}", JoinNames()))
@@ -174,33 +178,20 @@ int main(int argc, char** argv) {
   app.add_option("--mesh-truth-limit", options.mesh_truth_vertex_limit,
                  "meshes with more vertices get no exact irradiance (0 = no limit)")
       ->capture_default_str();
-  vs11::irradiance::cli::AddSubcommands(app);
-  try {
-    app.parse(argc, argv);
-  } catch (const CLI::CallForHelp& e) {
-    return app.exit(e);
-  } catch (const CLI::CallForAllHelp& e) {
-    return app.exit(e);
-  } catch (const CLI::CallForVersion& e) {
-    return app.exit(e);
-  } catch (const CLI::ParseError& e) {
-    fmt::print(stderr, "irrmap: error: {}\nRun with --help for more information.\n", e.what());
-    return kUsageError;
-  } catch (const vs11::irradiance::cli::SubcommandFailure& failure) {
-    fmt::print(stderr, "irrmap: error: {}\n", failure.what());
-    return kJobError;
-  }
-  // A subcommand (irrmap chart, irrmap stability ...) did its work in its own callback.
-  if (!app.get_subcommands().empty()) return 0;
-  options.out_dir = out_dir;
-  options.font = font;
-  if (app.count("--level") > 0) options.level = level;
+}
+
+// Runs the job the command line asked for; the exit status.
+int RunJob(const CLI::App& app, JobCommandLine& line) {
+  vs11::irradiance::IrrmapOptions& options = line.options;
+  options.out_dir = line.out_dir;
+  options.font = line.font;
+  if (app.count("--level") > 0) options.level = line.level;
   options.face_size_given = app.count("--face-size") > 0;
-  if (!mesh_file.empty()) {
+  if (!line.mesh_file.empty()) {
     std::vector<std::string> mesh_warnings;
     options.mesh.emplace();
     std::optional<std::string> mesh_error =
-        vs11::irradiance::LoadMeshGeometry(mesh_file, *options.mesh, mesh_warnings, mesh_timeout);
+        vs11::irradiance::LoadMeshGeometry(line.mesh_file, *options.mesh, mesh_warnings, line.mesh_timeout);
     for (const std::string& warning : mesh_warnings) fmt::print(stderr, "irrmap: warning: {}\n", warning);
     if (mesh_error) {
       fmt::print(stderr, "irrmap: error: {}\n", *mesh_error);
@@ -227,4 +218,26 @@ int main(int argc, char** argv) {
   for (const auto& file : report.files) fmt::print(" {}", file.string());
   fmt::print("\n");
   return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  CLI::App app{fmt::format(
+      "irrmap: irradiance environment map of an environment, with 9 spherical-harmonic coefficients per\n"
+      "channel computed from a mip level of the cube map and evaluated by the paper's 11-instruction\n"
+      "vs_1_1 vertex program on the emulated machine (Ai, Peng & Zhang 2008).")};
+  app.footer(Footer());
+  JobCommandLine line;
+  AddJobOptions(app, line);
+  vs11::irradiance::cli::AddSubcommands(app);
+  try {
+    if (std::optional<int> status = vs11::cli::ParseCommandLine(app, argc, argv, "irrmap")) return *status;
+  } catch (const vs11::irradiance::cli::SubcommandFailure& failure) {
+    fmt::print(stderr, "irrmap: error: {}\n", failure.what());
+    return kJobError;
+  }
+  // A subcommand (irrmap chart, irrmap stability ...) did its work in its own callback.
+  if (!app.get_subcommands().empty()) return 0;
+  return RunJob(app, line);
 }

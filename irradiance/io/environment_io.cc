@@ -4,6 +4,7 @@
 #include <fmt/format.h>
 
 #include <algorithm>
+#include <bit>
 #include <atomic>
 #include <cassert>
 #include <cctype>
@@ -20,6 +21,7 @@
 #include <OpenImageIO/imageio.h>
 
 #include "irradiance/io/dds_reader.h"
+#include "vm/core/atomic_file.h"
 
 namespace vs11::irradiance {
 namespace {
@@ -93,9 +95,9 @@ const CubeGrid* FindCubeGrid(Layout layout) {
   return nullptr;
 }
 
-// Formats written as linear floats; everything else is written as 8-bit sRGB.
-constexpr std::array<std::string_view, 5> kFloatExtensions = {".exr", ".hdr", ".tif", ".tiff",
-                                                              ".pfm"};
+// Formats written as linear floats; everything else is written as 8-bit sRGB. (.pfm is read but not
+// written: OpenImageIO 2.4 has no PFM writer, tested in environment_io_test.cc.)
+constexpr std::array<std::string_view, 4> kFloatExtensions = {".exr", ".hdr", ".tif", ".tiff"};
 constexpr double kByteMax = 255.0;
 // IEC 61966-2-1 sRGB transfer function constants.
 constexpr double kSrgbDecodeThreshold = 0.04045;
@@ -402,6 +404,14 @@ ImageReadResult ReadImageUnchecked(const fs::path& path, std::optional<Layout> e
   return result;
 }
 
+// The pixel of a cross or strip image that holds texel (x, y) of the face in `cell`, faces `size`
+// texels wide: the one mapping both directions use (reading a layout, writing one).
+glm::ivec2 CellPixel(const FaceCell& cell, int size, int x, int y) {
+  const int sx = cell.rotated_180 ? size - 1 - x : x;
+  const int sy = cell.rotated_180 ? size - 1 - y : y;
+  return {cell.column * size + sx, cell.row * size + sy};
+}
+
 CubeMap ExtractFaces(const Image& image, const CubeGrid& grid, int size) {
   CubeMap cube(size);
   for (CubeFace face : kAllCubeFaces) {
@@ -409,9 +419,8 @@ CubeMap ExtractFaces(const Image& image, const CubeGrid& grid, int size) {
     Image& out = cube.face(face);
     for (int y = 0; y < size; ++y) {
       for (int x = 0; x < size; ++x) {
-        const int sx = cell.rotated_180 ? size - 1 - x : x;
-        const int sy = cell.rotated_180 ? size - 1 - y : y;
-        out.at(x, y) = image.at(cell.column * size + sx, cell.row * size + sy);
+        const glm::ivec2 pixel = CellPixel(cell, size, x, y);
+        out.at(x, y) = image.at(pixel.x, pixel.y);
       }
     }
   }
@@ -485,19 +494,6 @@ bool HasFloatExtension(const fs::path& path) {
          kFloatExtensions.end();
 }
 
-fs::path TemporaryPath(const fs::path& path) {
-  static std::atomic<std::uint64_t> counter{0};
-  static const std::uint64_t seed = std::random_device{}();
-  const std::string name = fmt::format(".{}.tmp{:x}-{}{}", path.filename().string(), seed,
-                                       counter.fetch_add(1), path.extension().string());
-  return path.parent_path() / name;
-}
-
-void RemoveQuietly(const fs::path& path) {
-  std::error_code ec;
-  fs::remove(path, ec);
-}
-
 // Writes `image` to a new temporary file beside `path` in `format` (an OpenImageIO format name, or
 // empty for the one `path`'s extension names). Returns the temporary's path, or sets `error`.
 std::optional<fs::path> WriteTemporary(const Image& image, const fs::path& path,
@@ -538,7 +534,7 @@ std::optional<fs::path> WriteTemporary(const Image& image, const fs::path& path,
     data = bytes.data();
   }
 
-  const fs::path temporary = TemporaryPath(path);
+  const fs::path temporary = TemporaryPathBeside(path);
   if (!output->open(temporary.string(), spec)) {
     error =
         fmt::format("{}: cannot create file ({})", path.string(), OiioMessage(output->geterror()));
@@ -556,27 +552,14 @@ std::optional<fs::path> WriteTemporary(const Image& image, const fs::path& path,
   return temporary;
 }
 
-// Renames finished temporaries over their targets; on failure removes the remaining temporaries.
-std::optional<std::string> Commit(const std::vector<std::pair<fs::path, fs::path>>& renames) {
-  for (std::size_t i = 0; i < renames.size(); ++i) {
-    std::error_code ec;
-    fs::rename(renames[i].first, renames[i].second, ec);
-    if (ec) {
-      for (std::size_t j = i; j < renames.size(); ++j) RemoveQuietly(renames[j].first);
-      return fmt::format("{}: cannot rename the finished file into place ({})",
-                         renames[i].second.string(), ec.message());
-    }
-  }
-  return std::nullopt;
-}
-
 std::optional<std::string> WriteAtomically(const Image& image, const fs::path& path,
                                            std::string_view format) {
   try {
     std::string error;
     const std::optional<fs::path> temporary = WriteTemporary(image, path, format, error);
     if (!temporary) return error;
-    return Commit({{*temporary, path}});
+    const PendingRename rename[] = {{*temporary, path}};
+    return CommitRenames(rename);
   } catch (const std::exception& e) {
     return fmt::format("{}: {}", path.string(), e.what());
   }
@@ -629,9 +612,8 @@ Image CubeMapToImage(const CubeMap& cube, EnvironmentLayout layout) {
       const FaceCell& cell = grid->cells[static_cast<int>(face)];
       for (int y = 0; y < n; ++y) {
         for (int x = 0; x < n; ++x) {
-          const int sx = cell.rotated_180 ? n - 1 - x : x;
-          const int sy = cell.rotated_180 ? n - 1 - y : y;
-          image.at(cell.column * n + sx, cell.row * n + sy) = cube.face(face).at(x, y);
+          const glm::ivec2 pixel = CellPixel(cell, n, x, y);
+          image.at(pixel.x, pixel.y) = cube.face(face).at(x, y);
         }
       }
     }
@@ -757,21 +739,36 @@ std::optional<std::string> WriteCubeMap(const CubeMap& cube, const std::filesyst
     return fmt::format("{}: writing six faces needs a path containing \"{}\"", pattern, kFaceToken);
   }
   try {
-    std::vector<std::pair<fs::path, fs::path>> renames;
+    std::vector<PendingRename> renames;
     for (CubeFace face : kAllCubeFaces) {
       const fs::path target = ReplaceToken(pattern, kFaceFileNames[static_cast<int>(face)]);
       std::string error;
       const std::optional<fs::path> temporary = WriteTemporary(cube.face(face), target, "", error);
       if (!temporary) {
-        for (const auto& [written, unused] : renames) RemoveQuietly(written);
+        for (const PendingRename& written : renames) RemoveQuietly(written.temporary);
         return error;
       }
-      renames.emplace_back(*temporary, target);
+      renames.push_back({*temporary, target});
     }
-    return Commit(renames);
+    return CommitRenames(renames);
   } catch (const std::exception& e) {
     return fmt::format("{}: {}", pattern, e.what());
   }
+}
+
+bool IsPowerOfTwo(int n) { return n > 0 && std::has_single_bit(static_cast<unsigned>(n)); }
+
+std::optional<std::string> CheckFaceSizeOption(std::string_view option, int face_size, int max_size) {
+  if (IsPowerOfTwo(face_size) && face_size <= max_size) return std::nullopt;
+  return fmt::format("{} {} must be a power of two from 1 to {} (the mip pyramid halves it down to 1x1)", option,
+                     face_size, max_size);
+}
+
+std::optional<std::string> CheckPyramidFaceSize(std::string_view source, int face_size) {
+  if (IsPowerOfTwo(face_size)) return std::nullopt;
+  return fmt::format("{}face size {} is not a power of two; the mip pyramid needs exact 2x2 parents down to 1x1 "
+                     "(resample the map, or give a lat-long map with --face-size)",
+                     source.empty() ? std::string() : std::string(source) + ": ", face_size);
 }
 
 }  // namespace vs11::irradiance

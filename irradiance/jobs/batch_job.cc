@@ -25,6 +25,7 @@
 #include "irradiance/sh/sh9.h"
 #include "irradiance/sh/sh_projection.h"
 #include "vm/asm/program_file.h"
+#include "vm/core/atomic_file.h"
 
 namespace vs11::irradiance {
 namespace {
@@ -100,9 +101,7 @@ std::optional<std::string> ProcessInput(Job& job, const std::string& input, nloh
   LoadResult loaded = LoadEnvironment(input, load);
   if (!loaded.ok()) return loaded.error;
   const int face_size = loaded.environment->cube.face_size;
-  if (!std::has_single_bit(static_cast<unsigned>(face_size))) {
-    return fmt::format("face size {} is not a power of two (the mip pyramid needs one)", face_size);
-  }
+  if (std::optional<std::string> error = CheckPyramidFaceSize("", face_size)) return error;
   const std::string layout(LayoutName(loaded.environment->layout));
   std::optional<CubeMipChain> mips = BuildEnvironmentMips(std::move(loaded.environment->cube));
   std::shared_ptr<const BasisPyramid> basis = job.basis.Get(face_size);
@@ -139,9 +138,7 @@ std::optional<std::string> CheckOptions(const BatchOptions& options, Environment
   if (options.shard_count < 1 || options.shard_index < 0 || options.shard_index >= options.shard_count) {
     return fmt::format("--shard {}/{} is out of range: K/N with 0 <= K < N", options.shard_index, options.shard_count);
   }
-  if (!std::has_single_bit(static_cast<unsigned>(std::max(options.face_size, 0))) || options.face_size > kMaxFaceSize) {
-    return fmt::format("--face-size {} must be a power of two from 1 to {}", options.face_size, kMaxFaceSize);
-  }
+  if (std::optional<std::string> error = CheckFaceSizeOption("--face-size", options.face_size)) return error;
   if (!(options.max_error > 0.0 && options.max_error < 1.0)) {
     return fmt::format("--max-error {} is out of range: a fraction above 0 and below 1", options.max_error);
   }

@@ -11,7 +11,6 @@
 #include <cstddef>
 #include <functional>
 #include <memory>
-#include <random>
 #include <system_error>
 #include <thread>
 #include <type_traits>
@@ -31,6 +30,7 @@
 #include "programs/embedded_programs.h"
 #include "vm/asm/assembler.h"
 #include "vm/asm/program_file.h"
+#include "vm/core/atomic_file.h"
 #include "vm/engines/engine_factory.h"
 
 namespace vs11::irradiance {
@@ -76,7 +76,6 @@ auto Timed(IrrmapReport& report, std::string name, F&& stage) {
   }
 }
 
-bool IsPowerOfTwo(int n) { return n > 0 && std::has_single_bit(static_cast<unsigned>(n)); }
 
 std::string BuiltinList() {
   std::string out;
@@ -133,10 +132,7 @@ std::optional<std::string> CheckOptions(const IrrmapOptions& options, CheckedOpt
     return fmt::format("--max-error {} is out of range: a fraction above 0 and below 1 (0.005 = 0.5 %)",
                        options.max_error);
   }
-  if (!IsPowerOfTwo(options.face_size) || options.face_size > kMaxFaceSize) {
-    return fmt::format("--face-size {} must be a power of two from 1 to {} (the mip pyramid halves it down to 1x1)",
-                       options.face_size, kMaxFaceSize);
-  }
+  if (std::optional<std::string> error = CheckFaceSizeOption("--face-size", options.face_size)) return error;
   if (options.level && *options.level < 0) {
     return fmt::format("--level {} is out of range: levels start at 0 (full resolution)", *options.level);
   }
@@ -199,11 +195,7 @@ std::optional<std::string> LoadCube(const IrrmapOptions& options, const CheckedO
                                           options.face_size, options.environment, report.layout, cube.face_size,
                                           cube.face_size));
   }
-  if (!IsPowerOfTwo(cube.face_size)) {
-    return fmt::format("{}: face size {} is not a power of two; the mip pyramid needs exact 2x2 parents down to "
-                       "1x1 (resample the map, or give a lat-long map with --face-size)",
-                       options.environment, cube.face_size);
-  }
+  if (std::optional<std::string> error = CheckPyramidFaceSize(options.environment, cube.face_size)) return error;
   if (options.level && *options.level >= LevelCount(cube.face_size)) {
     return fmt::format("--level {} is out of range: {}", *options.level, LevelRange(cube.face_size));
   }
@@ -329,11 +321,6 @@ nlohmann::ordered_json CoefficientsJson(const IrrmapReport& report, const Irrmap
   return json;
 }
 
-void RemoveQuietly(const fs::path& path) {
-  std::error_code ec;
-  fs::remove(path, ec);
-}
-
 // One output: written by `write` to a temporary path with the same extension, then renamed.
 struct PendingOutput {
   std::string_view name;
@@ -350,31 +337,18 @@ std::optional<std::string> WriteOutputs(const fs::path& out_dir, const std::vect
       return fmt::format("cannot write {}: it is a directory", (out_dir / output.name).string());
     }
   }
-  std::random_device random;
-  const std::string tag = fmt::format(".irrmap-{:08x}-", random());
-  std::vector<std::pair<fs::path, fs::path>> renames;
-  auto discard = [&](std::size_t from) {
-    for (std::size_t i = from; i < renames.size(); ++i) RemoveQuietly(renames[i].first);
-  };
+  std::vector<PendingRename> renames;
   for (const PendingOutput& output : outputs) {
     const fs::path target = out_dir / output.name;
-    const fs::path temporary = out_dir / (tag + std::string(output.name));
+    const fs::path temporary = TemporaryPathBeside(target);
     if (std::optional<std::string> error = output.write(temporary)) {
       RemoveQuietly(temporary);
-      discard(0);
+      for (const PendingRename& finished : renames) RemoveQuietly(finished.temporary);
       return fmt::format("cannot write {}: {}", target.string(), *error);
     }
-    renames.emplace_back(temporary, target);
+    renames.push_back({temporary, target});
   }
-  for (std::size_t i = 0; i < renames.size(); ++i) {
-    fs::rename(renames[i].first, renames[i].second, ec);
-    if (ec) {
-      discard(i);
-      return fmt::format("cannot rename the finished file into {} ({})", renames[i].second.string(), ec.message());
-    }
-    written.push_back(renames[i].second);
-  }
-  return std::nullopt;
+  return CommitRenames(renames, &written);
 }
 
 std::string ConstantsFileComment(const IrrmapReport& report, const PaperProgram& program) {
@@ -480,48 +454,74 @@ double IrrmapReport::TimingMs(std::string_view name) const {
 
 // ---- RunIrrmap -------------------------------------------------------------------------------------
 
-std::optional<std::string> RunIrrmap(const IrrmapOptions& options, IrrmapReport& report,
-                                     const IrrmapProgress& progress) {
-  report = IrrmapReport{};
-  CheckedOptions checked;
-  if (std::optional<std::string> error = CheckOptions(options, checked)) return error;
-  report.threads = checked.threads;
-  const EngineOptions engine_options{checked.threads};
+namespace {
 
+// What the stages of one run hand on to each other. Each stage reads what earlier stages left here,
+// adds its results to the report, and queues the files it produces in `outputs`; RunIrrmap writes
+// them all at its one exit.
+struct IrrmapRun {
+  IrrmapRun(const IrrmapOptions& options_in, IrrmapReport& report_in, const IrrmapProgress& progress_in)
+      : options(options_in), report(report_in), progress(progress_in) {}
+
+  const IrrmapOptions& options;
+  IrrmapReport& report;
+  const IrrmapProgress& progress;
+  CheckedOptions checked;
+  EngineOptions engine_options;
+  int face_size = 0;                    // of the environment's cube (its texels live in mips)
+  std::optional<CubeMipChain> mips;
+  std::optional<BasisPyramid> basis;
+  std::optional<PaperProgram> program;  // the nine terms: the level table's and the preview's errors
+  std::optional<PaperProgram> chosen_program;
+  ConstantBank chosen_bank;
+  MeshLighting lighting;
+  CubeMap irradiance_map;
+  std::vector<glm::dvec3> error_normals;
+  std::vector<glm::dvec3> error_truth;  // the ground truth at error_normals
+  HemisphereGrid grid;                  // the ground truth at the preview's directions
+  PreviewResult preview;
+  std::vector<PendingOutput> outputs;   // beside coeffs.json, constants.vsh and program.vsh
+
+  // The progress callback for a stage with fractions, or an empty one.
+  std::function<void(double)> FractionsOf(std::string_view stage) const {
+    if (!progress) return {};
+    return [this, stage](double fraction) { progress(stage, fraction); };
+  }
+};
+
+std::optional<std::string> LoadStage(IrrmapRun& run) {
   CubeMap cube;
   // Loading has no fraction to report: the bar shows the stage at 0 % and at its end.
-  if (progress) progress("load", 0.0);
-  std::optional<std::string> load_error =
-      Timed(report, "load", [&] { return LoadCube(options, checked, report, cube); });
-  if (load_error) return load_error;
-  if (progress) progress("load", 1.0);
-  report.face_size = cube.face_size;
+  if (run.progress) run.progress("load", 0.0);
+  std::optional<std::string> error =
+      Timed(run.report, "load", [&] { return LoadCube(run.options, run.checked, run.report, cube); });
+  if (error) return error;
+  if (run.progress) run.progress("load", 1.0);
+  run.face_size = run.report.face_size = cube.face_size;
+  // The pyramid takes the map as its level 0 rather than a second copy.
+  run.mips = Timed(run.report, "env_mips", [&] { return BuildEnvironmentMips(std::move(cube)); });
+  run.basis = Timed(run.report, "basis_pyramid", [&] {
+    return BuildBasisPyramid(run.face_size, run.checked.threads, run.FractionsOf("basis pyramid"));
+  });
+  if (!run.mips || !run.basis) return fmt::format("cannot build the mip pyramids of face size {}", run.face_size);
+  return std::nullopt;
+}
 
-  // The pyramid takes the map as its level 0 rather than a second copy; from here on `cube` holds
-  // only its face_size and the texels are mips->levels[0].
-  std::optional<CubeMipChain> mips =
-      Timed(report, "env_mips", [&] { return BuildEnvironmentMips(std::move(cube)); });
-  std::optional<BasisPyramid> basis =
-      Timed(report, "basis_pyramid", [&] {
-        std::function<void(double)> report_fraction;
-        if (progress) report_fraction = [&](double fraction) { progress("basis pyramid", fraction); };
-        return BuildBasisPyramid(cube.face_size, checked.threads, report_fraction);
-      });
-  if (!mips || !basis) return fmt::format("cannot build the mip pyramids of face size {}", cube.face_size);
-
-  // Every level's coefficients, each update timed on its own.
+// Every level's coefficients (each update timed on its own), the level and window chosen, the
+// constants packed.
+std::optional<std::string> CoefficientsStage(IrrmapRun& run) {
+  IrrmapReport& report = run.report;
   Timed(report, "level_updates", [&] {
-    const int level_count = LevelCount(cube.face_size);
-    for (int level = 0; level < level_count; ++level) {
+    for (int level = 0; level < LevelCount(run.face_size); ++level) {
       LevelReport row;
       row.level = level;
-      row.size = cube.face_size >> level;
-      row.update_ms = TimeProjection(*mips, *basis, level, row.coefficients,
-                                     options.coefficients_only ? 0.0 : kMinTimingMs);
+      row.size = run.face_size >> level;
+      row.update_ms = TimeProjection(*run.mips, *run.basis, level, row.coefficients,
+                                     run.options.coefficients_only ? 0.0 : kMinTimingMs);
       report.levels.push_back(row);
     }
   });
-  ChooseLevelAndWindow(options, checked, report);
+  ChooseLevelAndWindow(run.options, run.checked, report);
   const LevelReport& chosen = report.levels[report.level];
   report.coefficients = chosen.coefficients;
   report.timings.push_back({"projection", chosen.update_ms});
@@ -532,104 +532,142 @@ std::optional<std::string> RunIrrmap(const IrrmapOptions& options, IrrmapReport&
   report.program_vs_full_order2 =
       IrradianceDifference(ReduceToOrder(report.coefficients, report.order), report.levels[0].coefficients,
                            SphereNormals(kLevelErrorNormals));
+  std::string error;
+  run.program = Timed(report, "program", [&] { return PaperProgram::Load(error); });
+  if (!run.program) return error;
+  run.chosen_program = PaperProgram::LoadOrder(report.order, error);
+  if (!run.chosen_program) return error;
+  run.chosen_bank = run.chosen_program->Constants(report.program_constants);
+  return std::nullopt;
+}
 
-  std::string program_error;
-  std::optional<PaperProgram> program = Timed(report, "program", [&] { return PaperProgram::Load(program_error); });
-  if (!program) return program_error;
-  std::optional<PaperProgram> chosen_program = PaperProgram::LoadOrder(report.order, program_error);
-  if (!chosen_program) return program_error;
-  const ConstantBank chosen_bank = chosen_program->Constants(report.program_constants);
+std::optional<std::string> MeshStage(IrrmapRun& run) {
+  const IrrmapOptions& options = run.options;
+  run.lighting = Timed(run.report, "mesh", [&] {
+    MeshLightingOptions mesh_options{run.checked.engine, run.engine_options, run.checked.threads,
+                                     options.mesh_truth_vertex_limit, options.mesh_panel_size};
+    return LightMesh(*options.mesh, *run.program, run.report.constants, run.mips->levels[0], mesh_options);
+  });
+  const MeshLighting& lighting = run.lighting;
+  for (const std::string& warning : lighting.warnings) run.report.warnings.push_back(warning);
+  run.report.mesh = MeshReport{options.mesh->name, options.mesh->positions.size(), options.mesh->indices.size() / 3,
+                               lighting.ms_per_evaluation, lighting.unusable_normals, !lighting.truth.empty(),
+                               lighting.error, lighting.exposure, lighting.error_scale};
+  run.outputs.push_back({kMeshFile, [&run](const fs::path& path) {
+                           return run.options.mesh->write ? run.options.mesh->write(path, run.lighting.display_colors)
+                                                          : std::optional<std::string>("no mesh writer");
+                         }});
+  run.outputs.push_back({kMeshPictureFile, [&run](const fs::path& path) { return WriteImage(run.lighting.picture, path); }});
+  return std::nullopt;
+}
 
-  std::vector<PendingOutput> extra_outputs;
-  MeshLighting lighting;
-  if (options.mesh) {
-    lighting = Timed(report, "mesh", [&] {
-      MeshLightingOptions mesh_options{checked.engine, engine_options, checked.threads, options.mesh_truth_vertex_limit,
-                                       options.mesh_panel_size};
-      return LightMesh(*options.mesh, *program, report.constants, mips->levels[0], mesh_options);
-    });
-    for (std::string& warning : lighting.warnings) report.warnings.push_back(std::move(warning));
-    report.mesh = MeshReport{options.mesh->name, options.mesh->positions.size(), options.mesh->indices.size() / 3,
-                             lighting.ms_per_evaluation, lighting.unusable_normals, !lighting.truth.empty(), lighting.error, lighting.exposure,
-                             lighting.error_scale};
-    extra_outputs.push_back({kMeshFile, [&](const fs::path& path) {
-                              return options.mesh->write ? options.mesh->write(path, lighting.display_colors)
-                                                         : std::optional<std::string>("no mesh writer");
-                            }});
-    extra_outputs.push_back({kMeshPictureFile, [&](const fs::path& path) { return WriteImage(lighting.picture, path); }});
-  }
-
-  if (options.coefficients_only) return WriteJobOutputs(options, checked, *chosen_program, std::move(extra_outputs), report);
-
-  // The irradiance cube map: the chosen program once per texel direction.
-  CubeMap irradiance_map(options.map_size);
-  Timed(report, "irradiance_map", [&] {
-    const std::vector<glm::dvec3> directions = CubeTexelDirections(options.map_size);
+// The irradiance cube map: the chosen program once per texel direction.
+std::optional<std::string> IrradianceMapStage(IrrmapRun& run) {
+  run.irradiance_map = CubeMap(run.options.map_size);
+  Timed(run.report, "irradiance_map", [&] {
+    const std::vector<glm::dvec3> directions = CubeTexelDirections(run.options.map_size);
     const std::vector<glm::dvec3> values =
-        chosen_program->Irradiance(chosen_bank, directions, checked.engine, engine_options);
+        run.chosen_program->Irradiance(run.chosen_bank, directions, run.checked.engine, run.engine_options);
     std::size_t k = 0;
-    for (Image& face : irradiance_map.faces) {
+    for (Image& face : run.irradiance_map.faces) {
       for (glm::vec3& texel : face.pixels) texel = glm::vec3(values[k++]);
     }
   });
+  run.outputs.push_back({kIrradianceFile, [&run](const fs::path& path) { return WriteCrossExr(run.irradiance_map, path); }});
+  return std::nullopt;
+}
 
-  if (options.no_ground_truth) {
-    extra_outputs.push_back({kIrradianceFile, [&](const fs::path& path) { return WriteCrossExr(irradiance_map, path); }});
-    return WriteJobOutputs(options, checked, *chosen_program, std::move(extra_outputs), report);
-  }
-
-  // Ground truth at the error normals and at the preview's grid, in one pass.
-  const std::vector<glm::dvec3> error_normals = SphereNormals(options.error_normals);
-  HemisphereGrid grid;
-  std::vector<glm::dvec3> truth_normals = error_normals;
-  truth_normals.insert(truth_normals.end(), grid.normals().begin(), grid.normals().end());
+// The ground truth at the error normals and at the preview's grid, in one pass, and every level's
+// error against it.
+std::optional<std::string> GroundTruthStage(IrrmapRun& run) {
+  IrrmapReport& report = run.report;
+  run.error_normals = SphereNormals(run.options.error_normals);
+  std::vector<glm::dvec3> truth_normals = run.error_normals;
+  truth_normals.insert(truth_normals.end(), run.grid.normals().begin(), run.grid.normals().end());
   std::vector<glm::dvec3> truth = Timed(report, "ground_truth", [&] {
-    std::function<void(double)> report_fraction;
-    if (progress) report_fraction = [&](double fraction) { progress("ground truth", fraction); };
-    return GroundTruthIrradiance(mips->levels[0], truth_normals, checked.threads, report_fraction);
+    return GroundTruthIrradiance(run.mips->levels[0], truth_normals, run.checked.threads,
+                                 run.FractionsOf("ground truth"));
   });
-  const std::span<const glm::dvec3> error_truth(truth.data(), error_normals.size());
-  grid.SetValues(std::vector<glm::dvec3>(truth.begin() + static_cast<std::ptrdiff_t>(error_normals.size()), truth.end()));
+  const auto grid_start = truth.begin() + static_cast<std::ptrdiff_t>(run.error_normals.size());
+  run.grid.SetValues(std::vector<glm::dvec3>(grid_start, truth.end()));
+  truth.erase(grid_start, truth.end());
+  run.error_truth = std::move(truth);
 
   Timed(report, "level_errors", [&] {
     for (LevelReport& level : report.levels) {
-      const std::vector<glm::dvec3> estimate =
-          program->Irradiance(PackTable1(level.coefficients), error_normals, checked.engine, engine_options);
-      level.error = CompareIrradiance(estimate, error_truth, error_normals);
+      const std::vector<glm::dvec3> estimate = run.program->Irradiance(
+          PackTable1(level.coefficients), run.error_normals, run.checked.engine, run.engine_options);
+      level.error = CompareIrradiance(estimate, run.error_truth, run.error_normals);
     }
     report.program_error = CompareIrradiance(
-        chosen_program->Irradiance(chosen_bank, error_normals, checked.engine, engine_options), error_truth,
-        error_normals);
+        run.chosen_program->Irradiance(run.chosen_bank, run.error_normals, run.checked.engine, run.engine_options),
+        run.error_truth, run.error_normals);
   });
   report.errors_measured = true;
+  return std::nullopt;
+}
 
-  PreviewResult preview = Timed(report, "preview", [&] {
+std::optional<std::string> PreviewStage(IrrmapRun& run) {
+  const IrrmapReport& report = run.report;
+  run.preview = Timed(run.report, "preview", [&] {
     PreviewOptions preview_options;
-    preview_options.sphere_diameter = options.sphere_diameter;
-    if (!options.font.empty()) preview_options.font = options.font;
-    const SpherePixels sphere = MakeSpherePixels(options.sphere_diameter);
+    preview_options.sphere_diameter = run.options.sphere_diameter;
+    if (!run.options.font.empty()) preview_options.font = run.options.font;
+    const SpherePixels sphere = MakeSpherePixels(run.options.sphere_diameter);
     PreviewPanel truth_panel{"exact convolution", {}};
     truth_panel.irradiance.reserve(sphere.normals.size());
-    for (const glm::dvec3& n : sphere.normals) truth_panel.irradiance.push_back(grid.Sample(n));
+    for (const glm::dvec3& n : sphere.normals) truth_panel.irradiance.push_back(run.grid.Sample(n));
     std::vector<PreviewPanel> panels;
     const bool order2 = report.order == ShOrder::kOrder2;
     for (int level : PreviewLevels(report)) {
       const LevelReport& row = report.levels[level];
       panels.push_back({PreviewLabel(row, row.chosen && order2),
-                        program->Irradiance(PackTable1(row.coefficients), sphere.normals, checked.engine,
-                                            engine_options)});
+                        run.program->Irradiance(PackTable1(row.coefficients), sphere.normals, run.checked.engine,
+                                                run.engine_options)});
     }
     if (!order2) {  // the chosen program beside the nine terms it approximates
+      const LevelReport& chosen = report.levels[report.level];
       panels.push_back({fmt::format("{} from {}x{} *", Info(report.order).name, chosen.size, chosen.size),
-                        chosen_program->Irradiance(chosen_bank, sphere.normals, checked.engine, engine_options)});
+                        run.chosen_program->Irradiance(run.chosen_bank, sphere.normals, run.checked.engine,
+                                                       run.engine_options)});
     }
-    return RenderPreview(sphere, truth_panel, panels, mips->levels[0], preview_options);
+    return RenderPreview(sphere, truth_panel, panels, run.mips->levels[0], preview_options);
   });
-  for (std::string& warning : preview.warnings) report.warnings.push_back(std::move(warning));
+  for (const std::string& warning : run.preview.warnings) run.report.warnings.push_back(warning);
+  run.outputs.push_back({kPreviewFile, [&run](const fs::path& path) { return WriteImage(run.preview.image, path); }});
+  return std::nullopt;
+}
 
-  extra_outputs.push_back({kIrradianceFile, [&](const fs::path& path) { return WriteCrossExr(irradiance_map, path); }});
-  extra_outputs.push_back({kPreviewFile, [&](const fs::path& path) { return WriteImage(preview.image, path); }});
-  return WriteJobOutputs(options, checked, *chosen_program, std::move(extra_outputs), report);
+using Stage = std::optional<std::string> (*)(IrrmapRun&);
+
+// The stages the options ask for, in order.
+std::vector<Stage> StagesFor(const IrrmapOptions& options) {
+  std::vector<Stage> stages = {LoadStage, CoefficientsStage};
+  if (options.mesh) stages.push_back(MeshStage);
+  if (options.coefficients_only) return stages;
+  stages.push_back(IrradianceMapStage);
+  if (options.no_ground_truth) return stages;
+  stages.push_back(GroundTruthStage);
+  stages.push_back(PreviewStage);
+  return stages;
+}
+
+}  // namespace
+
+std::optional<std::string> RunIrrmap(const IrrmapOptions& options, IrrmapReport& report,
+                                     const IrrmapProgress& progress) {
+  report = IrrmapReport{};
+  IrrmapRun run(options, report, progress);
+  std::optional<std::string> error = CheckOptions(options, run.checked);
+  if (!error) {
+    report.threads = run.checked.threads;
+    run.engine_options = EngineOptions{run.checked.threads};
+    for (Stage stage : StagesFor(options)) {
+      if ((error = stage(run))) break;
+    }
+  }
+  if (!error) error = WriteJobOutputs(options, run.checked, *run.chosen_program, std::move(run.outputs), report);
+  return error;
 }
 
 // ---- Formatting ------------------------------------------------------------------------------------

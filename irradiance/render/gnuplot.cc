@@ -7,13 +7,13 @@
 #include <cerrno>
 #include <cstring>
 #include <fstream>
-#include <random>
 #include <sstream>
 #include <system_error>
 
 #include <fmt/format.h>
 
 #include "vm/asm/program_file.h"
+#include "vm/core/atomic_file.h"
 
 namespace vs11::irradiance {
 namespace {
@@ -26,14 +26,12 @@ constexpr const char* kFont = "DejaVu Sans,11";
 struct TemporaryFiles {
   std::vector<fs::path> paths;
   ~TemporaryFiles() {
-    std::error_code ignored;
-    for (const fs::path& path : paths) fs::remove(path, ignored);
+    for (const fs::path& path : paths) RemoveQuietly(path);
   }
 };
 
-fs::path TemporaryBeside(const fs::path& path, std::mt19937_64& random, TemporaryFiles& temporaries) {
-  fs::path temporary = path;
-  temporary.replace_filename(fmt::format(".{}.{:016x}.tmp", path.filename().string(), random()));
+fs::path TemporaryBeside(const fs::path& path, TemporaryFiles& temporaries) {
+  fs::path temporary = TemporaryPathBeside(path);
   temporaries.paths.push_back(temporary);
   return temporary;
 }
@@ -88,13 +86,11 @@ std::string GnuplotQuote(const std::string& text) {
 
 std::optional<std::string> RenderGnuplotChart(const GnuplotChart& chart, const std::vector<fs::path>& outputs) {
   if (outputs.empty()) return std::nullopt;
-  std::random_device seed;
-  std::mt19937_64 random(seed());
   TemporaryFiles temporaries;
   const fs::path& first = outputs.front();
-  const fs::path data = TemporaryBeside(first.parent_path() / "chart.dat", random, temporaries);
-  const fs::path script = TemporaryBeside(first.parent_path() / "chart.gp", random, temporaries);
-  const fs::path log = TemporaryBeside(first.parent_path() / "gnuplot.log", random, temporaries);
+  const fs::path data = TemporaryBeside(first.parent_path() / "chart.dat", temporaries);
+  const fs::path script = TemporaryBeside(first.parent_path() / "chart.gp", temporaries);
+  const fs::path log = TemporaryBeside(first.parent_path() / "gnuplot.log", temporaries);
   if (auto error = WriteFileAtomically(data, chart.data)) return error;
 
   std::ostringstream commands;
@@ -102,7 +98,7 @@ std::optional<std::string> RenderGnuplotChart(const GnuplotChart& chart, const s
   for (const fs::path& output : outputs) {
     const std::optional<std::string> terminal = TerminalFor(output, chart);
     if (!terminal) return fmt::format("cannot plot {}: the chart's file must end in .svg or .png", output.string());
-    images.push_back(TemporaryBeside(output, random, temporaries));
+    images.push_back(TemporaryBeside(output, temporaries));
     commands << "reset session\n" << *terminal << "\nset output " << GnuplotQuote(images.back().string()) << "\n"
              << "datafile = " << GnuplotQuote(data.string()) << "\n"
              // Tick labels as numbers read (10000, 0.001, 1e-05), not gnuplot's log-axis default
@@ -127,12 +123,9 @@ std::optional<std::string> RenderGnuplotChart(const GnuplotChart& chart, const s
       return fmt::format("gnuplot wrote no image for {}", outputs[i].string());
     }
   }
-  for (std::size_t i = 0; i < images.size(); ++i) {
-    std::error_code ec;
-    fs::rename(images[i], outputs[i], ec);
-    if (ec) return fmt::format("cannot write {} ({})", outputs[i].string(), ec.message());
-  }
-  return std::nullopt;
+  std::vector<PendingRename> renames;
+  for (std::size_t i = 0; i < images.size(); ++i) renames.push_back({images[i], outputs[i]});
+  return CommitRenames(renames);
 }
 
 }  // namespace vs11::irradiance

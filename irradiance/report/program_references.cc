@@ -179,6 +179,25 @@ std::optional<Setup> Begin(const ProgramMetadata& meta, const ReferenceOptions& 
   return setup;
 }
 
+// The start every lit case shares: `samples` vertices (at least one), the constants checked and
+// reserved (Begin), the tolerance its outputs are checked to, and its own random stream.
+struct LitCase {
+  Setup setup;
+  std::size_t count = 0;
+  double tolerance = 0.0;
+  Random random;
+
+  CaseWriter Writer() { return CaseWriter(setup.rc, setup.base); }
+};
+
+std::optional<LitCase> BeginLit(const ProgramMetadata& meta, const ReferenceOptions& options, int constant_registers,
+                                std::vector<int> input_registers, std::string& error) {
+  const std::size_t count = static_cast<std::size_t>(std::max(options.samples, 1));
+  std::optional<Setup> setup = Begin(meta, options, constant_registers, std::move(input_registers), count, error);
+  if (!setup) return std::nullopt;
+  return LitCase{std::move(*setup), count, meta.tolerance.value_or(kDefaultTolerance), Random(options.seed)};
+}
+
 ExpectedOutput& AddOutput(ReferenceCase& rc, int slot, WriteMask lanes, std::size_t vertices, double tolerance) {
   assert(rc.expected.size() < rc.expected.capacity());  // see Begin: references stay valid
   rc.expected.push_back({slot, lanes, std::vector<glm::dvec4>(vertices, glm::dvec4(0.0)), tolerance});
@@ -217,14 +236,31 @@ std::optional<ShOrder> ReducedOrder(Sh9Packing packing) {
   }
 }
 
+// A packing's constant registers from the program's first constant on: their count is the vector's
+// size, so each packing states how many registers it takes in one place (its Pack function).
+std::vector<glm::vec4> PackSh9(Sh9Packing packing, const Sh9Rgb& sh) {
+  if (const std::optional<ShOrder> reduced = ReducedOrder(packing)) {
+    std::vector<glm::vec4> values;
+    for (const NamedRegister& reg : PackShOrder(sh, *reduced)) values.push_back(reg.value);
+    return values;
+  }
+  const auto as_vector = [](const auto& registers) { return std::vector<glm::vec4>(registers.begin(), registers.end()); };
+  switch (packing) {
+    case Sh9Packing::kTable1: return as_vector(PackTable1(sh).registers);
+    case Sh9Packing::kUnitSphere10: return as_vector(PackUnitSphere10(sh).registers);
+    case Sh9Packing::kMatrix: return as_vector(PackMatrix(sh));
+    case Sh9Packing::kBasis: return as_vector(PackBasis(sh));
+    default: return {};  // the reduced orders, above
+  }
+}
+
 std::optional<ReferenceCase> BuildSh9(const ProgramMetadata& meta, const ReferenceOptions& options,
                                       std::string& error) {
   Sh9Packing packing = Sh9Packing::kTable1;
   if (!meta.packing.empty()) {
     std::optional<Sh9Packing> parsed = Sh9PackingFromName(meta.packing);
     if (!parsed) {
-      error = fmt::format("unknown sh9 packing '{}' (table1, unit_sphere10, matrix, basis, order0, order1 or zh3)",
-                          meta.packing);
+      error = fmt::format("unknown sh9 packing '{}' ({})", meta.packing, Sh9PackingNames());
       return std::nullopt;
     }
     packing = *parsed;
@@ -243,45 +279,15 @@ std::optional<ReferenceCase> BuildSh9(const ProgramMetadata& meta, const Referen
     }
     registers.push_back(*meta.position);
   }
-  const std::optional<ShOrder> reduced = ReducedOrder(packing);
-  const int register_count = reduced                           ? Info(*reduced).constant_registers
-                             : packing == Sh9Packing::kMatrix ? 12
-                             : packing == Sh9Packing::kBasis  ? 9
-                                                              : 7;
-  std::optional<Setup> setup = Begin(meta, options, register_count, registers, count, error);
+  const std::vector<glm::vec4> packed = PackSh9(packing, options.coefficients);
+  std::optional<Setup> setup = Begin(meta, options, static_cast<int>(packed.size()), registers, count, error);
   if (!setup) return std::nullopt;
   ReferenceCase& rc = setup->rc;
   CaseWriter writer(rc, setup->base);
-
+  for (std::size_t i = 0; i < packed.size(); ++i) writer.SetConstant(static_cast<int>(i), glm::dvec4(packed[i]));
   // A reduced order's program computes the irradiance of the reduced coefficients.
+  const std::optional<ShOrder> reduced = ReducedOrder(packing);
   const Sh9Rgb sh = reduced ? ReduceToOrder(options.coefficients, *reduced) : options.coefficients;
-  switch (packing) {
-    case Sh9Packing::kOrder0:
-    case Sh9Packing::kOrder1:
-    case Sh9Packing::kZh3: {
-      const std::vector<NamedRegister> registers = PackShOrder(options.coefficients, *reduced);
-      for (std::size_t i = 0; i < registers.size(); ++i) {
-        writer.SetConstant(static_cast<int>(i), glm::dvec4(registers[i].value));
-      }
-      break;
-    }
-    case Sh9Packing::kTable1:
-    case Sh9Packing::kUnitSphere10: {
-      SevenConstants k = packing == Sh9Packing::kTable1 ? PackTable1(sh) : PackUnitSphere10(sh);
-      for (int i = 0; i < 7; ++i) writer.SetConstant(i, glm::dvec4(k.registers[i]));
-      break;
-    }
-    case Sh9Packing::kMatrix: {
-      std::array<glm::vec4, 12> m = PackMatrix(sh);
-      for (int i = 0; i < 12; ++i) writer.SetConstant(i, glm::dvec4(m[i]));
-      break;
-    }
-    case Sh9Packing::kBasis: {
-      std::array<glm::vec4, 9> b = PackBasis(sh);
-      for (int i = 0; i < 9; ++i) writer.SetConstant(i, glm::dvec4(b[i]));
-      break;
-    }
-  }
 
   ExpectedOutput& irradiance = AddOutput(rc, output_slot, kXyz, count, meta.tolerance.value_or(kDefaultTolerance));
   for (std::size_t i = 0; i < count; ++i) {
@@ -318,12 +324,11 @@ std::optional<ReferenceCase> BuildSh9(const ProgramMetadata& meta, const Referen
 std::optional<ReferenceCase> BuildDirectionalLight(const ProgramMetadata& meta, const ReferenceOptions& options,
                                                    std::string& error) {
   const int position_reg = meta.position.value_or(0), normal_reg = meta.normal.value_or(1);
-  const std::size_t count = static_cast<std::size_t>(std::max(options.samples, 1));
-  std::optional<Setup> setup = Begin(meta, options, 13, {position_reg, normal_reg}, count, error);
-  if (!setup) return std::nullopt;
-  ReferenceCase& rc = setup->rc;
-  CaseWriter w(rc, setup->base);
-  Random random(options.seed);
+  std::optional<LitCase> lit = BeginLit(meta, options, 13, {position_reg, normal_reg}, error);
+  if (!lit) return std::nullopt;
+  auto& [setup, count, tolerance, random] = *lit;
+  ReferenceCase& rc = setup.rc;
+  CaseWriter w = lit->Writer();
   const std::array<glm::dvec4, 4> wvp = w.RandomMatrix4(0, random);
   const std::array<glm::dvec4, 3> world = w.RandomWorld(4, random);
   const glm::dvec3 light = glm::dvec3(w.SetConstant(7, glm::dvec4(random.UnitVector(), 0.0)));
@@ -333,7 +338,6 @@ std::optional<ReferenceCase> BuildDirectionalLight(const ProgramMetadata& meta, 
   const glm::dvec4 ambient = w.SetConstant(11, random.Colour() * 0.2);
   const double power = w.SetConstant(12, {0.0, 0.0, 0.0, std::round(random.Uniform(4, 32))}).w;
 
-  const double tolerance = meta.tolerance.value_or(kDefaultTolerance);
   ExpectedOutput& position = AddOutput(rc, kPositionSlot, kXyzw, count, tolerance);
   ExpectedOutput& od0 = AddOutput(rc, kDiffuseSlot, kXyzw, count, tolerance);
   ExpectedOutput& od1 = AddOutput(rc, kSpecularSlot, kXyzw, count, tolerance);
@@ -358,7 +362,7 @@ std::optional<ReferenceCase> BuildDirectionalLight(const ProgramMetadata& meta, 
     }
   }
   rc.named_inputs = {{position_reg, "position"}, {normal_reg, "normal"}};
-  rc.description = "directional_light" + RegisterList(meta, setup->base);
+  rc.description = "directional_light" + RegisterList(meta, setup.base);
   PutPrimaryFirst(rc, meta.output.value_or(kDiffuseSlot));
   return std::move(rc);
 }
@@ -368,12 +372,11 @@ std::optional<ReferenceCase> BuildDirectionalLight(const ProgramMetadata& meta, 
 std::optional<ReferenceCase> BuildPointLight(const ProgramMetadata& meta, const ReferenceOptions& options,
                                              std::string& error) {
   const int position_reg = meta.position.value_or(0), normal_reg = meta.normal.value_or(1);
-  const std::size_t count = static_cast<std::size_t>(std::max(options.samples, 1));
-  std::optional<Setup> setup = Begin(meta, options, 11, {position_reg, normal_reg}, count, error);
-  if (!setup) return std::nullopt;
-  ReferenceCase& rc = setup->rc;
-  CaseWriter w(rc, setup->base);
-  Random random(options.seed);
+  std::optional<LitCase> lit = BeginLit(meta, options, 11, {position_reg, normal_reg}, error);
+  if (!lit) return std::nullopt;
+  auto& [setup, count, tolerance, random] = *lit;
+  ReferenceCase& rc = setup.rc;
+  CaseWriter w = lit->Writer();
   const std::array<glm::dvec4, 4> wvp = w.RandomMatrix4(0, random);
   const std::array<glm::dvec4, 3> world = w.RandomWorld(4, random);
   // The light 4 to 8 units from the origin, so it stays outside the objects (|P| <= about 3.5).
@@ -384,7 +387,6 @@ std::optional<ReferenceCase> BuildPointLight(const ProgramMetadata& meta, const 
   const glm::dvec4 diffuse = w.SetConstant(9, random.Colour() * 8.0);
   const glm::dvec4 ambient = w.SetConstant(10, random.Colour() * 0.2);
 
-  const double tolerance = meta.tolerance.value_or(kDefaultTolerance);
   ExpectedOutput& position = AddOutput(rc, kPositionSlot, kXyzw, count, tolerance);
   ExpectedOutput& od0 = AddOutput(rc, kDiffuseSlot, kXyzw, count, tolerance);
   for (std::size_t i = 0; i < count; ++i) {
@@ -399,7 +401,7 @@ std::optional<ReferenceCase> BuildPointLight(const ProgramMetadata& meta, const 
     od0.values[i] = ambient + diffuse * (std::max(glm::dot(n, to_light / d), 0.0) * attenuation);
   }
   rc.named_inputs = {{position_reg, "position"}, {normal_reg, "normal"}};
-  rc.description = "point_light" + RegisterList(meta, setup->base);
+  rc.description = "point_light" + RegisterList(meta, setup.base);
   PutPrimaryFirst(rc, meta.output.value_or(kDiffuseSlot));
   return std::move(rc);
 }
@@ -409,12 +411,11 @@ std::optional<ReferenceCase> BuildPointLight(const ProgramMetadata& meta, const 
 std::optional<ReferenceCase> BuildFog(const ProgramMetadata& meta, const ReferenceOptions& options,
                                       std::string& error) {
   const int position_reg = meta.position.value_or(0);
-  const std::size_t count = static_cast<std::size_t>(std::max(options.samples, 1));
-  std::optional<Setup> setup = Begin(meta, options, 8, {position_reg}, count, error);
-  if (!setup) return std::nullopt;
-  ReferenceCase& rc = setup->rc;
-  CaseWriter w(rc, setup->base);
-  Random random(options.seed);
+  std::optional<LitCase> lit = BeginLit(meta, options, 8, {position_reg}, error);
+  if (!lit) return std::nullopt;
+  auto& [setup, count, tolerance, random] = *lit;
+  ReferenceCase& rc = setup.rc;
+  CaseWriter w = lit->Writer();
   const std::array<glm::dvec4, 4> wvp = w.RandomMatrix4(0, random);
   std::array<glm::dvec4, 3> world_view = w.RandomWorld(4, random);
   // Push the scene 2 to 10 units in front of the eye (view-space z), as a camera would see it.
@@ -423,7 +424,6 @@ std::optional<ReferenceCase> BuildFog(const ProgramMetadata& meta, const Referen
   const glm::dvec4 fog = w.SetConstant(
       7, {0.0, -density1 * std::numbers::log2e, -density2 * density2 * std::numbers::log2e, 0.0});
 
-  const double tolerance = meta.tolerance.value_or(kDefaultTolerance);
   ExpectedOutput& position = AddOutput(rc, kPositionSlot, kXyzw, count, tolerance);
   ExpectedOutput& o_fog = AddOutput(rc, kFogSlot, kX, count, tolerance);
   for (std::size_t i = 0; i < count; ++i) {
@@ -434,7 +434,7 @@ std::optional<ReferenceCase> BuildFog(const ProgramMetadata& meta, const Referen
     o_fog.values[i] = glm::dvec4(std::exp2(fog.y * d + fog.z * d * d), 0.0, 0.0, 0.0);
   }
   rc.named_inputs = {{position_reg, "position"}};
-  rc.description = "fog" + RegisterList(meta, setup->base);
+  rc.description = "fog" + RegisterList(meta, setup.base);
   PutPrimaryFirst(rc, meta.output.value_or(kFogSlot));
   return std::move(rc);
 }
@@ -448,20 +448,18 @@ std::optional<ReferenceCase> BuildSkinning(const ProgramMetadata& meta, const Re
                                            std::string& error) {
   const int position_reg = meta.position.value_or(0), weights_reg = meta.weights.value_or(1),
             indices_reg = meta.indices.value_or(2), normal_reg = meta.normal.value_or(3);
-  const std::size_t count = static_cast<std::size_t>(std::max(options.samples, 1));
-  std::optional<Setup> setup = Begin(meta, options, kSkinningPaletteOffset + 3 * kSkinningBones,
-                                     {position_reg, weights_reg, indices_reg, normal_reg}, count, error);
-  if (!setup) return std::nullopt;
-  ReferenceCase& rc = setup->rc;
-  CaseWriter w(rc, setup->base);
-  Random random(options.seed);
+  std::optional<LitCase> lit = BeginLit(meta, options, kSkinningPaletteOffset + 3 * kSkinningBones,
+                                        {position_reg, weights_reg, indices_reg, normal_reg}, error);
+  if (!lit) return std::nullopt;
+  auto& [setup, count, tolerance, random] = *lit;
+  ReferenceCase& rc = setup.rc;
+  CaseWriter w = lit->Writer();
   const std::array<glm::dvec4, 4> view_proj = w.RandomMatrix4(0, random);
   const glm::dvec3 light = glm::dvec3(w.SetConstant(4, glm::dvec4(random.UnitVector(), 0.0)));
   const glm::dvec4 diffuse = w.SetConstant(5, random.Colour());
   std::array<std::array<glm::dvec4, 3>, kSkinningBones> bones;
   for (int b = 0; b < kSkinningBones; ++b) bones[b] = w.RandomWorld(kSkinningPaletteOffset + 3 * b, random);
 
-  const double tolerance = meta.tolerance.value_or(kDefaultTolerance);
   ExpectedOutput& position = AddOutput(rc, kPositionSlot, kXyzw, count, tolerance);
   ExpectedOutput& od0 = AddOutput(rc, kDiffuseSlot, kXyzw, count, tolerance);
   for (std::size_t i = 0; i < count; ++i) {
@@ -482,7 +480,7 @@ std::optional<ReferenceCase> BuildSkinning(const ProgramMetadata& meta, const Re
   }
   rc.named_inputs = {{position_reg, "position"}, {weights_reg, "weights"}, {indices_reg, "indices"},
                      {normal_reg, "normal"}};
-  rc.description = "skinning" + RegisterList(meta, setup->base);
+  rc.description = "skinning" + RegisterList(meta, setup.base);
   PutPrimaryFirst(rc, meta.output.value_or(kDiffuseSlot));
   return std::move(rc);
 }
@@ -505,12 +503,11 @@ std::optional<ReferenceCase> BuildAllInstructions(const ProgramMetadata& meta, c
                                                   std::string& error) {
   const int position_reg = meta.position.value_or(0), normal_reg = meta.normal.value_or(1),
             texcoord_reg = meta.texcoord.value_or(2);
-  const std::size_t count = static_cast<std::size_t>(std::max(options.samples, 1));
-  std::optional<Setup> setup = Begin(meta, options, 19, {position_reg, normal_reg, texcoord_reg}, count, error);
-  if (!setup) return std::nullopt;
-  ReferenceCase& rc = setup->rc;
-  CaseWriter w(rc, setup->base);
-  Random random(options.seed);
+  std::optional<LitCase> lit = BeginLit(meta, options, 19, {position_reg, normal_reg, texcoord_reg}, error);
+  if (!lit) return std::nullopt;
+  auto& [setup, count, tolerance, random] = *lit;
+  ReferenceCase& rc = setup.rc;
+  CaseWriter w = lit->Writer();
   const std::array<glm::dvec4, 4> wvp = w.RandomMatrix4(0, random);
   const std::array<glm::dvec4, 3> world = w.RandomWorld(4, random);
   const glm::dvec3 light_pos =
@@ -527,7 +524,6 @@ std::optional<ReferenceCase> BuildAllInstructions(const ProgramMetadata& meta, c
   const glm::dvec3 half = glm::dvec3(w.SetConstant(17, glm::dvec4(random.UnitVector(), 0.0)));
   const glm::dvec4 fog_plane = w.SetConstant(18, glm::dvec4(random.UnitVector() * 0.3, 0.5));
 
-  const double tolerance = meta.tolerance.value_or(kDefaultTolerance);
   const double partial_tolerance = meta.tolerance.value_or(kPartialPrecisionTolerance);
   ExpectedOutput& o_pos = AddOutput(rc, kPositionSlot, kXyzw, count, tolerance);
   ExpectedOutput& od0 = AddOutput(rc, kDiffuseSlot, kXyzw, count, tolerance);
@@ -571,7 +567,7 @@ std::optional<ReferenceCase> BuildAllInstructions(const ProgramMetadata& meta, c
     }
   }
   rc.named_inputs = {{position_reg, "position"}, {normal_reg, "normal"}, {texcoord_reg, "texcoord"}};
-  rc.description = "all_instructions" + RegisterList(meta, setup->base);
+  rc.description = "all_instructions" + RegisterList(meta, setup.base);
   PutPrimaryFirst(rc, meta.output.value_or(kDiffuseSlot));
   return std::move(rc);
 }
@@ -591,13 +587,9 @@ constexpr std::array<ReferenceInfo, 6> kReferences = {{
 }  // namespace
 
 std::optional<Sh9Packing> Sh9PackingFromName(std::string_view name) {
-  if (name == "table1") return Sh9Packing::kTable1;
-  if (name == "unit_sphere10") return Sh9Packing::kUnitSphere10;
-  if (name == "matrix") return Sh9Packing::kMatrix;
-  if (name == "basis") return Sh9Packing::kBasis;
-  if (name == "order0") return Sh9Packing::kOrder0;
-  if (name == "order1") return Sh9Packing::kOrder1;
-  if (name == "zh3") return Sh9Packing::kZh3;
+  for (Sh9Packing packing : kAllSh9Packings) {
+    if (Sh9PackingName(packing) == name) return packing;
+  }
   return std::nullopt;
 }
 
@@ -612,6 +604,15 @@ std::string_view Sh9PackingName(Sh9Packing packing) {
     case Sh9Packing::kZh3: return "zh3";
   }
   return "?";
+}
+
+std::string Sh9PackingNames() {
+  std::string names;
+  for (std::size_t i = 0; i < kAllSh9Packings.size(); ++i) {
+    names += i == 0 ? "" : i + 1 == kAllSh9Packings.size() ? " or " : ", ";
+    names += Sh9PackingName(kAllSh9Packings[i]);
+  }
+  return names;
 }
 
 std::array<glm::vec4, 12> PackMatrix(const Sh9Rgb& sh) {

@@ -66,8 +66,12 @@ enum class Sh9Packing {
   kOrder1,        // bands 0 and 1, 3 registers
   kZh3,           // bands 0 and 1 plus band 2's zonal part around the linear band's axis, 5 registers
 };
+inline constexpr std::array kAllSh9Packings = {Sh9Packing::kTable1, Sh9Packing::kUnitSphere10, Sh9Packing::kMatrix,
+                                              Sh9Packing::kBasis,  Sh9Packing::kOrder0,       Sh9Packing::kOrder1,
+                                              Sh9Packing::kZh3};
 std::optional<Sh9Packing> Sh9PackingFromName(std::string_view name);
 std::string_view Sh9PackingName(Sh9Packing packing);
+std::string Sh9PackingNames();  // "table1, unit_sphere10, ... or zh3", for messages
 
 // Ramamoorthi & Hanrahan 2001, eq. (12): E(n) = n^T M n with n = (x, y, z, 1) and, per channel,
 //

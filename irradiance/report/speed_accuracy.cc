@@ -15,6 +15,7 @@
 #include "irradiance/sh/ground_truth.h"
 #include "irradiance/sh/sh_projection.h"
 #include "vm/asm/program_file.h"
+#include "vm/core/atomic_file.h"
 
 namespace vs11::irradiance {
 namespace {
@@ -53,11 +54,7 @@ std::optional<std::string> LoadSweepEnvironment(const std::string& name, const S
   if (!loaded.ok()) return loaded.error;
   for (std::string& warning : loaded.environment->warnings) warnings.push_back(name + ": " + warning);
   cube = std::move(loaded.environment->cube);
-  if (LevelCount(cube.face_size) == 0) {
-    return fmt::format("{}: face size {} is not a power of two; the mip pyramid needs exact 2x2 parents "
-                       "down to 1x1",
-                       name, cube.face_size);
-  }
+  if (std::optional<std::string> error = CheckPyramidFaceSize(name, cube.face_size)) return error;
   return std::nullopt;
 }
 
@@ -82,9 +79,7 @@ double MedianBatchMs(const SpeedAccuracyOptions& options, F&& update) {
 
 std::optional<std::string> CheckOptions(const SpeedAccuracyOptions& options) {
   if (!ParseLayout(options.layout)) return fmt::format("unknown layout '{}'", options.layout);
-  if (LevelCount(options.face_size) == 0 || options.face_size > kMaxFaceSize) {
-    return fmt::format("--face-size {} must be a power of two from 1 to {}", options.face_size, kMaxFaceSize);
-  }
+  if (std::optional<std::string> error = CheckFaceSizeOption("--face-size", options.face_size)) return error;
   if (options.error_normals < 1) return fmt::format("--error-normals {} must be >= 1", options.error_normals);
   if (options.threads < 0) return fmt::format("--threads {} must be >= 0 (0: every core)", options.threads);
   if (options.batches < 1) return fmt::format("--batches {} must be >= 1", options.batches);

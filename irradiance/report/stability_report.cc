@@ -11,10 +11,12 @@
 
 #include <fmt/format.h>
 
+#include "irradiance/io/environment_io.h"
 #include "irradiance/io/environments.h"
 #include "irradiance/render/gnuplot.h"
 #include "irradiance/sh/sh_projection.h"
 #include "vm/asm/program_file.h"
+#include "vm/core/atomic_file.h"
 
 namespace vs11::irradiance {
 namespace {
@@ -28,7 +30,9 @@ constexpr std::string_view kRingingChart = "ringing.png";
 constexpr std::string_view kLevelsChart = "levels.png";
 // A light "rings" past 10 % (a level's 1 % threshold is stability.cc's kOnePercent).
 constexpr double kSweepThreshold = 0.10;
-constexpr int kMaxFaceSize = 4096;
+// Largest face the report accepts, below the loaders' kMaxFaceSize: the report builds and projects many
+// synthetic environments at this size (a 4096 face is 100M texels, 1.2 GB of float RGB per cube).
+constexpr int kMaxStabilityFaceSize = 4096;
 // Spots of other sizes in the level study, and the sun of a sky variant.
 constexpr std::array<double, 3> kLevelSpotRadii = {10.0, 1.0, 0.5};
 constexpr double kSmallSunRadiusDegrees = 0.5;
@@ -40,7 +44,6 @@ constexpr std::array<double, 6> kHanningWidths = {2, 3, 4, 5, 6, 8};
 constexpr std::array<double, 5> kLanczosWidths = {3, 4, 5, 6, 8};
 constexpr std::array<double, 5> kReliabilityTargets = {0.001, 0.0025, 0.005, 0.01, 0.02};
 
-bool IsPowerOfTwo(int n) { return n > 0 && std::has_single_bit(static_cast<unsigned>(n)); }
 
 std::string Percent(double fraction) { return ReportPercent(fraction); }
 
@@ -434,12 +437,9 @@ std::string ReportPercent(double fraction) {
 std::optional<std::string> RunStability(const StabilityOptions& options, StabilityReport& report,
                                         const StabilityProgress& progress) {
   report = StabilityReport{};
-  if (!IsPowerOfTwo(options.face_size) || options.face_size > kMaxFaceSize) {
-    return fmt::format("--face-size {} must be a power of two up to {}", options.face_size, kMaxFaceSize);
-  }
-  if (!IsPowerOfTwo(options.precision_face_size) || options.precision_face_size > kMaxFaceSize) {
-    return fmt::format("--precision-face-size {} must be a power of two up to {}", options.precision_face_size,
-                       kMaxFaceSize);
+  if (auto error = CheckFaceSizeOption("--face-size", options.face_size, kMaxStabilityFaceSize)) return error;
+  if (auto error = CheckFaceSizeOption("--precision-face-size", options.precision_face_size, kMaxStabilityFaceSize)) {
+    return error;
   }
   if (options.error_normals < 16) return fmt::format("--error-normals {} is too few (>= 16)", options.error_normals);
   if (!(options.max_error > 0.0)) return fmt::format("--max-error {} must be > 0", options.max_error);

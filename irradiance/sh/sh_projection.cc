@@ -10,6 +10,7 @@
 #include <mutex>
 #include <thread>
 
+#include "irradiance/io/environment_io.h"
 #include "irradiance/sh/projection_kernels.h"
 
 namespace vs11::irradiance {
@@ -20,7 +21,6 @@ namespace {
 // may not do without -ffast-math), and the order of additions is fixed.
 constexpr int kLanes = 8;
 
-bool IsPowerOfTwo(int n) { return n > 0 && (n & (n - 1)) == 0; }
 
 // Solid angles of the texels of row y (the same on every face).
 void RowSolidAngles(int y, int size, std::vector<double>& out) {
@@ -265,9 +265,12 @@ void BuildBasisFace(int f, const std::vector<double>& solid_angles, BasisPyramid
 
 // Solid angles of every texel of a face of `size` (the same on all six faces), row-major.
 std::vector<double> FaceSolidAngles(int size) {
-  std::vector<double> solid_angles(static_cast<std::size_t>(size) * size);
+  std::vector<double> solid_angles;
+  solid_angles.reserve(static_cast<std::size_t>(size) * size);
+  std::vector<double> row;
   for (int y = 0; y < size; ++y) {
-    for (int x = 0; x < size; ++x) solid_angles[static_cast<std::size_t>(y) * size + x] = TexelSolidAngle(x, y, size);
+    RowSolidAngles(y, size, row);
+    solid_angles.insert(solid_angles.end(), row.begin(), row.end());
   }
   return solid_angles;
 }

@@ -1,8 +1,9 @@
 #!/usr/bin/env python3
 """Includes point down only (README, Layout): a file includes its own folder or a lower layer.
 
-vm:          core <- asm, io <- engines <- mesh <- cli
-irradiance:  io <- sh <- render <- report <- jobs <- mesh_input <- cli
+vm:          core <- asm, io <- engines <- mesh
+irradiance:  io <- sh <- render <- report <- jobs <- mesh_input
+tools:       vm/cli (vs11) <- irradiance/cli (irrmap, which shares vs11's command-line parse)
 The irradiance library sits above vm's library folders (core, asm, io, engines); only irrmap's mesh
 reader (irradiance/mesh_input) reaches vm/mesh, and only the vs11 tool (vm/cli) reaches irradiance.
 Folders on the same layer (asm and io) do not include each other.
@@ -16,7 +17,7 @@ import sys
 LAYERS = {
     "vm/core": 0, "vm/asm": 1, "vm/io": 1, "vm/engines": 2, "vm/mesh": 3,
     "irradiance/io": 4, "irradiance/sh": 5, "irradiance/render": 6, "irradiance/report": 7,
-    "irradiance/jobs": 8, "irradiance/mesh_input": 9, "irradiance/cli": 10, "vm/cli": 11,
+    "irradiance/jobs": 8, "irradiance/mesh_input": 9, "vm/cli": 10, "irradiance/cli": 11,
 }
 # Exceptions to "any lower layer": vm/mesh is below the irradiance library's layers but only
 # mesh_input and the tools may use it (vs11_irradiance is installed without Assimp).

@@ -16,6 +16,7 @@
 #include "vm/asm/assembler.h"
 #include "vm/asm/bytecode.h"
 #include "vm/asm/program_file.h"
+#include "vm/core/atomic_file.h"
 #include "vm/mesh/mesh_io.h"
 #include "vm/mesh/mesh_wire.h"
 #include "vm/mesh/npy.h"

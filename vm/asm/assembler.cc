@@ -37,11 +37,6 @@ constexpr std::array<std::string_view, 59> kOtherModelMnemonics = {
     "cmp",          "bem",       "dp2add",     "dsx",        "dsy",          "texldd",     "setp",       "texldl",
     "breakp",       "phase",     "dp2"};
 
-// IEEE-754 single-precision patterns for the words def accepts besides numbers.
-constexpr std::uint32_t kFloatSignBit = 0x80000000u;
-constexpr std::uint32_t kQuietNanBits = 0x7FC00000u;
-constexpr std::uint32_t kInfinityBits = 0x7F800000u;
-
 template <std::size_t N>
 bool Contains(const std::array<std::string_view, N>& list, std::string_view word) {
   return std::find(list.begin(), list.end(), word) != list.end();

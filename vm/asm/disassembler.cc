@@ -13,10 +13,6 @@
 namespace vs11 {
 namespace {
 
-// The NaN the assembler writes for `nan` (see vm/asm/assembler.cc); any other NaN loses its payload.
-constexpr std::uint32_t kQuietNanBits = 0x7FC00000u;
-constexpr std::uint32_t kFloatSignBit = 0x80000000u;
-
 std::string VersionLine(std::uint32_t version, Syntax syntax) {
   auto spelling = std::find_if(kVersionSpellings.begin(), kVersionSpellings.end(), [&](const VersionSpelling& v) {
     return v.token == version && v.dx9 == (syntax == Syntax::kDx9);

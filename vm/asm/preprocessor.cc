@@ -768,12 +768,15 @@ void Preprocessor::HandleInclude(const std::vector<Token>& rest, int column, int
   std::vector<std::filesystem::path> candidates;
   if (quoted) candidates.push_back(file_->path.parent_path() / name);
   for (const std::filesystem::path& dir : options_.include_dirs) candidates.push_back(dir / name);
+  std::string reader_failure;  // why the caller's reader threw, for the error below
   for (const std::filesystem::path& candidate : candidates) {
     std::optional<std::string> text;
     try {  // the reader is the caller's code; a throwing one must not unwind through us
       if (reader_) text = reader_(candidate);
+    } catch (const std::exception& e) {
+      if (reader_failure.empty()) reader_failure = fmt::format(" ({}: {})", candidate.string(), e.what());
     } catch (...) {
-      text.reset();
+      if (reader_failure.empty()) reader_failure = fmt::format(" ({}: the reader failed)", candidate.string());
     }
     if (!text) continue;
     if (pragma_once_.count(candidate.lexically_normal().string()) != 0) return;
@@ -786,7 +789,7 @@ void Preprocessor::HandleInclude(const std::vector<Token>& rest, int column, int
     line_ = include_line;
     return;
   }
-  Error(column, fmt::format("cannot open include file '{}'", name));
+  Error(column, fmt::format("cannot open include file '{}'{}", name, reader_failure));
 }
 
 void Preprocessor::HandleLine(const std::vector<Token>& rest, int column) {

@@ -1,10 +1,7 @@
 #include "vm/asm/program_file.h"
 
-#include <unistd.h>
-
 #include <cstdio>
 #include <fstream>
-#include <random>
 #include <sstream>
 #include <system_error>
 
@@ -81,36 +78,6 @@ LoadedProgram LoadProgram(const std::filesystem::path& path, const LoadProgramOp
   loaded.diagnostics = std::move(assembled.diagnostics);
   if (!loaded.diagnostics.HasErrors()) loaded.program = std::move(assembled.program);
   return loaded;
-}
-
-std::optional<std::string> WriteFileAtomically(const std::filesystem::path& path, std::string_view bytes) {
-  std::filesystem::path folder = path.parent_path().empty() ? std::filesystem::path(".") : path.parent_path();
-  std::filesystem::path temporary =
-      folder / fmt::format(".{}.tmp.{}.{}", path.filename().string(), ::getpid(), std::random_device{}());
-  {
-    std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-    if (!out) return fmt::format("{}: cannot create a file in {}", path.string(), folder.string());
-    out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
-    out.flush();
-    if (!out) {
-      out.close();
-      std::error_code ignored;
-      std::filesystem::remove(temporary, ignored);
-      return fmt::format("{}: write failed", path.string());
-    }
-  }
-  std::error_code error;
-  std::filesystem::rename(temporary, path, error);
-  if (error) {
-    std::error_code ignored;
-    std::filesystem::remove(temporary, ignored);
-    return fmt::format("{}: {}", path.string(), error.message());
-  }
-  return std::nullopt;
-}
-
-std::optional<std::string> WriteFileAtomically(const std::filesystem::path& path, std::span<const std::uint8_t> bytes) {
-  return WriteFileAtomically(path, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
 }
 
 }  // namespace vs11

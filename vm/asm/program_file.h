@@ -1,5 +1,5 @@
 // Programs from files: .vsh source (preprocessed, assembled, validated) or .vso bytecode (decoded,
-// validated), and atomic file writing shared by every tool.
+// validated).
 #pragma once
 
 #include <cstdint>
@@ -28,11 +28,6 @@ struct LoadedProgram {
 // Bytecode when the file starts with a vertex-shader version token in little-endian order or has the
 // extension .vso/.cso/.bin; source otherwise.
 LoadedProgram LoadProgram(const std::filesystem::path& path, const LoadProgramOptions& options = {});
-
-// Writes `bytes` to a temporary file beside `path`, then renames it over `path`, so that a failure
-// never leaves a partial file. Returns an error message on failure.
-std::optional<std::string> WriteFileAtomically(const std::filesystem::path& path, std::string_view bytes);
-std::optional<std::string> WriteFileAtomically(const std::filesystem::path& path, std::span<const std::uint8_t> bytes);
 
 // Reads a whole file as bytes; nullopt when it cannot be opened.
 std::optional<std::string> ReadWholeFile(const std::filesystem::path& path);

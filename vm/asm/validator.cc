@@ -30,7 +30,6 @@ constexpr std::uint8_t kLanesXyw = kLaneX | kLaneY | kLaneW;
 constexpr std::uint8_t kAllLanes = WriteMask::kAllLanes;
 
 // The source of m*x* that names the first row register of the matrix (§3.4: `m4x4 d, S, M`).
-constexpr int kMatrixOperand = 1;
 
 // kVector rows (lit, dst, expp, logp) share no lane formula, so for each of them this table lists
 // which lanes of each *swizzled* source every written destination lane needs (§3.3, §6.3).
@@ -144,11 +143,6 @@ std::string LaneSuffix(std::uint8_t lanes) {
 RegisterRef RowRegister(RegisterRef reg, int row) {
   reg.index += row;
   return reg;
-}
-
-// How many consecutive registers source `operand` reads: matrix_rows for the matrix operand.
-int RowsRead(const OpcodeInfo& info, int operand) {
-  return info.kind == ResultKind::kMatrix && operand == kMatrixOperand ? info.matrix_rows : 1;
 }
 
 // ---------------------------------------------------------------------------------------------
@@ -335,7 +329,7 @@ class Validator {
     if (!CheckRange(index, reg, "the destination")) return;
     if (reg.file != RegisterFile::kAddress) return;
     if (IsVersion10()) Error(index, "writes a0, which vs_1_0 does not have; use vs_1_1 (§2.1)");
-    if (instruction.opcode != Opcode::kMov) Error(index, "cannot write a0; only mov can (mov a0.x, src)");
+    if (!instruction.info().can_write_address()) Error(index, "cannot write a0; only mov can (mov a0.x, src)");
   }
 
   void CheckMask(int index) {
@@ -387,7 +381,7 @@ class Validator {
                                  RegisterName({reg.file, reg.index, false})));
         continue;
       }
-      for (int row = 0; row < RowsRead(info, s); ++row) {
+      for (int row = 0; row < info.registers_read(s); ++row) {
         if (!CheckRange(index, RowRegister(reg, row), what)) break;
       }
       if (reg.relative && !relative_reported) {
@@ -415,7 +409,8 @@ class Validator {
     std::vector<std::vector<RegisterRef>> groups;
     if (info.kind == ResultKind::kMatrix) {
       for (int row = 0; row < info.matrix_rows; ++row) {
-        groups.push_back({instruction.sources[0].reg, RowRegister(instruction.sources[kMatrixOperand].reg, row)});
+        const RegisterRef& matrix = instruction.sources[OpcodeInfo::kMatrixSource].reg;
+        groups.push_back({instruction.sources[0].reg, RowRegister(matrix, row)});
       }
       return groups;
     }
@@ -477,7 +472,7 @@ class Validator {
     const Instruction& instruction = At(index);
     const OpcodeInfo& info = instruction.info();
     if (info.kind != ResultKind::kMatrix) return;
-    const SourceOperand& matrix = instruction.sources[kMatrixOperand];
+    const SourceOperand& matrix = instruction.sources[OpcodeInfo::kMatrixSource];
     if (!matrix.swizzle.is_identity()) {
       Error(index, fmt::format("the matrix operand {} cannot be swizzled; remove the swizzle",
                                FormatSource(SourceOperand{matrix.reg, matrix.swizzle, false})));
@@ -525,7 +520,7 @@ class Validator {
       const SourceOperand& source = instruction.sources[s];
       if (source.reg.file != RegisterFile::kTemp) continue;
       const std::uint8_t lanes = ConsumedLanes(info, s, instruction.dest.mask, source.swizzle);
-      for (int row = 0; row < RowsRead(info, s); ++row) {
+      for (int row = 0; row < info.registers_read(s); ++row) {
         const int reg = source.reg.index + row;
         if (reg < 0 || reg >= kTempRegisterCount) continue;  // reported by CheckSources
         missing[reg] |= lanes & ~written_lanes_[reg];
@@ -559,7 +554,7 @@ class Validator {
     for (int s = 0; s < info.source_count(); ++s) {
       const RegisterRef& base = instruction.sources[s].reg;
       if (base.file != RegisterFile::kInput) continue;
-      for (int row = 0; row < RowsRead(info, s); ++row) {
+      for (int row = 0; row < info.registers_read(s); ++row) {
         const int reg = base.index + row;
         if (reg < 0 || reg >= kInputRegisterCount || declared_at_[reg] >= 0 || reported[reg]) continue;
         reported[reg] = true;

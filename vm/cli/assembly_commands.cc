@@ -8,6 +8,7 @@
 #include "vm/asm/disassembler.h"
 #include "vm/cli/cli_support.h"
 #include "vm/cli/commands.h"
+#include "vm/core/atomic_file.h"
 
 namespace vs11::cli {
 

@@ -1,13 +1,12 @@
-#include <cstdio>
+#include <optional>
 #include <string>
 
 #include <fmt/format.h>
 
 #include "vm/cli/commands.h"
+#include "vm/cli/parse_command_line.h"
 
 namespace {
-
-constexpr int kUsageError = 2;
 
 // CLI11 reports `vs11 frobnicate` as "A subcommand is required": name the word it did not know.
 std::string UsageMessage(const CLI::App& app, const CLI::ParseError& error, int argc, char** argv) {
@@ -36,16 +35,8 @@ int main(int argc, char** argv) {
   vs11::cli::AddCountCommand(app);
   vs11::cli::AddVerifyCommand(app);
   try {
-    app.parse(argc, argv);
-  } catch (const CLI::CallForHelp& e) {
-    return app.exit(e);
-  } catch (const CLI::CallForAllHelp& e) {
-    return app.exit(e);
-  } catch (const CLI::CallForVersion& e) {
-    return app.exit(e);
-  } catch (const CLI::ParseError& e) {
-    fmt::print(stderr, "vs11: error: {}\nRun with --help for more information.\n", UsageMessage(app, e, argc, argv));
-    return kUsageError;
+    auto usage = [&](const CLI::ParseError& e) { return UsageMessage(app, e, argc, argv); };
+    if (std::optional<int> status = vs11::cli::ParseCommandLine(app, argc, argv, "vs11", usage)) return *status;
   } catch (const vs11::cli::CommandFailure& failure) {
     return failure.exit_code;
   }

@@ -10,6 +10,7 @@
 #include "vm/cli/commands.h"
 #include "vm/cli/trace_output.h"
 #include "vm/cli/vertex_sources.h"
+#include "vm/core/atomic_file.h"
 #include "vm/engines/engine_factory.h"
 #include "vm/io/vertex_io.h"
 

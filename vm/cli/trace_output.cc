@@ -11,6 +11,7 @@
 #include "vm/asm/program_file.h"
 #include "vm/cli/cli_support.h"
 #include "vm/cli/commands.h"
+#include "vm/core/atomic_file.h"
 #include "vm/engines/trace.h"
 
 namespace vs11::cli {

@@ -9,6 +9,7 @@
 
 #include "vm/asm/program_file.h"
 #include "vm/cli/cli_support.h"
+#include "vm/core/atomic_file.h"
 #include "vm/mesh/mesh_export.h"
 #include "vm/mesh/npy.h"
 #include "vm/mesh/vertex_buffer.h"

@@ -40,39 +40,44 @@ enum class MaskRule : std::uint8_t {
   kFull,    // dcl, def: always emitted as .xyzw
 };
 
+// Write-mask bits (x = bit 0 ... w = bit 3, as in the dest token §4.5) of the masks the table names.
+inline constexpr std::uint8_t kLanesXy = 0x3;
+inline constexpr std::uint8_t kLanesXyz = 0x7;
+inline constexpr std::uint8_t kLanesXyzw = 0xF;
+
 // name, mnemonic, opcode token, operand shape, result kind, slots, mask rule, default mask, dot width,
 // matrix rows. The default mask is what the assembler writes when the destination has none: the lanes
 // a matrix macro writes (m3x3 r0, v0, c0 is emitted as .xyz, as Microsoft's assembler does and
 // MojoShader's opcode table records), .xyzw for everything else (frc included: it is then invalid).
-#define VS11_OPCODES(X)                                                     \
-  X(Nop, "nop", 0x00, kNone, kNoResult, 1, kAny, 0xF, 0, 0)                 \
-  X(Mov, "mov", 0x01, kDest1, kComponentwise, 1, kAny, 0xF, 0, 0)           \
-  X(Add, "add", 0x02, kDest2, kComponentwise, 1, kAny, 0xF, 0, 0)           \
-  X(Sub, "sub", 0x03, kDest2, kComponentwise, 1, kAny, 0xF, 0, 0)           \
-  X(Mad, "mad", 0x04, kDest3, kComponentwise, 1, kAny, 0xF, 0, 0)           \
-  X(Mul, "mul", 0x05, kDest2, kComponentwise, 1, kAny, 0xF, 0, 0)           \
-  X(Rcp, "rcp", 0x06, kDest1, kScalar, 1, kAny, 0xF, 0, 0)                  \
-  X(Rsq, "rsq", 0x07, kDest1, kScalar, 1, kAny, 0xF, 0, 0)                  \
-  X(Dp3, "dp3", 0x08, kDest2, kDotProduct, 1, kAny, 0xF, 3, 0)              \
-  X(Dp4, "dp4", 0x09, kDest2, kDotProduct, 1, kAny, 0xF, 4, 0)              \
-  X(Min, "min", 0x0A, kDest2, kComponentwise, 1, kAny, 0xF, 0, 0)           \
-  X(Max, "max", 0x0B, kDest2, kComponentwise, 1, kAny, 0xF, 0, 0)           \
-  X(Slt, "slt", 0x0C, kDest2, kComponentwise, 1, kAny, 0xF, 0, 0)           \
-  X(Sge, "sge", 0x0D, kDest2, kComponentwise, 1, kAny, 0xF, 0, 0)           \
-  X(Exp, "exp", 0x0E, kDest1, kScalar, 10, kAny, 0xF, 0, 0)                 \
-  X(Log, "log", 0x0F, kDest1, kScalar, 10, kAny, 0xF, 0, 0)                 \
-  X(Lit, "lit", 0x10, kDest1, kVector, 1, kAny, 0xF, 0, 0)                  \
-  X(Dst, "dst", 0x11, kDest2, kVector, 1, kAny, 0xF, 0, 0)                  \
-  X(Frc, "frc", 0x13, kDest1, kComponentwise, 3, kYOrXy, 0xF, 0, 0)         \
-  X(M4x4, "m4x4", 0x14, kDest2, kMatrix, 4, kXyzw, 0xF, 4, 4)               \
-  X(M4x3, "m4x3", 0x15, kDest2, kMatrix, 3, kXyz, 0x7, 4, 3)                \
-  X(M3x4, "m3x4", 0x16, kDest2, kMatrix, 4, kXyzw, 0xF, 3, 4)               \
-  X(M3x3, "m3x3", 0x17, kDest2, kMatrix, 3, kXyz, 0x7, 3, 3)                \
-  X(M3x2, "m3x2", 0x18, kDest2, kMatrix, 2, kXy, 0x3, 3, 2)                 \
-  X(Dcl, "dcl", 0x1F, kDeclaration, kNoResult, 0, kFull, 0xF, 0, 0)         \
-  X(Expp, "expp", 0x4E, kDest1, kVector, 1, kAny, 0xF, 0, 0)                \
-  X(Logp, "logp", 0x4F, kDest1, kVector, 1, kAny, 0xF, 0, 0)                \
-  X(Def, "def", 0x51, kDefinition, kNoResult, 0, kFull, 0xF, 0, 0)
+#define VS11_OPCODES(X)                                                           \
+  X(Nop, "nop", 0x00, kNone, kNoResult, 1, kAny, kLanesXyzw, 0, 0)                \
+  X(Mov, "mov", 0x01, kDest1, kComponentwise, 1, kAny, kLanesXyzw, 0, 0)          \
+  X(Add, "add", 0x02, kDest2, kComponentwise, 1, kAny, kLanesXyzw, 0, 0)          \
+  X(Sub, "sub", 0x03, kDest2, kComponentwise, 1, kAny, kLanesXyzw, 0, 0)          \
+  X(Mad, "mad", 0x04, kDest3, kComponentwise, 1, kAny, kLanesXyzw, 0, 0)          \
+  X(Mul, "mul", 0x05, kDest2, kComponentwise, 1, kAny, kLanesXyzw, 0, 0)          \
+  X(Rcp, "rcp", 0x06, kDest1, kScalar, 1, kAny, kLanesXyzw, 0, 0)                 \
+  X(Rsq, "rsq", 0x07, kDest1, kScalar, 1, kAny, kLanesXyzw, 0, 0)                 \
+  X(Dp3, "dp3", 0x08, kDest2, kDotProduct, 1, kAny, kLanesXyzw, 3, 0)             \
+  X(Dp4, "dp4", 0x09, kDest2, kDotProduct, 1, kAny, kLanesXyzw, 4, 0)             \
+  X(Min, "min", 0x0A, kDest2, kComponentwise, 1, kAny, kLanesXyzw, 0, 0)          \
+  X(Max, "max", 0x0B, kDest2, kComponentwise, 1, kAny, kLanesXyzw, 0, 0)          \
+  X(Slt, "slt", 0x0C, kDest2, kComponentwise, 1, kAny, kLanesXyzw, 0, 0)          \
+  X(Sge, "sge", 0x0D, kDest2, kComponentwise, 1, kAny, kLanesXyzw, 0, 0)          \
+  X(Exp, "exp", 0x0E, kDest1, kScalar, 10, kAny, kLanesXyzw, 0, 0)                \
+  X(Log, "log", 0x0F, kDest1, kScalar, 10, kAny, kLanesXyzw, 0, 0)                \
+  X(Lit, "lit", 0x10, kDest1, kVector, 1, kAny, kLanesXyzw, 0, 0)                 \
+  X(Dst, "dst", 0x11, kDest2, kVector, 1, kAny, kLanesXyzw, 0, 0)                 \
+  X(Frc, "frc", 0x13, kDest1, kComponentwise, 3, kYOrXy, kLanesXyzw, 0, 0)        \
+  X(M4x4, "m4x4", 0x14, kDest2, kMatrix, 4, kXyzw, kLanesXyzw, 4, 4)              \
+  X(M4x3, "m4x3", 0x15, kDest2, kMatrix, 3, kXyz, kLanesXyz, 4, 3)                \
+  X(M3x4, "m3x4", 0x16, kDest2, kMatrix, 4, kXyzw, kLanesXyzw, 3, 4)              \
+  X(M3x3, "m3x3", 0x17, kDest2, kMatrix, 3, kXyz, kLanesXyz, 3, 3)                \
+  X(M3x2, "m3x2", 0x18, kDest2, kMatrix, 2, kXy, kLanesXy, 3, 2)                  \
+  X(Dcl, "dcl", 0x1F, kDeclaration, kNoResult, 0, kFull, kLanesXyzw, 0, 0)        \
+  X(Expp, "expp", 0x4E, kDest1, kVector, 1, kAny, kLanesXyzw, 0, 0)               \
+  X(Logp, "logp", 0x4F, kDest1, kVector, 1, kAny, kLanesXyzw, 0, 0)               \
+  X(Def, "def", 0x51, kDefinition, kNoResult, 0, kFull, kLanesXyzw, 0, 0)
 
 enum class Opcode : std::uint8_t {
 #define VS11_OPCODE_ENUM(name, ...) k##name,
@@ -92,6 +97,9 @@ struct OpcodeInfo {
   int dot_width;        // lanes summed by dp3/dp4 and each matrix row
   int matrix_rows;      // rows (and registers of s1) read by m*x*
 
+  // The source of m*x* that names the matrix's first row (m4x4 r0, v0, c4: c4..c7).
+  static constexpr int kMatrixSource = 1;
+
   // Number of source operands (0 to 3).
   constexpr int source_count() const {
     switch (shape) {
@@ -102,6 +110,10 @@ struct OpcodeInfo {
     }
   }
   constexpr bool has_dest() const { return shape != OperandShape::kNone; }
+  // Consecutive registers that source `source` reads: matrix_rows for the matrix of m*x*, else 1.
+  constexpr int registers_read(int source) const {
+    return kind == ResultKind::kMatrix && source == kMatrixSource ? matrix_rows : 1;
+  }
   // Destination lanes the result can reach before the write mask: a matrix fills one lane per row.
   constexpr int result_lanes() const { return kind == ResultKind::kMatrix ? matrix_rows : 4; }
   // Parameter tokens after the instruction token (vs_1_1 has no length field: §4.3).
@@ -113,6 +125,8 @@ struct OpcodeInfo {
       default: return 1 + source_count();
     }
   }
+  // Only mov writes the address register (mov a0.x, src: §1.4, §3.2).
+  constexpr bool can_write_address() const { return opcode == Opcode::kMov; }
   // dcl and def configure the shader; everything else executes.
   constexpr bool is_executable() const {
     return shape != OperandShape::kDeclaration && shape != OperandShape::kDefinition;
@@ -141,10 +155,10 @@ static_assert([] {
 // Where the rule allows a single mask, the assembler's default is that mask.
 static_assert([] {
   for (const OpcodeInfo& info : kOpcodeTable) {
-    const int only = info.mask_rule == MaskRule::kXy     ? 0x3
-                     : info.mask_rule == MaskRule::kXyz  ? 0x7
-                     : info.mask_rule == MaskRule::kXyzw ? 0xF
-                     : info.mask_rule == MaskRule::kFull ? 0xF
+    const int only = info.mask_rule == MaskRule::kXy     ? kLanesXy
+                     : info.mask_rule == MaskRule::kXyz  ? kLanesXyz
+                     : info.mask_rule == MaskRule::kXyzw ? kLanesXyzw
+                     : info.mask_rule == MaskRule::kFull ? kLanesXyzw
                                                          : info.default_mask;
     if (info.default_mask != only) return false;
   }

@@ -17,8 +17,7 @@ ProgramStats ComputeStats(const Program& program) {
     }
     for (int s = 0; s < info.source_count(); ++s) {
       const RegisterRef& reg = instruction.sources[s].reg;
-      // The matrix operand of m*x* reads matrix_rows consecutive registers.
-      int rows = (s == 1 && info.kind == ResultKind::kMatrix) ? info.matrix_rows : 1;
+      const int rows = info.registers_read(s);
       for (int row = 0; row < rows; ++row) {
         switch (reg.file) {
           case RegisterFile::kConst:

@@ -65,7 +65,7 @@ class Swizzle {
 // Destination lanes, bit i = lane i (x = 1, y = 2, z = 4, w = 8).
 class WriteMask {
  public:
-  static constexpr std::uint8_t kAllLanes = 0xF;
+  static constexpr std::uint8_t kAllLanes = kLanesXyzw;
   constexpr WriteMask() = default;
   constexpr explicit WriteMask(std::uint8_t bits) : bits_(bits) {}
   constexpr bool has(int lane) const { return (bits_ >> lane) & 1; }
@@ -90,6 +90,13 @@ struct DestOperand {
   WriteMask mask;
   friend constexpr bool operator==(const DestOperand&, const DestOperand&) = default;
 };
+
+// IEEE-754 single-precision bits of the def literals that are words, not numbers: the sign of `-nan`
+// and `-inf`, +infinity, and the quiet NaN the assembler writes for `nan` (the disassembler prints
+// only this NaN as plain `nan`; any other payload gets a comment).
+inline constexpr std::uint32_t kFloatSignBit = 0x80000000u;
+inline constexpr std::uint32_t kInfinityBits = 0x7F800000u;
+inline constexpr std::uint32_t kQuietNanBits = 0x7FC00000u;
 
 struct Instruction {
   Opcode opcode = Opcode::kNop;

@@ -22,6 +22,17 @@ using Vec4 = std::array<V, 4>;
 inline float Floor(float x) { return std::floor(x); }
 inline float Sqrt(float x) { return std::sqrt(x); }
 inline float Abs(float x) { return std::fabs(x); }
+// -x with the sign bit flipped, NaNs included (a source's negate modifier).
+inline float Negate(float x) {
+  float negated = -x;
+#if defined(__x86_64__)
+  // As the batch kernels' Negate: keeps the compiler from folding a + (-b) into a - b, which would
+  // return b's NaN with its sign unflipped (seen once FetchSource became visible to the tracer and
+  // GCC inlined it differently).
+  asm("" : "+x"(negated));
+#endif
+  return negated;
+}
 inline bool IsNaN(float x) { return x != x; }
 inline float IfThenElse(bool condition, float yes, float no) { return condition ? yes : no; }
 inline float Constant(float /*like*/, float value) { return value; }

@@ -150,7 +150,7 @@ class PlanBuilder {
   void Compile(const Instruction& instruction) {
     const OpcodeInfo& info = instruction.info();
     if (!info.is_executable() || info.kind == ResultKind::kNoResult) return;
-    const int lane_count = info.kind == ResultKind::kMatrix ? info.matrix_rows : 4;
+    const int lane_count = info.result_lanes();
     const std::array<std::uint16_t, 4> dest = DestLanes(instruction.dest, lane_count);
     if (std::all_of(dest.begin(), dest.end(), [](std::uint16_t lane) { return lane == kNoLane; })) return;
 
@@ -262,7 +262,7 @@ class PlanBuilder {
     const OpcodeInfo& info = instruction.info();
     const int width = info.dot_width;
     const SourceOperand& vector = instruction.sources[0];
-    const SourceOperand& matrix = instruction.sources[1];
+    const SourceOperand& matrix = instruction.sources[OpcodeInfo::kMatrixSource];
     Step step;
     std::array<Operand*, 4 * kMaxRows> group;
     for (int c = 0; c < width; ++c) {

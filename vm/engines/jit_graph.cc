@@ -8,6 +8,7 @@
 #include <optional>
 
 #include "vm/core/machine.h"
+#include "vm/core/operands.h"
 #include "vm/core/semantics.h"
 #include "vm/engines/batch_plan.h"
 #include "vm/engines/reference_engine.h"
@@ -81,14 +82,14 @@ class Tracer {
  public:
   Tracer(int group, std::span<const UniformInput> uniform_inputs)
       : group_(static_cast<std::uint32_t>(group) << kGroupShift), uniform_inputs_(uniform_inputs) {
-    const Float zero = Zero();
+    const Float zero = ZeroLane();
     for (auto& temp : temps_) temp.fill(zero);
   }
 
   void Trace(const Instruction& instruction) {
     switch (instruction.opcode) {
 #define VS11_JIT_TRACE_CASE(name, ...) \
-  case Opcode::k##name: Execute<semantics::name##Semantics>(instruction); break;
+  case Opcode::k##name: semantics::Execute<semantics::name##Semantics>(*this, instruction); break;
       VS11_OPCODES(VS11_JIT_TRACE_CASE)
 #undef VS11_JIT_TRACE_CASE
     }
@@ -106,8 +107,51 @@ class Tracer {
     }
   }
 
+ // The machine interface of vm/core/operands.h: where the tracer keeps each register.
+  using Float = jit::Float;
+  using Vec4 = Vec4F;
+
+  Vec4F ReadConstant(long index, bool relative) const {
+    if (relative && address_written_) return Gather(index);
+    Vec4F value = Zero();
+    if (index < 0) return value;  // before any write a0 is 0
+    for (int c = 0; c < 4; ++c) {
+      value[c] = {jit::Trace(Op::kConstant, kNoArg, kNoArg, kNoArg, batch::ConstantIndex(static_cast<int>(index), c))};
+    }
+    return value;
+  }
+
+  Vec4F ReadInput(long index) const {
+    Vec4F value;
+    for (int c = 0; c < 4; ++c) {
+      const auto uniform = std::ranges::find_if(uniform_inputs_, [&](const UniformInput& u) {
+        return u.reg == index && u.component == c;
+      });
+      value[c] = uniform != uniform_inputs_.end()
+                     ? Constant(Float{}, uniform->value)
+                     : Float{jit::Trace(Op::kInput, kNoArg, kNoArg, kNoArg,
+                                        static_cast<std::uint32_t>(batch::InputLane(static_cast<int>(index), c)) | group_)};
+    }
+    return value;
+  }
+
+  Vec4F& Temp(long index) { return temps_[static_cast<std::size_t>(index)]; }
+  const Vec4F& Temp(long index) const { return temps_[static_cast<std::size_t>(index)]; }
+  Vec4F& Output(int slot) { return outputs_[static_cast<std::size_t>(slot)]; }
+
+  void WriteAddress(Float x) {
+    address_ = semantics::AddressFromFloat(x);
+    address_written_ = true;
+  }
+
+  static Vec4F Zero() {
+    Vec4F zero;
+    zero.fill(ZeroLane());
+    return zero;
+  }
+
  private:
-  static Float Zero() { return Constant(Float{}, 0.0f); }
+  static Float ZeroLane() { return Constant(Float{}, 0.0f); }
 
   // c[a0.x + index] of every vertex, component by component (the batch engine's GatherKernel):
   // registers outside the bank read row 0 of the constant table, which holds zeros.
@@ -122,107 +166,6 @@ class Tracer {
       value[c] = {jit::Trace(Op::kGather, offset.id, kNoArg, kNoArg, static_cast<std::uint32_t>(c))};
     }
     return value;
-  }
-
-  // a0.x = AddressFromFloat(x), in the reference engine's order of tests (NaN fails both).
-  static Int AddressFrom(Float x) {
-    const Float whole = Floor(x);
-    const Float limit = Constant(x, static_cast<float>(kAddressLimit));
-    const Float below = IfThenElse(whole < limit, whole, limit);
-    return ToInt(IfThenElse(whole > Constant(x, -static_cast<float>(kAddressLimit)), below,
-                            Constant(x, -static_cast<float>(kAddressLimit))));
-  }
-
-  Vec4F ReadRegister(const RegisterRef& reg, int row) const {
-    const long index = static_cast<long>(reg.index) + row;
-    Vec4F value;
-    value.fill(Zero());
-    switch (reg.file) {
-      case RegisterFile::kConst:
-        if (reg.relative && address_written_) return Gather(index);
-        if (index < 0) break;  // before any write a0 is 0
-        for (int c = 0; c < 4; ++c) {
-          value[c] = {jit::Trace(Op::kConstant, kNoArg, kNoArg, kNoArg, batch::ConstantIndex(static_cast<int>(index), c))};
-        }
-        break;
-      case RegisterFile::kTemp:
-        if (index < kTempRegisterCount) value = temps_[static_cast<std::size_t>(index)];
-        break;
-      case RegisterFile::kInput:
-        if (index >= kInputRegisterCount) break;
-        for (int c = 0; c < 4; ++c) {
-          const auto uniform = std::ranges::find_if(uniform_inputs_, [&](const UniformInput& u) {
-            return u.reg == index && u.component == c;
-          });
-          value[c] = uniform != uniform_inputs_.end()
-                         ? Constant(Float{}, uniform->value)
-                         : Float{jit::Trace(Op::kInput, kNoArg, kNoArg, kNoArg,
-                                            static_cast<std::uint32_t>(batch::InputLane(static_cast<int>(index), c)) | group_)};
-        }
-        break;
-      default: break;  // outputs and a0 are not readable
-    }
-    return value;
-  }
-
-  Vec4F Fetch(const SourceOperand& source, int row) const {
-    const Vec4F base = ReadRegister(source.reg, row);
-    Vec4F value;
-    for (int lane = 0; lane < 4; ++lane) {
-      const Float v = base[source.swizzle[lane]];
-      value[lane] = source.negate ? Negate(v) : v;
-    }
-    return value;
-  }
-
-  void Store(const DestOperand& dest, const Vec4F& value, int lane_count) {
-    Vec4F* target = nullptr;
-    if (dest.reg.file == RegisterFile::kAddress) {
-      if (dest.mask.has(0)) {
-        address_ = AddressFrom(value[0]);
-        address_written_ = true;
-      }
-      return;
-    }
-    if (dest.reg.file == RegisterFile::kTemp) {
-      if (dest.reg.index < kTempRegisterCount) target = &temps_[static_cast<std::size_t>(dest.reg.index)];
-    } else if (std::optional<int> slot = OutputSlotOf(dest.reg)) {
-      target = &outputs_[static_cast<std::size_t>(*slot)];
-    }
-    if (target == nullptr) return;
-    for (int lane = 0; lane < lane_count; ++lane) {
-      if (dest.mask.has(lane)) (*target)[lane] = value[lane];
-    }
-  }
-
-  static Float DotOfWidth(int width, const Vec4F& a, const Vec4F& b) {
-    return width == 3 ? semantics::Dot<Float, 3>(a, b) : semantics::Dot<Float, 4>(a, b);
-  }
-
-  template <class Semantics>
-  void Execute(const Instruction& instruction) {
-    const OpcodeInfo& info = instruction.info();
-    std::array<Vec4F, 3> src{};
-    for (int s = 0; s < info.source_count(); ++s) src[s] = Fetch(instruction.sources[s], 0);
-    Vec4F result;
-    int lane_count = 4;
-    if constexpr (requires(Float v) { Semantics::Lane(v, v, v); }) {
-      for (int lane = 0; lane < 4; ++lane) result[lane] = Semantics::Lane(src[0][lane], src[1][lane], src[2][lane]);
-    } else if constexpr (requires(Float v) { Semantics::Scalar(v); }) {
-      result.fill(Semantics::Scalar(src[0][3]));
-    } else if constexpr (requires(Vec4F v) { Semantics::Vector(v, v); }) {
-      result = Semantics::Vector(src[0], src[1]);
-    } else if (info.kind == ResultKind::kDotProduct) {
-      result.fill(DotOfWidth(info.dot_width, src[0], src[1]));
-    } else if (info.kind == ResultKind::kMatrix) {
-      for (int row = 0; row < info.matrix_rows; ++row) {
-        result[row] = DotOfWidth(info.dot_width, src[0], Fetch(instruction.sources[1], row));
-      }
-      lane_count = info.matrix_rows;
-    } else {
-      return;  // nop, dcl, def
-    }
-    Store(instruction.dest, result, lane_count);
   }
 
   std::array<Vec4F, kTempRegisterCount> temps_{};

@@ -2,57 +2,29 @@
 
 #include <cmath>
 
+#include "vm/core/operands.h"
 #include "vm/core/semantics.h"
 
 namespace vs11 {
 namespace {
 
-// Writes the lanes of `value` selected by the mask (and, for matrices, by the row count).
-void StoreDest(const DestOperand& dest, const Vec4f& value, int lane_count, VertexState& state) {
-  Vec4f* target = nullptr;
-  switch (dest.reg.file) {
-    case RegisterFile::kTemp:
-      if (dest.reg.index < kTempRegisterCount) target = &state.temps[dest.reg.index];
-      break;
-    case RegisterFile::kAddress:
-      if (dest.mask.has(0)) state.a0 = AddressFromFloat(value[0]);
-      return;
-    default:
-      if (std::optional<int> slot = OutputSlotOf(dest.reg)) target = &state.outputs[*slot];
-  }
-  if (target == nullptr) return;
-  for (int lane = 0; lane < lane_count; ++lane) {
-    if (dest.mask.has(lane)) (*target)[lane] = value[lane];
-  }
-}
+// The reference engine's registers as the shared operand rules (vm/core/operands.h) read and write
+// them: one vertex's VertexState, const for reads alone.
+template <class State>
+struct ReferenceMachine {
+  using Float = float;
+  using Vec4 = Vec4f;
 
-float DotOfWidth(int width, const Vec4f& a, const Vec4f& b) {
-  return width == 3 ? semantics::Dot<float, 3>(a, b) : semantics::Dot<float, 4>(a, b);
-}
+  const ConstantBank& constants;
+  State& state;
 
-template <class Semantics>
-void Execute(const Instruction& instruction, const ConstantBank& constants, VertexState& state) {
-  const OpcodeInfo& info = instruction.info();
-  std::array<Vec4f, 3> src{};
-  for (int s = 0; s < info.source_count(); ++s) src[s] = FetchSource(instruction.sources[s], 0, constants, state);
-  Vec4f result{};
-  if constexpr (requires { Semantics::Lane(0.0f, 0.0f, 0.0f); }) {
-    for (int lane = 0; lane < 4; ++lane) result[lane] = Semantics::Lane(src[0][lane], src[1][lane], src[2][lane]);
-  } else if constexpr (requires { Semantics::Scalar(0.0f); }) {
-    result.fill(Semantics::Scalar(src[0][3]));
-  } else if constexpr (requires { Semantics::Vector(Vec4f{}, Vec4f{}); }) {
-    result = Semantics::Vector(src[0], src[1]);
-  } else if (info.kind == ResultKind::kDotProduct) {
-    result.fill(DotOfWidth(info.dot_width, src[0], src[1]));
-  } else if (info.kind == ResultKind::kMatrix) {
-    for (int row = 0; row < info.matrix_rows; ++row) {
-      result[row] = DotOfWidth(info.dot_width, src[0], FetchSource(instruction.sources[1], row, constants, state));
-    }
-  } else {
-    return;  // nop, dcl, def
-  }
-  StoreDest(instruction.dest, result, info.result_lanes(), state);
-}
+  Vec4f ReadConstant(long index, bool relative) const { return constants.Read(index + (relative ? state.a0 : 0)); }
+  Vec4f ReadInput(long index) const { return state.inputs[static_cast<std::size_t>(index)]; }
+  auto& Temp(long index) const { return state.temps[static_cast<std::size_t>(index)]; }
+  auto& Output(int slot) const { return state.outputs[static_cast<std::size_t>(slot)]; }
+  void WriteAddress(float x) const { state.a0 = AddressFromFloat(x); }
+  static Vec4f Zero() { return {}; }
+};
 
 // Checks at compile time that each row's kernel has the form its ResultKind says.
 template <class Semantics>
@@ -98,32 +70,11 @@ class ReferenceEngine final : public Engine {
 }  // namespace
 
 Vec4f ReadRegister(const RegisterRef& reg, int row, const ConstantBank& constants, const VertexState& state) {
-  long index = static_cast<long>(reg.index) + row;
-  switch (reg.file) {
-    case RegisterFile::kConst: return constants.Read(index + (reg.relative ? state.a0 : 0));
-    case RegisterFile::kTemp: return index < kTempRegisterCount ? state.temps[index] : Vec4f{};
-    case RegisterFile::kInput: return index < kInputRegisterCount ? state.inputs[index] : Vec4f{};
-    default: return Vec4f{};  // outputs and a0 are not readable (the validator rejects such sources)
-  }
+  return semantics::ReadRegister(ReferenceMachine<const VertexState>{constants, state}, reg, row);
 }
 
 Vec4f FetchSource(const SourceOperand& source, int row, const ConstantBank& constants, const VertexState& state) {
-  Vec4f base = ReadRegister(source.reg, row, constants, state);
-  Vec4f value;
-  for (int lane = 0; lane < 4; ++lane) {
-    float v = base[source.swizzle[lane]];
-    if (source.negate) {
-      v = -v;
-#if defined(__x86_64__)
-      // As the batch kernels' Negate: keeps the compiler from folding a + (-b) into a - b, which
-      // would return b's NaN with its sign unflipped (seen once FetchSource became visible to
-      // the tracer and GCC inlined it differently).
-      asm("" : "+x"(v));
-#endif
-    }
-    value[lane] = v;
-  }
-  return value;
+  return semantics::FetchSource(ReferenceMachine<const VertexState>{constants, state}, source, row);
 }
 
 void StartVertex(const VertexArrays& inputs, std::size_t vertex, const std::array<WriteMask, kOutputSlotCount>& written,
@@ -139,21 +90,15 @@ void StartVertex(const VertexArrays& inputs, std::size_t vertex, const std::arra
   }
 }
 
-int AddressFromFloat(float x) {
-  float whole = std::floor(x);
-  if (!(whole > -kAddressLimit)) return -kAddressLimit;  // NaN lands here too
-  if (!(whole < kAddressLimit)) return kAddressLimit;
-  return static_cast<int>(whole);
-}
-
 void RunVertex(const Program& program, const ConstantBank& constants, VertexState& state,
                InstructionObserver* observer) {
+  ReferenceMachine<VertexState> machine{constants, state};
   for (std::size_t i = 0; i < program.instructions.size(); ++i) {
     const Instruction& instruction = program.instructions[i];
     if (observer != nullptr) observer->Before(static_cast<int>(i), state);
     switch (instruction.opcode) {
 #define VS11_EXECUTE_CASE(name, ...) \
-  case Opcode::k##name: Execute<semantics::name##Semantics>(instruction, constants, state); break;
+  case Opcode::k##name: semantics::Execute<semantics::name##Semantics>(machine, instruction); break;
       VS11_OPCODES(VS11_EXECUTE_CASE)
 #undef VS11_EXECUTE_CASE
     }

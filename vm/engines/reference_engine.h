@@ -5,6 +5,7 @@
 #include <memory>
 
 #include "vm/core/machine.h"
+#include "vm/core/operands.h"
 
 namespace vs11 {
 
@@ -16,10 +17,9 @@ struct VertexState {
   int a0 = 0;
 };
 
-// a0.x = floor(x) (§1.5). NaN and values beyond +-2^20 become +-2^20, which puts every relative read
-// out of range, so it reads 0 (the bank holds at most 2048 registers).
-inline constexpr int kAddressLimit = 1 << 20;
-int AddressFromFloat(float x);
+// a0.x from a float: vm/core/operands.h, shared with the jit.
+using semantics::AddressFromFloat;
+using semantics::kAddressLimit;
 
 // Sees the register state around every instruction RunVertex executes (the shader debugger in
 // vm/engines/trace.h). It only observes: the arithmetic stays in vm/core/semantics.h, run by RunVertex.

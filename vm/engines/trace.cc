@@ -36,7 +36,7 @@ class TraceRecorder final : public InstructionObserver {
     step.instruction_index = instruction_index;
     for (int s = 0; s < info.source_count(); ++s) {
       const SourceOperand& source = instruction.sources[s];
-      int rows = (s == 1 && info.kind == ResultKind::kMatrix) ? info.matrix_rows : 1;
+      const int rows = info.registers_read(s);
       for (int row = 0; row < rows; ++row) {
         TracedRead read;
         read.source = s;

@@ -400,8 +400,7 @@ std::vector<std::string> UnsetRegisterWarnings(const Program& program, const std
     if (!info.is_executable()) continue;
     for (int s = 0; s < info.source_count(); ++s) {
       const RegisterRef& reg = instruction.sources[s].reg;
-      // The matrix operand of m*x* reads matrix_rows consecutive registers.
-      const int rows = (s == 1 && info.kind == ResultKind::kMatrix) ? info.matrix_rows : 1;
+      const int rows = info.registers_read(s);
       for (int row = 0; row < rows; ++row) {
         if (reg.file == RegisterFile::kConst && !reg.relative) constants_read.insert(reg.index + row);
         if (reg.file == RegisterFile::kInput) inputs_read.insert(reg.index + row);

@@ -1,3 +1,4 @@
+#include "vm/core/atomic_file.h"
 #include "vm/mesh/mesh_export.h"
 
 #include <algorithm>

@@ -698,6 +698,16 @@ TEST_F(EnvironmentIoWrite, FailureLeavesNoFileBehind) {
   EXPECT_THAT(FolderContents(), testing::IsEmpty());
 }
 
+// What environment_io.h says of the writers: .pfm and .dds are read, not written (OpenImageIO 2.4 has
+// no writer for either), and asking for one fails cleanly.
+TEST_F(EnvironmentIoWrite, PfmAndDdsAreRefusedAsTheHeaderSays) {
+  const Image image(4, 2, glm::vec3(0.25f, 2.5f, 100.0f));
+  for (const char* name : {"out.pfm", "out.dds"}) {
+    EXPECT_THAT(WriteImage(image, Path(name)).value_or(""), HasSubstr("unsupported output format")) << name;
+  }
+  EXPECT_THAT(FolderContents(), testing::IsEmpty());
+}
+
 TEST_F(EnvironmentIoWrite, ReplacesAnExistingFileAndLeavesNoTemporary) {
   WriteBytes(Path("cross.exr"), "old contents");
   const CubeMap cube = MakeTestCube(4);

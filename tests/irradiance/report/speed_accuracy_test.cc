@@ -4,6 +4,7 @@
 #include <filesystem>
 #include <fstream>
 #include <iterator>
+#include <limits>
 
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
@@ -39,8 +40,15 @@ const SpeedAccuracyPoint& Find(const SpeedAccuracyResult& result, std::string_vi
   const auto it = std::find_if(result.points.begin(), result.points.end(), [&](const SpeedAccuracyPoint& p) {
     return p.environment == environment && p.method == method && p.level == level && p.order == order;
   });
-  EXPECT_NE(it, result.points.end()) << environment << " level " << level;
-  return *it;
+  if (it != result.points.end()) return *it;
+  ADD_FAILURE() << "no point for " << environment << " level " << level;
+  // A point whose errors are NaN: every comparison the caller makes with it fails too.
+  static const SpeedAccuracyPoint missing = [] {
+    SpeedAccuracyPoint point;
+    point.error.max_relative = point.error.mean_relative = std::numeric_limits<double>::quiet_NaN();
+    return point;
+  }();
+  return missing;
 }
 
 TEST(SpeedAccuracy, SweepsEveryLevelOfEachMethodForEachEnvironment) {
@@ -83,7 +91,6 @@ TEST(SpeedAccuracy, CsvHasAHeaderAndOneLinePerPoint) {
   EXPECT_THAT(csv, HasSubstr("\nspot,mip,0,8,"));
   EXPECT_THAT(csv, HasSubstr(",zh3,6\n"));
   EXPECT_EQ(static_cast<std::size_t>(std::count(csv.begin(), csv.end(), '\n')), result.points.size() + 1);
-  EXPECT_THAT(csv, HasSubstr("\nspot,mip,0,8,"));
   EXPECT_THAT(csv, HasSubstr("\nspot,direct,3,1,"));
 }
 
@@ -106,7 +113,7 @@ TEST(SpeedAccuracy, ChartHasOneSolidAndOneDashedCurvePerEnvironment) {
 TEST(SpeedAccuracy, WritesCsvSvgAndPngAndNothingElse) {
   SpeedAccuracyResult result;
   ASSERT_EQ(RunSpeedAccuracySweep(FastOptions({"sky"}), result), std::nullopt);
-  const fs::path folder = fs::temp_directory_path() / "vs11_speed_accuracy_write";
+  const fs::path folder = fs::path(::testing::TempDir()) / "vs11_speed_accuracy_write";
   fs::remove_all(folder);
   std::vector<fs::path> written;
   ASSERT_EQ(WriteSpeedAccuracy(result, folder / "nested", written), std::nullopt);

@@ -387,12 +387,14 @@ TEST(Preprocessor, ReportsProblemsInIncludedFilesWithTheirNamesAndLines) {
   EXPECT_THAT(Texts(result), ElementsAre("mov r1, v1"));
 }
 
-TEST(Preprocessor, ThrowingReaderCountsAsMissingFile) {
+TEST(Preprocessor, ThrowingReaderIsAMissingFileThatSaysWhy) {
   FileReader reader = [](const std::filesystem::path&) -> std::optional<std::string> {
-    throw std::runtime_error("io");
+    throw std::runtime_error("permission denied by the test");
   };
   PreprocessResult result = Preprocess("#include \"a.h\"\nmov r0, v0\n", "main.vsh", {}, reader);
   EXPECT_EQ(OnlyError(result).loc.line, 1);
+  EXPECT_THAT(OnlyError(result).message, HasSubstr("cannot open include file 'a.h'"));
+  EXPECT_THAT(OnlyError(result).message, HasSubstr("permission denied by the test"));
   EXPECT_THAT(Texts(result), ElementsAre("mov r0, v0"));
 }
 

@@ -10,6 +10,7 @@
 #include "tests/run_tool.h"
 #include "tests/vm/mesh/mesh_test_support.h"
 #include "vm/asm/program_file.h"
+#include "vm/core/atomic_file.h"
 #include "vm/io/vertex_io.h"
 #include "vm/mesh/mesh_io.h"
 #include "vm/mesh/npy.h"

@@ -1,0 +1,40 @@
+// Writing files so that a reader never sees a half-written one and a failure leaves nothing behind:
+// every output is written to a temporary beside its target, then renamed over it (a rename within
+// one folder is atomic on POSIX file systems, and a temporary beside the target is in its folder).
+#pragma once
+
+#include <cstdint>
+#include <filesystem>
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace vs11 {
+
+// A fresh hidden name beside `target`: ".NAME.tmp-PID-SEED-N.EXT". Unique within the process (N
+// counts) and across processes (PID and a random SEED); the target's extension stays last, for
+// writers that choose a format by it.
+std::filesystem::path TemporaryPathBeside(const std::filesystem::path& target);
+
+// Removes `path` if it exists. Errors are ignored: this is clean-up after a failure already reported.
+void RemoveQuietly(const std::filesystem::path& path);
+
+struct PendingRename {
+  std::filesystem::path temporary;  // written and closed
+  std::filesystem::path target;
+};
+
+// Renames each finished temporary over its target, in order. On the first failure, removes every
+// temporary not yet renamed and returns "cannot rename the finished file into TARGET (why)"; targets
+// renamed before it stay. `renamed`, when given, receives each target renamed.
+std::optional<std::string> CommitRenames(std::span<const PendingRename> renames,
+                                         std::vector<std::filesystem::path>* renamed = nullptr);
+
+// Writes `bytes` to `path` through a temporary: on failure `path` is untouched and no temporary is
+// left. Returns nullopt on success, else a message that names `path` and what failed.
+std::optional<std::string> WriteFileAtomically(const std::filesystem::path& path, std::string_view bytes);
+std::optional<std::string> WriteFileAtomically(const std::filesystem::path& path, std::span<const std::uint8_t> bytes);
+
+}  // namespace vs11

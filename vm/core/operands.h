@@ -1,0 +1,119 @@
+// How an instruction reads its sources and writes its destination, written once (§3.1): fetch every
+// source (register, then swizzle, then negation) before the result is stored through the write mask,
+// so that `add r0, r0.yzwx, r0` reads the old r0. The reference engine runs these templates on floats
+// (one vertex); the jit's tracer runs them on graph values, and so builds its graph from the same
+// rules. An engine supplies only where a register's value lives, as a machine type M:
+//
+//   using Float = ...;                         // the lane type (float, a traced value)
+//   using Vec4 = std::array<Float, 4>;
+//   Vec4 ReadConstant(long index, bool relative) const;  // c[index] or c[a0.x + index]
+//   Vec4 ReadInput(long index) const;                     // v#, index < kInputRegisterCount
+//   Vec4& Temp(long index);  const Vec4& Temp(long index) const;  // index < kTempRegisterCount
+//   Vec4& Output(int slot);                               // an OutputSlot
+//   void WriteAddress(Float x);                           // mov a0.x, x (see AddressFromFloat)
+//   Vec4 Zero() const;                                    // what unreadable registers read
+#pragma once
+
+#include <array>
+#include <cstdint>
+#include <optional>
+
+#include "vm/core/isa.h"
+#include "vm/core/machine.h"
+#include "vm/core/program.h"
+#include "vm/core/semantics.h"
+
+namespace vs11::semantics {
+
+// a0.x = floor(x) (§1.5). NaN and values beyond +-2^20 become +-2^20, which puts every relative read
+// out of range, so it reads 0 (the bank holds at most 2048 registers).
+inline constexpr int kAddressLimit = 1 << 20;
+
+// The tests run in this order so that a NaN fails both and lands on -kAddressLimit.
+template <class V>
+auto AddressFromFloat(V x) {
+  const V whole = Floor(x);
+  const V limit = Constant(x, static_cast<float>(kAddressLimit));
+  const V below = IfThenElse(whole < limit, whole, limit);
+  return ToInt(IfThenElse(whole > Constant(x, -static_cast<float>(kAddressLimit)), below,
+                          Constant(x, -static_cast<float>(kAddressLimit))));
+}
+
+template <class V>
+V DotOfWidth(int width, const Vec4<V>& a, const Vec4<V>& b) {
+  return width == 3 ? Dot<V, 3>(a, b) : Dot<V, 4>(a, b);
+}
+
+// Register `reg` + `row` (row > 0: the next registers of a matrix operand). Temporaries and inputs
+// past the file, outputs and a0 read Zero() (the validator rejects such sources).
+template <class M>
+typename M::Vec4 ReadRegister(const M& machine, const RegisterRef& reg, int row) {
+  const long index = static_cast<long>(reg.index) + row;
+  switch (reg.file) {
+    case RegisterFile::kConst: return machine.ReadConstant(index, reg.relative);
+    case RegisterFile::kTemp: return index < kTempRegisterCount ? machine.Temp(index) : machine.Zero();
+    case RegisterFile::kInput: return index < kInputRegisterCount ? machine.ReadInput(index) : machine.Zero();
+    default: return machine.Zero();
+  }
+}
+
+// A source operand's value: its register, swizzled, negated when the operand says so.
+template <class M>
+typename M::Vec4 FetchSource(const M& machine, const SourceOperand& source, int row) {
+  const typename M::Vec4 base = ReadRegister(machine, source.reg, row);
+  typename M::Vec4 value;
+  for (int lane = 0; lane < 4; ++lane) {
+    const typename M::Float v = base[source.swizzle[lane]];
+    value[lane] = source.negate ? Negate(v) : v;
+  }
+  return value;
+}
+
+// Writes the lanes of `value` that the mask selects among the first `lane_count` (a matrix's rows).
+template <class M>
+void StoreDest(M& machine, const DestOperand& dest, const typename M::Vec4& value, int lane_count) {
+  if (dest.reg.file == RegisterFile::kAddress) {
+    if (dest.mask.has(0)) machine.WriteAddress(value[0]);
+    return;
+  }
+  typename M::Vec4* target = nullptr;
+  if (dest.reg.file == RegisterFile::kTemp) {
+    if (dest.reg.index < kTempRegisterCount) target = &machine.Temp(dest.reg.index);
+  } else if (std::optional<int> slot = OutputSlotOf(dest.reg)) {
+    target = &machine.Output(*slot);
+  }
+  if (target == nullptr) return;
+  for (int lane = 0; lane < lane_count; ++lane) {
+    if (dest.mask.has(lane)) (*target)[lane] = value[lane];
+  }
+}
+
+// One instruction on `machine`: Semantics is the row's kernel (<Name>Semantics in semantics.h).
+template <class Semantics, class M>
+void Execute(M& machine, const Instruction& instruction) {
+  using Float = typename M::Float;
+  using Vec4F = typename M::Vec4;
+  const OpcodeInfo& info = instruction.info();
+  std::array<Vec4F, 3> src{};
+  for (int s = 0; s < info.source_count(); ++s) src[s] = FetchSource(machine, instruction.sources[s], 0);
+  Vec4F result{};
+  if constexpr (requires(Float v) { Semantics::Lane(v, v, v); }) {
+    for (int lane = 0; lane < 4; ++lane) result[lane] = Semantics::Lane(src[0][lane], src[1][lane], src[2][lane]);
+  } else if constexpr (requires(Float v) { Semantics::Scalar(v); }) {
+    result.fill(Semantics::Scalar(src[0][3]));
+  } else if constexpr (requires(Vec4F v) { Semantics::Vector(v, v); }) {
+    result = Semantics::Vector(src[0], src[1]);
+  } else if (info.kind == ResultKind::kDotProduct) {
+    result.fill(DotOfWidth(info.dot_width, src[0], src[1]));
+  } else if (info.kind == ResultKind::kMatrix) {
+    for (int row = 0; row < info.matrix_rows; ++row) {
+      result[row] = DotOfWidth(info.dot_width, src[0],
+                               FetchSource(machine, instruction.sources[OpcodeInfo::kMatrixSource], row));
+    }
+  } else {
+    return;  // nop, dcl, def
+  }
+  StoreDest(machine, instruction.dest, result, info.result_lanes());
+}
+
+}  // namespace vs11::semantics
