@@ -3,6 +3,10 @@
 // program's instruction-slot count (vm/core/program.h ComputeStats) as the counter "slots".
 //
 // /jit runs the CPU's best jit instruction set; /jit_avx2 is added where AVX-512 is the best.
+// BM_Program/<name>/threads:T/<vertices> runs /jit with T threads (capped at the cores: the default
+// pool's size) over 1024, 65536 and 1M vertices, real time (the CPU time of one thread would
+// hide the others); the CPU column is the whole process's, so T threads against one show what the
+// split costs in work, apart from the wall clock a loaded machine makes noisy.
 //
 // Inputs and constants come from the program's reference (irradiance/report/program_references.h, named by
 // its `; vs11: reference=` line). A program without a usable reference gets (x, y, z, 1) unit normals
@@ -16,6 +20,7 @@
 #include <optional>
 #include <random>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include <benchmark/benchmark.h>
@@ -33,17 +38,19 @@ namespace {
 
 constexpr int kProgramVertices = 65536;
 constexpr int kInputRegisterCount = 16;  // v0..v15
+constexpr int kThreadCounts[] = {1, 2, 4, 8, 16};
+constexpr int kThreadVertexCounts[] = {1024, 65536, 1 << 20};
 
 struct ProgramCase {
   ConstantBank constants;
   VertexArrays inputs;
 };
 
-ProgramCase FallbackCase() {
+ProgramCase FallbackCase(int vertices) {
   std::vector<int> registers(kInputRegisterCount);
   for (int i = 0; i < kInputRegisterCount; ++i) registers[i] = i;
-  const SoaNormals normals = RandomUnitNormals(kProgramVertices);
-  ProgramCase c{ConstantBank(), MakeInputArrays(kProgramVertices, registers)};
+  const SoaNormals normals = RandomUnitNormals(vertices);
+  ProgramCase c{ConstantBank(), MakeInputArrays(static_cast<std::size_t>(vertices), registers)};
   for (int reg : registers) {
     std::copy(normals.x.begin(), normals.x.end(), c.inputs.lane(reg, 0));
     std::copy(normals.y.begin(), normals.y.end(), c.inputs.lane(reg, 1));
@@ -58,24 +65,25 @@ ProgramCase FallbackCase() {
   return c;
 }
 
-ProgramCase CaseFor(const irradiance::ProgramMetadata& metadata) {
+ProgramCase CaseFor(const irradiance::ProgramMetadata& metadata, int vertices) {
   const irradiance::ReferenceInfo* info = irradiance::FindReference(metadata.reference);
   if (info != nullptr) {
     irradiance::ReferenceOptions options;
     options.coefficients = BenchCoefficients();
-    options.samples = kProgramVertices;
+    options.samples = vertices;
     options.seed = kBenchSeed;
     std::string error;
     std::optional<irradiance::ReferenceCase> reference = info->build(metadata, options, error);
     if (reference) return {std::move(reference->constants), std::move(reference->inputs)};
   }
-  return FallbackCase();
+  return FallbackCase(vertices);
 }
 
-void RunProgram(benchmark::State& state, const std::filesystem::path& path, EngineKind kind, EngineOptions options) {
+void RunProgram(benchmark::State& state, const std::filesystem::path& path, EngineKind kind, EngineOptions options,
+                int vertices) {
   const irradiance::ProgramForVerify loaded = LoadBenchProgram(path);
   const Program& program = *loaded.program;
-  const ProgramCase c = CaseFor(loaded.metadata);
+  const ProgramCase c = CaseFor(loaded.metadata, vertices);
   const std::size_t count = c.inputs.count();
   VertexArrays outputs = MakeOutputArrays(count, program);
   std::unique_ptr<Engine> engine = MakeEngine(kind, program, c.constants, options);
@@ -98,9 +106,20 @@ const bool kRegistered = [] {
     const auto add = [&path](const std::string& label, EngineKind kind, EngineOptions options) {
       const std::string name = "BM_Program/" + path.stem().string() + "/" + label;
       benchmark::RegisterBenchmark(name.c_str(), [path, kind, options](benchmark::State& state) {
-        RunProgram(state, path, kind, options);
+        RunProgram(state, path, kind, options, kProgramVertices);
       })->Unit(benchmark::kMicrosecond);
     };
+    // /threads:T/<vertices>: the jit engine splitting calls over T threads of the default pool.
+    // The split must pay wherever it happens: T threads never slower than one, at any size.
+    for (const int threads : kThreadCounts) {
+      if (threads > 2 && static_cast<unsigned>(threads) > std::thread::hardware_concurrency()) continue;
+      const std::string name = "BM_Program/" + path.stem().string() + "/threads:" + std::to_string(threads);
+      auto* bench = benchmark::RegisterBenchmark(name.c_str(), [path, threads](benchmark::State& state) {
+        RunProgram(state, path, EngineKind::kJit, {.threads = threads}, static_cast<int>(state.range(0)));
+      });
+      for (const int vertices : kThreadVertexCounts) bench->Arg(vertices);
+      bench->Unit(benchmark::kMicrosecond)->UseRealTime()->MeasureProcessCPUTime();
+    }
     for (EngineKind kind : {EngineKind::kReference, EngineKind::kBatch, EngineKind::kJit}) {
       add(std::string(EngineName(kind)), kind, {});
     }

@@ -192,7 +192,8 @@ glm::dvec2 DirectionToAngular(glm::dvec3 direction);
 // next to a lat-long pole or the outer tenth of the angular disk: worst 1e-3, rms 3e-4. The
 // B-spline spreads a pixel over +-2 rows, which on the sphere moves about (pi / H)^2 / 8 of its
 // energy (7.5e-5 at H = 128, 1.2e-3 at H = 32). Preconditions (asserted): latlong.width ==
-// 2 latlong.height > 0, angular square and non-empty, 1 <= face_size <= kMaxFaceSize.
+// 2 latlong.height > 0, angular square and non-empty, 1 <= face_size <= kMaxFaceSize. The rows
+// are shared among the threads of ThreadPool::Default() (vm/core/thread_pool.h) and the caller.
 inline constexpr int kResampleSamplesPerSourcePixel = 3;
 inline constexpr int kMaxResampleSamples = 32;  // per texel side
 CubeMap ResampleLatLong(const Image& latlong, int face_size);

@@ -6,11 +6,11 @@
 #include <cassert>
 #include <cmath>
 #include <numbers>
-#include <thread>
 #include <utility>
 #include <vector>
 
 #include "irradiance/io/environment_io.h"
+#include "vm/core/thread_pool.h"
 
 namespace vs11::irradiance {
 namespace {
@@ -217,8 +217,8 @@ template <class Lookup, class Samples>
 CubeMap GatherCube(int face_size, const Samples& samples_for, const Lookup& lookup) {
   CubeMap cube(face_size);
   const double texel = 2.0 / face_size;
-  // Rows of all faces are independent: every core takes the next row left (the result does not
-  // depend on the order).
+  // Rows of all faces are independent: every thread of the process's pool (one per core) takes the
+  // next row left (the result does not depend on the order).
   std::atomic<int> next_row = 0;
   const int rows = kCubeFaceCount * face_size;
   auto work = [&] {
@@ -246,11 +246,9 @@ CubeMap GatherCube(int face_size, const Samples& samples_for, const Lookup& look
       }
     }
   };
-  const int threads = static_cast<int>(std::clamp(std::thread::hardware_concurrency(), 1u, static_cast<unsigned>(rows)));
-  std::vector<std::thread> helpers;
-  for (int t = 1; t < threads; ++t) helpers.emplace_back(work);
-  work();
-  for (std::thread& helper : helpers) helper.join();
+  ThreadPool& pool = ThreadPool::Default();
+  const int threads = std::min(pool.threads(), rows);
+  pool.Run(static_cast<std::size_t>(threads), threads, [&work](std::size_t, int) { work(); });
   return cube;
 }
 

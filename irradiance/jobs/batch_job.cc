@@ -13,7 +13,6 @@
 #include <memory>
 #include <mutex>
 #include <sstream>
-#include <thread>
 #include <utility>
 
 #include <fmt/format.h>
@@ -303,13 +302,12 @@ std::optional<std::string> RunBatch(const BatchOptions& options, BatchSummary& s
       if (progress) progress(finished, todo.size());
     }
   };
-  const unsigned cores = std::max(1u, std::thread::hardware_concurrency());
-  const std::size_t threads =
-      std::min<std::size_t>(todo.size(), options.threads > 0 ? static_cast<std::size_t>(options.threads) : cores);
-  std::vector<std::thread> workers;
-  for (std::size_t t = 1; t < threads; ++t) workers.emplace_back(work);
-  work();
-  for (std::thread& worker : workers) worker.join();
+  // The inputs go to the pool's threads (the resampler's parallel calls nest in the same pool), so
+  // the process never runs more of them at once than the pool has, whatever --threads asks for.
+  ThreadPool& pool = options.pool != nullptr ? *options.pool : ThreadPool::Default();
+  const int threads = options.threads > 0 ? options.threads : pool.threads();
+  pool.Run(std::min<std::size_t>(todo.size(), static_cast<std::size_t>(threads)), threads,
+           [&work](std::size_t, int) { work(); });
   std::sort(failures.begin(), failures.end(), [](const auto& a, const auto& b) { return a.first < b.first; });
   for (auto& [index, failure] : failures) summary.failures.push_back(std::move(failure));
   summary.seconds = std::chrono::duration<double>(std::chrono::steady_clock::now() - start).count();

@@ -24,6 +24,7 @@
 #include <vector>
 
 #include "irradiance/sh/level_choice.h"
+#include "vm/core/thread_pool.h"
 
 namespace vs11::irradiance {
 
@@ -35,7 +36,8 @@ struct BatchOptions {
   bool resume = false;
   int shard_index = 0;  // K of --shard K/N, 0 <= K < N
   int shard_count = 1;  // N
-  int threads = 0;      // 0: every core
+  int threads = 0;      // 0: every core; at most pool's threads run at once
+  ThreadPool* pool = nullptr;  // the threads inputs run on; null: ThreadPool::Default()
   std::string layout = "auto";
   int face_size = 256;  // lat-long and angular maps are resampled to this
   std::optional<int> level;

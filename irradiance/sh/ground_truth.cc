@@ -9,7 +9,6 @@
 #include <cstring>
 #include <limits>
 #include <numbers>
-#include <thread>
 
 namespace vs11::irradiance {
 namespace {
@@ -139,7 +138,7 @@ RowKernel SelectRowKernel() {
 
 std::vector<glm::dvec3> GroundTruthIrradiance(const CubeMap& env,
                                               std::span<const glm::dvec3> normals, int threads,
-                                              std::function<void(double fraction)> progress) {
+                                              std::function<void(double fraction)> progress, ThreadPool* pool) {
   assert(threads >= 1);
   std::vector<glm::dvec3> result(normals.size(), glm::dvec3(0.0));
   const int size = env.face_size;
@@ -160,6 +159,7 @@ std::vector<glm::dvec3> GroundTruthIrradiance(const CubeMap& env,
   std::atomic<int> done_blocks{0};
   double last_reported = 0.0;
   static const RowKernel row_irradiance = SelectRowKernel();
+  ThreadPool& workers = pool != nullptr ? *pool : ThreadPool::Default();
   auto work = [&](bool reporter, int chunk) {
     for (int block; (block = next_block.fetch_add(1)) < block_count;) {
       // Rows outside, normals inside: one row's table (56 bytes a texel) stays in cache for the
@@ -187,11 +187,9 @@ std::vector<glm::dvec3> GroundTruthIrradiance(const CubeMap& env,
     FillTable(env, first_row, std::min(rows_per_chunk, total_rows - first_row), table);
     next_block = 0;
     done_blocks = 0;
-    std::vector<std::thread> helpers;
-    helpers.reserve(worker_count - 1);
-    for (int t = 1; t < worker_count; ++t) helpers.emplace_back(work, false, chunk);
-    work(true, chunk);
-    for (std::thread& helper : helpers) helper.join();
+    // One task per thread, each taking blocks until none are left; the caller's (slot 0) reports.
+    workers.Run(static_cast<std::size_t>(worker_count), worker_count,
+                [&](std::size_t, int slot) { work(slot == 0, chunk); });
   }
   if (progress) progress(1.0);
   return result;

@@ -10,6 +10,7 @@
 #include <glm/glm.hpp>
 
 #include "irradiance/io/cube_map.h"
+#include "vm/core/thread_pool.h"
 
 namespace vs11::irradiance {
 
@@ -20,10 +21,12 @@ namespace vs11::irradiance {
 // thread in a fixed order, so the result does not depend on `threads`.
 // `threads` >= 1 (asserted) worker threads, the calling thread being one of them. `progress`, when
 // set, is called from the calling thread only, with a fraction in [0, 1] that never decreases, a
-// few times during the work and with 1.0 at the end.
+// few times during the work and with 1.0 at the end. The threads are the caller and workers of
+// `pool` (null: ThreadPool::Default()).
 std::vector<glm::dvec3> GroundTruthIrradiance(const CubeMap& env,
                                               std::span<const glm::dvec3> normals, int threads,
-                                              std::function<void(double fraction)> progress = {});
+                                              std::function<void(double fraction)> progress = {},
+                                              ThreadPool* pool = nullptr);
 
 // Normals of the error table (SphereNormals): dense enough that the max error is found to a few %.
 inline constexpr int kDefaultErrorNormals = 2000;

@@ -2,13 +2,11 @@
 #include "irradiance/sh/sh_projection.h"
 
 #include <algorithm>
-#include <atomic>
 #include <cmath>
 #include <cassert>
 #include <cstddef>
 #include <cstring>
 #include <mutex>
-#include <thread>
 
 #include "irradiance/io/environment_io.h"
 #include "irradiance/sh/projection_kernels.h"
@@ -364,7 +362,7 @@ bool RefillEnvironmentMips(const CubeMap& env, CubeMipChain& chain) {
 }
 
 std::optional<BasisPyramid> BuildBasisPyramid(int face_size, int threads,
-                                              const std::function<void(double)>& progress) {
+                                              const std::function<void(double)>& progress, ThreadPool* pool) {
   assert(threads >= 1);
   const int count = LevelCount(face_size);
   if (count == 0) return std::nullopt;
@@ -379,24 +377,18 @@ std::optional<BasisPyramid> BuildBasisPyramid(int face_size, int threads,
   }
   const std::vector<double> solid_angles = FaceSolidAngles(face_size);
   pyramid.finest = MakeFinestWeights(solid_angles, face_size);
-  // Faces write disjoint parts of every level, so they are built in parallel, each worker taking
-  // the next face left; the result does not depend on `threads`.
-  std::atomic<int> next_face = 0;
+  // Faces write disjoint parts of every level, so they are built in parallel, one task per face;
+  // the result does not depend on `threads`.
   std::mutex progress_mutex;
   int faces_done = 0;
-  auto work = [&] {
-    for (int f = next_face++; f < kCubeFaceCount; f = next_face++) {
-      BuildBasisFace(f, solid_angles, pyramid);
-      if (progress) {
-        std::lock_guard<std::mutex> lock(progress_mutex);
-        progress(static_cast<double>(++faces_done) / kCubeFaceCount);
-      }
+  ThreadPool& workers = pool != nullptr ? *pool : ThreadPool::Default();
+  workers.Run(kCubeFaceCount, threads, [&](std::size_t f, int) {
+    BuildBasisFace(static_cast<int>(f), solid_angles, pyramid);
+    if (progress) {
+      std::lock_guard<std::mutex> lock(progress_mutex);
+      progress(static_cast<double>(++faces_done) / kCubeFaceCount);
     }
-  };
-  std::vector<std::thread> helpers;
-  for (int t = 1; t < std::min(threads, kCubeFaceCount); ++t) helpers.emplace_back(work);
-  work();
-  for (std::thread& helper : helpers) helper.join();
+  });
   return pyramid;
 }
 

@@ -16,6 +16,7 @@
 #include <vector>
 
 #include "irradiance/io/cube_map.h"
+#include "vm/core/thread_pool.h"
 #include "irradiance/sh/sh9.h"
 
 namespace vs11::irradiance {
@@ -107,9 +108,10 @@ struct BasisPyramid {
 // angles (8 bytes per texel of a face) and, per thread, one face's level 1 in double (18 bytes per
 // texel of a face): 27 MB at 1024 with one thread, 46 MB with two.
 // `progress`, when set, is called with the fraction done after each face (from the worker threads,
-// one call at a time).
+// one call at a time). The threads are the caller and workers of `pool` (null: ThreadPool::Default()).
 std::optional<BasisPyramid> BuildBasisPyramid(int face_size, int threads = 1,
-                                              const std::function<void(double)>& progress = {});
+                                              const std::function<void(double)>& progress = {},
+                                              ThreadPool* pool = nullptr);
 
 // Level 0 is ProjectFinest(env.levels[0], basis.finest). Coarser levels: the sum over the texels of
 // `level` of mean radiance (float) x summed basis weight (float), each product exact in double,

@@ -130,9 +130,16 @@ class Engine {
 // benchmarks). A forced set the CPU lacks leaves the program on the batch kernels.
 enum class JitIsa { kBest, kAvx2, kAvx512 };
 
+class ThreadPool;  // vm/core/thread_pool.h
+
 struct EngineOptions {
-  int threads = 1;  // batch engine: split large calls over this many threads
+  // Batch and jit engines: a call may run on up to this many threads of `pool`, where its size
+  // pays for the split (vm/engines/batch_engine.cc); the results do not depend on it.
+  int threads = 1;
   JitIsa jit_isa = JitIsa::kBest;
+  // The threads a split call runs on; null: ThreadPool::Default(), the process's one pool sized to
+  // the cores. The pool must outlive the engine.
+  ThreadPool* pool = nullptr;
 };
 
 }  // namespace vs11

@@ -25,12 +25,12 @@ const KernelTable* GetKernelTable();  // defined by vm/batch_kernels_<target>.cc
 #include <cassert>
 #include <cstdint>
 #include <cstring>
-#include <thread>
 #include <utility>
 #include <vector>
 
 #include "hwy/aligned_allocator.h"
 #include "hwy/cache_control.h"
+#include "vm/core/thread_pool.h"
 #include "vm/engines/batch_engine.h"
 #include "vm/engines/jit_compiler.h"
 
@@ -44,9 +44,24 @@ HWY_EXPORT(GetKernelTable);
 
 namespace {
 
-// Below this many vertices per thread, starting a thread (tens of microseconds) costs more than it
-// saves.
-constexpr std::size_t kMinVerticesPerThread = 16384;
+// A call is split over threads only into pieces of at least kMinTaskNanoseconds of estimated work.
+// Handing a piece to a sleeping pool worker costs a futex wake (a few microseconds, more on a busy or
+// virtual machine) and the worker then misses in cache on the caller's arrays; a piece of 20 us
+// keeps that a small part of it, and the caller takes pieces too, so a late worker costs at most
+// the piece it takes. The work is estimated from the program's instruction slots (§2.7) at
+// kNanosecondsPerSlot, a little below the cheapest slot measured with the jit on one thread
+// (BM_Program/<program>/threads:1/65536 on a 2-core AMD EPYC with AVX-512: 0.12 ns/slot for
+// sh9_irradiance_as_printed, 0.22 for sh9_irradiance, 0.28 for sh_order0, 0.5-1 for
+// all_instructions and skinning), so the estimate is low and a call splits only when it surely pays:
+// sh_order0 in pieces of 200 000 vertices or more, the paper's program (11 slots) 18 000,
+// all_instructions (67) 3 000. The kernels (batch engine) are slower per slot, which only makes the
+// pieces larger than they need be. 1024 vertices never split (67 slots x 1024 x 0.1 ns = 7 us).
+constexpr double kMinTaskNanoseconds = 20000;
+constexpr double kNanosecondsPerSlot = 0.1;
+// Pieces per thread, at most: the caller takes pieces too, so when a worker is late (the cores are
+// busy with other processes) the caller runs its share, and the call is never much slower than on
+// one thread.
+constexpr std::size_t kTasksPerThread = 4;
 
 // Floats from one arena lane to the next: a batch plus one cache line, so that lanes do not sit a
 // multiple of 4 KiB apart (loads would then wait on unrelated stores: "4K aliasing").
@@ -115,7 +130,11 @@ class BatchEngine final : public Engine {
       : program_(program),
         plan_(BuildBatchPlan(program, *HWY_DYNAMIC_DISPATCH(GetKernelTable)())),
         written_(WrittenOutputLanes(program)),
+        min_vertices_per_task_(static_cast<std::size_t>(
+            kMinTaskNanoseconds / (kNanosecondsPerSlot * std::max(1, ComputeStats(program).slots)))),
         threads_(static_cast<std::size_t>(std::max(1, options.threads))),
+        // The default pool's threads start only in a process whose engines may split a call.
+        pool_(options.pool != nullptr ? options.pool : threads_ > 1 ? &ThreadPool::Default() : nullptr),
         isa_(options.jit_isa) {
     if (compile_program) {
       std::string why_not;
@@ -144,7 +163,12 @@ class BatchEngine final : public Engine {
     assert(outputs.count() >= count);
     if (count == 0) return;
 
-    const std::size_t threads = std::min(threads_, std::max<std::size_t>(1, count / kMinVerticesPerThread));
+    // Whole batches per piece, so that only the last piece has a short batch.
+    const std::size_t max_tasks = std::max<std::size_t>(1, count / min_vertices_per_task_);
+    const std::size_t threads =
+        pool_ == nullptr ? 1 : std::min({threads_, static_cast<std::size_t>(pool_->threads()), max_tasks});
+    const std::size_t tasks = std::min(max_tasks, threads * kTasksPerThread);
+    const std::size_t per_task = RoundUp((count + tasks - 1) / tasks, kBatchSize);
     if (compiled_) SelectCompiled(inputs);
     while (workspaces_.size() < threads) workspaces_.emplace_back(plan_);
     for (std::size_t t = 0; t < threads && compiled_; ++t) workspaces_[t].ReserveSpill(compiled_->spill_floats());
@@ -154,15 +178,11 @@ class BatchEngine final : public Engine {
       RunRange(workspaces_[0], inputs, 0, count);
       return;
     }
-    // Contiguous ranges of whole batches, so only the last range has a short batch.
-    const std::size_t per_thread = RoundUp((count + threads - 1) / threads, kBatchSize);
-    std::vector<std::thread> workers;
-    for (std::size_t t = 1; t < threads && t * per_thread < count; ++t) {
-      const std::size_t begin = t * per_thread, end = std::min(count, begin + per_thread);
-      workers.emplace_back([this, t, begin, end, &inputs] { RunRange(workspaces_[t], inputs, begin, end); });
-    }
-    RunRange(workspaces_[0], inputs, 0, std::min(count, per_thread));
-    for (std::thread& worker : workers) worker.join();
+    pool_->Run((count + per_task - 1) / per_task, static_cast<int>(threads),
+              [this, per_task, count, &inputs](std::size_t task, int slot) {
+                const std::size_t begin = task * per_task;
+                RunRange(workspaces_[static_cast<std::size_t>(slot)], inputs, begin, std::min(count, begin + per_task));
+              });
   }
 
  private:
@@ -283,7 +303,9 @@ class BatchEngine final : public Engine {
   Program program_;
   BatchPlan plan_;
   std::array<WriteMask, kOutputSlotCount> written_;
+  std::size_t min_vertices_per_task_;  // see kMinTaskNanoseconds
   std::size_t threads_;
+  ThreadPool* pool_;  // null: every call runs on its caller
   std::vector<float> constants_;
   std::int32_t constant_count_ = 0;
   // Compiled programs by the input lanes compiled in as constants (the first: none); null

@@ -8,8 +8,10 @@
 #include <cmath>
 #include <cstdint>
 #include <limits>
+#include <memory>
 #include <random>
 #include <string>
+#include <thread>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -17,6 +19,7 @@
 #include "hwy/highway.h"
 #include "hwy/tests/hwy_gtest.h"
 #include "vm/asm/assembler.h"
+#include "vm/core/thread_pool.h"
 
 namespace vs11 {
 namespace {
@@ -231,21 +234,57 @@ TEST_P(BatchEngine, IrradianceProgramMatchesEquationSevenForAnyVertexCount) {
   }
 }
 
+// Threads 1..4 on a pool of 4 (more than this machine's cores may have), kernels and compiled code,
+// each engine run twice (the second call reuses its per-thread workspaces): every bit as one thread.
 TEST_P(BatchEngine, ThreadsGiveTheSameBitsAsOneThread) {
   const Program program = Assemble(std::string(kIrradiance) +
                                    "mov a0.x, v1.x\nmad oT0, v0, c[a0.x + 2], -v1\nrsq oPos, v0.z\n");
   const ConstantBank constants = RandomConstants(11);
-  constexpr std::size_t kCount = 70000;  // enough for 3 threads; several batches each, a short last one
-  VertexArrays inputs = Inputs(kCount, [](int reg, std::size_t i) {
-    return reg == 1 ? Vec4f{static_cast<float>(i % 13) - 3, 0.5f, 0.25f, 2} : RandomNormal(i);
-  });
+  ThreadPool pool(4);
+  // Several pieces per thread, several batches each, a short last one.
+  for (const std::size_t count : {1000u, 70000u, 300001u}) {
+    VertexArrays inputs = Inputs(count, [](int reg, std::size_t i) {
+      return reg == 1 ? Vec4f{static_cast<float>(i % 13) - 3, 0.5f, 0.25f, 2} : RandomNormal(i);
+    });
+    for (const bool compiled : {false, true}) {
+      VertexArrays one = MakeOutputArrays(count, program);
+      MakeBatchEngine(program, constants, {1}, compiled)->Run(inputs, one);
+      for (int threads = 1; threads <= 4; ++threads) {
+        SCOPED_TRACE(std::to_string(count) + " vertices, " + std::to_string(threads) + " threads" +
+                     (compiled ? ", compiled" : ", kernels"));
+        std::unique_ptr<Engine> engine = MakeBatchEngine(program, constants, {.threads = threads, .pool = &pool}, compiled);
+        for (int call = 0; call < 2; ++call) {
+          VertexArrays many = MakeOutputArrays(count, program);
+          engine->Run(inputs, many);
+          ExpectSameBits(many, one, count);
+        }
+      }
+    }
+  }
+}
+
+// Engines on one pool, called from several threads at once (one engine per thread: an engine is not
+// shareable), each give one thread's bits.
+TEST_P(BatchEngine, EnginesSharingOnePoolFromSeveralThreadsGiveOneThreadsBits) {
+  const Program program = Assemble(std::string(kIrradiance));
+  const ConstantBank constants = RandomConstants(5);
+  constexpr std::size_t kCount = 100000;
+  VertexArrays inputs = Inputs(kCount, [](int, std::size_t i) { return RandomNormal(i); });
   VertexArrays one = MakeOutputArrays(kCount, program);
   MakeBatchEngine(program, constants, {1})->Run(inputs, one);
-  for (int threads : {2, 3}) {
-    VertexArrays many = MakeOutputArrays(kCount, program);
-    MakeBatchEngine(program, constants, {threads})->Run(inputs, many);
-    ExpectSameBits(many, one, kCount);
+  ThreadPool pool(3);
+  constexpr int kCallers = 3;
+  std::vector<VertexArrays> results;
+  for (int c = 0; c < kCallers; ++c) results.push_back(MakeOutputArrays(kCount, program));
+  std::vector<std::thread> callers;
+  for (int c = 0; c < kCallers; ++c) {
+    callers.emplace_back([&, c] {
+      std::unique_ptr<Engine> engine = MakeBatchEngine(program, constants, {.threads = 3, .pool = &pool}, c % 2 == 1);
+      for (int call = 0; call < 3; ++call) engine->Run(inputs, results[static_cast<std::size_t>(c)]);
+    });
   }
+  for (std::thread& caller : callers) caller.join();
+  for (int c = 0; c < kCallers; ++c) ExpectSameBits(results[static_cast<std::size_t>(c)], one, kCount);
 }
 
 TEST_P(BatchEngine, AddressRegisterIsPerVertex) {
