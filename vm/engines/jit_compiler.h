@@ -47,6 +47,9 @@ inline constexpr std::size_t kStreamingOutputBytes = std::size_t{1} << 20;
 class CompiledProgram {
  public:
   virtual ~CompiledProgram() = default;
+  // Several threads may call Run at once (the batch engine's thread split does), each with its own
+  // spill buffer and lane tables and with output ranges that do not overlap: the code and its
+  // literals are only read.
   virtual void Run(RunArguments arguments) const = 0;
   virtual std::size_t spill_floats() const = 0;
   // The machine code, and how many values the register allocator had to spill (for tests and notes).
