@@ -91,6 +91,7 @@ FinestWeights BuildFinestWeights(int face_size);
 Sh9Rgb ProjectFinest(const CubeMap& env, const FinestWeights& weights);
 
 // Built once per face size and reused for every environment of that size (paper section 3.3 step 1).
+// Read-only once built: projections on several threads may share one (`irrmap batch` does).
 struct BasisPyramid {
   int face_size = 0;              // size of level 0
   std::vector<BasisLevel> levels;  // LevelCount(face_size) levels, level k of size face_size >> k

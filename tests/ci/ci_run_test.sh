@@ -1,7 +1,8 @@
 #!/usr/bin/env bash
 # A test of CI itself: when the README's test command fails (here: configuring fails, through
 # VS11_CI_BREAK_CONFIGURE, which only this test sets), .ci/run must exit non-zero and must not start
-# the sanitizer stage. Cheap: the broken configure fails at once and nothing is built.
+# the sanitizer stages (.ci/sanitize, .ci/tsan). Cheap: the broken configure fails at once and
+# nothing is built.
 # Usage: ci_run_test.sh SOURCE_DIR
 set -uo pipefail
 source_dir=$1
@@ -14,7 +15,7 @@ if ((status == 0)); then
   echo "FAIL: .ci/run exited 0 although configuring failed"
   failed=1
 fi
-if grep -q "^sanitize: stage reached" <<<"$output"; then
+if grep -q "^\(sanitize\|tsan\): stage reached" <<<"$output"; then
   echo "FAIL: .ci/run went on to the sanitizer stage after the test command failed"
   failed=1
 fi

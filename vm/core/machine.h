@@ -117,6 +117,16 @@ std::optional<EngineKind> EngineKindFromName(std::string_view name);  // "ref" |
 std::string_view EngineName(EngineKind kind);
 
 // Runs one program with one constant bank over many vertices.
+//
+// Threads: one engine is not shareable. Run and SetConstants change the engine (the batch and jit
+// engines keep their workspaces, spill buffers and compiled variants from call to call), so two
+// threads must never call them on one engine at once; a program that runs on several threads makes
+// one engine per thread. An engine may pass from thread to thread when its calls are ordered (a
+// mutex, a join). Engines are independent of each other: any number may run at once, on one shared
+// Program, ConstantBank and input VertexArrays, which they only read through const references; each
+// run needs its own output VertexArrays. With EngineOptions::threads > 1, Run splits a large call
+// over threads of its own and returns when all of them are done. tests/vm/engines/
+// engine_threads_test.cc checks this under CI's ThreadSanitizer stage (.ci/tsan).
 class Engine {
  public:
   virtual ~Engine() = default;

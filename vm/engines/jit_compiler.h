@@ -53,6 +53,9 @@ class CompiledProgram {
   // vertices_per_iteration() (every multiple of batch::kVertexGranule, vm/engines/batch_plan.h, is one).
   // Only the input and output entries of the lane table are read (batch::kInputLaneBase up to
   // batch::kArenaLaneBase), and only those the program uses.
+  // Several threads may call Run at once (the batch engine's thread split does), each with its own
+  // spill buffer and lane tables and with output ranges that do not overlap: the code and its
+  // literals are only read.
   virtual void Run(RunArguments arguments) const = 0;
   virtual std::size_t spill_floats() const = 0;
   // The machine code, and how many values the register allocator had to spill (for tests and notes).

@@ -43,7 +43,8 @@ double SecondsSince(Clock::time_point start) { return std::chrono::duration<doub
 // Found by fuzz_mesh (in fork mode, before the sandbox): Assimp's 3DS and text DirectX readers take
 // sizes from the file and allocate tens of gigabytes. Each must end in an error naming the file:
 // the child's memory limit makes the allocation fail, which Assimp reports; under AddressSanitizer
-// (no such limit) ASan's allocator refuses it and ends the child, which is named as a crash.
+// (no such limit) ASan's allocator refuses it and ends the child, which is named as a crash, as is
+// ThreadSanitizer's out-of-memory abort at the limit (.ci/tsan sets abort_on_error).
 TEST(MeshSandbox, FilesThatMadeAssimpAllocateTensOfGigabytesGiveAnError) {
   for (const char* name : {"3ds_allocates_45gb.3ds", "3ds_allocates_46gb.3ds", "x_text_allocates_26gb.x"}) {
     const fs::path file = kFound / name;
