@@ -41,11 +41,13 @@ std::optional<std::string> CommitRenames(std::span<const PendingRename> renames,
 }
 
 std::optional<std::string> WriteFileAtomically(const fs::path& path, std::string_view bytes) {
-  const fs::path folder = path.parent_path().empty() ? fs::path(".") : path.parent_path();
-  const fs::path temporary = folder / TemporaryPathBeside(path).filename();
+  const fs::path temporary = TemporaryPathBeside(path);
   {
     std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
-    if (!out) return fmt::format("{}: cannot create a file in {}", path.string(), folder.string());
+    if (!out) {
+      const fs::path folder = path.parent_path().empty() ? fs::path(".") : path.parent_path();
+      return fmt::format("{}: cannot create a file in {}", path.string(), folder.string());
+    }
     out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
     out.flush();
     if (!out) {
