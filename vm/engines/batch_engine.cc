@@ -53,11 +53,17 @@ namespace {
 // (BM_Program/<program>/threads:1/65536 on a 2-core AMD EPYC with AVX-512: 0.12 ns/slot for
 // sh9_irradiance_as_printed, 0.22 for sh9_irradiance, 0.28 for sh_order0, 0.5-1 for
 // all_instructions and skinning), so the estimate is low and a call splits only when it surely pays:
-// sh_order0 in pieces of 200 000 vertices or more, the paper's program (11 slots) 18 000,
+// sh_order1 (3 slots) in pieces of 66 000 vertices or more, the paper's program (11 slots) 18 000,
 // all_instructions (67) 3 000. The kernels (batch engine) are slower per slot, which only makes the
 // pieces larger than they need be. 1024 vertices never split (67 slots x 1024 x 0.1 ns = 7 us).
 constexpr double kMinTaskNanoseconds = 20000;
 constexpr double kNanosecondsPerSlot = 0.1;
+// A program of one slot (sh_order0: one mov) only moves memory: one thread already streams its
+// vertices at about the machine's bandwidth, and a second only competes for it. Measured with
+// BM_Program/<program>/threads:T/1048576 on a 2-core AMD EPYC (AVX2, load under 1.3, medians of 9):
+// sh_order0 (1 slot) 794 us on one thread, 1203 us on two (0.66x); sh_order1 (3 slots) 1.35x,
+// sh_zh3 (6) 1.79x, the paper's program (11) 1.82x. So a program splits only from two slots on.
+constexpr int kMinSlotsToSplit = 2;
 // Pieces per thread, at most: the caller takes pieces too, so when a worker is late (the cores are
 // busy with other processes) the caller runs its share, and the call is never much slower than on
 // one thread.
@@ -130,8 +136,7 @@ class BatchEngine final : public Engine {
       : program_(program),
         plan_(BuildBatchPlan(program, *HWY_DYNAMIC_DISPATCH(GetKernelTable)())),
         written_(WrittenOutputLanes(program)),
-        min_vertices_per_task_(static_cast<std::size_t>(
-            kMinTaskNanoseconds / (kNanosecondsPerSlot * std::max(1, ComputeStats(program).slots)))),
+        min_vertices_per_task_(MinVerticesPerPiece(program)),
         threads_(static_cast<std::size_t>(std::max(1, options.threads))),
         // The default pool's threads start only in a process whose engines may split a call.
         pool_(options.pool != nullptr ? options.pool : threads_ > 1 ? &ThreadPool::Default() : nullptr),
@@ -164,7 +169,8 @@ class BatchEngine final : public Engine {
     if (count == 0) return;
 
     // Whole batches per piece, so that only the last piece has a short batch.
-    const std::size_t max_tasks = std::max<std::size_t>(1, count / min_vertices_per_task_);
+    const std::size_t max_tasks =
+        min_vertices_per_task_ == kNeverSplit ? 1 : std::max<std::size_t>(1, count / min_vertices_per_task_);
     const std::size_t threads =
         pool_ == nullptr ? 1 : std::min({threads_, static_cast<std::size_t>(pool_->threads()), max_tasks});
     const std::size_t tasks = std::min(max_tasks, threads * kTasksPerThread);
@@ -319,6 +325,12 @@ class BatchEngine final : public Engine {
 
 }  // namespace
 }  // namespace batch
+
+std::size_t MinVerticesPerPiece(const Program& program) {
+  const int slots = ComputeStats(program).slots;
+  if (slots < batch::kMinSlotsToSplit) return kNeverSplit;
+  return static_cast<std::size_t>(batch::kMinTaskNanoseconds / (batch::kNanosecondsPerSlot * slots));
+}
 
 std::unique_ptr<Engine> MakeBatchEngine(const Program& program, const ConstantBank& api_constants,
                                         const EngineOptions& options, bool compile_program) {

@@ -2,6 +2,7 @@
 // run time (Highway dynamic dispatch), bit-identical to the reference engine.
 #pragma once
 
+#include <cstddef>
 #include <memory>
 
 #include "vm/core/machine.h"
@@ -12,5 +13,11 @@ namespace vs11 {
 // engine) when it can be compiled, and on the kernels otherwise.
 std::unique_ptr<Engine> MakeBatchEngine(const Program& program, const ConstantBank& api_constants,
                                         const EngineOptions& options, bool compile_program = false);
+
+// The fewest vertices one piece of a split call gets (EngineOptions::threads > 1): a call of fewer
+// than twice this many runs on the calling thread alone. kNeverSplit for a program that threads
+// cannot speed up (see batch_engine.cc). Tests size their calls with it so that they split.
+inline constexpr std::size_t kNeverSplit = static_cast<std::size_t>(-1);
+std::size_t MinVerticesPerPiece(const Program& program);
 
 }  // namespace vs11

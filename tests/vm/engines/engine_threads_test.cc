@@ -16,6 +16,7 @@
 #include "tests/run_threads.h"
 #include "vm/asm/program_file.h"
 #include "vm/core/machine.h"
+#include "vm/engines/batch_engine.h"
 #include "vm/engines/engine_factory.h"
 
 namespace vs11 {
@@ -65,10 +66,16 @@ VertexArrays PatternInputs(std::size_t count) {
   VertexArrays inputs = MakeInputArrays(count, registers);
   for (int reg = 0; reg < kInputRegisterCount; ++reg) {
     for (int c = 0; c < 4; ++c) {
+      // A pattern of a prime period, computed once: a call of 2^18 vertices fills 64 lanes, and a
+      // sine per value would cost more than the runs. A piece that started at the wrong vertex would
+      // still read other values (pieces are whole batches, and no multiple of 64 below 2^18 is one
+      // of 4099).
+      constexpr std::size_t kPeriod = 4099;
       float* lane = inputs.lane(reg, c);
-      for (std::size_t i = 0; i < count; ++i) {
+      for (std::size_t i = 0; i < std::min(count, kPeriod); ++i) {
         lane[i] = static_cast<float>(std::sin(0.37 * static_cast<double>(i) + 1.3 * reg + 0.7 * c)) * (1.0f + 0.25f * c);
       }
+      for (std::size_t i = kPeriod; i < count; ++i) lane[i] = lane[i - kPeriod];
     }
   }
   return inputs;
@@ -162,24 +169,30 @@ TEST(EngineThreads, JitCompilesAndRunsEveryProgramAtOnce) {
   });
 }
 
-// The batch and jit engines split a large call over EngineOptions::threads: every count gives the
-// bits of one thread. 2^18 vertices leave each of 4 threads 65536, far above where a split begins.
-TEST(EngineThreads, ThreadSplitGivesTheBitsOfOneThread) {
-  const std::vector<NamedProgram> programs = ProgramsFolder();
+// The batch and jit engines split a large call over EngineOptions::threads: every program of
+// programs/ at every count of threads gives the bits of one thread. Each call is sized to four of
+// the program's pieces (MinVerticesPerPiece), so that 2, 3 and 4 threads all split it; a program
+// that never splits runs 2^16 vertices and must give one thread's bits too.
+TEST(EngineThreads, ThreadSplitGivesTheBitsOfOneThreadForEveryProgram) {
   const ConstantBank constants = PatternConstants();
-  const VertexArrays inputs = PatternInputs(std::size_t{1} << 18);
-  for (const char* name : {"sh9_irradiance.vsh", "skinning.vsh"}) {
-    const Program& program = Find(programs, name).program;
+  int split_programs = 0;
+  for (const NamedProgram& named : ProgramsFolder()) {
+    const std::size_t piece = MinVerticesPerPiece(named.program);
+    const std::size_t count = piece == kNeverSplit ? std::size_t{1} << 16 : 4 * piece + 37;
+    split_programs += piece != kNeverSplit;
+    const VertexArrays inputs = PatternInputs(count);
     for (EngineKind kind : {EngineKind::kBatch, EngineKind::kJit}) {
-      const VertexArrays one = RunOnce(kind, program, constants, inputs);
-      for (int threads : {2, 4}) {
+      const VertexArrays one = RunOnce(kind, named.program, constants, inputs);
+      for (int threads : {2, 3, 4}) {
         EngineOptions options;
         options.threads = threads;
-        ExpectSameBits(RunOnce(kind, program, constants, inputs, options), one,
-                       std::string(name) + " " + std::string(EngineName(kind)) + " threads " + std::to_string(threads));
+        ExpectSameBits(RunOnce(kind, named.program, constants, inputs, options), one,
+                       named.name + " " + std::string(EngineName(kind)) + " threads " + std::to_string(threads) +
+                           ", " + std::to_string(count) + " vertices");
       }
     }
   }
+  EXPECT_GE(split_programs, 10) << "most programs of programs/ should be worth splitting at some count";
 }
 
 // Engines that split their calls, run from several threads at once: threads inside threads.
