@@ -27,9 +27,39 @@ namespace vs11::bench {
 // Seed of every pseudo-random input, so that runs are comparable.
 inline constexpr std::uint64_t kBenchSeed = 20080101;
 
-inline std::filesystem::path ProgramPath(std::string_view file_name) {
-  return std::filesystem::path(VS11_SOURCE_DIR) / "programs" / file_name;
+// The folder of .vsh programs the benchmarks run, found once: $VS11_PROGRAMS_DIR when it is set (and
+// then only there), else programs/ beside the binary or in the source tree above a build folder
+// (build/bench/vs11_bench), else the source tree vs11_bench was built from. A binary copied to
+// another machine thus finds the programs copied with it. None of them: a message naming each place
+// tried, exit status 2 (benchmarks register before main, so there is no caller to report to).
+inline const std::filesystem::path& ProgramsFolder() {
+  static const std::filesystem::path folder = [] {
+    namespace fs = std::filesystem;
+    std::vector<fs::path> tried;
+    if (const char* chosen = std::getenv("VS11_PROGRAMS_DIR"); chosen != nullptr && *chosen != '\0') {
+      tried.emplace_back(chosen);
+    } else {
+      std::error_code error;
+      const fs::path binary = fs::read_symlink("/proc/self/exe", error);
+      if (!error) {
+        tried.push_back(binary.parent_path() / "programs");
+        tried.push_back(binary.parent_path().parent_path().parent_path() / "programs");
+      }
+      tried.push_back(fs::path(VS11_SOURCE_DIR) / "programs");
+    }
+    for (const fs::path& candidate : tried) {
+      std::error_code error;
+      if (fs::is_directory(candidate, error)) return candidate;
+    }
+    std::fprintf(stderr, "vs11_bench: no programs folder (the .vsh files of vs11's programs/); looked in:\n");
+    for (const fs::path& candidate : tried) std::fprintf(stderr, "  %s\n", candidate.string().c_str());
+    std::fprintf(stderr, "set VS11_PROGRAMS_DIR to the folder that holds them\n");
+    std::exit(2);
+  }();
+  return folder;
 }
+
+inline std::filesystem::path ProgramPath(std::string_view file_name) { return ProgramsFolder() / file_name; }
 
 // Loads and validates a program (fragments such as sh9_irradiance.vsh included) with its metadata.
 inline irradiance::ProgramForVerify LoadBenchProgram(const std::filesystem::path& path) {

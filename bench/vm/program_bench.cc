@@ -98,7 +98,7 @@ void RunProgram(benchmark::State& state, const std::filesystem::path& path, Engi
 // Registers one benchmark per (program, engine) before main runs.
 const bool kRegistered = [] {
   std::vector<std::filesystem::path> paths;
-  for (const auto& entry : std::filesystem::directory_iterator(std::filesystem::path(VS11_SOURCE_DIR) / "programs")) {
+  for (const auto& entry : std::filesystem::directory_iterator(ProgramsFolder())) {
     if (entry.path().extension() == ".vsh") paths.push_back(entry.path());
   }
   std::sort(paths.begin(), paths.end());
