@@ -55,9 +55,10 @@ py::object Trace(const PyProgram& self, const py::dict& inputs, const py::object
   std::vector<int> constants_given;
   const ConstantBank bank = ConstantsFromPython(constants, self.constant_count, constants_given);
   const RunInputs run_inputs = InputsFromPython(self.program, inputs);
-  if (vertex < 0 || static_cast<std::size_t>(vertex) >= run_inputs.arrays.count()) {
-    throw py::index_error(fmt::format("vertex {}: there are {} vertices (0 to {})", vertex, run_inputs.arrays.count(),
-                                      static_cast<long long>(run_inputs.arrays.count()) - 1));
+  const std::size_t count = run_inputs.arrays.count();
+  if (count == 0) throw py::index_error(fmt::format("vertex {}: the inputs hold no vertices", vertex));
+  if (vertex < 0 || static_cast<std::size_t>(vertex) >= count) {
+    throw py::index_error(fmt::format("vertex {}: there are {} vertices (0 to {})", vertex, count, count - 1));
   }
   WarnUnsetRegisters(self, constants_given, run_inputs.registers);
   VertexArrays outputs = MakeOutputArrays(run_inputs.arrays.count(), self.program);
