@@ -272,6 +272,7 @@ INSTANTIATE_TEST_SUITE_P(Pages, DocumentedHelpExamples, ::testing::ValuesIn(kHel
 struct CodeBlock {
   int first_line;
   std::vector<std::string> lines;
+  std::string language;  // the fence's info string: ```python
 };
 
 std::vector<CodeBlock> CodeBlocks(const fs::path& markdown) {
@@ -283,7 +284,7 @@ std::vector<CodeBlock> CodeBlocks(const fs::path& markdown) {
     ++number;
     if (line.rfind("```", 0) == 0) {
       inside = !inside;
-      if (inside) blocks.push_back({number + 1, {}});
+      if (inside) blocks.push_back({number + 1, {}, line.substr(3)});
     } else if (inside) {
       blocks.back().lines.push_back(line);
     }
@@ -335,11 +336,31 @@ void CheckSynopsis(const std::vector<std::string>& lines, const std::string& whe
 
 class DocumentedReadmeCommands : public ::testing::TestWithParam<std::string> {};
 
+// A ```python block is a script: run whole, from the folder the examples run in, by the interpreter
+// the vs11 module was built for, with the build's module on PYTHONPATH.
+void RunPythonExample(const CodeBlock& block, const std::string& where) {
+#ifdef VS11_PYTHON
+  std::string script;
+  for (const std::string& line : block.lines) script += line + "\n";
+  RunExample("PYTHONPATH=build/python " VS11_PYTHON " - <<'VS11_PYTHON_EXAMPLE'\n" + script + "VS11_PYTHON_EXAMPLE",
+             where);
+#else
+  std::printf("[ not run ] %s: a Python script (the vs11 module is not built: VS11_BUILD_PYTHON=OFF)\n",
+              where.c_str());
+  (void)block;
+#endif
+}
+
 TEST_P(DocumentedReadmeCommands, RunAsWrittenOrAreCheckedSynopses) {
   const fs::path markdown = kSource / GetParam();
   ASSERT_TRUE(fs::exists(markdown)) << markdown;
   int commands = 0;
   for (const CodeBlock& block : CodeBlocks(markdown)) {
+    if (block.language == "python") {
+      RunPythonExample(block, GetParam() + ":" + std::to_string(block.first_line));
+      ++commands;
+      continue;
+    }
     std::vector<std::string> lines;
     bool synopsis = false;
     for (std::string line : block.lines) {

@@ -147,11 +147,13 @@ std::optional<std::string> CheckOptions(const IrrmapOptions& options, CheckedOpt
     return fmt::format("--sphere-size {} is out of range: {} to {}", options.sphere_diameter, kMinPreviewSphereDiameter,
                        kMaxSphereDiameter);
   }
-  if (options.out_dir.empty()) return std::string("the output directory is empty");
-  if (std::optional<std::string> error = CheckOutputFolder(options.out_dir)) return error;
+  if (options.write_files) {
+    if (options.out_dir.empty()) return std::string("the output directory is empty");
+    if (std::optional<std::string> error = CheckOutputFolder(options.out_dir)) return error;
+  }
   if (options.environment.empty()) return std::string("no environment given");
   std::error_code ec;
-  const bool exists = fs::exists(options.environment, ec);
+  const bool exists = options.cube || fs::exists(options.environment, ec);
   checked.builtin = IsBuiltinName(options.environment) && !exists;
   if (!checked.builtin && !exists && options.environment.find(kFaceToken) == std::string::npos) {
     return fmt::format("environment '{}' is neither an existing file nor a built-in ({})", options.environment,
@@ -167,6 +169,16 @@ std::optional<std::string> CheckOptions(const IrrmapOptions& options, CheckedOpt
 
 std::optional<std::string> LoadCube(const IrrmapOptions& options, const CheckedOptions& checked,
                                     IrrmapReport& report, CubeMap& cube) {
+  if (options.cube) {
+    cube = *options.cube;
+    report.environment = options.environment;
+    report.layout = options.layout;
+    if (std::optional<std::string> error = CheckPyramidFaceSize(options.environment, cube.face_size)) return error;
+    if (options.level && *options.level >= LevelCount(cube.face_size)) {
+      return fmt::format("--level {} is out of range: {}", *options.level, LevelRange(cube.face_size));
+    }
+    return std::nullopt;
+  }
   if (checked.builtin) {
     std::optional<CubeMap> made = MakeBuiltinEnvironment(options.environment, options.face_size);
     if (!made) return fmt::format("cannot make the built-in environment '{}'", options.environment);
@@ -666,8 +678,10 @@ std::optional<std::string> RunIrrmap(const IrrmapOptions& options, IrrmapReport&
       if ((error = stage(run))) break;
     }
   }
-  if (!error) error = WriteJobOutputs(options, run.checked, *run.chosen_program, std::move(run.outputs), report);
-  return error;
+  if (error) return error;
+  report.irradiance_map = run.irradiance_map;
+  if (!options.write_files) return std::nullopt;
+  return WriteJobOutputs(options, run.checked, *run.chosen_program, std::move(run.outputs), report);
 }
 
 // ---- Formatting ------------------------------------------------------------------------------------

@@ -52,6 +52,7 @@
 
 #include <glm/glm.hpp>
 
+#include "irradiance/io/cube_map.h"
 #include "irradiance/jobs/mesh_lighting.h"
 #include "irradiance/report/paper_program.h"
 #include "irradiance/sh/ground_truth.h"
@@ -108,6 +109,11 @@ struct IrrmapOptions {
   bool no_ground_truth = false;
   // --face-size was given: a cube-map file, which keeps its own face size, then gets a warning.
   bool face_size_given = false;
+  // An environment already in memory (the Python module's arrays), used instead of loading
+  // `environment`, which then only names it in the report; `layout` is what it was made from.
+  std::optional<CubeMap> cube;
+  // False: no file is written and out_dir is not used; the results are in the report only.
+  bool write_files = true;
   // --mesh: also light this mesh (irradiance/jobs/mesh_lighting.h) and write mesh.ply and mesh.png, with
   // its statistics under "mesh" in coeffs.json.
   std::optional<MeshGeometry> mesh;
@@ -174,6 +180,7 @@ struct IrrmapReport {
   std::vector<std::filesystem::path> files;  // written, once everything succeeded
   std::vector<std::string> warnings;
   std::optional<MeshReport> mesh;
+  CubeMap irradiance_map;  // the chosen program's irradiance cube map (empty with coefficients_only)
 
   // The time of a stage, or 0 when it did not run.
   double TimingMs(std::string_view name) const;

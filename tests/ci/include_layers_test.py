@@ -4,6 +4,7 @@
 vm:          core <- asm, io <- engines <- mesh
 irradiance:  io <- sh <- render <- report <- jobs <- mesh_input
 tools:       vm/cli (vs11) <- irradiance/cli (irrmap, which shares vs11's command-line parse)
+python:      the Python module, over the vm and irradiance libraries (not the tools, not vm/mesh)
 The irradiance library sits above vm's library folders (core, asm, io, engines); only irrmap's mesh
 reader (irradiance/mesh_input) reaches vm/mesh, and only the vs11 tool (vm/cli) reaches irradiance.
 Folders on the same layer (asm and io) do not include each other.
@@ -18,7 +19,10 @@ LAYERS = {
     "vm/core": 0, "vm/asm": 1, "vm/io": 1, "vm/engines": 2, "vm/mesh": 3,
     "irradiance/io": 4, "irradiance/sh": 5, "irradiance/render": 6, "irradiance/report": 7,
     "irradiance/jobs": 8, "irradiance/mesh_input": 9, "vm/cli": 10, "irradiance/cli": 11,
+    "python": 12,
 }
+# The Python module binds the libraries only: what the tools do is theirs.
+NOT_FROM = {"python": {"vm/cli", "irradiance/cli", "irradiance/mesh_input"}}
 # Exceptions to "any lower layer": vm/mesh is below the irradiance library's layers but only
 # mesh_input and the tools may use it (vs11_irradiance is installed without Assimp).
 ONLY_FROM = {"vm/mesh": {"vm/mesh", "irradiance/mesh_input", "irradiance/cli", "vm/cli"}}
@@ -36,7 +40,7 @@ def main() -> int:
     root = pathlib.Path(sys.argv[1])
     violations = []
     checked = 0
-    for top in ("vm", "irradiance"):
+    for top in ("vm", "irradiance", "python"):
         for source in sorted((root / top).rglob("*")):
             if source.suffix not in (".h", ".cc"):
                 continue
@@ -54,7 +58,8 @@ def main() -> int:
                 if target is None:
                     violations.append(f"{relative}:{number}: includes {match.group(1)}, in no known folder")
                 elif target != here and (LAYERS[target] >= LAYERS[here] or
-                                         here not in ONLY_FROM.get(target, {here})):
+                                         here not in ONLY_FROM.get(target, {here}) or
+                                         target in NOT_FROM.get(here, set())):
                     violations.append(f"{relative}:{number}: {here} (layer {LAYERS[here]}) includes "
                                       f"{match.group(1)} ({target}, layer {LAYERS[target]}): includes point down only")
     for violation in violations:

@@ -1,6 +1,5 @@
 #include "vm/cli/trace_output.h"
 
-#include <cmath>
 #include <cstdio>
 
 #include <fmt/format.h>
@@ -18,74 +17,6 @@ namespace vs11::cli {
 namespace {
 
 using nlohmann::json;
-
-// JSON numbers cannot be NaN or infinite: those lanes are the strings "nan", "inf", "-inf".
-json Vec4Json(const Vec4f& value) {
-  json lanes = json::array();
-  for (float v : value) {
-    if (std::isnan(v)) {
-      lanes.push_back("nan");
-    } else if (std::isinf(v)) {
-      lanes.push_back(v > 0 ? "inf" : "-inf");
-    } else {
-      lanes.push_back(static_cast<double>(v));  // exact: every float is a double
-    }
-  }
-  return lanes;
-}
-
-std::string LaneLetters(WriteMask mask) {
-  std::string letters;
-  for (int lane = 0; lane < 4; ++lane) {
-    if (mask.has(lane)) letters += kLaneLetters[lane];
-  }
-  return letters;
-}
-
-json TraceJson(const Program& program, const VertexTrace& trace, SourceLines& sources) {
-  json vertex = {{"vertex", trace.vertex}, {"identical", trace.identical()}};
-  json inputs = json::object();
-  for (int reg : trace.input_registers) inputs[fmt::format("v{}", reg)] = Vec4Json(trace.start.inputs[reg]);
-  vertex["inputs"] = inputs;
-  json steps = json::array();
-  for (const TraceStep& step : trace.steps) {
-    const Instruction& instruction = program.instructions[step.instruction_index];
-    SourceLoc loc = program.LocOf(step.instruction_index);
-    json entry = {{"index", step.instruction_index}, {"instruction", FormatInstruction(instruction)}};
-    if (!loc.file.empty()) {
-      entry["file"] = loc.file;
-      entry["line"] = loc.line;
-      if (std::optional<std::string> line = sources.Line(loc)) entry["source"] = SourceStatement(*line);
-    }
-    json reads = json::array();
-    for (const TracedRead& read : step.reads) {
-      reads.push_back({{"operand", FormatSource(instruction.sources[read.source])},
-                       {"source", read.source},
-                       {"row", read.row},
-                       {"register", RegisterName(read.register_read.file, read.register_read.index)},
-                       {"raw", Vec4Json(read.raw)},
-                       {"value", Vec4Json(read.value)}});
-    }
-    entry["reads"] = reads;
-    if (step.write) {
-      entry["write"] = {{"register", RegisterName(instruction.dest.reg.file, instruction.dest.reg.index)},
-                        {"lanes", LaneLetters(step.write->written)},
-                        {"before", Vec4Json(step.write->before)},
-                        {"after", Vec4Json(step.write->after)}};
-    }
-    steps.push_back(entry);
-  }
-  vertex["steps"] = steps;
-  json outputs = json::array();
-  for (const TracedOutput& output : trace.outputs) {
-    outputs.push_back({{"register", OutputSlotName(output.slot)},
-                       {"reference", Vec4Json(output.reference)},
-                       {"engine", Vec4Json(output.engine)},
-                       {"identical", output.identical()}});
-  }
-  vertex["outputs"] = outputs;
-  return vertex;
-}
 
 }  // namespace
 
@@ -114,7 +45,7 @@ void ReportTraces(const TraceFlags& flags, const std::string& program_path, cons
     CompareOutputs(engine_outputs, trace);
     std::fputs(FormatTraceText(program, trace, engine_name, sources).c_str(), stdout);
     if (!trace.identical()) different.push_back(vertex);
-    vertices.push_back(TraceJson(program, trace, sources));
+    vertices.push_back(json::parse(TraceJson(program, trace, sources)));
   }
   document["vertices"] = vertices;
   document["identical"] = different.empty();

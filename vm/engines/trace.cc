@@ -3,8 +3,10 @@
 #include <algorithm>
 #include <bit>
 #include <cctype>
+#include <cmath>
 
 #include <fmt/format.h>
+#include <nlohmann/json.hpp>
 
 #include "vm/asm/disassembler.h"
 #include "vm/asm/lexer.h"
@@ -210,6 +212,82 @@ std::string FormatTraceText(const Program& program, const VertexTrace& trace, st
                        FormatVec4(output.engine), output.identical() ? "identical" : "DIFFERENT");
   }
   return out;
+}
+
+// ---- JSON (vs11 run --trace-json, Program.trace in Python) ----
+
+namespace {
+
+using nlohmann::json;
+
+// JSON numbers cannot be NaN or infinite: those lanes are the strings "nan", "inf", "-inf".
+json Vec4Json(const Vec4f& value) {
+  json lanes = json::array();
+  for (float v : value) {
+    if (std::isnan(v)) {
+      lanes.push_back("nan");
+    } else if (std::isinf(v)) {
+      lanes.push_back(v > 0 ? "inf" : "-inf");
+    } else {
+      lanes.push_back(static_cast<double>(v));  // exact: every float is a double
+    }
+  }
+  return lanes;
+}
+
+std::string LaneLetters(WriteMask mask) {
+  std::string letters;
+  for (int lane = 0; lane < 4; ++lane) {
+    if (mask.has(lane)) letters += kLaneLetters[lane];
+  }
+  return letters;
+}
+
+}  // namespace
+
+std::string TraceJson(const Program& program, const VertexTrace& trace, SourceLines& sources) {
+  json vertex = {{"vertex", trace.vertex}, {"identical", trace.identical()}};
+  json inputs = json::object();
+  for (int reg : trace.input_registers) inputs[fmt::format("v{}", reg)] = Vec4Json(trace.start.inputs[reg]);
+  vertex["inputs"] = inputs;
+  json steps = json::array();
+  for (const TraceStep& step : trace.steps) {
+    const Instruction& instruction = program.instructions[step.instruction_index];
+    SourceLoc loc = program.LocOf(step.instruction_index);
+    json entry = {{"index", step.instruction_index}, {"instruction", FormatInstruction(instruction)}};
+    if (!loc.file.empty()) {
+      entry["file"] = loc.file;
+      entry["line"] = loc.line;
+      if (std::optional<std::string> line = sources.Line(loc)) entry["source"] = SourceStatement(*line);
+    }
+    json reads = json::array();
+    for (const TracedRead& read : step.reads) {
+      reads.push_back({{"operand", FormatSource(instruction.sources[read.source])},
+                       {"source", read.source},
+                       {"row", read.row},
+                       {"register", RegisterName(read.register_read.file, read.register_read.index)},
+                       {"raw", Vec4Json(read.raw)},
+                       {"value", Vec4Json(read.value)}});
+    }
+    entry["reads"] = reads;
+    if (step.write) {
+      entry["write"] = {{"register", RegisterName(instruction.dest.reg.file, instruction.dest.reg.index)},
+                        {"lanes", LaneLetters(step.write->written)},
+                        {"before", Vec4Json(step.write->before)},
+                        {"after", Vec4Json(step.write->after)}};
+    }
+    steps.push_back(entry);
+  }
+  vertex["steps"] = steps;
+  json outputs = json::array();
+  for (const TracedOutput& output : trace.outputs) {
+    outputs.push_back({{"register", OutputSlotName(output.slot)},
+                       {"reference", Vec4Json(output.reference)},
+                       {"engine", Vec4Json(output.engine)},
+                       {"identical", output.identical()}});
+  }
+  vertex["outputs"] = outputs;
+  return vertex.dump();
 }
 
 }  // namespace vs11

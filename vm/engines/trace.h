@@ -87,4 +87,10 @@ std::string FormatVec4(const Vec4f& value);
 // The source text an instruction came from, comments and surrounding blanks removed ("" if unknown).
 std::string SourceStatement(std::string_view line);
 
+// The trace as one JSON object (the text of one entry of `vs11 run --trace-json`'s "vertices"):
+// {"vertex", "identical", "inputs": {"v0": [x, y, z, w]}, "steps": [{"index", "instruction", "file",
+// "line", "source" (when assembled from text), "reads": [...], "write": {...}}], "outputs": [...]}.
+// NaN and infinite lanes are the strings "nan", "inf" and "-inf" (JSON numbers cannot hold them).
+std::string TraceJson(const Program& program, const VertexTrace& trace, SourceLines& sources);
+
 }  // namespace vs11

@@ -1,0 +1,328 @@
+// vs11.irradiance: project, irradiance_map and batch, through irrmap's own library calls (RunIrrmap
+// and RunBatch, irradiance/jobs/), so their numbers are irrmap's: the same level and program choice,
+// the same coefficients and constants.
+#include <cmath>
+#include <cstdlib>
+#include <filesystem>
+#include <fstream>
+#include <optional>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+#include <pybind11/stl.h>
+#include <pybind11/stl/filesystem.h>
+
+#include "irradiance/io/environment_io.h"
+#include "irradiance/io/environments.h"
+#include "irradiance/jobs/batch_job.h"
+#include "irradiance/jobs/irrmap_job.h"
+#include "irradiance/report/paper_program.h"
+#include "python/bindings.h"
+
+namespace vs11::python {
+namespace {
+
+namespace fs = std::filesystem;
+using irradiance::CubeMap;
+using irradiance::Image;
+
+// What project() returns.
+struct Projection {
+  py::array_t<double> coefficients;  // 9 x 3
+  py::array_t<float> constants;      // 7 x 4, Table 1
+  int level = 0;
+  int level_size = 0;
+  std::string order;
+  PyProgram program;
+  py::dict program_constants;
+  py::dict errors;
+  std::vector<std::string> warnings;
+};
+
+// An (n, n, 3) slice of a float array at `base` with the array's strides into an image.
+template <class T>
+Image ImageFromStrided(const char* base, const py::ssize_t* strides, int height, int width) {
+  Image image(width, height);
+  for (int y = 0; y < height; ++y) {
+    for (int x = 0; x < width; ++x) {
+      for (int c = 0; c < 3; ++c) {
+        image.at(x, y)[c] = static_cast<float>(*reinterpret_cast<const T*>(base + y * strides[0] + x * strides[1] + c * strides[2]));
+      }
+    }
+  }
+  return image;
+}
+
+Image ImageAt(const py::array& array, const char* base, const py::ssize_t* strides, int height, int width) {
+  return array.dtype().is(py::dtype::of<float>()) ? ImageFromStrided<float>(base, strides, height, width)
+                                                  : ImageFromStrided<double>(base, strides, height, width);
+}
+
+void CheckRadiance(const Image& image, const std::string& what) {
+  for (const glm::vec3& texel : image.pixels) {
+    for (int c = 0; c < 3; ++c) {
+      if (!std::isfinite(texel[c]) || texel[c] < 0.0f) {
+        throw py::value_error(fmt::format("{}: radiance must be finite and >= 0, found {}", what, texel[c]));
+      }
+    }
+  }
+}
+
+// (6, N, N, 3) faces in D3D order (+x -x +y -y +z -z) or an (H, 2H, 3) lat-long map, float32/64.
+void SetEnvironmentArray(const py::array& array, irradiance::IrrmapOptions& options) {
+  if (!array.dtype().is(py::dtype::of<float>()) && !array.dtype().is(py::dtype::of<double>())) {
+    throw py::value_error(fmt::format("environment: dtype {} is not float32 or float64", std::string(py::str(array.dtype()))));
+  }
+  const char* base = static_cast<const char*>(array.data());
+  const bool faces = array.ndim() == 4 && array.shape(0) == 6 && array.shape(1) == array.shape(2) && array.shape(3) == 3;
+  const bool latlong = array.ndim() == 3 && array.shape(1) == 2 * array.shape(0) && array.shape(2) == 3;
+  if (!faces && !latlong) {
+    std::string shape;
+    for (py::ssize_t d = 0; d < array.ndim(); ++d) shape += fmt::format("{}{}", d ? ", " : "", array.shape(d));
+    throw py::value_error(fmt::format(
+        "environment: shape ({}) is neither (6, N, N, 3) cube faces nor an (H, 2H, 3) lat-long map", shape));
+  }
+  if (array.size() == 0) throw py::value_error("environment: the array is empty");
+  if (faces) {
+    const int size = static_cast<int>(array.shape(1));
+    CubeMap cube(size);
+    for (int f = 0; f < irradiance::kCubeFaceCount; ++f) {
+      cube.faces[f] = ImageAt(array, base + f * array.strides(0), array.strides() + 1, size, size);
+      CheckRadiance(cube.faces[f], fmt::format("environment face {}", f));
+    }
+    options.cube = std::move(cube);
+    options.layout = "faces";
+    options.environment = fmt::format("array of 6 faces {}x{}", size, size);
+    return;
+  }
+  const int height = static_cast<int>(array.shape(0));
+  Image image = ImageAt(array, base, array.strides(), height, 2 * height);
+  CheckRadiance(image, "environment");
+  if (std::optional<std::string> error = irradiance::CheckFaceSizeOption("face_size", options.face_size)) {
+    throw py::value_error(*error);
+  }
+  irradiance::LoadResult loaded =
+      irradiance::EnvironmentFromImage(std::move(image), irradiance::EnvironmentLayout::kLatLong, options.face_size);
+  if (!loaded.ok()) throw py::value_error("environment: " + loaded.error);
+  options.cube = std::move(loaded.environment->cube);
+  options.layout = "latlong";
+  options.environment = fmt::format("lat-long array {}x{}", 2 * height, height);
+}
+
+irradiance::IrrmapOptions OptionsFor(const py::object& environment, const std::string& layout, int face_size,
+                                     std::optional<int> level, double max_error, const std::string& order,
+                                     const std::string& window) {
+  irradiance::IrrmapOptions options;
+  options.layout = layout;
+  options.face_size = face_size;
+  options.level = level;
+  options.max_error = max_error;
+  options.order = order;
+  options.window = window;
+  options.write_files = false;
+  options.coefficients_only = true;
+  if (py::isinstance<py::array>(environment)) {
+    SetEnvironmentArray(py::reinterpret_borrow<py::array>(environment), options);
+  } else if (py::isinstance<py::str>(environment) || py::hasattr(environment, "__fspath__")) {
+    options.environment = environment.cast<fs::path>().string();
+  } else {
+    throw py::value_error("environment: expected a path, a built-in name ('sky') or a NumPy array");
+  }
+  return options;
+}
+
+irradiance::IrrmapReport RunJob(const irradiance::IrrmapOptions& options) {
+  irradiance::IrrmapReport report;
+  std::optional<std::string> error;
+  {
+    py::gil_scoped_release release;
+    error = irradiance::RunIrrmap(options, report);
+  }
+  if (error) throw py::value_error(*error);
+  for (const std::string& warning : report.warnings) {
+    if (PyErr_WarnEx(PyExc_UserWarning, warning.c_str(), 2) != 0) throw py::error_already_set();
+  }
+  return report;
+}
+
+Projection Project(const py::object& environment, const std::string& layout, int face_size, std::optional<int> level,
+                   double max_error, const std::string& order, const std::string& window) {
+  const irradiance::IrrmapReport report =
+      RunJob(OptionsFor(environment, layout, face_size, level, max_error, order, window));
+  Projection result;
+  result.coefficients = py::array_t<double>({irradiance::kSh9Coefficients, 3});
+  for (int i = 0; i < irradiance::kSh9Coefficients; ++i) {
+    for (int c = 0; c < 3; ++c) result.coefficients.mutable_at(i, c) = report.coefficients.coefficients[i][c];
+  }
+  result.constants = py::array_t<float>({7, 4});
+  for (int r = 0; r < 7; ++r) {
+    for (int c = 0; c < 4; ++c) result.constants.mutable_at(r, c) = report.constants.registers[r][c];
+  }
+  result.level = report.level;
+  result.level_size = report.levels[report.level].size;
+  result.order = std::string(irradiance::Info(report.order).name);
+  std::string error;
+  std::optional<irradiance::PaperProgram> program = irradiance::PaperProgram::LoadOrder(report.order, error);
+  if (!program) throw std::runtime_error(error);
+  result.program = PyProgram{program->program(), std::string(irradiance::Info(report.order).program_file),
+                             kDefaultConstantCount, true};
+  for (std::size_t i = 0; i < report.program_constants.size(); ++i) {
+    const glm::vec4& value = report.program_constants[i].value;
+    result.program_constants[py::str(fmt::format("c{}", program->constant_base() + static_cast<int>(i)))] =
+        std::vector<float>{value.x, value.y, value.z, value.w};
+  }
+  py::list levels;
+  for (const irradiance::LevelReport& row : report.levels) {
+    py::dict entry;
+    entry["level"] = row.level;
+    entry["size"] = row.size;
+    entry["estimated_error"] = row.estimated_error;
+    levels.append(entry);
+  }
+  result.errors["estimated_error"] = report.order_estimated_error;
+  result.errors["error_vs_full_order2"] = report.program_vs_full_order2;
+  result.errors["levels"] = levels;
+  result.warnings = report.warnings;
+  return result;
+}
+
+py::array_t<float> IrradianceMap(const py::object& environment, const std::string& layout, int face_size,
+                                 std::optional<int> level, double max_error, const std::string& order,
+                                 const std::string& window, int map_size, const std::string& engine) {
+  irradiance::IrrmapOptions options = OptionsFor(environment, layout, face_size, level, max_error, order, window);
+  options.coefficients_only = false;
+  options.no_ground_truth = true;
+  options.map_size = map_size;
+  options.engine = engine;
+  const irradiance::IrrmapReport report = RunJob(options);
+  const CubeMap& map = report.irradiance_map;
+  py::array_t<float> result({6, map.face_size, map.face_size, 3});
+  for (int f = 0; f < irradiance::kCubeFaceCount; ++f) {
+    for (int y = 0; y < map.face_size; ++y) {
+      for (int x = 0; x < map.face_size; ++x) {
+        for (int c = 0; c < 3; ++c) result.mutable_at(f, y, x, c) = map.faces[f].at(x, y)[c];
+      }
+    }
+  }
+  return result;
+}
+
+// A scratch folder removed when it goes out of scope.
+struct ScratchFolder {
+  fs::path path;
+  ScratchFolder() {
+    std::string pattern = (fs::temp_directory_path() / "vs11-batch-XXXXXX").string();
+    if (!mkdtemp(pattern.data())) throw std::runtime_error("cannot create a temporary folder for the batch output");
+    path = pattern;
+  }
+  ~ScratchFolder() {
+    std::error_code ec;
+    fs::remove_all(path, ec);
+  }
+};
+
+py::list Batch(const std::vector<std::string>& paths, int threads, const std::string& layout, int face_size,
+               std::optional<int> level, double max_error) {
+  if (threads < 0) throw py::value_error(fmt::format("threads={} must be >= 0 (0: every core)", threads));
+  ScratchFolder scratch;
+  irradiance::BatchOptions options;
+  options.inputs = paths;
+  options.output = scratch.path / "batch.jsonl";
+  options.threads = threads;
+  options.layout = layout;
+  options.face_size = face_size;
+  options.level = level;
+  options.max_error = max_error;
+  irradiance::BatchSummary summary;
+  std::optional<std::string> error;
+  {
+    py::gil_scoped_release release;
+    error = irradiance::RunBatch(options, summary);
+  }
+  if (error) throw py::value_error(*error);
+  for (const irradiance::BatchFailure& failure : summary.failures) {
+    const std::string text = fmt::format("{}: {}", failure.input, failure.reason);
+    if (PyErr_WarnEx(PyExc_UserWarning, text.c_str(), 2) != 0) throw py::error_already_set();
+  }
+  // The records as irrmap batch wrote them, in input order (the file holds them in finishing order).
+  py::object loads = py::module_::import("json").attr("loads");
+  std::ifstream file(options.output);
+  py::list records;
+  for (std::string line; std::getline(file, line);) {
+    if (!line.empty()) records.append(loads(line));
+  }
+  records.attr("sort")(py::arg("key") = py::cpp_function([](const py::dict& record) { return record["input"]; }));
+  return records;
+}
+
+constexpr const char* kEnvironmentArguments =
+    "environment: an image file (.hdr, .exr, .pfm, .dds, ...), a six-face pattern holding '{face}',\n"
+    "  a built-in name (builtin_environments()), or a NumPy float array: (6, N, N, 3) cube faces in\n"
+    "  D3D order (+x -x +y -y +z -z, N a power of two) or an (H, 2H, 3) lat-long map (resampled to\n"
+    "  face_size); radiance finite and >= 0, else ValueError.\n"
+    "layout: auto, faces, hcross, vcross, hstrip, vstrip, latlong or angular (files only).\n"
+    "face_size: faces of built-ins and of resampled lat-long and angular maps (power of two).\n"
+    "level: the mip level the coefficients come from; None: the coarsest within max_error.\n"
+    "max_error: the error budget of the level and program choice (0.005 = 0.5 %).\n"
+    "order: auto, order0, order1, zh3 or order2 (the program); window: none, hanning, lanczos,\n"
+    "  dering or nonneg.\n";
+
+}  // namespace
+
+void BindIrradiance(py::module_& module) {
+  py::class_<Projection>(module, "Projection", "What project() computed (irrmap's coeffs.json, in arrays).")
+      .def_readonly("coefficients", &Projection::coefficients,
+                    "(9, 3) float64: L00, L1-1, L10, L11, L2-2, L2-1, L20, L21, L22 per channel (r, g, b).")
+      .def_readonly("constants", &Projection::constants,
+                    "(7, 4) float32: cAr cAg cAb cBr cBg cBb cC (the paper's Table 1), for c0..c6 of the paper's\n"
+                    "program: program.run({'v0': normals}, constants) when order is order2.")
+      .def_readonly("level", &Projection::level, "The mip level the coefficients came from.")
+      .def_readonly("level_size", &Projection::level_size, "That level's face size.")
+      .def_readonly("order", &Projection::order, "The chosen program's order: order0, order1, zh3 or order2.")
+      .def_readonly("program", &Projection::program, "The chosen program (a vs11.Program, a fragment).")
+      .def_readonly("program_constants", &Projection::program_constants,
+                    "The chosen program's constants, {'c0': [x, y, z, w], ...}: its run()'s constants.")
+      .def_readonly("errors", &Projection::errors,
+                    "{'estimated_error': the chosen (program, level)'s estimate against the nine terms at level 0,\n"
+                    " 'error_vs_full_order2': its measured difference, 'levels': [{'level', 'size',\n"
+                    " 'estimated_error'}]} (fractions).")
+      .def_readonly("warnings", &Projection::warnings, "What irrmap would have warned about (also issued as warnings).")
+      .def("__repr__", [](const Projection& self) {
+        return fmt::format("<vs11.irradiance.Projection {} from level {} ({}x{})>", self.order, self.level,
+                           self.level_size, self.level_size);
+      });
+
+  module.def("builtin_environments", &irradiance::BuiltinEnvironmentNames, "The built-in environments' names.");
+  module.def("project", &Project, py::arg("environment"), py::arg("layout") = "auto", py::arg("face_size") = 256,
+             py::arg("level") = py::none(), py::arg("max_error") = irradiance::kDefaultMaxLevelError,
+             py::arg("order") = "auto", py::arg("window") = "none",
+             (std::string("Projects an environment onto nine SH coefficients per channel and packs the seven\n"
+                          "constants, choosing the level and the program as `irrmap --coefficients-only` does;\n"
+                          "returns a Projection. Raises ValueError for bad arguments or unusable files.\n\n") +
+              kEnvironmentArguments +
+              "\nExample:\n  p = vs11.irradiance.project('sky', face_size=64)\n  p.coefficients.shape  # (9, 3)")
+                 .c_str());
+  module.def("irradiance_map", &IrradianceMap, py::arg("environment"), py::arg("layout") = "auto",
+             py::arg("face_size") = 256, py::arg("level") = py::none(),
+             py::arg("max_error") = irradiance::kDefaultMaxLevelError, py::arg("order") = "auto",
+             py::arg("window") = "none", py::arg("map_size") = irradiance::kDefaultMapSize, py::arg("engine") = "jit",
+             (std::string("The irradiance cube map irrmap writes as irradiance.exr: the chosen program run on the\n"
+                          "machine once per texel direction. Returns a (6, map_size, map_size, 3) float32 array\n"
+                          "(faces in D3D order, rows top to bottom).\n\n") +
+              kEnvironmentArguments +
+              "map_size: faces of the result (1 to 1024); engine: jit, batch or ref.\n"
+              "\nExample:\n  e = vs11.irradiance.irradiance_map('studio', face_size=64, map_size=16)")
+                 .c_str());
+  module.def("batch", &Batch, py::arg("paths"), py::arg("threads") = 0, py::arg("layout") = "auto",
+             py::arg("face_size") = 256, py::arg("level") = py::none(),
+             py::arg("max_error") = irradiance::kDefaultMaxLevelError,
+             "Projects many environment files as `irrmap batch` does (paths or glob patterns, every core\n"
+             "with threads=0) and returns its records, one dict per input in input order: input, face_size,\n"
+             "layout, level, level_size, estimated_error, coefficients (9 x [r, g, b]) and constants\n"
+             "({'cAr': [x, y, z, w], ...}). An input that cannot be used is skipped with a UserWarning\n"
+             "naming it and why.\n\n"
+             "Example:\n  records = vs11.irradiance.batch(['envs/*.hdr'], threads=2)");
+}
+
+}  // namespace vs11::python

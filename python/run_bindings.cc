@@ -1,0 +1,111 @@
+// Program.run and Program.trace: the machine over NumPy arrays, through the same library calls as
+// `vs11 run` (vm/cli/run_command.cc): MakeEngine, the unset-register warnings, TraceVertex.
+#include <memory>
+
+#include <fmt/format.h>
+#include <pybind11/stl.h>
+
+#include "python/array_conversion.h"
+#include "vm/engines/engine_factory.h"
+#include "vm/engines/trace.h"
+#include "vm/io/vertex_io.h"
+
+namespace vs11::python {
+namespace {
+
+constexpr int kMaxThreads = 256;  // as the tools' --threads
+
+EngineKind CheckedEngine(const std::string& engine, int threads) {
+  std::optional<EngineKind> kind = EngineKindFromName(engine);
+  if (!kind) throw py::value_error(fmt::format("engine='{}': use 'ref', 'batch' or 'jit'", engine));
+  if (threads < 1 || threads > kMaxThreads) {
+    throw py::value_error(fmt::format("threads={} is out of range: 1 to {}", threads, kMaxThreads));
+  }
+  return *kind;
+}
+
+// The warnings `vs11 run` prints before it starts, as Python warnings.
+void WarnUnsetRegisters(const PyProgram& self, const std::vector<int>& constants_given,
+                        const std::vector<int>& inputs_given) {
+  for (const std::string& warning : UnsetRegisterWarnings(self.program, constants_given, inputs_given)) {
+    const std::string text = fmt::format("{}: warning: {}", self.name, warning);
+    if (PyErr_WarnEx(PyExc_UserWarning, text.c_str(), 2) != 0) throw py::error_already_set();
+  }
+}
+
+py::dict Run(const PyProgram& self, const py::dict& inputs, const py::object& constants, const std::string& engine,
+             int threads) {
+  const EngineKind kind = CheckedEngine(engine, threads);
+  std::vector<int> constants_given;
+  const ConstantBank bank = ConstantsFromPython(constants, self.constant_count, constants_given);
+  const RunInputs run_inputs = InputsFromPython(self.program, inputs);
+  WarnUnsetRegisters(self, constants_given, run_inputs.registers);
+  auto outputs = std::make_unique<VertexArrays>(MakeOutputArrays(run_inputs.arrays.count(), self.program));
+  {
+    // Nothing below touches a Python object: other Python threads (and other engines) run meanwhile.
+    py::gil_scoped_release release;
+    MakeEngine(kind, self.program, bank, EngineOptions{threads})->Run(run_inputs.arrays, *outputs);
+  }
+  return OutputsToPython(std::move(outputs));
+}
+
+py::object Trace(const PyProgram& self, const py::dict& inputs, const py::object& constants, long long vertex,
+                 const std::string& engine) {
+  const EngineKind kind = CheckedEngine(engine, 1);
+  std::vector<int> constants_given;
+  const ConstantBank bank = ConstantsFromPython(constants, self.constant_count, constants_given);
+  const RunInputs run_inputs = InputsFromPython(self.program, inputs);
+  const std::size_t count = run_inputs.arrays.count();
+  if (count == 0) throw py::index_error(fmt::format("vertex {}: the inputs hold no vertices", vertex));
+  if (vertex < 0 || static_cast<std::size_t>(vertex) >= count) {
+    throw py::index_error(fmt::format("vertex {}: there are {} vertices (0 to {})", vertex, count, count - 1));
+  }
+  WarnUnsetRegisters(self, constants_given, run_inputs.registers);
+  VertexArrays outputs = MakeOutputArrays(run_inputs.arrays.count(), self.program);
+  std::string json;
+  {
+    py::gil_scoped_release release;
+    MakeEngine(kind, self.program, bank, EngineOptions{1})->Run(run_inputs.arrays, outputs);
+    VertexTrace trace = TraceVertex(self.program, bank, run_inputs.arrays, static_cast<std::size_t>(vertex));
+    CompareOutputs(outputs, trace);
+    SourceLines sources;
+    json = TraceJson(self.program, trace, sources);
+  }
+  return py::module_::import("json").attr("loads")(json);
+}
+
+}  // namespace
+
+void BindRun(py::class_<PyProgram>& program_class) {
+  program_class.def(
+      "run", &Run, py::arg("inputs"), py::arg("constants") = py::none(), py::arg("engine") = "jit",
+      py::arg("threads") = 1,
+      "Runs the program over n vertices and returns {output name: (n, 4) float32 array}.\n\n"
+      "inputs: {'v0' or a dcl usage name ('position', 'normal', 'texcoord1'): array}, each array\n"
+      "  (n, 4) or (n, 3) (w = 1, as D3D's FLOAT3), float32 or float64, any strides; every array\n"
+      "  the same n. Inputs not given read (0, 0, 0, 1).\n"
+      "constants: {'c4' or 4: four numbers}, or a (k, 4) array holding c0..c(k-1); unset\n"
+      "  registers read 0. The program's def lines win.\n"
+      "engine: 'jit' (default), 'batch' or 'ref'; all three give the same bits.\n"
+      "threads: threads for the batch and jit engines (1 to 256).\n"
+      "Each input is read once from the caller's buffer into the engines' structure-of-arrays layout\n"
+      "(no intermediate NumPy copy, whatever the dtype or strides); the returned arrays are views of\n"
+      "the engine's output buffer (no copy). The GIL is released while the engine runs. Constants\n"
+      "the program reads that nobody set and inputs it reads that were not given are warned about\n"
+      "(UserWarning) exactly as `vs11 run` warns. Raises ValueError for bad arrays or names.\n\n"
+      "Example:\n"
+      "  out = p.run({'v0': np.array([[0, 0, 1]], np.float32)}, {'c0': [1, 2, 3, 4]})\n"
+      "  out['oD0']  # (1, 4) float32");
+  program_class.def(
+      "trace", &Trace, py::arg("inputs"), py::arg("constants") = py::none(), py::arg("vertex") = 0,
+      py::arg("engine") = "jit",
+      "Runs one vertex instruction by instruction on the reference engine and returns the record\n"
+      "`vs11 run --trace-json` writes for it: a dict with 'vertex', 'identical', 'inputs', 'steps'\n"
+      "(one dict per executed instruction: 'index', 'instruction', 'reads', 'write', and 'file',\n"
+      "'line', 'source' for assembled text) and 'outputs' (the reference's and `engine`'s values).\n"
+      "inputs and constants as for run(); raises IndexError for a vertex out of range.\n\n"
+      "Example:\n"
+      "  steps = p.trace({'v0': normals}, constants, vertex=2)['steps']");
+}
+
+}  // namespace vs11::python

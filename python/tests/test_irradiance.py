@@ -1,0 +1,99 @@
+"""vs11.irradiance: project, irradiance_map and batch against irrmap's own outputs and physics."""
+import json
+import math
+import subprocess
+
+import numpy as np
+import pytest
+
+import vs11
+
+# A constant radiance of 1 projects to L00 = 4 pi Y00 = 2 sqrt(pi), and lights every normal with E = pi.
+UNIT_L00 = 2.0 * math.sqrt(math.pi)
+
+
+@pytest.mark.parametrize("environment", ["sky", "studio", "spot", "gradient", "constant"])
+def test_project_equals_irrmap_coeffs_json(environment, irrmap_tool, tmp_path):
+    subprocess.run([str(irrmap_tool), environment, "--face-size", "32", "--coefficients-only", "--out",
+                    str(tmp_path)], capture_output=True, check=True)
+    expected = json.loads((tmp_path / "coeffs.json").read_text())
+    result = vs11.irradiance.project(environment, face_size=32)
+    np.testing.assert_array_equal(result.coefficients, np.array(expected["coefficients"]))
+    np.testing.assert_array_equal(result.constants, np.array(list(expected["constants"].values()), np.float32))
+    assert (result.level, result.level_size, result.order) == (expected["level"], expected["level_size"],
+                                                               expected["order"])
+    assert result.program.name == expected["program"]["file"]
+    program_constants = {k: list(map(np.float32, v)) for k, v in result.program_constants.items()}
+    assert list(program_constants.values()) == [list(map(np.float32, v))
+                                                for v in expected["program"]["constants"].values()]
+    assert result.errors["estimated_error"] == expected["program"]["estimated_error"]
+
+
+def test_constant_faces_project_to_l00_only():
+    faces = np.ones((6, 8, 8, 3), np.float32)
+    result = vs11.irradiance.project(faces, level=0, order="order2")
+    np.testing.assert_allclose(result.coefficients[0], [UNIT_L00] * 3, rtol=1e-5)
+    np.testing.assert_allclose(result.coefficients[1:], 0.0, atol=1e-5)
+
+
+def test_lat_long_array_is_resampled_and_projected():
+    latlong = np.ones((16, 32, 3))
+    result = vs11.irradiance.project(latlong, face_size=8, level=0)
+    np.testing.assert_allclose(result.coefficients[0], [UNIT_L00] * 3, rtol=1e-5)
+
+
+def test_irradiance_map_of_a_constant_environment_is_pi():
+    irradiance = vs11.irradiance.irradiance_map(np.full((6, 4, 4, 3), 1.0), map_size=4)
+    assert irradiance.shape == (6, 4, 4, 3) and irradiance.dtype == np.float32
+    np.testing.assert_allclose(irradiance, math.pi, rtol=2e-5)
+
+
+def test_chosen_program_runs_with_its_constants():
+    result = vs11.irradiance.project("spot", face_size=32)
+    normals = np.array([[0.0, 1.0, 0.0], [0.0, -1.0, 0.0]])
+    lit = result.program.run({"v0": normals}, result.program_constants)
+    assert result.program.outputs[0] in lit
+
+
+@pytest.mark.parametrize("array,message", [
+    (np.ones((6, 8, 8, 4), np.float32), r"shape \(6, 8, 8, 4\)"),
+    (np.ones((8, 8, 3), np.float32), r"shape \(8, 8, 3\)"),
+    (np.ones((6, 8, 8, 3), np.int16), r"dtype int16"),
+    (np.full((6, 4, 4, 3), np.nan), r"finite and >= 0, found nan"),
+    (np.full((4, 8, 3), -1.0), r"finite and >= 0, found -1"),
+    (np.ones((6, 6, 6, 3)), r"power of two"),
+])
+def test_bad_environment_arrays_are_value_errors(array, message):
+    with pytest.raises(ValueError, match=message):
+        vs11.irradiance.project(array)
+
+
+def test_bad_options_and_files_are_value_errors(tmp_path):
+    with pytest.raises(ValueError, match="neither an existing file nor a built-in"):
+        vs11.irradiance.project(str(tmp_path / "missing.hdr"))
+    with pytest.raises(ValueError, match="unknown order"):
+        vs11.irradiance.project("sky", face_size=8, order="order9")
+
+
+def write_pfm(path, image):
+    """A little-endian RGB PFM (rows bottom to top, as the format stores them)."""
+    height, width, _ = image.shape
+    with open(path, "wb") as f:
+        f.write(b"PF\n%d %d\n-1.0\n" % (width, height))
+        f.write(np.ascontiguousarray(image[::-1], dtype="<f4").tobytes())
+
+
+def test_batch_records_are_irrmap_batch_records(tmp_path):
+    rng = np.random.default_rng(3)
+    paths = []
+    for name in ("b.pfm", "a.pfm"):
+        write_pfm(tmp_path / name, rng.uniform(0.0, 2.0, size=(8, 16, 3)))
+        paths.append(str(tmp_path / name))
+    (tmp_path / "broken.pfm").write_bytes(b"PF\n")
+    with pytest.warns(UserWarning, match="broken.pfm"):
+        records = vs11.irradiance.batch(paths + [str(tmp_path / "broken.pfm")], threads=2, face_size=8)
+    assert [r["input"] for r in records] == sorted(paths)
+    for record in records:
+        single = vs11.irradiance.project(record["input"], face_size=8, level=record["level"])
+        np.testing.assert_array_equal(np.array(record["coefficients"]), single.coefficients)
+        np.testing.assert_array_equal(np.array(list(record["constants"].values()), np.float32), single.constants)

@@ -1,0 +1,222 @@
+"""Program.run and Program.trace: results, bit equality with `vs11 run`, zero copy, the GIL, errors."""
+import csv
+import io
+import subprocess
+import sys
+import threading
+import time
+import tracemalloc
+import warnings
+
+import numpy as np
+import pytest
+
+import vs11
+
+# Ramamoorthi & Hanrahan (2001) eq. (7) constants, as the paper prints them.
+C1, C2, C3, C4, C5 = 0.429043, 0.511664, 0.743125, 0.886227, 0.247708
+
+
+def sphere_normals(n, seed=7):
+    v = np.random.default_rng(seed).normal(size=(n, 3))
+    return v / np.linalg.norm(v, axis=1, keepdims=True)
+
+
+def equation7(L, n):
+    """Irradiance from nine coefficients (L00, L1-1, L10, L11, L2-2, L2-1, L20, L21, L22) in double."""
+    x, y, z = (n[:, i : i + 1] for i in range(3))
+    return (C1 * L[8] * (x * x - y * y) + C3 * L[6] * z * z + C4 * L[0] - C5 * L[6]
+            + 2 * C1 * (L[4] * x * y + L[7] * x * z + L[5] * y * z)
+            + 2 * C2 * (L[3] * x + L[1] * y + L[2] * z))
+
+
+def test_paper_program_on_normals_matches_equation_7(programs_dir):
+    program = vs11.load(programs_dir / "sh9_irradiance.vsh")
+    sky = vs11.irradiance.project("sky", face_size=16, order="order2")
+    normals = sphere_normals(500)
+    lit = program.run({"v0": normals}, sky.constants)["oD0"]
+    assert lit.shape == (500, 4) and lit.dtype == np.float32
+    expected = equation7(sky.coefficients, normals)
+    np.testing.assert_allclose(lit[:, :3], expected, rtol=0, atol=2e-5 * np.abs(expected).max())
+
+
+def test_engines_and_input_forms_agree_bit_for_bit(programs_dir):
+    program = vs11.load(programs_dir / "sh9_irradiance.vsh")
+    constants = vs11.irradiance.project("studio", face_size=16, order="order2").constants
+    normals = sphere_normals(300)
+    reference = program.run({"v0": normals.astype(np.float32)}, constants, engine="ref")["oD0"]
+    as_dict = {"c%d" % i: list(row) for i, row in enumerate(constants)}
+    four = np.hstack([normals, np.ones((300, 1))])
+    for out in (program.run({"v0": normals}, constants, engine="batch"),
+                program.run({"v0": np.asfortranarray(four)}, as_dict, engine="jit", threads=2),
+                program.run({"v0": four[::-1][::-1]}, {i: row for i, row in enumerate(constants)})):
+        np.testing.assert_array_equal(out["oD0"].view(np.uint32), reference.view(np.uint32))
+
+
+def test_dcl_usage_names_select_input_registers():
+    program = vs11.assemble("vs_1_1\ndcl_position v0\ndcl_texcoord1 v5\nmov oPos, v0\nmov oT0, v5\n")
+    uv = np.arange(12, dtype=np.float32).reshape(3, 4)
+    out = program.run({"position": np.zeros((3, 3)), "texcoord1": uv})
+    np.testing.assert_array_equal(out["oT0"], uv)
+    np.testing.assert_array_equal(out["oPos"][:, 3], np.ones(3, np.float32))  # (n, 3): w = 1
+
+
+def write_csv(path, rows):
+    path.write_text("".join(",".join("%.9g" % v for v in row) + "\n" for row in rows))
+
+
+def parse_cli_csv(text):
+    reader = csv.reader(io.StringIO(text))
+    header = next(reader)
+    rows = np.array([[np.float32(float(v)) for v in row] for row in reader], dtype=np.float32)
+    return header, rows
+
+
+def same_bits(a, b):
+    both_nan = np.isnan(a) & np.isnan(b)
+    return bool(np.all(both_nan | (a.view(np.uint32) == b.view(np.uint32))))
+
+
+def test_every_program_matches_vs11_run_bit_for_bit(programs_dir, vs11_tool, tmp_path):
+    rng = np.random.default_rng(11)
+    programs = sorted(programs_dir.glob("*.vsh"))
+    assert len(programs) > 10
+    constants = rng.uniform(-2, 2, size=(96, 4)).astype(np.float32)
+    consts_file = tmp_path / "constants.txt"
+    consts_file.write_text("".join("c%d = %s\n" % (i, " ".join("%.9g" % v for v in row))
+                                   for i, row in enumerate(constants)))
+    compared = 0
+    for path in programs:
+        program = vs11.load(path)
+        inputs, flags = {}, []
+        for name in program.inputs or ["v0"]:  # a program without inputs still runs n vertices
+            values = rng.uniform(-2, 2, size=(8, 4)).astype(np.float32)
+            write_csv(tmp_path / (name + ".csv"), values)
+            inputs[name] = values
+            flags += ["--input", "%s=%s" % (name, tmp_path / (name + ".csv"))]
+        with warnings.catch_warnings():
+            warnings.simplefilter("ignore")  # the def lines a program overrides are warned about
+            ours = program.run(inputs, constants)
+        cli = subprocess.run([str(vs11_tool), "run", str(path), "--consts", str(consts_file)] + flags,
+                             capture_output=True, text=True, check=True)
+        header, rows = parse_cli_csv(cli.stdout)
+        for column, name in enumerate(header):
+            register, lane = name.split(".")
+            got = ours[register][:, "xyzw".index(lane)]
+            assert same_bits(got, rows[:, column]), "%s %s: %s vs %s" % (path.name, name, got, rows[:, column])
+            compared += 1
+    assert compared > 2 * len(programs)  # output lanes compared, every program's
+
+
+def test_outputs_are_views_of_one_engine_buffer():
+    program = vs11.assemble("vs_1_1\ndcl_position v0\nmov oPos, v0\nmov oD0, v0\nmov oT0, v0\n")
+    out = program.run({"position": np.ones((1000, 4), np.float32)})
+    assert all(not array.flags.owndata for array in out.values())
+    bases = {id(array.base) for array in out.values()}
+    assert len(bases) == 1 and next(iter(out.values())).base is not None
+
+
+@pytest.mark.parametrize("dtype,columns", [(np.float32, 4), (np.float64, 3)])
+def test_inputs_are_not_copied_into_numpy_arrays(dtype, columns):
+    program = vs11.assemble("vs_1_1\ndcl_position v0\nmov oPos, v0\n")
+    positions = np.ones((200_000, columns), dtype)
+    tracemalloc.start()
+    try:
+        program.run({"position": positions})
+        _, peak = tracemalloc.get_traced_memory()
+    finally:
+        tracemalloc.stop()
+    assert peak < positions.nbytes // 8, "run() made a NumPy copy of its input (%d bytes traced)" % peak
+
+
+def test_gil_is_released_so_two_threads_run_engines_at_once(programs_dir):
+    program = vs11.load(programs_dir / "sh9_irradiance.vsh")
+    constants = np.full((7, 4), 0.5, np.float32)
+    normals = sphere_normals(100_000).astype(np.float32)
+    barrier = threading.Barrier(2)
+    start, end = {}, {}
+
+    def work(name):
+        barrier.wait()
+        start[name] = time.perf_counter()
+        program.run({"v0": normals}, constants, engine="ref")
+        end[name] = time.perf_counter()
+
+    threads = [threading.Thread(target=work, args=(name,)) for name in "ab"]
+    # No forced switches: a thread gives up the GIL only where it releases it (run(), if it does, and
+    # the barrier), so each thread's end time is taken as soon as its run returns.
+    interval = sys.getswitchinterval()
+    sys.setswitchinterval(5.0)
+    try:
+        for thread in threads:
+            thread.start()
+        for thread in threads:
+            thread.join()
+    finally:
+        sys.setswitchinterval(interval)
+    longest = max(end[name] - start[name] for name in "ab")
+    # Serialised by the GIL, the second run would end a whole run after the first: half of `longest`.
+    assert abs(end["a"] - end["b"]) < 0.25 * longest, (start, end)
+
+
+def test_unset_constants_and_missing_inputs_warn_as_the_cli_does(programs_dir):
+    program = vs11.load(programs_dir / "sh9_irradiance.vsh")
+    with pytest.warns(UserWarning, match=r"sh9_irradiance.vsh: warning: .*c0"):
+        program.run({"v0": sphere_normals(4)})
+    two_inputs = vs11.assemble("vs_1_1\ndcl_position v0\ndcl_normal v3\nmov oPos, v0\nmov oD0, v3\n")
+    with pytest.warns(UserWarning, match="v3"):
+        two_inputs.run({"v0": np.zeros((2, 4))})
+
+
+@pytest.mark.parametrize("inputs,message", [
+    ({"v0": np.zeros((4, 2), np.float32)}, r"inputs\['v0'\]: shape \(4, 2\)"),
+    ({"v0": np.zeros((4, 4), np.int32)}, r"inputs\['v0'\]: dtype int32"),
+    ({"v0": [[0, 0, 1, 1]]}, r"inputs\['v0'\]: expected a NumPy array"),
+    ({"v0": np.zeros((4, 4)), "normal": np.zeros((3, 4))}, r"has 3 vertices"),
+    ({"tangent": np.zeros((4, 4))}, r"not an input register"),
+    ({}, r"no arrays"),
+])
+def test_bad_inputs_are_value_errors(inputs, message):
+    program = vs11.assemble("vs_1_1\ndcl_position v0\ndcl_normal v1\nmov oPos, v0\nmov oD0, v1\n")
+    with pytest.raises(ValueError, match=message):
+        program.run(inputs)
+
+
+@pytest.mark.parametrize("constants,message", [
+    ({"c96": [0, 0, 0, 0]}, r"c96 is out of range"),
+    ({"x4": [0, 0, 0, 0]}, r"not a constant register"),
+    ({4: [1, 2, 3]}, r"expected 4 numbers"),
+    (np.zeros((97, 4)), r"97 rows"),
+    (np.zeros((3, 3)), r"shape \(3, 3\)"),
+])
+def test_bad_constants_are_value_errors(constants, message):
+    program = vs11.assemble("vs_1_1\ndcl_position v0\nadd oPos, v0, c4\n")
+    with pytest.raises(ValueError, match=message):
+        program.run({"v0": np.zeros((2, 4))}, constants)
+
+
+def test_bad_engine_and_threads_are_value_errors():
+    program = vs11.assemble("vs_1_1\ndcl_position v0\nmov oPos, v0\n")
+    with pytest.raises(ValueError, match="engine='gpu'"):
+        program.run({"v0": np.zeros((2, 4))}, engine="gpu")
+    with pytest.raises(ValueError, match="threads=0"):
+        program.run({"v0": np.zeros((2, 4))}, threads=0)
+
+
+def test_trace_is_what_vs11_run_trace_json_writes(programs_dir, vs11_tool, tmp_path):
+    path = programs_dir / "sh9_irradiance.vsh"
+    program = vs11.load(str(path))
+    normals = sphere_normals(3).astype(np.float32)
+    constants = np.linspace(-1, 1, 28, dtype=np.float32).reshape(7, 4)
+    trace = program.trace({"v0": normals}, constants, vertex=2)
+    assert len(trace["steps"]) == 11 and trace["identical"]
+    write_csv(tmp_path / "n.csv", normals)
+    (tmp_path / "c.txt").write_text("".join("c%d = %s\n" % (i, " ".join("%.9g" % v for v in row))
+                                            for i, row in enumerate(constants)))
+    subprocess.run([str(vs11_tool), "run", str(path), "--input", "v0=%s" % (tmp_path / "n.csv"), "--consts",
+                    str(tmp_path / "c.txt"), "--trace", "2", "--trace-json", str(tmp_path / "t.json")],
+                   capture_output=True, check=True)
+    import json
+    assert json.loads((tmp_path / "t.json").read_text())["vertices"][0] == trace
+    with pytest.raises(IndexError, match="there are 3 vertices"):
+        program.trace({"v0": normals}, constants, vertex=3)
