@@ -55,7 +55,9 @@ void AddAsmCommand(CLI::App& app) {
   command->footer(
       "The source is run through a C preprocessor first (#define, #include, #if, #line).\n"
       "DX9 (vs_1_1, dcl_*) and DX8 (vs.1.1, c[a0.x + n]) syntax are both accepted.\n"
-      "Errors are printed as FILE:LINE:COL: error: MESSAGE; on error no output file is written.\n\n"
+      "Errors are printed as FILE:LINE:COL: error: MESSAGE [code]; on error no output file is written.\n"
+      "A DX8 program that reads temporary lanes nothing wrote is assembled with a warning (the lanes read 0);\n"
+      "--strict refuses it, as DX9 vs_1_1 always does.\n\n"
       "Examples:\n  vs11 asm programs/sh9_irradiance.vsh -o sh9.vso -D CV_BASE=4");
   command->add_option("input", args->input, "Source file (.vsh)")->required();
   command->add_option("-o,--output", args->output, "Bytecode file to write")->required();
