@@ -115,11 +115,14 @@ class StatementParser {
     const std::vector<Token>& tokens = line_.tokens;
     const Token& first = tokens.front();
     if (first.kind == TokenKind::kPlus) {
-      return Fail(first, "co-issue ('+' before an instruction) is not available in vertex shaders");
+      return Fail(first, DiagnosticCode::kNotInVs11,
+                  "co-issue ('+' before an instruction) is not available in vertex shaders");
     }
-    if (first.kind == TokenKind::kLeftParen) return Fail(first, "predication ('(p0)') is not available in vs_1_1");
+    if (first.kind == TokenKind::kLeftParen) return Fail(first, DiagnosticCode::kNotInVs11,
+                                                         "predication ('(p0)') is not available in vs_1_1");
     if (first.kind != TokenKind::kIdentifier)
-      return Fail(first, fmt::format("expected an instruction, found '{}'", first.text));
+      return Fail(first, DiagnosticCode::kUnexpectedToken,
+                  fmt::format("expected an instruction, found '{}'", first.text));
     if (!ParseMnemonic(first, instruction)) return false;
     std::vector<std::span<const Token>> operands;
     if (!SplitOperands(std::span(tokens).subspan(1), operands)) return false;
@@ -135,7 +138,8 @@ class StatementParser {
       if (!ok) return false;
     }
     if (operands.size() != kinds.size()) {
-      return Fail(first, fmt::format("{} takes {} operand{}{}, found {}", instruction.info().mnemonic, kinds.size(),
+      return Fail(first, DiagnosticCode::kOperandCount,
+                  fmt::format("{} takes {} operand{}{}, found {}", instruction.info().mnemonic, kinds.size(),
                                      kinds.size() == 1 ? "" : "s",
                                      kinds.empty() ? "" : fmt::format(" ({})", FormText(kinds)), operands.size()));
     }
@@ -144,11 +148,13 @@ class StatementParser {
 
  private:
   // Records an error at `column` of this line; returns false so that callers can `return Fail(...)`.
-  bool Fail(int column, std::string message) {
-    diagnostics_.Error(SourceLoc{line_.loc.file, line_.loc.line, column}, std::move(message));
+  bool Fail(int column, DiagnosticCode code, std::string message) {
+    diagnostics_.Error(SourceLoc{line_.loc.file, line_.loc.line, column}, code, std::move(message));
     return false;
   }
-  bool Fail(const Token& token, std::string message) { return Fail(token.column, std::move(message)); }
+  bool Fail(const Token& token, DiagnosticCode code, std::string message) {
+    return Fail(token.column, code, std::move(message));
+  }
 
   bool ParseMnemonic(const Token& token, Instruction& instruction) {
     std::string name = ToLowerAscii(token.text);
@@ -162,18 +168,18 @@ class StatementParser {
       return true;
     }
     if (name == Info(Opcode::kDcl).mnemonic) {
-      return Fail(token, "dcl needs a usage, as in dcl_position or dcl_texcoord1");
+      return Fail(token, DiagnosticCode::kDeclarationUsage, "dcl needs a usage, as in dcl_position or dcl_texcoord1");
     }
     std::size_t underscore = name.find('_');
     if (underscore != std::string::npos && OpcodeFromMnemonic(name.substr(0, underscore)) &&
         Contains(kInstructionModifiers, std::string_view(name).substr(underscore + 1))) {
-      return Fail(token,
+      return Fail(token, DiagnosticCode::kNotInVs11,
                   fmt::format("instruction modifier '{}' is not available in vs_1_1", token.text.substr(underscore)));
     }
     if (Contains(kOtherModelMnemonics, name)) {
-      return Fail(token, fmt::format("'{}' is not a vs_1_1 instruction", token.text));
+      return Fail(token, DiagnosticCode::kNotInVs11, fmt::format("'{}' is not a vs_1_1 instruction", token.text));
     }
-    return Fail(token, fmt::format("unknown instruction '{}'", token.text));
+    return Fail(token, DiagnosticCode::kUnknownInstruction, fmt::format("unknown instruction '{}'", token.text));
   }
 
   // dcl_<usage>[index]: `rest` is what follows "dcl_", in lower case.
@@ -181,14 +187,16 @@ class StatementParser {
     std::size_t digits = rest.size();
     while (digits > 0 && std::isdigit(static_cast<unsigned char>(rest[digits - 1]))) --digits;
     std::optional<int> usage = DeclUsageFromName(rest.substr(0, digits));
-    if (!usage) return Fail(token, fmt::format("unknown dcl usage '{}'", rest.substr(0, digits)));
+    if (!usage) return Fail(token, DiagnosticCode::kDeclarationUsage,
+                            fmt::format("unknown dcl usage '{}'", rest.substr(0, digits)));
     instruction.usage = *usage;
     instruction.usage_index = 0;
     if (digits < rest.size()) {
       std::string_view index = rest.substr(digits);
       auto [ptr, ec] = std::from_chars(index.data(), index.data() + index.size(), instruction.usage_index);
       if (ec != std::errc() || instruction.usage_index > kMaxDeclUsageIndex) {
-        return Fail(token, fmt::format("dcl usage index {} is out of range 0-{}", index, kMaxDeclUsageIndex));
+        return Fail(token, DiagnosticCode::kDeclarationUsage,
+                    fmt::format("dcl usage index {} is out of range 0-{}", index, kMaxDeclUsageIndex));
       }
     }
     return true;
@@ -201,7 +209,7 @@ class StatementParser {
       if (i == begin) {
         if (i == tokens.size() && operands.empty()) return true;  // no operands at all
         int column = i < tokens.size() ? tokens[i].column : ColumnAfter(tokens[i - 1]);
-        return Fail(column, "missing operand");
+        return Fail(column, DiagnosticCode::kOperandCount, "missing operand");
       }
       operands.push_back(tokens.subspan(begin, i - begin));
       begin = i + 1;
@@ -211,16 +219,19 @@ class StatementParser {
 
   bool ExpectEnd(const Cursor& cursor, std::string_view what) {
     if (cursor.AtEnd()) return true;
-    return Fail(cursor.Peek(), fmt::format("unexpected '{}' after the {}", cursor.Peek().text, what));
+    return Fail(cursor.Peek(), DiagnosticCode::kUnexpectedToken,
+                fmt::format("unexpected '{}' after the {}", cursor.Peek().text, what));
   }
 
   // A written mask is emitted as written, on every register (Microsoft's assembler keeps
   // `mov oFog.x, r0.x` as mask .x); without one the opcode's default mask applies (vm/core/isa.h).
   bool ParseDest(Cursor& cursor, WriteMask default_mask, DestOperand& dest) {
-    if (cursor.NextIs(TokenKind::kMinus)) return Fail(cursor.Peek(), "a destination cannot be negated");
+    if (cursor.NextIs(TokenKind::kMinus)) return Fail(cursor.Peek(), DiagnosticCode::kDestinationSyntax,
+                                                      "a destination cannot be negated");
     int column = cursor.column();
     if (!ParseRegister(cursor, dest.reg)) return false;
-    if (dest.reg.relative) return Fail(column, "a destination cannot be relatively addressed");
+    if (dest.reg.relative) return Fail(column, DiagnosticCode::kDestinationSyntax,
+                                       "a destination cannot be relatively addressed");
     dest.mask = default_mask;
     if (cursor.Accept(TokenKind::kDot) && !ParseWriteMask(cursor, dest.mask)) return false;
     return ExpectEnd(cursor, "destination");
@@ -228,15 +239,18 @@ class StatementParser {
 
   bool ParseSource(Cursor& cursor, SourceOperand& source) {
     source.negate = cursor.Accept(TokenKind::kMinus);
-    if (source.negate && cursor.NextIs(TokenKind::kMinus)) return Fail(cursor.Peek(), "double negation");
+    if (source.negate && cursor.NextIs(TokenKind::kMinus)) return Fail(cursor.Peek(), DiagnosticCode::kSourceModifier,
+                                                                       "double negation");
     if (cursor.NextIs(TokenKind::kBang)) {
-      return Fail(cursor.Peek(), "the '!' source modifier is not available in vs_1_1 (only negation)");
+      return Fail(cursor.Peek(), DiagnosticCode::kSourceModifier,
+                  "the '!' source modifier is not available in vs_1_1 (only negation)");
     }
     if (cursor.NextIs(TokenKind::kInteger) && cursor.NextIs(TokenKind::kMinus, 1)) {
-      return Fail(cursor.Peek(), "the complement source modifier '1-' is not available in vs_1_1 (only negation)");
+      return Fail(cursor.Peek(), DiagnosticCode::kSourceModifier,
+                  "the complement source modifier '1-' is not available in vs_1_1 (only negation)");
     }
     if (cursor.NextIs(TokenKind::kInteger) || cursor.NextIs(TokenKind::kFloat)) {
-      return Fail(cursor.Peek(),
+      return Fail(cursor.Peek(), DiagnosticCode::kExpectedRegister,
                   fmt::format("a source must be a register, not the number '{}' (use def)", cursor.Peek().text));
     }
     if (!ParseRegister(cursor, source.reg)) return false;
@@ -247,21 +261,23 @@ class StatementParser {
 
   // r7, oPos, c[...], c4[...]: the name, then for constants an optional bracketed index.
   bool ParseRegister(Cursor& cursor, RegisterRef& reg) {
-    if (cursor.AtEnd()) return Fail(cursor.column(), "expected a register");
+    if (cursor.AtEnd()) return Fail(cursor.column(), DiagnosticCode::kExpectedRegister, "expected a register");
     const Token& name = cursor.Next();
     if (name.kind != TokenKind::kIdentifier) {
-      return Fail(name, fmt::format("expected a register, found '{}'", name.text));
+      return Fail(name, DiagnosticCode::kExpectedRegister, fmt::format("expected a register, found '{}'", name.text));
     }
     bool has_number = false;
     if (!ResolveRegisterName(name, reg, has_number)) return false;
     if (cursor.NextIs(TokenKind::kLeftBracket)) {
       const Token& bracket = cursor.Next();
       if (reg.file != RegisterFile::kConst) {
-        return Fail(bracket, fmt::format("only constant registers can be indexed with [...], not '{}'", name.text));
+        return Fail(bracket, DiagnosticCode::kConstantIndexSyntax,
+                    fmt::format("only constant registers can be indexed with [...], not '{}'", name.text));
       }
       return ParseConstantIndex(cursor, bracket, reg);
     }
-    if (!has_number) return Fail(name, fmt::format("register '{}' needs a number", name.text));
+    if (!has_number) return Fail(name, DiagnosticCode::kUnknownRegister,
+                                 fmt::format("register '{}' needs a number", name.text));
     return true;
   }
 
@@ -274,14 +290,15 @@ class StatementParser {
     while (digits < text.size() && std::isdigit(static_cast<unsigned char>(text[digits]))) ++digits;
     std::string_view rest = text.substr(digits);
     if (rest.starts_with('_') && Contains(kSourceModifierSuffixes, ToLowerAscii(rest.substr(1)))) {
-      return Fail(name, fmt::format("source modifier '{}' is not available in vs_1_1 (only negation)", rest));
+      return Fail(name, DiagnosticCode::kSourceModifier,
+                  fmt::format("source modifier '{}' is not available in vs_1_1 (only negation)", rest));
     }
     auto spelling = std::find_if(kRegisterSpellings.begin(), kRegisterSpellings.end(), [&](const auto& s) {
       return EqualsIgnoringAsciiCase(s.name, text.substr(0, letters));
     });
     bool fixed = spelling != kRegisterSpellings.end() && spelling->fixed_index != RegisterSpelling::kNumbered;
     if (spelling == kRegisterSpellings.end() || !rest.empty() || (fixed && digits > letters)) {
-      return Fail(name, fmt::format("unknown register '{}'", text));
+      return Fail(name, DiagnosticCode::kUnknownRegister, fmt::format("unknown register '{}'", text));
     }
     reg = RegisterRef{spelling->file, fixed ? spelling->fixed_index : 0, false};
     has_number = fixed || digits > letters;
@@ -293,7 +310,8 @@ class StatementParser {
     long long value = 0;
     auto [ptr, ec] = std::from_chars(digits.data(), digits.data() + digits.size(), value);
     if (ec != std::errc() || value > kMaxConstantIndex) {
-      return Fail(token, fmt::format("register number {} does not fit the 11-bit register field (0-{})", digits,
+      return Fail(token, DiagnosticCode::kRegisterNumberTooLarge,
+                  fmt::format("register number {} does not fit the 11-bit register field (0-{})", digits,
                                      kMaxConstantIndex));
     }
     number = static_cast<int>(value);
@@ -307,12 +325,14 @@ class StatementParser {
     bool expect_term = true;
     bool first = true;
     while (true) {
-      if (cursor.AtEnd()) return Fail(cursor.column(), "missing ']' after the constant index");
+      if (cursor.AtEnd()) return Fail(cursor.column(), DiagnosticCode::kConstantIndexSyntax,
+                                      "missing ']' after the constant index");
       const Token& token = cursor.Next();
       if (!expect_term) {
         if (token.kind == TokenKind::kRightBracket) break;
         if (token.kind != TokenKind::kPlus && token.kind != TokenKind::kMinus) {
-          return Fail(token, fmt::format("expected '+', '-' or ']' in the constant index, found '{}'", token.text));
+          return Fail(token, DiagnosticCode::kConstantIndexSyntax,
+                      fmt::format("expected '+', '-' or ']' in the constant index, found '{}'", token.text));
         }
         sign = token.kind == TokenKind::kMinus ? -1 : 1;
         expect_term = true;
@@ -331,17 +351,21 @@ class StatementParser {
       } else if (token.kind == TokenKind::kIdentifier && EqualsIgnoringAsciiCase(token.text, kAddressRegisterName)) {
         if (!ParseAddressLane(cursor, token, sign, reg.relative)) return false;
       } else if (token.kind == TokenKind::kFloat) {
-        return Fail(token, fmt::format("a constant index must be an integer, not '{}'", token.text));
+        return Fail(token, DiagnosticCode::kConstantIndexSyntax,
+                    fmt::format("a constant index must be an integer, not '{}'", token.text));
       } else if (token.kind == TokenKind::kRightBracket) {
-        return Fail(token, "missing value in the constant index");
+        return Fail(token, DiagnosticCode::kConstantIndexSyntax, "missing value in the constant index");
       } else {
-        return Fail(token, fmt::format("a constant index may hold only integers and a0.x, not '{}'", token.text));
+        return Fail(token, DiagnosticCode::kConstantIndexSyntax,
+                    fmt::format("a constant index may hold only integers and a0.x, not '{}'", token.text));
       }
       expect_term = false;
     }
-    if (total < 0) return Fail(bracket, fmt::format("constant index {} is negative", total));
+    if (total < 0) return Fail(bracket, DiagnosticCode::kConstantIndexSyntax,
+                               fmt::format("constant index {} is negative", total));
     if (total > kMaxConstantIndex) {
-      return Fail(bracket, fmt::format("constant index {} does not fit the 11-bit register field (0-{})", total,
+      return Fail(bracket, DiagnosticCode::kRegisterNumberTooLarge,
+                  fmt::format("constant index {} does not fit the 11-bit register field (0-{})", total,
                                        kMaxConstantIndex));
     }
     reg.index = static_cast<int>(total);
@@ -350,20 +374,22 @@ class StatementParser {
 
   // After "a0" inside a constant index: ".x" (§1.5: `c0[a0]` is rejected by the native assembler).
   bool ParseAddressLane(Cursor& cursor, const Token& a0, int sign, bool& relative) {
-    if (!cursor.Accept(TokenKind::kDot)) return Fail(a0, "relative addressing needs a0.x ('a0' alone is not accepted)");
+    if (!cursor.Accept(TokenKind::kDot)) return Fail(a0, DiagnosticCode::kConstantIndexSyntax,
+                                                     "relative addressing needs a0.x ('a0' alone is not accepted)");
     if (!cursor.NextIs(TokenKind::kIdentifier) || !EqualsIgnoringAsciiCase(cursor.Peek().text, "x")) {
-      return Fail(cursor.column(), "only a0.x can index constants");
+      return Fail(cursor.column(), DiagnosticCode::kConstantIndexSyntax, "only a0.x can index constants");
     }
     cursor.Next();
-    if (sign < 0) return Fail(a0, "a0.x cannot be subtracted in a constant index");
-    if (relative) return Fail(a0, "a0.x appears twice in the constant index");
+    if (sign < 0) return Fail(a0, DiagnosticCode::kConstantIndexSyntax,
+                              "a0.x cannot be subtracted in a constant index");
+    if (relative) return Fail(a0, DiagnosticCode::kConstantIndexSyntax, "a0.x appears twice in the constant index");
     relative = true;
     return true;
   }
 
   bool ParseWriteMask(Cursor& cursor, WriteMask& mask) {
     if (!cursor.NextIs(TokenKind::kIdentifier)) {
-      return Fail(cursor.column(), cursor.AtEnd()
+      return Fail(cursor.column(), DiagnosticCode::kWriteMaskSyntax, cursor.AtEnd()
                                        ? std::string("empty write mask after '.'")
                                        : fmt::format("expected write mask letters, found '{}'", cursor.Peek().text));
     }
@@ -372,10 +398,13 @@ class StatementParser {
     int last = -1;
     for (char letter : letters.text) {
       int lane = LaneFromLetter(letter);
-      if (lane < 0) return Fail(letters, fmt::format("'{}' is not a write mask letter (xyzw or rgba)", letter));
-      if (mask.has(lane)) return Fail(letters, fmt::format("write mask '{}' repeats a component", letters.text));
+      if (lane < 0) return Fail(letters, DiagnosticCode::kWriteMaskSyntax,
+                                fmt::format("'{}' is not a write mask letter (xyzw or rgba)", letter));
+      if (mask.has(lane)) return Fail(letters, DiagnosticCode::kWriteMaskSyntax,
+                                      fmt::format("write mask '{}' repeats a component", letters.text));
       if (lane < last) {
-        return Fail(letters, fmt::format("write mask '{}' is not in xyzw order", letters.text));
+        return Fail(letters, DiagnosticCode::kWriteMaskSyntax,
+                    fmt::format("write mask '{}' is not in xyzw order", letters.text));
       }
       mask = MaskWithLane(mask, lane);
       last = lane;
@@ -386,7 +415,7 @@ class StatementParser {
   bool ParseSwizzle(Cursor& cursor, Swizzle& swizzle) {
     constexpr std::size_t kLanes = 4;
     if (!cursor.NextIs(TokenKind::kIdentifier)) {
-      return Fail(cursor.column(), cursor.AtEnd()
+      return Fail(cursor.column(), DiagnosticCode::kSwizzleSyntax, cursor.AtEnd()
                                        ? std::string("empty swizzle after '.'")
                                        : fmt::format("expected swizzle letters, found '{}'", cursor.Peek().text));
     }
@@ -395,16 +424,19 @@ class StatementParser {
     if (std::size_t underscore = text.find('_');
         underscore != std::string_view::npos &&
         Contains(kSourceModifierSuffixes, ToLowerAscii(text.substr(underscore + 1)))) {
-      return Fail(letters, fmt::format("source modifier '{}' is not available in vs_1_1 (only negation)",
+      return Fail(letters, DiagnosticCode::kSourceModifier,
+                  fmt::format("source modifier '{}' is not available in vs_1_1 (only negation)",
                                        text.substr(underscore)));
     }
-    if (text.size() > kLanes) return Fail(letters, fmt::format("swizzle '{}' has more than four components", text));
+    if (text.size() > kLanes) return Fail(letters, DiagnosticCode::kSwizzleSyntax,
+                                          fmt::format("swizzle '{}' has more than four components", text));
     std::array<int, kLanes> selectors{};
     for (std::size_t i = 0; i < kLanes; ++i) {
       // §2.4: fewer than four letters repeat the last one.
       char letter = text[std::min(i, text.size() - 1)];
       selectors[i] = LaneFromLetter(letter);
-      if (selectors[i] < 0) return Fail(letters, fmt::format("'{}' is not a swizzle letter (xyzw or rgba)", letter));
+      if (selectors[i] < 0) return Fail(letters, DiagnosticCode::kSwizzleSyntax,
+                                        fmt::format("'{}' is not a swizzle letter (xyzw or rgba)", letter));
     }
     swizzle = SwizzleFromSelectors(selectors);
     return true;
@@ -416,7 +448,7 @@ class StatementParser {
     if (cursor.NextIs(TokenKind::kMinus) || cursor.NextIs(TokenKind::kPlus)) {
       negative = cursor.Next().kind == TokenKind::kMinus;
     }
-    if (cursor.AtEnd()) return Fail(cursor.column(), "expected a number");
+    if (cursor.AtEnd()) return Fail(cursor.column(), DiagnosticCode::kExpectedNumber, "expected a number");
     const Token& token = cursor.Next();
     if (token.kind == TokenKind::kIdentifier && EqualsIgnoringAsciiCase(token.text, "nan")) {
       bits = kQuietNanBits;
@@ -425,7 +457,7 @@ class StatementParser {
     } else if (token.kind == TokenKind::kInteger || token.kind == TokenKind::kFloat) {
       if (!ParseFloatBits(token, bits)) return false;
     } else {
-      return Fail(token, fmt::format("expected a number, found '{}'", token.text));
+      return Fail(token, DiagnosticCode::kExpectedNumber, fmt::format("expected a number, found '{}'", token.text));
     }
     if (negative) bits ^= kFloatSignBit;
     return ExpectEnd(cursor, "number");
@@ -439,12 +471,13 @@ class StatementParser {
     if (ec == std::errc::result_out_of_range) {
       double wide = 0;
       std::from_chars(text.data(), text.data() + text.size(), wide);
-      if (wide > 1) return Fail(token, fmt::format("'{}' is too large for a 32-bit float", token.text));
-      diagnostics_.Warning(SourceLoc{line_.loc.file, line_.loc.line, token.column},
+      if (wide > 1) return Fail(token, DiagnosticCode::kNumberOutOfRange,
+                                fmt::format("'{}' is too large for a 32-bit float", token.text));
+      diagnostics_.Warning(SourceLoc{line_.loc.file, line_.loc.line, token.column}, DiagnosticCode::kNumberUnderflow,
                            fmt::format("'{}' is too small for a 32-bit float and becomes 0", token.text));
       value = 0;
     } else if (ec != std::errc() || ptr != text.data() + text.size()) {
-      return Fail(token, fmt::format("malformed number '{}'", token.text));
+      return Fail(token, DiagnosticCode::kMalformedNumber, fmt::format("malformed number '{}'", token.text));
     }
     bits = std::bit_cast<std::uint32_t>(value);
     return true;
@@ -489,7 +522,7 @@ class Assembler {
       ParseVersion(lexed, *version);
     } else {
       if (!seen_statement_) {
-        result_.diagnostics.Error(LocOf(lexed, lexed.tokens.front()),
+        result_.diagnostics.Error(LocOf(lexed, lexed.tokens.front()), DiagnosticCode::kVersionStatement,
                                   "the first statement must be the version (vs_1_1 or vs.1.1)");
       }
       Instruction instruction;
@@ -503,7 +536,8 @@ class Assembler {
 
   void Finish(const std::string& file_name) {
     if (!seen_statement_) {
-      result_.diagnostics.Error(SourceLoc{file_name, 1, 1}, "missing version statement (vs_1_1 or vs.1.1)");
+      result_.diagnostics.Error(SourceLoc{file_name, 1, 1}, DiagnosticCode::kVersionStatement,
+                                "missing version statement (vs_1_1 or vs.1.1)");
     }
   }
 
@@ -513,19 +547,22 @@ class Assembler {
   void ParseVersion(const LexedLine& line, const VersionStatement& version) {
     SourceLoc loc = LocOf(line, line.tokens.front());
     if (seen_statement_) {
-      result_.diagnostics.Error(loc, "the version statement must come first and only once");
+      result_.diagnostics.Error(loc, DiagnosticCode::kVersionStatement,
+                                "the version statement must come first and only once");
       return;
     }
     auto spelling = std::find_if(kVersionSpellings.begin(), kVersionSpellings.end(),
                                  [&](const VersionSpelling& v) { return v.text == version.text; });
     if (spelling == kVersionSpellings.end()) {
       result_.diagnostics.Error(
-          loc, fmt::format("unsupported shader version '{}' (expected vs_1_1, vs.1.1 or vs.1.0)", version.text));
+          loc, DiagnosticCode::kVersionStatement,
+          fmt::format("unsupported shader version '{}' (expected vs_1_1, vs.1.1 or vs.1.0)", version.text));
       return;
     }
     if (line.tokens.size() > version.token_count) {
       const Token& extra = line.tokens[version.token_count];
-      result_.diagnostics.Error(LocOf(line, extra), fmt::format("unexpected '{}' after the version", extra.text));
+      result_.diagnostics.Error(LocOf(line, extra), DiagnosticCode::kVersionStatement,
+                                fmt::format("unexpected '{}' after the version", extra.text));
       return;
     }
     program_.version = spelling->token;
@@ -552,6 +589,7 @@ AssembleResult AssembleSource(std::string_view text, const std::string& file_nam
     ValidatorOptions validator_options;
     validator_options.constant_count = options.constant_count;
     validator_options.require_position = options.require_position;
+    validator_options.strict = options.strict;
     // A vs.1.1 program with a dcl follows the dcl rules too: its tokens are those of a DX9 program, and
     // the same tokens loaded as bytecode (or disassembled, vm/asm/disassembler.h) get DX9 rules.
     validator_options.dialect = result.dx9_syntax ? ValidatorOptions::Dialect::kDx9 : ValidatorOptions::Dialect::kAuto;
@@ -566,7 +604,7 @@ AssembleResult AssembleFile(const std::filesystem::path& path, const AssembleOpt
   std::optional<std::string> text = ReadFileFromDisk(path);
   if (!text) {
     AssembleResult result;
-    result.diagnostics.Error(SourceLoc{path.string(), 0, 0}, "cannot read the file");
+    result.diagnostics.Error(SourceLoc{path.string(), 0, 0}, DiagnosticCode::kCannotReadFile, "cannot read the file");
     return result;
   }
   return AssembleSource(*text, path.string(), options, ReadFileFromDisk);

@@ -41,6 +41,7 @@ struct AssembleOptions {
   bool validate = true;          // run the validator unless --skip-validation
   int constant_count = kDefaultConstantCount;
   bool require_position = true;  // false: validate a fragment that need not write oPos
+  bool strict = false;           // DX8 reads of unwritten lanes are errors, not warnings (--strict)
 };
 
 struct AssembleResult {

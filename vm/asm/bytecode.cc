@@ -50,12 +50,13 @@ class Decoder {
     DecodeResult result;
     Program program;
     if (words_.empty()) {
-      Fail(0, "empty token stream: expected the version token 0xFFFE0101");
+      Fail(0, DiagnosticCode::kBytecodeTruncated, "empty token stream: expected the version token 0xFFFE0101");
       result.diagnostics = std::move(diagnostics_);
       return result;
     }
     if (words_[0] != kVersionVs11 && words_[0] != kVersionVs10) {
-      Fail(0, fmt::format("version token 0x{:08X} is not vs_1_1 (0xFFFE0101) or vs_1_0 (0xFFFE0100)", words_[0]));
+      Fail(0, DiagnosticCode::kVersionToken,
+           fmt::format("version token 0x{:08X} is not vs_1_1 (0xFFFE0101) or vs_1_0 (0xFFFE0100)", words_[0]));
     }
     program.version = words_[0];
     std::size_t p = 1;
@@ -63,19 +64,21 @@ class Decoder {
     while (p < words_.size() && !diagnostics_.HasErrors()) {
       std::uint32_t token = words_[p];
       if (token == kEndToken) {
-        if (p + 1 != words_.size()) Fail(p + 1, fmt::format("{} words after the end token", words_.size() - p - 1));
+        if (p + 1 != words_.size()) Fail(p + 1, DiagnosticCode::kBytecodeTrailingWords,
+                                         fmt::format("{} words after the end token", words_.size() - p - 1));
         ended = true;
         break;
       }
       auto opcode_bits = static_cast<std::uint16_t>(token & 0xFFFF);
       if (opcode_bits == kCommentOpcode) {
         if (token & kParameterBit) {
-          Fail(p, "comment token has bit 31 set");
+          Fail(p, DiagnosticCode::kBytecodeMalformedToken, "comment token has bit 31 set");
           break;
         }
         std::size_t count = (token >> 16) & kMaxCommentWords;
         if (count > words_.size() - p - 1) {
-          Fail(p, fmt::format("comment of {} words runs past the end of the stream ({} words left)", count,
+          Fail(p, DiagnosticCode::kBytecodeTruncated,
+               fmt::format("comment of {} words runs past the end of the stream ({} words left)", count,
                               words_.size() - p - 1));
           break;
         }
@@ -86,19 +89,22 @@ class Decoder {
         continue;
       }
       if (token & kInstructionReservedMask) {
-        Fail(p, fmt::format("instruction token 0x{:08X} has bits set above the opcode (vs_1_1 has no "
+        Fail(p, DiagnosticCode::kBytecodeMalformedToken,
+             fmt::format("instruction token 0x{:08X} has bits set above the opcode (vs_1_1 has no "
                             "length, controls, predication or co-issue)", token));
         break;
       }
       std::optional<Opcode> opcode = OpcodeFromToken(opcode_bits);
       if (!opcode) {
-        Fail(p, fmt::format("opcode {} (0x{:04X}) is not a vs_1_1 instruction", opcode_bits, opcode_bits));
+        Fail(p, DiagnosticCode::kBytecodeUnknownOpcode,
+             fmt::format("opcode {} (0x{:04X}) is not a vs_1_1 instruction", opcode_bits, opcode_bits));
         break;
       }
       const OpcodeInfo& info = Info(*opcode);
       std::size_t needed = static_cast<std::size_t>(info.parameter_tokens());
       if (needed > words_.size() - p - 1) {
-        Fail(p, fmt::format("{} needs {} parameter tokens but the stream ends after {}", info.mnemonic, needed,
+        Fail(p, DiagnosticCode::kBytecodeTruncated,
+             fmt::format("{} needs {} parameter tokens but the stream ends after {}", info.mnemonic, needed,
                             words_.size() - p - 1));
         break;
       }
@@ -110,15 +116,17 @@ class Decoder {
       }
       p += 1 + needed;
     }
-    if (!ended && !diagnostics_.HasErrors()) Fail(words_.size(), "missing end token 0x0000FFFF");
+    if (!ended && !diagnostics_.HasErrors()) Fail(words_.size(), DiagnosticCode::kBytecodeTruncated,
+                                                  "missing end token 0x0000FFFF");
     if (!diagnostics_.HasErrors()) result.program = std::move(program);
     result.diagnostics = std::move(diagnostics_);
     return result;
   }
 
  private:
-  void Fail(std::size_t offset, std::string message) {
+  void Fail(std::size_t offset, DiagnosticCode code, std::string message) {
     Diagnostic d;
+    d.code = code;
     d.message = std::move(message);
     d.word_offset = static_cast<long>(offset);
     diagnostics_.Add(std::move(d));
@@ -127,22 +135,24 @@ class Decoder {
   bool CheckParameter(std::size_t at) {
     std::uint32_t token = words_[at];
     if (!(token & kParameterBit)) {
-      Fail(at, fmt::format("parameter token 0x{:08X} lacks bit 31", token));
+      Fail(at, DiagnosticCode::kBytecodeMalformedToken, fmt::format("parameter token 0x{:08X} lacks bit 31", token));
       return false;
     }
     if (token & kReservedParameterBits) {
-      Fail(at, fmt::format("parameter token 0x{:08X} has reserved bits 14-15 set", token));
+      Fail(at, DiagnosticCode::kBytecodeMalformedToken,
+           fmt::format("parameter token 0x{:08X} has reserved bits 14-15 set", token));
       return false;
     }
     std::uint32_t type = DecodeRegisterType(token);
     if (type > static_cast<std::uint32_t>(RegisterFile::kTexCoordOut)) {
-      Fail(at, fmt::format("register type {} is not used by vs_1_1", type));
+      Fail(at, DiagnosticCode::kBytecodeRegisterType, fmt::format("register type {} is not used by vs_1_1", type));
       return false;
     }
     // Every register Decode accepts has a name, so that every decoded program can be disassembled.
     const int number = static_cast<int>(token & kRegisterNumberMask);
     if (!HasRegisterName(static_cast<RegisterFile>(type), number)) {
-      Fail(at, fmt::format("register type {} has no register {} in vs_1_1 (RASTOUT: 0 oPos, 1 oFog, 2 oPts)", type,
+      Fail(at, DiagnosticCode::kBytecodeRegisterType,
+           fmt::format("register type {} has no register {} in vs_1_1 (RASTOUT: 0 oPos, 1 oFog, 2 oPts)", type,
                            number));
       return false;
     }
@@ -153,11 +163,13 @@ class Decoder {
     if (!CheckParameter(at)) return false;
     std::uint32_t token = words_[at];
     if (token & kDestModifierAndShiftMask) {
-      Fail(at, "destination has a result modifier or shift, which vs_1_1 does not have");
+      Fail(at, DiagnosticCode::kBytecodeMalformedToken,
+           "destination has a result modifier or shift, which vs_1_1 does not have");
       return false;
     }
     if (token & kRelativeBit) {
-      Fail(at, "destination has the relative-addressing bit, which vs_1_1 does not allow");
+      Fail(at, DiagnosticCode::kBytecodeMalformedToken,
+           "destination has the relative-addressing bit, which vs_1_1 does not allow");
       return false;
     }
     dest.reg.file = static_cast<RegisterFile>(DecodeRegisterType(token));
@@ -171,7 +183,8 @@ class Decoder {
     std::uint32_t token = words_[at];
     std::uint32_t modifier = (token >> kSourceModifierShift) & 0xF;
     if (modifier > kSourceModifierNegate) {
-      Fail(at, fmt::format("source modifier {} is not available in vs_1_1 (only negation)", modifier));
+      Fail(at, DiagnosticCode::kBytecodeMalformedToken,
+           fmt::format("source modifier {} is not available in vs_1_1 (only negation)", modifier));
       return false;
     }
     source.reg.file = static_cast<RegisterFile>(DecodeRegisterType(token));
@@ -188,13 +201,15 @@ class Decoder {
       case OperandShape::kDeclaration: {
         std::uint32_t usage = words_[at];
         if ((usage & ~kUsageTokenMask) != 0 || !(usage & kParameterBit)) {
-          Fail(at, fmt::format("dcl usage token 0x{:08X} has reserved bits set", usage));
+          Fail(at, DiagnosticCode::kBytecodeDeclarationUsage,
+               fmt::format("dcl usage token 0x{:08X} has reserved bits set", usage));
           return false;
         }
         instruction.usage = static_cast<int>(usage & 0xF);
         instruction.usage_index = static_cast<int>((usage >> kUsageIndexShift) & 0xF);
         if (instruction.usage >= static_cast<int>(kDeclUsageNames.size())) {
-          Fail(at, fmt::format("dcl usage {} is not a D3DDECLUSAGE value", instruction.usage));
+          Fail(at, DiagnosticCode::kBytecodeDeclarationUsage,
+               fmt::format("dcl usage {} is not a D3DDECLUSAGE value", instruction.usage));
           return false;
         }
         return DecodeDest(at + 1, instruction.dest);

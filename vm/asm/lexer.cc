@@ -44,7 +44,7 @@ class LineLexer {
       } else if (StartsNumber()) {
         if (!LexNumber()) break;
       } else if (!LexPunctuation()) {
-        Error(pos_, fmt::format("unexpected character '{}'", c));
+        Error(pos_, DiagnosticCode::kUnexpectedCharacter, fmt::format("unexpected character '{}'", c));
         break;
       }
     }
@@ -54,8 +54,8 @@ class LineLexer {
  private:
   int ColumnAt(std::size_t pos) const { return pos < columns_.size() ? columns_[pos] : static_cast<int>(pos) + 1; }
 
-  void Error(std::size_t pos, std::string message) {
-    diagnostics_.Error(SourceLoc{out_.loc.file, out_.loc.line, ColumnAt(pos)}, std::move(message));
+  void Error(std::size_t pos, DiagnosticCode code, std::string message) {
+    diagnostics_.Error(SourceLoc{out_.loc.file, out_.loc.line, ColumnAt(pos)}, code, std::move(message));
   }
 
   void Push(TokenKind kind, std::size_t begin) {
@@ -110,7 +110,8 @@ class LineLexer {
     }
     if (pos_ < text_.size() && (IsIdentifierChar(text_[pos_]) || text_[pos_] == '.')) {
       while (pos_ < text_.size() && (IsIdentifierChar(text_[pos_]) || text_[pos_] == '.')) ++pos_;
-      Error(begin, fmt::format("malformed number '{}'", text_.substr(begin, pos_ - begin)));
+      Error(begin, DiagnosticCode::kMalformedNumber,
+            fmt::format("malformed number '{}'", text_.substr(begin, pos_ - begin)));
       return false;
     }
     Push(is_float ? TokenKind::kFloat : TokenKind::kInteger, begin);

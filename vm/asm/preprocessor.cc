@@ -446,7 +446,9 @@ class Preprocessor {
 
   SourceLoc Loc(int column) const { return {file_->name, ReportedLine(), column}; }
   int ReportedLine() const { return line_->line + file_->line_offset; }
-  void Error(int column, std::string message) { result_.diagnostics.Error(Loc(column), std::move(message)); }
+  void Error(int column, DiagnosticCode code, std::string message) {
+    result_.diagnostics.Error(Loc(column), code, std::move(message));
+  }
   bool Active() const { return file_->conditionals.empty() || file_->conditionals.back().active; }
   bool IsDefined(const std::string& name) const { return macros_.count(name) != 0; }
   bool ChargeWork(std::size_t units, int column);
@@ -489,7 +491,7 @@ class Preprocessor {
 bool Preprocessor::ChargeWork(std::size_t units, int column) {
   work_ += units;
   if (work_ > work_limit_ && !stopped_) {
-    Error(column,
+    Error(column, DiagnosticCode::kExpansionLimit,
           fmt::format("macro or #include expansion exceeds the output limit of {} bytes", options_.max_output_bytes));
     stopped_ = true;
   }
@@ -499,7 +501,7 @@ bool Preprocessor::ChargeWork(std::size_t units, int column) {
 const Token* Preprocessor::ExpectName(const std::vector<Token>& rest, const char* directive, int column) {
   std::size_t i = NextNonSpace(rest, 0);
   if (i < rest.size() && rest[i].kind == TokenKind::kIdentifier) return &rest[i];
-  Error(ColumnAt(rest, i, column), fmt::format("#{} needs a macro name", directive));
+  Error(ColumnAt(rest, i, column), DiagnosticCode::kMacroDefinition, fmt::format("#{} needs a macro name", directive));
   return nullptr;
 }
 
@@ -526,10 +528,11 @@ void Preprocessor::ProcessFile(std::string_view text, FileState* file, int depth
   if (stopped_) return;
   if (splitter.in_comment()) {
     result_.diagnostics.Error({file->name, splitter.comment_line() + file->line_offset, splitter.comment_column()},
-                              "unterminated /* comment");
+                              DiagnosticCode::kUnterminatedComment, "unterminated /* comment");
   }
   for (const Conditional& conditional : file->conditionals) {
-    result_.diagnostics.Error(conditional.loc, fmt::format("unterminated #{}", conditional.directive));
+    result_.diagnostics.Error(conditional.loc, DiagnosticCode::kUnbalancedConditional,
+                              fmt::format("unterminated #{}", conditional.directive));
   }
 }
 
@@ -560,7 +563,8 @@ void Preprocessor::EmitLine(const std::vector<Token>& tokens) {
   out.columns = std::vector<int>(out.columns.begin() + begin, out.columns.begin() + end);
   output_bytes_ += out.text.size() + 1;
   if (output_bytes_ > options_.max_output_bytes) {
-    Error(out.columns[0], fmt::format("preprocessed output exceeds the limit of {} bytes", options_.max_output_bytes));
+    Error(out.columns[0], DiagnosticCode::kExpansionLimit,
+          fmt::format("preprocessed output exceeds the limit of {} bytes", options_.max_output_bytes));
     stopped_ = true;
     return;
   }
@@ -571,7 +575,8 @@ void Preprocessor::HandleDirective(const std::vector<Token>& tokens, std::size_t
   int column = tokens[hash].column;
   std::size_t name_index = NextNonSpace(tokens, hash + 1);
   if (tokens[hash].text != "#") {
-    if (Active()) Error(column, fmt::format("invalid directive '{}'", tokens[hash].text));
+    if (Active()) Error(column, DiagnosticCode::kUnknownDirective,
+                        fmt::format("invalid directive '{}'", tokens[hash].text));
     return;
   }
   if (name_index == tokens.size()) return;  // a lone '#' is the null directive
@@ -596,13 +601,13 @@ void Preprocessor::HandleDirective(const std::vector<Token>& tokens, std::size_t
     TrimSpaces(&words);
     std::string message = "#" + directive + (words.empty() ? "" : " ");
     for (const Token& token : words) message += token.text;
-    if (directive == "error") Error(column, message);
-    if (directive == "warning") result_.diagnostics.Warning(Loc(column), message);
+    if (directive == "error") Error(column, DiagnosticCode::kErrorDirective, message);
+    if (directive == "warning") result_.diagnostics.Warning(Loc(column), DiagnosticCode::kWarningDirective, message);
   } else if (directive == "pragma") {
     std::size_t i = NextNonSpace(rest, 0);
     if (i < rest.size() && rest[i].text == "once") pragma_once_.insert(file_->path.lexically_normal().string());
   } else {
-    Error(name.column, fmt::format("unknown directive '#{}'", name.text));
+    Error(name.column, DiagnosticCode::kUnknownDirective, fmt::format("unknown directive '#{}'", name.text));
   }
 }
 
@@ -621,14 +626,14 @@ void Preprocessor::HandleConditional(const std::string& directive, int column, c
     return;
   }
   if (stack.empty()) {
-    Error(column, fmt::format("#{} without #if", directive));
+    Error(column, DiagnosticCode::kUnbalancedConditional, fmt::format("#{} without #if", directive));
     return;
   }
   Conditional& top = stack.back();
   if (directive == "endif") {
     stack.pop_back();
   } else if (top.seen_else) {
-    Error(column, fmt::format("#{} after #else", directive));
+    Error(column, DiagnosticCode::kUnbalancedConditional, fmt::format("#{} after #else", directive));
     top.active = false;
   } else if (directive == "else") {
     top.seen_else = true;
@@ -649,7 +654,7 @@ bool Preprocessor::EvaluateCondition(const std::vector<Token>& rest, int column)
   }
   ExpressionParser parser(std::move(significant), column);
   std::optional<std::int64_t> value = parser.Evaluate();
-  if (!value) Error(parser.error_column(), parser.error_message());
+  if (!value) Error(parser.error_column(), DiagnosticCode::kConditionExpression, parser.error_message());
   return value.value_or(0) != 0;
 }
 
@@ -664,7 +669,7 @@ bool Preprocessor::ReplaceDefined(const std::vector<Token>& rest, std::vector<To
     std::size_t end = parenthesised ? NextNonSpace(rest, j + 1) : j;
     if (j >= rest.size() || rest[j].kind != TokenKind::kIdentifier ||
         (parenthesised && (end >= rest.size() || !IsPunct(rest[end], ")")))) {
-      Error(rest[i].column, "'defined' needs a macro name, or (name)");
+      Error(rest[i].column, DiagnosticCode::kConditionExpression, "'defined' needs a macro name, or (name)");
       return false;
     }
     out->back().kind = TokenKind::kNumber;
@@ -678,7 +683,7 @@ void Preprocessor::HandleDefine(const std::vector<Token>& rest, int column) {
   const Token* name = ExpectName(rest, "define", column);
   if (name == nullptr) return;
   if (name->text == "defined") {
-    Error(name->column, "'defined' cannot be used as a macro name");
+    Error(name->column, DiagnosticCode::kMacroDefinition, "'defined' cannot be used as a macro name");
     return;
   }
   Macro macro;
@@ -701,7 +706,7 @@ void Preprocessor::HandleDefine(const std::vector<Token>& rest, int column) {
     }
   }
   if (!macro.body.empty() && (IsPunct(macro.body.front(), "##") || IsPunct(macro.body.back(), "##"))) {
-    Error(name->column, "'##' cannot appear at either end of a macro body");
+    Error(name->column, DiagnosticCode::kMacroDefinition, "'##' cannot appear at either end of a macro body");
     return;
   }
   macros_[name->text] = std::move(macro);
@@ -714,10 +719,11 @@ bool Preprocessor::ParseParameters(const std::vector<Token>& rest, std::size_t* 
   while (more) {
     std::vector<std::string>& params = macro->params;
     if (j >= rest.size() || rest[j].kind != TokenKind::kIdentifier) {
-      Error(ColumnAt(rest, j, column), "expected a parameter name in #define");
+      Error(ColumnAt(rest, j, column), DiagnosticCode::kMacroDefinition, "expected a parameter name in #define");
       return false;
     } else if (std::find(params.begin(), params.end(), rest[j].text) != params.end()) {
-      Error(rest[j].column, fmt::format("duplicate macro parameter '{}'", rest[j].text));
+      Error(rest[j].column, DiagnosticCode::kMacroDefinition,
+            fmt::format("duplicate macro parameter '{}'", rest[j].text));
       return false;
     } else {
       params.push_back(rest[j].text);
@@ -725,7 +731,7 @@ bool Preprocessor::ParseParameters(const std::vector<Token>& rest, std::size_t* 
     j = NextNonSpace(rest, j + 1);
     more = j < rest.size() && IsPunct(rest[j], ",");
     if (!more && (j >= rest.size() || !IsPunct(rest[j], ")"))) {
-      Error(ColumnAt(rest, j, column), "expected ',' or ')' in macro parameter list");
+      Error(ColumnAt(rest, j, column), DiagnosticCode::kMacroDefinition, "expected ',' or ')' in macro parameter list");
       return false;
     }
     if (more) j = NextNonSpace(rest, j + 1);
@@ -754,13 +760,14 @@ void Preprocessor::HandleInclude(const std::vector<Token>& rest, int column, int
   std::string name;
   bool quoted = false;
   if (!ParseIncludeName(rest, &name, &quoted) && !ParseIncludeName(Expand(rest, 0), &name, &quoted)) {
-    Error(column, "#include expects \"file\" or <file>");
+    Error(column, DiagnosticCode::kMalformedDirective, "#include expects \"file\" or <file>");
     return;
   }
   int max_depth = std::min(options_.max_include_depth, kMaxIncludeDepthCap);
   if (depth + 1 > max_depth) {
     // Nearly always a cycle; going on would repeat the same error at every level.
-    Error(column, fmt::format("#include nested more than {} levels deep (include cycle?)", max_depth));
+    Error(column, DiagnosticCode::kIncludeTooDeep,
+          fmt::format("#include nested more than {} levels deep (include cycle?)", max_depth));
     stopped_ = true;
     return;
   }
@@ -789,7 +796,7 @@ void Preprocessor::HandleInclude(const std::vector<Token>& rest, int column, int
     line_ = include_line;
     return;
   }
-  Error(column, fmt::format("cannot open include file '{}'{}", name, reader_failure));
+  Error(column, DiagnosticCode::kIncludeNotFound, fmt::format("cannot open include file '{}'{}", name, reader_failure));
 }
 
 void Preprocessor::HandleLine(const std::vector<Token>& rest, int column) {
@@ -798,14 +805,15 @@ void Preprocessor::HandleLine(const std::vector<Token>& rest, int column) {
   std::string number = i < tokens.size() ? tokens[i].text : "";
   bool valid = !number.empty() && number.size() <= 9 && std::all_of(number.begin(), number.end(), IsDigit);
   if (!valid || std::stoi(number) == 0) {
-    Error(ColumnAt(tokens, i, column), "#line needs a line number from 1 to 999999999");
+    Error(ColumnAt(tokens, i, column), DiagnosticCode::kMalformedDirective,
+          "#line needs a line number from 1 to 999999999");
     return;
   }
   std::size_t j = NextNonSpace(tokens, i + 1);
   if (j < tokens.size()) {
     const std::string& text = tokens[j].text;
     if (tokens[j].kind != TokenKind::kString || text.size() < 2 || text.back() != '"') {
-      Error(tokens[j].column, "#line expects a file name in double quotes");
+      Error(tokens[j].column, DiagnosticCode::kMalformedDirective, "#line expects a file name in double quotes");
       return;
     }
     file_->name = text.substr(1, text.size() - 2);
@@ -818,7 +826,7 @@ void Preprocessor::HandleLine(const std::vector<Token>& rest, int column) {
 // sets stop recursion. `pending` holds the rest of the input reversed (next token at the back).
 std::vector<Token> Preprocessor::Expand(std::vector<Token> input, int depth) {
   if (depth > kMaxExpansionDepth) {
-    Error(ColumnAt(input, 0, 0), "macro arguments nested too deeply");
+    Error(ColumnAt(input, 0, 0), DiagnosticCode::kExpansionLimit, "macro arguments nested too deeply");
     return input;
   }
   std::vector<Token> output;
@@ -877,7 +885,8 @@ bool Preprocessor::CollectArguments(const Macro& macro, const Token& name, const
   }
   if (!ChargeWork(start - i + 1, name.column)) return false;
   if (i == 0) {
-    Error(name.column, fmt::format("unterminated argument list invoking macro '{}'", name.text));
+    Error(name.column, DiagnosticCode::kMacroInvocation,
+          fmt::format("unterminated argument list invoking macro '{}'", name.text));
     return false;
   }
   *rparen = i - 1;
@@ -900,7 +909,8 @@ bool Preprocessor::CheckArgumentCount(const Macro& macro, const Token& name, Arg
   std::size_t expected = macro.params.size();
   if (expected == 0 && args->size() == 1 && args->front().empty()) args->clear();
   if (args->size() == expected) return true;
-  Error(name.column, fmt::format("macro '{}' expects {} argument{}, got {}", name.text, expected,
+  Error(name.column, DiagnosticCode::kMacroInvocation,
+        fmt::format("macro '{}' expects {} argument{}, got {}", name.text, expected,
                                  expected == 1 ? "" : "s", args->size()));
   return false;
 }
@@ -954,7 +964,8 @@ PreprocessResult Preprocess(std::string_view text, const std::string& file_name,
     return preprocessor.Run(text, file_name);
   } catch (const std::exception& e) {
     PreprocessResult result;
-    result.diagnostics.Error({file_name, 0, 0}, fmt::format("preprocessing failed: {}", e.what()));
+    result.diagnostics.Error({file_name, 0, 0}, DiagnosticCode::kPreprocessorFailure,
+                             fmt::format("preprocessing failed: {}", e.what()));
     return result;
   }
 }

@@ -28,7 +28,8 @@ LoadedProgram LoadBytecode(const std::filesystem::path& path, std::string_view b
   std::span<const std::uint8_t> raw(reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size());
   std::optional<std::vector<std::uint32_t>> words = WordsFromBytes(raw);
   if (!words) {
-    loaded.diagnostics.Error({path.string()}, fmt::format("{} bytes is not a whole number of 32-bit tokens", bytes.size()));
+    loaded.diagnostics.Error({path.string()}, DiagnosticCode::kBytecodeTruncated,
+                             fmt::format("{} bytes is not a whole number of 32-bit tokens", bytes.size()));
     return loaded;
   }
   DecodeResult decoded = Decode(*words);
@@ -41,6 +42,7 @@ LoadedProgram LoadBytecode(const std::filesystem::path& path, std::string_view b
     ValidatorOptions validator;
     validator.constant_count = options.assemble.constant_count;
     validator.require_position = options.assemble.require_position;
+    validator.strict = options.assemble.strict;
     Diagnostics validation = Validate(*decoded.program, validator);
     for (Diagnostic d : validation.all()) {
       if (d.loc.file.empty()) d.loc.file = path.string();
@@ -69,7 +71,8 @@ LoadedProgram LoadProgram(const std::filesystem::path& path, const LoadProgramOp
   std::optional<std::string> bytes = ReadWholeFile(path);
   if (!bytes) {
     LoadedProgram loaded;
-    loaded.diagnostics.Error({path.string()}, "cannot read the file (missing, unreadable or a folder)");
+    loaded.diagnostics.Error({path.string()}, DiagnosticCode::kCannotReadFile,
+                             "cannot read the file (missing, unreadable or a folder)");
     return loaded;
   }
   if (LooksLikeBytecode(path, *bytes)) return LoadBytecode(path, *bytes, options);

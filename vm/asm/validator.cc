@@ -217,11 +217,15 @@ class Validator {
     return fmt::format("instruction {} ({})", index, mnemonic);
   }
 
-  void Error(int index, std::string_view message) { Report(Severity::kError, index, message); }
-  void Warning(int index, std::string_view message) { Report(Severity::kWarning, index, message); }
+  void Error(int index, DiagnosticCode code, std::string_view message) {
+    Report(Severity::kError, code, index, message);
+  }
+  void Warning(int index, DiagnosticCode code, std::string_view message) {
+    Report(Severity::kWarning, code, index, message);
+  }
   // At the source line, or for bytecode at the word of the instruction token.
-  void Report(Severity severity, int index, std::string_view message) {
-    diagnostics_.Add(Diagnostic{program_.LocOf(index), severity, fmt::format("{}: {}", Subject(index), message),
+  void Report(Severity severity, DiagnosticCode code, int index, std::string_view message) {
+    diagnostics_.Add(Diagnostic{program_.LocOf(index), severity, code, fmt::format("{}: {}", Subject(index), message),
                                 program_.WordOffsetOf(index)});
   }
   // Whole-program problems point at the file only.
@@ -235,7 +239,8 @@ class Validator {
 
   void CheckVersion() {
     if (program_.version == kVersionVs11 || program_.version == kVersionVs10) return;
-    diagnostics_.Error(ProgramLoc(), fmt::format("version token 0x{:08X} is not vs_1_1 (0x{:08X}) or vs_1_0 "
+    diagnostics_.Error(ProgramLoc(), DiagnosticCode::kVersionToken,
+                       fmt::format("version token 0x{:08X} is not vs_1_1 (0x{:08X}) or vs_1_0 "
                                                  "(0x{:08X}); start the program with vs_1_1",
                                                  program_.version, kVersionVs11, kVersionVs10));
   }
@@ -244,7 +249,8 @@ class Validator {
     const OpcodeInfo& info = At(index).info();
     if (!info.is_executable()) {
       if (first_executable_ >= 0) {
-        Error(index, fmt::format("appears after the first executable instruction ({}); move every dcl and "
+        Error(index, DiagnosticCode::kMisplacedDeclaration,
+              fmt::format("appears after the first executable instruction ({}); move every dcl and "
                                  "def above it (§3.3)",
                                  Where(first_executable_)));
       }
@@ -254,7 +260,8 @@ class Validator {
     const int before = slots_;
     slots_ += info.slots;
     if (before <= kMaxInstructionSlots && slots_ > kMaxInstructionSlots) {
-      Error(index, fmt::format("takes the program to {} instruction slots, over the vs_1_1 limit of {} "
+      Error(index, DiagnosticCode::kTooManySlots,
+            fmt::format("takes the program to {} instruction slots, over the vs_1_1 limit of {} "
                                "(macros count several slots: §2.7); shorten the program",
                                slots_, kMaxInstructionSlots));
     }
@@ -289,7 +296,7 @@ class Validator {
   bool CheckRange(int index, const RegisterRef& reg, std::string_view what) {
     const RegisterFileRule* rule = FindRegisterFileRule(reg.file);
     if (rule == nullptr) {
-      Error(index,
+      Error(index, DiagnosticCode::kNoSuchRegister,
             fmt::format("{} has register type {}, which vs_1_1 does not have", what, static_cast<int>(reg.file)));
       return false;
     }
@@ -301,16 +308,19 @@ class Validator {
                     std::max(256, reg.index + 1));
     if (reg.relative) {
       // Only the offset can be checked statically; a0.x is known at run time (§1.4).
-      Error(index, fmt::format("{} uses relative offset {}, outside 0-{} (the device has {} constants){}", what,
+      Error(index, DiagnosticCode::kNoSuchRegister,
+            fmt::format("{} uses relative offset {}, outside 0-{} (the device has {} constants){}", what,
                                reg.index, count - 1, count, more_constants));
     } else if (reg.file == RegisterFile::kConst) {
-      Error(index, fmt::format("{} names {}, but the device has only c0-c{} (MaxVertexShaderConst = {}){}", what,
+      Error(index, DiagnosticCode::kNoSuchRegister,
+            fmt::format("{} names {}, but the device has only c0-c{} (MaxVertexShaderConst = {}){}", what,
                                RegisterName(reg), count - 1, count, more_constants));
     } else {
       RegisterRef last{reg.file, count - 1, false};
       std::string range = count == 1 ? RegisterName(last)
                                      : fmt::format("{}-{}", RegisterName({reg.file, 0, false}), RegisterName(last));
-      Error(index, fmt::format("{} names {}, which does not exist; vs_1_1 has {}", what, RegisterName(reg), range));
+      Error(index, DiagnosticCode::kNoSuchRegister,
+            fmt::format("{} names {}, which does not exist; vs_1_1 has {}", what, RegisterName(reg), range));
     }
     return false;
   }
@@ -320,42 +330,49 @@ class Validator {
     const RegisterRef& reg = instruction.dest.reg;
     const RegisterFileRule* rule = FindRegisterFileRule(reg.file);
     if (rule != nullptr && !rule->writable) {
-      Error(index, fmt::format("cannot write {}: {} registers are read-only; write a temporary (r#) or an "
+      Error(index, DiagnosticCode::kReadOnlyDestination,
+            fmt::format("cannot write {}: {} registers are read-only; write a temporary (r#) or an "
                                "output instead",
                                RegisterName(reg), rule->role));
       return;
     }
-    if (reg.relative) Error(index, "relative addressing is not allowed on a destination in vs_1_1");
+    if (reg.relative) Error(index, DiagnosticCode::kRelativeAddressing,
+                            "relative addressing is not allowed on a destination in vs_1_1");
     if (!CheckRange(index, reg, "the destination")) return;
     if (reg.file != RegisterFile::kAddress) return;
-    if (IsVersion10()) Error(index, "writes a0, which vs_1_0 does not have; use vs_1_1 (§2.1)");
-    if (!instruction.info().can_write_address()) Error(index, "cannot write a0; only mov can (mov a0.x, src)");
+    if (IsVersion10()) Error(index, DiagnosticCode::kAddressWrite,
+                             "writes a0, which vs_1_0 does not have; use vs_1_1 (§2.1)");
+    if (!instruction.info().can_write_address()) Error(index, DiagnosticCode::kAddressWrite,
+                                                       "cannot write a0; only mov can (mov a0.x, src)");
   }
 
   void CheckMask(int index) {
     const Instruction& instruction = At(index);
     const WriteMask mask = instruction.dest.mask;
     if (mask.bits() == 0) {
-      Error(index,
+      Error(index, DiagnosticCode::kWriteMask,
             fmt::format("has an empty write mask on {}; write at least one lane", RegisterName(instruction.dest.reg)));
       return;
     }
     if (instruction.dest.reg.file == RegisterFile::kAddress) {
       if (mask.bits() != kLaneX) {
-        Error(index, fmt::format("writes a0{}; a0 only has .x: write a0.x", LaneSuffix(mask.bits())));
+        Error(index, DiagnosticCode::kAddressWrite,
+              fmt::format("writes a0{}; a0 only has .x: write a0.x", LaneSuffix(mask.bits())));
       }
       return;
     }
     if (IsScalarOutput(instruction.dest.reg) && !(mask.bits() & kLaneX)) {
       // Any mask is encodable and round-trips through text; but the rasterizer reads lane x only.
       const std::string name = RegisterName(instruction.dest.reg);
-      Warning(index, fmt::format("writes {}{}, but only lane x of {} is used (§7), so this write has no effect; "
+      Warning(index, DiagnosticCode::kScalarOutputMask,
+              fmt::format("writes {}{}, but only lane x of {} is used (§7), so this write has no effect; "
                                  "write {} or {}.x",
                                  name, LaneSuffix(mask.bits()), name, name, name));
     }
     const MaskRule rule = instruction.info().mask_rule;
     if (!MaskAllowed(rule, mask)) {
-      Error(index, fmt::format("write mask {} is not allowed; {} must write {} (§3.2)", LaneSuffix(mask.bits()),
+      Error(index, DiagnosticCode::kWriteMask,
+            fmt::format("write mask {} is not allowed; {} must write {} (§3.2)", LaneSuffix(mask.bits()),
                                instruction.info().mnemonic, MaskRuleText(rule)));
     }
   }
@@ -369,7 +386,7 @@ class Validator {
       const std::string what = fmt::format("src{}", s);
       const RegisterFileRule* rule = FindRegisterFileRule(reg.file);
       if (rule != nullptr && !rule->readable) {
-        Error(index, reg.file == RegisterFile::kAddress
+        Error(index, DiagnosticCode::kWriteOnlySource, reg.file == RegisterFile::kAddress
                          ? "reads a0 as a source; a0 can only index constants, as c[a0.x + n]"
                          : fmt::format("reads {}, but output registers are write-only; keep the value in a "
                                        "temporary (r#) and read that",
@@ -377,7 +394,8 @@ class Validator {
         continue;
       }
       if (reg.relative && reg.file != RegisterFile::kConst) {
-        Error(index, fmt::format("{} uses relative addressing on {}; only constants can be addressed with a0.x", what,
+        Error(index, DiagnosticCode::kRelativeAddressing,
+              fmt::format("{} uses relative addressing on {}; only constants can be addressed with a0.x", what,
                                  RegisterName({reg.file, reg.index, false})));
         continue;
       }
@@ -393,9 +411,11 @@ class Validator {
 
   void CheckRelativeAddressing(int index, const RegisterRef& reg) {
     if (IsVersion10()) {
-      Error(index, fmt::format("reads {}, but vs_1_0 has no a0; use vs_1_1 (§2.1)", RegisterName(reg)));
+      Error(index, DiagnosticCode::kRelativeAddressing,
+            fmt::format("reads {}, but vs_1_0 has no a0; use vs_1_1 (§2.1)", RegisterName(reg)));
     } else if (!a0_written_) {
-      Error(index, fmt::format("reads {} before a0 is written; put `mov a0.x, <src>` earlier in the program",
+      Error(index, DiagnosticCode::kAddressNotWritten,
+            fmt::format("reads {} before a0 is written; put `mov a0.x, <src>` earlier in the program",
                                RegisterName(reg)));
     }
   }
@@ -460,7 +480,8 @@ class Validator {
     // Unconfirmed (§10.8): we count an absolute and a relative constant as two operands.
     std::string note = absolute_and_relative ? " (an absolute and a relative constant count as two)" : "";
     const bool two = distinct.size() == 2;
-    Error(index, fmt::format("{}reads {} different {} registers ({}){}; vs_1_1 allows one per instruction "
+    Error(index, DiagnosticCode::kReadPorts,
+          fmt::format("{}reads {} different {} registers ({}){}; vs_1_1 allows one per instruction "
                              "— copy {} into {} first",
                              where, two ? "two" : std::to_string(distinct.size()), role, fmt::join(names, ", "), note,
                              two ? "one of them" : "all but one of them", two ? "a temporary" : "temporaries"));
@@ -474,22 +495,26 @@ class Validator {
     if (info.kind != ResultKind::kMatrix) return;
     const SourceOperand& matrix = instruction.sources[OpcodeInfo::kMatrixSource];
     if (!matrix.swizzle.is_identity()) {
-      Error(index, fmt::format("the matrix operand {} cannot be swizzled; remove the swizzle",
+      Error(index, DiagnosticCode::kMatrixOperand,
+            fmt::format("the matrix operand {} cannot be swizzled; remove the swizzle",
                                FormatSource(SourceOperand{matrix.reg, matrix.swizzle, false})));
     }
     if (matrix.negate) {
-      Error(index, fmt::format("the matrix operand -{} cannot be negated; negate the first source instead",
+      Error(index, DiagnosticCode::kMatrixOperand,
+            fmt::format("the matrix operand -{} cannot be negated; negate the first source instead",
                                RegisterName(matrix.reg)));
     }
     const RegisterRef& dest = instruction.dest.reg;
     if (dest == instruction.sources[0].reg) {
-      Error(index, fmt::format("writes {}, which is also its first source; the expanded rows would read "
+      Error(index, DiagnosticCode::kMatrixOperand,
+            fmt::format("writes {}, which is also its first source; the expanded rows would read "
                                "partly overwritten values (§3.4): write a different register",
                                RegisterName(dest)));
     }
     for (int row = 0; row < info.matrix_rows; ++row) {
       if (dest == RowRegister(matrix.reg, row)) {
-        Error(index, fmt::format("writes {}, which is also matrix row {} (§3.4); write a different register",
+        Error(index, DiagnosticCode::kMatrixOperand,
+              fmt::format("writes {}, which is also matrix row {} (§3.4); write a different register",
                                  RegisterName(dest), row));
       }
     }
@@ -504,7 +529,8 @@ class Validator {
     for (int s = 0; s < info.source_count(); ++s) {
       const SourceOperand& source = instruction.sources[s];
       if (source.swizzle.is_replicate()) continue;
-      Warning(index, fmt::format("reads a single lane, but {} has no replicate swizzle; the w lane is used "
+      Warning(index, DiagnosticCode::kScalarSwizzle,
+              fmt::format("reads a single lane, but {} has no replicate swizzle; the w lane is used "
                                  "(§3.1) — write {}.w (or .x, .y, .z) to say which",
                                  RegisterName(source.reg), RegisterName(source.reg)));
     }
@@ -512,7 +538,8 @@ class Validator {
 
   // --- data flow (§6.3) ------------------------------------------------------------------------
 
-  void CheckTemporaryReads(int index) {
+  // Lanes of temporaries that instruction `index` reads before anything wrote them, per register.
+  std::array<std::uint8_t, kTempRegisterCount> UnwrittenTemporaryLanes(int index) const {
     const Instruction& instruction = At(index);
     const OpcodeInfo& info = instruction.info();
     std::array<std::uint8_t, kTempRegisterCount> missing{};
@@ -526,15 +553,40 @@ class Validator {
         missing[reg] |= lanes & ~written_lanes_[reg];
       }
     }
-    std::vector<std::string> unwritten;
+    return missing;
+  }
+
+  // A temporary that nothing wrote is an error in every dialect. Lanes that nothing wrote of one that
+  // was partly written are an error under DX9 rules and with `strict`, and only a warning for DX8
+  // programs: the D3D8 runtime ran Microsoft's own samples that read them (`m4x3 r4, ...` writes .xyz,
+  // then `mul r4, r4, v1.xxxx` reads r4.w), and the engines read such lanes as 0.
+  void CheckTemporaryReads(int index) {
+    const std::array<std::uint8_t, kTempRegisterCount> missing = UnwrittenTemporaryLanes(index);
+    std::vector<std::string> never_written, partly_written;
     for (int reg = 0; reg < kTempRegisterCount; ++reg) {
-      if (missing[reg] != 0) unwritten.push_back(fmt::format("r{}{}", reg, LaneSuffix(missing[reg])));
+      if (missing[reg] == 0) continue;
+      const std::string lanes = fmt::format("r{}{}", reg, LaneSuffix(missing[reg]));
+      (written_lanes_[reg] == 0 ? never_written : partly_written).push_back(lanes);
     }
-    if (unwritten.empty()) return;
-    Error(index, fmt::format("reads {} before {} written; temporaries start undefined, so write {} lanes "
-                             "earlier in the program",
-                             fmt::join(unwritten, ", "), unwritten.size() == 1 ? "it is" : "they are",
-                             unwritten.size() == 1 ? "those" : "these"));
+    if (!never_written.empty()) {
+      Error(index, DiagnosticCode::kUninitializedRegister,
+            fmt::format("reads {} before {} written; temporaries start undefined, so write {} earlier in the "
+                        "program",
+                        fmt::join(never_written, ", "), never_written.size() == 1 ? "it is" : "they are",
+                        never_written.size() == 1 ? "it" : "them"));
+    }
+    if (partly_written.empty()) return;
+    const std::string message =
+        fmt::format("reads {}, which no earlier instruction writes; ", fmt::join(partly_written, ", "));
+    if (dx9_ || options_.strict) {
+      Error(index, DiagnosticCode::kUninitializedLanes,
+            message + fmt::format("{} forbids that (as the D3D9 validator's \"read of uninitialized components\"): "
+                                  "write those lanes earlier in the program",
+                                  dx9_ ? "DX9 vs_1_1" : "--strict"));
+    } else {
+      Warning(index, DiagnosticCode::kUninitializedLanes,
+              message + "they read 0 (the D3D8 runtime accepts this in DX8 programs; --strict refuses it)");
+    }
   }
 
   void CollectDeclarations() {
@@ -558,7 +610,8 @@ class Validator {
         const int reg = base.index + row;
         if (reg < 0 || reg >= kInputRegisterCount || declared_at_[reg] >= 0 || reported[reg]) continue;
         reported[reg] = true;
-        Error(index, fmt::format("reads v{0}, which has no dcl; DX9 vs_1_1 needs a declaration such as "
+        Error(index, DiagnosticCode::kUndeclaredInput,
+              fmt::format("reads v{0}, which has no dcl; DX9 vs_1_1 needs a declaration such as "
                                  "`dcl_texcoord v{0}` before the first instruction (§1.2)",
                                  reg));
       }
@@ -582,12 +635,12 @@ class Validator {
 
   void CheckPositionWritten() {
     if (position_lanes_ == 0) {
-      diagnostics_.Error(ProgramLoc(),
+      diagnostics_.Error(ProgramLoc(), DiagnosticCode::kPositionNotWritten,
                          "the program never writes oPos; every vertex shader must output a "
                          "position (for example m4x4 oPos, v0, c0) (§6.3)");
     } else if (position_lanes_ != kAllLanes) {
       // Unconfirmed (§10.11): one source demands all four lanes, so this is only a warning.
-      Warning(last_position_write_,
+      Warning(last_position_write_, DiagnosticCode::kPositionPartlyWritten,
               fmt::format("oPos is written only in lanes {}; write all four lanes (x, y, z, w) of the "
                           "position",
                           LaneSuffix(position_lanes_)));
@@ -600,7 +653,8 @@ class Validator {
     const Instruction& instruction = At(index);
     const RegisterRef& reg = instruction.dest.reg;
     if (reg.file != RegisterFile::kInput || reg.relative) {
-      Error(index, fmt::format("declares {}; dcl can only declare an input register v0-v{}", RegisterName(reg),
+      Error(index, DiagnosticCode::kBadDeclaration,
+            fmt::format("declares {}; dcl can only declare an input register v0-v{}", RegisterName(reg),
                                kInputRegisterCount - 1));
       return;
     }
@@ -609,7 +663,8 @@ class Validator {
     const int usage_count = static_cast<int>(kDeclUsageNames.size());
     if (instruction.usage < 0 || instruction.usage >= usage_count || instruction.usage_index < 0 ||
         instruction.usage_index > kMaxDeclUsageIndex) {
-      Error(index, fmt::format("has usage {} index {}; usage must be 0-{} and index 0-{}", instruction.usage,
+      Error(index, DiagnosticCode::kBadDeclaration,
+            fmt::format("has usage {} index {}; usage must be 0-{} and index 0-{}", instruction.usage,
                                instruction.usage_index, usage_count - 1, kMaxDeclUsageIndex));
       return;
     }
@@ -620,7 +675,8 @@ class Validator {
     const Instruction& instruction = At(index);
     const int reg = instruction.dest.reg.index;
     if (declared_at_[reg] != index) {
-      Error(index, fmt::format("declares v{} a second time (first dcl: {}); declare each input once", reg,
+      Error(index, DiagnosticCode::kDuplicateDeclaration,
+            fmt::format("declares v{} a second time (first dcl: {}); declare each input once", reg,
                                Where(declared_at_[reg])));
     }
     const std::string usage = fmt::format("dcl_{}{}", kDeclUsageNames[instruction.usage],
@@ -628,7 +684,8 @@ class Validator {
     const auto [it, inserted] =
         usage_declared_at_.emplace(std::pair(instruction.usage, instruction.usage_index), index);
     if (!inserted) {
-      Error(index, fmt::format("repeats {} (first used by {}); each usage and index can feed one input register", usage,
+      Error(index, DiagnosticCode::kDuplicateDeclaration,
+            fmt::format("repeats {} (first used by {}); each usage and index can feed one input register", usage,
                                Where(it->second)));
     }
   }
@@ -642,7 +699,8 @@ class Validator {
   void CheckDefinition(int index) {
     const RegisterRef& reg = At(index).dest.reg;
     if (reg.file != RegisterFile::kConst || reg.relative) {
-      Error(index, fmt::format("defines {}; def can only set an absolute constant register c#", RegisterName(reg)));
+      Error(index, DiagnosticCode::kBadDefinition,
+            fmt::format("defines {}; def can only set an absolute constant register c#", RegisterName(reg)));
       return;
     }
     if (CheckRange(index, reg, "the definition")) CheckMask(index);

@@ -23,6 +23,11 @@ struct ValidatorOptions {
   // A complete vertex shader must write oPos (§6.3). Off for a fragment: a piece of a shader checked on
   // its own, such as the paper's 11-instruction irradiance program.
   bool require_position = true;
+  // A read of lanes that nothing wrote, of a temporary that was partly written (`m4x3 r4, ...` writes
+  // .xyz, then `mul r4, r4, v1` reads r4.w), is a warning under DX8 rules, as the D3D8 runtime accepted
+  // it; strict makes it an error. Under DX9 rules it is always an error, as in Microsoft's D3D9
+  // validator (spec §1.3). A temporary that nothing wrote at all is an error either way.
+  bool strict = false;
 };
 
 // Checks `program` against every rule of §6 and returns all problems found (errors and warnings);

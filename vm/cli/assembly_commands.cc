@@ -3,7 +3,9 @@
 #include <memory>
 
 #include <fmt/format.h>
+#include <nlohmann/json.hpp>
 
+#include "irradiance/report/verify.h"
 #include "vm/asm/bytecode.h"
 #include "vm/asm/disassembler.h"
 #include "vm/cli/cli_support.h"
@@ -11,6 +13,37 @@
 #include "vm/core/atomic_file.h"
 
 namespace vs11::cli {
+namespace {
+
+// One diagnostic for `vs11 validate --json`: the parts that are known, and its code's stable name.
+nlohmann::json DiagnosticJson(const Diagnostic& diagnostic) {
+  constexpr const char* kSeverityNames[] = {"error", "warning", "note"};
+  nlohmann::json entry = {{"severity", kSeverityNames[static_cast<int>(diagnostic.severity)]},
+                          {"code", DiagnosticCodeName(diagnostic.code)},
+                          {"message", diagnostic.message}};
+  if (!diagnostic.loc.file.empty()) entry["file"] = diagnostic.loc.file;
+  if (diagnostic.loc.line > 0) entry["line"] = diagnostic.loc.line;
+  if (diagnostic.loc.column > 0) entry["column"] = diagnostic.loc.column;
+  if (diagnostic.word_offset >= 0) entry["word"] = diagnostic.word_offset;
+  return entry;
+}
+
+// {"file", "valid", "diagnostics": [...], and for a valid program "instructions" and "slots"} on stdout.
+void PrintValidationJson(const std::string& path, const ProgramFlags& flags) {
+  irradiance::ProgramForVerify loaded = irradiance::LoadProgramForVerify(path, flags.ToOptions(), flags.FragmentFlag());
+  nlohmann::json diagnostics = nlohmann::json::array();
+  for (const Diagnostic& diagnostic : loaded.diagnostics.all()) diagnostics.push_back(DiagnosticJson(diagnostic));
+  nlohmann::json report = {{"file", path}, {"valid", loaded.program.has_value()}, {"diagnostics", diagnostics}};
+  if (loaded.program) {
+    ProgramStats stats = ComputeStats(*loaded.program);
+    report["instructions"] = stats.instructions;
+    report["slots"] = stats.slots;
+  }
+  std::printf("%s\n", report.dump(2).c_str());
+  if (!loaded.program) throw CommandFailure{1};
+}
+
+}  // namespace
 
 void AddAsmCommand(CLI::App& app) {
   struct Args {
@@ -22,7 +55,9 @@ void AddAsmCommand(CLI::App& app) {
   command->footer(
       "The source is run through a C preprocessor first (#define, #include, #if, #line).\n"
       "DX9 (vs_1_1, dcl_*) and DX8 (vs.1.1, c[a0.x + n]) syntax are both accepted.\n"
-      "Errors are printed as FILE:LINE:COL: error: MESSAGE; on error no output file is written.\n\n"
+      "Errors are printed as FILE:LINE:COL: error: MESSAGE [code]; on error no output file is written.\n"
+      "A DX8 program that reads temporary lanes nothing wrote is assembled with a warning (the lanes read 0);\n"
+      "--strict refuses it, as DX9 vs_1_1 always does.\n\n"
       "Examples:\n  vs11 asm programs/sh9_irradiance.vsh -o sh9.vso -D CV_BASE=4");
   command->add_option("input", args->input, "Source file (.vsh)")->required();
   command->add_option("-o,--output", args->output, "Bytecode file to write")->required();
@@ -66,14 +101,26 @@ void AddValidateCommand(CLI::App& app) {
   struct Args {
     std::string input;
     ProgramFlags flags;
+    bool json = false;
   };
   auto args = std::make_shared<Args>();
   CLI::App* command = app.add_subcommand("validate", "Check a .vsh or .vso program against the D3D vs_1_1 rules");
-  command->footer("Exit status 0 when valid (warnings allowed), 1 otherwise.\n\n"
-                  "Examples:\n  vs11 validate programs/sh9_irradiance.vsh");
+  command->footer("Exit status 0 when valid (warnings allowed), 1 otherwise. Each message ends with its code in\n"
+                  "brackets, e.g. [uninitialized-lanes]. A DX8 (vs.1.1) program that reads temporary lanes nothing\n"
+                  "wrote gets a warning (the lanes read 0); --strict makes that an error, as it always is in DX9.\n\n"
+                  "Examples:\n  vs11 validate programs/sh9_irradiance.vsh\n"
+                  "  vs11 validate --strict programs/sh9_irradiance.vsh\n"
+                  "  vs11 validate --json programs/sh9_irradiance.vsh");
   command->add_option("input", args->input, "Program (.vsh source or .vso bytecode)")->required();
+  command->add_flag("--json", args->json,
+                    "Print {file, valid, diagnostics: [{severity, code, message, file, line, column, word}], "
+                    "instructions, slots} on stdout instead of text");
   args->flags.AddTo(*command, /*offer_skip_validation=*/false);
   command->callback([args] {
+    if (args->json) {
+      PrintValidationJson(args->input, args->flags);
+      return;
+    }
     Program program = LoadProgramOrFail(args->input, args->flags);
     ProgramStats stats = ComputeStats(program);
     std::printf("%s: valid vs_1_1: %d instructions, %d slots\n", args->input.c_str(), stats.instructions, stats.slots);

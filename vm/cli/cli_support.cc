@@ -16,6 +16,9 @@ void ProgramFlags::AddTo(CLI::App& command, bool offer_skip_validation) {
     command.add_flag("--skip-validation", skip_validation,
                      "Accept anything that is syntactically vs_1_1 (like D3DXSHADER_SKIPVALIDATION)");
   }
+  command.add_flag("--strict", strict,
+                   "Refuse DX8 (vs.1.1) programs that read temporary lanes nothing wrote, as DX9 vs_1_1 "
+                   "programs always are (without it they are a warning and read 0)");
   CLI::Option* fragment_flag = command.add_flag(
       "--fragment", fragment,
       "The program is a piece of a shader: do not require it to write oPos (default: the program's "
@@ -41,6 +44,7 @@ LoadProgramOptions ProgramFlags::ToOptions() const {
   options.assemble.validate = !skip_validation;
   options.assemble.constant_count = constant_count;
   options.assemble.require_position = !fragment;
+  options.assemble.strict = strict;
   return options;
 }
 

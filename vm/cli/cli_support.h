@@ -13,7 +13,7 @@
 
 namespace vs11::cli {
 
-// -I, -D, --skip-validation, --fragment/--no-fragment and --max-constants, bound to one
+// -I, -D, --skip-validation, --strict, --fragment/--no-fragment and --max-constants, bound to one
 // LoadProgramOptions.
 struct ProgramFlags {
   std::vector<std::string> include_dirs;
@@ -21,6 +21,7 @@ struct ProgramFlags {
   bool skip_validation = false;
   bool fragment = false;
   bool no_fragment = false;
+  bool strict = false;
   int constant_count = kDefaultConstantCount;
 
   void AddTo(CLI::App& command, bool offer_skip_validation = true);

@@ -49,40 +49,132 @@ ConstantBank LoadConstants(const std::vector<std::string>& files, const std::vec
   return bank;
 }
 
+struct RunArgs {
+  std::string program, out, sphere_register;
+  std::vector<std::string> consts_files, const_flags, input_flags;
+  int sphere = 0;
+  ProgramFlags flags;
+  EngineFlags engine;
+  TraceFlags trace;
+  VertexSourceFlags sources;
+};
+
+using SuppliedInputs = mesh::RegisterData;  // register, one row per vertex
+
+// --input v#=FILE.csv[:COLUMNS], each file read and parsed, its problems printed.
+SuppliedInputs ReadCsvInputs(const std::vector<std::string>& input_flags) {
+  SuppliedInputs supplied;
+  for (const std::string& flag : input_flags) {
+    std::string error;
+    std::optional<InputSpec> spec = ParseInputSpec(flag, error);
+    if (!spec) Fail("--input " + error);
+    std::optional<std::string> text = ReadWholeFile(spec->file);
+    if (!text) Fail(fmt::format("{}: cannot read the input file", spec->file));
+    Diagnostics diagnostics;
+    std::vector<Vec4f> rows = ParseVertexCsv(*text, spec->file, diagnostics, spec->columns);
+    std::fputs(diagnostics.ToString().c_str(), stderr);
+    if (diagnostics.HasErrors()) throw CommandFailure{1};
+    supplied.emplace_back(spec->reg, std::move(rows));
+  }
+  return supplied;
+}
+
+// --sphere N: the normals go into the dcl_normal register (or --sphere-reg), and become the first
+// columns of the output CSV (`prefix`).
+void AddSphereInput(const RunArgs& args, const Program& program, SuppliedInputs& supplied, CsvColumns& prefix) {
+  int reg = args.sphere_register.empty() ? DeclaredNormalRegister(program)
+                                         : InputRegisterFromName(args.sphere_register);
+  if (reg < 0) Fail("--sphere: the program declares no dcl_normal register; name one with --sphere-reg");
+  std::vector<Vec4f> rows;
+  for (const glm::dvec3& n : irradiance::SphereNormals(args.sphere)) {
+    rows.push_back({static_cast<float>(n.x), static_cast<float>(n.y), static_cast<float>(n.z), 1.0f});
+    prefix.rows.push_back({rows.back()[0], rows.back()[1], rows.back()[2]});
+  }
+  std::string name = fmt::format("v{}", reg);
+  prefix.header = {name + ".x", name + ".y", name + ".z"};
+  supplied.emplace_back(reg, std::move(rows));
+}
+
+// Every supplied register must hold the same number of vertices; returns it.
+std::size_t CommonVertexCount(const SuppliedInputs& supplied) {
+  if (supplied.empty()) Fail("no vertices: give --input v#=FILE.csv, --sphere N, --mesh, --npy or --buffer");
+  std::size_t count = supplied.front().second.size();
+  for (const auto& [reg, rows] : supplied) {
+    if (rows.size() != count) {
+      Fail(fmt::format("v{} has {} vertices but v{} has {}", reg, rows.size(), supplied.front().first, count));
+    }
+  }
+  return count;
+}
+
+VertexArrays FillInputArrays(const SuppliedInputs& supplied, std::size_t count, const std::vector<int>& registers) {
+  VertexArrays inputs = MakeInputArrays(count, registers);
+  for (const auto& [reg, rows] : supplied) {
+    for (std::size_t i = 0; i < count; ++i) {
+      for (int c = 0; c < 4; ++c) inputs.lane(reg, c)[i] = rows[i][c];
+    }
+  }
+  return inputs;
+}
+
+void RunProgram(const RunArgs& args) {
+  Program program = LoadProgramOrFail(args.program, args.flags);
+  std::vector<int> constants_given;
+  ConstantBank constants =
+      LoadConstants(args.consts_files, args.const_flags, args.flags.constant_count, constants_given);
+  SuppliedInputs supplied = ReadCsvInputs(args.input_flags);
+  CsvColumns prefix;
+  if (args.sphere > 0) AddSphereInput(args, program, supplied, prefix);
+  VertexSources sources = CollectVertexSources(args.sources, program, constants, supplied);
+  const std::size_t count = CommonVertexCount(supplied);
+  std::vector<int> registers;
+  for (const auto& entry : supplied) registers.push_back(entry.first);
+  for (const std::string& warning : UnsetRegisterWarnings(program, constants_given, registers)) {
+    std::fprintf(stderr, "%s: warning: %s\n", args.program.c_str(), warning.c_str());
+  }
+  VertexArrays inputs = FillInputArrays(supplied, count, registers);
+  VertexArrays outputs = MakeOutputArrays(count, program);
+  MakeEngine(args.engine.Kind(), program, constants, args.engine.Options())->Run(inputs, outputs);
+  if (args.trace.active()) {
+    ReportTraces(args.trace, args.program, program, constants, inputs, outputs, EngineName(args.engine.Kind()));
+  }
+  WriteVertexOutputs(args.sources, sources, program, outputs);
+  if (args.out.empty() && (args.sources.WritesOutputFiles() || args.trace.active())) return;
+  std::string csv = FormatOutputCsv(program, outputs, prefix);
+  if (args.out.empty()) {
+    std::fputs(csv.c_str(), stdout);
+  } else if (std::optional<std::string> error = WriteFileAtomically(args.out, csv)) {
+    Fail(*error);
+  }
+}
+
+constexpr const char* kRunFooter =
+    "Constants: def lines in the program win over --const flags, which win over --consts files (a\n"
+    "warning names every register a def overrides, and every one the program reads that nobody sets).\n"
+    "Inputs: --input v1=FILE.csv (a vertex a row, 1-4 numbers separated by ',' or blanks, or by ';';\n"
+    "inf, -inf and nan are numbers; missing components read 0,0,0,1; a first row of names is a\n"
+    "header), or columns by header name: --input v0=out.csv:oPos reads oPos.x..oPos.w into their\n"
+    "lanes, --input v0=out.csv:oD0.x,oD0.y,oD0.z fills x, y, z in that order; so the CSV this\n"
+    "command writes reads back. Or\n"
+    "--sphere N: N unit normals spread evenly over the sphere, written into the register the program\n"
+    "declares with dcl_normal, or the one named by --sphere-reg. Registers not supplied read (0,0,0,1).\n"
+    "Outputs: CSV with a header naming each written output lane (raw values: the clamping D3D applies\n"
+    "to oD0/oD1/oFog after the shader is not applied).\n"
+    "Debugging: --trace 0,5 prints vertices 0 and 5 instruction by instruction (source line, values\n"
+    "read, lanes written) on the reference engine, beside the --engine's outputs, which must be identical\n"
+    "(exit 1 if not); the CSV then goes only to --out. --trace-json FILE writes the same record as JSON.\n\n"
+    "Examples:\n"
+    "  vs11 run programs/sh9_irradiance.vsh --fragment --consts out/constants.vsh --sphere 6 --sphere-reg v0\n"
+    "  vs11 run programs/sh9_irradiance.vsh --fragment --consts out/constants.vsh --sphere 6 --sphere-reg v0 --trace 2\n"
+    "  vs11 run light.vsh --input v0=positions.csv --input v1=normals.csv --const c4=0,0,1,0 --out lit.csv\n"
+    "  vs11 run light.vsh --input v0=lit.csv:oPos --input v1=normals.csv --const c4=0,0,1,0";
+
 }  // namespace
 
 void AddRunCommand(CLI::App& app) {
-  struct Args {
-    std::string program, out, sphere_register;
-    std::vector<std::string> consts_files, const_flags, input_flags;
-    int sphere = 0;
-    ProgramFlags flags;
-    EngineFlags engine;
-    TraceFlags trace;
-    VertexSourceFlags sources;
-  };
-  auto args = std::make_shared<Args>();
+  auto args = std::make_shared<RunArgs>();
   CLI::App* command = app.add_subcommand("run", "Run a vs_1_1 program over vertices and print its outputs as CSV");
-  command->footer(
-      "Constants: def lines in the program win over --const flags, which win over --consts files (a\n"
-      "warning names every register a def overrides, and every one the program reads that nobody sets).\n"
-      "Inputs: --input v1=FILE.csv (a vertex a row, 1-4 numbers separated by ',' or blanks, or by ';';\n"
-      "inf, -inf and nan are numbers; missing components read 0,0,0,1; a first row of names is a\n"
-      "header), or columns by header name: --input v0=out.csv:oPos reads oPos.x..oPos.w into their\n"
-      "lanes, --input v0=out.csv:oD0.x,oD0.y,oD0.z fills x, y, z in that order; so the CSV this\n"
-      "command writes reads back. Or\n"
-      "--sphere N: N unit normals spread evenly over the sphere, written into the register the program\n"
-      "declares with dcl_normal, or the one named by --sphere-reg. Registers not supplied read (0,0,0,1).\n"
-      "Outputs: CSV with a header naming each written output lane (raw values: the clamping D3D applies\n"
-      "to oD0/oD1/oFog after the shader is not applied).\n"
-      "Debugging: --trace 0,5 prints vertices 0 and 5 instruction by instruction (source line, values\n"
-      "read, lanes written) on the reference engine, beside the --engine's outputs, which must be identical\n"
-      "(exit 1 if not); the CSV then goes only to --out. --trace-json FILE writes the same record as JSON.\n\n"
-      "Examples:\n"
-      "  vs11 run programs/sh9_irradiance.vsh --fragment --consts out/constants.vsh --sphere 6 --sphere-reg v0\n"
-      "  vs11 run programs/sh9_irradiance.vsh --fragment --consts out/constants.vsh --sphere 6 --sphere-reg v0 --trace 2\n"
-      "  vs11 run light.vsh --input v0=positions.csv --input v1=normals.csv --const c4=0,0,1,0 --out lit.csv\n"
-      "  vs11 run light.vsh --input v0=lit.csv:oPos --input v1=normals.csv --const c4=0,0,1,0");
+  command->footer(kRunFooter);
   command->add_option("program", args->program, "Program (.vsh or .vso)")->required();
   command->add_option("--const", args->const_flags, "Constant register value, e.g. c4=1,0,0,1");
   command->add_option("--consts", args->consts_files, "File of `def c#, x, y, z, w` or `c# = x y z w` lines");
@@ -95,72 +187,7 @@ void AddRunCommand(CLI::App& app) {
   args->engine.AddTo(*command);
   args->trace.AddTo(*command);
   args->sources.AddTo(*command);
-  command->callback([args] {
-    Program program = LoadProgramOrFail(args->program, args->flags);
-    std::vector<int> constants_given;
-    ConstantBank constants =
-        LoadConstants(args->consts_files, args->const_flags, args->flags.constant_count, constants_given);
-
-    std::vector<std::pair<int, std::vector<Vec4f>>> supplied;
-    for (const std::string& flag : args->input_flags) {
-      std::string error;
-      std::optional<InputSpec> spec = ParseInputSpec(flag, error);
-      if (!spec) Fail("--input " + error);
-      std::optional<std::string> text = ReadWholeFile(spec->file);
-      if (!text) Fail(fmt::format("{}: cannot read the input file", spec->file));
-      Diagnostics diagnostics;
-      std::vector<Vec4f> rows = ParseVertexCsv(*text, spec->file, diagnostics, spec->columns);
-      std::fputs(diagnostics.ToString().c_str(), stderr);
-      if (diagnostics.HasErrors()) throw CommandFailure{1};
-      supplied.emplace_back(spec->reg, std::move(rows));
-    }
-    CsvColumns prefix;
-    if (args->sphere > 0) {
-      int reg = args->sphere_register.empty() ? DeclaredNormalRegister(program)
-                                              : InputRegisterFromName(args->sphere_register);
-      if (reg < 0) Fail("--sphere: the program declares no dcl_normal register; name one with --sphere-reg");
-      std::vector<Vec4f> rows;
-      for (const glm::dvec3& n : irradiance::SphereNormals(args->sphere)) {
-        rows.push_back({static_cast<float>(n.x), static_cast<float>(n.y), static_cast<float>(n.z), 1.0f});
-        prefix.rows.push_back({rows.back()[0], rows.back()[1], rows.back()[2]});
-      }
-      std::string name = fmt::format("v{}", reg);
-      prefix.header = {name + ".x", name + ".y", name + ".z"};
-      supplied.emplace_back(reg, std::move(rows));
-    }
-    VertexSources sources = CollectVertexSources(args->sources, program, constants, supplied);
-    if (supplied.empty()) Fail("no vertices: give --input v#=FILE.csv, --sphere N, --mesh, --npy or --buffer");
-    std::size_t count = supplied.front().second.size();
-    for (const auto& [reg, rows] : supplied) {
-      if (rows.size() != count) {
-        Fail(fmt::format("v{} has {} vertices but v{} has {}", reg, rows.size(), supplied.front().first, count));
-      }
-    }
-    std::vector<int> registers;
-    for (const auto& entry : supplied) registers.push_back(entry.first);
-    for (const std::string& warning : UnsetRegisterWarnings(program, constants_given, registers)) {
-      std::fprintf(stderr, "%s: warning: %s\n", args->program.c_str(), warning.c_str());
-    }
-    VertexArrays inputs = MakeInputArrays(count, registers);
-    for (const auto& [reg, rows] : supplied) {
-      for (std::size_t i = 0; i < count; ++i) {
-        for (int c = 0; c < 4; ++c) inputs.lane(reg, c)[i] = rows[i][c];
-      }
-    }
-    VertexArrays outputs = MakeOutputArrays(count, program);
-    MakeEngine(args->engine.Kind(), program, constants, args->engine.Options())->Run(inputs, outputs);
-    if (args->trace.active()) {
-      ReportTraces(args->trace, args->program, program, constants, inputs, outputs, EngineName(args->engine.Kind()));
-    }
-    WriteVertexOutputs(args->sources, sources, program, outputs);
-    if (args->out.empty() && (args->sources.WritesOutputFiles() || args->trace.active())) return;
-    std::string csv = FormatOutputCsv(program, outputs, prefix);
-    if (args->out.empty()) {
-      std::fputs(csv.c_str(), stdout);
-    } else if (std::optional<std::string> error = WriteFileAtomically(args->out, csv)) {
-      Fail(*error);
-    }
-  });
+  command->callback([args] { RunProgram(*args); });
 }
 
 }  // namespace vs11::cli

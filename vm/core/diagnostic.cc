@@ -4,6 +4,17 @@
 
 namespace vs11 {
 
+std::string_view DiagnosticCodeName(DiagnosticCode code) {
+  switch (code) {
+#define VS11_DIAGNOSTIC_NAME(code, name) \
+  case DiagnosticCode::code:             \
+    return name;
+    VS11_DIAGNOSTIC_CODES(VS11_DIAGNOSTIC_NAME)
+#undef VS11_DIAGNOSTIC_NAME
+  }
+  return "unclassified";
+}
+
 std::string FormatDiagnostic(const Diagnostic& diagnostic) {
   std::string where;
   const SourceLoc& loc = diagnostic.loc;
@@ -16,16 +27,27 @@ std::string FormatDiagnostic(const Diagnostic& diagnostic) {
   const char* kind = diagnostic.severity == Severity::kError     ? "error"
                      : diagnostic.severity == Severity::kWarning ? "warning"
                                                                  : "note";
-  return where.empty() ? fmt::format("{}: {}", kind, diagnostic.message)
-                       : fmt::format("{}: {}: {}", where, kind, diagnostic.message);
+  const std::string code = diagnostic.code == DiagnosticCode::kUnclassified
+                               ? std::string()
+                               : fmt::format(" [{}]", DiagnosticCodeName(diagnostic.code));
+  return where.empty() ? fmt::format("{}: {}{}", kind, diagnostic.message, code)
+                       : fmt::format("{}: {}: {}{}", where, kind, diagnostic.message, code);
+}
+
+void Diagnostics::Error(SourceLoc loc, DiagnosticCode code, std::string message) {
+  Add({std::move(loc), Severity::kError, code, std::move(message)});
+}
+
+void Diagnostics::Warning(SourceLoc loc, DiagnosticCode code, std::string message) {
+  Add({std::move(loc), Severity::kWarning, code, std::move(message)});
 }
 
 void Diagnostics::Error(SourceLoc loc, std::string message) {
-  Add({std::move(loc), Severity::kError, std::move(message)});
+  Error(std::move(loc), DiagnosticCode::kUnclassified, std::move(message));
 }
 
 void Diagnostics::Warning(SourceLoc loc, std::string message) {
-  Add({std::move(loc), Severity::kWarning, std::move(message)});
+  Warning(std::move(loc), DiagnosticCode::kUnclassified, std::move(message));
 }
 
 void Diagnostics::Add(Diagnostic diagnostic) {

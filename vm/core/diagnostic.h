@@ -3,6 +3,7 @@
 #pragma once
 
 #include <string>
+#include <string_view>
 #include <vector>
 
 namespace vs11 {
@@ -16,15 +17,100 @@ struct SourceLoc {
 
 enum class Severity { kError, kWarning, kNote };
 
+// What kind of problem a diagnostic reports, one code per kind, so that tests and tools can tell
+// problems apart without matching message wording. The printed name (second column) is stable: it
+// is part of the output format ("FILE:LINE:COL: error: MESSAGE [name]") and of `--json`; add new
+// codes, never rename or reuse one.
+#define VS11_DIAGNOSTIC_CODES(X)                                                                         \
+  /* Input outside the shader front end (constant files, metadata lines), which has no codes yet. */    \
+  X(kUnclassified, "unclassified")                                                                       \
+  X(kCannotReadFile, "cannot-read-file")                                                                 \
+  /* Lexer (vm/asm/lexer.h). */                                                                          \
+  X(kUnexpectedCharacter, "unexpected-character")                                                        \
+  X(kMalformedNumber, "malformed-number")                                                                \
+  /* Preprocessor (vm/asm/preprocessor.h). */                                                            \
+  X(kUnknownDirective, "unknown-directive")                                                              \
+  X(kMalformedDirective, "malformed-directive")                                                          \
+  X(kUnbalancedConditional, "unbalanced-conditional")                                                    \
+  X(kConditionExpression, "condition-expression")                                                        \
+  X(kUnterminatedComment, "unterminated-comment")                                                        \
+  X(kMacroDefinition, "macro-definition")                                                                \
+  X(kMacroInvocation, "macro-invocation")                                                                \
+  X(kIncludeNotFound, "include-not-found")                                                               \
+  X(kIncludeTooDeep, "include-too-deep")                                                                 \
+  X(kExpansionLimit, "expansion-limit")                                                                  \
+  X(kErrorDirective, "error-directive")                                                                  \
+  X(kWarningDirective, "warning-directive")                                                              \
+  X(kPreprocessorFailure, "preprocessor-failure")                                                        \
+  /* Assembler syntax (vm/asm/assembler.h). */                                                           \
+  X(kVersionStatement, "version-statement")                                                              \
+  X(kUnknownInstruction, "unknown-instruction")                                                          \
+  X(kNotInVs11, "not-in-vs_1_1")                                                                         \
+  X(kOperandCount, "operand-count")                                                                      \
+  X(kUnexpectedToken, "unexpected-token")                                                                \
+  X(kDeclarationUsage, "dcl-usage")                                                                      \
+  X(kDestinationSyntax, "destination-syntax")                                                            \
+  X(kSourceModifier, "source-modifier")                                                                  \
+  X(kExpectedRegister, "expected-register")                                                              \
+  X(kUnknownRegister, "unknown-register")                                                                \
+  X(kRegisterNumberTooLarge, "register-number-too-large")                                                \
+  X(kConstantIndexSyntax, "constant-index-syntax")                                                       \
+  X(kWriteMaskSyntax, "write-mask-syntax")                                                               \
+  X(kSwizzleSyntax, "swizzle-syntax")                                                                    \
+  X(kExpectedNumber, "expected-number")                                                                  \
+  X(kNumberOutOfRange, "number-out-of-range")                                                            \
+  X(kNumberUnderflow, "number-underflow")                                                                \
+  /* Validator (vm/asm/validator.h, spec §6). */                                                         \
+  X(kVersionToken, "version-token")                                                                      \
+  X(kMisplacedDeclaration, "misplaced-declaration")                                                      \
+  X(kTooManySlots, "too-many-slots")                                                                     \
+  X(kNoSuchRegister, "no-such-register")                                                                 \
+  X(kReadOnlyDestination, "read-only-destination")                                                       \
+  X(kWriteOnlySource, "write-only-source")                                                               \
+  X(kRelativeAddressing, "relative-addressing")                                                          \
+  X(kAddressNotWritten, "address-not-written")                                                           \
+  X(kAddressWrite, "address-write")                                                                      \
+  X(kWriteMask, "write-mask")                                                                            \
+  X(kScalarOutputMask, "scalar-output-mask")                                                             \
+  X(kReadPorts, "read-ports")                                                                            \
+  X(kMatrixOperand, "matrix-operand")                                                                    \
+  X(kScalarSwizzle, "scalar-swizzle")                                                                    \
+  X(kUninitializedRegister, "uninitialized-register")                                                    \
+  X(kUninitializedLanes, "uninitialized-lanes")                                                          \
+  X(kUndeclaredInput, "undeclared-input")                                                                \
+  X(kPositionNotWritten, "position-not-written")                                                         \
+  X(kPositionPartlyWritten, "position-partly-written")                                                   \
+  X(kBadDeclaration, "bad-declaration")                                                                  \
+  X(kDuplicateDeclaration, "duplicate-declaration")                                                      \
+  X(kBadDefinition, "bad-definition")                                                                    \
+  /* Bytecode decoder (vm/asm/bytecode.h, spec §4). */                                                   \
+  X(kBytecodeTruncated, "bytecode-truncated")                                                            \
+  X(kBytecodeTrailingWords, "bytecode-trailing-words")                                                   \
+  X(kBytecodeMalformedToken, "bytecode-malformed-token")                                                 \
+  X(kBytecodeUnknownOpcode, "bytecode-unknown-opcode")                                                   \
+  X(kBytecodeRegisterType, "bytecode-register-type")                                                     \
+  X(kBytecodeDeclarationUsage, "bytecode-dcl-usage")
+
+enum class DiagnosticCode {
+#define VS11_DIAGNOSTIC_ENUMERATOR(code, name) code,
+  VS11_DIAGNOSTIC_CODES(VS11_DIAGNOSTIC_ENUMERATOR)
+#undef VS11_DIAGNOSTIC_ENUMERATOR
+};
+
+// The stable printed name of `code`, e.g. "uninitialized-lanes".
+std::string_view DiagnosticCodeName(DiagnosticCode code);
+
 struct Diagnostic {
   SourceLoc loc;
   Severity severity = Severity::kError;
+  DiagnosticCode code = DiagnosticCode::kUnclassified;
   std::string message;
   // For bytecode problems: the index of the 32-bit word at fault, or -1.
   long word_offset = -1;
 };
 
-// "FILE:LINE:COL: error: MESSAGE" (parts that are unknown are left out).
+// "FILE:LINE:COL: error: MESSAGE [code]" (parts that are unknown are left out, and so is the code
+// when it is kUnclassified).
 std::string FormatDiagnostic(const Diagnostic& diagnostic);
 
 class Diagnostics {
@@ -32,6 +118,9 @@ class Diagnostics {
   // After this many errors, further errors are counted but not kept (a runaway file stays bounded).
   static constexpr int kMaxKeptErrors = 50;
 
+  void Error(SourceLoc loc, DiagnosticCode code, std::string message);
+  void Warning(SourceLoc loc, DiagnosticCode code, std::string message);
+  // Without a code (kUnclassified): for input outside the shader front end.
   void Error(SourceLoc loc, std::string message);
   void Warning(SourceLoc loc, std::string message);
   void Add(Diagnostic diagnostic);

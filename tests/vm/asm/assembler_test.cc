@@ -349,9 +349,9 @@ TEST(Assembler, Dx8ProgramWithDclFollowsTheDclRules) {
   AssembleResult result =
       AssembleForTest("vs.1.1\ndcl_position v0\nmov oPos, v0\nmov oD0, v1\n", /*validate=*/true);
   EXPECT_FALSE(result.program);
-  EXPECT_NE(result.diagnostics.ToString().find("test.vsh:4:1: error: mov: reads v1, which has no dcl"),
-            std::string::npos)
-      << result.diagnostics.ToString();
+  ASSERT_EQ(result.diagnostics.all().size(), 1u) << result.diagnostics.ToString();
+  EXPECT_EQ(result.diagnostics.all()[0].code, DiagnosticCode::kUndeclaredInput);
+  EXPECT_EQ(result.diagnostics.all()[0].loc, (SourceLoc{"test.vsh", 4, 1}));
 }
 
 TEST(Assembler, ValidatorErrorsWithholdTheProgram) {
@@ -364,6 +364,7 @@ TEST(Assembler, ValidatorErrorsWithholdTheProgram) {
   for (const Diagnostic& d : validated.diagnostics.all()) {
     if (d.severity == Severity::kError) {
       EXPECT_EQ(d.loc.line, 3) << d.message;
+      EXPECT_EQ(d.code, DiagnosticCode::kReadPorts) << d.message;
     }
   }
 }
@@ -403,6 +404,7 @@ TEST(Assembler, UnreadableFileIsAnError) {
   EXPECT_FALSE(result.program);
   ASSERT_TRUE(result.diagnostics.HasErrors());
   EXPECT_EQ(result.diagnostics.all().front().loc.file, "/nonexistent/vs11/missing.vsh");
+  EXPECT_EQ(result.diagnostics.all().front().code, DiagnosticCode::kCannotReadFile);
 }
 
 TEST(Assembler, IgnoresUnderflowWithAWarning) {
@@ -411,6 +413,7 @@ TEST(Assembler, IgnoresUnderflowWithAWarning) {
   EXPECT_EQ(result.program->instructions[0].def_bits[0], 0u);
   ASSERT_EQ(result.diagnostics.all().size(), 1u);
   EXPECT_EQ(result.diagnostics.all()[0].severity, Severity::kWarning);
+  EXPECT_EQ(result.diagnostics.all()[0].code, DiagnosticCode::kNumberUnderflow);
 }
 
 }  // namespace

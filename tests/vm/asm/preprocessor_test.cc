@@ -104,7 +104,7 @@ TEST(Preprocessor, ReportsUnterminatedBlockCommentAtItsStart) {
   PreprocessResult result = PreprocessText("mov r0, v0\nadd r0, r0, r0 /* never\nclosed\n");
   const Diagnostic& error = OnlyError(result);
   EXPECT_EQ(error.loc, (SourceLoc{"main.vsh", 2, 16}));
-  EXPECT_THAT(error.message, HasSubstr("unterminated"));
+  EXPECT_EQ(error.code, DiagnosticCode::kUnterminatedComment) << error.message;
   EXPECT_THAT(Texts(result), ElementsAre("mov r0, v0", "add r0, r0, r0"));
 }
 
@@ -174,13 +174,14 @@ TEST(Preprocessor, ReportsWrongArgumentCountWithLineAndColumn) {
   PreprocessResult result = PreprocessText("#define ADD(a, b) add a, b\nmov r0, v0\n  ADD(r0)\n");
   const Diagnostic& error = OnlyError(result);
   EXPECT_EQ(error.loc, (SourceLoc{"main.vsh", 3, 3}));
-  EXPECT_THAT(error.message, HasSubstr("expects 2 arguments, got 1"));
+  EXPECT_EQ(error.code, DiagnosticCode::kMacroInvocation) << error.message;
+  EXPECT_THAT(error.message, HasSubstr("2"));
 }
 
 TEST(Preprocessor, ReportsUnterminatedMacroArgumentList) {
   PreprocessResult result = PreprocessText("#define F(a) a\nF(r0, \n");
   EXPECT_EQ(OnlyError(result).loc.line, 2);
-  EXPECT_THAT(OnlyError(result).message, HasSubstr("unterminated argument list"));
+  EXPECT_EQ(OnlyError(result).code, DiagnosticCode::kMacroInvocation) << OnlyError(result).message;
 }
 
 TEST(Preprocessor, ReportsBadDefinitions) {
@@ -264,6 +265,7 @@ TEST(Preprocessor, DivisionByZeroInIfIsAnErrorNotACrash) {
   ASSERT_EQ(result.diagnostics.error_count(), 2) << result.diagnostics.ToString();
   EXPECT_EQ(result.diagnostics.all()[0].loc, (SourceLoc{"main.vsh", 2, 7}));
   EXPECT_EQ(result.diagnostics.all()[1].loc.line, 5);
+  EXPECT_EQ(result.diagnostics.all()[0].code, DiagnosticCode::kConditionExpression);
   EXPECT_THAT(result.diagnostics.all()[0].message, HasSubstr("division by zero"));
   EXPECT_THAT(Texts(result), ElementsAre("mov r0, v0"));
   EXPECT_TRUE(IfKeeps("0 && 1 / 0 || 1"));  // not evaluated, as in C
@@ -275,13 +277,17 @@ TEST(Preprocessor, MalformedIfExpressionsAreErrors) {
       "#if defined(\n#endif\n#if 9223372036854775807 * 2 + (-9223372036854775807 - 1) / -1\n"
       "#endif\n");
   EXPECT_EQ(result.diagnostics.error_count(), 6) << result.diagnostics.ToString();
-  for (int i = 0; i < 6; ++i) EXPECT_EQ(result.diagnostics.all()[i].loc.line, 2 * i + 1);
+  for (int i = 0; i < 6; ++i) {
+    EXPECT_EQ(result.diagnostics.all()[i].loc.line, 2 * i + 1);
+    EXPECT_EQ(result.diagnostics.all()[i].code, DiagnosticCode::kConditionExpression);
+  }
 }
 
 TEST(Preprocessor, ReportsUnterminatedIfAtItsLine) {
   PreprocessResult result = PreprocessText("mov r0, v0\n  #ifdef A\n#if 1\n#endif\n");
   EXPECT_EQ(OnlyError(result).loc, (SourceLoc{"main.vsh", 2, 3}));
-  EXPECT_THAT(OnlyError(result).message, HasSubstr("unterminated #if"));
+  EXPECT_EQ(OnlyError(result).code, DiagnosticCode::kUnbalancedConditional) << OnlyError(result).message;
+  EXPECT_THAT(OnlyError(result).message, HasSubstr("#if"));
 }
 
 TEST(Preprocessor, ReportsUnbalancedConditionalsAndKeepsGoing) {
@@ -291,7 +297,8 @@ TEST(Preprocessor, ReportsUnbalancedConditionalsAndKeepsGoing) {
   std::vector<int> lines;
   for (const Diagnostic& d : result.diagnostics.all()) lines.push_back(d.loc.line);
   EXPECT_THAT(lines, ElementsAre(1, 2, 5, 6, 8));
-  EXPECT_THAT(result.diagnostics.all()[0].message, HasSubstr("#endif without #if"));
+  EXPECT_EQ(result.diagnostics.all()[0].code, DiagnosticCode::kUnbalancedConditional);
+  EXPECT_THAT(result.diagnostics.all()[0].message, HasSubstr("#endif"));
   EXPECT_THAT(Texts(result), ElementsAre("mov r0, v0"));
 }
 
@@ -355,6 +362,7 @@ TEST(Preprocessor, ReportsMissingIncludeAtIncludeLine) {
   PreprocessResult result = PreprocessText("#include \"a.h\"\nthree\n#include\n", {}, files);
   ASSERT_EQ(result.diagnostics.error_count(), 2) << result.diagnostics.ToString();
   EXPECT_EQ(result.diagnostics.all()[0].loc, (SourceLoc{"a.h", 3, 1}));
+  EXPECT_EQ(result.diagnostics.all()[0].code, DiagnosticCode::kIncludeNotFound);
   EXPECT_THAT(result.diagnostics.all()[0].message, HasSubstr("missing.h"));
   EXPECT_EQ(result.diagnostics.all()[1].loc.line, 3);
   EXPECT_EQ(result.diagnostics.all()[1].loc.file, "main.vsh");
@@ -368,7 +376,7 @@ TEST(Preprocessor, ReportsIncludeCycleWithLine) {
   PreprocessResult result = PreprocessText("#include \"a.h\"\n", options, files);
   const Diagnostic& error = OnlyError(result);
   EXPECT_EQ(error.loc, (SourceLoc{"b.h", 3, 1}));  // b.h is the eighth level
-  EXPECT_THAT(error.message, HasSubstr("include cycle"));
+  EXPECT_EQ(error.code, DiagnosticCode::kIncludeTooDeep) << error.message;
 }
 
 TEST(Preprocessor, SelfIncludeWithDefaultOptionsEndsWithAnError) {
@@ -393,7 +401,8 @@ TEST(Preprocessor, ThrowingReaderIsAMissingFileThatSaysWhy) {
   };
   PreprocessResult result = Preprocess("#include \"a.h\"\nmov r0, v0\n", "main.vsh", {}, reader);
   EXPECT_EQ(OnlyError(result).loc.line, 1);
-  EXPECT_THAT(OnlyError(result).message, HasSubstr("cannot open include file 'a.h'"));
+  EXPECT_EQ(OnlyError(result).code, DiagnosticCode::kIncludeNotFound);
+  EXPECT_THAT(OnlyError(result).message, HasSubstr("'a.h'"));
   EXPECT_THAT(OnlyError(result).message, HasSubstr("permission denied by the test"));
   EXPECT_THAT(Texts(result), ElementsAre("mov r0, v0"));
 }
@@ -426,7 +435,8 @@ TEST(Preprocessor, ErrorDirectiveReportsItsMessage) {
   PreprocessResult result =
       PreprocessText("mov r0, v0\n#ifndef NEEDED\n  #error NEEDED must be set ; really\n#endif\nmul\n");
   EXPECT_EQ(OnlyError(result).loc, (SourceLoc{"main.vsh", 3, 3}));
-  EXPECT_EQ(OnlyError(result).message, "#error NEEDED must be set");
+  EXPECT_EQ(OnlyError(result).code, DiagnosticCode::kErrorDirective);
+  EXPECT_EQ(OnlyError(result).message, "#error NEEDED must be set");  // the user's own words
   EXPECT_THAT(Texts(result), ElementsAre("mov r0, v0", "mul"));
 }
 
@@ -434,6 +444,7 @@ TEST(Preprocessor, PragmaIsIgnoredAndUnknownDirectiveIsAnError) {
   PreprocessResult result = PreprocessText("#pragma warning(disable: 1234)\n#\nmov r0, v0\n  # bogus x\n#33\n");
   ASSERT_EQ(result.diagnostics.error_count(), 2) << result.diagnostics.ToString();
   EXPECT_EQ(result.diagnostics.all()[0].loc, (SourceLoc{"main.vsh", 4, 5}));
+  EXPECT_EQ(result.diagnostics.all()[0].code, DiagnosticCode::kUnknownDirective);
   EXPECT_THAT(result.diagnostics.all()[0].message, HasSubstr("bogus"));
   EXPECT_EQ(result.diagnostics.all()[1].loc.line, 5);
   EXPECT_THAT(Texts(result), ElementsAre("mov r0, v0"));
@@ -480,13 +491,14 @@ TEST(Preprocessor, ReportsErrorWhenOutputExceedsLimit) {
   text += "A39\n";
   PreprocessResult result = PreprocessText(text, options);
   EXPECT_TRUE(result.diagnostics.HasErrors());
-  EXPECT_THAT(result.diagnostics.all().front().message, HasSubstr("exceeds"));
+  EXPECT_EQ(result.diagnostics.all().front().code, DiagnosticCode::kExpansionLimit);
   EXPECT_EQ(result.diagnostics.all().front().loc.line, 41);
 
   std::string many;
   for (int i = 0; i < 1000; ++i) many += "mov r0, v0\n";
   result = PreprocessText(many, options);
-  EXPECT_EQ(OnlyError(result).message, "preprocessed output exceeds the limit of 4096 bytes");
+  EXPECT_EQ(OnlyError(result).code, DiagnosticCode::kExpansionLimit);
+  EXPECT_THAT(OnlyError(result).message, HasSubstr("4096"));
   EXPECT_LE(result.lines.size(), 4096u / 11);
 }
 
@@ -505,7 +517,7 @@ TEST(Preprocessor, ExponentialMacrosThatExpandToNothingStillTerminate) {
 TEST(Preprocessor, DeepNestingIsAnErrorNotAStackOverflow) {
   std::string parens(20000, '(');
   PreprocessResult result = PreprocessText("#if " + parens + "1\n#endif\n");
-  EXPECT_THAT(OnlyError(result).message, HasSubstr("nested too deeply"));
+  EXPECT_EQ(OnlyError(result).code, DiagnosticCode::kConditionExpression) << OnlyError(result).message;
 
   std::string calls = "#define F(x) x\n";
   for (int i = 0; i < 300; ++i) calls += "F(";

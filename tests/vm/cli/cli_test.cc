@@ -141,6 +141,42 @@ TEST_F(Vs11Cli, CountPrintsJson) {
   EXPECT_NE(r.output.find("\"ns_per_vertex\""), std::string::npos);
 }
 
+// A DX8 program that reads r4.w after m4x3 wrote r4.xyz (issue 22 §5): a warning with its code, the
+// program assembles; --strict refuses it and writes nothing.
+const std::string kDx8PartlyWritten = "vs.1.1\nm4x3 r4, v0, c9\nmul r4, r4, v1.xxxx\nmov oPos, r4\n";
+
+TEST_F(Vs11Cli, Dx8ReadOfUnwrittenLanesWarnsAndStrictRefuses) {
+  std::string source = Write("skin.vsh", kDx8PartlyWritten);
+  std::string output = (dir_ / "skin.vso").string();
+  CommandResult r = RunVs11("asm " + source + " -o " + output);
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_THAT(r.output, ::testing::HasSubstr("skin.vsh:3:1: warning: mul: reads r4.w"));
+  EXPECT_THAT(r.output, ::testing::HasSubstr("[uninitialized-lanes]"));
+  EXPECT_TRUE(fs::exists(output));
+  fs::remove(output);
+  CommandResult strict = RunVs11("asm --strict " + source + " -o " + output);
+  EXPECT_EQ(strict.status, 1);
+  EXPECT_THAT(strict.output, ::testing::HasSubstr("skin.vsh:3:1: error: mul: reads r4.w"));
+  EXPECT_FALSE(fs::exists(output));
+  EXPECT_EQ(RunVs11("validate --strict " + source).status, 1);
+  EXPECT_EQ(RunVs11("run --strict " + source + " --sphere 2 --sphere-reg v0").status, 1);
+  EXPECT_EQ(RunVs11("run " + source + " --sphere 2 --sphere-reg v0").status, 0);
+}
+
+TEST_F(Vs11Cli, ValidateJsonCarriesDiagnosticCodes) {
+  std::string source = Write("skin.vsh", kDx8PartlyWritten);
+  CommandResult r = RunVs11("validate --json " + source);
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_THAT(r.output, ::testing::HasSubstr("\"valid\": true"));
+  EXPECT_THAT(r.output, ::testing::HasSubstr("\"code\": \"uninitialized-lanes\""));
+  EXPECT_THAT(r.output, ::testing::HasSubstr("\"severity\": \"warning\""));
+  EXPECT_THAT(r.output, ::testing::HasSubstr("\"line\": 3"));
+  CommandResult bad = RunVs11("validate --json " + Write("bad.vsh", "vs_1_1\nfrobnicate r0\n"));
+  EXPECT_EQ(bad.status, 1);
+  EXPECT_THAT(bad.output, ::testing::HasSubstr("\"valid\": false"));
+  EXPECT_THAT(bad.output, ::testing::HasSubstr("\"code\": \"unknown-instruction\""));
+}
+
 TEST_F(Vs11Cli, MissingFileIsAnError) {
   CommandResult r = RunVs11("validate " + (dir_ / "nope.vsh").string());
   EXPECT_EQ(r.status, 1);
