@@ -236,7 +236,7 @@ std::vector<std::string> SubcommandNames(const std::string& help) {
 
 const std::vector<HelpPage> kHelpPages = {
     {"vs11", ""},    {"vs11", "asm"},       {"vs11", "disasm"}, {"vs11", "validate"},  {"vs11", "run"},
-    {"vs11", "count"}, {"vs11", "verify"},  {"irrmap", ""},     {"irrmap", "chart"},   {"irrmap", "stability"},
+    {"vs11", "count"}, {"vs11", "verify"},  {"vs11", "translate"}, {"irrmap", ""},     {"irrmap", "chart"},   {"irrmap", "stability"},
     {"irrmap", "batch"},
 };
 

@@ -41,7 +41,7 @@
 #include <nlohmann/json.hpp>
 
 #include "bench/bench_common.h"
-#include "bench/compare_llvmpipe/gl_runner.h"
+#include "vm/gl/gl_runner.h"
 #include "bench/compare_llvmpipe/shaders.h"
 #include "irradiance/report/program_references.h"
 #include "irradiance/report/verify.h"
@@ -55,6 +55,9 @@ namespace vs11::bench::llvmpipe {
 namespace {
 
 using nlohmann::json;
+using gl::CreateLlvmpipeContext;
+using gl::GlAttribute;
+using gl::TransformFeedbackRun;
 
 constexpr int kUsageError = 2;
 constexpr std::size_t kVerticesPerRepetition = std::size_t{1} << 20;

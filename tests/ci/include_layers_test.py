@@ -1,13 +1,13 @@
 #!/usr/bin/env python3
 """Includes point down only (README, Layout): a file includes its own folder or a lower layer.
 
-vm:          core <- asm, io <- engines <- mesh
+vm:          core <- asm, io <- engines <- mesh, translate, gl
 irradiance:  io <- sh <- render <- report <- jobs <- mesh_input
 tools:       vm/cli (vs11) <- irradiance/cli (irrmap, which shares vs11's command-line parse)
 python:      the Python module, over the vm and irradiance libraries (not the tools, not vm/mesh)
 The irradiance library sits above vm's library folders (core, asm, io, engines); only irrmap's mesh
 reader (irradiance/mesh_input) reaches vm/mesh, and only the vs11 tool (vm/cli) reaches irradiance.
-Folders on the same layer (asm and io) do not include each other.
+Folders on the same layer (asm and io; mesh, translate and gl) do not include each other.
 Usage: include_layers_test.py SOURCE_DIR. Prints each violation as file:line and exits 1 on any.
 """
 import pathlib
@@ -16,7 +16,7 @@ import sys
 
 # (folder, layer): a file may include from folders of a lower layer, or from its own folder.
 LAYERS = {
-    "vm/core": 0, "vm/asm": 1, "vm/io": 1, "vm/engines": 2, "vm/mesh": 3,
+    "vm/core": 0, "vm/asm": 1, "vm/io": 1, "vm/engines": 2, "vm/mesh": 3, "vm/translate": 3, "vm/gl": 3,
     "irradiance/io": 4, "irradiance/sh": 5, "irradiance/render": 6, "irradiance/report": 7,
     "irradiance/jobs": 8, "irradiance/mesh_input": 9, "vm/cli": 10, "irradiance/cli": 11,
     "python": 12,

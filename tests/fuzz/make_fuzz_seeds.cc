@@ -1,5 +1,6 @@
 // Writes the fuzzers' seed corpora: make_fuzz_seeds SOURCE_DIR CORPUS_DIR.
 //   CORPUS_DIR/fuzz_assembler    programs/*.vsh and tests/data/disasm/*.vsh
+//   CORPUS_DIR/fuzz_translate    the same sources
 //   CORPUS_DIR/fuzz_bytecode     the same programs assembled (without validation) to bytecode
 //   CORPUS_DIR/fuzz_environment  tiny images, one per layout and format (.hdr .exr .png .tif)
 //   CORPUS_DIR/fuzz_mesh         assimp-testmodels files under 16 KB
@@ -40,7 +41,9 @@ bool WriteProgramSeeds(const fs::path& source_dir, const fs::path& corpus_dir) {
     for (const fs::directory_entry& entry : fs::directory_iterator(folder)) {
       if (entry.path().extension() != ".vsh") continue;
       std::string name = folder.filename().string() + "_" + entry.path().stem().string();
-      fs::copy_file(entry.path(), corpus_dir / "fuzz_assembler" / (name + ".vsh"), fs::copy_options::overwrite_existing);
+      for (const char* target : {"fuzz_assembler", "fuzz_translate"}) {
+        fs::copy_file(entry.path(), corpus_dir / target / (name + ".vsh"), fs::copy_options::overwrite_existing);
+      }
       vs11::AssembleOptions options;
       options.validate = false;
       vs11::AssembleResult assembled = vs11::AssembleFile(entry.path(), options);
@@ -142,7 +145,8 @@ int main(int argc, char** argv) {
   }
   fs::path source_dir = argv[1], corpus_dir = argv[2];
   bool ok = true;
-  for (const char* target : {"fuzz_assembler", "fuzz_bytecode", "fuzz_environment", "fuzz_mesh", "fuzz_mesh_wire", "fuzz_npy"}) {
+  for (const char* target : {"fuzz_assembler", "fuzz_bytecode", "fuzz_environment", "fuzz_mesh", "fuzz_mesh_wire", "fuzz_npy",
+                             "fuzz_translate"}) {
     fs::create_directories(corpus_dir / target);
     fs::path committed = source_dir / "tests" / "fuzz" / "seeds" / target;
     if (fs::is_directory(committed)) {

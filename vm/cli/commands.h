@@ -18,5 +18,6 @@ void AddValidateCommand(CLI::App& app);
 void AddRunCommand(CLI::App& app);
 void AddCountCommand(CLI::App& app);
 void AddVerifyCommand(CLI::App& app);
+void AddTranslateCommand(CLI::App& app);
 
 }  // namespace vs11::cli

@@ -21,7 +21,7 @@ std::string UsageMessage(const CLI::App& app, const CLI::ParseError& error, int 
 }  // namespace
 
 int main(int argc, char** argv) {
-  CLI::App app{"vs11: assemble, validate, run, verify and count Direct3D vs_1_1 vertex shader programs"};
+  CLI::App app{"vs11: assemble, validate, run, verify, count and translate Direct3D vs_1_1 vertex shader programs"};
   app.require_subcommand(1);
   app.set_version_flag("--version", "vs11 0.1.0");
   app.footer("Exit status: 0 success, 1 bad input or a failed check, 2 a usage error.\n\n"
@@ -34,6 +34,7 @@ int main(int argc, char** argv) {
   vs11::cli::AddRunCommand(app);
   vs11::cli::AddCountCommand(app);
   vs11::cli::AddVerifyCommand(app);
+  vs11::cli::AddTranslateCommand(app);
   try {
     auto usage = [&](const CLI::ParseError& e) { return UsageMessage(app, e, argc, argv); };
     if (std::optional<int> status = vs11::cli::ParseCommandLine(app, argc, argv, "vs11", usage)) return *status;

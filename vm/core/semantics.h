@@ -132,10 +132,19 @@ V PartialPrecision(V x) {
   return FloatFromBits(BitsOf(x) & ConstantInt(x, kPartialPrecisionMask));
 }
 
+// A product an instruction computes from its operands: mul, mad, dp3, dp4, the matrices, dst.y and
+// lit's power. One function, so that a rule for such products (issue 20 §3: the legacy
+// 0 * anything = 0) is one change; the transcendental helpers' own multiplications stay plain. A lane
+// type may overload it (the translator names the products it emits, vm/translate/shader_graph.cc).
+template <class V>
+V Product(V a, V b) {
+  return a * b;
+}
+
 template <class V, int kWidth>
 V Dot(const Vec4<V>& a, const Vec4<V>& b) {
-  V sum = a[0] * b[0];
-  for (int i = 1; i < kWidth; ++i) sum = sum + a[i] * b[i];  // left to right, unfused
+  V sum = Product(a[0], b[0]);
+  for (int i = 1; i < kWidth; ++i) sum = sum + Product(a[i], b[i]);  // left to right, unfused
   return sum;
 }
 
@@ -165,10 +174,10 @@ struct SubSemantics {
   template <class V> static V Lane(V a, V b, V) { return a - b; }
 };
 struct MulSemantics {
-  template <class V> static V Lane(V a, V b, V) { return a * b; }
+  template <class V> static V Lane(V a, V b, V) { return Product(a, b); }
 };
 struct MadSemantics {
-  template <class V> static V Lane(V a, V b, V c) { return a * b + c; }  // unfused: -ffp-contract=off
+  template <class V> static V Lane(V a, V b, V c) { return Product(a, b) + c; }  // unfused: -ffp-contract=off
 };
 struct MinSemantics {
   template <class V> static V Lane(V a, V b, V) { return IfThenElse(a < b, a, b); }
@@ -213,14 +222,14 @@ struct LitSemantics {
     const V zero = Constant(a[0], 0.0f), one = Constant(a[0], 1.0f);
     V power = IfThenElse(a[3] < Constant(a[0], kLitMaxPower), a[3], Constant(a[0], kLitMaxPower));
     power = IfThenElse(power > Constant(a[0], -kLitMaxPower), power, Constant(a[0], -kLitMaxPower));
-    V specular = Exp2(power * Log2(a[1]));
+    V specular = Exp2(Product(power, Log2(a[1])));
     auto lit = a[0] > zero;
     return {one, IfThenElse(lit, a[0], zero), IfThenElse(lit, IfThenElse(a[1] > zero, specular, zero), zero), one};
   }
 };
 struct DstSemantics {
   template <class V> static Vec4<V> Vector(const Vec4<V>& a, const Vec4<V>& b) {
-    return {Constant(a[0], 1.0f), a[1] * b[1], a[2], b[3]};
+    return {Constant(a[0], 1.0f), Product(a[1], b[1]), a[2], b[3]};
   }
 };
 struct ExppSemantics {

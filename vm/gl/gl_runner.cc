@@ -1,4 +1,4 @@
-#include "bench/compare_llvmpipe/gl_runner.h"
+#include "vm/gl/gl_runner.h"
 
 #include <EGL/egl.h>
 #include <EGL/eglext.h>
@@ -9,7 +9,7 @@
 
 #include <fmt/format.h>
 
-namespace vs11::bench::llvmpipe {
+namespace vs11::gl {
 namespace {
 
 bool HasExtension(const char* list, const char* name) {
@@ -222,4 +222,4 @@ std::optional<std::vector<float>> TransformFeedbackRun::DrawAndRead(std::string&
   return outputs;
 }
 
-}  // namespace vs11::bench::llvmpipe
+}  // namespace vs11::gl

@@ -8,7 +8,7 @@
 #include <string>
 #include <vector>
 
-namespace vs11::bench::llvmpipe {
+namespace vs11::gl {
 
 // Creates the context and makes it current for the calling thread. llvmpipe is forced through the
 // environment (LIBGL_ALWAYS_SOFTWARE=1, GALLIUM_DRIVER=llvmpipe), which Mesa reads when the display
@@ -52,4 +52,4 @@ class TransformFeedbackRun {
   int output_floats_ = 0;
 };
 
-}  // namespace vs11::bench::llvmpipe
+}  // namespace vs11::gl

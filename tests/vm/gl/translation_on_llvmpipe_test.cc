@@ -1,0 +1,196 @@
+// The translation run by a real driver: Mesa's llvmpipe (EGL surfaceless, OpenGL ES 3.0, transform
+// feedback; vm/gl/gl_runner.h) against the reference engine, on every program of programs/. Each
+// program's differences are printed with the first one, so a run shows what llvmpipe computes
+// differently (README, "vs11 translate").
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <filesystem>
+#include <random>
+#include <set>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+
+#include "irradiance/report/verify.h"
+#include "tests/vm/engines/random_program.h"
+#include "vm/engines/reference_engine.h"
+#include "vm/gl/gl_runner.h"
+#include "vm/translate/translate.h"
+
+namespace vs11 {
+namespace {
+
+namespace fs = std::filesystem;
+using random_program::Bits;
+
+// The outputs captured, in the translation's names; oFog and oPts are one float each.
+struct Captured {
+  int slot;
+  const char* name;
+  int lanes;
+};
+constexpr Captured kCaptured[] = {
+    {static_cast<int>(OutputSlot::kPosition), "vs11_oPos", 4}, {static_cast<int>(OutputSlot::kDiffuse), "oD0", 4},
+    {static_cast<int>(OutputSlot::kSpecular), "oD1", 4},       {static_cast<int>(OutputSlot::kTexCoord0), "oT0", 4},
+    {static_cast<int>(OutputSlot::kTexCoord0) + 1, "oT1", 4},  {static_cast<int>(OutputSlot::kTexCoord0) + 2, "oT2", 4},
+    {static_cast<int>(OutputSlot::kTexCoord0) + 3, "oT3", 4},  {static_cast<int>(OutputSlot::kTexCoord0) + 4, "oT4", 4},
+    {static_cast<int>(OutputSlot::kTexCoord0) + 5, "oT5", 4},  {static_cast<int>(OutputSlot::kTexCoord0) + 6, "oT6", 4},
+    {static_cast<int>(OutputSlot::kTexCoord0) + 7, "oT7", 4},  {static_cast<int>(OutputSlot::kFog), "oFog", 1},
+    {static_cast<int>(OutputSlot::kPointSize), "oPts", 1},
+};
+
+bool ContextReady() {
+  static const bool ready = [] {
+    std::string error;
+    const std::optional<std::string> renderer = gl::CreateLlvmpipeContext(std::nullopt, error);
+    EXPECT_TRUE(renderer) << "no llvmpipe context: " << error;
+    if (renderer) std::printf("[ gl ] renderer: %s\n", renderer->c_str());
+    return renderer.has_value();
+  }();
+  return ready;
+}
+
+struct Outcome {
+  std::string error;         // the GL run failed
+  int lanes = 0;             // compared
+  int differing = 0;         // not bit-identical (NaN against NaN counts as equal)
+  double worst_relative = 0;  // the largest difference over its output's scale (vs11 verify's measure)
+  std::string first;         // the first difference, described
+};
+
+// Runs `program` on llvmpipe and on the reference engine and compares every captured lane. An
+// output's scale is its largest |value| over the vertices and lanes (1 when all are 0), as in
+// vs11 verify; a NaN on one side only is an infinite relative difference.
+Outcome RunOnLlvmpipe(const Program& program, const ConstantBank& bank, const VertexArrays& inputs) {
+  Outcome outcome;
+  translate::TranslateOptions options;
+  options.target = translate::Target::kGlslEs300;  // the context gl_runner creates
+  options.clip = translate::ClipSpace::kD3d;
+  const std::string glsl = translate::TranslateToGlsl(program, options);
+  std::vector<gl::GlAttribute> attributes;
+  for (int reg : inputs.registers()) {
+    gl::GlAttribute attribute;
+    attribute.location = reg;
+    for (std::size_t i = 0; i < inputs.count(); ++i) {
+      for (int c = 0; c < 4; ++c) attribute.data.push_back(inputs.lane(reg, c)[i]);
+    }
+    attributes.push_back(std::move(attribute));
+  }
+  std::vector<float> constants;
+  for (const Vec4f& row : bank.values()) constants.insert(constants.end(), row.begin(), row.end());
+  std::vector<std::string> varyings;
+  int floats = 0;
+  for (const Captured& captured : kCaptured) {
+    varyings.push_back(captured.name);
+    floats += captured.lanes;
+  }
+  std::unique_ptr<gl::TransformFeedbackRun> run =
+      gl::TransformFeedbackRun::Create(glsl, varyings, floats, attributes, constants, outcome.error);
+  if (!run) return outcome;
+  const std::optional<std::vector<float>> got = run->DrawAndRead(outcome.error);
+  if (!got) return outcome;
+
+  VertexArrays expected = MakeOutputArrays(inputs.count(), program);
+  MakeReferenceEngine(program, bank)->Run(inputs, expected);
+  auto want_at = [&](const Captured& captured, int c, std::size_t vertex) {
+    return expected.has(captured.slot) ? expected.lane(captured.slot, c)[vertex] : UnwrittenOutputValue(captured.slot)[c];
+  };
+  int offset = 0;
+  for (const Captured& captured : kCaptured) {
+    double scale = 0;
+    for (std::size_t vertex = 0; vertex < inputs.count(); ++vertex) {
+      for (int c = 0; c < captured.lanes; ++c) {
+        const double want = want_at(captured, c, vertex);
+        if (std::isfinite(want)) scale = std::max(scale, std::fabs(want));
+      }
+    }
+    if (scale == 0) scale = 1;
+    for (std::size_t vertex = 0; vertex < inputs.count(); ++vertex) {
+      for (int c = 0; c < captured.lanes; ++c) {
+        const float want = want_at(captured, c, vertex);
+        const float have = (*got)[vertex * static_cast<std::size_t>(floats) + static_cast<std::size_t>(offset + c)];
+        ++outcome.lanes;
+        if (Bits(want) == Bits(have) || (std::isnan(want) && std::isnan(have))) continue;
+        const double relative = std::isfinite(want) && std::isfinite(have) ? std::fabs(double{have} - want) / scale
+                                                                           : INFINITY;
+        outcome.worst_relative = std::max(outcome.worst_relative, relative);
+        if (outcome.differing++ == 0) {
+          outcome.first = fmt::format("{}.{} of vertex {}: llvmpipe {} (0x{:08X}), reference {} (0x{:08X})", captured.name,
+                                      kLaneLetters[c], vertex, have, Bits(have), want, Bits(want));
+        }
+      }
+    }
+    offset += captured.lanes;
+  }
+  return outcome;
+}
+
+// The program's executable mnemonics, for messages.
+std::string Opcodes(const Program& program) {
+  std::set<std::string> names;
+  for (const Instruction& instruction : program.instructions) {
+    if (instruction.info().is_executable()) names.insert(std::string(instruction.info().mnemonic));
+  }
+  std::string text;
+  for (const std::string& name : names) text += (text.empty() ? "" : " ") + name;
+  return text;
+}
+
+// What an application gives a program: every input lane and constant an ordinary float in [-4, 4].
+VertexArrays OrdinaryInputs(std::size_t count, std::mt19937& rng) {
+  VertexArrays inputs = MakeInputArrays(count, random_program::kInputs);
+  std::uniform_real_distribution<float> value(-4.0f, 4.0f);
+  for (int reg : random_program::kInputs) {
+    for (int c = 0; c < 4; ++c) {
+      for (std::size_t i = 0; i < count; ++i) inputs.lane(reg, c)[i] = value(rng);
+    }
+  }
+  return inputs;
+}
+
+ConstantBank OrdinaryConstants(std::mt19937& rng) {
+  ConstantBank bank;
+  std::uniform_real_distribution<float> value(-4.0f, 4.0f);
+  for (int reg = 0; reg < bank.size(); ++reg) {
+    for (int c = 0; c < 4; ++c) bank[reg][c] = value(rng);
+  }
+  return bank;
+}
+
+// Every program of programs/ on llvmpipe. With ordinary inputs every lane is the reference engine's,
+// bit for bit (the assertion); with the differential tests' special values (denormals, infinities,
+// NaN payloads, signed zeros) the differences are printed, not asserted: llvmpipe flushes denormals,
+// and GLSL ES 3.00 has no `precise` to stop Mesa's rewrites that assume no NaN, no signed zero and
+// reassociable sums (README, "vs11 translate").
+TEST(TranslationOnLlvmpipe, EveryProgramOfProgramsAgreesWithTheReferenceEngine) {
+  ASSERT_TRUE(ContextReady());
+  std::mt19937 rng(2026);
+  random_program::ProgramGenerator special(99);
+  int programs = 0, exact = 0;
+  for (const fs::directory_entry& entry : fs::directory_iterator(fs::path(VS11_SOURCE_DIR) / "programs")) {
+    if (entry.path().extension() != ".vsh") continue;
+    const irradiance::ProgramForVerify loaded = irradiance::LoadProgramForVerify(entry.path());
+    ASSERT_TRUE(loaded.program) << entry.path();
+    const std::string name = entry.path().filename().string();
+    const Outcome ordinary = RunOnLlvmpipe(*loaded.program, OrdinaryConstants(rng), OrdinaryInputs(256, rng));
+    ASSERT_EQ(ordinary.error, "") << name;
+    EXPECT_EQ(ordinary.differing, 0) << name << " (" << Opcodes(*loaded.program) << "): " << ordinary.first;
+    const Outcome specials = RunOnLlvmpipe(*loaded.program, special.Constants(), special.Inputs(256));
+    ASSERT_EQ(specials.error, "") << name;
+    ++programs;
+    exact += ordinary.differing == 0;
+    std::printf("[ gl ] %s: ordinary inputs %d of %d lanes differ (worst %.2g of scale); special values %d differ%s%s\n",
+                name.c_str(), ordinary.differing, ordinary.lanes, ordinary.worst_relative, specials.differing,
+                specials.first.empty() ? "" : ", first: ", specials.first.c_str());
+  }
+  EXPECT_GE(programs, 10) << "programs/ lost its programs";
+  std::printf("[ gl ] %d programs of programs/ on llvmpipe; %d bit-exact on ordinary inputs\n", programs, exact);
+}
+
+}  // namespace
+}  // namespace vs11

@@ -1,0 +1,249 @@
+// vs11 translate (vm/translate): the traced program computes what the reference engine computes, bit
+// for bit, on random programs (the engines' differential generator); every program of programs/ and
+// 300 generated ones translate to GLSL that glslang compiles and links for GLSL 3.30 and GLSL ES
+// 3.00, and to SPIR-V that SPIRV-Tools validates; literals keep their bits; products are named.
+#include <algorithm>
+#include <bit>
+#include <cmath>
+#include <cstdint>
+#include <cstdlib>
+#include <filesystem>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+#include "irradiance/report/verify.h"
+#include "tests/vm/engines/random_program.h"
+#include "vm/asm/assembler.h"
+#include "vm/asm/disassembler.h"
+#include "vm/engines/reference_engine.h"
+#include "vm/translate/glslang_compiler.h"
+#include "vm/translate/shader_graph.h"
+#include "vm/translate/translate.h"
+
+namespace vs11::translate {
+namespace {
+
+namespace fs = std::filesystem;
+using random_program::Bits;
+
+// ---- the graph, evaluated: one C++ IEEE operation per node, as the GLSL statement performs it --------
+
+struct Value {
+  float f = 0.0f;
+  std::int32_t i = 0;
+  bool b = false;
+  Vec4f v{};
+};
+
+std::int32_t Wrap(std::int64_t x) { return static_cast<std::int32_t>(static_cast<std::uint32_t>(x)); }
+
+Value EvaluateNode(const ShaderGraph& graph, const Node& node, const std::vector<Value>& values, const Vec4f* inputs,
+                   const ConstantBank& bank) {
+  auto f = [&](int k) { return values[static_cast<std::size_t>(node.args[static_cast<std::size_t>(k)])].f; };
+  auto i = [&](int k) { return values[static_cast<std::size_t>(node.args[static_cast<std::size_t>(k)])].i; };
+  Value out;
+  switch (node.op) {
+    case NodeOp::kFloatLiteral: out.f = std::bit_cast<float>(node.immediate); break;
+    case NodeOp::kIntLiteral: out.i = static_cast<std::int32_t>(node.immediate); break;
+    case NodeOp::kInput: out.f = inputs[node.immediate / 4][node.immediate % 4]; break;
+    case NodeOp::kConstant: out.f = bank[static_cast<int>(node.immediate / 4)][node.immediate % 4]; break;
+    case NodeOp::kRelativeRow: {
+      const int row = i(0);
+      const auto def = graph.definitions.find(row);
+      if (row >= 0 && row < graph.constant_count) {
+        if (def != graph.definitions.end()) {
+          for (int c = 0; c < 4; ++c) out.v[c] = std::bit_cast<float>(def->second[c]);
+        } else {
+          out.v = bank[row];
+        }
+      }
+      break;
+    }
+    case NodeOp::kComponent: out.f = values[static_cast<std::size_t>(node.args[0])].v[node.immediate]; break;
+    case NodeOp::kAdd: out.f = f(0) + f(1); break;
+    case NodeOp::kSub: out.f = f(0) - f(1); break;
+    case NodeOp::kMul: case NodeOp::kProduct: out.f = f(0) * f(1); break;
+    case NodeOp::kDiv: out.f = f(0) / f(1); break;
+    case NodeOp::kFloor: out.f = std::floor(f(0)); break;
+    case NodeOp::kSqrt: out.f = std::sqrt(f(0)); break;
+    case NodeOp::kAbs: out.f = std::bit_cast<float>(Bits(f(0)) & 0x7FFFFFFFu); break;
+    case NodeOp::kNegate: out.f = std::bit_cast<float>(Bits(f(0)) ^ 0x80000000u); break;
+    case NodeOp::kIsNaN: out.b = (Bits(f(0)) & 0x7FFFFFFFu) > 0x7F800000u; break;
+    case NodeOp::kLess: out.b = f(0) < f(1); break;
+    case NodeOp::kGreater: out.b = f(0) > f(1); break;
+    case NodeOp::kGreaterEqual: out.b = f(0) >= f(1); break;
+    case NodeOp::kEqual: out.b = f(0) == f(1); break;
+    case NodeOp::kSelect: out.f = values[static_cast<std::size_t>(node.args[0])].b ? f(1) : f(2); break;
+    case NodeOp::kBitsOf: out.i = std::bit_cast<std::int32_t>(f(0)); break;
+    case NodeOp::kFloatFromBits: out.f = std::bit_cast<float>(i(0)); break;
+    case NodeOp::kToInt: out.i = static_cast<std::int32_t>(f(0)); break;
+    case NodeOp::kToFloat: out.f = static_cast<float>(i(0)); break;
+    case NodeOp::kIntAdd: out.i = Wrap(std::int64_t{i(0)} + i(1)); break;
+    case NodeOp::kIntSub: out.i = Wrap(std::int64_t{i(0)} - i(1)); break;
+    case NodeOp::kIntAnd: out.i = i(0) & i(1); break;
+    case NodeOp::kIntOr: out.i = i(0) | i(1); break;
+    case NodeOp::kIntGreater: out.b = i(0) > i(1); break;
+    case NodeOp::kShiftLeft: out.i = Wrap(static_cast<std::int64_t>(static_cast<std::uint32_t>(i(0)) << node.immediate)); break;
+    case NodeOp::kShiftRight: out.i = i(0) >> node.immediate; break;
+  }
+  return out;
+}
+
+std::array<Vec4f, kOutputSlotCount> EvaluateGraph(const ShaderGraph& graph, const Vec4f* inputs, const ConstantBank& bank) {
+  std::vector<Value> values;
+  values.reserve(graph.nodes.size());
+  for (const Node& node : graph.nodes) values.push_back(EvaluateNode(graph, node, values, inputs, bank));
+  std::array<Vec4f, kOutputSlotCount> outputs{};
+  for (int slot = 0; slot < kOutputSlotCount; ++slot) {
+    for (int c = 0; c < 4; ++c) outputs[slot][c] = values[static_cast<std::size_t>(graph.outputs[slot][c])].f;
+  }
+  return outputs;
+}
+
+bool SameFloat(float a, float b) { return Bits(a) == Bits(b) || (std::isnan(a) && std::isnan(b)); }
+
+TEST(ShaderGraph, MatchesTheReferenceEngineOnRandomPrograms) {
+  constexpr int kPrograms = 600, kVertices = 8;
+  random_program::ProgramGenerator generator(20261125);
+  for (int k = 0; k < kPrograms; ++k) {
+    const Program program = generator.MakeProgram();
+    const ConstantBank bank = generator.Constants();
+    const VertexArrays inputs = generator.Inputs(kVertices);
+    VertexArrays expected = MakeOutputArrays(kVertices, program);
+    MakeReferenceEngine(program, bank)->Run(inputs, expected);
+    const ShaderGraph graph = TraceShader(program, bank.size());
+    for (int vertex = 0; vertex < kVertices; ++vertex) {
+      std::array<Vec4f, kInputRegisterCount> vertex_inputs;
+      vertex_inputs.fill(kDefaultInput);
+      for (int reg : inputs.registers()) {
+        for (int c = 0; c < 4; ++c) vertex_inputs[reg][c] = inputs.lane(reg, c)[vertex];
+      }
+      const auto outputs = EvaluateGraph(graph, vertex_inputs.data(), bank);
+      for (int slot = 0; slot < kOutputSlotCount; ++slot) {
+        for (int c = 0; c < 4; ++c) {
+          const float want = expected.has(slot) ? expected.lane(slot, c)[vertex] : UnwrittenOutputValue(slot)[c];
+          ASSERT_TRUE(SameFloat(outputs[slot][c], want))
+              << "program " << k << " vertex " << vertex << " " << OutputSlotName(slot) << "." << kLaneLetters[c]
+              << ": translation " << outputs[slot][c] << ", reference " << want << "\n" << Disassemble(program);
+        }
+      }
+    }
+  }
+}
+
+// ---- the text: compiles for every target -----------------------------------------------------------
+
+constexpr Target kTargets[] = {Target::kGlsl330, Target::kGlslEs300, Target::kSpirv};
+
+// Empty when `program` translates to text glslang compiles and links for every target, and for SPIR-V
+// to words SPIRV-Tools validates; else what failed, with the text.
+std::string CheckTranslations(const Program& program, const std::string& name) {
+  for (Target target : kTargets) {
+    const std::string glsl = TranslateToGlsl(program, {.target = target, .source_name = name});
+    const GlslangResult compiled = CompileWithGlslang(glsl, target);
+    if (!compiled.ok) return std::string(TargetName(target)) + ": " + compiled.log + "\n" + glsl;
+    if (target != Target::kSpirv) continue;
+    if (std::optional<std::string> invalid = ValidateSpirv(compiled.spirv)) return "spirv-val: " + *invalid + "\n" + glsl;
+  }
+  return "";
+}
+
+TEST(Translate, EveryProgramOfProgramsCompilesForEveryTarget) {
+  int checked = 0;
+  for (const fs::directory_entry& entry : fs::directory_iterator(fs::path(VS11_SOURCE_DIR) / "programs")) {
+    if (entry.path().extension() != ".vsh") continue;
+    const irradiance::ProgramForVerify loaded = irradiance::LoadProgramForVerify(entry.path());
+    ASSERT_TRUE(loaded.program) << entry.path() << ": " << loaded.diagnostics.ToString();
+    EXPECT_EQ(CheckTranslations(*loaded.program, entry.path().filename().string()), "") << entry.path();
+    ++checked;
+  }
+  EXPECT_GE(checked, 10) << "programs/ lost its programs";
+}
+
+// 300, or a tenth of VS11_DIFFERENTIAL_PROGRAMS where CI's sanitizer stage scales the random-program
+// tests down (each program costs about 8 ms here, three compiles and a validation).
+int GeneratedProgramCount() {
+  const char* scaled = std::getenv("VS11_DIFFERENTIAL_PROGRAMS");
+  return scaled != nullptr ? std::max(1, std::atoi(scaled) / 10) : 300;
+}
+
+TEST(Translate, GeneratedProgramsCompileForEveryTarget) {
+  const int kPrograms = GeneratedProgramCount();
+  random_program::ProgramGenerator generator(7);
+  for (int k = 0; k < kPrograms; ++k) {
+    const Program program = generator.MakeProgram();
+    ASSERT_EQ(CheckTranslations(program, "generated"), "") << "generated program " << k << ":\n" << Disassemble(program);
+  }
+}
+
+TranslateOptions Options(Target target, ClipSpace clip = ClipSpace::kTargetApi, int constant_count = kDefaultConstantCount) {
+  TranslateOptions options;
+  options.target = target;
+  options.clip = clip;
+  options.constant_count = constant_count;
+  return options;
+}
+
+Program Assemble(const std::string& text) {
+  AssembleOptions options;
+  options.require_position = false;
+  AssembleResult result = AssembleSource(text, "test.vsh", options);
+  EXPECT_TRUE(result.program) << result.diagnostics.ToString();
+  return result.program ? *result.program : Program{};
+}
+
+TEST(Translate, DefLiteralsAndSpecialValuesKeepTheirBits) {
+  // -0 and a NaN with a payload survive only as bits; rcp of 0 is FLT_MAX (0x7F7FFFFF), exactly.
+  Program program = Assemble("vs.1.1\ndef c3, -0, 1, 0.1, 0\nadd oD0, v0, c3\nrcp oT0, v1.x\n");
+  program.instructions[0].def_bits[3] = 0x7FC12345u;
+  const std::string glsl = TranslateToGlsl(program, {});
+  for (const char* bits : {"0x80000000u", "0x3DCCCCCDu", "0x7FC12345u", "0x7F7FFFFFu"}) {
+    EXPECT_NE(glsl.find(std::string("uintBitsToFloat(") + bits + ")"), std::string::npos) << bits << "\n" << glsl;
+  }
+  EXPECT_EQ(glsl.find("c[3]"), std::string::npos) << "a def wins over the bank\n" << glsl;
+}
+
+TEST(Translate, RelativeReadsSeeDefsAndTheBankEdge) {
+  const std::string glsl = TranslateToGlsl(
+      Assemble("vs_1_1\ndcl_position v0\ndef c5, 1, 2, 3, 4\nmov a0.x, v0.x\nmov oPos, c[a0.x + 2]\n"),
+      Options(Target::kGlsl330, ClipSpace::kTargetApi, 100));
+  EXPECT_NE(glsl.find("if (i < 0 || i >= 100) return vec4(0.0);"), std::string::npos) << glsl;
+  EXPECT_NE(glsl.find("if (i == 5) return vec4(uintBitsToFloat(0x3F800000u)"), std::string::npos) << glsl;
+  EXPECT_NE(glsl.find("uniform vec4 c[100];"), std::string::npos) << glsl;
+  EXPECT_NE(glsl.find("layout(location = 0) in vec4 v0;  // dcl_position"), std::string::npos) << glsl;
+}
+
+int CountProducts(const std::string& source) {
+  const ShaderGraph graph = TraceShader(Assemble("vs.1.1\n" + source), kDefaultConstantCount);
+  const std::vector<bool> live = LiveNodes(graph);
+  int products = 0;
+  for (std::size_t n = 0; n < graph.nodes.size(); ++n) products += live[n] && graph.nodes[n].op == NodeOp::kProduct;
+  return products;
+}
+
+// Every product of an instruction's operands is one kind of node, written by one function of the
+// writer: where issue 20's legacy rule (0 * anything = 0) goes. exp's polynomial is not such a product.
+TEST(Translate, InstructionProductsAreNamedAsSuch) {
+  EXPECT_EQ(CountProducts("mul oD0, v0, c1\n"), 4);
+  EXPECT_EQ(CountProducts("mad oD0, v0, c1, v0\n"), 4);
+  EXPECT_EQ(CountProducts("dp3 oD0, v0, c1\n"), 3);
+  EXPECT_EQ(CountProducts("dp4 oD0, v0, c1\n"), 4);
+  EXPECT_EQ(CountProducts("m4x4 oD0, v0, c0\n"), 16);
+  EXPECT_EQ(CountProducts("m3x2 oD0.xy, v0, c0\n"), 6);
+  EXPECT_EQ(CountProducts("dst oD0, v0, c1\n"), 1);
+  EXPECT_EQ(CountProducts("lit oD0, v0\n"), 1);
+  EXPECT_EQ(CountProducts("exp oD0, v0.x\n"), 0);
+}
+
+TEST(Translate, ClipSpaceConversions) {
+  const Program program = Assemble("vs.1.1\nmov oPos, v0\n");
+  EXPECT_NE(TranslateToGlsl(program, {}).find("gl_Position = vec4(vs11_oPos.xy, 2.0 * vs11_oPos.z - vs11_oPos.w"),
+            std::string::npos);
+  EXPECT_NE(TranslateToGlsl(program, Options(Target::kGlsl330, ClipSpace::kD3d)).find("gl_Position = vs11_oPos;"), std::string::npos);
+  EXPECT_NE(TranslateToGlsl(program, Options(Target::kSpirv)).find("-vs11_oPos.y"), std::string::npos);
+}
+
+}  // namespace
+}  // namespace vs11::translate

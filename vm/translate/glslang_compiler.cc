@@ -1,0 +1,74 @@
+#include "vm/translate/glslang_compiler.h"
+
+#include <mutex>
+
+#include <glslang/Public/ResourceLimits.h>
+#include <glslang/Public/ShaderLang.h>
+#include <glslang/SPIRV/GlslangToSpv.h>
+#include <spirv-tools/libspirv.hpp>
+
+namespace vs11::translate {
+namespace {
+
+// glslang keeps process-wide tables that InitializeProcess builds once; it is never finalised, since
+// another thread may be compiling.
+void InitializeGlslangOnce() {
+  static std::once_flag once;
+  std::call_once(once, [] { glslang::InitializeProcess(); });
+}
+
+constexpr int kDefaultGlslVersion = 100;  // used only by a text without #version, which we never write
+
+}  // namespace
+
+GlslangResult CompileWithGlslang(const std::string& glsl, Target target) {
+  InitializeGlslangOnce();
+  GlslangResult result;
+  glslang::TShader shader(EShLangVertex);
+  const char* text = glsl.c_str();
+  const char* name = "translation";
+  shader.setStringsWithLengthsAndNames(&text, nullptr, &name, 1);
+  auto messages = static_cast<EShMessages>(EShMsgDefault);
+  if (target == Target::kSpirv) {
+    shader.setEnvInput(glslang::EShSourceGlsl, EShLangVertex, glslang::EShClientVulkan, 100);
+    shader.setEnvClient(glslang::EShClientVulkan, glslang::EShTargetVulkan_1_0);
+    shader.setEnvTarget(glslang::EShTargetSpv, glslang::EShTargetSpv_1_0);
+    // Debug info keeps the source (with its interface comment) and the variables' names in the binary.
+    messages = static_cast<EShMessages>(EShMsgSpvRules | EShMsgVulkanRules | EShMsgDebugInfo);
+  }
+  if (!shader.parse(GetDefaultResources(), kDefaultGlslVersion, false, messages)) {
+    result.log = std::string(shader.getInfoLog()) + shader.getInfoDebugLog();
+    return result;
+  }
+  glslang::TProgram program;
+  program.addShader(&shader);
+  if (!program.link(messages)) {
+    result.log = std::string(program.getInfoLog()) + program.getInfoDebugLog();
+    return result;
+  }
+  if (target == Target::kSpirv) {
+    glslang::SpvOptions options;
+    options.generateDebugInfo = true;
+    options.validate = false;  // ValidateSpirv does it, with SPIRV-Tools' own messages
+    spv::SpvBuildLogger logger;
+    glslang::GlslangToSpv(*program.getIntermediate(EShLangVertex), result.spirv, &logger, &options);
+    if (result.spirv.empty()) {
+      result.log = logger.getAllMessages();
+      return result;
+    }
+  }
+  result.ok = true;
+  return result;
+}
+
+std::optional<std::string> ValidateSpirv(const std::vector<std::uint32_t>& words) {
+  spvtools::SpirvTools tools(SPV_ENV_VULKAN_1_0);
+  std::string messages;
+  tools.SetMessageConsumer([&](spv_message_level_t, const char*, const spv_position_t& position, const char* message) {
+    messages += "word " + std::to_string(position.index) + ": " + message + "\n";
+  });
+  if (tools.Validate(words)) return std::nullopt;
+  return messages.empty() ? std::string("invalid SPIR-V") : messages;
+}
+
+}  // namespace vs11::translate

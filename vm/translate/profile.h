@@ -1,0 +1,53 @@
+// The targets of `vs11 translate`, one file each behind this interface (as MojoShader's profiles):
+// profile_glsl330.cc, profile_glsles300.cc, profile_spirv.cc. The shader body is the same GLSL for
+// every target (glsl_writer.cc); a profile supplies only what its dialect spells differently and
+// what it makes of the finished text.
+#pragma once
+
+#include <cstdint>
+#include <memory>
+#include <optional>
+#include <string>
+#include <string_view>
+#include <vector>
+
+namespace vs11::translate {
+
+enum class Target { kGlsl330, kGlslEs300, kSpirv };
+std::optional<Target> TargetFromName(std::string_view name);  // "glsl330" | "glsles300" | "spirv"
+std::string_view TargetName(Target target);
+
+// What a profile makes of the GLSL: the text itself, or a binary compiled from it.
+struct Artifact {
+  std::vector<std::uint8_t> bytes;
+  bool binary = false;
+  std::string error;  // set when the text could not be turned into the target (a translator bug)
+};
+
+class Profile {
+ public:
+  virtual ~Profile() = default;
+  virtual Target target() const = 0;
+  // `#version` and default precisions.
+  virtual std::string Header() const = 0;
+  // The declaration of the constant bank, holding `c[count]`.
+  virtual std::string ConstantBank(int count) const = 0;
+  // What precedes `out` in the declaration of the output at `location`: its layout where the dialect
+  // matches outputs by location, and `precise` where the dialect has it, which reaches every
+  // operation the output depends on (no fused multiply-add, no reordering).
+  virtual std::string OutputQualifiers(int location) const = 0;
+  // Sentences for the interface comment: how outputs are matched; whether the driver may contract.
+  virtual std::string_view OutputMatching() const = 0;
+  virtual std::string_view Contraction() const = 0;
+  virtual Artifact Finish(const std::string& glsl) const = 0;
+};
+
+std::unique_ptr<Profile> MakeGlsl330Profile();
+std::unique_ptr<Profile> MakeGlslEs300Profile();
+std::unique_ptr<Profile> MakeSpirvProfile();
+std::unique_ptr<Profile> MakeProfile(Target target);
+
+// The text as it is (the GLSL targets' Finish).
+Artifact TextArtifact(const std::string& glsl);
+
+}  // namespace vs11::translate

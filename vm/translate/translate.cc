@@ -1,0 +1,296 @@
+// The GLSL writer every target shares: the traced program (shader_graph.h) as one scalar statement
+// per operation, the interface around it, and the dialect's parts from the target's Profile.
+#include "vm/translate/translate.h"
+
+#include <bit>
+#include <cstring>
+#include <limits>
+
+#include <fmt/format.h>
+
+#include "vm/asm/disassembler.h"
+#include "vm/translate/shader_graph.h"
+
+namespace vs11::translate {
+namespace {
+
+// Output locations, in the order of the interface comment: vs11_oPos, oD0, oD1, oT0..oT7, oFog, oPts.
+struct OutputVariable {
+  int slot;
+  std::string name;
+  bool scalar;  // oFog, oPts: lane x only
+  int location;
+};
+
+std::vector<OutputVariable> OutputVariables() {
+  std::vector<OutputVariable> variables = {{static_cast<int>(OutputSlot::kPosition), "vs11_oPos", false, 0}};
+  int location = 1;
+  for (int slot = static_cast<int>(OutputSlot::kDiffuse); slot < kOutputSlotCount; ++slot) {
+    variables.push_back({slot, OutputSlotName(slot), false, location++});
+  }
+  variables.push_back({static_cast<int>(OutputSlot::kFog), "oFog", true, location++});
+  variables.push_back({static_cast<int>(OutputSlot::kPointSize), "oPts", true, location++});
+  return variables;
+}
+
+// Every float literal through its bits, so that the GLSL compiler's decimal parsing cannot change it.
+std::string FloatLiteralName(std::uint32_t bits) { return fmt::format("f{:08X}", bits); }
+std::string FloatFromBitsText(std::uint32_t bits) { return fmt::format("uintBitsToFloat(0x{:08X}u)", bits); }
+std::string IntLiteralText(std::uint32_t bits) {
+  const auto value = static_cast<std::int32_t>(bits);
+  if (value == std::numeric_limits<std::int32_t>::min()) return "int(0x80000000u)";
+  return std::to_string(value);
+}
+std::string FloatComment(std::uint32_t bits) {
+  return fmt::format("{}", std::bit_cast<float>(bits));
+}
+
+constexpr std::string_view kLaneSuffix = "xyzw";
+
+// Helpers, emitted when a node needs them. Bit operations rather than abs(), -x and isnan(): GLSL
+// does not promise what those do with the sign of a NaN or -0, nor that isnan() sees NaNs at all.
+constexpr std::string_view kAbsHelper =
+    "float vs11_abs(float x) { return intBitsToFloat(floatBitsToInt(x) & 0x7FFFFFFF); }\n";
+constexpr std::string_view kNegateHelper =
+    "float vs11_neg(float x) { return intBitsToFloat(floatBitsToInt(x) ^ int(0x80000000u)); }\n";
+constexpr std::string_view kIsNaNHelper =
+    "bool vs11_isnan(float x) { return (floatBitsToInt(x) & 0x7FFFFFFF) > 0x7F800000; }\n";
+
+class Writer {
+ public:
+  Writer(const Program& program, const ShaderGraph& graph, const Profile& profile, const TranslateOptions& options)
+      : program_(program), graph_(graph), profile_(profile), options_(options), live_(LiveNodes(graph)) {}
+
+  std::string Write() {
+    std::string body = Body();
+    // GLSL ES wants #version before anything else, comments included: the interface comes second.
+    std::string text = profile_.Header();
+    text += InterfaceComment();
+    text += Declarations();
+    text += Helpers();
+    text += body;
+    return text;
+  }
+
+ private:
+  // The one place a product of an instruction's operands is written (semantics::Product): a float
+  // rule for products (issue 20 §3, legacy 0 * anything = 0) changes this function only.
+  static std::string EmitProduct(const std::string& a, const std::string& b) { return a + " * " + b; }
+
+  std::string Ref(int id) const {
+    const Node& node = graph_.nodes[static_cast<std::size_t>(id)];
+    switch (node.op) {
+      case NodeOp::kFloatLiteral: return FloatLiteralName(node.immediate);
+      case NodeOp::kIntLiteral: return IntLiteralText(node.immediate);
+      case NodeOp::kInput: return fmt::format("v{}.{}", node.immediate / 4, kLaneSuffix[node.immediate % 4]);
+      case NodeOp::kConstant: return fmt::format("c[{}].{}", node.immediate / 4, kLaneSuffix[node.immediate % 4]);
+      case NodeOp::kComponent: return fmt::format("{}.{}", Ref(node.args[0]), kLaneSuffix[node.immediate]);
+      default: return fmt::format("t{}", id);
+    }
+  }
+
+  std::string Expression(const Node& node) {
+    auto arg = [&](int i) { return Ref(node.args[static_cast<std::size_t>(i)]); };
+    switch (node.op) {
+      case NodeOp::kRelativeRow: return fmt::format("vs11_c_rel({})", arg(0));
+      case NodeOp::kAdd: case NodeOp::kIntAdd: return arg(0) + " + " + arg(1);
+      case NodeOp::kSub: case NodeOp::kIntSub: return arg(0) + " - " + arg(1);
+      case NodeOp::kMul: return arg(0) + " * " + arg(1);
+      case NodeOp::kProduct: return EmitProduct(arg(0), arg(1));
+      case NodeOp::kDiv: return arg(0) + " / " + arg(1);
+      case NodeOp::kFloor: return fmt::format("floor({})", arg(0));
+      case NodeOp::kSqrt: return fmt::format("sqrt({})", arg(0));
+      case NodeOp::kAbs: uses_abs_ = true; return fmt::format("vs11_abs({})", arg(0));
+      case NodeOp::kNegate: uses_negate_ = true; return fmt::format("vs11_neg({})", arg(0));
+      case NodeOp::kIsNaN: uses_isnan_ = true; return fmt::format("vs11_isnan({})", arg(0));
+      case NodeOp::kLess: return arg(0) + " < " + arg(1);
+      case NodeOp::kGreater: case NodeOp::kIntGreater: return arg(0) + " > " + arg(1);
+      case NodeOp::kGreaterEqual: return arg(0) + " >= " + arg(1);
+      case NodeOp::kEqual: return arg(0) + " == " + arg(1);
+      case NodeOp::kSelect: return fmt::format("{} ? {} : {}", arg(0), arg(1), arg(2));
+      case NodeOp::kBitsOf: return fmt::format("floatBitsToInt({})", arg(0));
+      case NodeOp::kFloatFromBits: return fmt::format("intBitsToFloat({})", arg(0));
+      case NodeOp::kToInt: return fmt::format("int({})", arg(0));
+      case NodeOp::kToFloat: return fmt::format("float({})", arg(0));
+      case NodeOp::kIntAnd: return arg(0) + " & " + arg(1);
+      case NodeOp::kIntOr: return arg(0) + " | " + arg(1);
+      case NodeOp::kShiftLeft: return fmt::format("{} << {}", arg(0), node.immediate);
+      case NodeOp::kShiftRight: return fmt::format("{} >> {}", arg(0), node.immediate);
+      default: return Ref(static_cast<int>(&node - graph_.nodes.data()));
+    }
+  }
+
+  static bool IsInline(NodeOp op) {
+    return op == NodeOp::kFloatLiteral || op == NodeOp::kIntLiteral || op == NodeOp::kInput ||
+           op == NodeOp::kConstant || op == NodeOp::kComponent;
+  }
+
+  static std::string_view TypeName(ValueType type) {
+    switch (type) {
+      case ValueType::kFloat: return "float";
+      case ValueType::kInt: return "int";
+      case ValueType::kBool: return "bool";
+      case ValueType::kVec4: return "vec4";
+    }
+    return "float";
+  }
+
+  // main(): the float literals, then each instruction's statements under its text, then the outputs.
+  std::string Body() {
+    std::string text = "void main() {\n";
+    for (std::size_t n = 0; n < graph_.nodes.size(); ++n) {
+      const Node& node = graph_.nodes[n];
+      if (live_[n] && node.op == NodeOp::kFloatLiteral) {
+        text += fmt::format("  float {} = {};  // {}\n", FloatLiteralName(node.immediate), FloatFromBitsText(node.immediate),
+                            FloatComment(node.immediate));
+      }
+    }
+    const Syntax syntax = SyntaxOf(program_);
+    std::size_t next = 0;
+    for (int i = -1; i < static_cast<int>(program_.instructions.size()); ++i) {
+      if (i >= 0 && program_.instructions[static_cast<std::size_t>(i)].info().is_executable()) {
+        text += fmt::format("  // {}\n", FormatInstruction(program_.instructions[static_cast<std::size_t>(i)], syntax));
+      }
+      for (; next < graph_.nodes.size() && graph_.nodes[next].instruction == i; ++next) {
+        const Node& node = graph_.nodes[next];
+        if (!live_[next] || IsInline(node.op)) continue;
+        if (node.op == NodeOp::kRelativeRow) uses_relative_ = true;
+        text += fmt::format("  {} t{} = {};\n", TypeName(node.type), next, Expression(node));
+      }
+    }
+    text += "  // outputs (unwritten lanes hold vs11's values)\n";
+    for (const OutputVariable& output : OutputVariables()) {
+      const auto& lanes = graph_.outputs[static_cast<std::size_t>(output.slot)];
+      if (output.scalar) {
+        text += fmt::format("  {} = {};\n", output.name, Ref(lanes[0]));
+      } else {
+        text += fmt::format("  {} = vec4({}, {}, {}, {});\n", output.name, Ref(lanes[0]), Ref(lanes[1]), Ref(lanes[2]),
+                            Ref(lanes[3]));
+      }
+    }
+    text += "  gl_Position = " + ClipConversion() + ";\n";
+    if (graph_.written[static_cast<int>(OutputSlot::kPointSize)].bits() != 0) text += "  gl_PointSize = oPts;\n";
+    text += "}\n";
+    return text;
+  }
+
+  ClipSpace EffectiveClip() const {
+    if (options_.clip != ClipSpace::kTargetApi) return options_.clip;
+    return profile_.target() == Target::kSpirv ? ClipSpace::kVulkan : ClipSpace::kGl;
+  }
+
+  std::string ClipConversion() const {
+    switch (EffectiveClip()) {
+      case ClipSpace::kGl: return "vec4(vs11_oPos.xy, 2.0 * vs11_oPos.z - vs11_oPos.w, vs11_oPos.w)";
+      case ClipSpace::kVulkan: return "vec4(vs11_oPos.x, -vs11_oPos.y, vs11_oPos.zw)";
+      default: return "vs11_oPos";
+    }
+  }
+
+  std::string_view ClipDescription() const {
+    switch (EffectiveClip()) {
+      case ClipSpace::kGl:
+        return "GL's clip space: z' = 2z - w (D3D's depth range [0, w] to GL's [-w, w]); x, y, w as written\n"
+               "//             (+y is up in both; D3D's viewport puts row 0 at the top, GL's at the bottom)";
+      case ClipSpace::kVulkan:
+        return "Vulkan's clip space: y' = -y (Vulkan's +y points down the viewport, D3D's up); x, z, w as\n"
+               "//             written (both use the depth range [0, w])";
+      default: return "D3D's clip space as written (--clip d3d)";
+    }
+  }
+
+  std::string InterfaceComment() const {
+    std::string text = fmt::format(
+        "// vs_1_1 program {} translated by vs11 for {}.\n"
+        "// Interface:\n"
+        "//   vN        layout(location = N) in vec4 vN; attributes not supplied read (0, 0, 0, 1)\n"
+        "//   c0..c{}   the constant bank, vec4 c[{}] (--max-constants); def constants are applied here and win over\n"
+        "//             the bank, under relative addressing too; c[a0.x + n] outside the bank reads (0, 0, 0, 0)\n"
+        "//   oPos      vs11_oPos (out vec4, the value the program wrote) and gl_Position in\n"
+        "//             {}\n"
+        "//   oD0 oD1 oT0..oT7  out vec4 of those names; oFog oPts: out float (oPts also to gl_PointSize when written)\n"
+        "//   unwritten outputs hold what vs11's engines give: oD0 (1, 1, 1, 1), oD1 (0, 0, 0, 1), all else 0\n"
+        "//   {}\n"
+        "// Arithmetic: the operations of vs11's engines in their order, each IEEE single precision, so every\n"
+        "// result is bit-exact where the driver rounds division and sqrt correctly and keeps NaNs and denormals;\n"
+        "// GLSL only promises 2.5 ULP for x / y and 1 / inversesqrt()'s bound for sqrt, which rcp, rsq and the\n"
+        "// log2 reduction of log, logp and lit use. Everything else is exact by construction.\n"
+        "//   Contraction: {}\n",
+        options_.source_name.empty() ? "(unnamed)" : options_.source_name, TargetName(profile_.target()),
+        options_.constant_count - 1, options_.constant_count, ClipDescription(), profile_.OutputMatching(), profile_.Contraction());
+    return text;
+  }
+
+  std::string Declarations() const {
+    std::string text;
+    std::vector<std::string> usages(kInputRegisterCount);
+    for (const Instruction& instruction : program_.instructions) {
+      if (instruction.opcode != Opcode::kDcl || instruction.dest.reg.index < 0 ||
+          instruction.dest.reg.index >= kInputRegisterCount || instruction.usage < 0 ||
+          instruction.usage >= static_cast<int>(kDeclUsageNames.size())) {
+        continue;
+      }
+      usages[static_cast<std::size_t>(instruction.dest.reg.index)] =
+          fmt::format("  // dcl_{}{}", kDeclUsageNames[static_cast<std::size_t>(instruction.usage)],
+                      instruction.usage_index == 0 ? std::string() : std::to_string(instruction.usage_index));
+    }
+    for (int reg = 0; reg < kInputRegisterCount; ++reg) {
+      if (graph_.inputs_read[static_cast<std::size_t>(reg)] || !usages[static_cast<std::size_t>(reg)].empty()) {
+        text += fmt::format("layout(location = {}) in vec4 v{};{}\n", reg, reg, usages[static_cast<std::size_t>(reg)]);
+      }
+    }
+    text += profile_.ConstantBank(options_.constant_count);
+    for (const OutputVariable& output : OutputVariables()) {
+      text += fmt::format("{}out {} {};\n", profile_.OutputQualifiers(output.location), output.scalar ? "float" : "vec4",
+                          output.name);
+    }
+    return text;
+  }
+
+  std::string Helpers() const {
+    std::string text;
+    if (uses_abs_) text += kAbsHelper;
+    if (uses_negate_) text += kNegateHelper;
+    if (uses_isnan_) text += kIsNaNHelper;
+    if (uses_relative_) {
+      text += fmt::format(
+          "// c[i] as vs11's engines read it: outside the bank (0, 0, 0, 0), a def constant over the bank.\n"
+          "vec4 vs11_c_rel(int i) {{\n  if (i < 0 || i >= {}) return vec4(0.0);\n",
+          options_.constant_count);
+      for (const auto& [reg, bits] : graph_.definitions) {
+        text += fmt::format("  if (i == {}) return vec4({}, {}, {}, {});\n", reg, FloatFromBitsText(bits[0]),
+                            FloatFromBitsText(bits[1]), FloatFromBitsText(bits[2]), FloatFromBitsText(bits[3]));
+      }
+      text += "  return c[i];\n}\n";
+    }
+    return text;
+  }
+
+  const Program& program_;
+  const ShaderGraph& graph_;
+  const Profile& profile_;
+  const TranslateOptions& options_;
+  std::vector<bool> live_;
+  bool uses_abs_ = false, uses_negate_ = false, uses_isnan_ = false, uses_relative_ = false;
+};
+
+}  // namespace
+
+std::optional<ClipSpace> ClipSpaceFromName(std::string_view name) {
+  if (name == "d3d") return ClipSpace::kD3d;
+  if (name == "gl") return ClipSpace::kGl;
+  if (name == "vulkan") return ClipSpace::kVulkan;
+  return std::nullopt;
+}
+
+std::string TranslateToGlsl(const Program& program, const TranslateOptions& options) {
+  const ShaderGraph graph = TraceShader(program, options.constant_count);
+  const std::unique_ptr<Profile> profile = MakeProfile(options.target);
+  return Writer(program, graph, *profile, options).Write();
+}
+
+Artifact Translate(const Program& program, const TranslateOptions& options) {
+  return MakeProfile(options.target)->Finish(TranslateToGlsl(program, options));
+}
+
+}  // namespace vs11::translate
