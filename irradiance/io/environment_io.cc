@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdint>
 #include <exception>
+#include <memory>
 #include <mutex>
 #include <numbers>
 #include <random>
@@ -274,100 +275,153 @@ std::optional<std::string> CheckCompressionRatio(const OIIO::ImageInput& input, 
       ratio);
 }
 
-// `expected`: the layout the image must fit, checked on the header's size before the pixels are
-// read, so that a small file claiming a huge image of a useless shape allocates nothing; nullopt
-// for any shape (ReadImage). A DDS cube map is always accepted (it is read as a vertical strip).
-ImageReadResult ReadImageUnchecked(const fs::path& path, std::optional<Layout> expected) {
+// The environment-map rules for a DDS file, beyond the container's own (dds_reader.h): a cube map
+// has six square faces.
+std::optional<std::string> DdsEnvironmentProblem(const DdsFileHeader& header) {
+  if (!header.is_cube_map) return std::nullopt;
+  if (header.width != header.height) {
+    return fmt::format("DDS cube map faces are {} x {} pixels: faces must be square", header.width,
+                       header.height);
+  }
+  if (header.faces != kCubeFaceCount) {
+    return fmt::format("DDS cube map has {} of the six faces (cube map flags {:#x}), all six are "
+                       "needed",
+                       header.faces, header.cube_face_flags);
+  }
+  return std::nullopt;
+}
+
+// The file being read: its path and, when it could be found, its size.
+struct ImageFile {
+  fs::path path;
+  std::optional<std::uintmax_t> size;
+};
+
+// Whether `path` names a non-empty regular file; fills `file`.
+std::optional<std::string> CheckIsFile(const fs::path& path, ImageFile& file) {
+  file.path = path;
   std::error_code ec;
   const fs::file_status status = fs::status(path, ec);
-  if (ec || !fs::exists(status))
-    return ReadFailure(fmt::format("{}: file not found", path.string()));
-  if (!fs::is_regular_file(status)) {
-    return ReadFailure(fmt::format("{}: not a regular file", path.string()));
-  }
-  const std::uintmax_t file_size = fs::file_size(path, ec);
-  if (file_size == 0 && !ec) return ReadFailure(fmt::format("{}: file is empty", path.string()));
+  if (ec || !fs::exists(status)) return "file not found";
+  if (!fs::is_regular_file(status)) return "not a regular file";
+  const std::uintmax_t size = fs::file_size(path, ec);
+  if (!ec) file.size = size;
+  if (size == 0 && !ec) return "file is empty";
+  return std::nullopt;
+}
 
-  DdsReadResult dds = ReadDds(path, kMaxImagePixels);
-  switch (dds.outcome) {
+// A DDS file, before OpenImageIO sees it: read here (`read`), refused (`error`), or left to
+// OpenImageIO, with a cube map's faces stacked into one plain image in memory (dds_reader.h).
+struct DdsStage {
+  std::optional<Image> read;
+  std::optional<std::string> error;
+  bool is_cube_map = false;
+  std::vector<unsigned char> stacked_faces;
+};
+
+DdsStage ReadDdsStage(const fs::path& path) {
+  DdsStage stage;
+  const DdsFileHeaderResult header = ReadDdsHeader(path, kMaxImagePixels);
+  if (header.outcome == DdsFileHeaderResult::Outcome::kNotDds) return stage;
+  if (header.outcome == DdsFileHeaderResult::Outcome::kError) {
+    stage.error = header.error;
+    return stage;
+  }
+  if ((stage.error = DdsEnvironmentProblem(header.header))) return stage;
+  stage.is_cube_map = header.header.is_cube_map;
+  DdsReadResult pixels = ReadDdsPixels(path, header.header);
+  switch (pixels.outcome) {
     case DdsReadResult::Outcome::kError:
-      return ReadFailure(fmt::format("{}: {}", path.string(), dds.error));
-    case DdsReadResult::Outcome::kRead: {
-      ImageReadResult result;
-      result.image = std::move(dds.image);
-      result.is_dds_cube_map = dds.is_cube_map;
-      return result;
-    }
-    case DdsReadResult::Outcome::kNotDds:
+      stage.error = std::move(pixels.error);
+      break;
+    case DdsReadResult::Outcome::kRead:
+      stage.read = std::move(pixels.image);
+      break;
     case DdsReadResult::Outcome::kLeaveToOpenImageIo:
+      stage.stacked_faces = std::move(pixels.stacked_faces);
       break;
   }
+  return stage;
+}
 
-  // A DDS cube map whose faces stack is read as one plain image from memory (dds_reader.h).
-  std::optional<OIIO::Filesystem::IOMemReader> stacked_faces;
+// An OpenImageIO reader, and the memory it reads in place of the file, which must outlive it.
+struct OpenedImage {
+  std::unique_ptr<OIIO::Filesystem::IOMemReader> memory;
+  std::unique_ptr<OIIO::ImageInput> input;
+  OIIO::ImageSpec spec;
+  bool read_by_faces = false;  // a DDS cube map OpenImageIO serves face by face
+  bool dds_cube_map = false;   // read_by_faces, or stacked faces read as one image
+};
+
+std::optional<std::string> OpenImage(const ImageFile& file, const DdsStage& dds, OpenedImage& opened) {
   OIIO::ImageSpec open_config;
   if (!dds.stacked_faces.empty()) {
-    stacked_faces.emplace(dds.stacked_faces.data(), dds.stacked_faces.size());
-    void* proxy = &*stacked_faces;
+    opened.memory = std::make_unique<OIIO::Filesystem::IOMemReader>(
+        const_cast<unsigned char*>(dds.stacked_faces.data()), dds.stacked_faces.size());
+    void* proxy = opened.memory.get();
     open_config.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy);
   }
-  auto input = OIIO::ImageInput::open(path.string(), stacked_faces ? &open_config : nullptr);
-  if (!input) {
+  opened.input = OIIO::ImageInput::open(file.path.string(), opened.memory ? &open_config : nullptr);
+  if (!opened.input) {
     const std::string oiio_error = OiioMessage(OIIO::geterror());
-    if (!IsKnownImageExtension(path)) {
-      return ReadFailure(
-          fmt::format("{}: unsupported image format ({})", path.string(), oiio_error));
+    if (!IsKnownImageExtension(file.path)) {
+      return fmt::format("unsupported image format ({})", oiio_error);
     }
-    return ReadFailure(fmt::format(
-        "{}: cannot read: corrupt or truncated file, or a variant OpenImageIO does not read ({})",
-        path.string(), oiio_error));
+    return fmt::format(
+        "cannot read: corrupt or truncated file, or a variant OpenImageIO does not read ({})",
+        oiio_error);
   }
-  const OIIO::ImageSpec spec = input->spec();
+  opened.spec = opened.input->spec();
+  opened.read_by_faces =
+      Lower(opened.input->format_name()) == "dds" &&
+      std::string(opened.spec.get_string_attribute("textureformat")) == kCubeTextureFormat;
+  opened.dds_cube_map = opened.read_by_faces || (opened.memory && dds.is_cube_map);
+  return std::nullopt;
+}
+
+// The checks on OpenImageIO's header before any pixel is read: the size, the layout `expected`
+// (when set), truncation and the compression ratio, a DDS cube map's faces.
+std::optional<std::string> CheckOpenedHeader(const ImageFile& file, const OpenedImage& opened,
+                                             std::optional<Layout> expected) {
+  const OIIO::ImageSpec& spec = opened.spec;
   if (spec.width <= 0 || spec.height <= 0 || spec.depth != 1 || spec.nchannels <= 0) {
-    return ReadFailure(fmt::format("{}: zero-size image ({} x {} pixels, {} channels)",
-                                   path.string(), spec.width, spec.height, spec.nchannels));
+    return fmt::format("zero-size image ({} x {} pixels, {} channels)", spec.width, spec.height,
+                       spec.nchannels);
   }
   const std::size_t pixel_count = static_cast<std::size_t>(spec.width) * spec.height;
   if (spec.width > static_cast<int>(kMaxImagePixels) || pixel_count > kMaxImagePixels) {
-    return ReadFailure(
-        fmt::format("{}: image of {} x {} pixels is larger than the {} pixels accepted",
-                    path.string(), spec.width, spec.height, kMaxImagePixels));
+    return fmt::format("image of {} x {} pixels is larger than the {} pixels accepted", spec.width,
+                       spec.height, kMaxImagePixels);
   }
-  const bool read_by_faces = Lower(input->format_name()) == "dds" &&
-                             std::string(spec.get_string_attribute("textureformat")) == kCubeTextureFormat;
-  const bool dds_cube_map = read_by_faces || (stacked_faces && dds.is_cube_map);
-  if (expected && !dds_cube_map) {
+  if (expected && !opened.dds_cube_map) {
     if (std::optional<std::string> error = CheckLayoutSize(*expected, spec.width, spec.height)) {
-      return ReadFailure(fmt::format("{}: {}", path.string(), *error));
+      return error;
     }
   }
-  if (const std::optional<std::uint64_t> needed = UncompressedPixelBytes(*input, spec);
-      needed && !ec && file_size < *needed) {
-    return ReadFailure(fmt::format(
-        "{}: truncated file: {} bytes, but the {} x {} uncompressed pixels its header declares "
-        "take {}",
-        path.string(), file_size, spec.width, spec.height, *needed));
+  const std::optional<std::uint64_t> needed = UncompressedPixelBytes(*opened.input, spec);
+  if (needed && file.size && *file.size < *needed) {
+    return fmt::format(
+        "truncated file: {} bytes, but the {} x {} uncompressed pixels its header declares take {}",
+        *file.size, spec.width, spec.height, *needed);
   }
-
-  if (!ec && !UncompressedPixelBytes(*input, spec)) {
-    if (std::optional<std::string> error = CheckCompressionRatio(*input, spec, file_size)) {
-      return ReadFailure(fmt::format("{}: {}", path.string(), *error));
+  if (file.size && !needed) {
+    if (std::optional<std::string> error = CheckCompressionRatio(*opened.input, spec, *file.size)) {
+      return error;
     }
   }
-
-  ImageReadResult result;
-  if (read_by_faces) {
+  if (opened.read_by_faces) {
     const std::string sides(spec.get_string_attribute("dds:CubeMapSides"));
     if (sides != kAllDdsCubeSides || spec.height != 6 * spec.width) {
-      return ReadFailure(
-          fmt::format("{}: DDS cube map has faces \"{}\", all six (\"{}\") are needed",
-                      path.string(), sides, kAllDdsCubeSides));
+      return fmt::format("DDS cube map has faces \"{}\", all six (\"{}\") are needed", sides,
+                         kAllDdsCubeSides);
     }
   }
-  result.is_dds_cube_map = dds_cube_map;
+  return std::nullopt;
+}
 
-  const int channels = std::min(spec.nchannels, 3);
-  std::vector<float> data(pixel_count * channels);
+// Reads the first `channels` channels of every pixel as float into `data`.
+std::optional<std::string> ReadPixels(OpenedImage& opened, int channels, std::vector<float>& data) {
+  data.resize(static_cast<std::size_t>(opened.spec.width) * opened.spec.height * channels);
   // OpenImageIO 2.4's DDS reader serves a cube map's faces as tiles and remembers which face its
   // buffer holds in function-level statics (DDSInput::read_native_tile's lastx/lasty/lastz), shared
   // by every reader in the process: two cube maps read at once hand each other's face numbers over
@@ -376,22 +430,25 @@ ImageReadResult ReadImageUnchecked(const fs::path& path, std::optional<Layout> e
   // faces one at a time. Every other reader keeps its state in its own object
   // (environment_concurrency_test.cc reads every format from 4 threads).
   std::unique_lock<std::mutex> dds_cube_read;
-  if (read_by_faces) dds_cube_read = std::unique_lock(DdsCubeReadMutex());
+  if (opened.read_by_faces) dds_cube_read = std::unique_lock(DdsCubeReadMutex());
   // Some readers (TIFF, DDS, BMP) return true for a short file and only record the error.
-  if (!input->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, data.data()) ||
-      input->has_error()) {
-    return ReadFailure(fmt::format("{}: cannot read pixels, corrupt or truncated file ({})",
-                                   path.string(), OiioMessage(input->geterror())));
+  if (!opened.input->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, data.data()) ||
+      opened.input->has_error()) {
+    return fmt::format("cannot read pixels, corrupt or truncated file ({})",
+                       OiioMessage(opened.input->geterror()));
   }
-  input->close();
-  if (dds_cube_read.owns_lock()) dds_cube_read.unlock();
+  opened.input->close();
+  return std::nullopt;
+}
 
-  // Integer data holds sRGB-encoded values unless the reader says it is linear.
+// The pixels as linear RGB: integer data holds sRGB-encoded values unless the reader says it is
+// linear; one- and two-channel images replicate their first channel.
+Image ToLinearRgb(const OIIO::ImageSpec& spec, int channels, const std::vector<float>& data) {
   const bool decode_srgb =
       !IsFloatType(spec.format) &&
       Lower(std::string(spec.get_string_attribute("oiio:ColorSpace"))) != "linear";
   Image image(spec.width, spec.height);
-  for (std::size_t i = 0; i < pixel_count; ++i) {
+  for (std::size_t i = 0; i < image.pixels.size(); ++i) {
     glm::vec3 rgb;
     for (int c = 0; c < 3; ++c) {
       float value = data[i * channels + (channels == 3 ? c : 0)];
@@ -400,7 +457,36 @@ ImageReadResult ReadImageUnchecked(const fs::path& path, std::optional<Layout> e
     }
     image.pixels[i] = rgb;
   }
-  result.image = std::move(image);
+  return image;
+}
+
+// `expected`: the layout the image must fit, checked on the header's size before the pixels are
+// read, so that a small file claiming a huge image of a useless shape allocates nothing; nullopt
+// for any shape (ReadImage). A DDS cube map is always accepted (it is read as a vertical strip).
+ImageReadResult ReadImageUnchecked(const fs::path& path, std::optional<Layout> expected) {
+  const auto failure = [&](std::string_view message) {
+    return ReadFailure(fmt::format("{}: {}", path.string(), message));
+  };
+  ImageFile file;
+  if (std::optional<std::string> error = CheckIsFile(path, file)) return failure(*error);
+  DdsStage dds = ReadDdsStage(path);
+  if (dds.error) return failure(*dds.error);
+  ImageReadResult result;
+  result.is_dds_cube_map = dds.is_cube_map;
+  if (dds.read) {
+    result.image = std::move(dds.read);
+    return result;
+  }
+  OpenedImage opened;
+  if (std::optional<std::string> error = OpenImage(file, dds, opened)) return failure(*error);
+  if (std::optional<std::string> error = CheckOpenedHeader(file, opened, expected)) {
+    return failure(*error);
+  }
+  const int channels = std::min(opened.spec.nchannels, 3);
+  std::vector<float> data;
+  if (std::optional<std::string> error = ReadPixels(opened, channels, data)) return failure(*error);
+  result.is_dds_cube_map = opened.dds_cube_map;
+  result.image = ToLinearRgb(opened.spec, channels, data);
   return result;
 }
 
