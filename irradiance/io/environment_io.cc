@@ -518,8 +518,6 @@ std::optional<std::string> WriteCubeMap(const CubeMap& cube, const std::filesyst
   }
 }
 
-bool IsPowerOfTwo(int n) { return n > 0 && std::has_single_bit(static_cast<unsigned>(n)); }
-
 std::optional<std::string> CheckFaceSizeOption(std::string_view option, int face_size, int max_size) {
   if (IsPowerOfTwo(face_size) && face_size <= max_size) return std::nullopt;
   return fmt::format("{} {} must be a power of two from 1 to {} (the mip pyramid halves it down to 1x1)", option,
