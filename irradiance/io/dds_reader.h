@@ -23,8 +23,8 @@
 // order +x -x +y -y +z -z (a vertical strip), each face top row first as stored.
 #pragma once
 
-#include <cstddef>
 #include <array>
+#include <cstddef>
 #include <cstdint>
 #include <filesystem>
 #include <optional>
@@ -47,6 +47,9 @@ struct DdsFormat {
   int channels;  // stored channels, for kFloat32 and kHalf
 };
 
+// The magic (4 bytes), DDS_HEADER (124) and DDS_HEADER_DXT10 (20).
+inline constexpr std::size_t kDdsMaxHeaderBytes = 4 + 124 + 20;
+
 // What a DDS header says, once it has been read and checked against the container's own rules
 // (ReadDdsHeader). Whether the image makes an environment map (a cube map with six square faces)
 // is the caller's question: `is_cube_map` and `faces` say what the file holds.
@@ -56,14 +59,14 @@ struct DdsFileHeader {
   bool is_cube_map = false;  // flagged as a cube map, in the DX10 or the legacy header
   std::uint64_t faces = 1;   // images stored: 1, or the cube faces flagged (0 to 6)
   std::uint32_t cube_face_flags = 0;  // the legacy caps2 face bits (DDSCAPS2_CUBEMAP_POSITIVEX ..)
-  bool volume_or_array = false;  // only in a format OpenImageIO decodes, which reports on it
+  bool volume_or_array = false;  // accepted only in a format OpenImageIO decodes (it reports on it)
   std::optional<DdsFormat> format;  // nullopt: a format whose size is not known here
   std::uint64_t mip_count = 1;
   std::uint64_t data_offset = 0;   // where the first face's level 0 starts
   std::uint64_t chain_bytes = 0;   // one face's whole mip chain: the distance between faces
   std::uint64_t level0_bytes = 0;  // one face's level 0
   // The magic, DDS_HEADER and, if present, DDS_HEADER_DXT10, as stored (data_offset bytes).
-  std::array<unsigned char, 148> raw{};
+  std::array<unsigned char, kDdsMaxHeaderBytes> raw{};
 };
 
 struct DdsFileHeaderResult {
