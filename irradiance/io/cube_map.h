@@ -17,6 +17,7 @@
 #pragma once
 
 #include <array>
+#include <bit>
 #include <cstddef>
 #include <string_view>
 #include <vector>
@@ -27,6 +28,9 @@ namespace vs11::irradiance {
 
 enum class CubeFace : int { kPositiveX = 0, kNegativeX, kPositiveY, kNegativeY, kPositiveZ, kNegativeZ };
 inline constexpr int kCubeFaceCount = 6;
+
+// Whether `n` is a power of two (1, 2, 4, ...): the face sizes a mip pyramid halves down to 1x1.
+constexpr bool IsPowerOfTwo(int n) { return n > 0 && std::has_single_bit(static_cast<unsigned>(n)); }
 inline constexpr std::array<CubeFace, kCubeFaceCount> kAllCubeFaces = {
     CubeFace::kPositiveX, CubeFace::kNegativeX, CubeFace::kPositiveY,
     CubeFace::kNegativeY, CubeFace::kPositiveZ, CubeFace::kNegativeZ};

@@ -66,15 +66,8 @@ constexpr std::uint32_t FourCc(const char (&code)[5]) {
          static_cast<std::uint32_t>(static_cast<unsigned char>(code[3])) << 24;
 }
 
-// How texels are stored: uncompressed with `bytes` per pixel, or in 4 x 4 blocks of `bytes`.
-enum class Decoder { kOpenImageIo, kFloat32, kHalf, kR11G11B10, kRgb9e5 };
-struct Format {
-  std::string_view name;
-  int bytes;
-  bool block_compressed;
-  Decoder decoder;
-  int channels;  // stored channels, for kFloat32 and kHalf
-};
+using Decoder = DdsDecoder;
+using Format = DdsFormat;
 
 struct DxgiFormat {
   std::uint32_t code;
@@ -134,6 +127,7 @@ constexpr std::array<FourCcFormat, 9> kFourCcFormats = {{
 
 // The raw header: magic, DDS_HEADER and, if present, DDS_HEADER_DXT10.
 using Header = std::array<unsigned char, kDx10DataOffset>;
+static_assert(std::tuple_size_v<decltype(DdsFileHeader::raw)> == kDx10DataOffset);
 
 std::uint32_t Word(const Header& header, std::size_t at) {
   std::uint32_t value = 0;
@@ -144,6 +138,13 @@ std::uint32_t Word(const Header& header, std::size_t at) {
 DdsReadResult Error(std::string message) {
   DdsReadResult result;
   result.outcome = DdsReadResult::Outcome::kError;
+  result.error = std::move(message);
+  return result;
+}
+
+DdsFileHeaderResult HeaderError(std::string message) {
+  DdsFileHeaderResult result;
+  result.outcome = DdsFileHeaderResult::Outcome::kError;
   result.error = std::move(message);
   return result;
 }
@@ -277,87 +278,54 @@ std::vector<unsigned char> StackedFacesFile(const Header& header, std::size_t da
   return out;
 }
 
-}  // namespace
+// The fields of a DX10 or legacy header that say what the file holds.
+struct HeaderFacts {
+  bool dx10 = false;
+  bool dx10_cube = false;    // flagged in the DX10 misc flags
+  bool legacy_cube = false;  // flagged in the legacy caps2
+  std::uint32_t caps2 = 0;
+  std::uint64_t array_size = 1;
+  bool volume = false;
+};
 
-DdsReadResult ReadDds(const fs::path& path, std::size_t max_pixels) {
-  std::error_code ec;
-  const std::uintmax_t file_size = fs::file_size(path, ec);
-  if (ec) return Error(fmt::format("cannot read the file size ({})", ec.message()));
-  std::ifstream file(path, std::ios::binary);
-  Header header{};
-  file.read(reinterpret_cast<char*>(header.data()), 4);
-  if (!file || Word(header, 0) != kMagic) return {};  // not a DDS file: kNotDds
-  file.read(reinterpret_cast<char*>(header.data()) + 4, kLegacyDataOffset - 4);
-  if (!file) {
-    return Error(fmt::format("truncated DDS file: {} bytes, shorter than its {}-byte header",
-                             file_size, kLegacyDataOffset));
-  }
-  if (Word(header, 4) != kHeaderSize) {
-    return Error(fmt::format("corrupt DDS header: header size {}, not {}", Word(header, 4),
-                             kHeaderSize));
-  }
-
-  const bool dx10 = (Word(header, kPixelFormatFlagsAt) & kPixelFormatFourCc) != 0 &&
-                    Word(header, kFourCcAt) == FourCc("DX10");
-  std::size_t data_offset = kLegacyDataOffset;
-  if (dx10) {
-    file.read(reinterpret_cast<char*>(header.data()) + kLegacyDataOffset,
-              kDx10DataOffset - kLegacyDataOffset);
-    if (!file) {
-      return Error(fmt::format("truncated DDS file: {} bytes, shorter than its {}-byte header",
-                               file_size, kDx10DataOffset));
-    }
-    data_offset = kDx10DataOffset;
-  }
-
-  const std::uint64_t width = Word(header, kWidthAt);
-  const std::uint64_t height = Word(header, kHeightAt);
-  const std::uint32_t caps2 = Word(header, kCaps2At);
+HeaderFacts ReadFacts(const Header& header, DdsFileHeader& out) {
+  HeaderFacts facts;
+  facts.dx10 = (Word(header, kPixelFormatFlagsAt) & kPixelFormatFourCc) != 0 &&
+               Word(header, kFourCcAt) == FourCc("DX10");
+  out.data_offset = facts.dx10 ? kDx10DataOffset : kLegacyDataOffset;
+  out.width = Word(header, kWidthAt);
+  out.height = Word(header, kHeightAt);
+  facts.caps2 = Word(header, kCaps2At);
   // A DX10 header flags a cube map in its misc flags; writers set the legacy caps2 bits as well,
   // and OpenImageIO only looks at those.
-  const bool dx10_cube = dx10 && (Word(header, kMiscFlagAt) & kMiscTextureCube) != 0;
-  const bool legacy_cube = (caps2 & kCaps2Cubemap) != 0;
-  const bool is_cube = dx10_cube || legacy_cube;
-  const std::uint64_t faces =
-      !is_cube    ? 1
-      : dx10_cube ? 6
-                  : static_cast<std::uint64_t>(std::popcount(caps2 & kCaps2AllFaces));
-  const std::uint64_t array_size = dx10 ? Word(header, kArraySizeAt) : 1;
+  facts.dx10_cube = facts.dx10 && (Word(header, kMiscFlagAt) & kMiscTextureCube) != 0;
+  facts.legacy_cube = (facts.caps2 & kCaps2Cubemap) != 0;
+  out.is_cube_map = facts.dx10_cube || facts.legacy_cube;
+  out.faces = !out.is_cube_map ? 1
+              : facts.dx10_cube
+                  ? 6
+                  : static_cast<std::uint64_t>(std::popcount(facts.caps2 & kCaps2AllFaces));
+  facts.array_size = facts.dx10 ? Word(header, kArraySizeAt) : 1;
   const bool has_depth = (Word(header, kFlagsAt) & kFlagDepth) != 0 && Word(header, kDepthAt) > 1;
-  const bool volume = dx10 ? Word(header, kResourceDimensionAt) != kDimensionTexture2D
-                           : (caps2 & kCaps2Volume) != 0 || has_depth;
-  if (width == 0 || height == 0) {
-    return Error(fmt::format("zero-size image ({} x {} pixels in the DDS header)", width, height));
-  }
-  if (width * height > max_pixels || width * height * faces > max_pixels) {
-    return Error(fmt::format(
-        "image of {} x {} pixels ({} face(s)) is larger than the {} pixels accepted", width,
-        height, faces, max_pixels));
-  }
-  if (array_size == 0) return Error("corrupt DDS header: DX10 array size 0");
-  if (is_cube && width != height) {
-    return Error(fmt::format("DDS cube map faces are {} x {} pixels: faces must be square", width,
-                             height));
-  }
-  // DirectXTex's reading: a mip count of 0 means 1. More levels than down to 1 x 1 is corrupt.
-  const std::uint64_t mip_count = std::max<std::uint32_t>(Word(header, kMipCountAt), 1);
-  const auto full_chain = static_cast<std::uint64_t>(std::bit_width(std::max(width, height)));
-  if (mip_count > full_chain) {
-    return Error(fmt::format("corrupt DDS header: {} mip levels for a {} x {} image (at most {})",
-                             mip_count, width, height, full_chain));
-  }
-  if (is_cube && faces != 6) {
-    return Error(fmt::format("DDS cube map has {} of the six faces (cube map flags {:#x}), all six "
-                             "are needed",
-                             faces, caps2 & kCaps2AllFaces));
-  }
+  facts.volume = facts.dx10 ? Word(header, kResourceDimensionAt) != kDimensionTexture2D
+                            : (facts.caps2 & kCaps2Volume) != 0 || has_depth;
+  out.cube_face_flags = facts.caps2 & kCaps2AllFaces;
+  out.volume_or_array = facts.volume || facts.array_size > 1;
+  return facts;
+}
 
-  // The format, if its size is known here.
+// The pixel format, if its size is known here (nullopt: left to OpenImageIO unchecked), or the
+// reason it is refused.
+struct FormatLookup {
   std::optional<Format> format;
+  std::optional<std::string> refused;
+};
+FormatLookup FindFormat(const Header& header, bool dx10) {
+  FormatLookup lookup;
   if (dx10) {
     const std::uint32_t code = Word(header, kDxgiFormatAt);
     for (const DxgiFormat& entry : kDxgiFormats) {
-      if (entry.code == code) format = entry.format;
+      if (entry.code == code) lookup.format = entry.format;
     }
   } else if (Word(header, kPixelFormatFlagsAt) & kPixelFormatFourCc) {
     const std::uint32_t code = Word(header, kFourCcAt);
@@ -365,73 +333,162 @@ DdsReadResult ReadDds(const fs::path& path, std::size_t max_pixels) {
       // OpenImageIO 2.4.7 undoes their premultiplied alpha by dividing by it, and a texel whose
       // alpha is 0 ends the process with SIGFPE. Nobody stores radiance premultiplied; DXT3 and
       // DXT5 hold the same blocks without the premultiplication.
-      return Error(fmt::format("premultiplied-alpha DDS ({}) is not read: store the environment as "
-                               "DXT3/DXT5 (BC2/BC3) or another format",
-                               code == FourCc("DXT2") ? "DXT2" : "DXT4"));
+      lookup.refused = fmt::format(
+          "premultiplied-alpha DDS ({}) is not read: store the environment as DXT3/DXT5 (BC2/BC3) "
+          "or another format",
+          code == FourCc("DXT2") ? "DXT2" : "DXT4");
     }
     for (const FourCcFormat& entry : kFourCcFormats) {
-      if (entry.code == code) format = entry.format;
+      if (entry.code == code) lookup.format = entry.format;
     }
   } else {
-    if (const std::optional<std::string> problem = MaskedFormatProblem(header)) {
-      return Error(*problem);
-    }
-    format = Format{"uncompressed", static_cast<int>(Word(header, kBitCountAt) / 8), false,
-                    Decoder::kOpenImageIo, 0};
+    lookup.refused = MaskedFormatProblem(header);
+    lookup.format = Format{"uncompressed", static_cast<int>(Word(header, kBitCountAt) / 8), false,
+                           Decoder::kOpenImageIo, 0};
   }
-  const bool decode_here = format && format->decoder != Decoder::kOpenImageIo;
-  if (!format || ((volume || array_size > 1) && !decode_here)) return LeaveToOpenImageIo();
-  if (volume) return Error("a DDS volume texture is not an environment map");
-  if (array_size > 1) {
-    return Error(fmt::format("DDS texture arrays ({} elements) are not read, only single images "
-                             "and single cube maps",
-                             array_size));
-  }
+  return lookup;
+}
 
-  // Every face holds its whole mip chain; the last face's level 0 must be in the file.
-  std::uint64_t chain_bytes = 0;
-  for (std::uint64_t level = 0; level < mip_count; ++level) {
-    chain_bytes += LevelBytes(*format, std::max<std::uint64_t>(width >> level, 1),
-                              std::max<std::uint64_t>(height >> level, 1));
+// The checks on the image's size and mip chain, from the header alone.
+std::optional<std::string> SizeProblem(const DdsFileHeader& h, const HeaderFacts& facts,
+                                       std::size_t max_pixels) {
+  if (h.width == 0 || h.height == 0) {
+    return fmt::format("zero-size image ({} x {} pixels in the DDS header)", h.width, h.height);
   }
-  const std::uint64_t level0_bytes = LevelBytes(*format, width, height);
-  const std::uint64_t needed = data_offset + (faces - 1) * chain_bytes + level0_bytes;
-  if (file_size < needed) {
-    return Error(fmt::format(
-        "truncated DDS file: {} bytes, but its header ({} x {} {}, {} face(s), {} mip level(s)) "
-        "needs at least {}",
-        file_size, width, height, format->name, faces, mip_count, needed));
+  if (h.width * h.height > max_pixels || h.width * h.height * h.faces > max_pixels) {
+    return fmt::format("image of {} x {} pixels ({} face(s)) is larger than the {} pixels accepted",
+                       h.width, h.height, h.faces, max_pixels);
   }
-  if (!decode_here) {
-    if (dx10_cube && (!legacy_cube || (caps2 & kCaps2AllFaces) != kCaps2AllFaces)) {
-      return Error(fmt::format(
-          "DX10 cube map without the DDSCAPS2 cube map flags (caps2 {:#x}): OpenImageIO, which "
-          "decodes {}, would read one face only",
-          caps2, format->name));
-    }
-    DdsReadResult result = LeaveToOpenImageIo();
-    const bool faces_stack = !format->block_compressed || width % kBlockSide == 0;
-    if (is_cube && faces_stack && faces * height <= kMaxPlainImageSide) {
-      result.is_cube_map = true;
-      result.stacked_faces = StackedFacesFile(header, data_offset, file, chain_bytes, level0_bytes);
-      if (result.stacked_faces.empty()) return Error("cannot read the pixels: the file shrank or cannot be read");
-    }
-    return result;
+  if (facts.array_size == 0) return "corrupt DDS header: DX10 array size 0";
+  // DirectXTex's reading: a mip count of 0 means 1. More levels than down to 1 x 1 is corrupt.
+  const auto full_chain = static_cast<std::uint64_t>(std::bit_width(std::max(h.width, h.height)));
+  if (h.mip_count > full_chain) {
+    return fmt::format("corrupt DDS header: {} mip levels for a {} x {} image (at most {})",
+                       h.mip_count, h.width, h.height, full_chain);
   }
+  return std::nullopt;
+}
 
+// Every face holds its whole mip chain; the last face's level 0 must be in the file.
+std::optional<std::string> TruncationProblem(DdsFileHeader& h, std::uint64_t file_size) {
+  h.chain_bytes = 0;
+  for (std::uint64_t level = 0; level < h.mip_count; ++level) {
+    h.chain_bytes += LevelBytes(*h.format, std::max<std::uint64_t>(h.width >> level, 1),
+                                std::max<std::uint64_t>(h.height >> level, 1));
+  }
+  h.level0_bytes = LevelBytes(*h.format, h.width, h.height);
+  // A cube map flagging no face stores nothing; it is the caller's to refuse (as having 0 faces).
+  const std::uint64_t faces = std::max<std::uint64_t>(h.faces, 1);
+  const std::uint64_t needed = h.data_offset + (faces - 1) * h.chain_bytes + h.level0_bytes;
+  if (file_size >= needed) return std::nullopt;
+  return fmt::format(
+      "truncated DDS file: {} bytes, but its header ({} x {} {}, {} face(s), {} mip level(s)) "
+      "needs at least {}",
+      file_size, h.width, h.height, h.format->name, h.faces, h.mip_count, needed);
+}
+
+// Reads the magic and the headers into `raw`; kHeader when they are all there.
+DdsFileHeaderResult ReadRawHeader(std::ifstream& file, std::uintmax_t file_size, Header& raw) {
+  file.read(reinterpret_cast<char*>(raw.data()), 4);
+  if (!file || Word(raw, 0) != kMagic) return {};  // not a DDS file: kNotDds
+  file.read(reinterpret_cast<char*>(raw.data()) + 4, kLegacyDataOffset - 4);
+  if (!file) {
+    return HeaderError(fmt::format("truncated DDS file: {} bytes, shorter than its {}-byte header",
+                                   file_size, kLegacyDataOffset));
+  }
+  if (Word(raw, 4) != kHeaderSize) {
+    return HeaderError(
+        fmt::format("corrupt DDS header: header size {}, not {}", Word(raw, 4), kHeaderSize));
+  }
+  const bool dx10 = (Word(raw, kPixelFormatFlagsAt) & kPixelFormatFourCc) != 0 &&
+                    Word(raw, kFourCcAt) == FourCc("DX10");
+  if (dx10) {
+    file.read(reinterpret_cast<char*>(raw.data()) + kLegacyDataOffset,
+              kDx10DataOffset - kLegacyDataOffset);
+    if (!file) {
+      return HeaderError(fmt::format(
+          "truncated DDS file: {} bytes, shorter than its {}-byte header", file_size, kDx10DataOffset));
+    }
+  }
+  DdsFileHeaderResult result;
+  result.outcome = DdsFileHeaderResult::Outcome::kHeader;
+  return result;
+}
+
+// Level 0 of each face, decoded here.
+DdsReadResult DecodeFaces(const DdsFileHeader& header, std::ifstream& file) {
   DdsReadResult result;
   result.outcome = DdsReadResult::Outcome::kRead;
-  result.is_cube_map = is_cube;
-  const int w = static_cast<int>(width);
-  const int h = static_cast<int>(height);
-  result.image = Image(w, h * static_cast<int>(faces));
-  std::vector<unsigned char> level0(level0_bytes);
+  const int w = static_cast<int>(header.width);
+  const int h = static_cast<int>(header.height);
+  result.image = Image(w, h * static_cast<int>(header.faces));
+  std::vector<unsigned char> level0(header.level0_bytes);
   const std::size_t face_pixels = static_cast<std::size_t>(w) * h;
-  for (std::uint64_t face = 0; face < faces; ++face) {
-    file.seekg(static_cast<std::streamoff>(data_offset + face * chain_bytes));
+  for (std::uint64_t face = 0; face < header.faces; ++face) {
+    file.seekg(static_cast<std::streamoff>(header.data_offset + face * header.chain_bytes));
     file.read(reinterpret_cast<char*>(level0.data()), static_cast<std::streamsize>(level0.size()));
     if (!file) return Error("cannot read the pixels: the file shrank or cannot be read");
-    DecodePixels(*format, level0.data(), face_pixels, &result.image.pixels[face * face_pixels]);
+    DecodePixels(*header.format, level0.data(), face_pixels, &result.image.pixels[face * face_pixels]);
+  }
+  return result;
+}
+
+}  // namespace
+
+DdsFileHeaderResult ReadDdsHeader(const fs::path& path, std::size_t max_pixels) {
+  std::error_code ec;
+  const std::uintmax_t file_size = fs::file_size(path, ec);
+  if (ec) return HeaderError(fmt::format("cannot read the file size ({})", ec.message()));
+  std::ifstream file(path, std::ios::binary);
+  Header raw{};
+  DdsFileHeaderResult result = ReadRawHeader(file, file_size, raw);
+  if (result.outcome != DdsFileHeaderResult::Outcome::kHeader) return result;
+  result.header.raw = raw;
+  DdsFileHeader& header = result.header;
+  const HeaderFacts facts = ReadFacts(header.raw, header);
+  header.mip_count = std::max<std::uint32_t>(Word(header.raw, kMipCountAt), 1);
+  if (std::optional<std::string> problem = SizeProblem(header, facts, max_pixels)) {
+    return HeaderError(std::move(*problem));
+  }
+
+  FormatLookup lookup = FindFormat(header.raw, facts.dx10);
+  if (lookup.refused) return HeaderError(std::move(*lookup.refused));
+  header.format = lookup.format;
+  const bool decode_here = header.format && header.format->decoder != Decoder::kOpenImageIo;
+  // OpenImageIO reports on volumes and arrays of the formats it decodes.
+  if (!header.format || (header.volume_or_array && !decode_here)) return result;
+  if (facts.volume) return HeaderError("a DDS volume texture is not an environment map");
+  if (facts.array_size > 1) {
+    return HeaderError(fmt::format("DDS texture arrays ({} elements) are not read, only single "
+                                   "images and single cube maps",
+                                   facts.array_size));
+  }
+  if (std::optional<std::string> problem = TruncationProblem(header, file_size)) {
+    return HeaderError(std::move(*problem));
+  }
+  if (!decode_here && facts.dx10_cube &&
+      (!facts.legacy_cube || (facts.caps2 & kCaps2AllFaces) != kCaps2AllFaces)) {
+    return HeaderError(fmt::format(
+        "DX10 cube map without the DDSCAPS2 cube map flags (caps2 {:#x}): OpenImageIO, which "
+        "decodes {}, would read one face only",
+        facts.caps2, header.format->name));
+  }
+  return result;
+}
+
+DdsReadResult ReadDdsPixels(const fs::path& path, const DdsFileHeader& header) {
+  DdsReadResult result = LeaveToOpenImageIo();
+  if (!header.format || header.volume_or_array) return result;
+  std::ifstream file(path, std::ios::binary);
+  if (header.format->decoder != Decoder::kOpenImageIo) return DecodeFaces(header, file);
+  const bool faces_stack = !header.format->block_compressed || header.width % kBlockSide == 0;
+  if (header.is_cube_map && header.faces == 6 && faces_stack &&
+      header.faces * header.height <= kMaxPlainImageSide) {
+    result.stacked_faces = StackedFacesFile(header.raw, header.data_offset, file, header.chain_bytes,
+                                            header.level0_bytes);
+    if (result.stacked_faces.empty()) {
+      return Error("cannot read the pixels: the file shrank or cannot be read");
+    }
   }
   return result;
 }

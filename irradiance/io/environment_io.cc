@@ -11,16 +11,14 @@
 #include <cmath>
 #include <cstdint>
 #include <exception>
-#include <mutex>
 #include <numbers>
 #include <random>
 #include <system_error>
 #include <utility>
 
-#include <OpenImageIO/filesystem.h>
 #include <OpenImageIO/imageio.h>
 
-#include "irradiance/io/dds_reader.h"
+#include "irradiance/io/image_reader.h"
 #include "vm/core/atomic_file.h"
 
 namespace vs11::irradiance {
@@ -108,26 +106,11 @@ constexpr double kSrgbGamma = 2.4;
 // Size of the exported lat-long (kExportScale N x kExportScale N / 2) and angular maps relative to
 // the face size N: a little finer than the cube's centre texels (pi / (2 N) against 2 / N radians).
 constexpr int kExportScale = 4;
-// What the DDS reader reports for a cube map with every face.
-constexpr std::string_view kCubeTextureFormat = "CubeFace Environment";
-constexpr std::string_view kAllDdsCubeSides = "+x -x +y -y +z -z";
 
 LoadResult Failure(std::string message) {
   LoadResult result;
   result.error = std::move(message);
   return result;
-}
-
-ImageReadResult ReadFailure(std::string message) {
-  ImageReadResult result;
-  result.error = std::move(message);
-  return result;
-}
-
-std::string Lower(std::string text) {
-  std::transform(text.begin(), text.end(), text.begin(),
-                 [](unsigned char c) { return static_cast<char>(std::tolower(c)); });
-  return text;
 }
 
 std::string AcceptedAspectRatios() {
@@ -177,231 +160,8 @@ std::optional<std::string> CheckLayoutSize(Layout layout, int width, int height)
                      info.aspect_rows, width, height);
 }
 
-// ---- Reading -----------------------------------------------------------------------------------
-
-// Held while OpenImageIO reads the pixels of a DDS cube map (see ReadImage): one per process,
-// because the state it protects is OpenImageIO's, which is one per process.
-std::mutex& DdsCubeReadMutex() {
-  static std::mutex mutex;
-  return mutex;
-}
-
-bool IsFloatType(OIIO::TypeDesc type) {
-  return type.basetype == OIIO::TypeDesc::FLOAT || type.basetype == OIIO::TypeDesc::HALF ||
-         type.basetype == OIIO::TypeDesc::DOUBLE;
-}
-
-std::string OiioMessage(std::string message) {
-  while (!message.empty() && (message.back() == '\n' || message.back() == ' ')) message.pop_back();
-  return message.empty() ? std::string("no details from OpenImageIO") : message;
-}
-
-// Whether OpenImageIO has a reader for the extension of `path` ("extension_list" is
-// "openexr:exr,sxr,mxr;tiff:tif,tiff,...").
-bool IsKnownImageExtension(const fs::path& path) {
-  std::string extension = Lower(path.extension().string());
-  if (extension.empty()) return false;
-  extension.erase(0, 1);  // the dot
-  const std::string list = OIIO::get_string_attribute("extension_list");
-  std::size_t begin = 0;
-  while (begin < list.size()) {
-    std::size_t end = list.find_first_of(":,;", begin);
-    if (end == std::string::npos) end = list.size();
-    const std::string_view token(list.data() + begin, end - begin);
-    const bool is_format_name = end < list.size() && list[end] == ':';
-    if (!is_format_name && token == extension) return true;
-    begin = end + 1;
-  }
-  return false;
-}
-
-// The bytes of pixels a file must hold when they are stored uncompressed, as in PFM and in TIFF
-// without compression (one sample of 8 bits or more per channel, no palette); nullopt for other
-// files. Checked before the pixel buffer is allocated: OpenImageIO reads a short uncompressed TIFF
-// without failing, and a tiny file must not make us allocate what its header claims.
-std::optional<std::uint64_t> UncompressedPixelBytes(const OIIO::ImageInput& input,
-                                                    const OIIO::ImageSpec& spec) {
-  const std::string format = Lower(input.format_name());
-  const bool pfm = format == "pnm" && spec.format == OIIO::TypeDesc::FLOAT;
-  constexpr int kPhotometricPalette = 3;
-  const bool raw_tiff =
-      format == "tiff" &&
-      Lower(std::string(spec.get_string_attribute("compression", "none"))) == "none" &&
-      spec.get_int_attribute("oiio:BitsPerSample", 0) >= 8 &&
-      spec.get_int_attribute("tiff:PhotometricInterpretation", 0) < kPhotometricPalette;
-  if (!pfm && !raw_tiff) return std::nullopt;
-  return static_cast<std::uint64_t>(spec.image_bytes(/*native=*/true));
-}
-
-// The largest ratio of pixel data to file size a compressed file may declare, per format. A header
-// of a few bytes can claim an image of up to kMaxImagePixels, and OpenImageIO (and this loader)
-// allocate the whole image before finding the data missing: gigabytes for a 400-byte EXR or PNG.
-// Each bound is about the most that format's coding reaches on a constant image: deflate (PNG;
-// EXR zip, zips, pxr24, piz's Huffman with run lengths stays below it) 1032:1; Radiance HDR's run
-// lengths 127 bytes in 2; EXR rle 128 bytes in 2; EXR b44a 32 bytes in 3; EXR dwaa/dwab run-length
-// code the transformed blocks and deflate them again, 32 x 1032. Other formats get deflate's bound:
-// an image that compresses further (a BMP ending in its end-of-image code) is refused with a message
-// saying so.
-double MaxCompressionRatio(std::string_view format, std::string_view compression) {
-  constexpr double kDeflate = 1032;
-  if (format == "hdr") return 64;
-  if (format == "openexr") {
-    if (compression.starts_with("none")) return 1;
-    if (compression.starts_with("rle")) return 64;
-    if (compression.starts_with("b44")) return 11;
-    if (compression.starts_with("dwa")) return 32 * kDeflate;
-  }
-  return kDeflate;
-}
-
-// Refuses, from the header alone, a compressed file too small for the image it declares (see
-// MaxCompressionRatio). The pixel data is counted low: one channel per pixel, at the file's
-// smallest sample size, so that no image its format can really store is refused.
-std::optional<std::string> CheckCompressionRatio(const OIIO::ImageInput& input, const OIIO::ImageSpec& spec,
-                                                 std::uintmax_t file_size) {
-  const std::string format = Lower(input.format_name());
-  const std::string compression = Lower(std::string(spec.get_string_attribute("compression", "")));
-  int bits_per_sample = spec.get_int_attribute("oiio:BitsPerSample", static_cast<int>(spec.format.size() * 8));
-  if (format == "openexr") bits_per_sample = 16;  // half, the smallest EXR sample
-  if (format == "hdr") bits_per_sample = 8;       // one byte of RGBE
-  const double pixel_bytes = static_cast<double>(spec.width) * spec.height * std::max(bits_per_sample, 1) / 8;
-  const double ratio = MaxCompressionRatio(format, compression);
-  if (pixel_bytes <= ratio * static_cast<double>(file_size)) return std::nullopt;
-  return fmt::format(
-      "corrupt or truncated file: its header declares a {} x {} image, at least {:.0f} bytes of pixels, "
-      "which {} bytes of {}{} cannot hold (more than the {:.0f}:1 this format's compression reaches)",
-      spec.width, spec.height, pixel_bytes, file_size, format, compression.empty() ? "" : " " + compression,
-      ratio);
-}
-
-// `expected`: the layout the image must fit, checked on the header's size before the pixels are
-// read, so that a small file claiming a huge image of a useless shape allocates nothing; nullopt
-// for any shape (ReadImage). A DDS cube map is always accepted (it is read as a vertical strip).
-ImageReadResult ReadImageUnchecked(const fs::path& path, std::optional<Layout> expected) {
-  std::error_code ec;
-  const fs::file_status status = fs::status(path, ec);
-  if (ec || !fs::exists(status))
-    return ReadFailure(fmt::format("{}: file not found", path.string()));
-  if (!fs::is_regular_file(status)) {
-    return ReadFailure(fmt::format("{}: not a regular file", path.string()));
-  }
-  const std::uintmax_t file_size = fs::file_size(path, ec);
-  if (file_size == 0 && !ec) return ReadFailure(fmt::format("{}: file is empty", path.string()));
-
-  DdsReadResult dds = ReadDds(path, kMaxImagePixels);
-  switch (dds.outcome) {
-    case DdsReadResult::Outcome::kError:
-      return ReadFailure(fmt::format("{}: {}", path.string(), dds.error));
-    case DdsReadResult::Outcome::kRead: {
-      ImageReadResult result;
-      result.image = std::move(dds.image);
-      result.is_dds_cube_map = dds.is_cube_map;
-      return result;
-    }
-    case DdsReadResult::Outcome::kNotDds:
-    case DdsReadResult::Outcome::kLeaveToOpenImageIo:
-      break;
-  }
-
-  // A DDS cube map whose faces stack is read as one plain image from memory (dds_reader.h).
-  std::optional<OIIO::Filesystem::IOMemReader> stacked_faces;
-  OIIO::ImageSpec open_config;
-  if (!dds.stacked_faces.empty()) {
-    stacked_faces.emplace(dds.stacked_faces.data(), dds.stacked_faces.size());
-    void* proxy = &*stacked_faces;
-    open_config.attribute("oiio:ioproxy", OIIO::TypeDesc::PTR, &proxy);
-  }
-  auto input = OIIO::ImageInput::open(path.string(), stacked_faces ? &open_config : nullptr);
-  if (!input) {
-    const std::string oiio_error = OiioMessage(OIIO::geterror());
-    if (!IsKnownImageExtension(path)) {
-      return ReadFailure(
-          fmt::format("{}: unsupported image format ({})", path.string(), oiio_error));
-    }
-    return ReadFailure(fmt::format(
-        "{}: cannot read: corrupt or truncated file, or a variant OpenImageIO does not read ({})",
-        path.string(), oiio_error));
-  }
-  const OIIO::ImageSpec spec = input->spec();
-  if (spec.width <= 0 || spec.height <= 0 || spec.depth != 1 || spec.nchannels <= 0) {
-    return ReadFailure(fmt::format("{}: zero-size image ({} x {} pixels, {} channels)",
-                                   path.string(), spec.width, spec.height, spec.nchannels));
-  }
-  const std::size_t pixel_count = static_cast<std::size_t>(spec.width) * spec.height;
-  if (spec.width > static_cast<int>(kMaxImagePixels) || pixel_count > kMaxImagePixels) {
-    return ReadFailure(
-        fmt::format("{}: image of {} x {} pixels is larger than the {} pixels accepted",
-                    path.string(), spec.width, spec.height, kMaxImagePixels));
-  }
-  const bool read_by_faces = Lower(input->format_name()) == "dds" &&
-                             std::string(spec.get_string_attribute("textureformat")) == kCubeTextureFormat;
-  const bool dds_cube_map = read_by_faces || (stacked_faces && dds.is_cube_map);
-  if (expected && !dds_cube_map) {
-    if (std::optional<std::string> error = CheckLayoutSize(*expected, spec.width, spec.height)) {
-      return ReadFailure(fmt::format("{}: {}", path.string(), *error));
-    }
-  }
-  if (const std::optional<std::uint64_t> needed = UncompressedPixelBytes(*input, spec);
-      needed && !ec && file_size < *needed) {
-    return ReadFailure(fmt::format(
-        "{}: truncated file: {} bytes, but the {} x {} uncompressed pixels its header declares "
-        "take {}",
-        path.string(), file_size, spec.width, spec.height, *needed));
-  }
-
-  if (!ec && !UncompressedPixelBytes(*input, spec)) {
-    if (std::optional<std::string> error = CheckCompressionRatio(*input, spec, file_size)) {
-      return ReadFailure(fmt::format("{}: {}", path.string(), *error));
-    }
-  }
-
-  ImageReadResult result;
-  if (read_by_faces) {
-    const std::string sides(spec.get_string_attribute("dds:CubeMapSides"));
-    if (sides != kAllDdsCubeSides || spec.height != 6 * spec.width) {
-      return ReadFailure(
-          fmt::format("{}: DDS cube map has faces \"{}\", all six (\"{}\") are needed",
-                      path.string(), sides, kAllDdsCubeSides));
-    }
-  }
-  result.is_dds_cube_map = dds_cube_map;
-
-  const int channels = std::min(spec.nchannels, 3);
-  std::vector<float> data(pixel_count * channels);
-  // OpenImageIO 2.4's DDS reader serves a cube map's faces as tiles and remembers which face its
-  // buffer holds in function-level statics (DDSInput::read_native_tile's lastx/lasty/lastz), shared
-  // by every reader in the process: two cube maps read at once hand each other's face numbers over
-  // and copy a stale face. Most cube maps are therefore read as stacked faces (above); those whose
-  // faces do not stack (BC faces not a multiple of 4 texels, faces over 5461 texels) are read by
-  // faces one at a time. Every other reader keeps its state in its own object
-  // (environment_concurrency_test.cc reads every format from 4 threads).
-  std::unique_lock<std::mutex> dds_cube_read;
-  if (read_by_faces) dds_cube_read = std::unique_lock(DdsCubeReadMutex());
-  // Some readers (TIFF, DDS, BMP) return true for a short file and only record the error.
-  if (!input->read_image(0, 0, 0, channels, OIIO::TypeDesc::FLOAT, data.data()) ||
-      input->has_error()) {
-    return ReadFailure(fmt::format("{}: cannot read pixels, corrupt or truncated file ({})",
-                                   path.string(), OiioMessage(input->geterror())));
-  }
-  input->close();
-  if (dds_cube_read.owns_lock()) dds_cube_read.unlock();
-
-  // Integer data holds sRGB-encoded values unless the reader says it is linear.
-  const bool decode_srgb =
-      !IsFloatType(spec.format) &&
-      Lower(std::string(spec.get_string_attribute("oiio:ColorSpace"))) != "linear";
-  Image image(spec.width, spec.height);
-  for (std::size_t i = 0; i < pixel_count; ++i) {
-    glm::vec3 rgb;
-    for (int c = 0; c < 3; ++c) {
-      float value = data[i * channels + (channels == 3 ? c : 0)];
-      if (decode_srgb) value = static_cast<float>(SrgbToLinear(value));
-      rgb[c] = value;
-    }
-    image.pixels[i] = rgb;
-  }
-  result.image = std::move(image);
-  return result;
+ImageSizeCheck LayoutSizeCheck(Layout layout) {
+  return [layout](int width, int height) { return CheckLayoutSize(layout, width, height); };
 }
 
 // The pixel of a cross or strip image that holds texel (x, y) of the face in `cell`, faces `size`
@@ -460,7 +220,7 @@ LoadResult LoadFaces(const fs::path& path) {
       return Failure(fmt::format("missing the {} face: neither {} nor {} exists",
                                  CubeFaceName(face), short_name, signed_name));
     }
-    ImageReadResult read = ReadImageUnchecked(name, Layout::kFaces);
+    ImageReadResult read = ReadImageFile(name, LayoutSizeCheck(Layout::kFaces));
     if (!read.ok()) return Failure(fmt::format("{} face: {}", CubeFaceName(face), read.error));
     Image& image = *read.image;
     if (image.width != image.height) {
@@ -489,7 +249,7 @@ LoadResult LoadFaces(const fs::path& path) {
 // ---- Writing -----------------------------------------------------------------------------------
 
 bool HasFloatExtension(const fs::path& path) {
-  const std::string extension = Lower(path.extension().string());
+  const std::string extension = AsciiLower(path.extension().string());
   return std::find(kFloatExtensions.begin(), kFloatExtensions.end(), extension) !=
          kFloatExtensions.end();
 }
@@ -644,9 +404,11 @@ Image CubeMapToImage(const CubeMap& cube, EnvironmentLayout layout) {
 
 ImageReadResult ReadImage(const std::filesystem::path& path) {
   try {
-    return ReadImageUnchecked(path, std::nullopt);
+    return ReadImageFile(path, nullptr);
   } catch (const std::exception& e) {
-    return ReadFailure(fmt::format("{}: {}", path.string(), e.what()));
+    ImageReadResult result;
+    result.error = fmt::format("{}: {}", path.string(), e.what());
+    return result;
   }
 }
 
@@ -693,7 +455,7 @@ LoadResult LoadEnvironment(const std::filesystem::path& path, const LoadOptions&
     if (options.layout == Layout::kFaces || (options.layout == Layout::kAuto && face_pattern)) {
       return LoadFaces(path);
     }
-    ImageReadResult read = ReadImageUnchecked(path, options.layout);
+    ImageReadResult read = ReadImageFile(path, LayoutSizeCheck(options.layout));
     if (!read.ok()) return Failure(std::move(read.error));
     Layout layout = options.layout;
     if (read.is_dds_cube_map) {
@@ -755,8 +517,6 @@ std::optional<std::string> WriteCubeMap(const CubeMap& cube, const std::filesyst
     return fmt::format("{}: {}", pattern, e.what());
   }
 }
-
-bool IsPowerOfTwo(int n) { return n > 0 && std::has_single_bit(static_cast<unsigned>(n)); }
 
 std::optional<std::string> CheckFaceSizeOption(std::string_view option, int face_size, int max_size) {
   if (IsPowerOfTwo(face_size) && face_size <= max_size) return std::nullopt;

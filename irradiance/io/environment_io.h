@@ -90,11 +90,11 @@ inline constexpr std::array<std::string_view, kCubeFaceCount> kSignedFaceFileNam
 
 // Largest face size the lat-long and angular resamplers build (16384^2 x 6 texels is 19 GB).
 inline constexpr int kMaxFaceSize = 16384;
-// The face-size rules, each stated once. An option naming a face size (`option`: "--face-size") must
-// be a power of two from 1 to `max_size`: nullopt if it is, else the message. A loaded cube's face
-// must be a power of two for the mip pyramid (exact 2x2 parents down to 1x1): nullopt if it is, else
-// the message, prefixed with "SOURCE: " when `source` is not empty.
-bool IsPowerOfTwo(int n);
+// The face-size rules, each stated once (IsPowerOfTwo is in cube_map.h). An option naming a face
+// size (`option`: "--face-size") must be a power of two from 1 to `max_size`: nullopt if it is,
+// else the message. A loaded cube's face must be a power of two for the mip pyramid (exact 2x2
+// parents down to 1x1): nullopt if it is, else the message, prefixed with "SOURCE: " when `source`
+// is not empty.
 std::optional<std::string> CheckFaceSizeOption(std::string_view option, int face_size, int max_size = kMaxFaceSize);
 std::optional<std::string> CheckPyramidFaceSize(std::string_view source, int face_size);
 

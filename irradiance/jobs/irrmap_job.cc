@@ -23,6 +23,7 @@
 #include "irradiance/io/environment_io.h"
 #include "irradiance/io/environments.h"
 #include "irradiance/render/preview.h"
+#include "irradiance/report/preview_errors.h"
 #include "irradiance/report/verify.h"
 #include "irradiance/sh/constants_output.h"
 #include "irradiance/sh/nonneg_fit.h"
@@ -643,7 +644,8 @@ std::optional<std::string> PreviewStage(IrrmapRun& run) {
                         run.chosen_program->Irradiance(run.chosen_bank, sphere.normals, run.checked.engine,
                                                        run.engine_options)});
     }
-    return RenderPreview(sphere, truth_panel, panels, run.mips->levels[0], preview_options);
+    const PreviewErrors errors = AnalysePreviewErrors(truth_panel, panels);
+    return RenderPreview(sphere, truth_panel, panels, errors, run.mips->levels[0], preview_options);
   });
   for (const std::string& warning : run.preview.warnings) run.report.warnings.push_back(warning);
   run.outputs.push_back({kPreviewFile, [&run](const fs::path& path) { return WriteImage(run.preview.image, path); }});

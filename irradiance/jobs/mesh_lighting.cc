@@ -11,6 +11,7 @@
 #include "irradiance/jobs/irrmap_job.h"
 #include "irradiance/render/mesh_raster.h"
 #include "irradiance/render/preview.h"
+#include "irradiance/report/preview_errors.h"
 #include "vm/engines/engine_factory.h"
 
 namespace vs11::irradiance {
@@ -24,8 +25,6 @@ constexpr double kMinTimedMs = 50.0;
 constexpr int kMaxTimedRuns = 200;
 constexpr glm::vec3 kBackground{0.04f, 0.04f, 0.045f};
 constexpr int kPanelGap = 8;
-// The smallest relative error the error panel's ramp tops out at.
-constexpr double kMinErrorScale = 0.001;
 
 double Median(std::vector<double> values) {
   std::sort(values.begin(), values.end());
@@ -154,7 +153,7 @@ MeshLighting LightMesh(const MeshGeometry& mesh, const PaperProgram& program, co
     Blit(RasterizeMesh(mesh.positions, DisplayValues(result.truth, result.exposure), mesh.indices, view, kBackground)
              .color,
          result.picture, panel + kPanelGap);
-    result.error_scale = std::max(result.error.max_relative, kMinErrorScale);
+    result.error_scale = std::max(result.error.max_relative, kMinPreviewErrorScale);
     std::vector<glm::vec3> ramp;
     for (double e : result.relative_error) ramp.push_back(ErrorRamp(e / result.error_scale));
     Blit(RasterizeMesh(mesh.positions, ramp, mesh.indices, view, kBackground).color, result.picture,

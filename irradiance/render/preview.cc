@@ -27,10 +27,6 @@ constexpr int kRampWidth = 20;         // the colour bar of the error scale
 constexpr int kTickLength = 4;
 constexpr float kTextValue = 0.9f;     // label grey (linear)
 constexpr float kOutlineValue = 0.03f;  // the least value of the thumbnail's cell borders (linear)
-// The error scale: the smallest "nice" value (1, 2, 5 x 10^k) at or above the largest error, but
-// not below 0.1% (an almost perfect estimate would otherwise show its rounding noise at full scale).
-constexpr double kMinErrorScale = 1e-3;
-constexpr std::array<double, 3> kNiceMantissas = {1.0, 2.0, 5.0};
 
 // Viridis at t = 0, 1/4, 1/2, 3/4, 1 (sRGB 8-bit: #440154 #3b528b #21918c #5ec962 #fde725).
 constexpr std::array<std::array<int, 3>, 5> kViridisSrgb = {
@@ -61,18 +57,6 @@ int CrossFaceFor(int face_size, int target) {
     if (face_size % factor == 0) return face_size / factor;
   }
   return 1;
-}
-
-double NiceScale(double max_error) {
-  const double target = std::max(max_error, kMinErrorScale);
-  double decade = std::pow(10.0, std::floor(std::log10(target)));
-  for (int guard = 0; guard < 4; ++guard, decade *= 10.0) {
-    for (double mantissa : kNiceMantissas) {
-      // The 1e-9 keeps 0.02 (read as 0.0200000000004) from rounding up to 0.05.
-      if (mantissa * decade >= target * (1.0 - 1e-9)) return mantissa * decade;
-    }
-  }
-  return target;
 }
 
 std::string Percent(double fraction) {
@@ -222,14 +206,6 @@ glm::dvec3 HemisphereGrid::Sample(glm::dvec3 normal) const {
   return upper * (1.0 - a) + lower * a;
 }
 
-double RelativeError(glm::dvec3 estimate, glm::dvec3 truth, double floor) {
-  double worst = 0.0;
-  for (int c = 0; c < 3; ++c) {
-    worst = std::max(worst, std::abs(estimate[c] - truth[c]) / std::max(std::abs(truth[c]), floor));
-  }
-  return worst;
-}
-
 glm::vec3 ErrorRamp(double t) {
   const double position = std::clamp(t, 0.0, 1.0) * (kViridisSrgb.size() - 1);
   const std::size_t i = std::min(static_cast<std::size_t>(position), kViridisSrgb.size() - 2);
@@ -300,9 +276,10 @@ PreviewLayout ComputePreviewLayout(int panels, int environment_face_size, const 
 }
 
 PreviewResult RenderPreview(const SpherePixels& sphere, const PreviewPanel& truth,
-                            std::span<const PreviewPanel> estimates, const CubeMap& environment,
-                            const PreviewOptions& options) {
+                            std::span<const PreviewPanel> estimates, const PreviewErrors& errors,
+                            const CubeMap& environment, const PreviewOptions& options) {
   assert(sphere.diameter == std::max(options.sphere_diameter, kMinPreviewSphereDiameter));
+  assert(errors.relative.size() == estimates.size() && errors.stats.size() == estimates.size());
   assert(truth.irradiance.size() == sphere.normals.size());
   const int s = sphere.diameter;
   const int label_height = LabelHeight(options);
@@ -345,32 +322,15 @@ PreviewResult RenderPreview(const SpherePixels& sphere, const PreviewPanel& trut
   draw_sphere(truth, 0);
   for (std::size_t p = 0; p < estimates.size(); ++p) draw_sphere(estimates[p], static_cast<int>(p) + 1);
 
-  // Errors, with the floor of CompareIrradiance.
-  double truth_max = 0.0;
-  for (const glm::dvec3& t : truth.irradiance) {
-    truth_max = std::max({truth_max, std::abs(t.x), std::abs(t.y), std::abs(t.z)});
-  }
-  const double floor = kPreviewErrorFloor * truth_max;
-  std::vector<std::vector<double>> errors(estimates.size());
-  double largest_error = 0.0;
-  for (std::size_t p = 0; p < estimates.size(); ++p) {
-    errors[p].resize(sphere.pixels.size());
-    for (std::size_t k = 0; k < sphere.pixels.size(); ++k) {
-      errors[p][k] = RelativeError(estimates[p].irradiance[k], truth.irradiance[k], floor);
-      largest_error = std::max(largest_error, errors[p][k]);
-    }
-    result.errors.push_back(CompareIrradiance(estimates[p].irradiance, truth.irradiance, kPreviewErrorFloor));
-  }
-  result.error_scale = NiceScale(largest_error);
   for (std::size_t p = 0; p < estimates.size(); ++p) {
     const int left = column_left(static_cast<int>(p) + 1);
     for (std::size_t k = 0; k < sphere.pixels.size(); ++k) {
       image.at(left + sphere.pixels[k].x, error_top + sphere.pixels[k].y) =
-          ErrorRamp(errors[p][k] / result.error_scale) * sphere.coverage[k];
+          ErrorRamp(errors.relative[p][k] / errors.scale) * sphere.coverage[k];
     }
     labels.push_back({left + s / 2, label_baseline(error_top),
-                      fmt::format("max {}, mean {}", Percent(result.errors[p].max_relative),
-                                  Percent(result.errors[p].mean_relative)),
+                      fmt::format("max {}, mean {}", Percent(errors.stats[p].max_relative),
+                                  Percent(errors.stats[p].mean_relative)),
                       true, column_width});
   }
 
@@ -388,7 +348,7 @@ PreviewResult RenderPreview(const SpherePixels& sphere, const PreviewPanel& trut
       for (int x = 0; x < kTickLength; ++x) image.at(tick_left + x, y) = glm::vec3(kTextValue);
       // The top tick's text stays below the ramp's top, clear of the "relative error" title.
       const int baseline = std::max(y + options.font_size / 3, error_top + options.font_size);
-      labels.push_back({tick_left + kTickLength + 4, baseline, Percent(tick * result.error_scale), false,
+      labels.push_back({tick_left + kTickLength + 4, baseline, Percent(tick * errors.scale), false,
                         column_left(1) - (tick_left + kTickLength + 4) - 2});
     }
     labels.push_back({column_left(0) + s / 2, label_baseline(error_top), "relative error", true, column_width});

@@ -31,9 +31,6 @@ namespace vs11::irradiance {
 
 // The brightest sphere pixel is shown at this display value (linear, before sRGB encoding).
 inline constexpr double kSphereWhite = 0.8;
-// Relative errors: |estimate - truth| / max(truth, kPreviewErrorFloor x the brightest truth), the
-// max over the three channels, the same definition as CompareIrradiance with its default floor.
-inline constexpr double kPreviewErrorFloor = 0.01;
 // Smallest sphere the layout takes (smaller diameters are raised to it).
 inline constexpr int kMinPreviewSphereDiameter = 16;
 // Debian's fonts-dejavu-core; OpenImageIO's render_text needs a TrueType font.
@@ -94,11 +91,15 @@ struct PreviewOptions {
   int font_size = 15;  // pixels
 };
 
+// What the error row shows, computed by the report (report/preview_errors.h).
+struct PreviewErrors {
+  std::vector<std::vector<double>> relative;  // per estimate, the relative error of each sphere pixel
+  std::vector<ErrorStats> stats;              // per estimate, printed under its error image
+  double scale = 0.0;  // the relative error shown at the top of the colour ramp, shared by every image
+};
+
 struct PreviewResult {
   Image image;  // linear display values in [0, 1]; WriteImage sRGB-encodes them for .png
-  // Per estimate panel, the statistics of its error image (over the covered pixels).
-  std::vector<ErrorStats> errors;
-  double error_scale = 0.0;  // the relative error shown at the top of the colour ramp
   std::vector<std::string> warnings;  // e.g. the font is missing and labels were left out
   // Where each label was drawn (pixels, bottom and right exclusive), after a label too wide for its
   // column was drawn smaller: no two overlap. Empty when the labels were left out.
@@ -120,15 +121,11 @@ struct PreviewLayout {
 PreviewLayout ComputePreviewLayout(int panels, int environment_face_size, const PreviewOptions& options);
 
 // Composes the picture. `sphere` comes from MakeSpherePixels(options.sphere_diameter); `truth` and
-// each estimate hold one irradiance per sphere pixel (asserted). The error scale is shared by every
-// error image: the smallest of 1, 2, 5 x 10^k (a fraction) not below the largest relative error
-// (at least 0.1%). Label rendering failures (no font) are warnings, never errors.
+// each estimate hold one irradiance per sphere pixel, `errors` one entry per estimate (asserted).
+// Label rendering failures (no font) are warnings, never errors.
 PreviewResult RenderPreview(const SpherePixels& sphere, const PreviewPanel& truth,
-                            std::span<const PreviewPanel> estimates, const CubeMap& environment,
-                            const PreviewOptions& options = {});
-
-// The relative error of one sample: max over r, g, b of |e - t| / max(|t|, floor).
-double RelativeError(glm::dvec3 estimate, glm::dvec3 truth, double floor);
+                            std::span<const PreviewPanel> estimates, const PreviewErrors& errors,
+                            const CubeMap& environment, const PreviewOptions& options = {});
 
 // The colour ramp of the error images (viridis, 5 stops) at t in [0, 1] (clamped), linear RGB.
 glm::vec3 ErrorRamp(double t);

@@ -175,26 +175,25 @@ std::string SpeedAccuracyCsv(const SpeedAccuracyResult& result) {
   return csv;
 }
 
-GnuplotChart SpeedAccuracyChart(const SpeedAccuracyResult& result) {
-  GnuplotChart chart;
-  chart.width = 1000;
-  chart.height = 650;
+namespace {
+
+// Left panel: error against update time, per environment and projection method, order 2 only.
+// Appends one data block per curve to `data`, counting `block`; returns the plot clauses.
+std::string SpeedPanelPlots(const SpeedAccuracyResult& result, std::string& data, int& block) {
   std::string plots;
-  int block = 0;
   for (std::size_t e = 0; e < result.environments.size(); ++e) {
     const SpeedAccuracyEnvironment& environment = result.environments[e];
     const std::string colour = GnuplotQuote(kColours[e % kColours.size()]);
     for (ProjectionMethod method : kAllProjectionMethods) {
-      chart.data += fmt::format("# {} {}: update_ms mean_relative_error_percent level\n", environment.name,
-                                ProjectionMethodName(method));
+      data += fmt::format("# {} {}: update_ms mean_relative_error_percent level\n", environment.name,
+                          ProjectionMethodName(method));
       for (const SpeedAccuracyPoint& point : result.points) {
         if (point.environment != environment.name || point.method != method || point.order != ShOrder::kOrder2) {
           continue;
         }
-        chart.data += fmt::format("{:.6g} {:.6g} {}\n", point.update_ms, 100.0 * point.error.mean_relative,
-                                  point.level);
+        data += fmt::format("{:.6g} {:.6g} {}\n", point.update_ms, 100.0 * point.error.mean_relative, point.level);
       }
-      chart.data += "\n\n";
+      data += "\n\n";
       const bool mip = method == ProjectionMethod::kMipPyramid;
       const std::string title = fmt::format("{} ({})", environment.name, mip ? "mip pyramid" : "direct on level");
       plots += fmt::format(
@@ -205,44 +204,62 @@ GnuplotChart SpeedAccuracyChart(const SpeedAccuracyResult& result) {
       ++block;
     }
   }
-  std::string face_sizes;
-  for (const SpeedAccuracyEnvironment& environment : result.environments) {
-    const std::string size = fmt::format("{0}x{0}", environment.face_size);
-    if (face_sizes.find(size) == std::string::npos) face_sizes += (face_sizes.empty() ? "" : ", ") + size;
-  }
-  // Right panel: error against slots per vertex, per environment, at level 0 and at 16x16.
-  std::string order_plots;
+  return plots;
+}
+
+// Right panel: error against slots per vertex, per environment, at level 0 and at 16x16. Appends
+// to `data` and counts `block` as SpeedPanelPlots does.
+std::string OrderPanelPlots(const SpeedAccuracyResult& result, std::string& data, int& block) {
+  std::string plots;
   for (std::size_t e = 0; e < result.environments.size(); ++e) {
     const SpeedAccuracyEnvironment& environment = result.environments[e];
     const std::string colour = GnuplotQuote(kColours[e % kColours.size()]);
     for (int size : {environment.face_size, kOrderChartLevelSize}) {
       if (size > environment.face_size || (size == kOrderChartLevelSize && size == environment.face_size)) continue;
-      std::string data = fmt::format("# {} orders from {}x{}: slots mean_relative_error_percent order\n",
-                                     environment.name, size, size);
+      std::string curve = fmt::format("# {} orders from {}x{}: slots mean_relative_error_percent order\n",
+                                      environment.name, size, size);
       bool any = false;
       for (ShOrder order : kAllShOrders) {
         for (const SpeedAccuracyPoint& point : result.points) {
           if (point.environment == environment.name && point.method == ProjectionMethod::kMipPyramid &&
               point.size == size && point.order == order) {
-            data += fmt::format("{} {:.6g} {}\n", Info(order).slots, 100.0 * point.error.mean_relative,
-                                Info(order).name);
+            curve += fmt::format("{} {:.6g} {}\n", Info(order).slots, 100.0 * point.error.mean_relative,
+                                 Info(order).name);
             any = true;
           }
         }
       }
       if (!any) continue;
-      chart.data += data + "\n\n";
+      data += curve + "\n\n";
       const bool full = size == environment.face_size;
-      {
-        order_plots += fmt::format(
-            "{}datafile index {} using 1:2 with linespoints lc rgb {} dt {} pt {} ps 0.8 title {}",
-            order_plots.empty() ? "" : ", \\\n  ", block, colour, full ? 1 : 2, full ? 7 : 6,
-            GnuplotQuote(fmt::format("{} from {}x{}", environment.name, size, size)));
-      }
+      plots += fmt::format("{}datafile index {} using 1:2 with linespoints lc rgb {} dt {} pt {} ps 0.8 title {}",
+                           plots.empty() ? "" : ", \\\n  ", block, colour, full ? 1 : 2, full ? 7 : 6,
+                           GnuplotQuote(fmt::format("{} from {}x{}", environment.name, size, size)));
       ++block;
     }
   }
+  return plots;
+}
+
+// "256x256, 64x64": the environments' face sizes, each once.
+std::string FaceSizesText(const SpeedAccuracyResult& result) {
+  std::string face_sizes;
+  for (const SpeedAccuracyEnvironment& environment : result.environments) {
+    const std::string size = fmt::format("{0}x{0}", environment.face_size);
+    if (face_sizes.find(size) == std::string::npos) face_sizes += (face_sizes.empty() ? "" : ", ") + size;
+  }
+  return face_sizes;
+}
+
+}  // namespace
+
+GnuplotChart SpeedAccuracyChart(const SpeedAccuracyResult& result) {
+  GnuplotChart chart;
   chart.width = 1600;
+  chart.height = 650;
+  int block = 0;
+  const std::string plots = SpeedPanelPlots(result, chart.data, block);
+  const std::string order_plots = OrderPanelPlots(result, chart.data, block);
   chart.script = fmt::format(
       "set multiplot layout 1,2\n"
       "set logscale xy\n"
@@ -260,7 +277,8 @@ GnuplotChart SpeedAccuracyChart(const SpeedAccuracyResult& result) {
       "set title {}\n"
       "plot {}\n"
       "unset multiplot\n",
-      GnuplotQuote(fmt::format("SH9 coefficients from each mip level (labels: level), faces {}", face_sizes)),
+      GnuplotQuote(fmt::format("SH9 coefficients from each mip level (labels: level), faces {}",
+                               FaceSizesText(result))),
       plots.empty() ? "NaN notitle" : plots,
       GnuplotQuote("Each program's error against its cost per vertex (the update time is the same projection's)"),
       order_plots.empty() ? "NaN notitle" : order_plots);

@@ -147,16 +147,9 @@ std::optional<std::string> RunPrecision(StabilityReport& report, std::span<const
 
 // ---- Markdown ----------------------------------------------------------------------------------------
 
-std::string SweepSection(const StabilityReport& r) {
-  std::string out = fmt::format(
-      "## 1. Small bright lights\n\n"
-      "One round light (the built-in spot: azimuth -30, elevation 50, irradiance 5 facing it) on black, its "
-      "angular radius swept from 90 to {:g} degrees at constant power, {}x{} faces, coefficients from full "
-      "resolution (ProjectDirect), irradiance by eq. 7 in double, against brute-force integration at {} "
-      "normals. *max* and *mean* are relative errors (floor 1 % of the peak, as everywhere in irrmap); "
-      "*lowest* is the lowest irradiance over the sphere divided by the peak (negative: ringing). "
-      "*captured* is the irradiance facing the light as the texels hold it (nominal 5).\n\n",
-      r.options.radii.back(), r.options.face_size, r.options.face_size, r.options.error_normals);
+// The sweep's tables, one per error measure: a row per light radius, a column per window.
+std::string SweepTables(const StabilityReport& r) {
+  std::string out;
   struct Metric {
     const char* title;
     double (*value)(const WindowedError&);
@@ -182,9 +175,12 @@ std::string SweepSection(const StabilityReport& r) {
     }
     out += "\n";
   }
-  out += fmt::format("\n![max and mean error against light size]({})\n\n![lowest irradiance]({})\n\n",
-                     kSweepChart, kRingingChart);
-  out += "Findings:\n\n";
+  return out;
+}
+
+// One finding per window: where its max error passes 10 % and where it rings below zero.
+std::string SweepFindings(const StabilityReport& r) {
+  std::string out = "Findings:\n\n";
   for (std::size_t v = 0; v < r.variants.size(); ++v) {
     const WindowedError& smallest = r.sweep.back().windows[v];
     const double ten = RadiusWhereErrorExceeds(r.sweep, v, kSweepThreshold);
@@ -198,6 +194,23 @@ std::string SweepSection(const StabilityReport& r) {
         r.sweep.back().radius_degrees, Percent(smallest.error.max_relative), Percent(smallest.error.mean_relative),
         Percent(smallest.absolute_over_peak), Percent(smallest.lowest_over_peak));
   }
+  return out;
+}
+
+std::string SweepSection(const StabilityReport& r) {
+  std::string out = fmt::format(
+      "## 1. Small bright lights\n\n"
+      "One round light (the built-in spot: azimuth -30, elevation 50, irradiance 5 facing it) on black, its "
+      "angular radius swept from 90 to {:g} degrees at constant power, {}x{} faces, coefficients from full "
+      "resolution (ProjectDirect), irradiance by eq. 7 in double, against brute-force integration at {} "
+      "normals. *max* and *mean* are relative errors (floor 1 % of the peak, as everywhere in irrmap); "
+      "*lowest* is the lowest irradiance over the sphere divided by the peak (negative: ringing). "
+      "*captured* is the irradiance facing the light as the texels hold it (nominal 5).\n\n",
+      r.options.radii.back(), r.options.face_size, r.options.face_size, r.options.error_normals);
+  out += SweepTables(r);
+  out += fmt::format("\n![max and mean error against light size]({})\n\n![lowest irradiance]({})\n\n",
+                     kSweepChart, kRingingChart);
+  out += SweepFindings(r);
   out += fmt::format(
       "\nWhy: nine terms hold the clamped cosine only up to band 2; for a point light the truncated kernel is\n"
       "E(t) / P = 1/4 + t/2 + 5/32 (3t^2 - 1) (t the cosine to the light), whose minimum is -0.0396 at t = -8/15\n"

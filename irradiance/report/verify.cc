@@ -270,6 +270,63 @@ ProgramForVerify LoadProgramForVerify(const std::filesystem::path& path, const L
 
 std::string OutputReport::Name() const { return fmt::format("{}.{}", OutputSlotName(slot), LaneLetters(lanes)); }
 
+namespace {
+
+// One expected output against what the engine wrote (`written`: the lanes the program writes of
+// that slot; unwritten slots read as the machine's initial output values).
+OutputReport CompareOutput(const ExpectedOutput& expected, const VertexArrays& outputs, WriteMask written,
+                           const ReferenceCase& rc, std::optional<double> tolerance) {
+  const std::size_t count = rc.inputs.count();
+  OutputReport out;
+  out.slot = expected.slot;
+  out.lanes = expected.lanes;
+  out.tolerance = tolerance.value_or(expected.tolerance);
+  out.missing_lanes = WriteMask(static_cast<std::uint8_t>(expected.lanes.bits() & ~written.bits()));
+  for (const glm::dvec4& v : expected.values) {
+    for (int lane = 0; lane < 4; ++lane) {
+      if (expected.lanes.has(lane)) out.scale = std::max(out.scale, std::abs(v[lane]));
+    }
+  }
+  const double scale = out.scale > 0 ? out.scale : 1.0;
+  double sum_squares = 0.0;
+  std::size_t lanes_counted = 0;
+  double worst = -1.0;
+  for (std::size_t i = 0; i < count; ++i) {
+    for (int lane = 0; lane < 4; ++lane) {
+      if (!expected.lanes.has(lane)) continue;
+      const double actual = outputs.has(expected.slot) ? outputs.lane(expected.slot, lane)[i]
+                                                       : UnwrittenOutputValue(expected.slot)[lane];
+      double error_abs = std::abs(actual - expected.values[i][lane]);
+      if (std::isnan(error_abs)) error_abs = std::numeric_limits<double>::infinity();
+      sum_squares += error_abs * error_abs;
+      ++lanes_counted;
+      if (error_abs > worst) {
+        worst = error_abs;
+        out.worst_vertex = i;
+        out.worst_lane = lane;
+      }
+    }
+  }
+  out.max_absolute = std::max(worst, 0.0);
+  out.rms_absolute = lanes_counted ? std::sqrt(sum_squares / static_cast<double>(lanes_counted)) : 0.0;
+  out.max_relative = out.max_absolute / scale;
+  out.rms_relative = out.rms_absolute / scale;
+  out.expected = expected.values.empty() ? glm::dvec4(0.0) : expected.values[out.worst_vertex];
+  for (int lane = 0; lane < 4; ++lane) {
+    out.actual[lane] = outputs.has(expected.slot) && count > 0 ? outputs.lane(expected.slot, lane)[out.worst_vertex]
+                                                               : UnwrittenOutputValue(expected.slot)[lane];
+  }
+  for (const NamedInput& input : rc.named_inputs) {
+    InputValue value{input.name, input.reg, {}};
+    for (int c = 0; c < 4 && count > 0; ++c) value.value[c] = rc.inputs.lane(input.reg, c)[out.worst_vertex];
+    out.worst_inputs.push_back(value);
+  }
+  out.pass = out.missing_lanes.bits() == 0 && out.max_relative <= out.tolerance;
+  return out;
+}
+
+}  // namespace
+
 VerifyReport Verify(const Program& program, const ProgramMetadata& metadata, const VerifyOptions& options) {
   VerifyReport report;
   report.reference = metadata.reference;
@@ -307,51 +364,7 @@ VerifyReport Verify(const Program& program, const ProgramMetadata& metadata, con
 
   report.pass = true;
   for (const ExpectedOutput& expected : rc->expected) {
-    OutputReport out;
-    out.slot = expected.slot;
-    out.lanes = expected.lanes;
-    out.tolerance = options.tolerance.value_or(expected.tolerance);
-    out.missing_lanes = WriteMask(static_cast<std::uint8_t>(expected.lanes.bits() & ~written[expected.slot].bits()));
-    for (const glm::dvec4& v : expected.values) {
-      for (int lane = 0; lane < 4; ++lane) {
-        if (expected.lanes.has(lane)) out.scale = std::max(out.scale, std::abs(v[lane]));
-      }
-    }
-    const double scale = out.scale > 0 ? out.scale : 1.0;
-    double sum_squares = 0.0;
-    std::size_t lanes_counted = 0;
-    double worst = -1.0;
-    for (std::size_t i = 0; i < count; ++i) {
-      for (int lane = 0; lane < 4; ++lane) {
-        if (!expected.lanes.has(lane)) continue;
-        const double actual = outputs.has(expected.slot) ? outputs.lane(expected.slot, lane)[i]
-                                                         : UnwrittenOutputValue(expected.slot)[lane];
-        double error_abs = std::abs(actual - expected.values[i][lane]);
-        if (std::isnan(error_abs)) error_abs = std::numeric_limits<double>::infinity();
-        sum_squares += error_abs * error_abs;
-        ++lanes_counted;
-        if (error_abs > worst) {
-          worst = error_abs;
-          out.worst_vertex = i;
-          out.worst_lane = lane;
-        }
-      }
-    }
-    out.max_absolute = std::max(worst, 0.0);
-    out.rms_absolute = lanes_counted ? std::sqrt(sum_squares / static_cast<double>(lanes_counted)) : 0.0;
-    out.max_relative = out.max_absolute / scale;
-    out.rms_relative = out.rms_absolute / scale;
-    out.expected = expected.values.empty() ? glm::dvec4(0.0) : expected.values[out.worst_vertex];
-    for (int lane = 0; lane < 4; ++lane) {
-      out.actual[lane] = outputs.has(expected.slot) && count > 0 ? outputs.lane(expected.slot, lane)[out.worst_vertex]
-                                                                 : UnwrittenOutputValue(expected.slot)[lane];
-    }
-    for (const NamedInput& input : rc->named_inputs) {
-      InputValue value{input.name, input.reg, {}};
-      for (int c = 0; c < 4 && count > 0; ++c) value.value[c] = rc->inputs.lane(input.reg, c)[out.worst_vertex];
-      out.worst_inputs.push_back(value);
-    }
-    out.pass = out.missing_lanes.bits() == 0 && out.max_relative <= out.tolerance;
+    OutputReport out = CompareOutput(expected, outputs, written[expected.slot], *rc, options.tolerance);
     report.pass = report.pass && out.pass;
     report.outputs.push_back(std::move(out));
   }

@@ -8,7 +8,7 @@
 #include <cstring>
 #include <mutex>
 
-#include "irradiance/io/environment_io.h"
+#include "irradiance/io/cube_map.h"
 #include "irradiance/sh/projection_kernels.h"
 
 namespace vs11::irradiance {

@@ -36,6 +36,7 @@
 
 HWY_BEFORE_NAMESPACE();
 #include "vm/core/semantics.h"  // NOLINT(build/include_order): must follow the target pragma
+#include "vm/core/constant_gather.h"  // NOLINT(build/include_order): likewise
 
 // The lane operations vm/core/semantics.h calls that Highway lacks or names differently. The kernels call
 // them unqualified from namespace vs11::semantics, so they must sit where argument-dependent lookup
@@ -269,24 +270,22 @@ void GatherKernel(const Step& step, const Frame& frame) {
     if (step.dest[c] != kNoLane) out[c] = frame.write_lanes[step.dest[c]];
   }
 #if HWY_TARGET == HWY_SCALAR
+  const auto literal = [](std::int32_t value) { return value; };
   for (std::size_t i = 0; i < frame.count; ++i) {
-    const std::int32_t index = frame.address[i] + step.base;
-    const std::int32_t row = index >= 0 && index < frame.constant_count ? index + kFirstConstantRow : 0;
+    const std::int32_t offset = semantics::RelativeConstantOffset(frame.address[i], step.base, frame.constant_count,
+                                                                  kFirstConstantRow, literal);
     for (int c = 0; c < 4; ++c) {
-      if (out[c] != nullptr) out[c][i] = frame.constants[4 * row + c];
+      if (out[c] != nullptr) out[c][i] = frame.constants[offset + c];
     }
   }
 #else
   const D d;
   const hn::RebindToSigned<D> di;
-  const auto base = hn::Set(di, step.base);
-  const auto minus_one = hn::Set(di, -1);
-  const auto count = hn::Set(di, frame.constant_count);
-  const auto first_row = hn::Set(di, kFirstConstantRow);
+  const auto literal = [&di](std::int32_t value) { return hn::Set(di, value); };
+  const auto count = literal(frame.constant_count);
   for (std::size_t i = 0; i < frame.count; i += hn::Lanes(d)) {
-    const auto index = hn::LoadU(di, frame.address + i) + base;
-    const auto in_range = hn::And(index > minus_one, count > index);
-    const auto offset = hn::ShiftLeft<2>(hn::IfThenElseZero(in_range, index + first_row));
+    const auto offset = semantics::RelativeConstantOffset(hn::LoadU(di, frame.address + i), step.base, count,
+                                                          kFirstConstantRow, literal);
     for (int c = 0; c < 4; ++c) {
       if (out[c] != nullptr) hn::StoreU(hn::GatherIndex(d, frame.constants + c, offset), d, out[c] + i);
     }

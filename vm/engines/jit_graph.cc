@@ -7,11 +7,11 @@
 #include <limits>
 #include <optional>
 
+#include "vm/core/constant_gather.h"
 #include "vm/core/machine.h"
 #include "vm/core/operands.h"
 #include "vm/core/semantics.h"
 #include "vm/engines/batch_plan.h"
-#include "vm/engines/reference_engine.h"
 
 namespace vs11::jit {
 namespace {
@@ -153,14 +153,12 @@ class Tracer {
  private:
   static Float ZeroLane() { return Constant(Float{}, 0.0f); }
 
-  // c[a0.x + index] of every vertex, component by component (the batch engine's GatherKernel):
-  // registers outside the bank read row 0 of the constant table, which holds zeros.
+  // c[a0.x + index] of every vertex, component by component, by the rule the batch engine's
+  // GatherKernel reads too (vm/core/constant_gather.h).
   Vec4F Gather(long index) const {
-    const Int register_index = address_ + LiteralInt(static_cast<std::int32_t>(index));
     const Int count = {jit::Trace(Op::kConstantCount)};
-    const Mask in_range = (register_index > LiteralInt(-1)) & (count > register_index);
-    const Int row = IfThenElseZero(in_range, register_index + LiteralInt(batch::kFirstConstantRow));
-    const Int offset = ShiftLeft<2>(row);
+    const Int offset = semantics::RelativeConstantOffset(address_, static_cast<std::int32_t>(index), count,
+                                                         batch::kFirstConstantRow, LiteralInt);
     Vec4F value;
     for (int c = 0; c < 4; ++c) {
       value[c] = {jit::Trace(Op::kGather, offset.id, kNoArg, kNoArg, static_cast<std::uint32_t>(c))};

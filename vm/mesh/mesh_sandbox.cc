@@ -213,6 +213,13 @@ MeshLoadResult RunSandboxed(const std::string& name, std::uintmax_t input_bytes,
   const auto deadline = Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(seconds));
   int fds[2];
   if (pipe2(fds, O_CLOEXEC) != 0) return {std::nullopt, fmt::format("{}: cannot make a pipe ({})", name, std::strerror(errno))};
+  // The child allocates (the loader, the reply), which after fork is safe in a single-threaded
+  // parent; a parent with threads (irrmap batch --threads) is safe too as far as the heap goes,
+  // because glibc's fork takes every malloc arena lock around the fork and the child starts with
+  // them free. Any other lock another thread held at the fork stays held in the child for good: the
+  // loader takes none the parent's threads hold (Assimp keeps no shared state here, OpenImageIO and
+  // the thread pool are not called), and should one ever be taken the child blocks, which the
+  // deadline below reports as a time-out rather than a hang.
   const pid_t pid = fork();
   if (pid < 0) {
     const int error = errno;

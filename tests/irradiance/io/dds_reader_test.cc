@@ -440,13 +440,41 @@ TEST_F(DdsReader, EightBitDdsCutShortIsReportedAsTruncated) {
   }
 }
 
-TEST_F(DdsReader, ReadDdsLeavesOtherFilesAlone) {
+TEST_F(DdsReader, ReadDdsHeaderLeavesOtherFilesAlone) {
   ASSERT_TRUE(WriteFloatImage(Path("cross.exr"), Image(8, 6, glm::vec3(1.0f))));
-  EXPECT_EQ(ReadDds(Path("cross.exr"), kMaxImagePixels).outcome, DdsReadResult::Outcome::kNotDds);
+  EXPECT_EQ(ReadDdsHeader(Path("cross.exr"), kMaxImagePixels).outcome,
+            DdsFileHeaderResult::Outcome::kNotDds);
   WriteBytes(Path("cube.dds"),
              Dds8BitCube(4, {kAllCubeFaces.begin(), kAllCubeFaces.end()}, DdsTestBytes));
-  EXPECT_EQ(ReadDds(Path("cube.dds"), kMaxImagePixels).outcome,
-            DdsReadResult::Outcome::kLeaveToOpenImageIo);
+  const DdsFileHeaderResult header = ReadDdsHeader(Path("cube.dds"), kMaxImagePixels);
+  ASSERT_EQ(header.outcome, DdsFileHeaderResult::Outcome::kHeader) << header.error;
+  const DdsReadResult pixels = ReadDdsPixels(Path("cube.dds"), header.header);
+  EXPECT_EQ(pixels.outcome, DdsReadResult::Outcome::kLeaveToOpenImageIo);
+  EXPECT_FALSE(pixels.stacked_faces.empty());
+}
+
+// The container reader reports what a cube map holds; refusing a cube map of two faces or of
+// oblong faces is environment_io's rule (DdsHeaderContradictionsAreReported sees its messages).
+TEST_F(DdsReader, ReadDdsHeaderLeavesCubeMapRulesToTheCaller) {
+  DdsFields fields = LegacyCube(4, kD3dFmtA32B32G32R32F);
+  fields.caps2 = kDdsCaps2Cubemap | 0x400 | 0x800;
+  WriteBytes(Path("two.dds"), DdsBytes(fields) + std::string(4096, '\0'));
+  DdsFileHeaderResult header = ReadDdsHeader(Path("two.dds"), kMaxImagePixels);
+  ASSERT_EQ(header.outcome, DdsFileHeaderResult::Outcome::kHeader) << header.error;
+  EXPECT_TRUE(header.header.is_cube_map);
+  EXPECT_EQ(header.header.faces, 2u);
+  DdsReadResult pixels = ReadDdsPixels(Path("two.dds"), header.header);
+  ASSERT_EQ(pixels.outcome, DdsReadResult::Outcome::kRead);
+  EXPECT_EQ(pixels.image.height, 2 * 4);
+
+  fields = Dx10Cube(4, kDxgiRgba16Float);
+  fields.height = 2;
+  WriteBytes(Path("oblong.dds"), DdsBytes(fields) + std::string(4096, '\0'));
+  header = ReadDdsHeader(Path("oblong.dds"), kMaxImagePixels);
+  ASSERT_EQ(header.outcome, DdsFileHeaderResult::Outcome::kHeader) << header.error;
+  EXPECT_EQ(header.header.width, 4u);
+  EXPECT_EQ(header.header.height, 2u);
+  EXPECT_EQ(header.header.faces, 6u);
 }
 
 }  // namespace

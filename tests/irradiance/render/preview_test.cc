@@ -10,6 +10,7 @@
 #include <gtest/gtest.h>
 
 #include "irradiance/io/environments.h"
+#include "irradiance/report/preview_errors.h"
 #include "irradiance/sh/sh9.h"
 #include "irradiance/sh/sh_projection.h"
 
@@ -116,7 +117,7 @@ class PreviewRender : public testing::Test {
 
 TEST_F(PreviewRender, ImageHasTheLayoutSizeAndIsNotBlank) {
   const std::vector<PreviewPanel> estimates = {Scaled(1.01), Scaled(0.97)};
-  const PreviewResult result = RenderPreview(sphere_, truth_, estimates, environment_, options_);
+  const PreviewResult result = RenderPreview(sphere_, truth_, estimates, AnalysePreviewErrors(truth_, estimates), environment_, options_);
   const PreviewLayout layout = ComputePreviewLayout(3, environment_.face_size, options_);
   EXPECT_EQ(result.image.width, layout.width);
   EXPECT_EQ(result.image.height, layout.height);
@@ -136,7 +137,7 @@ TEST_F(PreviewRender, ImageHasTheLayoutSizeAndIsNotBlank) {
 }
 
 TEST_F(PreviewRender, BrightestSphereIsShownAtTheWhiteLevel) {
-  const PreviewResult result = RenderPreview(sphere_, truth_, {}, environment_, options_);
+  const PreviewResult result = RenderPreview(sphere_, truth_, {}, PreviewErrors{}, environment_, options_);
   // Sphere 0 starts at the left margin (16) below the first label row (font size + 8).
   const int top = 16 + options_.font_size + 8;
   float brightest = 0.0f;
@@ -148,18 +149,6 @@ TEST_F(PreviewRender, BrightestSphereIsShownAtTheWhiteLevel) {
   EXPECT_NEAR(brightest, kSphereWhite, 0.02);
 }
 
-TEST_F(PreviewRender, ErrorScaleIsTheNextNiceValueAboveTheLargestError) {
-  const std::vector<PreviewPanel> estimates = {Scaled(1.03), Scaled(0.99)};
-  const PreviewResult result = RenderPreview(sphere_, truth_, estimates, environment_, options_);
-  EXPECT_DOUBLE_EQ(result.error_scale, 0.05);
-  ASSERT_EQ(result.errors.size(), 2u);
-  EXPECT_NEAR(result.errors[0].max_relative, 0.03, 1e-9);
-  EXPECT_NEAR(result.errors[1].mean_relative, 0.01, 1e-9);
-  const PreviewResult exact = RenderPreview(sphere_, truth_, std::vector<PreviewPanel>{Scaled(1.0)}, environment_,
-                                            options_);
-  EXPECT_DOUBLE_EQ(exact.error_scale, 1e-3);
-}
-
 TEST_F(PreviewRender, LongLabelsShrinkIntoTheirColumnsAndNeverOverlap) {
   ASSERT_TRUE(std::filesystem::exists(kDefaultPreviewFont)) << "fonts-dejavu-core (.ci/setup) is needed";
   std::vector<PreviewPanel> estimates;
@@ -168,7 +157,7 @@ TEST_F(PreviewRender, LongLabelsShrinkIntoTheirColumnsAndNeverOverlap) {
     estimates.push_back(Scaled(1.5));  // large errors: "max 50.0%, mean 50.0%" and a 50% ramp
     estimates.back().label = label;
   }
-  const PreviewResult result = RenderPreview(sphere_, truth_, estimates, environment_, options_);
+  const PreviewResult result = RenderPreview(sphere_, truth_, estimates, AnalysePreviewErrors(truth_, estimates), environment_, options_);
   ASSERT_TRUE(result.warnings.empty());
   ASSERT_EQ(result.labels.size(), 2 * estimates.size() + 1 + 3 + 1 + 1);  // spheres, errors, ramp, title, environment
   const int pitch = options_.sphere_diameter + 16;  // a column: sphere and margin
@@ -194,8 +183,9 @@ TEST_F(PreviewRender, LongLabelsShrinkIntoTheirColumnsAndNeverOverlap) {
 
 TEST_F(PreviewRender, MissingFontIsAWarningNotAFailure) {
   options_.font = "/nonexistent/font.ttf";
-  const PreviewResult result = RenderPreview(sphere_, truth_, std::vector<PreviewPanel>{Scaled(1.02)}, environment_,
-                                             options_);
+  const std::vector<PreviewPanel> estimates = {Scaled(1.02)};
+  const PreviewResult result =
+      RenderPreview(sphere_, truth_, estimates, AnalysePreviewErrors(truth_, estimates), environment_, options_);
   ASSERT_EQ(result.warnings.size(), 1u);
   EXPECT_THAT(result.warnings[0], HasSubstr("/nonexistent/font.ttf"));
   EXPECT_EQ(result.image.width, ComputePreviewLayout(2, environment_.face_size, options_).width);
