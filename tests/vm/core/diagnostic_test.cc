@@ -66,7 +66,8 @@ TEST(DiagnosticCode, EveryFrontEndDiagnosticHasACode) {
   for (int i = 0; i < 200; ++i) {
     std::vector<std::uint32_t> words = {kVersionVs11};
     for (int j = 0; j < 8; ++j) words.push_back(word(random));
-    for (const Diagnostic& d : Decode(words).diagnostics.all()) {
+    const auto decoded = Decode(words);  // the range below must not outlive a temporary
+    for (const Diagnostic& d : decoded.diagnostics.all()) {
       EXPECT_NE(d.code, DiagnosticCode::kUnclassified) << FormatDiagnostic(d);
     }
   }
