@@ -169,8 +169,8 @@ class BatchEngine final : public Engine {
     if (count == 0) return;
 
     // Whole batches per piece, so that only the last piece has a short batch.
-    const std::size_t max_tasks =
-        min_vertices_per_task_ == kNeverSplit ? 1 : std::max<std::size_t>(1, count / min_vertices_per_task_);
+    // kNeverSplit is the largest size_t: any count divided by it is 0, so one task.
+    const std::size_t max_tasks = std::max<std::size_t>(1, count / min_vertices_per_task_);
     const std::size_t threads =
         pool_ == nullptr ? 1 : std::min({threads_, static_cast<std::size_t>(pool_->threads()), max_tasks});
     const std::size_t tasks = std::min(max_tasks, threads * kTasksPerThread);
