@@ -135,6 +135,12 @@ void AddJobOptions(CLI::App& app, JobCommandLine& line) {
                  "from adjacent levels, stays under this fraction (0.005 = 0.5 %)")
       ->capture_default_str()
       ->excludes(level_option);
+  app.add_option("--error-metric", options.error_metric,
+                 fmt::format("what --max-error and the estimates measure: {} (peak: max |E - E*| / max E*; rms: "
+                             "RMS of E - E* / mean E*; relative: the worst |E - E*| / E* per normal, floor 1 % of "
+                             "the peak), each the worst of r, g, b",
+                             vs11::irradiance::ErrorMetricNames()))
+      ->capture_default_str();
   app.add_option("--order", options.order,
                  fmt::format("program: auto (the cheapest within --max-error; order2 when --level is given) or "
                              "one of {}", vs11::irradiance::ShOrderNames()))

@@ -24,16 +24,16 @@ PreviewPanel Scaled(const PreviewPanel& truth, double factor) {
 TEST(PreviewErrors, ScaleIsTheNextNiceValueAboveTheLargestError) {
   const PreviewPanel truth = Truth();
   const std::vector<PreviewPanel> estimates = {Scaled(truth, 1.03), Scaled(truth, 0.99)};
-  const PreviewErrors errors = AnalysePreviewErrors(truth, estimates);
+  const PreviewErrors errors = AnalysePreviewErrors(truth, estimates, {ErrorMetric::kRelative});
   EXPECT_DOUBLE_EQ(errors.scale, 0.05);
-  ASSERT_EQ(errors.stats.size(), 2u);
-  EXPECT_NEAR(errors.stats[0].max_relative, 0.03, 1e-9);
-  EXPECT_NEAR(errors.stats[1].mean_relative, 0.01, 1e-9);
-  ASSERT_EQ(errors.relative.size(), 2u);
-  ASSERT_EQ(errors.relative[1].size(), truth.irradiance.size());
-  for (double e : errors.relative[1]) EXPECT_NEAR(e, 0.01, 1e-9);
+  ASSERT_EQ(errors.captions.size(), 2u);
+  EXPECT_EQ(errors.captions[0], "max 3%, mean 3% (pixels)");
+  EXPECT_EQ(errors.captions[1], "max 1%, mean 1% (pixels)");
+  ASSERT_EQ(errors.per_pixel.size(), 2u);
+  ASSERT_EQ(errors.per_pixel[1].size(), truth.irradiance.size());
+  for (double e : errors.per_pixel[1]) EXPECT_NEAR(e, 0.01, 1e-9);
   const std::vector<PreviewPanel> exact = {Scaled(truth, 1.0)};
-  EXPECT_DOUBLE_EQ(AnalysePreviewErrors(truth, exact).scale, kMinPreviewErrorScale);
+  EXPECT_DOUBLE_EQ(AnalysePreviewErrors(truth, exact, {ErrorMetric::kRelative}).scale, kMinPreviewErrorScale);
 }
 
 TEST(PreviewErrors, NiceScaleRoundsUpToOneTwoOrFiveTimesAPowerOfTen) {
