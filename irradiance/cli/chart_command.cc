@@ -76,9 +76,8 @@ void AddChartCommand(CLI::App& app) {
       "\n"
       "Examples:\n"
       "  irrmap chart                          # every built-in at 256x256, into out/\n"
-      "  irrmap chart sky spot --face-size 64 --out chart-64\n"
-      "  irrmap chart probe.hdr --layout angular --face-size 256\n"
-      "  irrmap chart sky spot --face-size 32 --error-metric rms --out chart-rms\n");
+      "  irrmap chart sky spot --face-size 64 --error-metric rms --out chart-64\n"
+      "  irrmap chart probe.hdr --layout angular --face-size 256\n");
   chart->add_option("ENV", arguments->options.environments,
                     "environments (files, {face} patterns or built-in names); default: every built-in");
   chart->add_option("--out", arguments->out_dir, "output directory")->capture_default_str();

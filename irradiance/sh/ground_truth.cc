@@ -167,10 +167,11 @@ void AddLiteratureErrors(std::span<const glm::dvec3> estimate, std::span<const g
   stats.max_peak = std::max({peak_figure[0], peak_figure[1], peak_figure[2]});
   stats.max_rms = std::max({rms_figure[0], rms_figure[1], rms_figure[2]});
   // The sample of max_peak: the first whose error in the worst channel reaches that channel's largest.
-  const std::size_t worst_channel = static_cast<std::size_t>(
-      std::max_element(peak_figure.begin(), peak_figure.begin() + 3) - peak_figure.begin());
+  const int worst_channel =
+      static_cast<int>(std::max_element(peak_figure.begin(), peak_figure.begin() + 3) - peak_figure.begin());
   for (std::size_t i = 0; i < truth.size(); ++i) {
-    if (std::abs(estimate[i][worst_channel] - truth[i][worst_channel]) == largest_error[worst_channel]) {
+    if (std::abs(estimate[i][worst_channel] - truth[i][worst_channel]) ==
+        largest_error[static_cast<std::size_t>(worst_channel)]) {
       stats.worst_peak_index = i;
       break;
     }
