@@ -141,7 +141,7 @@ void AddJobOptions(CLI::App& app, JobCommandLine& line) {
                  "1x1; default: picked by --max-error");
   app.add_option("--max-error", options.max_error,
                  "unless --level is given, pick the coarsest level whose error against full resolution, estimated "
-                 "from adjacent levels, stays under this fraction (0.005 = 0.5 %)")
+                 "from adjacent levels, stays under this fraction (0.005 = 0.5 %) of --error-metric's figure")
       ->capture_default_str()
       ->excludes(level_option);
   app.add_option("--error-metric", options.error_metric,

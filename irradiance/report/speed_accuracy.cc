@@ -231,8 +231,10 @@ std::string OrderPanelPlots(const SpeedAccuracyResult& result, std::string& data
   for (std::size_t e = 0; e < result.environments.size(); ++e) {
     const SpeedAccuracyEnvironment& environment = result.environments[e];
     const std::string colour = GnuplotQuote(kColours[e % kColours.size()]);
-    for (int size : {environment.face_size, kOrderChartLevelSize}) {
-      if (size > environment.face_size || (size == kOrderChartLevelSize && size == environment.face_size)) continue;
+    // Full resolution, and the 16x16 level where it is a coarser one.
+    std::vector<int> sizes = {environment.face_size};
+    if (kOrderChartLevelSize < environment.face_size) sizes.push_back(kOrderChartLevelSize);
+    for (int size : sizes) {
       std::string curve = fmt::format("# {} orders from {}x{}: slots {}_error_percent order\n",
                                       ChartEnvironmentName(environment.name), size, size,
                                       ErrorMetricName(result.metric));

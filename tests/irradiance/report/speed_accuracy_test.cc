@@ -88,10 +88,13 @@ TEST(SpeedAccuracy, CsvHasAHeaderAndOneLinePerPoint) {
   SpeedAccuracyResult result;
   ASSERT_EQ(RunSpeedAccuracySweep(FastOptions({"spot"}), result), std::nullopt);
   const std::string csv = SpeedAccuracyCsv(result);
+  // The old columns first, peak_error and rms_error added at the end.
   EXPECT_THAT(csv, StartsWith("environment,method,level,size,update_ms,mips_ms,mean_relative_error,"
-                              "max_relative_error,order,slots\n"));
+                              "max_relative_error,order,slots,peak_error,rms_error\n"));
   EXPECT_THAT(csv, HasSubstr("\nspot,mip,0,8,"));
-  EXPECT_THAT(csv, HasSubstr(",zh3,6\n"));
+  EXPECT_THAT(csv, HasSubstr(",zh3,6,"));
+  const SpeedAccuracyPoint& point = Find(result, "spot", ProjectionMethod::kDirectOnLevel, 3);
+  EXPECT_THAT(csv, HasSubstr(fmt::format(",order2,11,{:.6g},{:.6g}\n", point.error.max_peak, point.error.max_rms)));
   EXPECT_EQ(static_cast<std::size_t>(std::count(csv.begin(), csv.end(), '\n')), result.points.size() + 1);
   EXPECT_THAT(csv, HasSubstr("\nspot,direct,3,1,"));
 }
