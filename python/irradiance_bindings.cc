@@ -111,13 +111,14 @@ void SetEnvironmentArray(const py::array& array, irradiance::IrrmapOptions& opti
 }
 
 irradiance::IrrmapOptions OptionsFor(const py::object& environment, const std::string& layout, int face_size,
-                                     std::optional<int> level, double max_error, const std::string& order,
-                                     const std::string& window) {
+                                     std::optional<int> level, double max_error, const std::string& error_metric,
+                                     const std::string& order, const std::string& window) {
   irradiance::IrrmapOptions options;
   options.layout = layout;
   options.face_size = face_size;
   options.level = level;
   options.max_error = max_error;
+  options.error_metric = error_metric;
   options.order = order;
   options.window = window;
   options.write_files = false;
@@ -147,9 +148,10 @@ irradiance::IrrmapReport RunJob(const irradiance::IrrmapOptions& options) {
 }
 
 Projection Project(const py::object& environment, const std::string& layout, int face_size, std::optional<int> level,
-                   double max_error, const std::string& order, const std::string& window) {
+                   double max_error, const std::string& order, const std::string& window,
+                   const std::string& error_metric) {
   const irradiance::IrrmapReport report =
-      RunJob(OptionsFor(environment, layout, face_size, level, max_error, order, window));
+      RunJob(OptionsFor(environment, layout, face_size, level, max_error, error_metric, order, window));
   Projection result;
   result.coefficients = py::array_t<double>({irradiance::kSh9Coefficients, 3});
   for (int i = 0; i < irradiance::kSh9Coefficients; ++i) {
@@ -180,6 +182,7 @@ Projection Project(const py::object& environment, const std::string& layout, int
     entry["estimated_error"] = row.estimated_error;
     levels.append(entry);
   }
+  result.errors["error_metric"] = std::string(irradiance::ErrorMetricName(report.error_metric));
   result.errors["estimated_error"] = report.order_estimated_error;
   result.errors["error_vs_full_order2"] = report.program_vs_full_order2;
   result.errors["levels"] = levels;
@@ -189,8 +192,10 @@ Projection Project(const py::object& environment, const std::string& layout, int
 
 py::array_t<float> IrradianceMap(const py::object& environment, const std::string& layout, int face_size,
                                  std::optional<int> level, double max_error, const std::string& order,
-                                 const std::string& window, int map_size, const std::string& engine) {
-  irradiance::IrrmapOptions options = OptionsFor(environment, layout, face_size, level, max_error, order, window);
+                                 const std::string& window, int map_size, const std::string& engine,
+                                 const std::string& error_metric) {
+  irradiance::IrrmapOptions options =
+      OptionsFor(environment, layout, face_size, level, max_error, error_metric, order, window);
   options.coefficients_only = false;
   options.no_ground_truth = true;
   options.map_size = map_size;
@@ -223,7 +228,7 @@ struct ScratchFolder {
 };
 
 py::list Batch(const std::vector<std::string>& paths, int threads, const std::string& layout, int face_size,
-               std::optional<int> level, double max_error) {
+               std::optional<int> level, double max_error, const std::string& error_metric) {
   if (threads < 0) throw py::value_error(fmt::format("threads={} must be >= 0 (0: every core)", threads));
   ScratchFolder scratch;
   irradiance::BatchOptions options;
@@ -234,6 +239,7 @@ py::list Batch(const std::vector<std::string>& paths, int threads, const std::st
   options.face_size = face_size;
   options.level = level;
   options.max_error = max_error;
+  options.error_metric = error_metric;
   irradiance::BatchSummary summary;
   std::optional<std::string> error;
   {
@@ -265,6 +271,8 @@ constexpr const char* kEnvironmentArguments =
     "face_size: faces of built-ins and of resampled lat-long and angular maps (power of two).\n"
     "level: the mip level the coefficients come from; None: the coarsest within max_error.\n"
     "max_error: the error budget of the level and program choice (0.005 = 0.5 %).\n"
+    "error_metric: what max_error bounds: peak (max |E - E*| / max E*, the default), rms (RMS of\n"
+    "  E - E* / mean E*) or relative (the worst |E - E*| / E* per normal), as irrmap --error-metric.\n"
     "order: auto, order0, order1, zh3 or order2 (the program); window: none, hanning, lanczos,\n"
     "  dering or nonneg.\n";
 
@@ -284,7 +292,8 @@ void BindIrradiance(py::module_& module) {
       .def_readonly("program_constants", &Projection::program_constants,
                     "The chosen program's constants, {'c0': [x, y, z, w], ...}: its run()'s constants.")
       .def_readonly("errors", &Projection::errors,
-                    "{'estimated_error': the chosen (program, level)'s estimate against the nine terms at level 0,\n"
+                    "{'error_metric': what the estimates measure (peak, rms or relative),\n"
+                    " 'estimated_error': the chosen (program, level)'s estimate against the nine terms at level 0,\n"
                     " 'error_vs_full_order2': its measured difference, 'levels': [{'level', 'size',\n"
                     " 'estimated_error'}]} (fractions).")
       .def_readonly("warnings", &Projection::warnings, "What irrmap would have warned about (also issued as warnings).")
@@ -297,6 +306,7 @@ void BindIrradiance(py::module_& module) {
   module.def("project", &Project, py::arg("environment"), py::arg("layout") = "auto", py::arg("face_size") = 256,
              py::arg("level") = py::none(), py::arg("max_error") = irradiance::kDefaultMaxLevelError,
              py::arg("order") = "auto", py::arg("window") = "none",
+             py::arg("error_metric") = std::string(irradiance::ErrorMetricName(irradiance::kDefaultErrorMetric)),
              (std::string("Projects an environment onto nine SH coefficients per channel and packs the seven\n"
                           "constants, choosing the level and the program as `irrmap --coefficients-only` does;\n"
                           "returns a Projection. Raises ValueError for bad arguments or unusable files.\n\n") +
@@ -307,6 +317,7 @@ void BindIrradiance(py::module_& module) {
              py::arg("face_size") = 256, py::arg("level") = py::none(),
              py::arg("max_error") = irradiance::kDefaultMaxLevelError, py::arg("order") = "auto",
              py::arg("window") = "none", py::arg("map_size") = irradiance::kDefaultMapSize, py::arg("engine") = "jit",
+             py::arg("error_metric") = std::string(irradiance::ErrorMetricName(irradiance::kDefaultErrorMetric)),
              (std::string("The irradiance cube map irrmap writes as irradiance.exr: the chosen program run on the\n"
                           "machine once per texel direction. Returns a (6, map_size, map_size, 3) float32 array\n"
                           "(faces in D3D order, rows top to bottom).\n\n") +
@@ -317,9 +328,10 @@ void BindIrradiance(py::module_& module) {
   module.def("batch", &Batch, py::arg("paths"), py::arg("threads") = 0, py::arg("layout") = "auto",
              py::arg("face_size") = 256, py::arg("level") = py::none(),
              py::arg("max_error") = irradiance::kDefaultMaxLevelError,
+             py::arg("error_metric") = std::string(irradiance::ErrorMetricName(irradiance::kDefaultErrorMetric)),
              "Projects many environment files as `irrmap batch` does (paths or glob patterns, every core\n"
              "with threads=0) and returns its records, one dict per input in input order: input, face_size,\n"
-             "layout, level, level_size, estimated_error, coefficients (9 x [r, g, b]) and constants\n"
+             "layout, level, level_size, estimated_error, error_metric, coefficients (9 x [r, g, b]) and constants\n"
              "({'cAr': [x, y, z, w], ...}). An input that cannot be used is skipped with a UserWarning\n"
              "naming it and why.\n\n"
              "Example:\n  records = vs11.irradiance.batch(['envs/*.hdr'], threads=2)");

@@ -53,9 +53,9 @@ void BM_ProgramChoice(benchmark::State& state) {
   for (int k = 0; k < irradiance::LevelCount(256); ++k) levels.push_back(irradiance::ProjectLevel(*mips, *basis, k));
   const std::vector<glm::dvec3> normals = irradiance::SphereNormals(irradiance::kLevelErrorNormals);
   for (auto _ : state) {
-    const std::vector<double> estimated = irradiance::EstimateLevelErrors(levels, normals);
+    const std::vector<double> estimated = irradiance::EstimateLevelErrors(levels, normals, irradiance::kDefaultErrorMetric);
     const std::vector<irradiance::ProgramLevelEstimate> pairs =
-        irradiance::EstimateProgramLevelErrors(levels, estimated, normals);
+        irradiance::EstimateProgramLevelErrors(levels, estimated, normals, irradiance::kDefaultErrorMetric);
     benchmark::DoNotOptimize(irradiance::ChooseProgramAndLevel(pairs, estimated, irradiance::kDefaultMaxLevelError));
   }
 }

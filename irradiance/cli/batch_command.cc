@@ -133,6 +133,9 @@ void AddBatchCommand(CLI::App& app) {
                     "pick the coarsest level whose estimated error stays under this fraction")
       ->capture_default_str()
       ->excludes(level);
+  batch->add_option("--error-metric", arguments->options.error_metric,
+                    fmt::format("what --max-error measures, as irrmap's: {}", ErrorMetricNames()))
+      ->capture_default_str();
   batch->callback([arguments] { RunBatchCommand(*arguments); });
 }
 

@@ -34,16 +34,17 @@ void RunChart(const ChartArguments& arguments) {
   if (std::optional<std::string> error = WriteSpeedAccuracy(result, arguments.out_dir, written)) {
     throw SubcommandFailure(*error);
   }
-  fmt::print("{:<12} {:<6} {:>5} {:>9} {:>11} {:>9} {:>13} {:>12}\n", "environment", "method", "level", "size",
-             "update ms", "mips ms", "mean rel err", "max rel err");
+  fmt::print("{:<12} {:<6} {:>5} {:>9} {:>11} {:>9} {:>13} {:>12} {:>10} {:>10}\n", "environment", "method", "level",
+             "size", "update ms", "mips ms", "mean rel err", "max rel err", "peak err", "rms err");
   for (const SpeedAccuracyPoint& point : result.points) {
     double mips_ms = 0.0;
     for (const SpeedAccuracyEnvironment& environment : result.environments) {
       if (environment.name == point.environment) mips_ms = environment.mips_ms;
     }
-    fmt::print("{:<12} {:<6} {:>5} {:>9} {:>11.4f} {:>9.3f} {:>11.3f} % {:>10.3f} %\n", point.environment,
-               ProjectionMethodName(point.method), point.level, fmt::format("{0}x{0}", point.size), point.update_ms,
-               mips_ms, 100.0 * point.error.mean_relative, 100.0 * point.error.max_relative);
+    fmt::print("{:<12} {:<6} {:>5} {:>9} {:>11.4f} {:>9.3f} {:>11.3f} % {:>10.3f} % {:>8.3f} % {:>8.3f} %\n",
+               point.environment, ProjectionMethodName(point.method), point.level,
+               fmt::format("{0}x{0}", point.size), point.update_ms, mips_ms, 100.0 * point.error.mean_relative,
+               100.0 * point.error.max_relative, 100.0 * point.error.max_peak, 100.0 * point.error.max_rms);
   }
   fmt::print("wrote:");
   for (const auto& path : written) fmt::print(" {}", path.string());
@@ -66,14 +67,16 @@ void AddChartCommand(CLI::App& app) {
       "          level 0 the plain full-resolution projection\n"
       "Time per update: one projection (mips built beforehand; their time is the mips_ms column), the\n"
       "median of --batches batch means, each batch repeating it for --min-batch-ms.\n"
-      "Error: mean relative error of the paper's program's irradiance against brute-force integration at\n"
-      "--error-normals normals, as in irrmap's level table.\n"
-      "The chart plots time (log x) against mean error (log y), one colour per environment, solid for mip\n"
-      "and dashed for direct, each point labelled by its level. gnuplot draws it.\n"
+      "Error: of the paper's program's irradiance against brute-force integration at --error-normals\n"
+      "normals, the same figures as irrmap's level table and coeffs.json for the same level: mean and max\n"
+      "relative, peak (max |E - E*| / max E*) and rms (RMS of E - E* / mean E*), each the worst of r, g, b.\n"
+      "The chart plots time (log x) against the --error-metric figure (log y; relative: the mean), one\n"
+      "colour per environment (named by the file's base name), solid for mip and dashed for direct, each\n"
+      "point labelled by its level. gnuplot draws it.\n"
       "\n"
       "Examples:\n"
       "  irrmap chart                          # every built-in at 256x256, into out/\n"
-      "  irrmap chart sky spot --face-size 64 --out chart-64\n"
+      "  irrmap chart sky spot --face-size 64 --error-metric rms --out chart-64\n"
       "  irrmap chart probe.hdr --layout angular --face-size 256\n");
   chart->add_option("ENV", arguments->options.environments,
                     "environments (files, {face} patterns or built-in names); default: every built-in");
@@ -84,6 +87,9 @@ void AddChartCommand(CLI::App& app) {
                     "face size of built-ins and of cubes resampled from latlong/angular maps (a power of two)")
       ->capture_default_str();
   chart->add_option("--error-normals", arguments->options.error_normals, "normals the error is measured at")
+      ->capture_default_str();
+  chart->add_option("--error-metric", arguments->options.error_metric,
+                    fmt::format("the error on the chart's axis: {} (relative: its mean)", ErrorMetricNames()))
       ->capture_default_str();
   chart->add_option("--threads", arguments->options.threads,
                     "threads of the ground truth and the vertex program (0 = every core); the timed "

@@ -34,8 +34,9 @@ std::string Footer() {
       "Outputs (in --out DIR, created if needed; all are written to temporaries and renamed into\n"
       "place only when all succeeded, so a failed run leaves no partial file):\n"
       "  coeffs.json     the 9 RGB SH coefficients (L00, L1-1, L10, L11, L2-2, L2-1, L20, L21, L22),\n"
-      "                  level (and level_choice, max_error), window, face_size, layout, the 7\n"
-      "                  constants, every level's errors and estimated error, timings_ms\n"
+      "                  level (and level_choice, max_error, error_metric), window, face_size,\n"
+      "                  layout, the 7 constants, every level's errors (relative, peak, rms, and\n"
+      "                  per channel and luminance) and estimated error, timings_ms\n"
       "                  (order, program: name, file, slots, estimated error; every pair's estimate)\n"
       "  program.vsh     the chosen vs_1_1 program (see Orders below)\n"
       "  constants.vsh   its constant registers as def lines from c0 on; for the paper's program the\n"
@@ -46,27 +47,34 @@ std::string Footer() {
       "                  chosen vs_1_1 program on the emulated machine\n"
       "  preview.png     diffuse spheres as in the paper's Fig. 3: exact convolution, SH9 from full\n"
       "                  resolution, from the 64x64 and 16x16 levels (and the chosen one, marked *),\n"
-      "                  relative-error images under them and the environment beside them\n"
+      "                  error images under them (in --error-metric's terms, captioned with the\n"
+      "                  table's figures for that level) and the environment beside them\n"
       "\n"
       "Printed: a table of every mip level (face size, time to update the 9 coefficients from that\n"
-      "level with the mips already built, max/mean relative error against brute-force integration\n"
-      "over --error-normals normals; * marks the chosen level), then the time of every stage.\n"
-      "Relative error of a normal: max over r, g, b of |SH9 - exact| / max(exact, 1% of the largest\n"
-      "exact value). Around a strong light's terminator SH9 is far off (its band limit rings): tens\n"
-      "of percent for the sky's sun, more for the single spot light.\n"
+      "level with the mips already built, errors against brute-force integration over\n"
+      "--error-normals normals; * marks the chosen level), then the time of every stage. Errors,\n"
+      "each the worst of r, g, b (coeffs.json also has each channel and the Rec. 709 luminance):\n"
+      "  max/mean rel  per normal |SH9 - exact| / max(exact, 1% of the largest exact value): it\n"
+      "                explodes where the exact value is near zero (the spot's unlit half)\n"
+      "  peak          max |SH9 - exact| / max exact, as Ramamoorthi & Hanrahan state it (9.375 %\n"
+      "                for one point light, at its horizon)\n"
+      "  rms           RMS of SH9 - exact over the normals / mean exact (14.4 % for a point light)\n"
       "The ground truth (brute-force integration over every texel) is the slow stage (--no-ground-truth\n"
       "skips it, with the error columns and the preview); a progress bar for it, the load and the basis\n"
       "pyramid is shown when stderr is a terminal.\n"
       "\n"
       "Levels: 0 is the full face size, each level halves it, the last is 1x1. By default the coarsest\n"
-      "level whose error against level 0 stays under --max-error (0.5 %), estimated as 1.4 x its\n"
-      "difference from the next finer level, every finer level passing too: the sky of 256x256 faces\n"
-      "gets 16x16, the spot 128x128, a constant environment 1x1 (the paper fixes {0}x{0}: Fig. 3).\n"
+      "level whose error against level 0 stays under --max-error (0.5 %) in --error-metric's terms\n"
+      "(default peak), estimated as 1.4 x its difference from the next finer level, every finer level\n"
+      "passing too: the sky of 256x256 faces gets 16x16, the studio and the spot 32x32, a constant\n"
+      "environment 1x1 (the paper fixes {0}x{0}: Fig. 3). With --error-metric relative the spot gets\n"
+      "128x128: that metric is ruled by its darkest normals.\n"
       "\n"
       "Orders: the program is the cheapest (slots per vertex, then update time) whose estimated error\n"
       "against the nine terms at level 0 stays under --max-error: order0 (1 slot, constant), order1\n"
       "(3 slots, bands 0-1), zh3 (6 slots, bands 0-1 plus one zonal band-2 term) or order2 (the paper's\n"
-      "11 slots). The constant environment gets order0, the gradient order1, the spot order2.\n"
+      "11 slots). The constant environment gets order0, the gradient order1, the spot zh3, the sky\n"
+      "order2.\n"
       "--window trades ringing (negative irradiance opposite a small bright light) against blur;\n"
       "`irrmap stability` measures both.\n"
       "\n"
@@ -74,6 +82,7 @@ std::string Footer() {
       "  irrmap                                       # built-in sky, 256x256 faces, level by --max-error, out/\n"
       "  irrmap spot --window dering                  # the spot light without negative irradiance\n"
       "  irrmap gradient                              # a smooth gradient: the 3-slot order1 program\n"
+      "  irrmap spot --coefficients-only --error-metric relative   # the level as the relative metric picks it\n"
       "  irrmap studio --face-size 128 --level 3      # built-in studio, coefficients from 16x16\n"
       "  irrmap probe.hdr --layout angular --face-size 256 --out probe-out\n"
       "  irrmap 'sky_{{face}}.exr' --engine ref         # six face files, reference engine\n"
@@ -132,9 +141,15 @@ void AddJobOptions(CLI::App& app, JobCommandLine& line) {
                  "1x1; default: picked by --max-error");
   app.add_option("--max-error", options.max_error,
                  "unless --level is given, pick the coarsest level whose error against full resolution, estimated "
-                 "from adjacent levels, stays under this fraction (0.005 = 0.5 %)")
+                 "from adjacent levels, stays under this fraction (0.005 = 0.5 %) of --error-metric's figure")
       ->capture_default_str()
       ->excludes(level_option);
+  app.add_option("--error-metric", options.error_metric,
+                 fmt::format("what --max-error and the estimates measure: {} (peak: max |E - E*| / max E*; rms: "
+                             "RMS of E - E* / mean E*; relative: the worst |E - E*| / E* per normal, floor 1 % of "
+                             "the peak), each the worst of r, g, b",
+                             vs11::irradiance::ErrorMetricNames()))
+      ->capture_default_str();
   app.add_option("--order", options.order,
                  fmt::format("program: auto (the cheapest within --max-error; order2 when --level is given) or "
                              "one of {}", vs11::irradiance::ShOrderNames()))

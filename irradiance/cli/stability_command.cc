@@ -66,6 +66,9 @@ void AddStabilityCommand(CLI::App& app) {
       ->capture_default_str();
   command->add_option("--max-error", options->max_error, "target of the level pick (a fraction: 0.005 = 0.5 %)")
       ->capture_default_str();
+  command->add_option("--error-metric", options->error_metric,
+                      fmt::format("what --max-error bounds, as irrmap's: {}", ErrorMetricNames()))
+      ->capture_default_str();
   command->add_option("--threads", options->threads, "worker threads (0 = every core)")->capture_default_str();
   command->callback([options, out_dir] {
     options->out_dir = *out_dir;

@@ -84,10 +84,12 @@ class BasisCache {
 };
 
 struct Job {
-  Job(const BatchOptions& batch_options, EnvironmentLayout file_layout) : options(batch_options), layout(file_layout) {}
+  Job(const BatchOptions& batch_options, EnvironmentLayout file_layout, ErrorMetric error_metric)
+      : options(batch_options), layout(file_layout), metric(error_metric) {}
 
   const BatchOptions& options;
   EnvironmentLayout layout;
+  ErrorMetric metric;
   BasisCache basis;
   std::vector<glm::dvec3> error_normals = SphereNormals(kLevelErrorNormals);
 };
@@ -112,7 +114,7 @@ std::optional<std::string> ProcessInput(Job& job, const std::string& input, nloh
   }
   std::vector<Sh9Rgb> levels;
   for (int level = 0; level < level_count; ++level) levels.push_back(ProjectLevel(*mips, *basis, level));
-  const std::vector<double> estimated = EstimateLevelErrors(levels, job.error_normals);
+  const std::vector<double> estimated = EstimateLevelErrors(levels, job.error_normals, job.metric);
   const int level = job.options.level ? *job.options.level : CoarsestLevelWithin(estimated, job.options.max_error);
   nlohmann::ordered_json coefficients = nlohmann::ordered_json::array();
   for (const glm::dvec3& c : levels[level].coefficients) coefficients.push_back({c.r, c.g, c.b});
@@ -122,12 +124,13 @@ std::optional<std::string> ProcessInput(Job& job, const std::string& input, nloh
             {"level", level},
             {"level_size", face_size >> level},
             {"estimated_error", estimated[level]},
+            {"error_metric", std::string(ErrorMetricName(job.metric))},
             {"coefficients", std::move(coefficients)},
             {"constants", ConstantsJson(PackTable1(levels[level]))}};
   return std::nullopt;
 }
 
-std::optional<std::string> CheckOptions(const BatchOptions& options, EnvironmentLayout& layout) {
+std::optional<std::string> CheckOptions(const BatchOptions& options, EnvironmentLayout& layout, ErrorMetric& metric) {
   std::optional<EnvironmentLayout> parsed = ParseLayout(options.layout);
   if (!parsed) {
     return fmt::format("unknown layout '{}' (use auto, faces, hcross, vcross, hstrip, vstrip, latlong or angular)",
@@ -141,6 +144,9 @@ std::optional<std::string> CheckOptions(const BatchOptions& options, Environment
   if (!(options.max_error > 0.0 && options.max_error < 1.0)) {
     return fmt::format("--max-error {} is out of range: a fraction above 0 and below 1", options.max_error);
   }
+  const std::optional<ErrorMetric> parsed_metric = ParseErrorMetric(options.error_metric);
+  if (!parsed_metric) return fmt::format("unknown error metric '{}' (use {})", options.error_metric, ErrorMetricNames());
+  metric = *parsed_metric;
   if (options.level && *options.level < 0) return fmt::format("--level {} is out of range: levels start at 0", *options.level);
   if (options.threads < 0) return fmt::format("--threads {} must be >= 0 (0: every core)", options.threads);
   if (options.output.empty()) return std::string("no output file given (-o FILE.jsonl)");
@@ -244,7 +250,8 @@ std::optional<std::string> RunBatch(const BatchOptions& options, BatchSummary& s
   const auto start = std::chrono::steady_clock::now();
   summary = BatchSummary{};
   EnvironmentLayout layout = EnvironmentLayout::kAuto;
-  if (std::optional<std::string> error = CheckOptions(options, layout)) return error;
+  ErrorMetric metric = kDefaultErrorMetric;
+  if (std::optional<std::string> error = CheckOptions(options, layout, metric)) return error;
   std::string error;
   const std::vector<std::string> all = ExpandBatchInputs(options.inputs, options.list_files, error);
   if (!error.empty()) return error;
@@ -268,7 +275,7 @@ std::optional<std::string> RunBatch(const BatchOptions& options, BatchSummary& s
   std::unique_ptr<std::FILE, int (*)(std::FILE*)> out(std::fopen(options.output.c_str(), "ab"), &std::fclose);
   if (!out) return fmt::format("cannot open {} for appending", options.output.string());
 
-  Job job(options, layout);
+  Job job(options, layout, metric);
   std::mutex mutex;  // guards `out`, `summary`, the callbacks and `failures`
   std::vector<std::pair<std::size_t, BatchFailure>> failures;
   std::atomic<std::size_t> next = 0;

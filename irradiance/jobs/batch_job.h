@@ -7,7 +7,8 @@
 //
 // Output: one line per finished input, appended and flushed as soon as it is done (an interrupted
 // run keeps every finished line):
-//   {"input": PATH, "face_size", "layout", "level", "level_size", "estimated_error",
+//   {"input": PATH, "face_size", "layout", "level", "level_size", "estimated_error", "error_metric"
+//    (what estimated_error and --max-error measure),
 //    "coefficients": 9 x [r, g, b] (L00, L1-1, ..., L22), "constants": {"cAr": [x, y, z, w], ...}}
 // and optionally, per input, DIR/<input with '/' as '__'>.json holding the same record, written
 // atomically. A file that cannot be read or used is reported (its path and why) and skipped; the
@@ -42,6 +43,7 @@ struct BatchOptions {
   int face_size = 256;  // lat-long and angular maps are resampled to this
   std::optional<int> level;
   double max_error = kDefaultMaxLevelError;
+  std::string error_metric{ErrorMetricName(kDefaultErrorMetric)};  // what max_error bounds, as irrmap's
 };
 
 struct BatchFailure {

@@ -95,6 +95,7 @@ struct CheckedOptions {
   EngineKind engine = EngineKind::kBatch;
   ShWindow window = ShWindow::kNone;
   std::optional<ShOrder> order;  // nullopt: chosen by max_error
+  ErrorMetric metric = kDefaultErrorMetric;
   bool builtin = false;
   int threads = 1;
 };
@@ -133,6 +134,9 @@ std::optional<std::string> CheckOptions(const IrrmapOptions& options, CheckedOpt
     return fmt::format("--max-error {} is out of range: a fraction above 0 and below 1 (0.005 = 0.5 %)",
                        options.max_error);
   }
+  std::optional<ErrorMetric> metric = ParseErrorMetric(options.error_metric);
+  if (!metric) return fmt::format("unknown error metric '{}' (use {})", options.error_metric, ErrorMetricNames());
+  checked.metric = *metric;
   if (std::optional<std::string> error = CheckFaceSizeOption("--face-size", options.face_size)) return error;
   if (options.level && *options.level < 0) {
     return fmt::format("--level {} is out of range: levels start at 0 (full resolution)", *options.level);
@@ -261,6 +265,20 @@ std::vector<int> PreviewLevels(const IrrmapReport& report) {
   return levels;
 }
 
+// The error fields of coeffs.json (see irrmap_job.h); `channels` adds the per-channel figures.
+void AddErrorFields(const ErrorStats& error, nlohmann::ordered_json& row, bool channels) {
+  row["max_relative_error"] = error.max_relative;
+  row["mean_relative_error"] = error.mean_relative;
+  row["peak_error"] = error.max_peak;
+  row["rms_error"] = error.max_rms;
+  if (!channels) return;
+  auto per_channel = [](glm::dvec3 rgb, double luminance) {
+    return nlohmann::ordered_json{{"r", rgb.r}, {"g", rgb.g}, {"b", rgb.b}, {"luminance", luminance}};
+  };
+  row["peak_error_channels"] = per_channel(error.peak_rgb, error.peak_luminance);
+  row["rms_error_channels"] = per_channel(error.rms_rgb, error.rms_luminance);
+}
+
 nlohmann::ordered_json CoefficientsJson(const IrrmapReport& report, const IrrmapOptions& options,
                                         const CheckedOptions& checked) {
   nlohmann::ordered_json json;
@@ -271,6 +289,7 @@ nlohmann::ordered_json CoefficientsJson(const IrrmapReport& report, const Irrmap
   json["level_size"] = report.levels[report.level].size;
   json["level_choice"] = options.level ? "level" : "max_error";
   if (!options.level) json["max_error"] = options.max_error;
+  json["error_metric"] = std::string(ErrorMetricName(report.error_metric));
   const std::array<double, kSh9Bands>& factors = report.levels[report.level].window_factors;
   json["window"] = {{"name", std::string(ShWindowName(checked.window))},
                     {"width", options.window_width},
@@ -288,7 +307,7 @@ nlohmann::ordered_json CoefficientsJson(const IrrmapReport& report, const Irrmap
                                     {"slots", order.slots},
                                     {"estimated_error", report.order_estimated_error},
                                     {"error_vs_full_order2", report.program_vs_full_order2}};
-  if (report.errors_measured) program["max_relative_error"] = report.program_error.max_relative;
+  if (report.errors_measured) AddErrorFields(report.program_error, program, false);
   nlohmann::ordered_json registers = nlohmann::ordered_json::object();
   for (const NamedRegister& r : report.program_constants) {
     registers[r.name] = {r.value.x, r.value.y, r.value.z, r.value.w};
@@ -304,10 +323,7 @@ nlohmann::ordered_json CoefficientsJson(const IrrmapReport& report, const Irrmap
   nlohmann::ordered_json levels = nlohmann::ordered_json::array();
   for (const LevelReport& level : report.levels) {
     nlohmann::ordered_json row = {{"level", level.level}, {"size", level.size}, {"update_ms", level.update_ms}};
-    if (!options.coefficients_only && !options.no_ground_truth) {
-      row["max_relative_error"] = level.error.max_relative;
-      row["mean_relative_error"] = level.error.mean_relative;
-    }
+    if (!options.coefficients_only && !options.no_ground_truth) AddErrorFields(level.error, row, true);
     row["estimated_error"] = level.estimated_error;
     levels.push_back(std::move(row));
   }
@@ -322,8 +338,7 @@ nlohmann::ordered_json CoefficientsJson(const IrrmapReport& report, const Irrmap
                                   {"ns_per_vertex", mesh.vertex_count > 0 ? mesh.ms_per_evaluation * 1e6 / mesh.vertex_count : 0.0},
                                   {"exact", mesh.has_truth}};
     if (mesh.has_truth) {
-      row["max_relative_error"] = mesh.error.max_relative;
-      row["mean_relative_error"] = mesh.error.mean_relative;
+      AddErrorFields(mesh.error, row, false);
       row["error_scale"] = mesh.error_scale;
     }
     json["mesh"] = std::move(row);
@@ -424,8 +439,9 @@ void ChooseLevelAndWindow(const IrrmapOptions& options, const CheckedOptions& ch
   std::vector<Sh9Rgb> coefficients;
   for (const LevelReport& row : report.levels) coefficients.push_back(row.coefficients);
   const std::vector<glm::dvec3> normals = SphereNormals(kLevelErrorNormals);
-  const std::vector<double> estimated = EstimateLevelErrors(coefficients, normals);
-  report.program_estimates = EstimateProgramLevelErrors(coefficients, estimated, normals);
+  report.error_metric = checked.metric;
+  const std::vector<double> estimated = EstimateLevelErrors(coefficients, normals, checked.metric);
+  report.program_estimates = EstimateProgramLevelErrors(coefficients, estimated, normals, checked.metric);
   std::vector<ShOrder> allowed;
   if (checked.order) allowed.push_back(*checked.order);
   const ProgramChoice choice = ChooseProgramAndLevel(report.program_estimates, estimated, options.max_error, allowed);
@@ -544,7 +560,7 @@ std::optional<std::string> CoefficientsStage(IrrmapRun& run) {
   });
   report.program_vs_full_order2 =
       IrradianceDifference(ReduceToOrder(report.coefficients, report.order), report.levels[0].coefficients,
-                           SphereNormals(kLevelErrorNormals));
+                           SphereNormals(kLevelErrorNormals), run.checked.metric);
   std::string error;
   run.program = Timed(report, "program", [&] { return PaperProgram::Load(error); });
   if (!run.program) return error;
@@ -617,6 +633,7 @@ std::optional<std::string> GroundTruthStage(IrrmapRun& run) {
         run.error_truth, run.error_normals);
   });
   report.errors_measured = true;
+  report.error_normals = static_cast<int>(run.error_normals.size());
   return std::nullopt;
 }
 
@@ -631,20 +648,28 @@ std::optional<std::string> PreviewStage(IrrmapRun& run) {
     truth_panel.irradiance.reserve(sphere.normals.size());
     for (const glm::dvec3& n : sphere.normals) truth_panel.irradiance.push_back(run.grid.Sample(n));
     std::vector<PreviewPanel> panels;
+    std::vector<ErrorStats> table_errors;  // each panel's row of the level table: the captions state its figures
     const bool order2 = report.order == ShOrder::kOrder2;
     for (int level : PreviewLevels(report)) {
       const LevelReport& row = report.levels[level];
       panels.push_back({PreviewLabel(row, row.chosen && order2),
                         run.program->Irradiance(PackTable1(row.coefficients), sphere.normals, run.checked.engine,
                                                 run.engine_options)});
+      table_errors.push_back(row.error);
     }
     if (!order2) {  // the chosen program beside the nine terms it approximates
       const LevelReport& chosen = report.levels[report.level];
       panels.push_back({fmt::format("{} from {}x{} *", Info(report.order).name, chosen.size, chosen.size),
                         run.chosen_program->Irradiance(run.chosen_bank, sphere.normals, run.checked.engine,
                                                        run.engine_options)});
+      table_errors.push_back(report.program_error);
     }
-    const PreviewErrors errors = AnalysePreviewErrors(truth_panel, panels);
+    const PreviewErrorBasis basis{report.error_metric, table_errors,
+                                  SampleErrorScale(run.error_truth, report.error_metric, kPreviewErrorFloor)};
+    const PreviewErrors errors = AnalysePreviewErrors(truth_panel, panels, basis);
+    for (std::size_t p = 0; p < panels.size(); ++p) {
+      run.report.preview_panels.push_back({panels[p].label, errors.captions[p]});
+    }
     return RenderPreview(sphere, truth_panel, panels, errors, run.mips->levels[0], preview_options);
   });
   for (const std::string& warning : run.preview.warnings) run.report.warnings.push_back(warning);
@@ -704,19 +729,22 @@ std::optional<std::string> CheckOutputFolder(const fs::path& out_dir) {
 }
 
 std::string FormatLevelTable(const IrrmapReport& report) {
-  std::string out = fmt::format("  {:>5}  {:>11}  {:>11}  {:>11}  {:>12}  {:>12}", "level", "size", "update ms",
-                                "max rel err", "mean rel err", "est vs lvl 0");
+  std::string out = fmt::format("  {:>5}  {:>11}  {:>11}  {:>11}  {:>12}  {:>10}  {:>10}  {:>12}", "level", "size",
+                                "update ms", "max rel err", "mean rel err", "peak err", "rms err", "est vs lvl 0");
   for (ShOrder order : kAllShOrders) {
     if (order != ShOrder::kOrder2) out += fmt::format("  {:>12}", fmt::format("est {}", Info(order).name));
   }
   out += "\n";
   for (const LevelReport& level : report.levels) {
-    auto percent = [&](double fraction) {
-      return report.errors_measured ? fmt::format("{:>10.3f} %", 100.0 * fraction) : fmt::format("{:>12}", "-");
+    auto percent = [&](double fraction, int width) {
+      return report.errors_measured ? fmt::format("{:>{}.3f} %", 100.0 * fraction, width - 2)
+                                    : fmt::format("{:>{}}", "-", width);
     };
-    out += fmt::format("{} {:>5}  {:>11}  {:>11.4f}  {}  {}  {:>10.3f} %", level.chosen ? '*' : ' ', level.level,
-                       fmt::format("{0}x{0}", level.size), level.update_ms, percent(level.error.max_relative),
-                       percent(level.error.mean_relative), 100.0 * level.estimated_error);
+    out += fmt::format("{} {:>5}  {:>11}  {:>11.4f}  {}  {}  {}  {}  {:>10.3f} %", level.chosen ? '*' : ' ',
+                       level.level, fmt::format("{0}x{0}", level.size), level.update_ms,
+                       percent(level.error.max_relative, 11), percent(level.error.mean_relative, 12),
+                       percent(level.error.max_peak, 10), percent(level.error.max_rms, 10),
+                       100.0 * level.estimated_error);
     for (const ProgramLevelEstimate& pair : report.program_estimates) {
       if (pair.level == level.level && pair.order != ShOrder::kOrder2) {
         out += fmt::format("  {:>10.3f} %", 100.0 * pair.estimated);
@@ -724,7 +752,14 @@ std::string FormatLevelTable(const IrrmapReport& report) {
     }
     out += "\n";
   }
+  if (report.errors_measured) {
+    out += fmt::format("  errors of the nine terms against the exact irradiance at {} normals, the worst of r, g, b: "
+                       "relative per normal (floor 1 % of the peak), peak = max |E - E*| / max E*, rms = RMS of "
+                       "E - E* / mean E*\n",
+                       report.error_normals);
+  }
   const ShOrderInfo& order = Info(report.order);
+  out += fmt::format("  estimates (est) and --max-error: the {} metric\n", ErrorMetricName(report.error_metric));
   out += fmt::format("  program: {} ({}, {} slots per vertex) from level {}, estimated {:.3f} % against the nine "
                      "terms at level 0 (measured {:.3f} %)\n",
                      order.name, order.program_file, order.slots, report.level, 100.0 * report.order_estimated_error,

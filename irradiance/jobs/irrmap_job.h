@@ -11,17 +11,20 @@
 // Files written into IrrmapOptions::out_dir (created if needed):
 //   coeffs.json      {"coefficients": 9 x [r, g, b] (L00, L1-1, L10, L11, L2-2, L2-1, L20, L21,
 //                    L22, windowed), "level", "level_size", "level_choice" ("level" or
-//                    "max_error"), "max_error" (when picked by it), "window": {"name", "width",
+//                    "max_error"), "max_error" (when picked by it), "error_metric" (what max_error,
+//                    every "estimated_error" and "error_vs_full_order2" measure), "window": {"name", "width",
 //                    "factors": [w0, w1, w2]}, "face_size", "layout", "environment", "engine",
 //                    "map_size", "constants": {"cAr": [x, y, z, w], ...}, "levels": [{"level",
-//                    "size", "update_ms", "max_relative_error", "mean_relative_error",
-//                    "estimated_error"}, ...],
+//                    "size", "update_ms", "max_relative_error", "mean_relative_error", "peak_error",
+//                    "rms_error", "peak_error_channels" and "rms_error_channels" ({"r", "g", "b",
+//                    "luminance"}; see ErrorStats), "estimated_error"}, ...],
 //                    "timings_ms": {"load", "env_mips", "basis_pyramid", "level_updates" (every
 //                    level, each repeated for timing), "projection" (the chosen level's update),
 //                    "constants", "program" (assembling it), "irradiance_map", "ground_truth",
 //                    "level_errors", "preview"}}; the final "write" is in IrrmapReport only
 //                    "order", "program": {"name", "file", "slots", "estimated_error",
-//                    "error_vs_full_order2", "max_relative_error" (vs the truth), "constants":
+//                    "error_vs_full_order2", "max_relative_error", "peak_error", "rms_error" (vs
+//                    the truth), "constants":
 //                    {"cE" | "cAr" ...: [x, y, z, w]}}, "program_estimates": [{"order", "level",
 //                    "estimated_error"}, ...]
 //   program.vsh      the chosen program (irradiance/sh/sh_order.h): sh_order0.vsh, sh_order1.vsh,
@@ -36,7 +39,7 @@
 //   mesh.png         the mesh lit by the program | by the exact irradiance | the relative error
 //                    (irradiance/jobs/mesh_lighting.h); coeffs.json gains "mesh": {"file", "vertex_count",
 //                    "triangle_count", "unusable_normals", "ms_per_evaluation", "ns_per_vertex", "exact" and, with it,
-//                    "max_relative_error", "mean_relative_error", "error_scale"}
+//                    "max_relative_error", "mean_relative_error", "peak_error", "rms_error", "error_scale"}
 // All of them are first written to hidden temporaries in out_dir and renamed into place only when all
 // of them were written, so a failure leaves no partial output.
 #pragma once
@@ -88,6 +91,10 @@ struct IrrmapOptions {
   // Otherwise the level is the coarsest whose error against level 0, estimated from adjacent
   // levels, stays under this fraction (CoarsestLevelWithin, irradiance/sh/level_choice.h).
   double max_error = kDefaultMaxLevelError;
+  // What max_error bounds (ParseErrorMetric names): "peak" (kDefaultErrorMetric), "rms" or
+  // "relative" (irradiance/sh/ground_truth.h). The estimates, the level table's marks and the
+  // preview's error images follow it too.
+  std::string error_metric{ErrorMetricName(kDefaultErrorMetric)};
   // The program (irradiance/sh/sh_order.h): "auto" picks the cheapest (program, level) pair within
   // max_error (ChooseProgramAndLevel); a ShOrderInfo name fixes it (the level is then still picked
   // by max_error unless `level` is set). With `level` set, "auto" means order2, the paper's program.
@@ -157,6 +164,8 @@ struct Timing {
 };
 
 struct IrrmapReport {
+  ErrorMetric error_metric = kDefaultErrorMetric;  // what the estimates and max_error measure
+  int error_normals = 0;         // the normals of every level's `error` (when errors_measured)
   bool errors_measured = false;  // the levels' errors against the ground truth (not with --no-ground-truth)
   std::string environment;  // "sky (built-in)" or the path
   std::string layout;       // "builtin" or the layout read
@@ -180,6 +189,13 @@ struct IrrmapReport {
   std::vector<std::filesystem::path> files;  // written, once everything succeeded
   std::vector<std::string> warnings;
   std::optional<MeshReport> mesh;
+  // The preview's estimate panels: the label above each sphere and the caption under its error
+  // image, which states the level table's figures for that level (report/preview_errors.h).
+  struct PreviewPanelText {
+    std::string label;
+    std::string caption;
+  };
+  std::vector<PreviewPanelText> preview_panels;
   CubeMap irradiance_map;  // the chosen program's irradiance cube map (empty with coefficients_only)
 
   // The time of a stage, or 0 when it did not run.
@@ -197,7 +213,9 @@ std::optional<std::string> RunIrrmap(const IrrmapOptions& options, IrrmapReport&
                                      const IrrmapProgress& progress = {});
 
 // The level table, one row per level (the chosen one marked with '*'):
-//   level   size     update ms   max rel err   mean rel err   est vs lvl 0
+//   level   size     update ms   max rel err   mean rel err   peak err   rms err   est vs lvl 0
+// (the errors against the ground truth, as ErrorStats; the estimates in the run's error metric,
+// which the line under the table names).
 std::string FormatLevelTable(const IrrmapReport& report);
 // "load 12.3 ms, env_mips 4.5 ms, ..." one stage per line.
 std::string FormatTimings(const IrrmapReport& report);

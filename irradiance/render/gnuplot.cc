@@ -8,6 +8,7 @@
 #include <cstring>
 #include <fstream>
 #include <sstream>
+#include <string_view>
 #include <system_error>
 
 #include <fmt/format.h>
@@ -82,6 +83,18 @@ std::string GnuplotQuote(const std::string& text) {
     if (c == '\'') quoted += '\'';  // gnuplot doubles a quote inside single quotes
   }
   return quoted + "'";
+}
+
+std::string GnuplotLiteral(const std::string& text) {
+  // Inside single quotes a backslash reaches the enhanced-text parser as it is, which then takes
+  // the next character literally.
+  constexpr std::string_view kEnhancedMarkup = "_^@&~{}\\";
+  std::string escaped;
+  for (char c : text) {
+    if (kEnhancedMarkup.find(c) != std::string_view::npos) escaped += '\\';
+    escaped += c;
+  }
+  return GnuplotQuote(escaped);
 }
 
 std::optional<std::string> RenderGnuplotChart(const GnuplotChart& chart, const std::vector<fs::path>& outputs) {

@@ -29,5 +29,9 @@ std::optional<std::string> RenderGnuplotChart(const GnuplotChart& chart,
 
 // `text` quoted as a gnuplot single-quoted string (for titles and labels).
 std::string GnuplotQuote(const std::string& text);
+// The same, with the characters gnuplot's enhanced text mode reads as markup (_ ^ @ & ~ { } \)
+// escaped, so that the text prints as written: 'probulator\_grace', not "probulator" with a
+// subscript "g". For titles made of user input, such as file names.
+std::string GnuplotLiteral(const std::string& text);
 
 }  // namespace vs11::irradiance

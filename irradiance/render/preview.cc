@@ -279,7 +279,7 @@ PreviewResult RenderPreview(const SpherePixels& sphere, const PreviewPanel& trut
                             std::span<const PreviewPanel> estimates, const PreviewErrors& errors,
                             const CubeMap& environment, const PreviewOptions& options) {
   assert(sphere.diameter == std::max(options.sphere_diameter, kMinPreviewSphereDiameter));
-  assert(errors.relative.size() == estimates.size() && errors.stats.size() == estimates.size());
+  assert(errors.per_pixel.size() == estimates.size() && errors.captions.size() == estimates.size());
   assert(truth.irradiance.size() == sphere.normals.size());
   const int s = sphere.diameter;
   const int label_height = LabelHeight(options);
@@ -326,12 +326,9 @@ PreviewResult RenderPreview(const SpherePixels& sphere, const PreviewPanel& trut
     const int left = column_left(static_cast<int>(p) + 1);
     for (std::size_t k = 0; k < sphere.pixels.size(); ++k) {
       image.at(left + sphere.pixels[k].x, error_top + sphere.pixels[k].y) =
-          ErrorRamp(errors.relative[p][k] / errors.scale) * sphere.coverage[k];
+          ErrorRamp(errors.per_pixel[p][k] / errors.scale) * sphere.coverage[k];
     }
-    labels.push_back({left + s / 2, label_baseline(error_top),
-                      fmt::format("max {}, mean {}", Percent(errors.stats[p].max_relative),
-                                  Percent(errors.stats[p].mean_relative)),
-                      true, column_width});
+    labels.push_back({left + s / 2, label_baseline(error_top), errors.captions[p], true, column_width});
   }
 
   // The colour ramp of the error scale, under the exact sphere: top = the scale, bottom = 0.
@@ -351,7 +348,7 @@ PreviewResult RenderPreview(const SpherePixels& sphere, const PreviewPanel& trut
       labels.push_back({tick_left + kTickLength + 4, baseline, Percent(tick * errors.scale), false,
                         column_left(1) - (tick_left + kTickLength + 4) - 2});
     }
-    labels.push_back({column_left(0) + s / 2, label_baseline(error_top), "relative error", true, column_width});
+    labels.push_back({column_left(0) + s / 2, label_baseline(error_top), errors.title, true, column_width});
   }
 
   // The environment.

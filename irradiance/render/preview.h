@@ -93,9 +93,10 @@ struct PreviewOptions {
 
 // What the error row shows, computed by the report (report/preview_errors.h).
 struct PreviewErrors {
-  std::vector<std::vector<double>> relative;  // per estimate, the relative error of each sphere pixel
-  std::vector<ErrorStats> stats;              // per estimate, printed under its error image
-  double scale = 0.0;  // the relative error shown at the top of the colour ramp, shared by every image
+  std::vector<std::vector<double>> per_pixel;  // per estimate, the error of each sphere pixel
+  std::vector<std::string> captions;          // per estimate, printed under its error image
+  std::string title = "relative error";       // printed above the colour ramp
+  double scale = 0.0;  // the error shown at the top of the colour ramp, shared by every image
 };
 
 struct PreviewResult {

@@ -5,6 +5,8 @@
 #include <cassert>
 #include <cmath>
 
+#include <fmt/format.h>
+
 #include "irradiance/sh/ground_truth.h"
 
 namespace vs11::irradiance {
@@ -34,24 +36,46 @@ double NicePreviewErrorScale(double max_error) {
   return target;
 }
 
-PreviewErrors AnalysePreviewErrors(const PreviewPanel& truth, std::span<const PreviewPanel> estimates) {
-  // The floor of CompareIrradiance.
-  double truth_max = 0.0;
-  for (const glm::dvec3& t : truth.irradiance) {
-    truth_max = std::max({truth_max, std::abs(t.x), std::abs(t.y), std::abs(t.z)});
+std::string ErrorCaption(const ErrorStats& stats, ErrorMetric metric) {
+  auto percent = [](double fraction) {
+    const double value = 100.0 * fraction;
+    return value >= 100.0 ? fmt::format("{:.0f}%", value) : fmt::format("{:.3g}%", value);
+  };
+  switch (metric) {
+    case ErrorMetric::kRelative:
+      return fmt::format("max {}, mean {}", percent(stats.max_relative), percent(stats.mean_relative));
+    case ErrorMetric::kPeak: return fmt::format("peak {}, rms {}", percent(stats.max_peak), percent(stats.max_rms));
+    case ErrorMetric::kRms: return fmt::format("rms {}, peak {}", percent(stats.max_rms), percent(stats.max_peak));
   }
-  const double floor = kPreviewErrorFloor * truth_max;
+  return {};
+}
+
+PreviewErrors AnalysePreviewErrors(const PreviewPanel& truth, std::span<const PreviewPanel> estimates,
+                                   const PreviewErrorBasis& basis) {
+  assert(basis.sphere_stats.empty() || basis.sphere_stats.size() == estimates.size());
+  const glm::dvec3 scale = basis.sphere_scale ? *basis.sphere_scale
+                                               : SampleErrorScale(truth.irradiance, basis.metric, kPreviewErrorFloor);
   PreviewErrors errors;
-  errors.relative.resize(estimates.size());
+  errors.per_pixel.resize(estimates.size());
   double largest_error = 0.0;
   for (std::size_t p = 0; p < estimates.size(); ++p) {
     assert(estimates[p].irradiance.size() == truth.irradiance.size());
-    errors.relative[p].resize(truth.irradiance.size());
+    errors.per_pixel[p].resize(truth.irradiance.size());
     for (std::size_t k = 0; k < truth.irradiance.size(); ++k) {
-      errors.relative[p][k] = RelativeError(estimates[p].irradiance[k], truth.irradiance[k], floor);
-      largest_error = std::max(largest_error, errors.relative[p][k]);
+      errors.per_pixel[p][k] = SampleError(estimates[p].irradiance[k], truth.irradiance[k], scale, basis.metric);
+      largest_error = std::max(largest_error, errors.per_pixel[p][k]);
     }
-    errors.stats.push_back(CompareIrradiance(estimates[p].irradiance, truth.irradiance, kPreviewErrorFloor));
+    if (basis.sphere_stats.empty()) {
+      const ErrorStats pixels = CompareIrradiance(estimates[p].irradiance, truth.irradiance, kPreviewErrorFloor);
+      errors.captions.push_back(ErrorCaption(pixels, basis.metric) + " (pixels)");
+    } else {
+      errors.captions.push_back(ErrorCaption(basis.sphere_stats[p], basis.metric));
+    }
+  }
+  switch (basis.metric) {
+    case ErrorMetric::kRelative: errors.title = "relative error"; break;
+    case ErrorMetric::kPeak: errors.title = "error / peak E"; break;
+    case ErrorMetric::kRms: errors.title = "error / mean E"; break;
   }
   errors.scale = NicePreviewErrorScale(largest_error);
   return errors;

@@ -84,10 +84,22 @@ std::optional<std::string> CheckOptions(const SpeedAccuracyOptions& options) {
   if (options.threads < 0) return fmt::format("--threads {} must be >= 0 (0: every core)", options.threads);
   if (options.batches < 1) return fmt::format("--batches {} must be >= 1", options.batches);
   if (!(options.min_batch_ms >= 0.0)) return fmt::format("--min-batch-ms {} must be >= 0", options.min_batch_ms);
+  if (!ParseErrorMetric(options.error_metric)) {
+    return fmt::format("unknown error metric '{}' (use {})", options.error_metric, ErrorMetricNames());
+  }
   return std::nullopt;
 }
 
 }  // namespace
+
+double ChartErrorFigure(const ErrorStats& error, ErrorMetric metric) {
+  return metric == ErrorMetric::kRelative ? error.mean_relative : ErrorFigure(error, metric);
+}
+
+std::string ChartEnvironmentName(const std::string& environment) {
+  const std::string base = fs::path(environment).filename().string();
+  return base.empty() ? environment : base;
+}
 
 std::string_view ProjectionMethodName(ProjectionMethod method) {
   return method == ProjectionMethod::kMipPyramid ? "mip" : "direct";
@@ -97,6 +109,7 @@ std::optional<std::string> RunSpeedAccuracySweep(const SpeedAccuracyOptions& opt
                                                  const SpeedAccuracyProgress& progress) {
   result = SpeedAccuracyResult{};
   if (std::optional<std::string> error = CheckOptions(options)) return error;
+  result.metric = *ParseErrorMetric(options.error_metric);
   const EnvironmentLayout layout = *ParseLayout(options.layout);
   const std::vector<std::string> names =
       options.environments.empty() ? BuiltinEnvironmentNames() : options.environments;
@@ -160,7 +173,8 @@ std::optional<std::string> RunSpeedAccuracySweep(const SpeedAccuracyOptions& opt
 
 std::string SpeedAccuracyCsv(const SpeedAccuracyResult& result) {
   std::string csv =
-      "environment,method,level,size,update_ms,mips_ms,mean_relative_error,max_relative_error,order,slots\n";
+      "environment,method,level,size,update_ms,mips_ms,mean_relative_error,max_relative_error,order,slots,"
+      "peak_error,rms_error\n";
   for (const SpeedAccuracyPoint& point : result.points) {
     double mips_ms = 0.0;
     for (const SpeedAccuracyEnvironment& environment : result.environments) {
@@ -168,9 +182,10 @@ std::string SpeedAccuracyCsv(const SpeedAccuracyResult& result) {
     }
     std::string name = point.environment;
     std::replace(name.begin(), name.end(), ',', '_');  // keep the columns unambiguous
-    csv += fmt::format("{},{},{},{},{:.6g},{:.6g},{:.6g},{:.6g},{},{}\n", name, ProjectionMethodName(point.method),
-                       point.level, point.size, point.update_ms, mips_ms, point.error.mean_relative,
-                       point.error.max_relative, Info(point.order).name, Info(point.order).slots);
+    csv += fmt::format("{},{},{},{},{:.6g},{:.6g},{:.6g},{:.6g},{},{},{:.6g},{:.6g}\n", name,
+                       ProjectionMethodName(point.method), point.level, point.size, point.update_ms, mips_ms,
+                       point.error.mean_relative, point.error.max_relative, Info(point.order).name,
+                       Info(point.order).slots, point.error.max_peak, point.error.max_rms);
   }
   return csv;
 }
@@ -185,21 +200,23 @@ std::string SpeedPanelPlots(const SpeedAccuracyResult& result, std::string& data
     const SpeedAccuracyEnvironment& environment = result.environments[e];
     const std::string colour = GnuplotQuote(kColours[e % kColours.size()]);
     for (ProjectionMethod method : kAllProjectionMethods) {
-      data += fmt::format("# {} {}: update_ms mean_relative_error_percent level\n", environment.name,
-                          ProjectionMethodName(method));
+      data += fmt::format("# {} {}: update_ms {}_error_percent level\n", ChartEnvironmentName(environment.name),
+                          ProjectionMethodName(method), ErrorMetricName(result.metric));
       for (const SpeedAccuracyPoint& point : result.points) {
         if (point.environment != environment.name || point.method != method || point.order != ShOrder::kOrder2) {
           continue;
         }
-        data += fmt::format("{:.6g} {:.6g} {}\n", point.update_ms, 100.0 * point.error.mean_relative, point.level);
+        data += fmt::format("{:.6g} {:.6g} {}\n", point.update_ms, 100.0 * ChartErrorFigure(point.error, result.metric),
+                            point.level);
       }
       data += "\n\n";
       const bool mip = method == ProjectionMethod::kMipPyramid;
-      const std::string title = fmt::format("{} ({})", environment.name, mip ? "mip pyramid" : "direct on level");
+      const std::string title =
+          fmt::format("{} ({})", ChartEnvironmentName(environment.name), mip ? "mip pyramid" : "direct on level");
       plots += fmt::format(
           "{}datafile index {} using 1:2 with linespoints lc rgb {} dt {} pt {} ps 0.8 title {}, "
           "datafile index {} using 1:2:3 with labels offset char {},0.55 font ',8' tc rgb {} notitle",
-          plots.empty() ? "" : ", \\\n  ", block, colour, mip ? 1 : 2, mip ? 7 : 6, GnuplotQuote(title), block,
+          plots.empty() ? "" : ", \\\n  ", block, colour, mip ? 1 : 2, mip ? 7 : 6, GnuplotLiteral(title), block,
           mip ? 0.6 : -0.6, colour);
       ++block;
     }
@@ -214,17 +231,20 @@ std::string OrderPanelPlots(const SpeedAccuracyResult& result, std::string& data
   for (std::size_t e = 0; e < result.environments.size(); ++e) {
     const SpeedAccuracyEnvironment& environment = result.environments[e];
     const std::string colour = GnuplotQuote(kColours[e % kColours.size()]);
-    for (int size : {environment.face_size, kOrderChartLevelSize}) {
-      if (size > environment.face_size || (size == kOrderChartLevelSize && size == environment.face_size)) continue;
-      std::string curve = fmt::format("# {} orders from {}x{}: slots mean_relative_error_percent order\n",
-                                      environment.name, size, size);
+    // Full resolution, and the 16x16 level where it is a coarser one.
+    std::vector<int> sizes = {environment.face_size};
+    if (kOrderChartLevelSize < environment.face_size) sizes.push_back(kOrderChartLevelSize);
+    for (int size : sizes) {
+      std::string curve = fmt::format("# {} orders from {}x{}: slots {}_error_percent order\n",
+                                      ChartEnvironmentName(environment.name), size, size,
+                                      ErrorMetricName(result.metric));
       bool any = false;
       for (ShOrder order : kAllShOrders) {
         for (const SpeedAccuracyPoint& point : result.points) {
           if (point.environment == environment.name && point.method == ProjectionMethod::kMipPyramid &&
               point.size == size && point.order == order) {
-            curve += fmt::format("{} {:.6g} {}\n", Info(order).slots, 100.0 * point.error.mean_relative,
-                                 Info(order).name);
+            curve += fmt::format("{} {:.6g} {}\n", Info(order).slots,
+                                 100.0 * ChartErrorFigure(point.error, result.metric), Info(order).name);
             any = true;
           }
         }
@@ -234,11 +254,22 @@ std::string OrderPanelPlots(const SpeedAccuracyResult& result, std::string& data
       const bool full = size == environment.face_size;
       plots += fmt::format("{}datafile index {} using 1:2 with linespoints lc rgb {} dt {} pt {} ps 0.8 title {}",
                            plots.empty() ? "" : ", \\\n  ", block, colour, full ? 1 : 2, full ? 7 : 6,
-                           GnuplotQuote(fmt::format("{} from {}x{}", environment.name, size, size)));
+                           GnuplotLiteral(fmt::format("{} from {}x{}", ChartEnvironmentName(environment.name), size,
+                                                      size)));
       ++block;
     }
   }
   return plots;
+}
+
+// The y axis: what ChartErrorFigure plots.
+std::string_view ChartAxisName(ErrorMetric metric) {
+  switch (metric) {
+    case ErrorMetric::kRelative: return "mean relative irradiance error";
+    case ErrorMetric::kPeak: return "peak irradiance error, max |E - E*| / max E*";
+    case ErrorMetric::kRms: return "RMS irradiance error / mean irradiance";
+  }
+  return "error";
 }
 
 // "256x256, 64x64": the environments' face sizes, each once.
@@ -266,7 +297,7 @@ GnuplotChart SpeedAccuracyChart(const SpeedAccuracyResult& result) {
       "set grid xtics ytics mxtics mytics lc rgb '#dddddd'\n"
       "set format y '%g'\n"
       "set xlabel 'time per coefficient update, ms (log scale; mips built beforehand)'\n"
-      "set ylabel 'mean relative irradiance error, % (log scale)'\n"
+      "set ylabel {}\n"
       "set title {}\n"
       "set key below maxrows 3\n"
       "plot {}\n"
@@ -277,6 +308,7 @@ GnuplotChart SpeedAccuracyChart(const SpeedAccuracyResult& result) {
       "set title {}\n"
       "plot {}\n"
       "unset multiplot\n",
+      GnuplotQuote(fmt::format("{}, % (log scale)", ChartAxisName(result.metric))),
       GnuplotQuote(fmt::format("SH9 coefficients from each mip level (labels: level), faces {}",
                                FaceSizesText(result))),
       plots.empty() ? "NaN notitle" : plots,

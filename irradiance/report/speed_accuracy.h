@@ -1,7 +1,7 @@
 // The speed/accuracy sweep behind `irrmap chart`: for each environment, every mip level x each
-// projection method, the time of one coefficient update against the mean relative error of the
-// irradiance the paper's program computes from those coefficients (the same error as irrmap's level
-// table: CompareIrradiance against GroundTruthIrradiance at SphereNormals).
+// projection method, the time of one coefficient update against the error of the irradiance the
+// paper's program computes from those coefficients (the same errors as irrmap's level table:
+// CompareIrradiance against GroundTruthIrradiance at SphereNormals).
 //
 // Methods (both from the mip pyramid's level k, whose faces are face_size >> k):
 //   kMipPyramid     ProjectLevel(k): the paper's acceleration, level k's mean radiance times the
@@ -47,6 +47,8 @@ struct SpeedAccuracyOptions {
   // median of the batch means is reported, which shrugs off a batch slowed by another process.
   double min_batch_ms = 20.0;
   int batches = 3;
+  // The error on the chart's axis (ParseErrorMetric names; ChartErrorFigure): peak, rms or relative.
+  std::string error_metric{ErrorMetricName(kDefaultErrorMetric)};
 };
 
 struct SpeedAccuracyPoint {
@@ -66,6 +68,7 @@ struct SpeedAccuracyEnvironment {
 };
 
 struct SpeedAccuracyResult {
+  ErrorMetric metric = kDefaultErrorMetric;  // on the chart's axis
   std::vector<SpeedAccuracyEnvironment> environments;
   // Environment, then method, then level from 0, each mip level's order-2 point followed by its
   // reduced orders' points.
@@ -82,14 +85,25 @@ std::optional<std::string> RunSpeedAccuracySweep(const SpeedAccuracyOptions& opt
                                                  const SpeedAccuracyProgress& progress = {});
 
 // One header line, then one line per point:
-//   environment,method,level,size,update_ms,mips_ms,mean_relative_error,max_relative_error,order,slots
+//   environment,method,level,size,update_ms,mips_ms,mean_relative_error,max_relative_error,order,slots,
+//   peak_error,rms_error
+// (peak_error and rms_error as ErrorStats::max_peak and max_rms, the same figures as irrmap's level
+// table and coeffs.json for the same level).
 std::string SpeedAccuracyCsv(const SpeedAccuracyResult& result);
 
-// Two panels. Left: time per update (log x) against mean relative error in percent (log y) of the
+// The figure the chart plots for `metric`: mean_relative (kRelative, the chart's figure before the
+// metrics existed), max_peak (kPeak) or max_rms (kRms).
+double ChartErrorFigure(const ErrorStats& error, ErrorMetric metric);
+// The environment as the chart's key names it: the file's base name ("probulator_grace.hdr"), a
+// built-in's name as it is.
+std::string ChartEnvironmentName(const std::string& environment);
+
+// Two panels. Left: time per update (log x) against ChartErrorFigure in percent (log y) of the
 // paper's program (order 2): one colour per environment, solid lines for kMipPyramid and dashed for
 // kDirectOnLevel, each point labelled by its level. Right: slots per vertex of each order's program
-// (1, 3, 6, 11) against the mean relative error from the full-resolution coefficients (solid) and
-// from the 16x16 level (dashed, where the face size has one), one colour per environment.
+// (1, 3, 6, 11) against the same error from the full-resolution coefficients (solid) and from the
+// 16x16 level (dashed, where the face size has one), one colour per environment. Curves are titled
+// by ChartEnvironmentName, printed as written (GnuplotLiteral).
 GnuplotChart SpeedAccuracyChart(const SpeedAccuracyResult& result);
 
 // The file names written into an output folder.

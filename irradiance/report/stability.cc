@@ -159,10 +159,10 @@ double RadiusWhereNegative(std::span<const SpotSweepRow> rows, std::size_t varia
 // ---- 2. Coarse mip levels --------------------------------------------------------------------------
 
 LevelStudy MeasureLevels(std::string environment, const CubeMap& env, const BasisPyramid& basis,
-                         std::span<const glm::dvec3> normals, double max_error, int threads) {
+                         std::span<const glm::dvec3> normals, double max_error, int threads, ErrorMetric metric) {
   const std::vector<Sh9Rgb> levels = AllLevels(env, basis);
   // The estimate sees only what irrmap sees: its own normals, no level 0 and no truth.
-  const std::vector<double> estimated = EstimateLevelErrors(levels, SphereNormals(kLevelErrorNormals));
+  const std::vector<double> estimated = EstimateLevelErrors(levels, SphereNormals(kLevelErrorNormals), metric);
   const std::vector<glm::dvec3> truth = GroundTruthIrradiance(env, normals, threads);
   LevelStudy study;
   study.environment = std::move(environment);
@@ -170,11 +170,13 @@ LevelStudy MeasureLevels(std::string environment, const CubeMap& env, const Basi
     LevelRow row;
     row.level = static_cast<int>(k);
     row.size = env.face_size >> k;
-    row.error_vs_full = IrradianceDifference(levels[k], levels[0], normals);
+    row.error_vs_full = IrradianceDifference(levels[k], levels[0], normals, metric);
     row.estimated = estimated[k];
     const ErrorStats error = CompareIrradiance(Eq7At(levels[k], normals), truth, kFloorFraction);
     row.max_vs_truth = error.max_relative;
     row.mean_vs_truth = error.mean_relative;
+    row.peak_vs_truth = error.max_peak;
+    row.rms_vs_truth = error.max_rms;
     if (study.first_over_one_percent < 0 && row.error_vs_full > kOnePercent) study.first_over_one_percent = row.level;
     study.rows.push_back(row);
   }
@@ -183,10 +185,10 @@ LevelStudy MeasureLevels(std::string environment, const CubeMap& env, const Basi
   const std::size_t coarser = static_cast<std::size_t>(study.picked) + 1;
   study.coarser_fails = coarser == study.rows.size() || study.rows[coarser].error_vs_full > max_error;
 
-  study.pairs = EstimateProgramLevelErrors(levels, estimated, SphereNormals(kLevelErrorNormals));
+  study.pairs = EstimateProgramLevelErrors(levels, estimated, SphereNormals(kLevelErrorNormals), metric);
   for (const ProgramLevelEstimate& pair : study.pairs) {
     study.pair_errors.push_back(
-        IrradianceDifference(ReduceToOrder(levels[pair.level], pair.order), levels[0], normals));
+        IrradianceDifference(ReduceToOrder(levels[pair.level], pair.order), levels[0], normals, metric));
   }
   const ProgramPick pick = PickProgram(study, max_error);
   study.program = pick.choice;
@@ -231,9 +233,9 @@ std::vector<SpotPlacementRow> MeasureSpotPlacement(double radius_degrees, const 
     SpotPlacementRow row;
     row.level = static_cast<int>(k);
     row.size = basis.face_size >> k;
-    row.face_centre = IrradianceDifference(levels[0][k], levels[0][0], normals);
-    row.face_edge = IrradianceDifference(levels[1][k], levels[1][0], normals);
-    row.cube_corner = IrradianceDifference(levels[2][k], levels[2][0], normals);
+    row.face_centre = IrradianceDifference(levels[0][k], levels[0][0], normals, ErrorMetric::kRelative);
+    row.face_edge = IrradianceDifference(levels[1][k], levels[1][0], normals, ErrorMetric::kRelative);
+    row.cube_corner = IrradianceDifference(levels[2][k], levels[2][0], normals, ErrorMetric::kRelative);
     rows.push_back(row);
   }
   return rows;
@@ -268,7 +270,7 @@ AccumulationPrecision MeasureFloatAccumulation(const CubeMap& env, std::span<con
   AccumulationPrecision result;
   result.face_size = env.face_size;
   result.coefficient_error = MaxDifference(floats.coefficients, exact.coefficients, l00);
-  result.irradiance_error = IrradianceDifference(floats, exact, normals);
+  result.irradiance_error = IrradianceDifference(floats, exact, normals, ErrorMetric::kRelative);
   return result;
 }
 
@@ -368,7 +370,8 @@ ZeroEnvironmentResult MeasureZeroEnvironment(int face_size, std::span<const glm:
   std::optional<BasisPyramid> basis = BuildBasisPyramid(face_size);
   if (basis) {
     const std::vector<Sh9Rgb> levels = AllLevels(black, *basis);
-    result.picked_level = CoarsestLevelWithin(EstimateLevelErrors(levels, normals), kDefaultMaxLevelError);
+    result.picked_level =
+        CoarsestLevelWithin(EstimateLevelErrors(levels, normals, kDefaultErrorMetric), kDefaultMaxLevelError);
   }
   return result;
 }

@@ -82,10 +82,12 @@ double RadiusWhereNegative(std::span<const SpotSweepRow> rows, std::size_t varia
 struct LevelRow {
   int level = 0;
   int size = 0;
-  double error_vs_full = 0.0;   // max relative error of the level's irradiance against level 0's
+  double error_vs_full = 0.0;   // the level's irradiance against level 0's, in the study's metric
   double estimated = 0.0;       // EstimateLevelErrors: from this level and the next finer one only
-  double max_vs_truth = 0.0;    // against brute-force integration
+  double max_vs_truth = 0.0;    // against brute-force integration: max and mean relative, peak, RMS
   double mean_vs_truth = 0.0;
+  double peak_vs_truth = 0.0;
+  double rms_vs_truth = 0.0;
 };
 
 struct LevelStudy {
@@ -115,10 +117,12 @@ struct ProgramPick {
 ProgramPick PickProgram(const LevelStudy& study, double max_error, double factor = kOrderErrorEstimateFactor);
 
 // Every level of `env` (face size a power of two equal to basis.face_size; asserted) with
-// `max_error` for the pick. `normals` are those of the errors against level 0 and the truth; the
+// `max_error` for the pick, which bounds `metric`'s figure (as irrmap --error-metric: every error
+// against level 0 and every estimate is in it). `normals` are those of the errors against level 0 and the truth; the
 // estimate uses irrmap's own (SphereNormals(kLevelErrorNormals)), as irrmap does.
 LevelStudy MeasureLevels(std::string environment, const CubeMap& env, const BasisPyramid& basis,
-                         std::span<const glm::dvec3> normals, double max_error, int threads);
+                         std::span<const glm::dvec3> normals, double max_error, int threads,
+                         ErrorMetric metric = kDefaultErrorMetric);
 
 // Why coarse levels fail: the same small spot centred on a face, on the edge between two faces and
 // at a cube corner, and the error of each level against level 0. A coarse texel spreads its mean

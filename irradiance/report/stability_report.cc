@@ -112,7 +112,8 @@ void RunLevels(StabilityReport& report, std::span<const glm::dvec3> normals, con
   for (std::size_t i = 0; i < environments.size(); ++i) {
     if (progress) progress("mip levels", i / steps);
     report.levels.push_back(
-        MeasureLevels(environments[i].first, environments[i].second, *basis, normals, o.max_error, report.threads));
+        MeasureLevels(environments[i].first, environments[i].second, *basis, normals, o.max_error, report.threads,
+                      *ParseErrorMetric(o.error_metric)));
   }
   if (progress) progress("mip levels", environments.size() / steps);
   report.placement = MeasureSpotPlacement(report.placement_radius_degrees, *basis, normals);
@@ -154,9 +155,11 @@ std::string SweepTables(const StabilityReport& r) {
     const char* title;
     double (*value)(const WindowedError&);
   };
-  const std::array<Metric, 4> metrics = {{
+  const std::array<Metric, 6> metrics = {{
       {"max relative error", [](const WindowedError& w) { return w.error.max_relative; }},
       {"mean relative error", [](const WindowedError& w) { return w.error.mean_relative; }},
+      {"peak error, max |E - E*| / max E* (worst of r, g, b)", [](const WindowedError& w) { return w.error.max_peak; }},
+      {"RMS error / mean irradiance (worst of r, g, b)", [](const WindowedError& w) { return w.error.max_rms; }},
       {"max absolute error / peak", [](const WindowedError& w) { return w.absolute_over_peak; }},
       {"lowest irradiance / peak", [](const WindowedError& w) { return w.lowest_over_peak; }},
   }};
@@ -203,7 +206,9 @@ std::string SweepSection(const StabilityReport& r) {
       "One round light (the built-in spot: azimuth -30, elevation 50, irradiance 5 facing it) on black, its "
       "angular radius swept from 90 to {:g} degrees at constant power, {}x{} faces, coefficients from full "
       "resolution (ProjectDirect), irradiance by eq. 7 in double, against brute-force integration at {} "
-      "normals. *max* and *mean* are relative errors (floor 1 % of the peak, as everywhere in irrmap); "
+      "normals. *max* and *mean* are relative errors (floor 1 % of the peak); *peak* is max |E - E*| / max E* "
+      "and *RMS* the root mean square of E - E* over the mean E*, as Ramamoorthi & Hanrahan and Probulator state "
+      "errors (irrmap's --error-metric); "
       "*lowest* is the lowest irradiance over the sphere divided by the peak (negative: ringing). "
       "*captured* is the irradiance facing the light as the texels hold it (nominal 5).\n\n",
       r.options.radii.back(), r.options.face_size, r.options.face_size, r.options.error_normals);
@@ -246,11 +251,12 @@ std::string SweepSection(const StabilityReport& r) {
 std::string LevelsSection(const StabilityReport& r) {
   std::string out = fmt::format(
       "## 2. Coarse mip levels\n\n"
-      "Max relative error of each level's irradiance against level 0's (full resolution, {0}x{0} faces), at {1} "
-      "normals. `irrmap --max-error E` picks the coarsest level whose *estimated* error ({2:g} x the difference "
+      "The {3} of each level's irradiance against level 0's (full resolution, {0}x{0} faces), at {1} "
+      "normals. `irrmap --max-error E --error-metric {4}` picks the coarsest level whose *estimated* error ({2:g} x the difference "
       "between the level and the next finer one; no level 0, no ground truth) stays under E, every finer level "
       "included.\n\n| environment |",
-      r.options.face_size, r.options.error_normals, kLevelErrorEstimateFactor);
+      r.options.face_size, r.options.error_normals, kLevelErrorEstimateFactor,
+      ErrorMetricDescription(*ParseErrorMetric(r.options.error_metric)), r.options.error_metric);
   std::string rule = "|---|";
   for (const LevelRow& row : r.levels.front().rows) {
     out += fmt::format(" {0}x{0} |", row.size);
@@ -266,21 +272,24 @@ std::string LevelsSection(const StabilityReport& r) {
   out += fmt::format(
       "The pick for E = {}: the level chosen, its true error against level 0, the next coarser level's, "
       "the estimate at both, the first level past 1 %, and the error against the ground truth at level 0 "
-      "and at the pick (the nine-term truncation, which no level choice changes).\n\n"
+      "and at the pick (the nine-term truncation, which no level choice changes): max relative, then peak and RMS "
+      "(as irrmap's level table).\n\n"
       "| environment | first > 1 % | pick | error at pick | estimate | next coarser | its estimate | meets E | "
-      "coarser fails | truth max, level 0 | truth max, pick |\n|---|---|---|---|---|---|---|---|---|---|---|\n",
+      "coarser fails | truth max, level 0 | truth max, pick | truth peak, pick | truth rms, pick |\n"
+      "|---|---|---|---|---|---|---|---|---|---|---|---|---|\n",
       Percent(r.options.max_error));
   for (const LevelStudy& s : r.levels) {
     const LevelRow& pick = s.rows[s.picked];
     const bool has_coarser = static_cast<std::size_t>(s.picked) + 1 < s.rows.size();
     const LevelRow& coarser = has_coarser ? s.rows[s.picked + 1] : pick;
-    out += fmt::format("| {} | {} | {} ({}x{}) | {} | {} | {} | {} | {} | {} | {} | {} |\n", s.environment,
+    out += fmt::format("| {} | {} | {} ({}x{}) | {} | {} | {} | {} | {} | {} | {} | {} | {} | {} |\n", s.environment,
                        s.first_over_one_percent < 0 ? std::string("none")
                                                     : fmt::format("{0}x{0}", s.rows[s.first_over_one_percent].size),
                        s.picked, pick.size, pick.size, Percent(pick.error_vs_full), Percent(pick.estimated),
                        has_coarser ? Percent(coarser.error_vs_full) : "-", has_coarser ? Percent(coarser.estimated) : "-",
                        s.pick_meets ? "yes" : "**no**", s.coarser_fails ? "yes" : "**no**",
-                       Percent(s.rows[0].max_vs_truth), Percent(pick.max_vs_truth));
+                       Percent(s.rows[0].max_vs_truth), Percent(pick.max_vs_truth), Percent(pick.peak_vs_truth),
+                       Percent(pick.rms_vs_truth));
   }
   out += "\nThe same pick for other targets E (every environment above): how often the pick meets E, and how often "
          "the next coarser level would not (the pick is as coarse as it may be):\n\n"
@@ -431,7 +440,8 @@ GnuplotChart LevelsChart(const StabilityReport& r) {
   }
   chart.script =
       "set logscale x 2\nset logscale y 10\nset xrange [*:*] reverse\nset grid\nset key outside right\n"
-      "set format y '%g'\nset xlabel 'face size of the level'\nset ylabel 'error against level 0 (%)'\n"
+      "set format y '%g'\nset xlabel 'face size of the level'\nset ylabel " +
+      GnuplotQuote(fmt::format("{} error against level 0 (%)", r.options.error_metric)) + "\n"
       "set title 'Error added by coarse mip levels (dotted: 1 %, dashed: 0.5 %)'\nplot " + plots +
       ", 1 with lines dt 3 lc 'black' notitle, 0.5 with lines dt 2 lc 'black' notitle\n";
   return chart;
@@ -456,6 +466,9 @@ std::optional<std::string> RunStability(const StabilityOptions& options, Stabili
   }
   if (options.error_normals < 16) return fmt::format("--error-normals {} is too few (>= 16)", options.error_normals);
   if (!(options.max_error > 0.0)) return fmt::format("--max-error {} must be > 0", options.max_error);
+  if (!ParseErrorMetric(options.error_metric)) {
+    return fmt::format("unknown error metric '{}' (use {})", options.error_metric, ErrorMetricNames());
+  }
   if (options.radii.empty() || !std::is_sorted(options.radii.rbegin(), options.radii.rend()) ||
       options.radii.back() <= 0.0 || options.radii.front() > 90.0) {
     return std::string("the radii must lie in (0, 90] degrees, largest first");
@@ -482,9 +495,10 @@ std::string FormatStabilityMarkdown(const StabilityReport& r) {
   std::string out = fmt::format(
       "# Where the nine-coefficient method fails\n\n"
       "Generated by `irrmap stability --out DIR --face-size {} --precision-face-size {} --error-normals {} "
-      "--max-error {:g}` ({} threads). Every number below is recomputed by that command; the regression tests "
-      "(tests/irradiance/report/stability_test.cc) check each finding at smaller sizes.\n\n",
-      r.options.face_size, r.options.precision_face_size, r.options.error_normals, r.options.max_error, r.threads);
+      "--max-error {:g} --error-metric {}` ({} threads). Every number below is recomputed by that command; the "
+      "regression tests (tests/irradiance/report/stability_test.cc) check each finding at smaller sizes.\n\n",
+      r.options.face_size, r.options.precision_face_size, r.options.error_normals, r.options.max_error,
+      r.options.error_metric, r.threads);
   out += SweepSection(r) + NonNegativeSection(r) + LevelsSection(r) + OrderChoiceSection(r) + PrecisionSection(r);
   out += "Time per section:";
   for (const auto& [name, seconds] : r.seconds) out += fmt::format(" {} {:.1f} s;", name, seconds);

@@ -22,6 +22,7 @@ struct StabilityOptions {
   int precision_face_size = 2048;  // float against double accumulation (a power of two)
   int error_normals = 1000;       // SphereNormals for every comparison
   double max_error = kDefaultMaxLevelError;  // the level pick's target
+  std::string error_metric{ErrorMetricName(kDefaultErrorMetric)};  // what max_error bounds (irrmap's --error-metric)
   // Light radii of the sweep, largest first; the spot's power stays that of SpotParams.
   std::vector<double> radii = {90, 80, 70, 60, 45, 30, 20, 15, 10, 7, 5, 3, 2, 1.5, 1, 0.5, 0.25};
   int threads = 0;  // 0: every core

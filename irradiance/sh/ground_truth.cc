@@ -134,6 +134,50 @@ RowKernel SelectRowKernel() {
   return __builtin_cpu_supports("avx2") ? RowIrradianceAvx2 : RowIrradianceBaseline;
 }
 
+// `error` / `scale`, with 0 / 0 = 0 and x / 0 = infinity.
+double Ratio(double error, double scale) {
+  if (scale > 0.0) return error / scale;
+  return error == 0.0 ? 0.0 : std::numeric_limits<double>::infinity();
+}
+
+// Fills the peak and RMS figures of `stats`: per channel, then on the luminance (the fourth lane).
+void AddLiteratureErrors(std::span<const glm::dvec3> estimate, std::span<const glm::dvec3> truth, ErrorStats& stats) {
+  std::array<double, 4> peak{}, mean{}, largest_error{}, sum_squares{};
+  for (std::size_t i = 0; i < truth.size(); ++i) {
+    const std::array<double, 4> t = {truth[i].x, truth[i].y, truth[i].z, Luminance(truth[i])};
+    const std::array<double, 4> e = {estimate[i].x, estimate[i].y, estimate[i].z, Luminance(estimate[i])};
+    for (std::size_t c = 0; c < 4; ++c) {
+      const double error = std::abs(e[c] - t[c]);
+      peak[c] = std::max(peak[c], std::abs(t[c]));
+      mean[c] += std::abs(t[c]);
+      sum_squares[c] += error * error;
+      largest_error[c] = std::max(largest_error[c], error);
+    }
+  }
+  const double count = static_cast<double>(truth.size());
+  std::array<double, 4> peak_figure{}, rms_figure{};
+  for (std::size_t c = 0; c < 4; ++c) {
+    peak_figure[c] = Ratio(largest_error[c], peak[c]);
+    rms_figure[c] = Ratio(std::sqrt(sum_squares[c] / count), mean[c] / count);
+  }
+  stats.peak_rgb = glm::dvec3(peak_figure[0], peak_figure[1], peak_figure[2]);
+  stats.rms_rgb = glm::dvec3(rms_figure[0], rms_figure[1], rms_figure[2]);
+  stats.peak_luminance = peak_figure[3];
+  stats.rms_luminance = rms_figure[3];
+  stats.max_peak = std::max({peak_figure[0], peak_figure[1], peak_figure[2]});
+  stats.max_rms = std::max({rms_figure[0], rms_figure[1], rms_figure[2]});
+  // The sample of max_peak: the first whose error in the worst channel reaches that channel's largest.
+  const int worst_channel =
+      static_cast<int>(std::max_element(peak_figure.begin(), peak_figure.begin() + 3) - peak_figure.begin());
+  for (std::size_t i = 0; i < truth.size(); ++i) {
+    if (std::abs(estimate[i][worst_channel] - truth[i][worst_channel]) ==
+        largest_error[static_cast<std::size_t>(worst_channel)]) {
+      stats.worst_peak_index = i;
+      break;
+    }
+  }
+}
+
 }  // namespace
 
 std::vector<glm::dvec3> GroundTruthIrradiance(const CubeMap& env,
@@ -229,6 +273,7 @@ ErrorStats CompareIrradiance(std::span<const glm::dvec3> estimate, std::span<con
   const double count = static_cast<double>(truth.size());
   stats.mean_relative = sum / count;
   stats.rms_relative = std::sqrt(sum_squares / count);
+  AddLiteratureErrors(estimate, truth, stats);
   return stats;
 }
 
@@ -238,6 +283,73 @@ ErrorStats CompareIrradiance(std::span<const glm::dvec3> estimate, std::span<con
   ErrorStats stats = CompareIrradiance(estimate, truth, floor_fraction);
   if (!normals.empty()) stats.worst_normal = normals[stats.worst_index];
   return stats;
+}
+
+std::string_view ErrorMetricName(ErrorMetric metric) {
+  switch (metric) {
+    case ErrorMetric::kRelative: return "relative";
+    case ErrorMetric::kPeak: return "peak";
+    case ErrorMetric::kRms: return "rms";
+  }
+  return "?";
+}
+
+std::optional<ErrorMetric> ParseErrorMetric(std::string_view name) {
+  for (ErrorMetric metric : kAllErrorMetrics) {
+    if (ErrorMetricName(metric) == name) return metric;
+  }
+  return std::nullopt;
+}
+
+std::string ErrorMetricNames() {
+  std::string names;
+  for (ErrorMetric metric : kAllErrorMetrics) {
+    if (!names.empty()) names += '|';
+    names += ErrorMetricName(metric);
+  }
+  return names;
+}
+
+double ErrorFigure(const ErrorStats& stats, ErrorMetric metric) {
+  switch (metric) {
+    case ErrorMetric::kRelative: return stats.max_relative;
+    case ErrorMetric::kPeak: return stats.max_peak;
+    case ErrorMetric::kRms: return stats.max_rms;
+  }
+  return stats.max_relative;
+}
+
+std::string_view ErrorMetricDescription(ErrorMetric metric) {
+  switch (metric) {
+    case ErrorMetric::kRelative: return "max relative error (per normal, floor 1 % of the peak)";
+    case ErrorMetric::kPeak: return "peak error (max |E - E*| / max E*)";
+    case ErrorMetric::kRms: return "RMS error / mean irradiance";
+  }
+  return "?";
+}
+
+double SampleError(glm::dvec3 estimate, glm::dvec3 truth, glm::dvec3 scale, ErrorMetric metric) {
+  double worst = 0.0;
+  for (int c = 0; c < 3; ++c) {
+    const double error = std::abs(estimate[c] - truth[c]);
+    const double denominator = metric == ErrorMetric::kRelative ? std::max(std::abs(truth[c]), scale[c]) : scale[c];
+    worst = std::max(worst, Ratio(error, denominator));
+  }
+  return worst;
+}
+
+glm::dvec3 SampleErrorScale(std::span<const glm::dvec3> truth, ErrorMetric metric, double floor_fraction) {
+  glm::dvec3 peak(0.0), sum(0.0);
+  for (const glm::dvec3& t : truth) {
+    peak = glm::max(peak, glm::abs(t));
+    sum += glm::abs(t);
+  }
+  switch (metric) {
+    case ErrorMetric::kRelative: return glm::dvec3(floor_fraction * std::max({peak.x, peak.y, peak.z}));
+    case ErrorMetric::kPeak: return peak;
+    case ErrorMetric::kRms: return truth.empty() ? glm::dvec3(0.0) : sum / static_cast<double>(truth.size());
+  }
+  return peak;
 }
 
 std::vector<glm::dvec3> SphereNormals(int count) {

@@ -8,21 +8,22 @@
 
 namespace vs11::irradiance {
 
-double IrradianceDifference(const Sh9Rgb& estimate, const Sh9Rgb& reference, std::span<const glm::dvec3> normals) {
+double IrradianceDifference(const Sh9Rgb& estimate, const Sh9Rgb& reference, std::span<const glm::dvec3> normals,
+                            ErrorMetric metric) {
   std::vector<glm::dvec3> estimated(normals.size());
   std::vector<glm::dvec3> referenced(normals.size());
   for (std::size_t i = 0; i < normals.size(); ++i) {
     estimated[i] = IrradianceEq7(estimate, normals[i]);
     referenced[i] = IrradianceEq7(reference, normals[i]);
   }
-  return CompareIrradiance(estimated, referenced, kLevelErrorFloorFraction).max_relative;
+  return ErrorFigure(CompareIrradiance(estimated, referenced, kLevelErrorFloorFraction), metric);
 }
 
 std::vector<double> EstimateLevelErrors(std::span<const Sh9Rgb> levels, std::span<const glm::dvec3> normals,
-                                        double factor) {
+                                        ErrorMetric metric, double factor) {
   std::vector<double> estimated(levels.size(), 0.0);
   for (std::size_t k = 1; k < levels.size(); ++k) {
-    estimated[k] = factor * IrradianceDifference(levels[k], levels[k - 1], normals);
+    estimated[k] = factor * IrradianceDifference(levels[k], levels[k - 1], normals, metric);
   }
   return estimated;
 }

@@ -15,6 +15,7 @@
 
 #include <glm/glm.hpp>
 
+#include "irradiance/sh/ground_truth.h"
 #include "irradiance/sh/sh9.h"
 
 namespace vs11::irradiance {
@@ -34,15 +35,17 @@ inline constexpr int kLevelErrorNormals = 512;
 // directions (behind a single light) do not dominate.
 inline constexpr double kLevelErrorFloorFraction = 0.01;
 
-// Max relative difference (CompareIrradiance, floor kLevelErrorFloorFraction) of the irradiance
-// (eq. 7, per channel) of `estimate` against that of `reference` at `normals`.
-double IrradianceDifference(const Sh9Rgb& estimate, const Sh9Rgb& reference, std::span<const glm::dvec3> normals);
+// The difference, as `metric`'s figure (ErrorFigure of CompareIrradiance, floor
+// kLevelErrorFloorFraction), of the irradiance (eq. 7, per channel) of `estimate` against that of
+// `reference` at `normals`.
+double IrradianceDifference(const Sh9Rgb& estimate, const Sh9Rgb& reference, std::span<const glm::dvec3> normals,
+                            ErrorMetric metric);
 
-// For levels[0] (finest) to levels.back() (coarsest), the estimated max relative error of each
-// level's irradiance against level 0's: 0 for level 0, kLevelErrorEstimateFactor x
+// For levels[0] (finest) to levels.back() (coarsest), the estimated error (`metric`'s figure) of
+// each level's irradiance against level 0's: 0 for level 0, `factor` x
 // IrradianceDifference(levels[k], levels[k - 1]) for the others.
 std::vector<double> EstimateLevelErrors(std::span<const Sh9Rgb> levels, std::span<const glm::dvec3> normals,
-                                        double factor = kLevelErrorEstimateFactor);
+                                        ErrorMetric metric, double factor = kLevelErrorEstimateFactor);
 
 // The coarsest level k such that every level 0..k has an estimated error <= max_error (so a noisy
 // coarse level that happens to look good is never chosen across a bad one); 0 when none does.

@@ -153,7 +153,8 @@ glm::dvec3 EvaluateShOrder(std::span<const NamedRegister> registers, ShOrder ord
 
 std::vector<ProgramLevelEstimate> EstimateProgramLevelErrors(std::span<const Sh9Rgb> levels,
                                                              std::span<const double> level_estimates,
-                                                             std::span<const glm::dvec3> normals, double factor) {
+                                                             std::span<const glm::dvec3> normals, ErrorMetric metric,
+                                                             double factor) {
   assert(levels.size() == level_estimates.size());
   std::vector<ProgramLevelEstimate> pairs;
   for (ShOrder order : kAllShOrders) {
@@ -162,7 +163,7 @@ std::vector<ProgramLevelEstimate> EstimateProgramLevelErrors(std::span<const Sh9
       pair.order = order;
       pair.level = static_cast<int>(k);
       if (order != ShOrder::kOrder2) {
-        pair.order_difference = IrradianceDifference(ReduceToOrder(levels[k], order), levels[k], normals);
+        pair.order_difference = IrradianceDifference(ReduceToOrder(levels[k], order), levels[k], normals, metric);
       }
       pair.estimated = level_estimates[k] + factor * pair.order_difference;
       pairs.push_back(pair);

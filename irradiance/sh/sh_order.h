@@ -26,6 +26,7 @@
 #include <glm/glm.hpp>
 
 #include "irradiance/sh/constants_output.h"
+#include "irradiance/sh/ground_truth.h"
 #include "irradiance/sh/sh9.h"
 
 namespace vs11::irradiance {
@@ -81,10 +82,11 @@ struct ProgramLevelEstimate {
 };
 
 // Every (order, level) pair, orders in kAllShOrders order, levels 0 first within each.
-// `levels[k]` are level k's nine coefficients, `level_estimates` EstimateLevelErrors of them.
+// `levels[k]` are level k's nine coefficients, `level_estimates` EstimateLevelErrors of them in the
+// same `metric`, which the order differences are measured in too.
 std::vector<ProgramLevelEstimate> EstimateProgramLevelErrors(std::span<const Sh9Rgb> levels,
                                                              std::span<const double> level_estimates,
-                                                             std::span<const glm::dvec3> normals,
+                                                             std::span<const glm::dvec3> normals, ErrorMetric metric,
                                                              double factor = kOrderErrorEstimateFactor);
 
 struct ProgramChoice {

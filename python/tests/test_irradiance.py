@@ -29,6 +29,26 @@ def test_project_equals_irrmap_coeffs_json(environment, irrmap_tool, tmp_path):
     assert result.errors["estimated_error"] == expected["program"]["estimated_error"]
 
 
+@pytest.mark.parametrize("metric", ["peak", "rms", "relative"])
+def test_error_metric_is_irrmaps(metric, irrmap_tool, tmp_path):
+    # The spot: its levels differ by metric, since the relative error is ruled by its unlit half.
+    subprocess.run([str(irrmap_tool), "spot", "--face-size", "64", "--coefficients-only", "--error-metric", metric,
+                    "--out", str(tmp_path)], capture_output=True, check=True)
+    expected = json.loads((tmp_path / "coeffs.json").read_text())
+    result = vs11.irradiance.project("spot", face_size=64, error_metric=metric)
+    assert expected["error_metric"] == metric
+    assert result.errors["error_metric"] == metric
+    assert (result.level, result.order) == (expected["level"], expected["order"])
+    assert [row["estimated_error"] for row in result.errors["levels"]] == [
+        row["estimated_error"] for row in expected["levels"]]
+    with pytest.raises(ValueError, match="unknown error metric 'worst'"):
+        vs11.irradiance.project("spot", face_size=8, error_metric="worst")
+
+
+def test_default_error_metric_is_peak():
+    assert vs11.irradiance.project("spot", face_size=16).errors["error_metric"] == "peak"
+
+
 def test_constant_faces_project_to_l00_only():
     faces = np.ones((6, 8, 8, 3), np.float32)
     result = vs11.irradiance.project(faces, level=0, order="order2")

@@ -19,7 +19,7 @@ class Projection:
     order: str  # order0, order1, zh3 or order2
     program: Program  # the chosen program
     program_constants: dict[str, list[float]]  # its constants: {'c0': [x, y, z, w], ...}
-    errors: dict[str, Any]  # estimated_error, error_vs_full_order2, levels
+    errors: dict[str, Any]  # error_metric, estimated_error, error_vs_full_order2, levels
     warnings: list[str]
 
 def builtin_environments() -> list[str]: ...
@@ -31,6 +31,7 @@ def project(
     max_error: float = 0.005,
     order: str = "auto",
     window: str = "none",
+    error_metric: str = "peak",
 ) -> Projection:
     """Nine SH coefficients per channel and the seven constants, as `irrmap --coefficients-only`.
 
@@ -48,6 +49,7 @@ def irradiance_map(
     window: str = "none",
     map_size: int = 32,
     engine: str = "jit",
+    error_metric: str = "peak",
 ) -> npt.NDArray[np.float32]:
     """The (6, map_size, map_size, 3) irradiance cube map irrmap writes as irradiance.exr."""
 
@@ -58,5 +60,6 @@ def batch(
     face_size: int = 256,
     level: Optional[int] = None,
     max_error: float = 0.005,
+    error_metric: str = "peak",
 ) -> list[dict[str, Any]]:
     """`irrmap batch`'s records, one per input in input order; unusable inputs warn."""

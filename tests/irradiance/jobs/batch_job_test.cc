@@ -103,7 +103,7 @@ TEST_F(BatchJob, AGoodFileGetsItsCoefficientsConstantsLevelAndError) {
   std::optional<BasisPyramid> basis = BuildBasisPyramid(kFace);
   std::vector<Sh9Rgb> levels;
   for (int level = 0; level < LevelCount(kFace); ++level) levels.push_back(ProjectLevel(*mips, *basis, level));
-  const std::vector<double> estimated = EstimateLevelErrors(levels, SphereNormals(kLevelErrorNormals));
+  const std::vector<double> estimated = EstimateLevelErrors(levels, SphereNormals(kLevelErrorNormals), kDefaultErrorMetric);
   const int level = CoarsestLevelWithin(estimated, kDefaultMaxLevelError);
   EXPECT_EQ(record["level"], level);
   EXPECT_EQ(record["level_size"], kFace >> level);

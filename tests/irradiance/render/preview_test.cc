@@ -117,7 +117,7 @@ class PreviewRender : public testing::Test {
 
 TEST_F(PreviewRender, ImageHasTheLayoutSizeAndIsNotBlank) {
   const std::vector<PreviewPanel> estimates = {Scaled(1.01), Scaled(0.97)};
-  const PreviewResult result = RenderPreview(sphere_, truth_, estimates, AnalysePreviewErrors(truth_, estimates), environment_, options_);
+  const PreviewResult result = RenderPreview(sphere_, truth_, estimates, AnalysePreviewErrors(truth_, estimates, {}), environment_, options_);
   const PreviewLayout layout = ComputePreviewLayout(3, environment_.face_size, options_);
   EXPECT_EQ(result.image.width, layout.width);
   EXPECT_EQ(result.image.height, layout.height);
@@ -157,7 +157,7 @@ TEST_F(PreviewRender, LongLabelsShrinkIntoTheirColumnsAndNeverOverlap) {
     estimates.push_back(Scaled(1.5));  // large errors: "max 50.0%, mean 50.0%" and a 50% ramp
     estimates.back().label = label;
   }
-  const PreviewResult result = RenderPreview(sphere_, truth_, estimates, AnalysePreviewErrors(truth_, estimates), environment_, options_);
+  const PreviewResult result = RenderPreview(sphere_, truth_, estimates, AnalysePreviewErrors(truth_, estimates, {}), environment_, options_);
   ASSERT_TRUE(result.warnings.empty());
   ASSERT_EQ(result.labels.size(), 2 * estimates.size() + 1 + 3 + 1 + 1);  // spheres, errors, ramp, title, environment
   const int pitch = options_.sphere_diameter + 16;  // a column: sphere and margin
@@ -185,7 +185,7 @@ TEST_F(PreviewRender, MissingFontIsAWarningNotAFailure) {
   options_.font = "/nonexistent/font.ttf";
   const std::vector<PreviewPanel> estimates = {Scaled(1.02)};
   const PreviewResult result =
-      RenderPreview(sphere_, truth_, estimates, AnalysePreviewErrors(truth_, estimates), environment_, options_);
+      RenderPreview(sphere_, truth_, estimates, AnalysePreviewErrors(truth_, estimates, {}), environment_, options_);
   ASSERT_EQ(result.warnings.size(), 1u);
   EXPECT_THAT(result.warnings[0], HasSubstr("/nonexistent/font.ttf"));
   EXPECT_EQ(result.image.width, ComputePreviewLayout(2, environment_.face_size, options_).width);

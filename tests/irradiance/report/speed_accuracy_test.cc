@@ -6,6 +6,7 @@
 #include <iterator>
 #include <limits>
 
+#include <fmt/format.h>
 #include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
@@ -46,6 +47,7 @@ const SpeedAccuracyPoint& Find(const SpeedAccuracyResult& result, std::string_vi
   static const SpeedAccuracyPoint missing = [] {
     SpeedAccuracyPoint point;
     point.error.max_relative = point.error.mean_relative = std::numeric_limits<double>::quiet_NaN();
+    point.error.max_peak = point.error.max_rms = std::numeric_limits<double>::quiet_NaN();
     return point;
   }();
   return missing;
@@ -86,10 +88,13 @@ TEST(SpeedAccuracy, CsvHasAHeaderAndOneLinePerPoint) {
   SpeedAccuracyResult result;
   ASSERT_EQ(RunSpeedAccuracySweep(FastOptions({"spot"}), result), std::nullopt);
   const std::string csv = SpeedAccuracyCsv(result);
+  // The old columns first, peak_error and rms_error added at the end.
   EXPECT_THAT(csv, StartsWith("environment,method,level,size,update_ms,mips_ms,mean_relative_error,"
-                              "max_relative_error,order,slots\n"));
+                              "max_relative_error,order,slots,peak_error,rms_error\n"));
   EXPECT_THAT(csv, HasSubstr("\nspot,mip,0,8,"));
-  EXPECT_THAT(csv, HasSubstr(",zh3,6\n"));
+  EXPECT_THAT(csv, HasSubstr(",zh3,6,"));
+  const SpeedAccuracyPoint& point = Find(result, "spot", ProjectionMethod::kDirectOnLevel, 3);
+  EXPECT_THAT(csv, HasSubstr(fmt::format(",order2,11,{:.6g},{:.6g}\n", point.error.max_peak, point.error.max_rms)));
   EXPECT_EQ(static_cast<std::size_t>(std::count(csv.begin(), csv.end(), '\n')), result.points.size() + 1);
   EXPECT_THAT(csv, HasSubstr("\nspot,direct,3,1,"));
 }
@@ -137,6 +142,57 @@ TEST(SpeedAccuracy, RejectsBadOptionsAndUnknownEnvironments) {
   options = FastOptions({"sky"});
   options.batches = 0;
   EXPECT_THAT(RunSpeedAccuracySweep(options, result).value_or(""), HasSubstr("--batches"));
+}
+
+// A file's curves are named by its base name, and gnuplot's enhanced text must not read its
+// underscore as a subscript ("probulator" with a small "g" under it): in the script, escaped, and in
+// the SVG gnuplot draws from it, the name as written.
+TEST(SpeedAccuracy, CurvesAreNamedByTheFilesBaseNameAsWritten) {
+  SpeedAccuracyResult result;
+  const std::string path = "/data/light_probes/probulator_grace.hdr";
+  result.environments = {{path, 16, 1.0}};
+  for (ProjectionMethod method : kAllProjectionMethods) {
+    for (int level = 0; level < 3; ++level) {
+      SpeedAccuracyPoint point{path, method, level, 16 >> level, ShOrder::kOrder2, 0.1 * (level + 1), {}};
+      point.error.max_peak = point.error.mean_relative = 0.01 * (level + 1);
+      result.points.push_back(point);
+    }
+  }
+  const GnuplotChart chart = SpeedAccuracyChart(result);
+  EXPECT_THAT(chart.script, HasSubstr("title 'probulator\\_grace.hdr (mip pyramid)'"));
+  EXPECT_THAT(chart.script, HasSubstr("title 'probulator\\_grace.hdr (direct on level)'"));
+  EXPECT_THAT(chart.script, HasSubstr("title 'probulator\\_grace.hdr from 16x16'"));
+  EXPECT_THAT(chart.script, Not(HasSubstr("light_probes")));
+  EXPECT_EQ(GnuplotLiteral("a_b^c{d}@e&f~g\\h'i"), "'a\\_b\\^c\\{d\\}\\@e\\&f\\~g\\\\h''i'");
+
+  const fs::path folder = fs::path(::testing::TempDir()) / "vs11_speed_accuracy_labels";
+  fs::remove_all(folder);
+  fs::create_directories(folder);
+  ASSERT_EQ(RenderGnuplotChart(chart, {folder / "chart.svg"}), std::nullopt);
+  std::ifstream svg(folder / "chart.svg");
+  const std::string text(std::istreambuf_iterator<char>(svg), {});
+  EXPECT_THAT(text, HasSubstr(">probulator_grace.hdr (mip pyramid)<"));
+  EXPECT_THAT(text, HasSubstr(">probulator_grace.hdr from 16x16<"));
+  fs::remove_all(folder);
+}
+
+// The axis shows the figure --error-metric names, the same as irrmap's level table for that level;
+// the CSV carries every figure, its old columns first.
+TEST(SpeedAccuracy, AxisFollowsTheErrorMetricAndTheCsvAddsPeakAndRms) {
+  SpeedAccuracyOptions options = FastOptions({"spot"});
+  for (ErrorMetric metric : kAllErrorMetrics) {
+    options.error_metric = std::string(ErrorMetricName(metric));
+    SpeedAccuracyResult result;
+    ASSERT_EQ(RunSpeedAccuracySweep(options, result), std::nullopt);
+    EXPECT_EQ(result.metric, metric);
+    const GnuplotChart chart = SpeedAccuracyChart(result);
+    const SpeedAccuracyPoint& point = Find(result, "spot", ProjectionMethod::kMipPyramid, 1);
+    EXPECT_THAT(chart.data, HasSubstr(fmt::format("{:.6g} {:.6g} 1\n", point.update_ms,
+                                                  100.0 * ChartErrorFigure(point.error, metric))));
+  }
+  options.error_metric = "worst";
+  SpeedAccuracyResult result;
+  EXPECT_THAT(RunSpeedAccuracySweep(options, result).value_or(""), HasSubstr("unknown error metric 'worst'"));
 }
 
 }  // namespace

@@ -151,35 +151,46 @@ TEST(StabilityTest, ErrorPassesOnePercentWhereBlocksCoverTheLights) {
   const std::optional<BasisPyramid> basis = BuildBasisPyramid(64);
   ASSERT_TRUE(basis);
   const std::vector<glm::dvec3> normals = SphereNormals(kNormals);
+  // The report's finding in relative errors (floor 1 % of the peak).
   // Measured at 64: sky 0.15, 0.35, 5.4 % at 32, 16, 8; spot (3 deg) 4.7 % at 32; constant < 1e-7.
-  const LevelStudy sky = MeasureLevels("sky", MakeSky(64), *basis, normals, kDefaultMaxLevelError, 2);
+  constexpr ErrorMetric kRelative = ErrorMetric::kRelative;
+  const LevelStudy sky = MeasureLevels("sky", MakeSky(64), *basis, normals, kDefaultMaxLevelError, 2, kRelative);
   EXPECT_EQ(sky.rows[sky.first_over_one_percent].size, 8);
-  const LevelStudy spot = MeasureLevels("spot", MakeSpot(64), *basis, normals, kDefaultMaxLevelError, 2);
+  const LevelStudy spot = MeasureLevels("spot", MakeSpot(64), *basis, normals, kDefaultMaxLevelError, 2, kRelative);
   EXPECT_EQ(spot.rows[spot.first_over_one_percent].size, 32);
-  const LevelStudy constant = MeasureLevels("constant", MakeConstant(64), *basis, normals, kDefaultMaxLevelError, 2);
+  const LevelStudy constant =
+      MeasureLevels("constant", MakeConstant(64), *basis, normals, kDefaultMaxLevelError, 2, kRelative);
   EXPECT_EQ(constant.first_over_one_percent, -1);
   EXPECT_EQ(constant.picked, 6);  // 1 x 1 loses nothing
 }
 
-// The pick meets 0.5 % on every built-in and the next coarser level would not, at two face sizes.
+// The pick meets 0.5 % on every built-in and the next coarser level would not, at two face sizes, in
+// every error metric (the default, peak, first).
 TEST(StabilityTest, MaxErrorPickIsRightOnEveryBuiltin) {
   const std::vector<glm::dvec3> normals = SphereNormals(kNormals);
-  for (int size : {64, 128}) {
-    const std::optional<BasisPyramid> basis = BuildBasisPyramid(size);
-    ASSERT_TRUE(basis);
-    for (const std::string& name : BuiltinEnvironmentNames()) {
-      const LevelStudy study =
-          MeasureLevels(name, *MakeBuiltinEnvironment(name, size), *basis, normals, kDefaultMaxLevelError, 2);
-      EXPECT_TRUE(study.pick_meets) << name << " at " << size;
-      // The gradient's level errors grow fourfold per level, so the true error of the next coarser
-      // level is 4/3 of its difference while the estimate is 1.4 times it: that level may still
-      // meet E with an estimate just above it (the pick is safe, one level finer than it might be).
-      if (name != "gradient") {
-        EXPECT_TRUE(study.coarser_fails) << name << " at " << size;
+  for (ErrorMetric metric : {kDefaultErrorMetric, ErrorMetric::kRms, ErrorMetric::kRelative}) {
+    SCOPED_TRACE(ErrorMetricName(metric));
+    for (int size : {64, 128}) {
+      if (size == 128 && metric == ErrorMetric::kRms) continue;  // (test time: RMS at 64 only)
+      const std::optional<BasisPyramid> basis = BuildBasisPyramid(size);
+      ASSERT_TRUE(basis);
+      for (const std::string& name : BuiltinEnvironmentNames()) {
+        const LevelStudy study = MeasureLevels(name, *MakeBuiltinEnvironment(name, size), *basis, normals,
+                                               kDefaultMaxLevelError, 2, metric);
+        EXPECT_TRUE(study.pick_meets) << name << " at " << size;
+        // The gradient's level errors grow fourfold per level, so the true error of the next coarser
+        // level is 4/3 of its difference while the estimate is 1.4 times it: that level may still
+        // meet E with an estimate just above it (the pick is safe, one level finer than it might be).
+        // The factor 1.4 was fitted on relative errors; in peak and RMS terms it is safe too but not
+        // always tight (measured: the studio and the spot at 64 and 128 in peak, the spot at 128 in
+        // RMS could have gone one level coarser), so tightness is asserted for the relative metric.
+        if (name != "gradient" && metric == ErrorMetric::kRelative) {
+          EXPECT_TRUE(study.coarser_fails) << name << " at " << size;
+        }
+        // The (program, level) pick meets the target against order 2 at level 0, too.
+        EXPECT_TRUE(study.program_meets) << name << " at " << size << ": " << study.program_error;
+        EXPECT_EQ(study.pair_errors.size(), study.pairs.size());
       }
-      // The (program, level) pick meets the target against order 2 at level 0, too.
-      EXPECT_TRUE(study.program_meets) << name << " at " << size << ": " << study.program_error;
-      EXPECT_EQ(study.pair_errors.size(), study.pairs.size());
     }
   }
 }

@@ -19,21 +19,25 @@ Sh9Rgb Constant(double l00) {
 
 TEST(LevelChoice, IdenticalLevelsDifferByNothing) {
   const std::vector<glm::dvec3> normals = SphereNormals(kLevelErrorNormals);
-  EXPECT_EQ(IrradianceDifference(Constant(1.0), Constant(1.0), normals), 0.0);
   const std::vector<Sh9Rgb> levels(4, Constant(2.0));
-  EXPECT_EQ(EstimateLevelErrors(levels, normals), std::vector<double>(4, 0.0));
+  for (ErrorMetric metric : kAllErrorMetrics) {
+    EXPECT_EQ(IrradianceDifference(Constant(1.0), Constant(1.0), normals, metric), 0.0);
+    EXPECT_EQ(EstimateLevelErrors(levels, normals, metric), std::vector<double>(4, 0.0));
+  }
 }
 
 TEST(LevelChoice, EstimateIsTheFactorTimesTheDifferenceFromTheFinerLevel) {
   const std::vector<glm::dvec3> normals = SphereNormals(64);
   // A constant environment: the irradiance is pi * Y00 * L00 everywhere, so 1 % more L00 is 1 % more
-  // irradiance in every direction.
+  // irradiance in every direction: relative, peak and RMS errors alike.
   const std::vector<Sh9Rgb> levels = {Constant(1.0), Constant(1.01), Constant(1.0302)};
-  const std::vector<double> estimated = EstimateLevelErrors(levels, normals, 2.0);
-  ASSERT_EQ(estimated.size(), 3u);
-  EXPECT_EQ(estimated[0], 0.0);
-  EXPECT_NEAR(estimated[1], 2.0 * 0.01, 1e-12);
-  EXPECT_NEAR(estimated[2], 2.0 * 0.02, 1e-12);
+  for (ErrorMetric metric : kAllErrorMetrics) {
+    const std::vector<double> estimated = EstimateLevelErrors(levels, normals, metric, 2.0);
+    ASSERT_EQ(estimated.size(), 3u);
+    EXPECT_EQ(estimated[0], 0.0);
+    EXPECT_NEAR(estimated[1], 2.0 * 0.01, 1e-12) << ErrorMetricName(metric);
+    EXPECT_NEAR(estimated[2], 2.0 * 0.02, 1e-12) << ErrorMetricName(metric);
+  }
 }
 
 TEST(LevelChoice, CoarsestLevelStopsAtTheFirstLevelOverTheLimit) {

@@ -226,8 +226,9 @@ TEST(ShOrder, SpotNeedsOrderTwoWhenZh3IsLeftOut) {
   std::vector<Sh9Rgb> levels;
   for (int k = 0; k < LevelCount(64); ++k) levels.push_back(ProjectLevel(*mips, *basis, k));
   const std::vector<glm::dvec3> normals = SphereNormals(kLevelErrorNormals);
-  const std::vector<double> estimated = EstimateLevelErrors(levels, normals);
-  const std::vector<ProgramLevelEstimate> pairs = EstimateProgramLevelErrors(levels, estimated, normals);
+  const std::vector<double> estimated = EstimateLevelErrors(levels, normals, kDefaultErrorMetric);
+  const std::vector<ProgramLevelEstimate> pairs =
+      EstimateProgramLevelErrors(levels, estimated, normals, kDefaultErrorMetric);
   const std::vector<ShOrder> bands = {ShOrder::kOrder0, ShOrder::kOrder1, ShOrder::kOrder2};
   EXPECT_EQ(ChooseProgramAndLevel(pairs, estimated, kDefaultMaxLevelError, bands).order, ShOrder::kOrder2);
 }
