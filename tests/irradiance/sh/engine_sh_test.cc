@@ -352,7 +352,24 @@ TEST(EngineExportShaders, GlslFunctionCompilesInGlslang) {
                                  std::pair{"#version 300 es\n", translate::Target::kGlslEs300}}) {
     const translate::GlslangResult result = translate::CompileWithGlslang(version + function + main_body, target);
     EXPECT_TRUE(result.ok) << version << result.log;
+    std::string broken = version + function + main_body;  // glslang does read it: a type error is refused
+    broken.replace(broken.find("vec4 n1 = vec4(n, 1.0);"), 23, "vec4 n1 = vec3(n);     ");
+    EXPECT_FALSE(translate::CompileWithGlslang(broken, target).ok) << version;
   }
+}
+
+// The HLSL function compiles in glslang's HLSL front end, called from a vertex shader's entry point;
+// a misspelt call is refused, so the front end did read it.
+TEST(EngineExportShaders, HlslFunctionCompilesInGlslangsHlslFrontEnd) {
+  const std::string function = ShExportText(ShExportFormat::kHlsl, StudioCoefficients(), "studio");
+  const std::string entry =
+      "\nfloat4 main(float3 normal : NORMAL) : SV_Position {\n"
+      "  return float4(vs11Irradiance(normalize(normal)), 1.0);\n}\n";
+  const translate::GlslangResult result = translate::CompileHlslWithGlslang(function + entry, "main");
+  EXPECT_TRUE(result.ok) << result.log;
+  std::string misspelt = function + entry;
+  misspelt.replace(misspelt.rfind("vs11Irradiance"), 14, "vs11Irradiancx");
+  EXPECT_FALSE(translate::CompileHlslWithGlslang(misspelt, "main").ok);
 }
 
 TEST(EngineExportFormats, ParsesTheirNamesAndRefusesOthers) {
