@@ -20,7 +20,7 @@ constexpr std::array<FormatInfo, 6> kFormats = {{
     {ShExportFormat::kThree, "three", "sh_three.json", true},
     {ShExportFormat::kFilament, "filament", "sh_filament.txt", true},
     {ShExportFormat::kUnity, "unity", "sh_unity.json", false},
-    {ShExportFormat::kGltf, "gltf", "sh_gltf.json", true},
+    {ShExportFormat::kGltf, "gltf", "sh_gltf.json", false},
     {ShExportFormat::kGlsl, "glsl", "sh_irradiance.glsl", false},
     {ShExportFormat::kHlsl, "hlsl", "sh_irradiance.hlsl", false},
 }};
@@ -101,9 +101,11 @@ constexpr std::string_view kGltfConvention =
     "E_lm = A_l L_lm (A = pi, 2pi/3, pi/4) in the real basis with the Condon-Shortley sign, as Babylon.js "
     "(the extension's reference loader) reads them: E(n) = sum E_lm Y_lm(n) with Y = 0.282095, "
     "-0.488603 y, 0.488603 z, -0.488603 x, 1.092548 xy, -1.092548 yz, 0.315392 (3z^2-1), -1.092548 xz, "
-    "0.546274 (x^2-y^2), order (0,0) (1,-1) (1,0) (1,1) (2,-2) (2,-1) (2,0) (2,1) (2,2). Frame: glTF's, "
-    "right-handed, +Y up, with the environment mirrored in x as the extension's flipped cube faces are: "
-    "vs11's cube direction (x, y, z) is glTF's (-x, y, z). Put the array in a light of "
+    "0.546274 (x^2-y^2), order (0,0) (1,-1) (1,0) (1,1) (2,-2) (2,-1) (2,0) (2,1) (2,2). Frame: the cube "
+    "map's own, +Y up, in which Babylon.js evaluates them: at the very vector it samples the light's "
+    "specularImages cube with (its reflection matrix, and z flipped in right-handed scenes, apply to both "
+    "alike), so they agree with the cube irrmap read, or wrote, used as specularImages; vs11's cube direction "
+    "(x, y, z) unchanged. Put the array in a light of "
     "\"extensions\": {\"EXT_lights_image_based\": {\"lights\": [...]}}.";
 
 constexpr std::string_view kShaderConvention =

@@ -13,16 +13,18 @@
 //   three     L_lm (radiance)                      right-handed, +y up     (-dx, dy, dz)
 //   filament  k_i L_lm (E/pi pre-scaled)           right-handed, +y up     (-dx, dy, dz)
 //   unity     the seven Table 1 constants / pi     left-handed, +y up      d
-//   gltf      A_l L_lm, Condon-Shortley basis      right-handed, +y up     (-dx, dy, dz)
+//   gltf      A_l L_lm, Condon-Shortley basis      the cube map's own      d
 //   glsl      E(n) as a function, constants baked  the cube map's own      d
 //   hlsl      E(n) as a function, constants baked  the cube map's own      d
 //
 // A right-handed engine sees a cube map mirrored in x unless it flips it: three.js samples a
-// CubeTexture at (-x, y, z), cmgen mirrors the cube in x by default, EXT_lights_image_based flips its
-// cube faces. Those engines' exports are of the environment as they show it, so their coefficients
-// of x, xy and xz change sign (MirrorX). Unity is left-handed like D3D and samples a cube map with
-// the world direction as it is. The shader functions take the direction a cube map lookup takes, so
-// they equal a lookup of the irradiance cube irrmap writes (--map-format dds or ktx2).
+// CubeTexture at (-x, y, z), and cmgen mirrors the cube in x by default. Those two engines' exports
+// are of the environment as they show it, so their coefficients of x, xy and xz change sign
+// (MirrorX). Unity is left-handed like D3D and samples a cube map with the world direction as it is.
+// EXT_lights_image_based's coefficients are evaluated by its reference loader (Babylon.js) at the
+// same vector as its specular cube lookup, so they stay in the cube's frame. The shader functions
+// take the direction a cube map lookup takes, so they equal a lookup of the irradiance cube irrmap
+// writes (--map-format dds or ktx2).
 //
 // k_i = A_l |Y_lm constant| / pi: 0.282095, 0.325735 (x3), 0.273137 (x2), 0.078848, 0.273137,
 // 0.136569 (the paper's c0..c4 of eq. (7) divided by pi).
@@ -70,8 +72,8 @@ using ShTriples = std::array<glm::dvec3, kSh9Coefficients>;
 ShTriples ThreeJsCoefficients(const Sh9Rgb& sh);
 // Filament's irradiance(3, sh): k_i L_lm in Filament's frame.
 ShTriples FilamentIrradianceSh(const Sh9Rgb& sh);
-// EXT_lights_image_based irradianceCoefficients: A_l L_lm in glTF's frame, with the Condon-Shortley
-// sign of (1,-1), (1,1), (2,-1) and (2,1).
+// EXT_lights_image_based irradianceCoefficients: A_l L_lm in the cube's frame, with the
+// Condon-Shortley sign of (1,-1), (1,1), (2,-1) and (2,1).
 ShTriples GltfIrradianceCoefficients(const Sh9Rgb& sh);
 // unity_SHAr, SHAg, SHAb, SHBr, SHBg, SHBb, SHC: PackTable1(sh)'s registers divided by pi (Unity's
 // frame is vs11's), with SHC.w = 1 as Unity sets it.

@@ -5,9 +5,10 @@
 //   Unity      UnityCG.cginc ShadeSH9: SHEvalLinearL0L1 + SHEvalLinearL2, E/pi
 //   glTF       EXT_lights_image_based as Babylon.js reads it: sum E_lm Y_lm(n) with its signed basis
 //   GLSL/HLSL  the baked function's own arithmetic
-// and each engine's frame, also as its documentation states it: three.js samples a CubeTexture at
-// (-x, y, z), cmgen mirrors the cube in x, EXT_lights_image_based flips its cube faces about the
-// vertical axis; Unity and the shader functions use the cube map's directions as they are.
+// and each engine's frame, also as its sources state it: three.js samples a CubeTexture at
+// (-x, y, z) (flipEnvMap), cmgen mirrors the cube in x by default; Unity samples cube maps with the
+// world direction, Babylon.js evaluates glTF's coefficients at the vector of its specular cube
+// lookup, and the shader functions take a cube lookup's direction: the cube map's frame.
 #include "irradiance/sh/engine_sh.h"
 
 #include <algorithm>
@@ -54,9 +55,9 @@ glm::dvec3 ToEngineFrame(ShExportFormat format, glm::dvec3 d) {
   switch (format) {
     case ShExportFormat::kThree:     // flipEnvMap = -1 for a CubeTexture
     case ShExportFormat::kFilament:  // cmgen's default mirror: dst(N) = src(-N.x, N.y, N.z)
-    case ShExportFormat::kGltf:      // cube faces flipped about their vertical axis
       return {-d.x, d.y, d.z};
     case ShExportFormat::kUnity:  // left-handed, +Y up, cube maps sampled with the direction as it is
+    case ShExportFormat::kGltf:   // Babylon.js evaluates the SH at its specular cube lookup's vector
     case ShExportFormat::kGlsl:
     case ShExportFormat::kHlsl:
       return d;
@@ -281,7 +282,7 @@ TEST(EngineExportFrames, ALightAtTheTopOfALatLongImageIsEveryEnginesUp) {
 
 // The sky without its sun is brightest straight up in every engine; with its sun (35 degrees high,
 // azimuth 40 degrees from +z towards +x) the brightest normal leans towards the sun as each engine
-// sees it: mirrored in x for the right-handed engines.
+// sees it: mirrored in x for three.js and Filament.
 TEST(EngineExportFrames, TheSkyIsBrightestAboveAndTowardsItsSunInEveryEngine) {
   SkyParams no_sun;
   no_sun.sun_irradiance = glm::vec3(0.0f);
