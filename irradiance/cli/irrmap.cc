@@ -12,9 +12,11 @@
 
 #include "irradiance/cli/subcommands.h"
 #include "irradiance/io/environments.h"
+#include "irradiance/io/map_file_formats.h"
 #include "irradiance/jobs/irrmap_job.h"
 #include "irradiance/mesh_input/mesh_geometry_io.h"
 #include "irradiance/render/preview.h"
+#include "irradiance/sh/engine_sh.h"
 #include "vm/cli/parse_command_line.h"
 
 namespace {
@@ -44,7 +46,15 @@ std::string Footer() {
       "                  program.vsh --fragment --consts constants.vsh --sphere 6 --sphere-reg v0`\n"
       "                  (the program writes no oPos)\n"
       "  irradiance.exr  irradiance cube map (horizontal cross, float), every texel computed by the\n"
-      "                  chosen vs_1_1 program on the emulated machine\n"
+      "                  chosen vs_1_1 program on the emulated machine; --map-format dds or ktx2\n"
+      "                  writes irradiance.dds or irradiance.ktx2 instead: an RGBA16F cube map texture\n"
+      "                  (DXGI R16G16B16A16_FLOAT with the DX10 header; VK_FORMAT_R16G16B16A16_SFLOAT)\n"
+      "  sh_*            with --sh-export: the nine coefficients in each engine's convention and world\n"
+      "                  frame, the convention stated at the top of the file: sh_three.json (three.js\n"
+      "                  LightProbe), sh_filament.txt (IndirectLight irradiance, as cmgen --sh-shader),\n"
+      "                  sh_unity.json (unity_SHAr..unity_SHC: the 7 constants / pi), sh_gltf.json\n"
+      "                  (EXT_lights_image_based irradianceCoefficients), sh_irradiance.glsl/.hlsl\n"
+      "                  (a function of the normal with the 7 constants baked in)\n"
       "  preview.png     diffuse spheres as in the paper's Fig. 3: exact convolution, SH9 from full\n"
       "                  resolution, from the 64x64 and 16x16 levels (and the chosen one, marked *),\n"
       "                  error images under them (in --error-metric's terms, captioned with the\n"
@@ -88,7 +98,9 @@ std::string Footer() {
       "  irrmap 'sky_{{face}}.exr' --engine ref         # six face files, reference engine\n"
       "  irrmap cross.exr --map-size 64 --threads 2\n"
       "  irrmap sky --face-size 512 --no-ground-truth   # coefficients and irradiance.exr, no error table\n"
-      "  irrmap studio --face-size 64 --mesh /usr/share/assimp/models/PLY/Wuson.ply --out wuson\n",
+      "  irrmap studio --face-size 64 --mesh /usr/share/assimp/models/PLY/Wuson.ply --out wuson\n"
+      "  irrmap studio --face-size 64 --no-ground-truth --map-format ktx2 --sh-export three,filament --out engine\n"
+      "  irrmap sky --face-size 64 --coefficients-only --sh-export unity,gltf,glsl,hlsl --out sh\n",
       vs11::irradiance::kRecommendedLevelSize);
 }
 
@@ -195,6 +207,21 @@ void AddJobOptions(CLI::App& app, JobCommandLine& line) {
       ->capture_default_str();
 }
 
+// --map-format and --sh-export: outputs engines load as they are.
+void AddEngineExportOptions(CLI::App& app, vs11::irradiance::IrrmapOptions& options) {
+  app.add_option("--map-format", options.map_format,
+                 fmt::format("file of the irradiance cube map: {} (exr: irradiance.exr, a float cross; dds, ktx2: "
+                             "irradiance.dds, irradiance.ktx2, RGBA16F cube map textures with the faces as "
+                             "Direct3D and Vulkan address them)",
+                             vs11::irradiance::kMapFileFormatNames))
+      ->capture_default_str();
+  app.add_option("--sh-export", options.sh_exports,
+                 fmt::format("also write the nine coefficients for these engines, each in its own convention and "
+                             "world frame (comma-separated or repeated): {}",
+                             vs11::irradiance::ShExportFormatNames()))
+      ->delimiter(',');
+}
+
 // Runs the job the command line asked for; the exit status.
 int RunJob(const CLI::App& app, JobCommandLine& line) {
   vs11::irradiance::IrrmapOptions& options = line.options;
@@ -245,6 +272,7 @@ int main(int argc, char** argv) {
   app.footer(Footer());
   JobCommandLine line;
   AddJobOptions(app, line);
+  AddEngineExportOptions(app, line.options);
   vs11::irradiance::cli::AddSubcommands(app);
   try {
     if (std::optional<int> status = vs11::cli::ParseCommandLine(app, argc, argv, "irrmap")) return *status;

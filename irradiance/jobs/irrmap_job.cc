@@ -22,6 +22,7 @@
 #include "irradiance/io/cube_map.h"
 #include "irradiance/io/environment_io.h"
 #include "irradiance/io/environments.h"
+#include "irradiance/jobs/engine_exports.h"
 #include "irradiance/render/preview.h"
 #include "irradiance/report/preview_errors.h"
 #include "irradiance/report/verify.h"
@@ -44,7 +45,6 @@ using Clock = std::chrono::steady_clock;
 constexpr std::string_view kCoefficientsFile = "coeffs.json";
 constexpr std::string_view kConstantsFile = "constants.vsh";
 constexpr std::string_view kProgramFile = "program.vsh";
-constexpr std::string_view kIrradianceFile = "irradiance.exr";
 constexpr std::string_view kPreviewFile = "preview.png";
 constexpr std::string_view kMeshFile = "mesh.ply";
 constexpr std::string_view kMeshPictureFile = "mesh.png";
@@ -98,6 +98,7 @@ struct CheckedOptions {
   ErrorMetric metric = kDefaultErrorMetric;
   bool builtin = false;
   int threads = 1;
+  CheckedExports exports;  // --map-format, --sh-export
 };
 
 std::string LevelRange(int face_size) {
@@ -156,6 +157,7 @@ std::optional<std::string> CheckOptions(const IrrmapOptions& options, CheckedOpt
     if (options.out_dir.empty()) return std::string("the output directory is empty");
     if (std::optional<std::string> error = CheckOutputFolder(options.out_dir)) return error;
   }
+  if (auto error = CheckExportOptions(options.map_format, options.sh_exports, checked.exports)) return error;
   if (options.environment.empty()) return std::string("no environment given");
   std::error_code ec;
   const bool exists = options.cube || fs::exists(options.environment, ec);
@@ -602,7 +604,29 @@ std::optional<std::string> IrradianceMapStage(IrrmapRun& run) {
       for (glm::vec3& texel : face.pixels) texel = glm::vec3(values[k++]);
     }
   });
-  run.outputs.push_back({kIrradianceFile, [&run](const fs::path& path) { return WriteCrossExr(run.irradiance_map, path); }});
+  const MapFileFormat format = run.checked.exports.map_format;
+  const std::string_view file = IrradianceMapFileName(format);
+  if (std::optional<std::string> warning = HalfRangeWarning(run.irradiance_map, format, file)) {
+    run.report.warnings.push_back(*warning);
+  }
+  run.outputs.push_back({file, [&run, format](const fs::path& path) {
+                           return WriteMapFile(run.irradiance_map, format, path);
+                         }});
+  return std::nullopt;
+}
+
+// The nine coefficients in each --sh-export engine's convention (irradiance/sh/engine_sh.h).
+std::optional<std::string> ShExportStage(IrrmapRun& run) {
+  if (run.options.coefficients_only && run.checked.exports.map_format != MapFileFormat::kExr) {
+    run.report.warnings.push_back(fmt::format("--map-format {} ignored: --coefficients-only makes no irradiance map",
+                                              run.options.map_format));
+  }
+  const std::string source = ExportSourceLine(run.report, ShWindowName(run.checked.window));
+  for (ShExportFormat format : run.checked.exports.sh_exports) {
+    run.outputs.push_back({ShExportFileName(format), [&run, format, source](const fs::path& path) {
+                             return WriteFileAtomically(path, ShExportText(format, run.report.coefficients, source));
+                           }});
+  }
   return std::nullopt;
 }
 
@@ -683,6 +707,7 @@ using Stage = std::optional<std::string> (*)(IrrmapRun&);
 std::vector<Stage> StagesFor(const IrrmapOptions& options) {
   std::vector<Stage> stages = {LoadStage, CoefficientsStage};
   if (options.mesh) stages.push_back(MeshStage);
+  stages.push_back(ShExportStage);
   if (options.coefficients_only) return stages;
   stages.push_back(IrradianceMapStage);
   if (options.no_ground_truth) return stages;

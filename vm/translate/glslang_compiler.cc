@@ -61,6 +61,32 @@ GlslangResult CompileWithGlslang(const std::string& glsl, Target target) {
   return result;
 }
 
+GlslangResult CompileHlslWithGlslang(const std::string& hlsl, const std::string& entry_point) {
+  InitializeGlslangOnce();
+  GlslangResult result;
+  glslang::TShader shader(EShLangVertex);
+  const char* text = hlsl.c_str();
+  const char* name = "hlsl";
+  shader.setStringsWithLengthsAndNames(&text, nullptr, &name, 1);
+  shader.setEntryPoint(entry_point.c_str());
+  shader.setEnvInput(glslang::EShSourceHlsl, EShLangVertex, glslang::EShClientVulkan, 100);
+  shader.setEnvClient(glslang::EShClientVulkan, glslang::EShTargetVulkan_1_0);
+  shader.setEnvTarget(glslang::EShTargetSpv, glslang::EShTargetSpv_1_0);
+  const auto messages = static_cast<EShMessages>(EShMsgSpvRules | EShMsgVulkanRules | EShMsgReadHlsl);
+  if (!shader.parse(GetDefaultResources(), kDefaultGlslVersion, false, messages)) {
+    result.log = std::string(shader.getInfoLog()) + shader.getInfoDebugLog();
+    return result;
+  }
+  glslang::TProgram program;
+  program.addShader(&shader);
+  if (!program.link(messages)) {
+    result.log = std::string(program.getInfoLog()) + program.getInfoDebugLog();
+    return result;
+  }
+  result.ok = true;
+  return result;
+}
+
 std::optional<std::string> ValidateSpirv(const std::vector<std::uint32_t>& words) {
   spvtools::SpirvTools tools(SPV_ENV_VULKAN_1_0);
   std::string messages;

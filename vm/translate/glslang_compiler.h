@@ -22,6 +22,11 @@ struct GlslangResult {
 // version). Thread-safe.
 GlslangResult CompileWithGlslang(const std::string& glsl, Target target);
 
+// Compiles and links `hlsl` as an HLSL vertex shader whose entry point is `entry_point`, through
+// glslang's HLSL front end (as `glslangValidator -D`), for checks of HLSL that vs11 writes
+// (irrmap --sh-export hlsl). Thread-safe.
+GlslangResult CompileHlslWithGlslang(const std::string& hlsl, const std::string& entry_point);
+
 // nullopt when `words` is valid SPIR-V for Vulkan 1.0, else SPIRV-Tools' message.
 std::optional<std::string> ValidateSpirv(const std::vector<std::uint32_t>& words);
 

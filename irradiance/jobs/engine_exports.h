@@ -1,0 +1,29 @@
+// What irrmap's --map-format and --sh-export ask for, checked, and the line each exported file
+// gives about its source (irradiance/io/map_file_formats.h, irradiance/sh/engine_sh.h).
+#pragma once
+
+#include <optional>
+#include <span>
+#include <string>
+#include <string_view>
+#include <vector>
+
+#include "irradiance/io/map_file_formats.h"
+#include "irradiance/jobs/irrmap_job.h"
+#include "irradiance/sh/engine_sh.h"
+
+namespace vs11::irradiance {
+
+struct CheckedExports {
+  MapFileFormat map_format = MapFileFormat::kExr;
+  std::vector<ShExportFormat> sh_exports;  // each once, in the order first named
+};
+
+// nullopt when every name is known ("unknown map format 'png' (use exr, dds or ktx2)" otherwise).
+std::optional<std::string> CheckExportOptions(std::string_view map_format, std::span<const std::string> sh_exports,
+                                              CheckedExports& checked);
+
+// "Written by irrmap from sky (built-in), face size 256, coefficients from level 4 (16x16), window none."
+std::string ExportSourceLine(const IrrmapReport& report, std::string_view window_name);
+
+}  // namespace vs11::irradiance
