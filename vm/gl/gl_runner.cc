@@ -87,7 +87,7 @@ std::unique_ptr<TransformFeedbackRun> TransformFeedbackRun::Create(const std::st
                                                                    int output_floats,
                                                                    const std::vector<GlAttribute>& attributes,
                                                                    const std::vector<float>& constants,
-                                                                   std::string& error) {
+                                                                   std::string& error, std::size_t vertex_count) {
   std::unique_ptr<TransformFeedbackRun> run(new TransformFeedbackRun());
   run->program_ = LinkTransformFeedbackProgram(vertex_source, varyings, error);
   if (run->program_ == 0) return nullptr;
@@ -115,6 +115,7 @@ std::unique_ptr<TransformFeedbackRun> TransformFeedbackRun::Create(const std::st
     glEnableVertexAttribArray(static_cast<GLuint>(attribute.location));
     run->vertex_count_ = attribute.data.size() / static_cast<std::size_t>(attribute.components);
   }
+  if (vertex_count != 0) run->vertex_count_ = vertex_count;
   run->output_floats_ = output_floats;
   glGenBuffers(1, &run->output_buffer_);
   glBindBuffer(GL_TRANSFORM_FEEDBACK_BUFFER, run->output_buffer_);

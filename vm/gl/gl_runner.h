@@ -35,11 +35,14 @@ struct GlAttribute {
 // (`varyings`, interleaved, `output_floats` floats per vertex).
 class TransformFeedbackRun {
  public:
-  // Compiles and links; nullopt with `error` holding the info log on failure.
+  // Compiles and links; nullopt with `error` holding the info log on failure. Each draw runs
+  // `vertex_count` vertices; 0 takes the count from the attributes (a shader that reads no attribute
+  // needs it given).
   static std::unique_ptr<TransformFeedbackRun> Create(const std::string& vertex_source,
                                                       const std::vector<std::string>& varyings, int output_floats,
                                                       const std::vector<GlAttribute>& attributes,
-                                                      const std::vector<float>& constants, std::string& error);
+                                                      const std::vector<float>& constants, std::string& error,
+                                                      std::size_t vertex_count = 0);
   ~TransformFeedbackRun();
   TransformFeedbackRun(const TransformFeedbackRun&) = delete;
   TransformFeedbackRun& operator=(const TransformFeedbackRun&) = delete;
