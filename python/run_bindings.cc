@@ -18,6 +18,10 @@ constexpr int kMaxThreads = 256;  // as the tools' --threads
 EngineKind CheckedEngine(const std::string& engine, int threads) {
   std::optional<EngineKind> kind = EngineKindFromName(engine);
   if (!kind) throw py::value_error(fmt::format("engine='{}': use 'ref', 'batch' or 'jit'", engine));
+  if (*kind == EngineKind::kGl) {
+    throw py::value_error("engine='gl': the gl engine runs in the vs11 and irrmap tools only (the module does not "
+                          "link EGL)");
+  }
   if (threads < 1 || threads > kMaxThreads) {
     throw py::value_error(fmt::format("threads={} is out of range: 1 to {}", threads, kMaxThreads));
   }

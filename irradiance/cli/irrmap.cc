@@ -18,6 +18,8 @@
 #include "irradiance/render/preview.h"
 #include "irradiance/sh/engine_sh.h"
 #include "vm/cli/parse_command_line.h"
+#include "vm/gl/gl_context.h"
+#include "vm/gl/gl_engine.h"
 
 namespace {
 
@@ -97,6 +99,7 @@ std::string Footer() {
       "  irrmap probe.hdr --layout angular --face-size 256 --out probe-out\n"
       "  irrmap 'sky_{{face}}.exr' --engine ref         # six face files, reference engine\n"
       "  irrmap cross.exr --map-size 64 --threads 2\n"
+      "  irrmap gradient --face-size 32 --engine gl --out gl-out    # evaluated on Mesa's llvmpipe\n"
       "  irrmap sky --face-size 512 --no-ground-truth   # coefficients and irradiance.exr, no error table\n"
       "  irrmap studio --face-size 64 --mesh /usr/share/assimp/models/PLY/Wuson.ply --out wuson\n"
       "  irrmap studio --face-size 64 --no-ground-truth --map-format ktx2 --sh-export three,filament --out engine\n"
@@ -127,6 +130,7 @@ struct JobCommandLine {
   std::string mesh_file;
   double mesh_timeout = 0;
   int level = 0;
+  std::string gl_device;  // empty, "list" or a device number
 };
 
 // The default job's options (`irrmap [ENV] ...`): one add_option per flag, hence its length.
@@ -174,8 +178,16 @@ void AddJobOptions(CLI::App& app, JobCommandLine& line) {
   app.add_option("--window-width", options.window_width, "width of the hanning and lanczos windows, in bands")
       ->capture_default_str();
   app.add_option("--out", out_dir, "output directory")->capture_default_str();
-  app.add_option("--engine", options.engine, "vertex machine engine: ref (reference, scalar), batch (SIMD kernels) or jit (compiled to AVX-512 or AVX2 code; batch kernels without AVX2)")
+  app.add_option("--engine", options.engine,
+                 "vertex machine engine: ref (reference, scalar), batch (SIMD kernels), jit (compiled to AVX-512 or "
+                 "AVX2 code; batch kernels without AVX2) or gl (the GLSL ES translation on Mesa's llvmpipe through "
+                 "EGL, or on --gl-device N)")
       ->capture_default_str();
+  app.add_option("--gl-device", line.gl_device,
+                 "EGL device for --engine gl: 'list' prints them; N picks one (default: Mesa's llvmpipe)")
+      ->check([](const std::string& value) {
+        return value == "list" || vs11::gl::GlDeviceIndex(value) ? std::string() : "expected 'list' or a device number";
+      });
   app.add_option("--threads", options.threads, "worker threads (0 = every core)")->capture_default_str();
   app.add_option("--map-size", options.map_size,
                  "face size of irradiance.exr; the irradiance is a quadratic polynomial of the normal, so 32 "
@@ -228,6 +240,18 @@ int RunJob(const CLI::App& app, JobCommandLine& line) {
   options.out_dir = line.out_dir;
   options.font = line.font;
   if (app.count("--level") > 0) options.level = line.level;
+  if (line.gl_device == "list") {
+    std::string error;
+    const std::vector<vs11::gl::GlDeviceInfo> devices = vs11::gl::ListGlDevices(error);
+    fmt::print("{}", vs11::gl::FormatGlDeviceList(devices));
+    if (devices.empty()) fmt::print(stderr, "irrmap: error: {}\n", error);
+    return devices.empty() ? kJobError : 0;
+  }
+  options.gl_device = vs11::gl::GlDeviceIndex(line.gl_device);
+  if (options.gl_device && options.engine != "gl") {
+    fmt::print(stderr, "irrmap: warning: --gl-device applies to --engine gl only; --engine {} ignores it\n",
+               options.engine);
+  }
   options.face_size_given = app.count("--face-size") > 0;
   if (!line.mesh_file.empty()) {
     std::vector<std::string> mesh_warnings;
@@ -265,6 +289,7 @@ int RunJob(const CLI::App& app, JobCommandLine& line) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  vs11::gl::RegisterGlEngine();
   CLI::App app{fmt::format(
       "irrmap: irradiance environment map of an environment, with 9 spherical-harmonic coefficients per\n"
       "channel computed from a mip level of the cube map and evaluated by the paper's 11-instruction\n"

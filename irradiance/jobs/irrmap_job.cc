@@ -114,7 +114,7 @@ std::optional<std::string> CheckOptions(const IrrmapOptions& options, CheckedOpt
   }
   checked.layout = *layout;
   std::optional<EngineKind> engine = EngineKindFromName(options.engine);
-  if (!engine) return fmt::format("unknown engine '{}' (use ref, batch or jit)", options.engine);
+  if (!engine) return fmt::format("unknown engine '{}' (use ref, batch, jit or gl)", options.engine);
   checked.engine = *engine;
   std::optional<ShWindow> window = ParseShWindow(options.window);
   if (!window) {
@@ -716,6 +716,18 @@ std::vector<Stage> StagesFor(const IrrmapOptions& options) {
   return stages;
 }
 
+// An engine that depends on a driver (the gl engine) is built once for the paper's program before any
+// work: where no device can be had, the job ends with its error instead of evaluating to NaN.
+std::optional<std::string> CheckEngine(EngineKind kind, const EngineOptions& engine_options) {
+  if (kind == EngineKind::kReference || kind == EngineKind::kBatch || kind == EngineKind::kJit) return std::nullopt;
+  std::string error;
+  const std::optional<PaperProgram> paper = PaperProgram::LoadOrder(ShOrder::kOrder2, error);
+  if (!paper) return error;
+  const std::string engine_error = MakeEngine(kind, paper->program(), ConstantBank(), engine_options)->error();
+  if (engine_error.empty()) return std::nullopt;
+  return fmt::format("--engine {}: {}", EngineName(kind), engine_error);
+}
+
 }  // namespace
 
 std::optional<std::string> RunIrrmap(const IrrmapOptions& options, IrrmapReport& report,
@@ -726,6 +738,10 @@ std::optional<std::string> RunIrrmap(const IrrmapOptions& options, IrrmapReport&
   if (!error) {
     report.threads = run.checked.threads;
     run.engine_options = EngineOptions{run.checked.threads};
+    run.engine_options.gl_device = options.gl_device;
+    error = CheckEngine(run.checked.engine, run.engine_options);
+  }
+  if (!error) {
     for (Stage stage : StagesFor(options)) {
       if ((error = stage(run))) break;
     }

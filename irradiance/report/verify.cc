@@ -360,6 +360,7 @@ VerifyReport Verify(const Program& program, const ProgramMetadata& metadata, con
   std::unique_ptr<Engine> engine = MakeEngine(options.engine, program, rc->constants, options.engine_options);
   VertexArrays outputs = MakeOutputArrays(count, program);
   engine->Run(rc->inputs, outputs);
+  if (report.error = engine->error(); !report.error.empty()) return report;
   const std::array<WriteMask, kOutputSlotCount> written = WrittenOutputLanes(program);
 
   report.pass = true;
@@ -467,8 +468,14 @@ EngineComparison CompareEngines(const Program& program, EngineKind a, EngineKind
   const std::size_t count = inputs.count();
   VertexArrays out_a = MakeOutputArrays(count, program);
   VertexArrays out_b = MakeOutputArrays(count, program);
-  MakeEngine(a, program, constants, engine_options)->Run(inputs, out_a);
-  MakeEngine(b, program, constants, engine_options)->Run(inputs, out_b);
+  EngineComparison failed;
+  failed.a = a;
+  failed.b = b;
+  for (auto [kind, outputs] : {std::pair{a, &out_a}, std::pair{b, &out_b}}) {
+    std::unique_ptr<Engine> engine = MakeEngine(kind, program, constants, engine_options);
+    engine->Run(inputs, *outputs);
+    if (failed.error = engine->error(); !failed.error.empty()) return failed;
+  }
   EngineComparison comparison = CompareOutputArrays(out_a, out_b);
   comparison.a = a;
   comparison.b = b;

@@ -103,7 +103,8 @@ struct OutputReport {
 };
 
 struct VerifyReport {
-  std::string error;                 // set when nothing could be run (unknown reference, bad metadata)
+  std::string error;                 // set when nothing could be run (unknown reference, bad metadata, an
+                                     // engine that could not be had or failed: the gl engine's error())
   std::string reference;
   std::string description;           // the reference's own account of registers and packing
   EngineKind engine = EngineKind::kBatch;

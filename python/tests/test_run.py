@@ -201,6 +201,9 @@ def test_bad_engine_and_threads_are_value_errors():
         program.run({"v0": np.zeros((2, 4))}, engine="gpu")
     with pytest.raises(ValueError, match="threads=0"):
         program.run({"v0": np.zeros((2, 4))}, threads=0)
+    # The gl engine lives in the tools (it links EGL); the module says so instead of returning NaN.
+    with pytest.raises(ValueError, match="engine='gl': the gl engine runs in the vs11 and irrmap tools only"):
+        program.run({"v0": np.zeros((2, 4))}, engine="gl")
 
 
 def test_trace_is_what_vs11_run_trace_json_writes(programs_dir, vs11_tool, tmp_path):

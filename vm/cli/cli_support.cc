@@ -6,6 +6,8 @@
 
 #include "irradiance/report/verify.h"
 #include "vm/cli/commands.h"
+#include "vm/engines/engine_factory.h"
+#include "vm/gl/gl_context.h"
 
 namespace vs11::cli {
 
@@ -63,14 +65,52 @@ Program LoadProgramOrFail(const std::string& path, const ProgramFlags& flags) {
 
 void EngineFlags::AddTo(CLI::App& command) {
   command.add_option("--engine", engine,
-                     "Execution engine: ref (scalar reference), batch (SIMD kernels) or jit (the program compiled to "
-                     "AVX-512 or AVX2 code; the batch kernels on a CPU without AVX2). All three give the same bits")
-      ->check(CLI::IsMember({"ref", "reference", "batch", "jit"}))
+                     "Execution engine: ref (scalar reference), batch (SIMD kernels), jit (the program compiled to "
+                     "AVX-512 or AVX2 code; the batch kernels on a CPU without AVX2), all three giving the same "
+                     "bits; or gl (the GLSL ES translation on an OpenGL ES 3.0 driver through EGL: Mesa's llvmpipe, "
+                     "or --gl-device N)")
+      ->check(CLI::IsMember({"ref", "reference", "batch", "jit", "gl"}))
       ->capture_default_str();
   command.add_option("--threads", threads, "Threads for the batch and jit engines")->check(CLI::Range(1, 256))->capture_default_str();
+  command.add_option("--gl-device", gl_device,
+                     "EGL device for --engine gl: 'list' prints them; N picks one (default: Mesa's llvmpipe)")
+      ->check([](const std::string& value) {
+        return value == "list" || gl::GlDeviceIndex(value) ? std::string() : "expected 'list' or a device number";
+      });
 }
 
 EngineKind EngineFlags::Kind() const { return EngineKindFromName(engine).value_or(EngineKind::kJit); }
+
+EngineOptions EngineFlags::Options() const {
+  EngineOptions options{threads};
+  options.gl_device = gl::GlDeviceIndex(gl_device);
+  return options;
+}
+
+bool EngineFlags::ListGlDevicesIfAsked(const std::string& command_engines) const {
+  if (!gl_device.empty() && gl_device != "list" && Kind() != EngineKind::kGl &&
+      command_engines.find("gl") == std::string::npos) {
+    std::fprintf(stderr, "warning: --gl-device applies to the gl engine only; --engine %s ignores it\n", engine.c_str());
+  }
+  if (gl_device != "list") return false;
+  std::string error;
+  const std::vector<gl::GlDeviceInfo> devices = gl::ListGlDevices(error);
+  std::fputs(gl::FormatGlDeviceList(devices).c_str(), stdout);
+  if (devices.empty()) Fail(error);
+  return true;
+}
+
+std::unique_ptr<Engine> MakeEngineOrFail(EngineKind kind, const Program& program, const ConstantBank& constants,
+                                         const EngineOptions& options) {
+  std::unique_ptr<Engine> engine = MakeEngine(kind, program, constants, options);
+  if (const std::string error = engine->error(); !error.empty()) Fail(error);
+  return engine;
+}
+
+void RunOrFail(Engine& engine, const VertexArrays& inputs, VertexArrays& outputs) {
+  engine.Run(inputs, outputs);
+  if (const std::string error = engine.error(); !error.empty()) Fail(error);
+}
 
 void Fail(const std::string& message) {
   std::fprintf(stderr, "error: %s\n", message.c_str());

@@ -2,6 +2,7 @@
 // preprocessor flags.
 #pragma once
 
+#include <memory>
 #include <optional>
 #include <string>
 #include <vector>
@@ -36,14 +37,27 @@ struct ProgramFlags {
 // there are errors.
 Program LoadProgramOrFail(const std::string& path, const ProgramFlags& flags);
 
-// "--engine ref|batch|jit" (jit by default: batch kernels where the CPU has no AVX2) and "--threads N".
+// "--engine ref|batch|jit|gl" (jit by default: batch kernels where the CPU has no AVX2), "--threads N"
+// and "--gl-device list|N".
 struct EngineFlags {
   std::string engine = "jit";
   int threads = 1;
+  std::string gl_device;  // empty (llvmpipe), "list" or an EGL device's index
   void AddTo(CLI::App& command);
   EngineKind Kind() const;
-  EngineOptions Options() const { return {threads}; }
+  EngineOptions Options() const;
+  // With --gl-device list: prints the EGL devices and returns true (the command is done: exit 0, or
+  // CommandFailure{1} where EGL lists none). Warns when --gl-device is given to another engine.
+  bool ListGlDevicesIfAsked(const std::string& command_engines) const;
 };
+
+// MakeEngine (vm/engines/engine_factory.h), or the engine's error printed and CommandFailure{1} where
+// it cannot be had (the gl engine without a device).
+std::unique_ptr<Engine> MakeEngineOrFail(EngineKind kind, const Program& program, const ConstantBank& constants,
+                                         const EngineOptions& options);
+
+// Runs `engine`; prints its error and throws CommandFailure{1} when the run failed (a driver's error).
+void RunOrFail(Engine& engine, const VertexArrays& inputs, VertexArrays& outputs);
 
 // Prints "error: MESSAGE" to stderr and throws CommandFailure{1}.
 [[noreturn]] void Fail(const std::string& message);

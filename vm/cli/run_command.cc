@@ -118,6 +118,7 @@ VertexArrays FillInputArrays(const SuppliedInputs& supplied, std::size_t count, 
 }
 
 void RunProgram(const RunArgs& args) {
+  if (args.engine.ListGlDevicesIfAsked("")) return;
   Program program = LoadProgramOrFail(args.program, args.flags);
   std::vector<int> constants_given;
   ConstantBank constants =
@@ -134,7 +135,7 @@ void RunProgram(const RunArgs& args) {
   }
   VertexArrays inputs = FillInputArrays(supplied, count, registers);
   VertexArrays outputs = MakeOutputArrays(count, program);
-  MakeEngine(args.engine.Kind(), program, constants, args.engine.Options())->Run(inputs, outputs);
+  RunOrFail(*MakeEngineOrFail(args.engine.Kind(), program, constants, args.engine.Options()), inputs, outputs);
   if (args.trace.active()) {
     ReportTraces(args.trace, args.program, program, constants, inputs, outputs, EngineName(args.engine.Kind()));
   }
@@ -162,12 +163,18 @@ constexpr const char* kRunFooter =
     "to oD0/oD1/oFog after the shader is not applied).\n"
     "Debugging: --trace 0,5 prints vertices 0 and 5 instruction by instruction (source line, values\n"
     "read, lanes written) on the reference engine, beside the --engine's outputs, which must be identical\n"
-    "(exit 1 if not); the CSV then goes only to --out. --trace-json FILE writes the same record as JSON.\n\n"
+    "(exit 1 if not); the CSV then goes only to --out. --trace-json FILE writes the same record as JSON.\n"
+    "--engine gl runs the program's GLSL ES 3.00 translation (vs11 translate) on an OpenGL ES 3.0 driver\n"
+    "through EGL with no display: Mesa's llvmpipe, or the EGL device --gl-device N names (--gl-device list\n"
+    "prints them). Where no EGL device gives OpenGL ES 3.0 it says why and exits 1. Its outputs equal the\n"
+    "other engines' on ordinary inputs; a driver may flush denormals and lose -0 (README, \"The gl engine\").\n\n"
     "Examples:\n"
     "  vs11 run programs/sh9_irradiance.vsh --fragment --consts out/constants.vsh --sphere 6 --sphere-reg v0\n"
     "  vs11 run programs/sh9_irradiance.vsh --fragment --consts out/constants.vsh --sphere 6 --sphere-reg v0 --trace 2\n"
     "  vs11 run light.vsh --input v0=positions.csv --input v1=normals.csv --const c4=0,0,1,0 --out lit.csv\n"
-    "  vs11 run light.vsh --input v0=lit.csv:oPos --input v1=normals.csv --const c4=0,0,1,0";
+    "  vs11 run light.vsh --input v0=lit.csv:oPos --input v1=normals.csv --const c4=0,0,1,0\n"
+    "  vs11 run programs/sh9_irradiance.vsh --fragment --consts out/constants.vsh --sphere 6 --sphere-reg v0 --engine gl\n"
+    "  vs11 run programs/sh9_irradiance.vsh --gl-device list";
 
 }  // namespace
 

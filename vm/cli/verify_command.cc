@@ -40,6 +40,7 @@ std::string ReferenceHelp() {
 }
 
 void RunVerify(const VerifyFlags& flags) {
+  if (flags.engine_flags.ListGlDevicesIfAsked(flags.against_engine)) return;
   irr::ProgramForVerify loaded = irr::LoadProgramForVerify(flags.program, flags.program_flags.ToOptions(),
                                                                 flags.program_flags.FragmentFlag());
   std::fputs(loaded.diagnostics.ToString().c_str(), stderr);
@@ -74,7 +75,7 @@ void RunVerify(const VerifyFlags& flags) {
 
   if (!flags.against_engine.empty()) {
     std::optional<EngineKind> other = EngineKindFromName(flags.against_engine);
-    if (!other) Fail(fmt::format("--against-engine {}: expected ref, batch or jit", flags.against_engine));
+    if (!other) Fail(fmt::format("--against-engine {}: expected ref, batch, jit or gl", flags.against_engine));
     irr::EngineComparison comparison = irr::VerifyEngines(*loaded.program, metadata, options.engine, *other, options);
     if (!comparison.error.empty()) Fail(fmt::format("{}: {}", flags.program, comparison.error));
     std::string text = flags.json
@@ -118,6 +119,8 @@ void AddVerifyCommand(CLI::App& app) {
       "\n"
       "--against-engine E runs the program on --engine and on E with the same inputs (the reference's, or random\n"
       "ones when there is no reference) and compares every written output lane bit for bit.\n"
+      "--engine gl (or --against-engine gl) runs the GLSL ES translation on Mesa's llvmpipe or --gl-device N\n"
+      "(vs11 run --help); no EGL device with OpenGL ES 3.0 is an error (exit 1).\n"
       "\n"
       "Exit status: 0 pass (or identical), 1 fail (or different) or an error, 2 bad usage.\n"
       "\n"
@@ -125,7 +128,9 @@ void AddVerifyCommand(CLI::App& app) {
       "  vs11 verify programs/sh9_irradiance.vsh\n"
       "  vs11 verify programs/sh9_irradiance.vsh --engine ref --coeffs grace.json --samples 1000 --json\n"
       "  vs11 verify my.vsh --reference sh9 --output oT0 --tolerance 1e-6\n"
-      "  vs11 verify programs/skinning.vsh --against-engine ref\n",
+      "  vs11 verify programs/skinning.vsh --against-engine ref\n"
+      "  vs11 verify programs/skinning.vsh --engine gl --against-engine ref\n"
+      "  vs11 verify programs/sh9_irradiance.vsh --engine gl\n",
       ReferenceHelp(), irr::kDefaultVerifyTolerance));
   command->add_option("program", flags->program, "Program file (.vsh source or .vso bytecode)")->required();
   command->add_option("--reference", flags->reference,
@@ -143,8 +148,8 @@ void AddVerifyCommand(CLI::App& app) {
   command->add_option("--seed", flags->seed, "Seed of the random coefficients and inputs")->capture_default_str();
   command->add_flag("--json", flags->json, "Print the report as JSON");
   command->add_option("--against-engine", flags->against_engine,
-                      "Compare --engine with this engine (ref, batch or jit) bit for bit instead of with a reference")
-      ->check(CLI::IsMember({"ref", "reference", "batch", "jit"}));
+                      "Compare --engine with this engine (ref, batch, jit or gl) bit for bit instead of with a reference")
+      ->check(CLI::IsMember({"ref", "reference", "batch", "jit", "gl"}));
   flags->program_flags.AddTo(*command);
   flags->engine_flags.AddTo(*command);
   command->callback([flags] { RunVerify(*flags); });

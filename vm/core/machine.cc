@@ -121,6 +121,7 @@ std::optional<EngineKind> EngineKindFromName(std::string_view name) {
   if (name == "ref" || name == "reference") return EngineKind::kReference;
   if (name == "batch") return EngineKind::kBatch;
   if (name == "jit") return EngineKind::kJit;
+  if (name == "gl") return EngineKind::kGl;
   return std::nullopt;
 }
 
@@ -129,6 +130,7 @@ std::string_view EngineName(EngineKind kind) {
     case EngineKind::kReference: return "ref";
     case EngineKind::kBatch: return "batch";
     case EngineKind::kJit: return "jit";
+    case EngineKind::kGl: return "gl";
   }
   return "batch";
 }

@@ -111,9 +111,12 @@ VertexArrays MakeInputArrays(std::size_t count, std::span<const int> input_regis
 VertexArrays MakeOutputArrays(std::size_t count, const Program& program);  // the slots the program writes
 
 // kJit: the batch engine running the program compiled to x86-64 code (vm/engines/jit_compiler.h), AVX-512
-// or AVX2, or its kernels on a CPU without AVX2.
-enum class EngineKind { kReference, kBatch, kJit };
-std::optional<EngineKind> EngineKindFromName(std::string_view name);  // "ref" | "reference" | "batch" | "jit"
+// or AVX2, or its kernels on a CPU without AVX2. kGl: the program's GLSL ES translation run by an OpenGL
+// ES 3.0 driver through EGL and transform feedback (vm/gl/gl_engine.h), Mesa's llvmpipe by default; only
+// programs that register it (vm/gl's RegisterGlEngine: the vs11 and irrmap tools) can build it.
+enum class EngineKind { kReference, kBatch, kJit, kGl };
+// "ref" | "reference" | "batch" | "jit" | "gl"
+std::optional<EngineKind> EngineKindFromName(std::string_view name);
 std::string_view EngineName(EngineKind kind);
 
 // Runs one program with one constant bank over many vertices.
@@ -134,6 +137,10 @@ class Engine {
   // not write get UnwrittenOutputValue.
   virtual void Run(const VertexArrays& inputs, VertexArrays& outputs) = 0;
   virtual void SetConstants(const ConstantBank& api_constants) = 0;
+  // Empty while the engine works. An engine that depends on a driver (kGl) says here why it could not
+  // be built (no EGL device with OpenGL ES 3.0) or why its last Run failed; it then writes NaN to every
+  // output lane, and callers report this text instead of the outputs. The CPU engines never fail.
+  virtual std::string error() const { return {}; }
 };
 
 // The instruction set the jit engine compiles to: the best the CPU has, or one forced (for tests and
@@ -150,6 +157,9 @@ struct EngineOptions {
   // The threads a split call runs on; null: ThreadPool::Default(), the process's one pool sized to
   // the cores. The pool must outlive the engine.
   ThreadPool* pool = nullptr;
+  // The gl engine: the EGL device (vm/gl/gl_context.h's ListGlDevices index, `--gl-device N`); nullopt:
+  // Mesa's llvmpipe. The CPU engines ignore it.
+  std::optional<int> gl_device = std::nullopt;
 };
 
 }  // namespace vs11

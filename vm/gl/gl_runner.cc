@@ -1,7 +1,5 @@
 #include "vm/gl/gl_runner.h"
 
-#include <EGL/egl.h>
-#include <EGL/eglext.h>
 #include <GLES3/gl3.h>
 
 #include <cstdlib>
@@ -9,26 +7,10 @@
 
 #include <fmt/format.h>
 
+#include "vm/gl/gl_context.h"
+
 namespace vs11::gl {
 namespace {
-
-bool HasExtension(const char* list, const char* name) {
-  if (list == nullptr) return false;
-  const std::size_t length = std::strlen(name);
-  for (const char* p = std::strstr(list, name); p != nullptr; p = std::strstr(p + 1, name)) {
-    if ((p == list || p[-1] == ' ') && (p[length] == ' ' || p[length] == '\0')) return true;
-  }
-  return false;
-}
-
-std::string EglErrorText(const char* call) { return fmt::format("{} failed (EGL error 0x{:04X})", call, eglGetError()); }
-
-bool GlOk(const char* what, std::string& error) {
-  const GLenum code = glGetError();
-  if (code == GL_NO_ERROR) return true;
-  error = fmt::format("{}: GL error 0x{:04X}", what, code);
-  return false;
-}
 
 GLuint CompileShader(GLenum kind, const std::string& source, std::string& error) {
   const GLuint shader = glCreateShader(kind);
@@ -51,65 +33,53 @@ constexpr char kFragmentSource[] = "#version 300 es\nprecision highp float;\nout
 
 }  // namespace
 
+bool GlOk(const char* what, std::string& error) {
+  const GLenum code = glGetError();
+  if (code == GL_NO_ERROR) return true;
+  error = fmt::format("{}: GL error 0x{:04X}", what, code);
+  return false;
+}
+
 std::optional<std::string> CreateLlvmpipeContext(std::optional<int> lp_threads, std::string& error) {
-  setenv("LIBGL_ALWAYS_SOFTWARE", "1", 1);
-  setenv("GALLIUM_DRIVER", "llvmpipe", 1);
   if (lp_threads) {
     setenv("LP_NUM_THREADS", std::to_string(*lp_threads).c_str(), 1);
   } else {
     unsetenv("LP_NUM_THREADS");
   }
-  const char* client_extensions = eglQueryString(EGL_NO_DISPLAY, EGL_EXTENSIONS);
-  if (!HasExtension(client_extensions, "EGL_MESA_platform_surfaceless")) {
-    error = "EGL has no EGL_MESA_platform_surfaceless (is Mesa's libegl-mesa0 installed?)";
-    return std::nullopt;
+  // Current on this thread until the process ends, as the callers (a test's fixture, the bench's
+  // child process) expect.
+  static std::unique_ptr<GlContext> context;
+  context = GlContext::Create(std::nullopt, error);
+  if (!context || !context->MakeCurrent(error)) return std::nullopt;
+  return context->renderer();
+}
+
+unsigned LinkTransformFeedbackProgram(const std::string& vertex_source, const std::vector<std::string>& varyings,
+                                      std::string& error) {
+  const GLuint vertex = CompileShader(GL_VERTEX_SHADER, vertex_source, error);
+  if (vertex == 0) return 0;
+  const GLuint fragment = CompileShader(GL_FRAGMENT_SHADER, kFragmentSource, error);
+  if (fragment == 0) {
+    glDeleteShader(vertex);
+    return 0;
   }
-  EGLDisplay display = eglGetPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
-  if (display == EGL_NO_DISPLAY) {
-    error = EglErrorText("eglGetPlatformDisplay(EGL_PLATFORM_SURFACELESS_MESA)");
-    return std::nullopt;
-  }
-  EGLint major = 0, minor = 0;
-  if (eglInitialize(display, &major, &minor) != EGL_TRUE) {
-    error = EglErrorText("eglInitialize on the surfaceless platform");
-    return std::nullopt;
-  }
-  const char* display_extensions = eglQueryString(display, EGL_EXTENSIONS);
-  for (const char* needed : {"EGL_KHR_no_config_context", "EGL_KHR_surfaceless_context"}) {
-    if (!HasExtension(display_extensions, needed)) {
-      error = fmt::format("the surfaceless EGL display lacks {}", needed);
-      return std::nullopt;
-    }
-  }
-  if (eglBindAPI(EGL_OPENGL_ES_API) != EGL_TRUE) {
-    error = EglErrorText("eglBindAPI(EGL_OPENGL_ES_API)");
-    return std::nullopt;
-  }
-  const EGLint context_attributes[] = {EGL_CONTEXT_MAJOR_VERSION, 3, EGL_CONTEXT_MINOR_VERSION, 0, EGL_NONE};
-  EGLContext context = eglCreateContext(display, EGL_NO_CONFIG_KHR, EGL_NO_CONTEXT, context_attributes);
-  if (context == EGL_NO_CONTEXT) {
-    error = EglErrorText("eglCreateContext (OpenGL ES 3.0)");
-    return std::nullopt;
-  }
-  if (eglMakeCurrent(display, EGL_NO_SURFACE, EGL_NO_SURFACE, context) != EGL_TRUE) {
-    error = EglErrorText("eglMakeCurrent without a surface");
-    return std::nullopt;
-  }
-  GLuint framebuffer = 0, renderbuffer = 0;
-  glGenFramebuffers(1, &framebuffer);
-  glBindFramebuffer(GL_FRAMEBUFFER, framebuffer);
-  glGenRenderbuffers(1, &renderbuffer);
-  glBindRenderbuffer(GL_RENDERBUFFER, renderbuffer);
-  glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, 1, 1);
-  glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, renderbuffer);
-  if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
-    error = "the 1x1 framebuffer object is not complete";
-    return std::nullopt;
-  }
-  glEnable(GL_RASTERIZER_DISCARD);
-  if (!GlOk("setting up the framebuffer", error)) return std::nullopt;
-  const char* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
-  return std::string(renderer != nullptr ? renderer : "(none)");
+  const GLuint program = glCreateProgram();
+  glAttachShader(program, vertex);
+  glAttachShader(program, fragment);
+  std::vector<const char*> names;
+  for (const std::string& v : varyings) names.push_back(v.c_str());
+  glTransformFeedbackVaryings(program, static_cast<GLsizei>(names.size()), names.data(), GL_INTERLEAVED_ATTRIBS);
+  glLinkProgram(program);
+  glDeleteShader(vertex);
+  glDeleteShader(fragment);
+  GLint ok = GL_FALSE;
+  glGetProgramiv(program, GL_LINK_STATUS, &ok);
+  if (ok == GL_TRUE) return program;
+  char log[2048] = {};
+  glGetProgramInfoLog(program, sizeof log, nullptr, log);
+  error = fmt::format("program does not link: {}", log);
+  glDeleteProgram(program);
+  return 0;
 }
 
 std::unique_ptr<TransformFeedbackRun> TransformFeedbackRun::Create(const std::string& vertex_source,
@@ -117,29 +87,10 @@ std::unique_ptr<TransformFeedbackRun> TransformFeedbackRun::Create(const std::st
                                                                    int output_floats,
                                                                    const std::vector<GlAttribute>& attributes,
                                                                    const std::vector<float>& constants,
-                                                                   std::string& error) {
+                                                                   std::string& error, std::size_t vertex_count) {
   std::unique_ptr<TransformFeedbackRun> run(new TransformFeedbackRun());
-  const GLuint vertex = CompileShader(GL_VERTEX_SHADER, vertex_source, error);
-  if (vertex == 0) return nullptr;
-  const GLuint fragment = CompileShader(GL_FRAGMENT_SHADER, kFragmentSource, error);
-  if (fragment == 0) return nullptr;
-  run->program_ = glCreateProgram();
-  glAttachShader(run->program_, vertex);
-  glAttachShader(run->program_, fragment);
-  std::vector<const char*> names;
-  for (const std::string& v : varyings) names.push_back(v.c_str());
-  glTransformFeedbackVaryings(run->program_, static_cast<GLsizei>(names.size()), names.data(), GL_INTERLEAVED_ATTRIBS);
-  glLinkProgram(run->program_);
-  glDeleteShader(vertex);
-  glDeleteShader(fragment);
-  GLint ok = GL_FALSE;
-  glGetProgramiv(run->program_, GL_LINK_STATUS, &ok);
-  if (ok != GL_TRUE) {
-    char log[2048] = {};
-    glGetProgramInfoLog(run->program_, sizeof log, nullptr, log);
-    error = fmt::format("program does not link: {}", log);
-    return nullptr;
-  }
+  run->program_ = LinkTransformFeedbackProgram(vertex_source, varyings, error);
+  if (run->program_ == 0) return nullptr;
   glUseProgram(run->program_);
   if (!constants.empty()) {
     const GLint location = glGetUniformLocation(run->program_, "c");
@@ -164,6 +115,7 @@ std::unique_ptr<TransformFeedbackRun> TransformFeedbackRun::Create(const std::st
     glEnableVertexAttribArray(static_cast<GLuint>(attribute.location));
     run->vertex_count_ = attribute.data.size() / static_cast<std::size_t>(attribute.components);
   }
+  if (vertex_count != 0) run->vertex_count_ = vertex_count;
   run->output_floats_ = output_floats;
   glGenBuffers(1, &run->output_buffer_);
   glBindBuffer(GL_TRANSFORM_FEEDBACK_BUFFER, run->output_buffer_);

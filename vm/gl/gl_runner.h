@@ -1,5 +1,5 @@
-// Mesa's llvmpipe as a vertex-shader engine: an OpenGL ES 3.0 context on EGL's surfaceless platform,
-// and vertex shaders run over vertex buffers with transform feedback and GL_RASTERIZER_DISCARD.
+// Vertex shaders run over vertex buffers with transform feedback and GL_RASTERIZER_DISCARD, on an
+// OpenGL ES 3.0 context (gl_context.h): the translator's tests and bench/compare_llvmpipe.
 #pragma once
 
 #include <cstddef>
@@ -10,12 +10,19 @@
 
 namespace vs11::gl {
 
-// Creates the context and makes it current for the calling thread. llvmpipe is forced through the
-// environment (LIBGL_ALWAYS_SOFTWARE=1, GALLIUM_DRIVER=llvmpipe), which Mesa reads when the display
-// is initialised; `lp_threads`, when set, goes to LP_NUM_THREADS the same way. A surfaceless context
-// has no default framebuffer, so a 1x1 framebuffer object is bound: without one every draw fails with
-// GL_INVALID_FRAMEBUFFER_OPERATION. Returns GL_RENDERER, or nullopt with `error` set.
+// Creates a context on Mesa's llvmpipe (GlContext::Create(nullopt)) that stays current on the calling
+// thread for the rest of the process. `lp_threads`, when set, goes to LP_NUM_THREADS, which Mesa reads
+// when the display is initialised (so only the process's first display honours it). Returns
+// GL_RENDERER, or nullopt with `error` set.
 std::optional<std::string> CreateLlvmpipeContext(std::optional<int> lp_threads, std::string& error);
+
+// Compiles `vertex_source` (GLSL ES 3.00) with an empty fragment shader, and links them capturing
+// `varyings` interleaved. The program object, or 0 with `error` holding the info log.
+unsigned LinkTransformFeedbackProgram(const std::string& vertex_source, const std::vector<std::string>& varyings,
+                                      std::string& error);
+
+// glGetError as text: true when there is none, else false with `error` = "WHAT: GL error 0x....".
+bool GlOk(const char* what, std::string& error);
 
 // One vertex attribute: `components` floats per vertex, vertex after vertex, at `location`.
 struct GlAttribute {
@@ -28,11 +35,14 @@ struct GlAttribute {
 // (`varyings`, interleaved, `output_floats` floats per vertex).
 class TransformFeedbackRun {
  public:
-  // Compiles and links; nullopt with `error` holding the info log on failure.
+  // Compiles and links; nullopt with `error` holding the info log on failure. Each draw runs
+  // `vertex_count` vertices; 0 takes the count from the attributes (a shader that reads no attribute
+  // needs it given).
   static std::unique_ptr<TransformFeedbackRun> Create(const std::string& vertex_source,
                                                       const std::vector<std::string>& varyings, int output_floats,
                                                       const std::vector<GlAttribute>& attributes,
-                                                      const std::vector<float>& constants, std::string& error);
+                                                      const std::vector<float>& constants, std::string& error,
+                                                      std::size_t vertex_count = 0);
   ~TransformFeedbackRun();
   TransformFeedbackRun(const TransformFeedbackRun&) = delete;
   TransformFeedbackRun& operator=(const TransformFeedbackRun&) = delete;

@@ -15,15 +15,15 @@ namespace vs11::translate {
 namespace {
 
 // Output locations, in the order of the interface comment: vs11_oPos, oD0, oD1, oT0..oT7, oFog, oPts.
-struct OutputVariable {
+struct OutputDeclaration {
   int slot;
   std::string name;
   bool scalar;  // oFog, oPts: lane x only
   int location;
 };
 
-std::vector<OutputVariable> OutputVariables() {
-  std::vector<OutputVariable> variables = {{static_cast<int>(OutputSlot::kPosition), "vs11_oPos", false, 0}};
+std::vector<OutputDeclaration> OutputVariables() {
+  std::vector<OutputDeclaration> variables = {{static_cast<int>(OutputSlot::kPosition), "vs11_oPos", false, 0}};
   int location = 1;
   for (int slot = static_cast<int>(OutputSlot::kDiffuse); slot < kOutputSlotCount; ++slot) {
     variables.push_back({slot, OutputSlotName(slot), false, location++});
@@ -107,7 +107,7 @@ class Writer {
       case NodeOp::kGreater: case NodeOp::kIntGreater: return arg(0) + " > " + arg(1);
       case NodeOp::kGreaterEqual: return arg(0) + " >= " + arg(1);
       case NodeOp::kEqual: return arg(0) + " == " + arg(1);
-      case NodeOp::kSelect: return fmt::format("{} ? {} : {}", arg(0), arg(1), arg(2));
+      case NodeOp::kSelect: return fmt::format("{} ? {} : {}", arg(0), SelectOperand(node, 1), SelectOperand(node, 2));
       case NodeOp::kBitsOf: return fmt::format("floatBitsToInt({})", arg(0));
       case NodeOp::kFloatFromBits: return fmt::format("intBitsToFloat({})", arg(0));
       case NodeOp::kToInt: return fmt::format("int({})", arg(0));
@@ -141,7 +141,7 @@ class Writer {
     for (std::size_t n = 0; n < graph_.nodes.size(); ++n) {
       const Node& node = graph_.nodes[n];
       if (live_[n] && node.op == NodeOp::kFloatLiteral) {
-        text += fmt::format("  float {} = {};  // {}\n", FloatLiteralName(node.immediate), FloatFromBitsText(node.immediate),
+        text += fmt::format("  float {} = {};  // {}\n", FloatLiteralName(node.immediate), LiteralText(node.immediate),
                             FloatComment(node.immediate));
       }
     }
@@ -159,7 +159,7 @@ class Writer {
       }
     }
     text += "  // outputs (unwritten lanes hold vs11's values)\n";
-    for (const OutputVariable& output : OutputVariables()) {
+    for (const OutputDeclaration& output : OutputVariables()) {
       const auto& lanes = graph_.outputs[static_cast<std::size_t>(output.slot)];
       if (output.scalar) {
         text += fmt::format("  {} = {};\n", output.name, Ref(lanes[0]));
@@ -185,6 +185,24 @@ class Writer {
       case ClipSpace::kVulkan: return "vec4(vs11_oPos.x, -vs11_oPos.y, vs11_oPos.zw)";
       default: return "vs11_oPos";
     }
+  }
+
+  // A select's operand. Under exact_on_driver, a float the select's own comparison also reads passes
+  // through the opaque uniform: Mesa turns `a < b ? a : b` into fmin(a, b), which may return either
+  // zero for +0 and -0, where vs11's min returns b (and likewise for max).
+  std::string SelectOperand(const Node& node, int i) {
+    const int id = node.args[static_cast<std::size_t>(i)];
+    const std::string text = Ref(id);
+    if (!options_.exact_on_driver || node.type != ValueType::kFloat) return text;
+    const Node& condition = graph_.nodes[static_cast<std::size_t>(node.args[0])];
+    if (condition.args[0] != id && condition.args[1] != id) return text;
+    return fmt::format("uintBitsToFloat(floatBitsToUint({}) ^ vs11_opaque_zero)", text);
+  }
+
+  // A float literal with its bits; under exact_on_driver through a uniform the compiler cannot see.
+  std::string LiteralText(std::uint32_t bits) const {
+    if (!options_.exact_on_driver) return FloatFromBitsText(bits);
+    return fmt::format("uintBitsToFloat(0x{:08X}u ^ vs11_opaque_zero)", bits);
   }
 
   std::string_view ClipDescription() const {
@@ -240,8 +258,12 @@ class Writer {
       }
     }
     text += profile_.ConstantBank(options_.constant_count);
-    for (const OutputVariable& output : OutputVariables()) {
-      text += fmt::format("{}out {} {};\n", profile_.OutputQualifiers(output.location), output.scalar ? "float" : "vec4",
+    if (options_.exact_on_driver) {
+      text += "uniform uint vs11_opaque_zero;  // 0: literals the compiler cannot fold (exact_on_driver)\n";
+    }
+    for (const OutputDeclaration& output : OutputVariables()) {
+      text += fmt::format("{}{}out {} {};\n", options_.exact_on_driver ? "invariant " : "",
+                          profile_.OutputQualifiers(output.location), output.scalar ? "float" : "vec4",
                           output.name);
     }
     return text;
@@ -258,8 +280,8 @@ class Writer {
           "vec4 vs11_c_rel(int i) {{\n  if (i < 0 || i >= {}) return vec4(0.0);\n",
           options_.constant_count);
       for (const auto& [reg, bits] : graph_.definitions) {
-        text += fmt::format("  if (i == {}) return vec4({}, {}, {}, {});\n", reg, FloatFromBitsText(bits[0]),
-                            FloatFromBitsText(bits[1]), FloatFromBitsText(bits[2]), FloatFromBitsText(bits[3]));
+        text += fmt::format("  if (i == {}) return vec4({}, {}, {}, {});\n", reg, LiteralText(bits[0]), LiteralText(bits[1]),
+                            LiteralText(bits[2]), LiteralText(bits[3]));
       }
       text += "  return c[i];\n}\n";
     }
@@ -281,6 +303,13 @@ std::optional<ClipSpace> ClipSpaceFromName(std::string_view name) {
   if (name == "gl") return ClipSpace::kGl;
   if (name == "vulkan") return ClipSpace::kVulkan;
   return std::nullopt;
+}
+
+OutputVariable OutputVariableOf(int slot) {
+  for (const OutputDeclaration& output : OutputVariables()) {
+    if (output.slot == slot) return {output.name, output.scalar ? 1 : 4};
+  }
+  return {OutputSlotName(slot), 4};
 }
 
 std::string TranslateToGlsl(const Program& program, const TranslateOptions& options) {

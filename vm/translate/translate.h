@@ -25,7 +25,24 @@ struct TranslateOptions {
   int constant_count = kDefaultConstantCount;  // the `uniform vec4 c[N]` bank (--max-constants)
   ClipSpace clip = ClipSpace::kTargetApi;
   std::string source_name;  // named in the output's header comment
+  // For running the translation where its bits are compared (the gl engine, vm/gl/gl_engine.h):
+  // every output is declared `invariant`, which keeps Mesa from rewriting the operations they depend
+  // on (no fused multiply-adds, no reassociation: its GLSL and NIR passes treat them as `precise`),
+  // and every float literal reads a uniform `vs11_opaque_zero` (0 unless an application sets it) into
+  // its bits, so that no compiler folds `x * 0.0` to +0 or drops `x + -0.0`, which loses signs of
+  // zero. An application linking the translation with its own fragment shader should leave it off:
+  // GLSL ES asks the next stage's inputs to be invariant too.
+  bool exact_on_driver = false;
 };
+
+// The GLSL output that carries output slot `slot` (OutputSlot): "vs11_oPos" for oPos (the raw value;
+// gl_Position may be converted), "oD0", "oT3", "oFog"; `components` 1 for oFog and oPts, else 4. What
+// a transform-feedback capture names (the gl engine, vm/gl/gl_engine.h).
+struct OutputVariable {
+  std::string name;
+  int components = 4;
+};
+OutputVariable OutputVariableOf(int slot);
 
 // The GLSL that `options.target` starts from (for SPIR-V: the Vulkan GLSL that is compiled). Never
 // fails: every program the engines run has a translation.

@@ -1,0 +1,350 @@
+// The gl engine (vm/gl/gl_engine.h) on Mesa's llvmpipe against the reference engine: every program of
+// programs/ and generated programs of the differential tests' generator, on ordinary inputs (floats in
+// [-4, 4]), bit for bit; calls larger than one draw, constants changed between runs, and the factory's
+// registration. The tools' side (errors without EGL, --gl-device) is in gl_engine_cli_test.cc. These
+// tests run in ctest's vs11_tests.llvmpipe entry, which CI's sanitizer stage leaves out.
+#include "vm/gl/gl_engine.h"
+
+#include <EGL/egl.h>
+
+#include <bit>
+#include <cfloat>
+#include <cmath>
+#include <cstdint>
+#include <cstdio>
+#include <cstdlib>
+#include <filesystem>
+#include <map>
+#include <optional>
+#include <random>
+#include <set>
+#include <string>
+#include <thread>
+#include <vector>
+
+#include <fmt/format.h>
+#include <gtest/gtest.h>
+
+#include "irradiance/report/verify.h"
+#include "tests/vm/engines/random_program.h"
+#include "vm/engines/engine_factory.h"
+#include "vm/translate/translate.h"
+
+namespace vs11 {
+namespace {
+
+namespace fs = std::filesystem;
+using random_program::Bits;
+
+class GlEngineTest : public ::testing::Test {
+ protected:
+  void SetUp() override { gl::RegisterGlEngine(); }
+};
+
+// Ordinary values: what an application gives a program. Every input lane and constant in [-4, 4].
+float Ordinary(std::mt19937& rng) { return std::uniform_real_distribution<float>(-4.0f, 4.0f)(rng); }
+
+VertexArrays OrdinaryInputs(std::size_t count, std::mt19937& rng) {
+  VertexArrays inputs = MakeInputArrays(count, random_program::kInputs);
+  for (int reg : random_program::kInputs) {
+    for (int c = 0; c < 4; ++c) {
+      for (std::size_t i = 0; i < count; ++i) inputs.lane(reg, c)[i] = Ordinary(rng);
+    }
+  }
+  return inputs;
+}
+
+ConstantBank OrdinaryConstants(std::mt19937& rng) {
+  ConstantBank bank;
+  for (int reg = 0; reg < bank.size(); ++reg) {
+    for (int c = 0; c < 4; ++c) bank[reg][c] = Ordinary(rng);
+  }
+  return bank;
+}
+
+// How the gl engine's outputs compare with the reference engine's, over every lane the translation's
+// interface carries of every output register the program writes (oFog and oPts are one float: lane x).
+struct Comparison {
+  std::string error;  // the gl engine's
+  int lanes = 0;
+  int flushed = 0;    // the reference's value is a denormal and the gl engine's a zero: llvmpipe flushes
+  int differing = 0;  // any other difference of bits (any NaN equals any NaN: GLSL keeps no payloads)
+  std::string first;  // the first such difference, described
+};
+
+bool IsDenormal(float x) { return std::fpclassify(x) == FP_SUBNORMAL; }
+
+Comparison CompareWithReference(const Program& program, const ConstantBank& bank, const VertexArrays& inputs) {
+  Comparison comparison;
+  VertexArrays expected = MakeOutputArrays(inputs.count(), program);
+  VertexArrays actual = MakeOutputArrays(inputs.count(), program);
+  MakeEngine(EngineKind::kReference, program, bank)->Run(inputs, expected);
+  std::unique_ptr<Engine> gl = MakeEngine(EngineKind::kGl, program, bank);
+  gl->Run(inputs, actual);
+  comparison.error = gl->error();
+  if (!comparison.error.empty()) return comparison;
+  for (int slot : expected.registers()) {
+    const int lanes = translate::OutputVariableOf(slot).components;
+    for (int c = 0; c < lanes; ++c) {
+      for (std::size_t v = 0; v < inputs.count(); ++v) {
+        const float want = expected.lane(slot, c)[v], have = actual.lane(slot, c)[v];
+        ++comparison.lanes;
+        if (Bits(want) == Bits(have) || (std::isnan(want) && std::isnan(have))) continue;
+        if (IsDenormal(want) && have == 0.0f) {
+          ++comparison.flushed;
+          continue;
+        }
+        if (comparison.differing++ == 0) {
+          comparison.first = fmt::format("{}.{} of vertex {}: gl {} (0x{:08X}), ref {} (0x{:08X})", OutputSlotName(slot),
+                                         kLaneLetters[c], v, have, Bits(have), want, Bits(want));
+        }
+      }
+    }
+  }
+  return comparison;
+}
+
+// The program's executable mnemonics, for messages.
+std::string Opcodes(const Program& program) {
+  std::set<std::string> names;
+  for (const Instruction& instruction : program.instructions) {
+    if (instruction.info().is_executable()) names.insert(std::string(instruction.info().mnemonic));
+  }
+  std::string text;
+  for (const std::string& name : names) text += (text.empty() ? "" : " ") + name;
+  return text;
+}
+
+// Ordinary inputs and constants can still make a denormal (fog's exp of a large negative number):
+// llvmpipe flushes it to zero, and such lanes are printed; every other lane holds the reference's bits.
+TEST_F(GlEngineTest, EveryProgramOfProgramsGivesTheReferenceBitsOnOrdinaryInputs) {
+  std::mt19937 rng(20);
+  int programs = 0;
+  for (const fs::directory_entry& entry : fs::directory_iterator(fs::path(VS11_SOURCE_DIR) / "programs")) {
+    if (entry.path().extension() != ".vsh") continue;
+    const irradiance::ProgramForVerify loaded = irradiance::LoadProgramForVerify(entry.path());
+    ASSERT_TRUE(loaded.program) << entry.path();
+    const Comparison comparison =
+        CompareWithReference(*loaded.program, OrdinaryConstants(rng), OrdinaryInputs(128, rng));
+    ASSERT_EQ(comparison.error, "") << entry.path();
+    EXPECT_EQ(comparison.differing, 0) << entry.path().filename() << " (" << Opcodes(*loaded.program)
+                                       << "): " << comparison.first;
+    if (comparison.flushed > 0) {
+      std::printf("[ gl ] %s: %d of %d lanes hold a denormal in the reference that llvmpipe flushed to zero\n",
+                  entry.path().filename().c_str(), comparison.flushed, comparison.lanes);
+    }
+    ++programs;
+  }
+  EXPECT_GE(programs, 10) << "programs/ lost its programs";
+}
+
+// A generated program with its def literals made ordinary too (the generator mixes special values in).
+Program OrdinaryGeneratedProgram(random_program::ProgramGenerator& generator, std::mt19937& rng) {
+  Program program = generator.MakeProgram();
+  for (Instruction& instruction : program.instructions) {
+    if (instruction.opcode != Opcode::kDef) continue;
+    for (std::uint32_t& bits : instruction.def_bits) bits = Bits(Ordinary(rng));
+  }
+  return program;
+}
+
+int GeneratedProgramCount() {
+  const char* text = std::getenv("VS11_GL_PROGRAMS");
+  return text != nullptr ? std::atoi(text) : 300;
+}
+
+// The differential tests' generator, 300 programs (VS11_GL_PROGRAMS overrides the count) of up to
+// 24 random instructions after the temporaries' set-up, on ordinary inputs, constants and def
+// literals. Ordinary inputs can still make a denormal (expp of -130, a product of two small numbers),
+// which llvmpipe flushes to zero: such lanes are counted and printed, every other lane must hold the
+// reference's bits. About 12 s of CPU (llvmpipe compiling 300 shaders), 35-50 s of wall time at load 18.
+TEST_F(GlEngineTest, GeneratedProgramsGiveTheReferenceBitsOnOrdinaryInputs) {
+  random_program::ProgramGenerator generator(2020);
+  std::mt19937 rng(21);
+  int exact = 0, flushed_lanes = 0;
+  const int count = GeneratedProgramCount();
+  for (int n = 0; n < count; ++n) {
+    const Program program = OrdinaryGeneratedProgram(generator, rng);
+    const Comparison comparison = CompareWithReference(program, OrdinaryConstants(rng), OrdinaryInputs(16, rng));
+    ASSERT_EQ(comparison.error, "") << "program " << n;
+    EXPECT_EQ(comparison.differing, 0) << "program " << n << " (" << Opcodes(program) << "): " << comparison.first;
+    exact += comparison.differing == 0 && comparison.flushed == 0;
+    flushed_lanes += comparison.flushed;
+  }
+  std::printf("[ gl ] %d of %d generated programs bit-exact in every lane; %d lanes where the reference holds a "
+              "denormal that llvmpipe flushed to zero\n", exact, count, flushed_lanes);
+  EXPECT_GT(exact, count * 9 / 10);
+}
+
+// A value's kind, for the special-value account below.
+std::string KindOf(float x) {
+  if (std::isnan(x)) return "NaN";
+  if (std::isinf(x)) return x > 0 ? "+inf" : "-inf";
+  if (x == 0.0f) return std::signbit(x) ? "-0" : "+0";
+  if (IsDenormal(x)) return "denormal";
+  if (std::fabs(x) == FLT_MAX) return "FLT_MAX";
+  return "finite";
+}
+
+// `value` with a denormal replaced by a zero of its sign.
+float WithoutDenormal(float value) { return IsDenormal(value) ? std::copysign(0.0f, value) : value; }
+
+// Counts of differing lanes by (reference kind -> gl kind), over 16 vertices of special values.
+void CountKinds(const Program& program, const ConstantBank& bank, const VertexArrays& inputs,
+                std::map<std::string, int>& kinds, int& exact_programs) {
+  VertexArrays expected = MakeOutputArrays(inputs.count(), program);
+  VertexArrays actual = MakeOutputArrays(inputs.count(), program);
+  MakeEngine(EngineKind::kReference, program, bank)->Run(inputs, expected);
+  std::unique_ptr<Engine> gl = MakeEngine(EngineKind::kGl, program, bank);
+  gl->Run(inputs, actual);
+  ASSERT_EQ(gl->error(), "");
+  bool exact = true;
+  for (int slot : expected.registers()) {
+    for (int c = 0; c < translate::OutputVariableOf(slot).components; ++c) {
+      for (std::size_t v = 0; v < inputs.count(); ++v) {
+        const float want = expected.lane(slot, c)[v], have = actual.lane(slot, c)[v];
+        if (Bits(want) == Bits(have) || (std::isnan(want) && std::isnan(have))) continue;
+        ++kinds[KindOf(want) + " -> " + KindOf(have)];
+        exact = false;
+      }
+    }
+  }
+  exact_programs += exact;
+}
+
+// The differential tests' special values (signed zeros, denormals, infinities, NaN payloads, FLT_MAX,
+// random bit patterns) on 50 generated programs, as they are and with every denormal in the inputs,
+// constants and defs replaced by a zero: llvmpipe flushes denormals (README, "--engine gl"), and
+// without them in the inputs at least 45 of the 50 programs give the reference's bits. The differing
+// lanes are printed by kind. About 5 s of CPU with Mesa's shader cache cold.
+TEST_F(GlEngineTest, SpecialValuesDifferWhereLlvmpipeFlushesDenormals) {
+  for (bool denormals : {true, false}) {
+    random_program::ProgramGenerator generator(2020);
+    random_program::ProgramGenerator values(99);
+    std::map<std::string, int> kinds;
+    int exact = 0;
+    constexpr int kPrograms = 50;
+    for (int n = 0; n < kPrograms; ++n) {
+      Program program = generator.MakeProgram();
+      ConstantBank bank = values.Constants();
+      VertexArrays inputs = values.Inputs(16);
+      if (!denormals) {
+        for (Instruction& instruction : program.instructions) {
+          for (std::uint32_t& bits : instruction.def_bits) bits = Bits(WithoutDenormal(std::bit_cast<float>(bits)));
+        }
+        for (int reg = 0; reg < bank.size(); ++reg) {
+          for (float& value : bank[reg]) value = WithoutDenormal(value);
+        }
+        for (int reg : random_program::kInputs) {
+          for (int c = 0; c < 4; ++c) {
+            if (const std::optional<float> uniform = inputs.uniform(reg, c)) {
+              inputs.FillUniform(reg, c, WithoutDenormal(*uniform));
+              continue;
+            }
+            for (std::size_t v = 0; v < inputs.count(); ++v) inputs.lane(reg, c)[v] = WithoutDenormal(inputs.lane(reg, c)[v]);
+          }
+        }
+      }
+      CountKinds(program, bank, inputs, kinds, exact);
+    }
+    std::printf("[ gl ] special values%s: %d of %d generated programs bit-exact; differing lanes by kind "
+                "(reference -> gl):\n", denormals ? "" : " without denormals", exact, kPrograms);
+    for (const auto& [kind, lanes] : kinds) std::printf("[ gl ]   %5d  %s\n", lanes, kind.c_str());
+    if (!denormals) {
+      EXPECT_GE(exact, 45);
+    }
+  }
+}
+
+Program ProgramFromFile(const char* name) {
+  irradiance::ProgramForVerify loaded =
+      irradiance::LoadProgramForVerify(fs::path(VS11_SOURCE_DIR) / "programs" / name);
+  EXPECT_TRUE(loaded.program) << name;
+  return loaded.program ? std::move(*loaded.program) : Program();
+}
+
+// More vertices than one draw takes (65536): the call is split, every vertex lands in its place.
+TEST_F(GlEngineTest, ACallLargerThanOneDrawGivesEveryVertexItsOutputs) {
+  std::mt19937 rng(22);
+  const Comparison comparison =
+      CompareWithReference(ProgramFromFile("skinning.vsh"), OrdinaryConstants(rng), OrdinaryInputs(65536 + 4099, rng));
+  ASSERT_EQ(comparison.error, "");
+  EXPECT_EQ(comparison.lanes, (65536 + 4099) * 8);  // oPos and oD0
+  EXPECT_EQ(comparison.differing + comparison.flushed, 0) << comparison.first;
+}
+
+// One engine, runs with different banks in between, as irrmap's levels do; a bank of another size
+// rebuilds the translation (its c[N] and the relative-read range).
+TEST_F(GlEngineTest, SetConstantsBetweenRunsGivesEachBanksOutputs) {
+  std::mt19937 rng(23);
+  const Program program = ProgramFromFile("all_instructions.vsh");
+  const VertexArrays inputs = OrdinaryInputs(64, rng);
+  std::unique_ptr<Engine> gl = MakeEngine(EngineKind::kGl, program, OrdinaryConstants(rng));
+  for (int bank_size : {kDefaultConstantCount, kDefaultConstantCount, 192}) {
+    ConstantBank bank(bank_size);
+    for (int reg = 0; reg < bank.size(); ++reg) {
+      for (int c = 0; c < 4; ++c) bank[reg][c] = Ordinary(rng);
+    }
+    gl->SetConstants(bank);
+    VertexArrays actual = MakeOutputArrays(inputs.count(), program);
+    VertexArrays expected = MakeOutputArrays(inputs.count(), program);
+    gl->Run(inputs, actual);
+    ASSERT_EQ(gl->error(), "");
+    MakeEngine(EngineKind::kReference, program, bank)->Run(inputs, expected);
+    for (int slot : expected.registers()) {
+      for (int c = 0; c < translate::OutputVariableOf(slot).components; ++c) {
+        for (std::size_t v = 0; v < inputs.count(); ++v) {
+          ASSERT_EQ(Bits(actual.lane(slot, c)[v]), Bits(expected.lane(slot, c)[v]))
+              << "bank of " << bank_size << ", " << OutputSlotName(slot) << "." << kLaneLetters[c] << " of vertex " << v;
+        }
+      }
+    }
+  }
+}
+
+// An engine is made on one thread and runs on others (vm/core/machine.h allows it when the calls are
+// ordered); and it leaves the calling thread's current EGL context as it found it.
+TEST_F(GlEngineTest, RunsWhereverItIsCalledAndLeavesTheCurrentContextAlone) {
+  std::mt19937 rng(24);
+  const Program program = ProgramFromFile("point_light.vsh");
+  const ConstantBank bank = OrdinaryConstants(rng);
+  const VertexArrays inputs = OrdinaryInputs(100, rng);
+  VertexArrays expected = MakeOutputArrays(inputs.count(), program);
+  MakeEngine(EngineKind::kReference, program, bank)->Run(inputs, expected);
+  const void* current_before = eglGetCurrentContext();
+  std::unique_ptr<Engine> gl = MakeEngine(EngineKind::kGl, program, bank);
+  EXPECT_EQ(eglGetCurrentContext(), current_before);
+  for (int round = 0; round < 3; ++round) {
+    VertexArrays actual = MakeOutputArrays(inputs.count(), program);
+    std::thread([&] { gl->Run(inputs, actual); }).join();
+    ASSERT_EQ(gl->error(), "") << "round " << round;
+    for (int slot : expected.registers()) {
+      for (std::size_t v = 0; v < inputs.count(); ++v) {
+        ASSERT_EQ(Bits(actual.lane(slot, 0)[v]), Bits(expected.lane(slot, 0)[v])) << "round " << round;
+      }
+    }
+  }
+  VertexArrays here = MakeOutputArrays(inputs.count(), program);
+  gl->Run(inputs, here);
+  EXPECT_EQ(gl->error(), "");
+  EXPECT_EQ(eglGetCurrentContext(), current_before);
+}
+
+// Without a registered maker (a program that does not link vm/gl, such as the Python module) the
+// factory gives an engine that says so and writes NaN, never a null pointer.
+TEST_F(GlEngineTest, WithoutRegistrationTheFactoryGivesAnEngineThatSaysWhy) {
+  RegisterEngineMaker(EngineKind::kGl, nullptr);
+  const Program program = ProgramFromFile("fog.vsh");
+  std::unique_ptr<Engine> engine = MakeEngine(EngineKind::kGl, program, ConstantBank());
+  gl::RegisterGlEngine();
+  ASSERT_NE(engine, nullptr);
+  EXPECT_NE(engine->error().find("the gl engine is not part of this program"), std::string::npos) << engine->error();
+  std::mt19937 rng(25);
+  const VertexArrays inputs = OrdinaryInputs(4, rng);
+  VertexArrays outputs = MakeOutputArrays(inputs.count(), program);
+  engine->Run(inputs, outputs);
+  for (int slot : outputs.registers()) EXPECT_TRUE(std::isnan(outputs.lane(slot, 0)[0])) << OutputSlotName(slot);
+}
+
+}  // namespace
+}  // namespace vs11

@@ -1,0 +1,264 @@
+#include "vm/gl/gl_engine.h"
+
+#include <GLES3/gl3.h>
+
+#include <algorithm>
+#include <cstring>
+#include <limits>
+#include <string>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "vm/engines/engine_factory.h"
+#include "vm/gl/gl_context.h"
+#include "vm/gl/gl_runner.h"
+
+namespace vs11::gl {
+namespace {
+
+// Vertices per draw: bounds the staging and capture buffers (46 floats a vertex at most, so 12 MB)
+// whatever the call's size.
+constexpr std::size_t kVerticesPerDraw = std::size_t{1} << 16;
+
+// An output register the program writes, captured as `components` floats at `offset` of a vertex.
+struct Capture {
+  int slot = 0;
+  int components = 4;
+  int offset = 0;
+};
+
+void FillWithNaN(VertexArrays& outputs) {
+  for (int reg : outputs.registers()) {
+    for (int c = 0; c < 4; ++c) {
+      float* lane = outputs.lane(reg, c);
+      std::fill(lane, lane + outputs.count(), std::numeric_limits<float>::quiet_NaN());
+    }
+  }
+}
+
+class GlEngine final : public Engine {
+ public:
+  GlEngine(const Program& program, const EngineOptions& options, std::unique_ptr<GlContext> context)
+      : program_(program), options_(options), context_(std::move(context)) {}
+  ~GlEngine() override;
+
+  // Translates for a bank of `constant_count` registers, links, and makes the buffers.
+  bool Build(int constant_count, std::string& error);
+  void Run(const VertexArrays& inputs, VertexArrays& outputs) override;
+  void SetConstants(const ConstantBank& api_constants) override;
+  std::string error() const override { return error_; }
+
+ private:
+  void DeleteObjects();
+  bool RunDraw(const VertexArrays& inputs, std::size_t first, std::size_t count, VertexArrays& outputs);
+  void UploadInputs(const VertexArrays& inputs, std::size_t first, std::size_t count);
+  void ScatterOutputs(const float* captured, std::size_t first, std::size_t count, VertexArrays& outputs) const;
+
+  Program program_;
+  EngineOptions options_;
+  std::unique_ptr<GlContext> context_;
+  std::string error_;
+  int constant_count_ = 0;
+  GLuint program_object_ = 0, vertex_array_ = 0, output_buffer_ = 0, query_ = 0;
+  GLint constants_location_ = -1;
+  std::vector<int> active_inputs_;  // the vN the linked shader reads
+  std::vector<GLuint> input_buffers_ = std::vector<GLuint>(kInputRegisterCount, 0);
+  std::vector<Capture> captures_;
+  int output_floats_ = 0;  // per vertex
+  std::vector<float> staging_;
+};
+
+GlEngine::~GlEngine() {
+  std::string ignored;
+  ScopedCurrent current(*context_, ignored);
+  if (current.ok()) DeleteObjects();
+}
+
+void GlEngine::DeleteObjects() {
+  glDeleteQueries(1, &query_);
+  glDeleteBuffers(1, &output_buffer_);
+  glDeleteBuffers(static_cast<GLsizei>(input_buffers_.size()), input_buffers_.data());
+  glDeleteVertexArrays(1, &vertex_array_);
+  glDeleteProgram(program_object_);
+  query_ = output_buffer_ = vertex_array_ = program_object_ = 0;
+  std::fill(input_buffers_.begin(), input_buffers_.end(), 0);
+}
+
+// The vN among the linked program's active attributes.
+std::vector<int> ActiveInputs(GLuint program) {
+  GLint count = 0;
+  glGetProgramiv(program, GL_ACTIVE_ATTRIBUTES, &count);
+  std::vector<int> registers;
+  for (GLint i = 0; i < count; ++i) {
+    char name[64] = {};
+    GLint size = 0;
+    GLenum type = 0;
+    glGetActiveAttrib(program, static_cast<GLuint>(i), sizeof name, nullptr, &size, &type, name);
+    const GLint location = glGetAttribLocation(program, name);
+    if (name[0] == 'v' && location >= 0 && location < kInputRegisterCount) registers.push_back(location);
+  }
+  std::sort(registers.begin(), registers.end());
+  return registers;
+}
+
+bool GlEngine::Build(int constant_count, std::string& error) {
+  ScopedCurrent current(*context_, error);
+  if (!current.ok()) return false;
+  DeleteObjects();
+  constant_count_ = constant_count;
+  captures_.clear();
+  output_floats_ = 0;
+  std::vector<std::string> varyings;
+  const std::array<WriteMask, kOutputSlotCount> written = WrittenOutputLanes(program_);
+  for (int slot = 0; slot < kOutputSlotCount; ++slot) {
+    if (written[static_cast<std::size_t>(slot)].bits() == 0) continue;
+    const translate::OutputVariable variable = translate::OutputVariableOf(slot);
+    captures_.push_back({slot, variable.components, output_floats_});
+    varyings.push_back(variable.name);
+    output_floats_ += variable.components;
+  }
+  const std::string glsl = translate::TranslateToGlsl(program_, GlTranslateOptions(options_, constant_count));
+  program_object_ = LinkTransformFeedbackProgram(glsl, varyings, error);
+  if (program_object_ == 0) {
+    GLint uniform_vectors = 0;
+    glGetIntegerv(GL_MAX_VERTEX_UNIFORM_VECTORS, &uniform_vectors);
+    error += fmt::format(" (the constant bank is c[{}], --max-constants; '{}' allows {} vec4 uniforms)", constant_count,
+                         context_->renderer(), uniform_vectors);
+    return false;
+  }
+  constants_location_ = glGetUniformLocation(program_object_, "c");
+  active_inputs_ = ActiveInputs(program_object_);
+  glGenVertexArrays(1, &vertex_array_);
+  glGenBuffers(static_cast<GLsizei>(input_buffers_.size()), input_buffers_.data());
+  glGenBuffers(1, &output_buffer_);
+  glGenQueries(1, &query_);
+  return GlOk("creating the vertex array and buffers", error);
+}
+
+void GlEngine::SetConstants(const ConstantBank& api_constants) {
+  if (!error_.empty()) return;
+  if (api_constants.size() != constant_count_ && !Build(api_constants.size(), error_)) return;
+  if (constants_location_ < 0) return;  // the program reads no constant from the bank
+  ScopedCurrent current(*context_, error_);
+  if (!current.ok()) return;
+  std::vector<float> floats;
+  floats.reserve(static_cast<std::size_t>(api_constants.size()) * 4);
+  for (const Vec4f& row : api_constants.values()) floats.insert(floats.end(), row.begin(), row.end());
+  glUseProgram(program_object_);
+  glUniform4fv(constants_location_, api_constants.size(), floats.data());
+  GlOk("setting the constants", error_);
+}
+
+void GlEngine::Run(const VertexArrays& inputs, VertexArrays& outputs) {
+  if (error_.empty() && !captures_.empty() && inputs.count() > 0) {
+    ScopedCurrent current(*context_, error_);
+    for (std::size_t first = 0; current.ok() && first < inputs.count(); first += kVerticesPerDraw) {
+      if (!RunDraw(inputs, first, std::min(kVerticesPerDraw, inputs.count() - first), outputs)) break;
+    }
+  }
+  if (!error_.empty()) FillWithNaN(outputs);
+}
+
+// Vertices [first, first + count) of every attribute the shader reads, as vec4s; a register the
+// caller does not supply reads (0, 0, 0, 1) as on every engine (GL's current attribute value).
+void GlEngine::UploadInputs(const VertexArrays& inputs, std::size_t first, std::size_t count) {
+  for (int reg : active_inputs_) {
+    const auto location = static_cast<GLuint>(reg);
+    if (!inputs.has(reg)) {
+      glDisableVertexAttribArray(location);
+      glVertexAttrib4f(location, kDefaultInput[0], kDefaultInput[1], kDefaultInput[2], kDefaultInput[3]);
+      continue;
+    }
+    staging_.resize(count * 4);
+    for (int c = 0; c < 4; ++c) {
+      const float* lane = inputs.lane(reg, c) + first;
+      for (std::size_t v = 0; v < count; ++v) staging_[v * 4 + static_cast<std::size_t>(c)] = lane[v];
+    }
+    glBindBuffer(GL_ARRAY_BUFFER, input_buffers_[static_cast<std::size_t>(reg)]);
+    glBufferData(GL_ARRAY_BUFFER, static_cast<GLsizeiptr>(staging_.size() * sizeof(float)), staging_.data(),
+                 GL_STREAM_DRAW);
+    glVertexAttribPointer(location, 4, GL_FLOAT, GL_FALSE, 0, nullptr);
+    glEnableVertexAttribArray(location);
+  }
+}
+
+void GlEngine::ScatterOutputs(const float* captured, std::size_t first, std::size_t count,
+                              VertexArrays& outputs) const {
+  const auto stride = static_cast<std::size_t>(output_floats_);
+  for (const Capture& capture : captures_) {
+    if (!outputs.has(capture.slot)) continue;
+    for (int c = 0; c < 4; ++c) {
+      float* lane = outputs.lane(capture.slot, c) + first;
+      if (c >= capture.components) {  // oFog and oPts hold one float: the other lanes are never written
+        std::fill(lane, lane + count, UnwrittenOutputValue(capture.slot)[static_cast<std::size_t>(c)]);
+        continue;
+      }
+      const float* source = captured + capture.offset + c;
+      for (std::size_t v = 0; v < count; ++v) lane[v] = source[v * stride];
+    }
+  }
+}
+
+bool GlEngine::RunDraw(const VertexArrays& inputs, std::size_t first, std::size_t count, VertexArrays& outputs) {
+  glUseProgram(program_object_);
+  glBindVertexArray(vertex_array_);
+  UploadInputs(inputs, first, count);
+  const std::size_t floats = count * static_cast<std::size_t>(output_floats_);
+  glBindBuffer(GL_TRANSFORM_FEEDBACK_BUFFER, output_buffer_);
+  glBufferData(GL_TRANSFORM_FEEDBACK_BUFFER, static_cast<GLsizeiptr>(floats * sizeof(float)), nullptr, GL_STREAM_READ);
+  glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, output_buffer_);
+  glBeginQuery(GL_TRANSFORM_FEEDBACK_PRIMITIVES_WRITTEN, query_);
+  glBeginTransformFeedback(GL_POINTS);
+  glDrawArrays(GL_POINTS, 0, static_cast<GLsizei>(count));
+  glEndTransformFeedback();
+  glEndQuery(GL_TRANSFORM_FEEDBACK_PRIMITIVES_WRITTEN);
+  if (!GlOk("drawing with transform feedback", error_)) return false;
+  GLuint written = 0;
+  glGetQueryObjectuiv(query_, GL_QUERY_RESULT, &written);
+  if (written != count) {
+    error_ = fmt::format("transform feedback captured {} of {} vertices", written, count);
+    return false;
+  }
+  const void* mapped = glMapBufferRange(GL_TRANSFORM_FEEDBACK_BUFFER, 0,
+                                        static_cast<GLsizeiptr>(floats * sizeof(float)), GL_MAP_READ_BIT);
+  if (mapped == nullptr) {
+    if (GlOk("glMapBufferRange", error_)) error_ = "glMapBufferRange returned no pointer";
+    return false;
+  }
+  ScatterOutputs(static_cast<const float*>(mapped), first, count, outputs);
+  glUnmapBuffer(GL_TRANSFORM_FEEDBACK_BUFFER);
+  return GlOk("reading the transform-feedback buffer", error_);
+}
+
+}  // namespace
+
+translate::TranslateOptions GlTranslateOptions(const EngineOptions& /*options*/, int constant_count) {
+  translate::TranslateOptions translation;
+  translation.target = translate::Target::kGlslEs300;
+  translation.clip = translate::ClipSpace::kD3d;
+  translation.constant_count = constant_count;
+  translation.exact_on_driver = true;
+  return translation;
+}
+
+std::unique_ptr<Engine> MakeGlEngine(const Program& program, const ConstantBank& api_constants,
+                                     const EngineOptions& options) {
+  std::string error;
+  std::unique_ptr<GlContext> context = GlContext::Create(options.gl_device, error);
+  if (!context) return MakeFailedEngine("the gl engine has no OpenGL ES 3.0 device: " + error);
+  const std::string renderer = context->renderer();
+  auto engine = std::make_unique<GlEngine>(program, options, std::move(context));
+  if (!engine->Build(api_constants.size(), error)) {
+    return MakeFailedEngine(fmt::format("the gl engine on '{}': {}", renderer, error));
+  }
+  engine->SetConstants(api_constants);
+  if (!engine->error().empty()) {
+    return MakeFailedEngine(fmt::format("the gl engine on '{}': {}", renderer, engine->error()));
+  }
+  return engine;
+}
+
+void RegisterGlEngine() { RegisterEngineMaker(EngineKind::kGl, &MakeGlEngine); }
+
+}  // namespace vs11::gl

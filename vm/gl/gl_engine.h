@@ -1,0 +1,33 @@
+// The gl engine (`--engine gl`): the program's GLSL ES 3.00 translation (vm/translate) run by a real
+// OpenGL ES 3.0 driver, Mesa's llvmpipe by default or an EGL device's (gl_context.h), through transform
+// feedback. Inputs, constants and outputs are every engine's (vm/core/machine.h): the VertexArrays'
+// lanes go to vertex attributes vN, the API bank to `uniform vec4 c[N]` (the program's def constants
+// are in the translation), and every output register the program writes comes back from the capture.
+// Its bits are the reference engine's wherever the driver computes IEEE single precision as the
+// translation asks (README, "vs11 translate" and "The gl engine"); where no device can be had the
+// engine's error() says why.
+#pragma once
+
+#include <memory>
+
+#include "vm/core/machine.h"
+#include "vm/translate/translate.h"
+
+namespace vs11::gl {
+
+// The translation the gl engine runs for `options`: GLSL ES 3.00 for the OpenGL ES 3.0 context, D3D's
+// clip space (the capture reads the raw vs11_oPos; gl_Position is not used), a bank of `constant_count`
+// registers. Every engine option that changes the arithmetic reaches the translation here.
+translate::TranslateOptions GlTranslateOptions(const EngineOptions& options, int constant_count);
+
+// Never null: where the context or the program cannot be had, an engine whose error() says why
+// (MakeFailedEngine). EngineOptions::threads does not apply (the driver keeps its own threads:
+// llvmpipe's LP_NUM_THREADS); EngineOptions::gl_device picks the device.
+std::unique_ptr<Engine> MakeGlEngine(const Program& program, const ConstantBank& api_constants,
+                                     const EngineOptions& options);
+
+// Makes MakeEngine(EngineKind::kGl, ...) (vm/engines/engine_factory.h) build MakeGlEngine. The tools
+// call it once before they parse their arguments; vm/engines sits below vm/gl and cannot name it.
+void RegisterGlEngine();
+
+}  // namespace vs11::gl
