@@ -294,7 +294,7 @@ bool Preprocessor::ReplaceDefined(const std::vector<Token>& rest, std::vector<To
       return false;
     }
     out->back().kind = TokenKind::kNumber;
-    out->back().text = IsDefined(rest[j].text) ? "1" : "0";
+    out->back().text = std::string(1, IsDefined(rest[j].text) ? '1' : '0');
     i = end;
   }
   return true;
