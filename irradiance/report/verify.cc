@@ -84,7 +84,7 @@ std::optional<MetadataError> ApplyMetadata(ProgramMetadata& m, const std::string
   if (key == "packing") {
     m.packing = std::string(value);
     if (Sh9PackingFromName(value)) return std::nullopt;
-    return bad_value(fmt::format("unknown packing '{}' (table1, unit_sphere10, matrix, basis)", value));
+    return bad_value(fmt::format("unknown packing '{}' ({})", value, Sh9PackingNames()));
   }
   if (key == "normal") return input(m.normal);
   if (key == "position") return input(m.position);

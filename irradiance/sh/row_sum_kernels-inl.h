@@ -79,7 +79,22 @@ HWY_INLINE void AddWeightedTexels(const float* HWY_RESTRICT w, const double* HWY
   }
 }
 
+// A row shorter than kRowSumLanes puts at most one term in each partial sum, so adding its terms in
+// order from +0 gives the same bits as the partial sums do (a lone -0 term becomes +0 either way), and
+// the vectors' zero-padded tail, which costs more than the row (the coarsest levels), is not needed.
+ChannelSums ShortWeightedRowSum(const float* HWY_RESTRICT w, const RadianceRow& radiance, int n) {
+  ChannelSums total{0.0, 0.0, 0.0};
+  for (int x = 0; x < n; ++x) {
+    const double weight = w[x];
+    total[0] += weight * radiance.red[x];
+    total[1] += weight * radiance.green[x];
+    total[2] += weight * radiance.blue[x];
+  }
+  return total;
+}
+
 ChannelSums WeightedRowSum(const float* HWY_RESTRICT w, const RadianceRow& radiance, int n) {
+  if (n < kRowSumLanes) return ShortWeightedRowSum(w, radiance, n);
   PartialSums sums;
   Clear(sums);
   int x = 0;
