@@ -275,6 +275,26 @@ PreviewLayout ComputePreviewLayout(int panels, int environment_face_size, const 
   return layout;
 }
 
+namespace {
+
+// The factor from radiance to the preview's pixel values: E / pi is the radiance of a white diffuse
+// surface, and the brightest pixel of any sphere is shown at kSphereWhite.
+double SphereExposure(const PreviewPanel& truth, std::span<const PreviewPanel> estimates) {
+  double brightest = 0.0;
+  auto note_brightest = [&](const std::vector<glm::dvec3>& irradiance) {
+    for (const glm::dvec3& e : irradiance) brightest = std::max({brightest, e.x, e.y, e.z});
+  };
+  note_brightest(truth.irradiance);
+  for (const PreviewPanel& panel : estimates) {
+    assert(panel.irradiance.size() == truth.irradiance.size());
+    note_brightest(panel.irradiance);
+  }
+  const double radiance_max = brightest / std::numbers::pi;
+  return radiance_max > 0.0 ? kSphereWhite / radiance_max : 1.0;
+}
+
+}  // namespace
+
 PreviewResult RenderPreview(const SpherePixels& sphere, const PreviewPanel& truth,
                             std::span<const PreviewPanel> estimates, const PreviewErrors& errors,
                             const CubeMap& environment, const PreviewOptions& options) {
@@ -296,19 +316,7 @@ PreviewResult RenderPreview(const SpherePixels& sphere, const PreviewPanel& trut
   auto label_baseline = [&](int top) { return top - kLabelPad / 2 - 2; };
   const int column_width = s + kMargin - 2;  // a label's room: its sphere and the gap, less a little
 
-  // Exposure: E / pi is the radiance of a white diffuse surface; the brightest pixel of any sphere
-  // is shown at kSphereWhite.
-  double brightest = 0.0;
-  auto note_brightest = [&](const std::vector<glm::dvec3>& irradiance) {
-    for (const glm::dvec3& e : irradiance) brightest = std::max({brightest, e.x, e.y, e.z});
-  };
-  note_brightest(truth.irradiance);
-  for (const PreviewPanel& panel : estimates) {
-    assert(panel.irradiance.size() == sphere.normals.size());
-    note_brightest(panel.irradiance);
-  }
-  const double radiance_max = brightest / std::numbers::pi;
-  const double exposure = radiance_max > 0.0 ? kSphereWhite / radiance_max : 1.0;
+  const double exposure = SphereExposure(truth, estimates);
 
   auto draw_sphere = [&](const PreviewPanel& panel, int panel_index) {
     const int left = column_left(panel_index);

@@ -57,23 +57,34 @@ std::string LaneLetters(WriteMask mask) {
 }
 
 // Applies one key=value to the metadata; returns an error message or "".
-std::string ApplyMetadata(ProgramMetadata& m, const std::string& key, std::string_view value) {
-  auto input = [&](std::optional<int>& field) -> std::string {
+// What is wrong with one metadata line.
+struct MetadataError {
+  DiagnosticCode code;
+  std::string message;
+};
+
+// Sets field `key` of `m` from `value`; what is wrong, if anything.
+std::optional<MetadataError> ApplyMetadata(ProgramMetadata& m, const std::string& key, std::string_view value) {
+  auto bad_value = [](std::string message) { return MetadataError{DiagnosticCode::kMetadataValue, std::move(message)}; };
+  auto input = [&](std::optional<int>& field) -> std::optional<MetadataError> {
     field = ParseInputRegister(value);
-    return field ? "" : fmt::format("{}= expects an input register v0..v15, got '{}'", key, value);
+    if (field) return std::nullopt;
+    return bad_value(fmt::format("{}= expects an input register v0..v15, got '{}'", key, value));
   };
-  auto constant = [&](std::optional<int>& field) -> std::string {
+  auto constant = [&](std::optional<int>& field) -> std::optional<MetadataError> {
     field = ParseConstantRegister(value);
-    return field ? "" : fmt::format("{}= expects a constant register such as c0, got '{}'", key, value);
+    if (field) return std::nullopt;
+    return bad_value(fmt::format("{}= expects a constant register such as c0, got '{}'", key, value));
   };
   if (key == "reference") {
     m.reference = std::string(value);
-    return FindReference(value) ? "" : fmt::format("unknown reference '{}' (known: {})", value, ReferenceNames());
+    if (FindReference(value)) return std::nullopt;
+    return bad_value(fmt::format("unknown reference '{}' (known: {})", value, ReferenceNames()));
   }
   if (key == "packing") {
     m.packing = std::string(value);
-    if (Sh9PackingFromName(value)) return "";
-    return fmt::format("unknown packing '{}' (table1, unit_sphere10, matrix, basis)", value);
+    if (Sh9PackingFromName(value)) return std::nullopt;
+    return bad_value(fmt::format("unknown packing '{}' ({})", value, Sh9PackingNames()));
   }
   if (key == "normal") return input(m.normal);
   if (key == "position") return input(m.position);
@@ -84,29 +95,30 @@ std::string ApplyMetadata(ProgramMetadata& m, const std::string& key, std::strin
   if (key == "transform") return constant(m.transform);
   if (key == "output") {
     m.output = OutputSlotFromName(value);
-    return m.output ? ""
-                    : fmt::format("output= expects an output register (oPos, oFog, oPts, oD0, oD1, oT0..oT7), "
-                                  "got '{}'",
-                                  value);
+    if (m.output) return std::nullopt;
+    return bad_value(
+        fmt::format("output= expects an output register (oPos, oFog, oPts, oD0, oD1, oT0..oT7), got '{}'", value));
   }
   if (key == "fragment") {
     std::optional<bool> flag = ParseBool(value);
     if (flag) m.fragment = *flag;
-    return flag ? "" : fmt::format("fragment= expects yes or no, got '{}'", value);
+    if (flag) return std::nullopt;
+    return bad_value(fmt::format("fragment= expects yes or no, got '{}'", value));
   }
   if (key == "tolerance") {
     double t = 0;
     const std::string v(value);
     auto [end, ec] = std::from_chars(v.data(), v.data() + v.size(), t);
     if (ec != std::errc() || end != v.data() + v.size() || !(t >= 0) || !std::isfinite(t)) {
-      return fmt::format("tolerance= expects a non-negative number, got '{}'", value);
+      return bad_value(fmt::format("tolerance= expects a non-negative number, got '{}'", value));
     }
     m.tolerance = t;
-    return "";
+    return std::nullopt;
   }
-  return fmt::format("unknown metadata key '{}' (reference, packing, normal, position, weights, indices, texcoord, "
-                     "output, constants, transform, fragment, tolerance)",
-                     key);
+  return MetadataError{DiagnosticCode::kMetadataUnknownKey,
+                       fmt::format("unknown metadata key '{}' (reference, packing, normal, position, weights, indices, "
+                                   "texcoord, output, constants, transform, fragment, tolerance)",
+                                   key)};
 }
 
 // Registers a program reads, to give them random values.
@@ -214,17 +226,19 @@ MetadataResult ParseProgramMetadata(std::string_view text, const std::string& fi
     const SourceLoc loc{file_name, line_number, 0};
     const std::size_t equals = line.find('=');
     if (equals == std::string_view::npos) {
-      result.diagnostics.Error(loc, fmt::format("metadata line needs key=value, got '{}'", line));
+      result.diagnostics.Error(loc, DiagnosticCode::kMetadataSyntax,
+                               fmt::format("metadata line needs key=value, got '{}'", line));
       continue;
     }
     const std::string key = Lower(Trim(line.substr(0, equals)));
     const std::string_view value = Trim(line.substr(equals + 1));
     if (std::find(seen.begin(), seen.end(), key) != seen.end()) {
-      result.diagnostics.Warning(loc, fmt::format("metadata key '{}' given again; the last value wins", key));
+      result.diagnostics.Warning(loc, DiagnosticCode::kMetadataDuplicateKey,
+                                 fmt::format("metadata key '{}' given again; the last value wins", key));
     }
     seen.push_back(key);
-    if (std::string message = ApplyMetadata(result.metadata, key, value); !message.empty()) {
-      result.diagnostics.Error(loc, message);
+    if (std::optional<MetadataError> error = ApplyMetadata(result.metadata, key, value)) {
+      result.diagnostics.Error(loc, error->code, std::move(error->message));
     }
   }
   return result;
@@ -245,7 +259,8 @@ ProgramForVerify LoadProgramForVerify(const std::filesystem::path& path, const L
   ProgramForVerify result;
   std::optional<std::string> text = ReadWholeFile(path);
   if (!text) {
-    result.diagnostics.Error({path.string()}, "cannot read the file (missing, unreadable or a folder)");
+    result.diagnostics.Error({path.string()}, DiagnosticCode::kCannotReadFile,
+                             "cannot read the file (missing, unreadable or a folder)");
     return result;
   }
   MetadataResult metadata = ParseProgramMetadata(*text, path.string());

@@ -6,9 +6,10 @@
 #include <atomic>
 #include <cassert>
 #include <cmath>
-#include <cstring>
 #include <limits>
 #include <numbers>
+
+#include "irradiance/sh/row_sum_kernels.h"
 
 namespace vs11::irradiance {
 namespace {
@@ -18,8 +19,6 @@ namespace {
 constexpr std::size_t kChunkTexels = std::size_t{1} << 20;
 // Normals are handed to threads in blocks of this many (one atomic increment per block).
 constexpr int kNormalsPerBlock = 8;
-// Partial sums per row (a fixed number, so that results are deterministic); see sh_projection.cc.
-constexpr int kLanes = 8;
 
 // Structure-of-arrays table of one chunk: per texel, dir * dOmega and radiance.
 struct TexelTable {
@@ -32,6 +31,10 @@ struct TexelTable {
     rows = row_count;
     const std::size_t n = static_cast<std::size_t>(row_size) * row_count;
     for (auto* v : {&wx, &wy, &wz, &r, &g, &b}) v->resize(n);
+  }
+
+  kernels::CosineTable View() const {
+    return {wx.data(), wy.data(), wz.data(), {r.data(), g.data(), b.data()}, size, rows};
   }
 };
 
@@ -56,82 +59,6 @@ void FillTable(const CubeMap& env, int first_row, int rows, TexelTable& table) {
       table.b[k] = radiance.z;
     }
   }
-}
-
-// Groups of doubles as GCC vector extensions: two fill an SSE2 register, four an AVX register.
-typedef double Doubles2 __attribute__((vector_size(2 * sizeof(double))));
-typedef double Doubles4 __attribute__((vector_size(4 * sizeof(double))));
-
-// sum over the texels of one table row of radiance * max(0, n . w), in double. Lane j of kLanes
-// partial sums adds the texels x with x % kLanes == j, in groups of `Width` lanes per vector; the
-// lanes are folded in order, so every vector width gives the same bits. The tail is zero-padded
-// (a zero weight adds +0).
-template <class DoubleVector, int Width>
-[[gnu::always_inline]] inline glm::dvec3 RowIrradianceT(const TexelTable& t, int row, glm::dvec3 n) {
-  constexpr int kGroups = kLanes / Width;
-  const std::size_t base = static_cast<std::size_t>(row) * t.size;
-  const double* wx = t.wx.data() + base;
-  const double* wy = t.wy.data() + base;
-  const double* wz = t.wz.data() + base;
-  const double* r = t.r.data() + base;
-  const double* g = t.g.data() + base;
-  const double* b = t.b.data() + base;
-  const DoubleVector zero = {};
-  const DoubleVector nx = zero + n.x, ny = zero + n.y, nz = zero + n.z;
-  DoubleVector acc_r[kGroups] = {}, acc_g[kGroups] = {}, acc_b[kGroups] = {};
-  auto step = [&](const double* px, const double* py, const double* pz, const double* pr,
-                  const double* pg, const double* pb) {
-    for (int k = 0; k < kGroups; ++k) {
-      DoubleVector vx, vy, vz, vr, vg, vb;
-      std::memcpy(&vx, px + k * Width, sizeof vx);
-      std::memcpy(&vy, py + k * Width, sizeof vy);
-      std::memcpy(&vz, pz + k * Width, sizeof vz);
-      std::memcpy(&vr, pr + k * Width, sizeof vr);
-      std::memcpy(&vg, pg + k * Width, sizeof vg);
-      std::memcpy(&vb, pb + k * Width, sizeof vb);
-      const DoubleVector dot = nx * vx + ny * vy + nz * vz;
-      const DoubleVector c = dot > zero ? dot : zero;
-      acc_r[k] += vr * c;
-      acc_g[k] += vg * c;
-      acc_b[k] += vb * c;
-    }
-  };
-  const int size = t.size;
-  int x = 0;
-  for (; x + kLanes <= size; x += kLanes) step(wx + x, wy + x, wz + x, r + x, g + x, b + x);
-  if (x < size) {
-    double tx[kLanes] = {}, ty[kLanes] = {}, tz[kLanes] = {};
-    double tr[kLanes] = {}, tg[kLanes] = {}, tb[kLanes] = {};
-    for (int j = 0; x + j < size; ++j) {
-      tx[j] = wx[x + j];
-      ty[j] = wy[x + j];
-      tz[j] = wz[x + j];
-      tr[j] = r[x + j];
-      tg[j] = g[x + j];
-      tb[j] = b[x + j];
-    }
-    step(tx, ty, tz, tr, tg, tb);
-  }
-  glm::dvec3 sum(0.0);
-  for (int k = 0; k < kGroups; ++k) {
-    for (int j = 0; j < Width; ++j) sum += glm::dvec3(acc_r[k][j], acc_g[k][j], acc_b[k][j]);
-  }
-  return sum;
-}
-
-glm::dvec3 RowIrradianceBaseline(const TexelTable& t, int row, glm::dvec3 n) {
-  return RowIrradianceT<Doubles2, 2>(t, row, n);
-}
-
-[[gnu::target("avx2")]] glm::dvec3 RowIrradianceAvx2(const TexelTable& t, int row, glm::dvec3 n) {
-  return RowIrradianceT<Doubles4, 4>(t, row, n);
-}
-
-// The widest kernel this CPU runs (both give identical results).
-using RowKernel = glm::dvec3 (*)(const TexelTable&, int, glm::dvec3);
-RowKernel SelectRowKernel() {
-  __builtin_cpu_init();
-  return __builtin_cpu_supports("avx2") ? RowIrradianceAvx2 : RowIrradianceBaseline;
 }
 
 // `error` / `scale`, with 0 / 0 = 0 and x / 0 = infinity.
@@ -202,7 +129,6 @@ std::vector<glm::dvec3> GroundTruthIrradiance(const CubeMap& env,
   std::atomic<int> next_block{0};
   std::atomic<int> done_blocks{0};
   double last_reported = 0.0;
-  static const RowKernel row_irradiance = SelectRowKernel();
   ThreadPool& workers = pool != nullptr ? *pool : ThreadPool::Default();
   auto work = [&](bool reporter, int chunk) {
     for (int block; (block = next_block.fetch_add(1)) < block_count;) {
@@ -210,12 +136,13 @@ std::vector<glm::dvec3> GroundTruthIrradiance(const CubeMap& env,
       // block's normals. Each normal still adds its rows in order.
       const int begin = block * kNormalsPerBlock;
       const int end = std::min(normal_count, begin + kNormalsPerBlock);
-      std::array<glm::dvec3, kNormalsPerBlock> sums;
-      for (int i = begin; i < end; ++i) sums[i - begin] = result[i];
-      for (int row = 0; row < table.rows; ++row) {
-        for (int i = begin; i < end; ++i) sums[i - begin] += row_irradiance(table, row, normals[i]);
+      std::array<kernels::ChannelSums, kNormalsPerBlock> block_normals, sums;
+      for (int i = begin; i < end; ++i) {
+        block_normals[i - begin] = {normals[i].x, normals[i].y, normals[i].z};
+        sums[i - begin] = {result[i].x, result[i].y, result[i].z};
       }
-      for (int i = begin; i < end; ++i) result[i] = sums[i - begin];
+      kernels::AddClampedCosineSums(table.View(), block_normals.data(), end - begin, sums.data());
+      for (int i = begin; i < end; ++i) result[i] = glm::dvec3(sums[i - begin][0], sums[i - begin][1], sums[i - begin][2]);
       const int done = done_blocks.fetch_add(1) + 1;
       if (reporter && progress) {
         const double fraction =

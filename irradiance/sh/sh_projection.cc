@@ -10,15 +10,10 @@
 
 #include "irradiance/io/cube_map.h"
 #include "irradiance/sh/projection_kernels.h"
+#include "irradiance/sh/row_sum_kernels.h"
 
 namespace vs11::irradiance {
 namespace {
-
-// Partial sums per row in ProjectLevel: lane j adds the texels x with x % kLanes == j, so they
-// live in vector registers without reassociating a floating-point reduction (which the compiler
-// may not do without -ffast-math), and the order of additions is fixed.
-constexpr int kLanes = 8;
-
 
 // Solid angles of the texels of row y (the same on every face).
 void RowSolidAngles(int y, int size, std::vector<double>& out) {
@@ -37,76 +32,6 @@ void AccumulateDirectRow(CubeFace face, int y, int size, const glm::vec3* row,
     for (int i = 0; i < kSh9Coefficients; ++i) row_sums[i] += basis[i] * weighted;
   }
   for (int i = 0; i < kSh9Coefficients; ++i) sums[i] += row_sums[i];
-}
-
-// Groups of floats and doubles as GCC vector extensions: two doubles fill an SSE2 register, four an
-// AVX register. Generic code over them compiles to plain vector instructions of either width.
-typedef float Floats2 __attribute__((vector_size(2 * sizeof(float))));
-typedef double Doubles2 __attribute__((vector_size(2 * sizeof(double))));
-typedef float Floats4 __attribute__((vector_size(4 * sizeof(float))));
-typedef double Doubles4 __attribute__((vector_size(4 * sizeof(double))));
-
-// sum_x w[x] * (r, g, b)[x] in double. Lane j of kLanes partial sums adds the texels x with
-// x % kLanes == j (groups of `Width` lanes per vector); the lanes are then folded in order j = 0..7,
-// so the additions, and the result, are the same for every vector width. Each product of a float
-// weight and a double-converted float radiance is exact. The row's tail is zero-padded to a full
-// set of lanes (adding +0 changes no sum).
-template <class FloatVector, class DoubleVector, int Width>
-[[gnu::always_inline]] inline glm::dvec3 WeightedRowSumT(const float* __restrict w,
-                                                         const double* __restrict r,
-                                                         const double* __restrict g,
-                                                         const double* __restrict b, int n) {
-  constexpr int kGroups = kLanes / Width;
-  DoubleVector acc_r[kGroups] = {}, acc_g[kGroups] = {}, acc_b[kGroups] = {};
-  auto step = [&](const float* wx, const double* rx, const double* gx, const double* bx) {
-    for (int k = 0; k < kGroups; ++k) {
-      FloatVector wf;
-      DoubleVector rv, gv, bv;
-      std::memcpy(&wf, wx + k * Width, sizeof wf);
-      std::memcpy(&rv, rx + k * Width, sizeof rv);
-      std::memcpy(&gv, gx + k * Width, sizeof gv);
-      std::memcpy(&bv, bx + k * Width, sizeof bv);
-      const DoubleVector wd = __builtin_convertvector(wf, DoubleVector);
-      acc_r[k] += wd * rv;
-      acc_g[k] += wd * gv;
-      acc_b[k] += wd * bv;
-    }
-  };
-  int x = 0;
-  for (; x + kLanes <= n; x += kLanes) step(w + x, r + x, g + x, b + x);
-  if (x < n) {
-    float wt[kLanes] = {};
-    double rt[kLanes] = {}, gt[kLanes] = {}, bt[kLanes] = {};
-    for (int j = 0; x + j < n; ++j) {
-      wt[j] = w[x + j];
-      rt[j] = r[x + j];
-      gt[j] = g[x + j];
-      bt[j] = b[x + j];
-    }
-    step(wt, rt, gt, bt);
-  }
-  glm::dvec3 sum(0.0);
-  for (int k = 0; k < kGroups; ++k) {
-    for (int j = 0; j < Width; ++j) sum += glm::dvec3(acc_r[k][j], acc_g[k][j], acc_b[k][j]);
-  }
-  return sum;
-}
-
-glm::dvec3 WeightedRowSumBaseline(const float* w, const double* r, const double* g,
-                                  const double* b, int n) {
-  return WeightedRowSumT<Floats2, Doubles2, 2>(w, r, g, b, n);
-}
-
-[[gnu::target("avx2")]] glm::dvec3 WeightedRowSumAvx2(const float* w, const double* r,
-                                                     const double* g, const double* b, int n) {
-  return WeightedRowSumT<Floats4, Doubles4, 4>(w, r, g, b, n);
-}
-
-// The widest kernel this CPU runs (both give identical results).
-using RowSumKernel = glm::dvec3 (*)(const float*, const double*, const double*, const double*, int);
-RowSumKernel SelectRowSumKernel() {
-  __builtin_cpu_init();
-  return __builtin_cpu_supports("avx2") ? WeightedRowSumAvx2 : WeightedRowSumBaseline;
 }
 
 std::size_t LevelTexels(int size) {
@@ -402,11 +327,10 @@ Sh9Rgb ProjectLevel(const CubeMipChain& env, const BasisPyramid& basis, int leve
   const int size = map.face_size;
   assert(weights.size == size);
 
-  static const RowSumKernel row_sum = SelectRowSumKernel();
   // One de-interleaved radiance row (converted to double once, used by all nine weights), reused
   // for every row of every face.
   std::vector<double> r(size), g(size), b(size);
-  Sh9Rgb sh;
+  std::array<kernels::ChannelSums, kSh9Coefficients> sums{};
   for (int f = 0; f < kCubeFaceCount; ++f) {
     const Image& image = map.faces[f];
     for (int y = 0; y < size; ++y) {
@@ -416,11 +340,14 @@ Sh9Rgb ProjectLevel(const CubeMipChain& env, const BasisPyramid& basis, int leve
         g[x] = row[x].y;
         b[x] = row[x].z;
       }
-      for (int i = 0; i < kSh9Coefficients; ++i) {
-        sh.coefficients[i] += row_sum(weights.Row(i, f, y), r.data(), g.data(), b.data(), size);
-      }
+      std::array<const float*, kSh9Coefficients> weight_rows;
+      for (int i = 0; i < kSh9Coefficients; ++i) weight_rows[i] = weights.Row(i, f, y);
+      kernels::AddWeightedRowSums(weight_rows.data(), kSh9Coefficients, {r.data(), g.data(), b.data()}, size,
+                                  sums.data());
     }
   }
+  Sh9Rgb sh;
+  for (int i = 0; i < kSh9Coefficients; ++i) sh.coefficients[i] = glm::dvec3(sums[i][0], sums[i][1], sums[i][2]);
   return sh;
 }
 

@@ -1,9 +1,11 @@
+// The preprocessor's directives and macro expansion; the text's logical lines, its tokens and the
+// #if expressions have files of their own (vm/asm/preprocessor_lines.h, preprocessor_tokens.h,
+// preprocessor_expression.h).
 #include "vm/asm/preprocessor.h"
 
 #include <fmt/format.h>
 
 #include <algorithm>
-#include <charconv>
 #include <cstdint>
 #include <exception>
 #include <fstream>
@@ -13,403 +15,23 @@
 #include <set>
 #include <unordered_map>
 
+#include "vm/asm/preprocessor_expression.h"
+#include "vm/asm/preprocessor_lines.h"
+#include "vm/asm/preprocessor_tokens.h"
+
 namespace vs11 {
 namespace {
 
+using namespace preprocessing;  // NOLINT: this file is the preprocessor those names serve
+
 // Hostile input must not exhaust the stack, whatever the options say.
 constexpr int kMaxExpansionDepth = 128;   // macro arguments pre-expanded inside macro arguments
-constexpr int kMaxExpressionDepth = 256;  // parentheses, unary operators and ?: in #if
 constexpr int kMaxIncludeDepthCap = 200;  // each #include level is a few stack frames
 // Macro expansion and #include are charged "work" against max_output_bytes, so that expansions
 // that produce nothing, or whose output is never emitted, are bounded as well. A token costs more
 // than its text because its memory and handling do; the slack lets small limits expand small files.
 constexpr std::size_t kTokenWork = 64;
 constexpr std::size_t kWorkSlack = std::size_t{64} << 10;
-
-bool IsSpace(char c) { return c == ' ' || c == '\t' || c == '\r' || c == '\v' || c == '\f'; }
-bool IsDigit(char c) { return c >= '0' && c <= '9'; }
-bool IsIdentStart(char c) { return (c >= 'a' && c <= 'z') || (c >= 'A' && c <= 'Z') || c == '_'; }
-bool IsIdentChar(char c) { return IsIdentStart(c) || IsDigit(c); }
-
-// Walks raw file text with line splices (backslash-newline) and the \r of CRLF made invisible,
-// tracking the physical line and column of the current character.
-class Cursor {
- public:
-  explicit Cursor(std::string_view text) : text_(text) { SkipInvisible(); }
-  bool AtEnd() const { return pos_ >= text_.size(); }
-  char Get() const { return text_[pos_]; }
-  int line() const { return line_; }
-  int column() const { return column_; }
-  char PeekNext() const {
-    Cursor next = *this;
-    next.Advance();
-    return next.AtEnd() ? '\0' : next.Get();
-  }
-  void Advance() {
-    if (AtEnd()) return;
-    bool newline = text_[pos_++] == '\n';
-    line_ += newline;
-    column_ = newline ? 1 : column_ + 1;
-    SkipInvisible();
-  }
-
- private:
-  void SkipInvisible() {
-    while (pos_ < text_.size()) {
-      bool crlf = text_[pos_] == '\r' && pos_ + 1 < text_.size() && text_[pos_ + 1] == '\n';
-      if (crlf) ++pos_;
-      if (crlf || text_[pos_] != '\\') return;
-      // Blanks after the backslash are tolerated, as GCC does: editors do not show them.
-      std::size_t end = pos_ + 1;
-      while (end < text_.size() && (text_[end] == ' ' || text_[end] == '\t')) ++end;
-      if (end < text_.size() && text_[end] == '\r') ++end;
-      if (end >= text_.size() || text_[end] != '\n') return;
-      pos_ = end + 1;
-      ++line_;
-      column_ = 1;
-    }
-  }
-
-  std::string_view text_;
-  std::size_t pos_ = 0;
-  int line_ = 1;
-  int column_ = 1;
-};
-
-struct LogicalLine {
-  std::string text;
-  std::vector<int> columns;  // source column of each character of text
-  int line = 0;              // physical line of the first character
-  int end_line = 0;          // physical line of the last one (later after splices)
-};
-
-// Splits a file into logical lines with comments replaced by a space. A /* */ comment spanning
-// lines ends an ordinary line, so the instruction after it keeps its own line number for the
-// assembler's messages, but it continues a directive as in C.
-class LineSplitter {
- public:
-  explicit LineSplitter(std::string_view text) : cursor_(text) {}
-  bool Next(LogicalLine* out);
-  bool in_comment() const { return in_comment_; }
-  int comment_line() const { return comment_line_; }
-  int comment_column() const { return comment_column_; }
-
- private:
-  void Take(LogicalLine* out, char c) {
-    if (blank_ && !IsSpace(c)) {
-      blank_ = false;
-      directive_ = c == '#';
-    }
-    out->text.push_back(c);
-    out->columns.push_back(cursor_.column());
-    cursor_.Advance();
-  }
-
-  Cursor cursor_;
-  bool in_comment_ = false;
-  int comment_line_ = 0;
-  int comment_column_ = 0;
-  bool blank_ = true;
-  bool directive_ = false;
-};
-
-bool LineSplitter::Next(LogicalLine* out) {
-  if (cursor_.AtEnd()) return false;
-  out->text.clear();
-  out->columns.clear();
-  out->line = cursor_.line();
-  blank_ = true;
-  directive_ = false;
-  while (!cursor_.AtEnd()) {
-    char c = cursor_.Get();
-    out->end_line = cursor_.line();
-    if (in_comment_) {
-      in_comment_ = !(c == '*' && cursor_.PeekNext() == '/');
-      if (!in_comment_) cursor_.Advance();
-      cursor_.Advance();
-      if (c == '\n' && !directive_) return true;
-    } else if (c == '\n') {
-      cursor_.Advance();
-      return true;
-    } else if (c == ';' || (c == '/' && cursor_.PeekNext() == '/')) {
-      while (!cursor_.AtEnd() && cursor_.Get() != '\n') cursor_.Advance();
-    } else if (c == '/' && cursor_.PeekNext() == '*') {
-      in_comment_ = true;
-      comment_line_ = cursor_.line();
-      comment_column_ = cursor_.column();
-      Take(out, ' ');
-      cursor_.Advance();
-    } else if (c == '"' && directive_) {
-      // Strings matter only in directives (#include "a;b.h"); elsewhere a quote is ordinary
-      // text, so that an unbalanced one cannot hide a comment.
-      Take(out, c);
-      while (!cursor_.AtEnd() && cursor_.Get() != '\n' && cursor_.Get() != '"') Take(out, cursor_.Get());
-      if (!cursor_.AtEnd() && cursor_.Get() == '"') Take(out, c);
-    } else {
-      Take(out, c);
-    }
-  }
-  return true;
-}
-
-// The ids of the macros whose expansion produced a token, which never expand it again: this is
-// what makes self-referential and mutually recursive macros terminate. Shared because all tokens
-// of one expansion carry the same set. Sorted and unique; null means empty.
-using HideSet = std::shared_ptr<const std::vector<int>>;
-
-bool InHideSet(const HideSet& set, int id) { return set && std::binary_search(set->begin(), set->end(), id); }
-
-HideSet HideSetUnion(const HideSet& a, const HideSet& b) {
-  if (!a || a == b) return b;
-  if (!b || std::includes(a->begin(), a->end(), b->begin(), b->end())) return a;
-  if (std::includes(b->begin(), b->end(), a->begin(), a->end())) return b;
-  auto merged = std::make_shared<std::vector<int>>();
-  std::set_union(a->begin(), a->end(), b->begin(), b->end(), std::back_inserter(*merged));
-  return merged;
-}
-
-HideSet HideSetIntersection(const HideSet& a, const HideSet& b) {
-  if (!a || !b || a == b) return b ? a : nullptr;
-  auto common = std::make_shared<std::vector<int>>();
-  std::set_intersection(a->begin(), a->end(), b->begin(), b->end(), std::back_inserter(*common));
-  return common->empty() ? nullptr : HideSet(std::move(common));
-}
-
-enum class TokenKind { kSpace, kIdentifier, kNumber, kString, kPunctuator };
-
-struct Token {
-  TokenKind kind = TokenKind::kPunctuator;
-  std::string text;
-  int column = 0;   // source column of the first character (of the macro name, for expansions)
-  int offset = -1;  // index of the first character in the logical line; -1 for expansion output
-  HideSet hide_set;
-};
-
-Token MakeToken(TokenKind kind, std::string text) {
-  Token token;
-  token.kind = kind;
-  token.text = std::move(text);
-  return token;
-}
-
-bool IsPunct(const Token& token, std::string_view text) {
-  return token.kind == TokenKind::kPunctuator && token.text == text;
-}
-
-// Length of the token starting at s[i]. Numbers are pp-numbers, so "1e-3" or "0x1f" is one token
-// and nothing inside it can be taken for a macro name.
-std::size_t LexOne(std::string_view s, std::size_t i, TokenKind* kind) {
-  auto at = [&](std::size_t k) { return k < s.size() ? s[k] : '\0'; };
-  std::size_t j = i + 1;
-  char c = s[i];
-  if (IsSpace(c)) {
-    *kind = TokenKind::kSpace;
-    while (IsSpace(at(j))) ++j;
-  } else if (IsIdentStart(c)) {
-    *kind = TokenKind::kIdentifier;
-    while (IsIdentChar(at(j))) ++j;
-  } else if (IsDigit(c) || (c == '.' && IsDigit(at(i + 1)))) {
-    *kind = TokenKind::kNumber;
-    while (IsIdentChar(at(j)) || at(j) == '.') {
-      bool exponent = std::string_view("eEpP").find(at(j)) != std::string_view::npos;
-      j += exponent && (at(j + 1) == '+' || at(j + 1) == '-') ? 2 : 1;
-    }
-  } else if (c == '"') {
-    *kind = TokenKind::kString;
-    j = std::min(s.find('"', i + 1), s.size() - 1) + 1;
-  } else {
-    *kind = TokenKind::kPunctuator;
-    for (std::string_view op : {"##", "<<", ">>", "<=", ">=", "==", "!=", "&&", "||"}) {
-      if (s.substr(i, op.size()) == op) return op.size();
-    }
-  }
-  return j - i;
-}
-
-std::vector<Token> Tokenize(std::string_view text, const std::vector<int>* columns) {
-  std::vector<Token> tokens;
-  for (std::size_t i = 0; i < text.size();) {
-    Token token;
-    std::size_t length = LexOne(text, i, &token.kind);
-    token.text = text.substr(i, length);
-    token.offset = static_cast<int>(i);
-    token.column = columns != nullptr ? (*columns)[i] : 0;
-    tokens.push_back(std::move(token));
-    i += length;
-  }
-  return tokens;
-}
-
-std::size_t NextNonSpace(const std::vector<Token>& tokens, std::size_t i) {
-  while (i < tokens.size() && tokens[i].kind == TokenKind::kSpace) ++i;
-  return i;
-}
-
-int ColumnAt(const std::vector<Token>& tokens, std::size_t i, int fallback) {
-  return i < tokens.size() ? tokens[i].column : fallback;
-}
-
-void TrimSpaces(std::vector<Token>* tokens) {
-  while (!tokens->empty() && tokens->back().kind == TokenKind::kSpace) tokens->pop_back();
-  tokens->erase(tokens->begin(), tokens->begin() + NextNonSpace(*tokens, 0));
-}
-
-// The ## operator: joins the last token of `out` with the first of `rhs` and appends the rest.
-void Paste(std::vector<Token>* out, std::vector<Token> rhs) {
-  std::size_t first = 0;
-  if (!out->empty() && !rhs.empty()) {
-    std::vector<Token> joined = Tokenize(out->back().text + rhs.front().text, nullptr);
-    out->pop_back();
-    for (Token& token : joined) out->push_back(MakeToken(token.kind, std::move(token.text)));
-    first = 1;
-  }
-  out->insert(out->end(), rhs.begin() + first, rhs.end());
-}
-
-// Evaluates a #if expression (macros already expanded, `defined` already replaced, no spaces)
-// in 64-bit arithmetic that wraps instead of invoking undefined behaviour.
-class ExpressionParser {
- public:
-  ExpressionParser(std::vector<Token> tokens, int end_column) : tokens_(std::move(tokens)), end_column_(end_column) {}
-
-  std::optional<std::int64_t> Evaluate() {
-    if (tokens_.empty()) Fail(end_column_, "#if with no expression");
-    std::int64_t value = Ternary(true, 0);
-    if (pos_ < tokens_.size()) Fail(tokens_[pos_].column, Unexpected(tokens_[pos_]));
-    if (failed_) return std::nullopt;
-    return value;
-  }
-  int error_column() const { return error_column_; }
-  const std::string& error_message() const { return error_message_; }
-
- private:
-  static std::string Unexpected(const Token& token) {
-    return fmt::format("unexpected '{}' in #if expression", token.text);
-  }
-  int CurrentColumn() const { return ColumnAt(tokens_, pos_, end_column_); }
-  bool Accept(std::string_view punct) {
-    if (pos_ >= tokens_.size() || !IsPunct(tokens_[pos_], punct)) return false;
-    ++pos_;
-    return true;
-  }
-  // Keeps the first error only and ends the parse, so later ones are not follow-on noise.
-  void Fail(int column, std::string message) {
-    if (!failed_) {
-      error_column_ = column;
-      error_message_ = std::move(message);
-    }
-    failed_ = true;
-    pos_ = tokens_.size();
-  }
-  bool TooDeep(int depth) {
-    if (depth > kMaxExpressionDepth) Fail(CurrentColumn(), "#if expression nested too deeply");
-    return depth > kMaxExpressionDepth;
-  }
-
-  // `live` is false in the unevaluated operand of && || ?:, where 1/0 is no error (as in C).
-  std::int64_t Ternary(bool live, int depth) {
-    if (TooDeep(depth)) return 0;
-    std::int64_t condition = Binary(1, live, depth);
-    if (!Accept("?")) return condition;
-    std::int64_t if_true = Ternary(live && condition != 0, depth + 1);
-    if (!Accept(":")) Fail(CurrentColumn(), "expected ':' in #if expression");
-    std::int64_t if_false = Ternary(live && condition == 0, depth + 1);
-    return condition != 0 ? if_true : if_false;
-  }
-
-  static int Precedence(const std::string& op) {
-    static constexpr std::pair<std::string_view, int> kTable[] = {
-        {"||", 1}, {"&&", 2}, {"|", 3},  {"^", 4},  {"&", 5}, {"==", 6}, {"!=", 6}, {"<", 7},  {">", 7},
-        {"<=", 7}, {">=", 7}, {"<<", 8}, {">>", 8}, {"+", 9}, {"-", 9},  {"*", 10}, {"/", 10}, {"%", 10}};
-    for (const auto& [text, precedence] : kTable) {
-      if (op == text) return precedence;
-    }
-    return 0;
-  }
-
-  std::int64_t Binary(int min_precedence, bool live, int depth) {
-    std::int64_t lhs = Unary(live, depth);
-    while (pos_ < tokens_.size() && tokens_[pos_].kind == TokenKind::kPunctuator) {
-      const Token& op = tokens_[pos_];
-      int precedence = Precedence(op.text);
-      if (precedence == 0 || precedence < min_precedence) break;
-      ++pos_;
-      bool rhs_live = live && !(op.text == "&&" && lhs == 0) && !(op.text == "||" && lhs != 0);
-      lhs = Apply(op, lhs, Binary(precedence + 1, rhs_live, depth), rhs_live);
-    }
-    return lhs;
-  }
-
-  std::int64_t Apply(const Token& op, std::int64_t lhs, std::int64_t rhs, bool live) {
-    const std::string& o = op.text;
-    auto u = [](std::int64_t v) { return static_cast<std::uint64_t>(v); };
-    auto s = [](std::uint64_t v) { return static_cast<std::int64_t>(v); };
-    if (o == "||") return lhs != 0 || rhs != 0;
-    if (o == "&&") return lhs != 0 && rhs != 0;
-    if (o == "|") return lhs | rhs;
-    if (o == "^") return lhs ^ rhs;
-    if (o == "&") return lhs & rhs;
-    if (o == "==") return lhs == rhs;
-    if (o == "!=") return lhs != rhs;
-    if (o == "<") return lhs < rhs;
-    if (o == ">") return lhs > rhs;
-    if (o == "<=") return lhs <= rhs;
-    if (o == ">=") return lhs >= rhs;
-    if (o == "<<") return rhs < 0 || rhs >= 64 ? 0 : s(u(lhs) << rhs);
-    if (o == ">>") return rhs < 0 ? 0 : rhs >= 64 ? (lhs < 0 ? -1 : 0) : lhs >> rhs;
-    if (o == "+") return s(u(lhs) + u(rhs));
-    if (o == "-") return s(u(lhs) - u(rhs));
-    if (o == "*") return s(u(lhs) * u(rhs));
-    if (rhs == 0 && live) Fail(op.column, "division by zero in #if expression");
-    if (rhs == 0) return 0;
-    if (rhs == -1) return o == "/" ? s(0 - u(lhs)) : 0;  // INT64_MIN / -1 overflows
-    return o == "/" ? lhs / rhs : lhs % rhs;
-  }
-
-  std::int64_t Unary(bool live, int depth) {
-    if (TooDeep(depth)) return 0;
-    if (pos_ >= tokens_.size()) Fail(end_column_, "unexpected end of #if expression");
-    if (failed_) return 0;
-    const Token& token = tokens_[pos_++];
-    if (IsPunct(token, "(")) {
-      std::int64_t value = Ternary(live, depth + 1);
-      if (!Accept(")")) Fail(CurrentColumn(), "expected ')' in #if expression");
-      return value;
-    }
-    // Negation through unsigned, so that -INT64_MIN wraps instead of trapping.
-    if (IsPunct(token, "-")) return static_cast<std::int64_t>(0 - static_cast<std::uint64_t>(Unary(live, depth + 1)));
-    if (IsPunct(token, "+")) return Unary(live, depth + 1);
-    if (IsPunct(token, "!")) return Unary(live, depth + 1) == 0;
-    if (IsPunct(token, "~")) return ~Unary(live, depth + 1);
-    if (token.kind == TokenKind::kIdentifier) return 0;  // C: unknown names count as 0
-    if (token.kind == TokenKind::kNumber) return ParseInteger(token);
-    Fail(token.column, Unexpected(token));
-    return 0;
-  }
-
-  // Decimal, 0x hex or 0 octal, with u/l suffixes ignored; "1.5" or "08" is an error, as in C.
-  std::int64_t ParseInteger(const Token& token) {
-    std::string_view digits = token.text;
-    while (!digits.empty() && std::string_view("uUlL").find(digits.back()) != std::string_view::npos) {
-      digits.remove_suffix(1);
-    }
-    bool hex = digits.size() > 1 && digits[0] == '0' && (digits[1] == 'x' || digits[1] == 'X');
-    int base = hex ? 16 : digits.size() > 1 && digits[0] == '0' ? 8 : 10;
-    digits.remove_prefix(hex ? 2 : base == 8 ? 1 : 0);
-    std::uint64_t value = 0;
-    auto [end, error] = std::from_chars(digits.data(), digits.data() + digits.size(), value, base);
-    bool valid = !digits.empty() && error == std::errc() && end == digits.data() + digits.size();
-    if (!valid) Fail(token.column, fmt::format("invalid integer constant '{}' in #if expression", token.text));
-    return valid ? static_cast<std::int64_t>(value) : 0;
-  }
-
-  std::vector<Token> tokens_;
-  int end_column_;
-  std::size_t pos_ = 0;
-  bool failed_ = false;
-  int error_column_ = 0;
-  std::string error_message_;
-};
 
 struct Macro {
   int id = 0;    // the same for every definition of one name
@@ -652,10 +274,9 @@ bool Preprocessor::EvaluateCondition(const std::vector<Token>& rest, int column)
   for (Token& token : Expand(std::move(replaced), 0)) {
     if (token.kind != TokenKind::kSpace) significant.push_back(std::move(token));
   }
-  ExpressionParser parser(std::move(significant), column);
-  std::optional<std::int64_t> value = parser.Evaluate();
-  if (!value) Error(parser.error_column(), DiagnosticCode::kConditionExpression, parser.error_message());
-  return value.value_or(0) != 0;
+  const ExpressionResult result = EvaluateExpression(std::move(significant), column);
+  if (!result.value) Error(result.error_column, DiagnosticCode::kConditionExpression, result.error_message);
+  return result.value.value_or(0) != 0;
 }
 
 // `defined X` must be answered before expansion, or X would be replaced by its body.
@@ -673,7 +294,7 @@ bool Preprocessor::ReplaceDefined(const std::vector<Token>& rest, std::vector<To
       return false;
     }
     out->back().kind = TokenKind::kNumber;
-    out->back().text = IsDefined(rest[j].text) ? "1" : "0";
+    out->back().text = std::string(1, IsDefined(rest[j].text) ? '1' : '0');
     i = end;
   }
   return true;

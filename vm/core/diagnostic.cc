@@ -42,14 +42,6 @@ void Diagnostics::Warning(SourceLoc loc, DiagnosticCode code, std::string messag
   Add({std::move(loc), Severity::kWarning, code, std::move(message)});
 }
 
-void Diagnostics::Error(SourceLoc loc, std::string message) {
-  Error(std::move(loc), DiagnosticCode::kUnclassified, std::move(message));
-}
-
-void Diagnostics::Warning(SourceLoc loc, std::string message) {
-  Warning(std::move(loc), DiagnosticCode::kUnclassified, std::move(message));
-}
-
 void Diagnostics::Add(Diagnostic diagnostic) {
   if (diagnostic.severity == Severity::kError) {
     ++error_count_;

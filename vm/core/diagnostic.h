@@ -22,7 +22,7 @@ enum class Severity { kError, kWarning, kNote };
 // is part of the output format ("FILE:LINE:COL: error: MESSAGE [name]") and of `--json`; add new
 // codes, never rename or reuse one.
 #define VS11_DIAGNOSTIC_CODES(X)                                                                         \
-  /* Input outside the shader front end (constant files, metadata lines), which has no codes yet. */    \
+  /* The default of a Diagnostic made field by field; every report names a code of its own. */          \
   X(kUnclassified, "unclassified")                                                                       \
   X(kCannotReadFile, "cannot-read-file")                                                                 \
   /* Lexer (vm/asm/lexer.h). */                                                                          \
@@ -89,7 +89,22 @@ enum class Severity { kError, kWarning, kNote };
   X(kBytecodeMalformedToken, "bytecode-malformed-token")                                                 \
   X(kBytecodeUnknownOpcode, "bytecode-unknown-opcode")                                                   \
   X(kBytecodeRegisterType, "bytecode-register-type")                                                     \
-  X(kBytecodeDeclarationUsage, "bytecode-dcl-usage")
+  X(kBytecodeDeclarationUsage, "bytecode-dcl-usage")                                                     \
+  /* Constant files and --const (vm/io/vertex_io.h). */                                                  \
+  X(kConstantLine, "constant-line")                                                                      \
+  X(kConstantValue, "constant-value")                                                                    \
+  X(kConstantRegisterRange, "constant-register-range")                                                   \
+  /* Vertex CSV files (vm/io/vertex_io.h). */                                                            \
+  X(kCsvSeparator, "csv-separator")                                                                      \
+  X(kCsvNumber, "csv-number")                                                                            \
+  X(kCsvTooManyValues, "csv-too-many-values")                                                            \
+  X(kCsvMissingCell, "csv-missing-cell")                                                                 \
+  X(kCsvColumns, "csv-columns")                                                                          \
+  /* Metadata lines of verified programs (irradiance/report/verify.h). */                                \
+  X(kMetadataSyntax, "metadata-syntax")                                                                  \
+  X(kMetadataDuplicateKey, "metadata-duplicate-key")                                                     \
+  X(kMetadataUnknownKey, "metadata-unknown-key")                                                         \
+  X(kMetadataValue, "metadata-value")
 
 enum class DiagnosticCode {
 #define VS11_DIAGNOSTIC_ENUMERATOR(code, name) code,
@@ -120,9 +135,6 @@ class Diagnostics {
 
   void Error(SourceLoc loc, DiagnosticCode code, std::string message);
   void Warning(SourceLoc loc, DiagnosticCode code, std::string message);
-  // Without a code (kUnclassified): for input outside the shader front end.
-  void Error(SourceLoc loc, std::string message);
-  void Warning(SourceLoc loc, std::string message);
   void Add(Diagnostic diagnostic);
   void Append(const Diagnostics& other);
 

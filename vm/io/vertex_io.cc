@@ -107,8 +107,8 @@ void ParseConstantsText(std::string_view text, const std::string& file_name, Con
     Cursor cursor{StripComment(lines[n])};
     if (cursor.AtEnd()) continue;
     int line_number = static_cast<int>(n) + 1;
-    auto error_at = [&](int column, std::string message) {
-      diagnostics.Error({file_name, line_number, column}, std::move(message));
+    auto error_at = [&](int column, DiagnosticCode code, std::string message) {
+      diagnostics.Error({file_name, line_number, column}, code, std::move(message));
     };
     std::string_view rest = cursor.line.substr(cursor.pos);
     bool is_def = rest.size() > 3 && (rest.substr(0, 3) == "def" || rest.substr(0, 3) == "DEF") &&
@@ -118,13 +118,14 @@ void ParseConstantsText(std::string_view text, const std::string& file_name, Con
     int register_column = (cursor.SkipSeparators(), cursor.column());
     std::optional<int> index = ConstantRegister(cursor, error);
     if (!index) {
-      error_at(register_column, error + (is_def ? "" : " (lines are `def c#, x, y, z, w` or `c# = x y z w`)"));
+      error_at(register_column, DiagnosticCode::kConstantLine,
+               error + (is_def ? "" : " (lines are `def c#, x, y, z, w` or `c# = x y z w`)"));
       continue;
     }
     cursor.SkipSeparators();
     if (!is_def) {
       if (cursor.pos >= cursor.line.size() || cursor.line[cursor.pos] != '=') {
-        error_at(cursor.column(), "expected '=' after the register");
+        error_at(cursor.column(), DiagnosticCode::kConstantLine, "expected '=' after the register");
         continue;
       }
       ++cursor.pos;
@@ -132,11 +133,12 @@ void ParseConstantsText(std::string_view text, const std::string& file_name, Con
     Vec4f values;
     int column = 0;
     if (std::optional<std::string> value_error = ReadValues(cursor, values, column)) {
-      error_at(column, *value_error);
+      error_at(column, DiagnosticCode::kConstantValue, *value_error);
       continue;
     }
     if (*index < 0 || *index >= bank.size()) {
-      error_at(register_column, fmt::format("c{} is beyond the {} constant registers", *index, bank.size()));
+      error_at(register_column, DiagnosticCode::kConstantRegisterRange,
+               fmt::format("c{} is beyond the {} constant registers", *index, bank.size()));
       continue;
     }
     bank[*index] = values;
@@ -201,18 +203,19 @@ std::vector<Cell> SplitCells(std::string_view line, char separator) {
 class RowErrors {
  public:
   RowErrors(const std::string& file_name, Diagnostics& diagnostics) : file_(file_name), diagnostics_(diagnostics) {}
-  void Add(int line, int column, std::string message) {
-    if (count_++ == 0) first_ = {line, column, std::move(message)};
+  void Add(int line, int column, DiagnosticCode code, std::string message) {
+    if (count_++ == 0) first_ = {line, column, code, std::move(message)};
   }
   ~RowErrors() {
     if (count_ == 0) return;
     std::string more = count_ > 1 ? fmt::format(" (and {} more bad rows)", count_ - 1) : "";
-    diagnostics_.Error({file_, first_.line, first_.column}, first_.message + more);
+    diagnostics_.Error({file_, first_.line, first_.column}, first_.code, first_.message + more);
   }
 
  private:
   struct First {
     int line = 0, column = 0;
+    DiagnosticCode code = DiagnosticCode::kUnclassified;
     std::string message;
   };
   const std::string& file_;
@@ -267,6 +270,46 @@ std::optional<ColumnChoice> ChooseColumns(const std::vector<std::string>& header
   return choice;
 }
 
+// A data row's cells: their text, and each one's value or why it is not a number.
+struct RowCells {
+  const std::vector<Cell>& cells;
+  const std::vector<float>& values;
+  const std::vector<NumberError>& errors;
+};
+
+// What is wrong with a data row: the first bad cell the vertex needs.
+struct RowProblem {
+  int column = 1;
+  DiagnosticCode code = DiagnosticCode::kUnclassified;
+  std::string message;
+};
+
+// Fills the lanes of `row` from the cells `wanted` names ((cell, lane) pairs), or says why it cannot.
+std::optional<RowProblem> FillVertex(const RowCells& row_cells, const std::vector<std::pair<std::size_t, int>>& wanted,
+                                     const std::vector<std::string>& header, std::size_t line_length, Vec4f& row) {
+  const std::vector<Cell>& cells = row_cells.cells;
+  for (auto [cell, lane] : wanted) {
+    if (cell >= cells.size()) {
+      return RowProblem{static_cast<int>(line_length) + 1, DiagnosticCode::kCsvMissingCell,
+                        fmt::format("the row has {} cells; column '{}' is cell {}", cells.size(), header[cell], cell + 1)};
+    }
+    if (row_cells.errors[cell] != NumberError::kNone) {
+      return RowProblem{cells[cell].column, DiagnosticCode::kCsvNumber,
+                        row_cells.errors[cell] == NumberError::kOutOfRange
+                            ? fmt::format("'{}' is beyond the float range", cells[cell].text)
+                            : fmt::format("expected a number, found '{}'", cells[cell].text)};
+    }
+    if (lane >= 4) {
+      return RowProblem{cells[cell].column, DiagnosticCode::kCsvTooManyValues,
+                        fmt::format("{} numbers in a row: a vertex register holds at most four; name the columns to "
+                                    "read with v#=FILE:NAME (the lanes NAME.x..NAME.w) or v#=FILE:COL1,COL2,...",
+                                    cells.size())};
+    }
+    row[lane] = row_cells.values[cell];
+  }
+  return std::nullopt;
+}
+
 }  // namespace
 
 std::vector<Vec4f> ParseVertexCsv(std::string_view text, const std::string& file_name, Diagnostics& diagnostics,
@@ -289,7 +332,7 @@ std::vector<Vec4f> ParseVertexCsv(std::string_view text, const std::string& file
   for (std::size_t n = 0; n < lines.size(); ++n) {
     const int line_number = static_cast<int>(n) + 1;
     if (std::size_t at = lines[n].find(other); at != std::string_view::npos) {
-      errors.Add(line_number, static_cast<int>(at) + 1,
+      errors.Add(line_number, static_cast<int>(at) + 1, DiagnosticCode::kCsvSeparator,
                  separator == ';' ? "',' in a ';'-separated file: write decimals with '.' (1.5, not 1,5)"
                                   : "';' in a ','-separated file: separate every row the same way");
       continue;
@@ -311,14 +354,14 @@ std::vector<Vec4f> ParseVertexCsv(std::string_view text, const std::string& file
           std::string error;
           choice = ChooseColumns(header, columns, error);
           if (!choice) {
-            diagnostics.Error({file_name, line_number, 1}, error);
+            diagnostics.Error({file_name, line_number, 1}, DiagnosticCode::kCsvColumns, error);
             return {};
           }
         }
         continue;
       }
       if (!columns.empty()) {
-        diagnostics.Error({file_name, line_number, 1},
+        diagnostics.Error({file_name, line_number, 1}, DiagnosticCode::kCsvColumns,
                           fmt::format("columns '{}' asked for, but the first row is numbers, not a header naming "
                                       "the columns",
                                       columns));
@@ -333,30 +376,9 @@ std::vector<Vec4f> ParseVertexCsv(std::string_view text, const std::string& file
       for (std::size_t c = 0; c < cells.size(); ++c) wanted.emplace_back(c, static_cast<int>(c));
     }
     Vec4f row = kDefaultInput;
-    std::optional<std::string> error;
-    int error_column = 1;
-    for (auto [cell, lane] : wanted) {
-      if (cell >= cells.size()) {
-        error = fmt::format("the row has {} cells; column '{}' is cell {}", cells.size(), header[cell], cell + 1);
-        error_column = static_cast<int>(lines[n].size()) + 1;
-      } else if (cell_errors[cell] != NumberError::kNone) {
-        error = cell_errors[cell] == NumberError::kOutOfRange
-                    ? fmt::format("'{}' is beyond the float range", cells[cell].text)
-                    : fmt::format("expected a number, found '{}'", cells[cell].text);
-        error_column = cells[cell].column;
-      } else if (lane >= 4) {
-        error = fmt::format("{} numbers in a row: a vertex register holds at most four; name the columns to read "
-                            "with v#=FILE:NAME (the lanes NAME.x..NAME.w) or v#=FILE:COL1,COL2,...",
-                            cells.size());
-        error_column = cells[cell].column;
-      } else {
-        row[lane] = values[cell];
-        continue;
-      }
-      break;
-    }
-    if (error) {
-      errors.Add(line_number, error_column, std::move(*error));
+    const RowCells row_cells{cells, values, cell_errors};
+    if (std::optional<RowProblem> problem = FillVertex(row_cells, wanted, header, lines[n].size(), row)) {
+      errors.Add(line_number, problem->column, problem->code, std::move(problem->message));
     } else {
       rows.push_back(row);
     }

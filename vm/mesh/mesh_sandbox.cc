@@ -195,6 +195,46 @@ std::optional<bool> ReserveForRecord(std::vector<std::uint8_t>& reply) {
   return true;
 }
 
+// Reads the child's reply from `fd` into `reply` until the child closes its end: "" then, or why the
+// reading stopped before (the deadline passed, the reply outgrew the limits, the wait failed).
+std::string ReceiveReply(int fd, Clock::time_point deadline, double seconds, const std::string& name,
+                         std::vector<std::uint8_t>& reply) {
+  // A larger pipe means fewer turns between the processes (the default 64 KiB is kept on failure).
+  fcntl(fd, F_SETPIPE_SZ, 1 << 20);
+  std::array<std::uint8_t, 1 << 16> chunk;  // on the stack: a fresh heap buffer per load costs page faults
+  std::optional<bool> reserved;  // unset until the record's header has arrived
+  for (;;) {
+    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now()).count();
+    if (left <= 0) {
+      const bool in_vs11 = DecodeChildReply(reply).last_stage == static_cast<char>(LoadStage::kVs11);
+      return fmt::format("reading {} did not finish within {} s ({}; the file may be corrupt, or raise the "
+                         "time limit with --mesh-timeout)", name, seconds,
+                         in_vs11 ? "in vs11's conversion, after Assimp read it" : "in Assimp's reader");
+    }
+    pollfd wait_for = {fd, POLLIN, 0};
+    const int ready = poll(&wait_for, 1, static_cast<int>(std::min<long long>(left, 1000)));
+    if (ready < 0 && errno != EINTR) {
+      return fmt::format("{}: waiting for the process that reads it failed ({})", name, std::strerror(errno));
+    }
+    if (ready <= 0) continue;
+    const ssize_t got = read(fd, chunk.data(), chunk.size());
+    if (got < 0 && errno == EINTR) continue;
+    if (got <= 0) return "";  // end of file: the child has exited (or failed to read)
+    if (reply.size() + static_cast<std::size_t>(got) > kMaxReplyBytes + 16) {
+      return fmt::format("{}: the mesh is larger than the loader's limits", name);
+    }
+    reply.insert(reply.end(), chunk.begin(), chunk.begin() + got);
+    if (!reserved) {
+      // The record's length is known once its header arrives: room for all of it at once spares
+      // the copies (and on a virtual machine, the page faults) of a growing buffer.
+      reserved = ReserveForRecord(reply);
+      if (reserved.has_value() && !*reserved) {
+        return fmt::format("{}: the mesh is larger than the loader's limits or the memory", name);
+      }
+    }
+  }
+}
+
 }  // namespace
 
 double TimeLimitSeconds(const MeshLoadOptions& options, std::uintmax_t input_bytes) {
@@ -233,46 +273,8 @@ MeshLoadResult RunSandboxed(const std::string& name, std::uintmax_t input_bytes,
   }
   close(fds[1]);
 
-  // A larger pipe means fewer turns between the processes (the default 64 KiB is kept on failure).
-  fcntl(fds[0], F_SETPIPE_SZ, 1 << 20);
   std::vector<std::uint8_t> reply;
-  std::array<std::uint8_t, 1 << 16> chunk;  // on the stack: a fresh heap buffer per load costs page faults
-  std::optional<bool> reserved;  // unset until the record's header has arrived
-  std::string refusal;
-  for (;;) {
-    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now()).count();
-    if (left <= 0) {
-      const bool in_vs11 = DecodeChildReply(reply).last_stage == static_cast<char>(LoadStage::kVs11);
-      refusal = fmt::format("reading {} did not finish within {} s ({}; the file may be corrupt, or raise the "
-                            "time limit with --mesh-timeout)", name, seconds,
-                            in_vs11 ? "in vs11's conversion, after Assimp read it" : "in Assimp's reader");
-      break;
-    }
-    pollfd wait_for = {fds[0], POLLIN, 0};
-    const int ready = poll(&wait_for, 1, static_cast<int>(std::min<long long>(left, 1000)));
-    if (ready < 0 && errno != EINTR) {
-      refusal = fmt::format("{}: waiting for the process that reads it failed ({})", name, std::strerror(errno));
-      break;
-    }
-    if (ready <= 0) continue;
-    const ssize_t got = read(fds[0], chunk.data(), chunk.size());
-    if (got < 0 && errno == EINTR) continue;
-    if (got <= 0) break;  // end of file: the child has exited (or failed to read)
-    if (reply.size() + static_cast<std::size_t>(got) > kMaxReplyBytes + 16) {
-      refusal = fmt::format("{}: the mesh is larger than the loader's limits", name);
-      break;
-    }
-    reply.insert(reply.end(), chunk.begin(), chunk.begin() + got);
-    if (!reserved) {
-      // The record's length is known once its header arrives: room for all of it at once spares
-      // the copies (and on a virtual machine, the page faults) of a growing buffer.
-      reserved = ReserveForRecord(reply);
-      if (reserved.has_value() && !*reserved) {
-        refusal = fmt::format("{}: the mesh is larger than the loader's limits or the memory", name);
-        break;
-      }
-    }
-  }
+  const std::string refusal = ReceiveReply(fds[0], deadline, seconds, name, reply);
   close(fds[0]);
   if (!refusal.empty()) {
     KillChild(pid);

@@ -93,19 +93,37 @@ TEST(VerifyMetadata, ReportsBadLinesWithFileAndLine) {
       "; vs11: just words\n"
       "; vs11: fragment=maybe\n",
       "bad.vsh");
-  EXPECT_EQ(r.diagnostics.error_count(), 6) << r.diagnostics.ToString();
-  const std::string text = r.diagnostics.ToString();
-  EXPECT_NE(text.find("bad.vsh:1"), std::string::npos) << text;
-  EXPECT_NE(text.find("unknown reference 'nosuch'"), std::string::npos) << text;
-  EXPECT_NE(text.find("bad.vsh:2"), std::string::npos) << text;
-  EXPECT_NE(text.find("unknown metadata key 'colour'"), std::string::npos) << text;
-  EXPECT_NE(text.find("bad.vsh:6"), std::string::npos) << text;
+  ASSERT_EQ(r.diagnostics.error_count(), 6) << r.diagnostics.ToString();
+  const std::vector<DiagnosticCode> expected = {DiagnosticCode::kMetadataValue,      DiagnosticCode::kMetadataUnknownKey,
+                                                DiagnosticCode::kMetadataValue,      DiagnosticCode::kMetadataValue,
+                                                DiagnosticCode::kMetadataSyntax,     DiagnosticCode::kMetadataValue};
+  for (int line = 1; line <= 6; ++line) {
+    const Diagnostic& d = r.diagnostics.all()[line - 1];
+    EXPECT_EQ(d.loc.file, "bad.vsh");
+    EXPECT_EQ(d.loc.line, line);
+    EXPECT_EQ(d.code, expected[line - 1]) << d.message;
+  }
+  // The key or value at fault is named.
+  EXPECT_NE(r.diagnostics.all()[0].message.find("'nosuch'"), std::string::npos);
+  EXPECT_NE(r.diagnostics.all()[1].message.find("'colour'"), std::string::npos);
+}
+
+// An unknown packing is answered with every packing there is (Sh9PackingNames), not a list typed by hand.
+TEST(VerifyMetadata, UnknownPackingNamesEveryPacking) {
+  MetadataResult r = ParseProgramMetadata("; vs11: packing=nope\n", "p.vsh");
+  ASSERT_EQ(r.diagnostics.error_count(), 1);
+  EXPECT_EQ(r.diagnostics.all()[0].code, DiagnosticCode::kMetadataValue);
+  for (Sh9Packing packing : kAllSh9Packings) {
+    EXPECT_NE(r.diagnostics.all()[0].message.find(Sh9PackingName(packing)), std::string::npos) << Sh9PackingName(packing);
+  }
 }
 
 TEST(VerifyMetadata, RepeatedKeyWarnsAndTheLastWins) {
   MetadataResult r = ParseProgramMetadata("; vs11: output=oD0\n; vs11: output=oD1\n", "p.vsh");
   EXPECT_FALSE(r.diagnostics.HasErrors());
-  EXPECT_EQ(r.diagnostics.all().size(), 1u);
+  ASSERT_EQ(r.diagnostics.all().size(), 1u);
+  EXPECT_EQ(r.diagnostics.all()[0].code, DiagnosticCode::kMetadataDuplicateKey);
+  EXPECT_EQ(r.diagnostics.all()[0].loc.line, 2);
   EXPECT_EQ(r.metadata.output, static_cast<int>(OutputSlot::kSpecular));
 }
 
@@ -401,7 +419,9 @@ TEST(VerifyLoading, FragmentsSkipOnlyThePositionRule) {
 TEST(VerifyLoading, MissingFileIsAnError) {
   ProgramForVerify loaded = LoadProgramForVerify("/nonexistent/p.vsh");
   EXPECT_FALSE(loaded.program);
-  EXPECT_NE(loaded.diagnostics.ToString().find("/nonexistent/p.vsh"), std::string::npos);
+  ASSERT_EQ(loaded.diagnostics.all().size(), 1u);
+  EXPECT_EQ(loaded.diagnostics.all()[0].code, DiagnosticCode::kCannotReadFile);
+  EXPECT_EQ(loaded.diagnostics.all()[0].loc.file, "/nonexistent/p.vsh");
 }
 
 // ---- the command line -----------------------------------------------------------------------------

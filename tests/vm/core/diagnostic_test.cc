@@ -35,7 +35,7 @@ TEST(DiagnosticCode, NamesAreDistinctLowerCaseWords) {
 TEST(DiagnosticCode, IsPrintedAfterTheMessage) {
   Diagnostic d{{"p.vsh", 3, 7}, Severity::kWarning, DiagnosticCode::kUninitializedLanes, "mul: reads r4.w", -1};
   EXPECT_EQ(FormatDiagnostic(d), "p.vsh:3:7: warning: mul: reads r4.w [uninitialized-lanes]");
-  d.code = DiagnosticCode::kUnclassified;  // input outside the front end: no code printed
+  d.code = DiagnosticCode::kUnclassified;  // a Diagnostic made field by field: no code printed
   EXPECT_EQ(FormatDiagnostic(d), "p.vsh:3:7: warning: mul: reads r4.w");
 }
 

@@ -1,5 +1,5 @@
 // What the engine tests cover on this machine. The per-target suites (EngineDifferential,
-// BatchEngine) run once per Highway target that this build compiled and this CPU supports; targets
+// BatchEngine, and the irradiance kernels' ProjectionKernels and RowSumKernels) run once per Highway target that this build compiled and this CPU supports; targets
 // the CPU lacks (AVX-512 on an AVX2 machine) are silently not run. This test checks that each suite
 // is instantiated for exactly the targets the CPU runs, and prints them, the targets left out and
 // what the jit engine ran, so that a CI log says what was and was not covered (.ci/run and
@@ -52,11 +52,13 @@ TEST(EngineCoverage, PerTargetSuitesRunOnEveryTargetThisCpuSupports) {
     (runs ? run_here : not_run).push_back(hwy::TargetName(target));
   }
   std::printf("[ coverage ] Highway targets compiled: %s\n", Join(compiled).c_str());
-  std::printf("[ coverage ] batch kernels tested on (this CPU): %s\n", Join(run_here).c_str());
+  std::printf("[ coverage ] Highway kernels (batch engine, SH projection, ground truth) tested on (this CPU): %s\n",
+              Join(run_here).c_str());
   std::printf("[ coverage ] NOT tested here (this CPU lacks them): %s\n", Join(not_run).c_str());
   const std::set<std::string> expected(run_here.begin(), run_here.end());
   EXPECT_FALSE(expected.empty());
-  for (const char* suite : {"EngineDifferential", "BatchEngine"}) {
+  // The engines' suites, and the irradiance kernels' (irradiance/sh/projection_kernels.h, row_sum_kernels.h).
+  for (const char* suite : {"EngineDifferential", "BatchEngine", "ProjectionKernels", "RowSumKernels"}) {
     EXPECT_EQ(InstantiatedTargets(suite), expected) << suite << " does not run on every supported target";
   }
 
