@@ -68,9 +68,20 @@ void EngineFlags::AddTo(CLI::App& command) {
       ->check(CLI::IsMember({"ref", "reference", "batch", "jit"}))
       ->capture_default_str();
   command.add_option("--threads", threads, "Threads for the batch and jit engines")->check(CLI::Range(1, 256))->capture_default_str();
+  float_rules.AddTo(command);
 }
 
 EngineKind EngineFlags::Kind() const { return EngineKindFromName(engine).value_or(EngineKind::kJit); }
+
+void FloatRulesFlag::AddTo(CLI::App& command) {
+  command.add_option("--float-rules", name,
+                     "Products of mul, mad, dp3, dp4, m*x*, dst and lit's power: d3d9 (IEEE: 0 * inf = NaN) or "
+                     "legacy (0 * anything = 0, as DX8-era hardware and DXVK's strict mode)")
+      ->check(CLI::IsMember({"d3d9", "legacy"}))
+      ->capture_default_str();
+}
+
+FloatRules FloatRulesFlag::Rules() const { return FloatRulesFromName(name).value_or(FloatRules::kD3d9); }
 
 void Fail(const std::string& message) {
   std::fprintf(stderr, "error: %s\n", message.c_str());

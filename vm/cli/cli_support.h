@@ -36,13 +36,22 @@ struct ProgramFlags {
 // there are errors.
 Program LoadProgramOrFail(const std::string& path, const ProgramFlags& flags);
 
-// "--engine ref|batch|jit" (jit by default: batch kernels where the CPU has no AVX2) and "--threads N".
+// "--float-rules d3d9|legacy" (vm/core/float_rules.h): for the engines and the translation.
+struct FloatRulesFlag {
+  std::string name = "d3d9";
+  void AddTo(CLI::App& command);
+  FloatRules Rules() const;
+};
+
+// "--engine ref|batch|jit" (jit by default: batch kernels where the CPU has no AVX2), "--threads N"
+// and "--float-rules".
 struct EngineFlags {
   std::string engine = "jit";
   int threads = 1;
+  FloatRulesFlag float_rules;
   void AddTo(CLI::App& command);
   EngineKind Kind() const;
-  EngineOptions Options() const { return {threads}; }
+  EngineOptions Options() const { return {.threads = threads, .float_rules = float_rules.Rules()}; }
 };
 
 // Prints "error: MESSAGE" to stderr and throws CommandFailure{1}.

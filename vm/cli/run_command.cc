@@ -136,7 +136,8 @@ void RunProgram(const RunArgs& args) {
   VertexArrays outputs = MakeOutputArrays(count, program);
   MakeEngine(args.engine.Kind(), program, constants, args.engine.Options())->Run(inputs, outputs);
   if (args.trace.active()) {
-    ReportTraces(args.trace, args.program, program, constants, inputs, outputs, EngineName(args.engine.Kind()));
+    ReportTraces(args.trace, args.program, program, constants, inputs, outputs, EngineName(args.engine.Kind()),
+                 args.engine.float_rules.Rules());
   }
   WriteVertexOutputs(args.sources, sources, program, outputs);
   if (args.out.empty() && (args.sources.WritesOutputFiles() || args.trace.active())) return;
@@ -162,12 +163,16 @@ constexpr const char* kRunFooter =
     "to oD0/oD1/oFog after the shader is not applied).\n"
     "Debugging: --trace 0,5 prints vertices 0 and 5 instruction by instruction (source line, values\n"
     "read, lanes written) on the reference engine, beside the --engine's outputs, which must be identical\n"
-    "(exit 1 if not); the CSV then goes only to --out. --trace-json FILE writes the same record as JSON.\n\n"
+    "(exit 1 if not); the CSV then goes only to --out. --trace-json FILE writes the same record as JSON.\n"
+    "Float rules: --float-rules legacy makes every product of mul, mad, dp3, dp4, m*x*, dst and lit's\n"
+    "power 0 when an operand is 0 (0 * inf = 0, as DX8-era hardware), on every engine and in --trace;\n"
+    "d3d9 (the default) keeps IEEE's NaN.\n\n"
     "Examples:\n"
     "  vs11 run programs/sh9_irradiance.vsh --fragment --consts out/constants.vsh --sphere 6 --sphere-reg v0\n"
     "  vs11 run programs/sh9_irradiance.vsh --fragment --consts out/constants.vsh --sphere 6 --sphere-reg v0 --trace 2\n"
     "  vs11 run light.vsh --input v0=positions.csv --input v1=normals.csv --const c4=0,0,1,0 --out lit.csv\n"
-    "  vs11 run light.vsh --input v0=lit.csv:oPos --input v1=normals.csv --const c4=0,0,1,0";
+    "  vs11 run light.vsh --input v0=lit.csv:oPos --input v1=normals.csv --const c4=0,0,1,0\n"
+    "  vs11 run programs/sh9_irradiance.vsh --input v0=normals.csv --const c0=inf,1,1,1 --float-rules legacy";
 
 }  // namespace
 

@@ -117,7 +117,8 @@ void AddVerifyCommand(CLI::App& app) {
       "The machine reports raw output values (D3D would clamp oD0/oD1/oFog to [0, 1] afterwards).\n"
       "\n"
       "--against-engine E runs the program on --engine and on E with the same inputs (the reference's, or random\n"
-      "ones when there is no reference) and compares every written output lane bit for bit.\n"
+      "ones when there is no reference) and compares every written output lane bit for bit; --float-rules\n"
+      "applies to both engines.\n"
       "\n"
       "Exit status: 0 pass (or identical), 1 fail (or different) or an error, 2 bad usage.\n"
       "\n"
@@ -125,7 +126,8 @@ void AddVerifyCommand(CLI::App& app) {
       "  vs11 verify programs/sh9_irradiance.vsh\n"
       "  vs11 verify programs/sh9_irradiance.vsh --engine ref --coeffs grace.json --samples 1000 --json\n"
       "  vs11 verify my.vsh --reference sh9 --output oT0 --tolerance 1e-6\n"
-      "  vs11 verify programs/skinning.vsh --against-engine ref\n",
+      "  vs11 verify programs/skinning.vsh --against-engine ref\n"
+      "  vs11 verify programs/skinning.vsh --against-engine ref --float-rules legacy\n",
       ReferenceHelp(), irr::kDefaultVerifyTolerance));
   command->add_option("program", flags->program, "Program file (.vsh source or .vso bytecode)")->required();
   command->add_option("--reference", flags->reference,

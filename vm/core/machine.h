@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "vm/core/float_rules.h"
 #include "vm/core/program.h"
 
 namespace vs11 {
@@ -150,6 +151,8 @@ struct EngineOptions {
   // The threads a split call runs on; null: ThreadPool::Default(), the process's one pool sized to
   // the cores. The pool must outlive the engine.
   ThreadPool* pool = nullptr;
+  // The rule every product follows (vm/core/float_rules.h); every engine gives the same bits under either.
+  FloatRules float_rules = FloatRules::kD3d9;
 };
 
 }  // namespace vs11

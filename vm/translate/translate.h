@@ -8,6 +8,7 @@
 
 #include <string>
 
+#include "vm/core/float_rules.h"
 #include "vm/core/isa.h"
 #include "vm/core/program.h"
 #include "vm/translate/profile.h"
@@ -25,6 +26,9 @@ struct TranslateOptions {
   int constant_count = kDefaultConstantCount;  // the `uniform vec4 c[N]` bank (--max-constants)
   ClipSpace clip = ClipSpace::kTargetApi;
   std::string source_name;  // named in the output's header comment
+  // The rule every product follows (--float-rules; vm/core/float_rules.h): under kLegacy each product
+  // is written as the compares and selects of semantics::Product around its multiply.
+  FloatRules float_rules = FloatRules::kD3d9;
 };
 
 // The GLSL that `options.target` starts from (for SPIR-V: the Vulkan GLSL that is compiled). Never
