@@ -205,7 +205,7 @@ def test_bad_engine_and_threads_are_value_errors():
 
 @pytest.mark.parametrize("engine", ["ref", "batch", "jit"])
 def test_float_rules_decide_infinity_times_zero(engine):
-    program = vs11.assemble("vs_1_1\ndcl_position v0\nmul oD0, c0, v0\n")
+    program = vs11.assemble("vs_1_1\ndcl_position v0\nmul oD0, c0, v0\n", fragment=True)
     zero_lanes = {"v0": np.array([[0.0, -0.0, 2.0, 0.0]], np.float32)}
     infinite = {"c0": [np.inf, np.inf, np.inf, -np.inf]}
     d3d9 = program.run(zero_lanes, infinite, engine=engine)["oD0"][0]

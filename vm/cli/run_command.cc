@@ -172,7 +172,7 @@ constexpr const char* kRunFooter =
     "  vs11 run programs/sh9_irradiance.vsh --fragment --consts out/constants.vsh --sphere 6 --sphere-reg v0 --trace 2\n"
     "  vs11 run light.vsh --input v0=positions.csv --input v1=normals.csv --const c4=0,0,1,0 --out lit.csv\n"
     "  vs11 run light.vsh --input v0=lit.csv:oPos --input v1=normals.csv --const c4=0,0,1,0\n"
-    "  vs11 run programs/sh9_irradiance.vsh --input v0=normals.csv --const c0=inf,1,1,1 --float-rules legacy";
+    "  vs11 run programs/sh9_irradiance.vsh --input v0=infinite_normals.csv --float-rules legacy";
 
 }  // namespace
 
