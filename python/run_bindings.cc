@@ -28,6 +28,12 @@ EngineKind CheckedEngine(const std::string& engine, int threads) {
   return *kind;
 }
 
+FloatRules CheckedFloatRules(const std::string& name) {
+  std::optional<FloatRules> rules = FloatRulesFromName(name);
+  if (!rules) throw py::value_error(fmt::format("float_rules='{}': use 'd3d9' or 'legacy'", name));
+  return *rules;
+}
+
 // The warnings `vs11 run` prints before it starts, as Python warnings.
 void WarnUnsetRegisters(const PyProgram& self, const std::vector<int>& constants_given,
                         const std::vector<int>& inputs_given) {
@@ -38,8 +44,9 @@ void WarnUnsetRegisters(const PyProgram& self, const std::vector<int>& constants
 }
 
 py::dict Run(const PyProgram& self, const py::dict& inputs, const py::object& constants, const std::string& engine,
-             int threads) {
+             int threads, const std::string& float_rules) {
   const EngineKind kind = CheckedEngine(engine, threads);
+  const FloatRules rules = CheckedFloatRules(float_rules);
   std::vector<int> constants_given;
   const ConstantBank bank = ConstantsFromPython(constants, self.constant_count, constants_given);
   const RunInputs run_inputs = InputsFromPython(self.program, inputs);
@@ -48,14 +55,16 @@ py::dict Run(const PyProgram& self, const py::dict& inputs, const py::object& co
   {
     // Nothing below touches a Python object: other Python threads (and other engines) run meanwhile.
     py::gil_scoped_release release;
-    MakeEngine(kind, self.program, bank, EngineOptions{threads})->Run(run_inputs.arrays, *outputs);
+    MakeEngine(kind, self.program, bank, EngineOptions{.threads = threads, .float_rules = rules})
+        ->Run(run_inputs.arrays, *outputs);
   }
   return OutputsToPython(std::move(outputs));
 }
 
 py::object Trace(const PyProgram& self, const py::dict& inputs, const py::object& constants, long long vertex,
-                 const std::string& engine) {
+                 const std::string& engine, const std::string& float_rules) {
   const EngineKind kind = CheckedEngine(engine, 1);
+  const FloatRules rules = CheckedFloatRules(float_rules);
   std::vector<int> constants_given;
   const ConstantBank bank = ConstantsFromPython(constants, self.constant_count, constants_given);
   const RunInputs run_inputs = InputsFromPython(self.program, inputs);
@@ -69,8 +78,8 @@ py::object Trace(const PyProgram& self, const py::dict& inputs, const py::object
   std::string json;
   {
     py::gil_scoped_release release;
-    MakeEngine(kind, self.program, bank, EngineOptions{1})->Run(run_inputs.arrays, outputs);
-    VertexTrace trace = TraceVertex(self.program, bank, run_inputs.arrays, static_cast<std::size_t>(vertex));
+    MakeEngine(kind, self.program, bank, EngineOptions{.threads = 1, .float_rules = rules})->Run(run_inputs.arrays, outputs);
+    VertexTrace trace = TraceVertex(self.program, bank, run_inputs.arrays, static_cast<std::size_t>(vertex), rules);
     CompareOutputs(outputs, trace);
     SourceLines sources;
     json = TraceJson(self.program, trace, sources);
@@ -83,7 +92,7 @@ py::object Trace(const PyProgram& self, const py::dict& inputs, const py::object
 void BindRun(py::class_<PyProgram>& program_class) {
   program_class.def(
       "run", &Run, py::arg("inputs"), py::arg("constants") = py::none(), py::arg("engine") = "jit",
-      py::arg("threads") = 1,
+      py::arg("threads") = 1, py::arg("float_rules") = "d3d9",
       "Runs the program over n vertices and returns {output name: (n, 4) float32 array}.\n\n"
       "inputs: {'v0' or a dcl usage name ('position', 'normal', 'texcoord1'): array}, each array\n"
       "  (n, 4) or (n, 3) (w = 1, as D3D's FLOAT3), float32 or float64, any strides; every array\n"
@@ -92,6 +101,8 @@ void BindRun(py::class_<PyProgram>& program_class) {
       "  registers read 0. The program's def lines win.\n"
       "engine: 'jit' (default), 'batch' or 'ref'; all three give the same bits.\n"
       "threads: threads for the batch and jit engines (1 to 256).\n"
+      "float_rules: 'd3d9' (default: IEEE products, 0 * inf = NaN) or 'legacy' (every product of mul,\n"
+      "  mad, dp3, dp4, m*x*, dst and lit's power is 0 when an operand is 0), as `vs11 run --float-rules`.\n"
       "Each input is read once from the caller's buffer into the engines' structure-of-arrays layout\n"
       "(no intermediate NumPy copy, whatever the dtype or strides); the returned arrays are views of\n"
       "the engine's output buffer (no copy). The GIL is released while the engine runs. Constants\n"
@@ -102,12 +113,12 @@ void BindRun(py::class_<PyProgram>& program_class) {
       "  out['oD0']  # (1, 4) float32");
   program_class.def(
       "trace", &Trace, py::arg("inputs"), py::arg("constants") = py::none(), py::arg("vertex") = 0,
-      py::arg("engine") = "jit",
+      py::arg("engine") = "jit", py::arg("float_rules") = "d3d9",
       "Runs one vertex instruction by instruction on the reference engine and returns the record\n"
       "`vs11 run --trace-json` writes for it: a dict with 'vertex', 'identical', 'inputs', 'steps'\n"
       "(one dict per executed instruction: 'index', 'instruction', 'reads', 'write', and 'file',\n"
       "'line', 'source' for assembled text) and 'outputs' (the reference's and `engine`'s values).\n"
-      "inputs and constants as for run(); raises IndexError for a vertex out of range.\n\n"
+      "inputs, constants and float_rules as for run(); raises IndexError for a vertex out of range.\n\n"
       "Example:\n"
       "  steps = p.trace({'v0': normals}, constants, vertex=2)['steps']");
 }

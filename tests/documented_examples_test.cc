@@ -91,6 +91,8 @@ const std::map<std::string, std::function<void(const fs::path&)>>& Fixtures() {
        }},
       {"positions.csv", [](const fs::path& dir) { WriteText(dir / "positions.csv", "x,y,z\n0,0,0\n1,0,0\n0,1,0\n"); }},
       {"normals.csv", [](const fs::path& dir) { WriteText(dir / "normals.csv", "nx,ny,nz\n0,0,1\n1,0,0\n0,1,0\n"); }},
+      {"infinite_normals.csv",  // --float-rules: infinities times the unset (zero) constants
+       [](const fs::path& dir) { WriteText(dir / "infinite_normals.csv", "nx,ny,nz\ninf,0,1\n0,-inf,0\n"); }},
       {"grace.json",
        [](const fs::path& dir) {
          std::string rows;

@@ -3,6 +3,7 @@
 // program's instruction-slot count (vm/core/program.h ComputeStats) as the counter "slots".
 //
 // /jit runs the CPU's best jit instruction set; /jit_avx2 is added where AVX-512 is the best.
+// /batch_legacy and /jit_legacy run under --float-rules legacy (vm/core/float_rules.h).
 // BM_Program/<name>/threads:T/<vertices> runs /jit with T threads (capped at the cores: the default
 // pool's size) over 1024, 65536 and 1M vertices, real time (the CPU time of one thread would
 // hide the others); the CPU column is the whole process's, so T threads against one show what the
@@ -122,6 +123,10 @@ const bool kRegistered = [] {
     }
     for (EngineKind kind : {EngineKind::kReference, EngineKind::kBatch, EngineKind::kJit}) {
       add(std::string(EngineName(kind)), kind, {});
+    }
+    // --float-rules legacy: what the compares and selects around every product cost.
+    for (EngineKind kind : {EngineKind::kBatch, EngineKind::kJit}) {
+      add(std::string(EngineName(kind)) + "_legacy", kind, {.float_rules = FloatRules::kLegacy});
     }
     // /jit is the CPU's best instruction set; the narrower ones it also runs are measured too.
     const std::vector<JitIsa> isas = jit::SupportedIsas();

@@ -206,6 +206,23 @@ def test_bad_engine_and_threads_are_value_errors():
         program.run({"v0": np.zeros((2, 4))}, engine="gl")
 
 
+@pytest.mark.parametrize("engine", ["ref", "batch", "jit"])
+def test_float_rules_decide_infinity_times_zero(engine):
+    program = vs11.assemble("vs_1_1\ndcl_position v0\nmul oD0, c0, v0\n", fragment=True)
+    zero_lanes = {"v0": np.array([[0.0, -0.0, 2.0, 0.0]], np.float32)}
+    infinite = {"c0": [np.inf, np.inf, np.inf, -np.inf]}
+    d3d9 = program.run(zero_lanes, infinite, engine=engine)["oD0"][0]
+    legacy = program.run(zero_lanes, infinite, engine=engine, float_rules="legacy")["oD0"][0]
+    assert np.isnan(d3d9[[0, 1, 3]]).all() and d3d9[2] == np.inf
+    # The zero operand keeps its sign: +0, -0, then inf * 2, then +0 (-inf * +0).
+    assert [np.signbit(x) for x in legacy] == [False, True, False, False]
+    assert legacy[0] == 0 and legacy[1] == 0 and legacy[2] == np.inf and legacy[3] == 0
+    trace = program.trace(zero_lanes, infinite, engine=engine, float_rules="legacy")
+    assert trace["identical"] and trace["outputs"][0]["reference"][0] == 0
+    with pytest.raises(ValueError, match="float_rules='strict'"):
+        program.run(zero_lanes, infinite, float_rules="strict")
+
+
 def test_trace_is_what_vs11_run_trace_json_writes(programs_dir, vs11_tool, tmp_path):
     path = programs_dir / "sh9_irradiance.vsh"
     program = vs11.load(str(path))

@@ -46,12 +46,14 @@ class Program:
         constants: Constants = None,
         engine: str = "jit",
         threads: int = 1,
+        float_rules: str = "d3d9",
     ) -> dict[str, npt.NDArray[np.float32]]:
         """Runs the program over n vertices.
 
         inputs: {'v0' or a dcl usage name ('normal', 'texcoord1'): (n, 4) or (n, 3) float32/float64}.
         constants: {'c4' or 4: four numbers} or a (k, 4) array of c0..c(k-1).
         engine: 'jit', 'batch' or 'ref' (the same bits); threads: 1 to 256.
+        float_rules: 'd3d9' (IEEE products: 0 * inf = NaN) or 'legacy' (0 * anything = 0).
         Returns {output name: (n, 4) float32 view of the engine's output}; the GIL is released while
         the engine runs; unset constants and missing inputs warn (UserWarning).
         """
@@ -61,6 +63,7 @@ class Program:
         constants: Constants = None,
         vertex: int = 0,
         engine: str = "jit",
+        float_rules: str = "d3d9",
     ) -> dict[str, Any]:
         """One vertex instruction by instruction: the record `vs11 run --trace-json` writes."""
 

@@ -77,12 +77,14 @@ void EngineFlags::AddTo(CLI::App& command) {
       ->check([](const std::string& value) {
         return value == "list" || gl::GlDeviceIndex(value) ? std::string() : "expected 'list' or a device number";
       });
+  float_rules.AddTo(command);
 }
 
 EngineKind EngineFlags::Kind() const { return EngineKindFromName(engine).value_or(EngineKind::kJit); }
 
 EngineOptions EngineFlags::Options() const {
   EngineOptions options{threads};
+  options.float_rules = float_rules.Rules();
   options.gl_device = gl::GlDeviceIndex(gl_device);
   return options;
 }
@@ -111,6 +113,16 @@ void RunOrFail(Engine& engine, const VertexArrays& inputs, VertexArrays& outputs
   engine.Run(inputs, outputs);
   if (const std::string error = engine.error(); !error.empty()) Fail(error);
 }
+
+void FloatRulesFlag::AddTo(CLI::App& command) {
+  command.add_option("--float-rules", name,
+                     "Products of mul, mad, dp3, dp4, m*x*, dst and lit's power: d3d9 (IEEE: 0 * inf = NaN) or "
+                     "legacy (0 * anything = 0, as DX8-era hardware and DXVK's strict mode)")
+      ->check(CLI::IsMember({"d3d9", "legacy"}))
+      ->capture_default_str();
+}
+
+FloatRules FloatRulesFlag::Rules() const { return FloatRulesFromName(name).value_or(FloatRules::kD3d9); }
 
 void Fail(const std::string& message) {
   std::fprintf(stderr, "error: %s\n", message.c_str());

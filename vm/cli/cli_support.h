@@ -37,12 +37,20 @@ struct ProgramFlags {
 // there are errors.
 Program LoadProgramOrFail(const std::string& path, const ProgramFlags& flags);
 
-// "--engine ref|batch|jit|gl" (jit by default: batch kernels where the CPU has no AVX2), "--threads N"
-// and "--gl-device list|N".
+// "--float-rules d3d9|legacy" (vm/core/float_rules.h): for the engines and the translation.
+struct FloatRulesFlag {
+  std::string name = "d3d9";
+  void AddTo(CLI::App& command);
+  FloatRules Rules() const;
+};
+
+// "--engine ref|batch|jit|gl" (jit by default: batch kernels where the CPU has no AVX2), "--threads N",
+// "--gl-device list|N" and "--float-rules".
 struct EngineFlags {
   std::string engine = "jit";
   int threads = 1;
   std::string gl_device;  // empty (llvmpipe), "list" or an EGL device's index
+  FloatRulesFlag float_rules;
   void AddTo(CLI::App& command);
   EngineKind Kind() const;
   EngineOptions Options() const;

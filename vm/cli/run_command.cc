@@ -137,7 +137,8 @@ void RunProgram(const RunArgs& args) {
   VertexArrays outputs = MakeOutputArrays(count, program);
   RunOrFail(*MakeEngineOrFail(args.engine.Kind(), program, constants, args.engine.Options()), inputs, outputs);
   if (args.trace.active()) {
-    ReportTraces(args.trace, args.program, program, constants, inputs, outputs, EngineName(args.engine.Kind()));
+    ReportTraces(args.trace, args.program, program, constants, inputs, outputs, EngineName(args.engine.Kind()),
+                 args.engine.float_rules.Rules());
   }
   WriteVertexOutputs(args.sources, sources, program, outputs);
   if (args.out.empty() && (args.sources.WritesOutputFiles() || args.trace.active())) return;
@@ -168,13 +169,17 @@ constexpr const char* kRunFooter =
     "through EGL with no display: Mesa's llvmpipe, or the EGL device --gl-device N names (--gl-device list\n"
     "prints them). Where no EGL device gives OpenGL ES 3.0 it says why and exits 1. Its outputs equal the\n"
     "other engines' on ordinary inputs; a driver may flush denormals and lose -0 (README, \"The gl engine\").\n\n"
+    "Float rules: --float-rules legacy makes every product of mul, mad, dp3, dp4, m*x*, dst and lit's\n"
+    "power 0 when an operand is 0 (0 * inf = 0, as DX8-era hardware), on every engine and in --trace;\n"
+    "d3d9 (the default) keeps IEEE's NaN.\n\n"
     "Examples:\n"
     "  vs11 run programs/sh9_irradiance.vsh --fragment --consts out/constants.vsh --sphere 6 --sphere-reg v0\n"
     "  vs11 run programs/sh9_irradiance.vsh --fragment --consts out/constants.vsh --sphere 6 --sphere-reg v0 --trace 2\n"
     "  vs11 run light.vsh --input v0=positions.csv --input v1=normals.csv --const c4=0,0,1,0 --out lit.csv\n"
     "  vs11 run light.vsh --input v0=lit.csv:oPos --input v1=normals.csv --const c4=0,0,1,0\n"
     "  vs11 run programs/sh9_irradiance.vsh --fragment --consts out/constants.vsh --sphere 6 --sphere-reg v0 --engine gl\n"
-    "  vs11 run programs/sh9_irradiance.vsh --gl-device list";
+    "  vs11 run programs/sh9_irradiance.vsh --gl-device list\n"
+    "  vs11 run programs/sh9_irradiance.vsh --input v0=infinite_normals.csv --float-rules legacy";
 
 }  // namespace
 

@@ -30,18 +30,18 @@ void TraceFlags::AddTo(CLI::App& command) {
 
 void ReportTraces(const TraceFlags& flags, const std::string& program_path, const Program& program,
                   const ConstantBank& constants, const VertexArrays& inputs, const VertexArrays& engine_outputs,
-                  std::string_view engine_name) {
+                  std::string_view engine_name, FloatRules rules) {
   for (std::size_t vertex : flags.vertices) {
     if (vertex >= inputs.count()) {
       Fail(fmt::format("--trace {}: there are {} vertices (0 to {})", vertex, inputs.count(), inputs.count() - 1));
     }
   }
   SourceLines sources;
-  json document = {{"program", program_path}, {"engine", engine_name}};
+  json document = {{"program", program_path}, {"engine", engine_name}, {"float_rules", FloatRulesName(rules)}};
   json vertices = json::array();
   std::vector<std::size_t> different;
   for (std::size_t vertex : flags.vertices) {
-    VertexTrace trace = TraceVertex(program, constants, inputs, vertex);
+    VertexTrace trace = TraceVertex(program, constants, inputs, vertex, rules);
     CompareOutputs(engine_outputs, trace);
     std::fputs(FormatTraceText(program, trace, engine_name, sources).c_str(), stdout);
     if (!trace.identical()) different.push_back(vertex);

@@ -16,6 +16,7 @@ void AddTranslateCommand(CLI::App& app) {
   struct Args {
     std::string input, output = "-", target, clip;
     ProgramFlags flags;
+    FloatRulesFlag float_rules;
   };
   auto args = std::make_shared<Args>();
   CLI::App* command = app.add_subcommand(
@@ -25,11 +26,14 @@ void AddTranslateCommand(CLI::App& app) {
       "The output begins with its interface: vN at location N, the constants as vec4 c[--max-constants],\n"
       "oPos to gl_Position (--clip) and to vs11_oPos as written, oD0 oD1 oT0..oT7 oFog oPts as outputs of\n"
       "those names; the README's \"vs11 translate\" section has the details. SPIR-V (Vulkan 1.0, compiled\n"
-      "by glslang) is binary and is written to a file only.\n\n"
+      "by glslang) is binary and is written to a file only. --float-rules legacy writes every product of\n"
+      "mul, mad, dp3, dp4, m*x*, dst and lit's power as (b == 0 ? 0 : a) * (a == 0 ? 0 : b), as the engines\n"
+      "compute it under the same flag.\n\n"
       "Examples:\n"
       "  vs11 translate programs/sh9_irradiance.vsh --to glsl330\n"
       "  vs11 translate programs/skinning.vsh --to glsles300 --clip d3d -o skinning.vert\n"
-      "  vs11 translate programs/point_light.vsh --to spirv -o point_light.spv");
+      "  vs11 translate programs/point_light.vsh --to spirv -o point_light.spv\n"
+      "  vs11 translate programs/skinning.vsh --to spirv --float-rules legacy -o skinning_legacy.spv");
   command->add_option("input", args->input, "Program (.vsh source or .vso bytecode)")->required();
   command->add_option("--to", args->target, "Target: glsl330, glsles300 or spirv")
       ->required()
@@ -40,6 +44,7 @@ void AddTranslateCommand(CLI::App& app) {
                       "for the GLSL targets, vulkan for spirv")
       ->check(CLI::IsMember({"d3d", "gl", "vulkan"}));
   args->flags.AddTo(*command);
+  args->float_rules.AddTo(*command);
   command->callback([args] {
     translate::TranslateOptions options;
     options.target = *translate::TargetFromName(args->target);
@@ -50,6 +55,7 @@ void AddTranslateCommand(CLI::App& app) {
     Program program = LoadProgramOrFail(args->input, args->flags);
     options.constant_count = args->flags.constant_count;
     if (!args->clip.empty()) options.clip = *translate::ClipSpaceFromName(args->clip);
+    options.float_rules = args->float_rules.Rules();
     options.source_name = args->input;
     translate::Artifact artifact = translate::Translate(program, options);
     if (!artifact.error.empty()) Fail(artifact.error);

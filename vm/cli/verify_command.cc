@@ -118,7 +118,8 @@ void AddVerifyCommand(CLI::App& app) {
       "The machine reports raw output values (D3D would clamp oD0/oD1/oFog to [0, 1] afterwards).\n"
       "\n"
       "--against-engine E runs the program on --engine and on E with the same inputs (the reference's, or random\n"
-      "ones when there is no reference) and compares every written output lane bit for bit.\n"
+      "ones when there is no reference) and compares every written output lane bit for bit; --float-rules\n"
+      "applies to both engines.\n"
       "--engine gl (or --against-engine gl) runs the GLSL ES translation on Mesa's llvmpipe or --gl-device N\n"
       "(vs11 run --help); no EGL device with OpenGL ES 3.0 is an error (exit 1).\n"
       "\n"
@@ -130,7 +131,8 @@ void AddVerifyCommand(CLI::App& app) {
       "  vs11 verify my.vsh --reference sh9 --output oT0 --tolerance 1e-6\n"
       "  vs11 verify programs/skinning.vsh --against-engine ref\n"
       "  vs11 verify programs/skinning.vsh --engine gl --against-engine ref\n"
-      "  vs11 verify programs/sh9_irradiance.vsh --engine gl\n",
+      "  vs11 verify programs/sh9_irradiance.vsh --engine gl\n"
+      "  vs11 verify programs/skinning.vsh --against-engine ref --float-rules legacy\n",
       ReferenceHelp(), irr::kDefaultVerifyTolerance));
   command->add_option("program", flags->program, "Program file (.vsh source or .vso bytecode)")->required();
   command->add_option("--reference", flags->reference,

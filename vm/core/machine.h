@@ -11,6 +11,7 @@
 #include <string>
 #include <vector>
 
+#include "vm/core/float_rules.h"
 #include "vm/core/program.h"
 
 namespace vs11 {
@@ -160,6 +161,8 @@ struct EngineOptions {
   // The gl engine: the EGL device (vm/gl/gl_context.h's ListGlDevices index, `--gl-device N`); nullopt:
   // Mesa's llvmpipe. The CPU engines ignore it.
   std::optional<int> gl_device = std::nullopt;
+  // The rule every product follows (vm/core/float_rules.h); every engine gives the same bits under either.
+  FloatRules float_rules = FloatRules::kD3d9;
 };
 
 }  // namespace vs11

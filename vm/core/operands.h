@@ -39,9 +39,9 @@ auto AddressFromFloat(V x) {
                           Constant(x, -static_cast<float>(kAddressLimit))));
 }
 
-template <class V>
+template <FloatRules kRules, class V>
 V DotOfWidth(int width, const Vec4<V>& a, const Vec4<V>& b) {
-  return width == 3 ? Dot<V, 3>(a, b) : Dot<V, 4>(a, b);
+  return width == 3 ? Dot<kRules, V, 3>(a, b) : Dot<kRules, V, 4>(a, b);
 }
 
 // Register `reg` + `row` (row > 0: the next registers of a matrix operand). Temporaries and inputs
@@ -88,8 +88,9 @@ void StoreDest(M& machine, const DestOperand& dest, const typename M::Vec4& valu
   }
 }
 
-// One instruction on `machine`: Semantics is the row's kernel (<Name>Semantics in semantics.h).
-template <class Semantics, class M>
+// One instruction on `machine`: Semantics is the row's kernel (<Name>Semantics in semantics.h), its
+// products under kRules.
+template <class Semantics, FloatRules kRules, class M>
 void Execute(M& machine, const Instruction& instruction) {
   using Float = typename M::Float;
   using Vec4F = typename M::Vec4;
@@ -97,17 +98,19 @@ void Execute(M& machine, const Instruction& instruction) {
   std::array<Vec4F, 3> src{};
   for (int s = 0; s < info.source_count(); ++s) src[s] = FetchSource(machine, instruction.sources[s], 0);
   Vec4F result{};
-  if constexpr (requires(Float v) { Semantics::Lane(v, v, v); }) {
-    for (int lane = 0; lane < 4; ++lane) result[lane] = Semantics::Lane(src[0][lane], src[1][lane], src[2][lane]);
-  } else if constexpr (requires(Float v) { Semantics::Scalar(v); }) {
+  if constexpr (HasLane<Semantics, Float>) {
+    for (int lane = 0; lane < 4; ++lane) {
+      result[lane] = RunLane<kRules, Semantics>(src[0][lane], src[1][lane], src[2][lane]);
+    }
+  } else if constexpr (HasScalar<Semantics, Float>) {
     result.fill(Semantics::Scalar(src[0][3]));
-  } else if constexpr (requires(Vec4F v) { Semantics::Vector(v, v); }) {
-    result = Semantics::Vector(src[0], src[1]);
+  } else if constexpr (HasVector<Semantics, Float>) {
+    result = RunVector<kRules, Semantics>(src[0], src[1]);
   } else if (info.kind == ResultKind::kDotProduct) {
-    result.fill(DotOfWidth(info.dot_width, src[0], src[1]));
+    result.fill(DotOfWidth<kRules>(info.dot_width, src[0], src[1]));
   } else if (info.kind == ResultKind::kMatrix) {
     for (int row = 0; row < info.matrix_rows; ++row) {
-      result[row] = DotOfWidth(info.dot_width, src[0],
+      result[row] = DotOfWidth<kRules>(info.dot_width, src[0],
                                FetchSource(machine, instruction.sources[OpcodeInfo::kMatrixSource], row));
     }
   } else {

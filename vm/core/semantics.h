@@ -13,6 +13,8 @@
 #include <cmath>
 #include <cstdint>
 
+#include "vm/core/float_rules.h"
+
 namespace vs11::semantics {
 
 template <class V>
@@ -133,18 +135,27 @@ V PartialPrecision(V x) {
 }
 
 // A product an instruction computes from its operands: mul, mad, dp3, dp4, the matrices, dst.y and
-// lit's power. One function, so that a rule for such products (issue 20 §3: the legacy
-// 0 * anything = 0) is one change; the transcendental helpers' own multiplications stay plain. A lane
-// type may overload it (the translator names the products it emits, vm/translate/shader_graph.cc).
-template <class V>
+// lit's power, under the float rules the engine or translation was made with (vm/core/float_rules.h).
+// The transcendental helpers' own multiplications stay plain. kRules is a template argument so that
+// each rule is compiled in: d3d9's products are the bare multiply they always were, with no test.
+//
+// kLegacy is DXVK's form, compares and selects that every lane type already has: an operand is
+// replaced by +0 where the other is zero, so 0 * inf and 0 * NaN give 0. The sign of a zero result
+// follows from the form: the zero operand's own sign when the other is not zero, +0 when both are.
+template <FloatRules kRules, class V>
 V Product(V a, V b) {
-  return a * b;
+  if constexpr (kRules == FloatRules::kLegacy) {
+    const V zero = Constant(a, 0.0f);
+    return IfThenElse(b == zero, zero, a) * IfThenElse(a == zero, zero, b);
+  } else {
+    return a * b;
+  }
 }
 
-template <class V, int kWidth>
+template <FloatRules kRules, class V, int kWidth>
 V Dot(const Vec4<V>& a, const Vec4<V>& b) {
-  V sum = Product(a[0], b[0]);
-  for (int i = 1; i < kWidth; ++i) sum = sum + Product(a[i], b[i]);  // left to right, unfused
+  V sum = Product<kRules>(a[0], b[0]);
+  for (int i = 1; i < kWidth; ++i) sum = sum + Product<kRules>(a[i], b[i]);  // left to right, unfused
   return sum;
 }
 
@@ -152,6 +163,8 @@ V Dot(const Vec4<V>& a, const Vec4<V>& b) {
 // One struct per row of VS11_OPCODES (vm/core/isa.h), named <Name>Semantics. Its member matches the row's
 // ResultKind: Lane (componentwise), Scalar (scalar: one value from the source's w lane), Vector
 // (vector). Dot products and matrices use Dot above with the row's dot width; nop/dcl/def do nothing.
+// A member that computes products takes the float rules as its first template argument
+// (FollowsFloatRules below); the engines call every member through RunLane and RunVector.
 
 struct NopSemantics {};
 struct DclSemantics {};
@@ -174,10 +187,11 @@ struct SubSemantics {
   template <class V> static V Lane(V a, V b, V) { return a - b; }
 };
 struct MulSemantics {
-  template <class V> static V Lane(V a, V b, V) { return Product(a, b); }
+  template <FloatRules kRules, class V> static V Lane(V a, V b, V) { return Product<kRules>(a, b); }
 };
 struct MadSemantics {
-  template <class V> static V Lane(V a, V b, V c) { return Product(a, b) + c; }  // unfused: -ffp-contract=off
+  // Unfused (-ffp-contract=off; the jit emits a multiply and an add).
+  template <FloatRules kRules, class V> static V Lane(V a, V b, V c) { return Product<kRules>(a, b) + c; }
 };
 struct MinSemantics {
   template <class V> static V Lane(V a, V b, V) { return IfThenElse(a < b, a, b); }
@@ -218,18 +232,18 @@ struct LogSemantics {
 };
 
 struct LitSemantics {
-  template <class V> static Vec4<V> Vector(const Vec4<V>& a, const Vec4<V>&) {
+  template <FloatRules kRules, class V> static Vec4<V> Vector(const Vec4<V>& a, const Vec4<V>&) {
     const V zero = Constant(a[0], 0.0f), one = Constant(a[0], 1.0f);
     V power = IfThenElse(a[3] < Constant(a[0], kLitMaxPower), a[3], Constant(a[0], kLitMaxPower));
     power = IfThenElse(power > Constant(a[0], -kLitMaxPower), power, Constant(a[0], -kLitMaxPower));
-    V specular = Exp2(Product(power, Log2(a[1])));
+    V specular = Exp2(Product<kRules>(power, Log2(a[1])));
     auto lit = a[0] > zero;
     return {one, IfThenElse(lit, a[0], zero), IfThenElse(lit, IfThenElse(a[1] > zero, specular, zero), zero), one};
   }
 };
 struct DstSemantics {
-  template <class V> static Vec4<V> Vector(const Vec4<V>& a, const Vec4<V>& b) {
-    return {Constant(a[0], 1.0f), Product(a[1], b[1]), a[2], b[3]};
+  template <FloatRules kRules, class V> static Vec4<V> Vector(const Vec4<V>& a, const Vec4<V>& b) {
+    return {Constant(a[0], 1.0f), Product<kRules>(a[1], b[1]), a[2], b[3]};
   }
 };
 struct ExppSemantics {
@@ -256,5 +270,42 @@ struct LogpSemantics {
             IfThenElse(zero, lowest, PartialPrecision(Log2(v))), one};
   }
 };
+
+// ---- calling a kernel ------------------------------------------------------------------------------
+// Whether a kernel depends on the float rules is written once, in its member's signature: these
+// concepts read it, and RunLane and RunVector pass the rules to the members that take them. The
+// batch engine compiles a second kernel only for a kernel that follows them.
+
+template <class Semantics>
+concept FollowsFloatRules =
+    requires(float v) { Semantics::template Lane<FloatRules::kD3d9>(v, v, v); } ||
+    requires(const Vec4<float>& v) { Semantics::template Vector<FloatRules::kD3d9>(v, v); };
+
+template <class Semantics, class V>
+concept HasLane = requires(V v) { Semantics::Lane(v, v, v); } ||
+                  requires(V v) { Semantics::template Lane<FloatRules::kD3d9>(v, v, v); };
+template <class Semantics, class V>
+concept HasScalar = requires(V v) { Semantics::Scalar(v); };
+template <class Semantics, class V>
+concept HasVector = requires(const Vec4<V>& v) { Semantics::Vector(v, v); } ||
+                    requires(const Vec4<V>& v) { Semantics::template Vector<FloatRules::kD3d9>(v, v); };
+
+template <FloatRules kRules, class Semantics, class V>
+V RunLane(V a, V b, V c) {
+  if constexpr (FollowsFloatRules<Semantics>) {
+    return Semantics::template Lane<kRules>(a, b, c);
+  } else {
+    return Semantics::Lane(a, b, c);
+  }
+}
+
+template <FloatRules kRules, class Semantics, class V>
+Vec4<V> RunVector(const Vec4<V>& a, const Vec4<V>& b) {
+  if constexpr (FollowsFloatRules<Semantics>) {
+    return Semantics::template Vector<kRules>(a, b);
+  } else {
+    return Semantics::Vector(a, b);
+  }
+}
 
 }  // namespace vs11::semantics

@@ -14,7 +14,7 @@
 
 namespace vs11::batch {
 namespace HWY_NAMESPACE {
-const KernelTable* GetKernelTable();  // defined by vm/batch_kernels_<target>.cc
+const KernelTable* GetKernelTable(FloatRules rules);  // defined by vm/batch_kernels_<target>.cc
 }  // namespace HWY_NAMESPACE
 }  // namespace vs11::batch
 
@@ -134,16 +134,17 @@ class BatchEngine final : public Engine {
   BatchEngine(const Program& program, const ConstantBank& api_constants, const EngineOptions& options,
               bool compile_program)
       : program_(program),
-        plan_(BuildBatchPlan(program, *HWY_DYNAMIC_DISPATCH(GetKernelTable)())),
+        plan_(BuildBatchPlan(program, *HWY_DYNAMIC_DISPATCH(GetKernelTable)(options.float_rules))),
         written_(WrittenOutputLanes(program)),
         min_vertices_per_task_(MinVerticesPerPiece(program)),
         threads_(static_cast<std::size_t>(std::max(1, options.threads))),
         // The default pool's threads start only in a process whose engines may split a call.
         pool_(options.pool != nullptr ? options.pool : threads_ > 1 ? &ThreadPool::Default() : nullptr),
-        isa_(options.jit_isa) {
+        isa_(options.jit_isa),
+        rules_(options.float_rules) {
     if (compile_program) {
       std::string why_not;
-      variants_.emplace_back(std::vector<jit::UniformInput>{}, jit::Compile(program, why_not, options.jit_isa));
+      variants_.emplace_back(std::vector<jit::UniformInput>{}, jit::Compile(program, why_not, options.jit_isa, {}, rules_));
       if (variants_.back().second) {
         compiled_ = variants_.back().second.get();
       } else {
@@ -211,7 +212,7 @@ class BatchEngine final : public Engine {
       }
     }
     std::string why_not;
-    std::unique_ptr<jit::CompiledProgram> compiled = jit::Compile(program_, why_not, isa_, uniform);
+    std::unique_ptr<jit::CompiledProgram> compiled = jit::Compile(program_, why_not, isa_, uniform, rules_);
     if (!compiled) return;  // keep the one that reads every lane
     if (variants_.size() == kMaxVariants) variants_.erase(variants_.begin() + 1);  // the first reads every lane
     variants_.emplace_back(std::move(uniform), std::move(compiled));
@@ -318,6 +319,7 @@ class BatchEngine final : public Engine {
   // compiled_: the plan's kernels run the program.
   static constexpr std::size_t kMaxVariants = 8;
   JitIsa isa_;
+  FloatRules rules_;
   std::vector<std::pair<std::vector<jit::UniformInput>, std::unique_ptr<jit::CompiledProgram>>> variants_;
   const jit::CompiledProgram* compiled_ = nullptr;
   std::vector<Workspace> workspaces_;

@@ -182,7 +182,8 @@ class AnyOperandReader {
 
 // kLanes lanes of a componentwise op: dest[l] = Lane(a[l], b[l], c[l]); unused sources are broadcast
 // zeros. All loads of a vertex group come before its stores, so `add r0, r0.yzwx, r0` works in place.
-template <class Semantics, int kArity, OperandKind K0, OperandKind K1, OperandKind K2, std::size_t... kLane>
+template <class Semantics, FloatRules kRules, int kArity, OperandKind K0, OperandKind K1, OperandKind K2,
+          std::size_t... kLane>
 HWY_INLINE void ComponentwiseLanes(const Step& step, const Frame& frame, std::index_sequence<kLane...>) {
   constexpr std::size_t kLanes = sizeof...(kLane);
   const std::array<OperandReader<K0>, kLanes> a = {OperandReader<K0>(frame, step.sources[0][kLane], step.negate[0])...};
@@ -195,15 +196,15 @@ HWY_INLINE void ComponentwiseLanes(const Step& step, const Frame& frame, std::in
       const VF va = a[l](i);
       const VF vb = kArity > 1 ? b[l](i) : va;
       const VF vc = kArity > 2 ? c[l](i) : va;
-      result[l] = Semantics::Lane(va, vb, vc);
+      result[l] = semantics::RunLane<kRules, Semantics>(va, vb, vc);
     }
     for (std::size_t l = 0; l < kLanes; ++l) StoreLanes(result[l], out[l] + i);
   }
 }
 
-template <class Semantics, int kArity, int kLanes, OperandKind K0, OperandKind K1, OperandKind K2>
+template <class Semantics, FloatRules kRules, int kArity, int kLanes, OperandKind K0, OperandKind K1, OperandKind K2>
 void LaneKernel(const Step& step, const Frame& frame) {
-  ComponentwiseLanes<Semantics, kArity, K0, K1, K2>(step, frame, std::make_index_sequence<kLanes>());
+  ComponentwiseLanes<Semantics, kRules, kArity, K0, K1, K2>(step, frame, std::make_index_sequence<kLanes>());
 }
 
 template <class Semantics, OperandKind K>
@@ -217,7 +218,7 @@ void ScalarKernel(const Step& step, const Frame& frame) {
 
 // kRows dot products of one vector with kRows row operands. Every load of a vertex group comes
 // before its stores, so a row may write a lane another row (or the vector) reads.
-template <int kWidth, int kRows, OperandKind KVector, OperandKind KRow, std::size_t... kRow>
+template <FloatRules kRules, int kWidth, int kRows, OperandKind KVector, OperandKind KRow, std::size_t... kRow>
 HWY_INLINE void DotRows(const Step& step, const Frame& frame, std::index_sequence<kRow...>) {
   using Components = std::make_index_sequence<kWidth>;
   const auto vector = MakeReaders<KVector>(frame, step.sources[0], step.negate[0], Components());
@@ -230,19 +231,19 @@ HWY_INLINE void DotRows(const Step& step, const Frame& frame, std::index_sequenc
     VF result[kRows];
     for (int r = 0; r < kRows; ++r) {
       for (int c = 0; c < kWidth; ++c) b[c] = rows[r][c](i);
-      result[r] = semantics::Dot<VF, kWidth>(a, b);
+      result[r] = semantics::Dot<kRules, VF, kWidth>(a, b);
     }
     for (int r = 0; r < kRows; ++r) StoreLanes(result[r], out[r] + i);
   }
 }
 
-template <int kWidth, int kRows, OperandKind KVector, OperandKind KRow>
+template <FloatRules kRules, int kWidth, int kRows, OperandKind KVector, OperandKind KRow>
 void DotKernel(const Step& step, const Frame& frame) {
-  DotRows<kWidth, kRows, KVector, KRow>(step, frame, std::make_index_sequence<kRows>());
+  DotRows<kRules, kWidth, kRows, KVector, KRow>(step, frame, std::make_index_sequence<kRows>());
 }
 
 // lit, dst, expp, logp: whole vec4 in, masked vec4 out.
-template <class Semantics>
+template <class Semantics, FloatRules kRules>
 void VectorKernel(const Step& step, const Frame& frame) {
   std::array<std::array<AnyOperandReader, 4>, 2> sources;
   std::array<float*, 4> out{};
@@ -256,7 +257,7 @@ void VectorKernel(const Step& step, const Frame& frame) {
       a[c] = sources[0][c](i);
       b[c] = sources[1][c](i);
     }
-    const Vec4F result = Semantics::Vector(a, b);
+    const Vec4F result = semantics::RunVector<kRules, Semantics>(a, b);
     for (int c = 0; c < 4; ++c) {
       if (out[c] != nullptr) StoreLanes(result[c], out[c] + i);
     }
@@ -297,64 +298,69 @@ void GatherKernel(const Step& step, const Frame& frame) {
 
 constexpr int PowerOfThree(int exponent) { return exponent == 0 ? 1 : 3 * PowerOfThree(exponent - 1); }
 
-template <class Semantics, int kArity, int kLanes, std::size_t... kIndex>
+template <class Semantics, FloatRules kRules, int kArity, int kLanes, std::size_t... kIndex>
 void FillLaneKernels(std::array<Kernel, 27>& row, std::index_sequence<kIndex...>) {
-  ((row[kIndex] = &LaneKernel<Semantics, kArity, kLanes, static_cast<OperandKind>(kIndex % 3),
+  ((row[kIndex] = &LaneKernel<Semantics, kRules, kArity, kLanes, static_cast<OperandKind>(kIndex % 3),
                               (kArity > 1 ? static_cast<OperandKind>(kIndex / 3 % 3) : OperandKind::kBroadcast),
                               (kArity > 2 ? static_cast<OperandKind>(kIndex / 9) : OperandKind::kBroadcast)>),
    ...);
 }
 
-template <class Semantics, int kArity, std::size_t... kLanesMinusOne>
+template <class Semantics, FloatRules kRules, int kArity, std::size_t... kLanesMinusOne>
 void FillLaneCounts(std::array<std::array<Kernel, 27>, 4>& rows, std::index_sequence<kLanesMinusOne...>) {
-  (FillLaneKernels<Semantics, kArity, kLanesMinusOne + 1>(rows[kLanesMinusOne],
-                                                         std::make_index_sequence<PowerOfThree(kArity)>()),
+  (FillLaneKernels<Semantics, kRules, kArity, kLanesMinusOne + 1>(rows[kLanesMinusOne],
+                                                                 std::make_index_sequence<PowerOfThree(kArity)>()),
    ...);
 }
 
-template <int kWidth, int kRows, std::size_t... kIndex>
+template <FloatRules kRules, int kWidth, int kRows, std::size_t... kIndex>
 void FillDotKernels(std::array<Kernel, 9>& row, std::index_sequence<kIndex...>) {
-  ((row[kIndex] = &DotKernel<kWidth, kRows, static_cast<OperandKind>(kIndex % 3),
+  ((row[kIndex] = &DotKernel<kRules, kWidth, kRows, static_cast<OperandKind>(kIndex % 3),
                              static_cast<OperandKind>(kIndex / 3)>),
    ...);
 }
 
-template <int kWidth, std::size_t... kRowsMinusOne>
+template <FloatRules kRules, int kWidth, std::size_t... kRowsMinusOne>
 void FillDotWidth(std::array<std::array<Kernel, 9>, 4>& rows, std::index_sequence<kRowsMinusOne...>) {
-  (FillDotKernels<kWidth, kRowsMinusOne + 1>(rows[kRowsMinusOne], std::make_index_sequence<9>()), ...);
+  (FillDotKernels<kRules, kWidth, kRowsMinusOne + 1>(rows[kRowsMinusOne], std::make_index_sequence<9>()), ...);
 }
 
 // Picks the kernel family from the form of the opcode's semantics struct, as the reference engine's
-// Execute does.
-template <class Semantics, Opcode kOpcode>
+// Execute does. A kernel that does not follow the float rules (no products) is compiled once, for
+// d3d9, and kept by the tables of the other rules.
+template <class Semantics, Opcode kOpcode, FloatRules kRules>
 void FillOpcode(KernelTable& table) {
   constexpr int kIndex = static_cast<int>(kOpcode);
-  if constexpr (requires(VF v) { Semantics::Lane(v, v, v); }) {
+  if constexpr (kRules != FloatRules::kD3d9 && !semantics::FollowsFloatRules<Semantics>) {
+    return;
+  } else if constexpr (semantics::HasLane<Semantics, VF>) {
     constexpr int kArity = Info(kOpcode).source_count();
-    FillLaneCounts<Semantics, kArity>(table.lane[kIndex], std::make_index_sequence<4>());
-  } else if constexpr (requires(VF v) { Semantics::Scalar(v); }) {
+    FillLaneCounts<Semantics, kRules, kArity>(table.lane[kIndex], std::make_index_sequence<4>());
+  } else if constexpr (semantics::HasScalar<Semantics, VF>) {
     table.scalar[kIndex] = {&ScalarKernel<Semantics, OperandKind::kArray>,
                             &ScalarKernel<Semantics, OperandKind::kNegatedArray>,
                             &ScalarKernel<Semantics, OperandKind::kBroadcast>};
-  } else if constexpr (requires(Vec4F v) { Semantics::Vector(v, v); }) {
-    table.vector[kIndex] = &VectorKernel<Semantics>;
+  } else if constexpr (semantics::HasVector<Semantics, VF>) {
+    table.vector[kIndex] = &VectorKernel<Semantics, kRules>;
   }
 }
 
-KernelTable MakeKernelTable() {
-  KernelTable table;
-#define VS11_BATCH_FILL_OPCODE(name, ...) FillOpcode<semantics::name##Semantics, Opcode::k##name>(table);
+// `table` holds the d3d9 kernels for every rule but d3d9; this fills in what differs.
+template <FloatRules kRules>
+KernelTable MakeKernelTable(KernelTable table) {
+#define VS11_BATCH_FILL_OPCODE(name, ...) FillOpcode<semantics::name##Semantics, Opcode::k##name, kRules>(table);
   VS11_OPCODES(VS11_BATCH_FILL_OPCODE)
 #undef VS11_BATCH_FILL_OPCODE
-  FillDotWidth<3>(table.dot[0], std::make_index_sequence<4>());
-  FillDotWidth<4>(table.dot[1], std::make_index_sequence<4>());
+  FillDotWidth<kRules, 3>(table.dot[0], std::make_index_sequence<4>());
+  FillDotWidth<kRules, 4>(table.dot[1], std::make_index_sequence<4>());
   table.gather = &GatherKernel;
   return table;
 }
 
-const KernelTable* GetKernelTable() {
-  static const KernelTable table = MakeKernelTable();
-  return &table;
+const KernelTable* GetKernelTable(FloatRules rules) {
+  static const KernelTable d3d9 = MakeKernelTable<FloatRules::kD3d9>(KernelTable());
+  static const KernelTable legacy = MakeKernelTable<FloatRules::kLegacy>(d3d9);
+  return rules == FloatRules::kLegacy ? &legacy : &d3d9;
 }
 
 }  // namespace HWY_NAMESPACE

@@ -46,7 +46,7 @@ std::unique_ptr<Engine> MakeFailedEngine(std::string error) { return std::make_u
 
 std::unique_ptr<Engine> MakeEngine(EngineKind kind, const Program& program, const ConstantBank& api_constants,
                                    const EngineOptions& options) {
-  if (kind == EngineKind::kReference) return MakeReferenceEngine(program, api_constants);
+  if (kind == EngineKind::kReference) return MakeReferenceEngine(program, api_constants, options.float_rules);
   if (kind == EngineKind::kBatch || kind == EngineKind::kJit) {
     return MakeBatchEngine(program, api_constants, options, kind == EngineKind::kJit);
   }

@@ -552,7 +552,7 @@ std::string_view IsaName(JitIsa isa) {
 }
 
 std::unique_ptr<CompiledProgram> Compile(const Program& program, std::string& why_not, JitIsa isa,
-                                         std::span<const UniformInput> uniform_inputs) {
+                                         std::span<const UniformInput> uniform_inputs, FloatRules rules) {
   const std::vector<JitIsa> supported = SupportedIsas();
   if (supported.empty()) {
     why_not = "the CPU has no AVX2";
@@ -564,13 +564,13 @@ std::unique_ptr<CompiledProgram> Compile(const Program& program, std::string& wh
     return nullptr;
   }
   const VectorShape shape = isa == JitIsa::kAvx512 ? kAvx512Shape : kAvx2Shape;
-  Graph graph = TraceProgram(program, 1, uniform_inputs);
+  Graph graph = TraceProgram(program, 1, uniform_inputs, rules);
   int groups = 1;
   // Two groups, with AVX2 or AVX-512: four groups of 16 spilled more than they hid (measured on
   // all_instructions, 1.6 vs 2.8 ms per 65536 vertices), and one group of 16 was slower still.
   if (LongestChain(graph) >= kLongChain) {
     groups = 2;
-    graph = TraceProgram(program, groups, uniform_inputs);
+    graph = TraceProgram(program, groups, uniform_inputs, rules);
   }
   static_assert(batch::kVertexGranule % 64 == 0, "an iteration takes at most 64 vertices");
   try {

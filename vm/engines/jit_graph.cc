@@ -80,18 +80,17 @@ using Vec4F = semantics::Vec4<Float>;
 
 class Tracer {
  public:
-  Tracer(int group, std::span<const UniformInput> uniform_inputs)
-      : group_(static_cast<std::uint32_t>(group) << kGroupShift), uniform_inputs_(uniform_inputs) {
+  Tracer(int group, std::span<const UniformInput> uniform_inputs, FloatRules rules)
+      : group_(static_cast<std::uint32_t>(group) << kGroupShift), uniform_inputs_(uniform_inputs), rules_(rules) {
     const Float zero = ZeroLane();
     for (auto& temp : temps_) temp.fill(zero);
   }
 
   void Trace(const Instruction& instruction) {
-    switch (instruction.opcode) {
-#define VS11_JIT_TRACE_CASE(name, ...) \
-  case Opcode::k##name: semantics::Execute<semantics::name##Semantics>(*this, instruction); break;
-      VS11_OPCODES(VS11_JIT_TRACE_CASE)
-#undef VS11_JIT_TRACE_CASE
+    if (rules_ == FloatRules::kLegacy) {
+      TraceWith<FloatRules::kLegacy>(instruction);
+    } else {
+      TraceWith<FloatRules::kD3d9>(instruction);
     }
   }
 
@@ -153,6 +152,16 @@ class Tracer {
  private:
   static Float ZeroLane() { return Constant(Float{}, 0.0f); }
 
+  template <FloatRules kRules>
+  void TraceWith(const Instruction& instruction) {
+    switch (instruction.opcode) {
+#define VS11_JIT_TRACE_CASE(name, ...) \
+  case Opcode::k##name: semantics::Execute<semantics::name##Semantics, kRules>(*this, instruction); break;
+      VS11_OPCODES(VS11_JIT_TRACE_CASE)
+#undef VS11_JIT_TRACE_CASE
+    }
+  }
+
   // c[a0.x + index] of every vertex, component by component, by the rule the batch engine's
   // GatherKernel reads too (vm/core/constant_gather.h).
   Vec4F Gather(long index) const {
@@ -172,15 +181,17 @@ class Tracer {
   bool address_written_ = false;
   std::uint32_t group_;
   std::span<const UniformInput> uniform_inputs_;
+  FloatRules rules_;
 };
 
 }  // namespace
 
-Graph TraceProgram(const Program& program, int groups, std::span<const UniformInput> uniform_inputs) {
+Graph TraceProgram(const Program& program, int groups, std::span<const UniformInput> uniform_inputs,
+                   FloatRules rules) {
   Graph graph;
   tracing = &graph;
   std::vector<Tracer> tracers;
-  for (int group = 0; group < groups; ++group) tracers.emplace_back(group, uniform_inputs);
+  for (int group = 0; group < groups; ++group) tracers.emplace_back(group, uniform_inputs, rules);
   for (const Instruction& instruction : program.instructions) {
     for (Tracer& tracer : tracers) tracer.Trace(instruction);
   }

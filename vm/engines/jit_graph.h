@@ -75,8 +75,9 @@ constexpr bool IsMask(Op op) {
 }
 
 // One vertex group per `groups`, interleaved instruction by instruction; `uniform_inputs` are
-// compiled in as literals.
-Graph TraceProgram(const Program& program, int groups, std::span<const UniformInput> uniform_inputs);
+// compiled in as literals; products follow `rules`.
+Graph TraceProgram(const Program& program, int groups, std::span<const UniformInput> uniform_inputs,
+                   FloatRules rules);
 
 // Operations on the longest dependency chain.
 int LongestChain(const Graph& graph);

@@ -29,9 +29,9 @@ struct ReferenceMachine {
 // Checks at compile time that each row's kernel has the form its ResultKind says.
 template <class Semantics>
 constexpr bool KernelMatchesKind(ResultKind kind) {
-  if constexpr (requires { Semantics::Lane(0.0f, 0.0f, 0.0f); }) return kind == ResultKind::kComponentwise;
-  if constexpr (requires { Semantics::Scalar(0.0f); }) return kind == ResultKind::kScalar;
-  if constexpr (requires { Semantics::Vector(Vec4f{}, Vec4f{}); }) return kind == ResultKind::kVector;
+  if constexpr (semantics::HasLane<Semantics, float>) return kind == ResultKind::kComponentwise;
+  if constexpr (semantics::HasScalar<Semantics, float>) return kind == ResultKind::kScalar;
+  if constexpr (semantics::HasVector<Semantics, float>) return kind == ResultKind::kVector;
   return kind == ResultKind::kDotProduct || kind == ResultKind::kMatrix || kind == ResultKind::kNoResult;
 }
 #define VS11_CHECK_KERNEL(name, mnemonic, token, shape, kind, ...) \
@@ -39,11 +39,28 @@ constexpr bool KernelMatchesKind(ResultKind kind) {
 VS11_OPCODES(VS11_CHECK_KERNEL)
 #undef VS11_CHECK_KERNEL
 
+template <FloatRules kRules>
+void RunInstructions(const Program& program, const ConstantBank& constants, VertexState& state,
+                     InstructionObserver* observer) {
+  ReferenceMachine<VertexState> machine{constants, state};
+  for (std::size_t i = 0; i < program.instructions.size(); ++i) {
+    const Instruction& instruction = program.instructions[i];
+    if (observer != nullptr) observer->Before(static_cast<int>(i), state);
+    switch (instruction.opcode) {
+#define VS11_EXECUTE_CASE(name, ...) \
+  case Opcode::k##name: semantics::Execute<semantics::name##Semantics, kRules>(machine, instruction); break;
+      VS11_OPCODES(VS11_EXECUTE_CASE)
+#undef VS11_EXECUTE_CASE
+    }
+    if (observer != nullptr) observer->After(static_cast<int>(i), state);
+  }
+}
+
 class ReferenceEngine final : public Engine {
  public:
-  ReferenceEngine(const Program& program, const ConstantBank& api_constants)
+  ReferenceEngine(const Program& program, const ConstantBank& api_constants, FloatRules rules)
       : program_(program), constants_(ApplyDefinitions(program, api_constants)),
-        written_(WrittenOutputLanes(program)) {}
+        written_(WrittenOutputLanes(program)), rules_(rules) {}
 
   void SetConstants(const ConstantBank& api_constants) override {
     constants_ = ApplyDefinitions(program_, api_constants);
@@ -54,7 +71,7 @@ class ReferenceEngine final : public Engine {
     VertexState state;
     for (std::size_t i = 0; i < inputs.count(); ++i) {
       StartVertex(inputs, i, written_, state);
-      RunVertex(program_, constants_, state);
+      RunVertex(program_, constants_, state, nullptr, rules_);
       for (int slot : output_slots) {
         for (int c = 0; c < 4; ++c) outputs.lane(slot, c)[i] = state.outputs[slot][c];
       }
@@ -65,6 +82,7 @@ class ReferenceEngine final : public Engine {
   Program program_;
   ConstantBank constants_;
   std::array<WriteMask, kOutputSlotCount> written_;
+  FloatRules rules_;
 };
 
 }  // namespace
@@ -91,23 +109,17 @@ void StartVertex(const VertexArrays& inputs, std::size_t vertex, const std::arra
 }
 
 void RunVertex(const Program& program, const ConstantBank& constants, VertexState& state,
-               InstructionObserver* observer) {
-  ReferenceMachine<VertexState> machine{constants, state};
-  for (std::size_t i = 0; i < program.instructions.size(); ++i) {
-    const Instruction& instruction = program.instructions[i];
-    if (observer != nullptr) observer->Before(static_cast<int>(i), state);
-    switch (instruction.opcode) {
-#define VS11_EXECUTE_CASE(name, ...) \
-  case Opcode::k##name: semantics::Execute<semantics::name##Semantics>(machine, instruction); break;
-      VS11_OPCODES(VS11_EXECUTE_CASE)
-#undef VS11_EXECUTE_CASE
-    }
-    if (observer != nullptr) observer->After(static_cast<int>(i), state);
+               InstructionObserver* observer, FloatRules rules) {
+  if (rules == FloatRules::kLegacy) {
+    RunInstructions<FloatRules::kLegacy>(program, constants, state, observer);
+  } else {
+    RunInstructions<FloatRules::kD3d9>(program, constants, state, observer);
   }
 }
 
-std::unique_ptr<Engine> MakeReferenceEngine(const Program& program, const ConstantBank& api_constants) {
-  return std::make_unique<ReferenceEngine>(program, api_constants);
+std::unique_ptr<Engine> MakeReferenceEngine(const Program& program, const ConstantBank& api_constants,
+                                            FloatRules rules) {
+  return std::make_unique<ReferenceEngine>(program, api_constants, rules);
 }
 
 }  // namespace vs11

@@ -30,9 +30,10 @@ class InstructionObserver {
   virtual void After(int instruction_index, const VertexState& state) = 0;
 };
 
-// Runs `program` (def constants already folded into `constants`) on one vertex.
+// Runs `program` (def constants already folded into `constants`) on one vertex, its products under
+// `rules`.
 void RunVertex(const Program& program, const ConstantBank& constants, VertexState& state,
-               InstructionObserver* observer = nullptr);
+               InstructionObserver* observer = nullptr, FloatRules rules = FloatRules::kD3d9);
 
 // Vertex `vertex` of `inputs` loaded into `state` as the engine starts it: unsupplied inputs read
 // kDefaultInput, temporaries and a0 0, outputs the program never writes UnwrittenOutputValue
@@ -46,6 +47,7 @@ void StartVertex(const VertexArrays& inputs, std::size_t vertex, const std::arra
 Vec4f ReadRegister(const RegisterRef& reg, int row, const ConstantBank& constants, const VertexState& state);
 Vec4f FetchSource(const SourceOperand& source, int row, const ConstantBank& constants, const VertexState& state);
 
-std::unique_ptr<Engine> MakeReferenceEngine(const Program& program, const ConstantBank& api_constants);
+std::unique_ptr<Engine> MakeReferenceEngine(const Program& program, const ConstantBank& api_constants,
+                                            FloatRules rules = FloatRules::kD3d9);
 
 }  // namespace vs11

@@ -109,7 +109,7 @@ bool VertexTrace::identical() const {
 }
 
 VertexTrace TraceVertex(const Program& program, const ConstantBank& api_constants, const VertexArrays& inputs,
-                        std::size_t vertex) {
+                        std::size_t vertex, FloatRules rules) {
   VertexTrace trace;
   trace.vertex = vertex;
   trace.input_registers = inputs.registers();
@@ -118,7 +118,7 @@ VertexTrace TraceVertex(const Program& program, const ConstantBank& api_constant
   StartVertex(inputs, vertex, WrittenOutputLanes(program), trace.start);
   trace.end = trace.start;
   TraceRecorder recorder(program, constants, trace.steps);
-  RunVertex(program, constants, trace.end, &recorder);
+  RunVertex(program, constants, trace.end, &recorder, rules);
   return trace;
 }
 

@@ -57,10 +57,11 @@ struct VertexTrace {
   bool identical() const;            // every output equal to the engine's
 };
 
-// Runs vertex `vertex` of `inputs` (vertex < inputs.count()) on the reference engine and records it.
-// `api_constants` are the API's constants (def lines are applied here, as every engine does).
+// Runs vertex `vertex` of `inputs` (vertex < inputs.count()) on the reference engine, its products
+// under `rules`, and records it. `api_constants` are the API's constants (def lines are applied here,
+// as every engine does).
 VertexTrace TraceVertex(const Program& program, const ConstantBank& api_constants, const VertexArrays& inputs,
-                        std::size_t vertex);
+                        std::size_t vertex, FloatRules rules = FloatRules::kD3d9);
 
 // Fills trace.outputs from another engine's run over the same inputs (outputs from MakeOutputArrays).
 void CompareOutputs(const VertexArrays& engine_outputs, VertexTrace& trace);

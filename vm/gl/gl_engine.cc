@@ -233,12 +233,13 @@ bool GlEngine::RunDraw(const VertexArrays& inputs, std::size_t first, std::size_
 
 }  // namespace
 
-translate::TranslateOptions GlTranslateOptions(const EngineOptions& /*options*/, int constant_count) {
+translate::TranslateOptions GlTranslateOptions(const EngineOptions& options, int constant_count) {
   translate::TranslateOptions translation;
   translation.target = translate::Target::kGlslEs300;
   translation.clip = translate::ClipSpace::kD3d;
   translation.constant_count = constant_count;
   translation.exact_on_driver = true;
+  translation.float_rules = options.float_rules;
   return translation;
 }
 

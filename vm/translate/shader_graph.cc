@@ -61,8 +61,6 @@ Float operator+(Float a, Float b) { return MakeFloat(NodeOp::kAdd, a.id, b.id); 
 Float operator-(Float a, Float b) { return MakeFloat(NodeOp::kSub, a.id, b.id); }
 Float operator*(Float a, Float b) { return MakeFloat(NodeOp::kMul, a.id, b.id); }
 Float operator/(Float a, Float b) { return MakeFloat(NodeOp::kDiv, a.id, b.id); }
-// semantics::Product, found by argument-dependent lookup: the instruction's products get their own op.
-[[maybe_unused]] Float Product(Float a, Float b) { return MakeFloat(NodeOp::kProduct, a.id, b.id); }
 Bool operator<(Float a, Float b) { return MakeBool(NodeOp::kLess, a.id, b.id); }
 Bool operator>(Float a, Float b) { return MakeBool(NodeOp::kGreater, a.id, b.id); }
 Bool operator>=(Float a, Float b) { return MakeBool(NodeOp::kGreaterEqual, a.id, b.id); }
@@ -165,9 +163,19 @@ class Tracer {
   bool address_written_ = false;
 };
 
+template <FloatRules kRules>
+void TraceInstruction(Tracer& tracer, const Instruction& instruction) {
+  switch (instruction.opcode) {
+#define VS11_TRANSLATE_TRACE_CASE(name, ...) \
+  case Opcode::k##name: semantics::Execute<semantics::name##Semantics, kRules>(tracer, instruction); break;
+    VS11_OPCODES(VS11_TRANSLATE_TRACE_CASE)
+#undef VS11_TRANSLATE_TRACE_CASE
+  }
+}
+
 }  // namespace
 
-ShaderGraph TraceShader(const Program& program, int constant_count) {
+ShaderGraph TraceShader(const Program& program, int constant_count, FloatRules rules) {
   ShaderGraph graph;
   graph.constant_count = constant_count;
   graph.written = WrittenOutputLanes(program);
@@ -180,11 +188,10 @@ ShaderGraph TraceShader(const Program& program, int constant_count) {
   Tracer tracer(graph);
   for (std::size_t i = 0; i < program.instructions.size(); ++i) {
     recorder.set_instruction(static_cast<int>(i));
-    switch (program.instructions[i].opcode) {
-#define VS11_TRANSLATE_TRACE_CASE(name, ...) \
-  case Opcode::k##name: semantics::Execute<semantics::name##Semantics>(tracer, program.instructions[i]); break;
-      VS11_OPCODES(VS11_TRANSLATE_TRACE_CASE)
-#undef VS11_TRANSLATE_TRACE_CASE
+    if (rules == FloatRules::kLegacy) {
+      TraceInstruction<FloatRules::kLegacy>(tracer, program.instructions[i]);
+    } else {
+      TraceInstruction<FloatRules::kD3d9>(tracer, program.instructions[i]);
     }
   }
   for (int slot = 0; slot < kOutputSlotCount; ++slot) {

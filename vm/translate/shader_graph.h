@@ -26,7 +26,6 @@ enum class NodeOp : std::uint8_t {
   kRelativeRow,   // args: register number (int); the vec4 c[i] as the engines read it (def, range)
   kComponent,     // args: a vec4; immediate: lane
   kAdd, kSub, kMul, kDiv,
-  kProduct,       // an instruction's product (semantics::Product): the one place for a float rule
   kFloor, kSqrt, kAbs, kNegate, kIsNaN,
   kLess, kGreater, kGreaterEqual, kEqual,  // floats to bool
   kSelect,        // args: bool, yes, no
@@ -58,8 +57,9 @@ struct ShaderGraph {
 };
 
 // Traces `program` against a bank of `constant_count` registers: static reads past it read 0, as
-// ConstantBank::Read does.
-ShaderGraph TraceShader(const Program& program, int constant_count);
+// ConstantBank::Read does. Products follow `rules` as semantics::Product writes them (under kLegacy,
+// compares and selects around each multiply).
+ShaderGraph TraceShader(const Program& program, int constant_count, FloatRules rules = FloatRules::kD3d9);
 
 // Which nodes the outputs depend on.
 std::vector<bool> LiveNodes(const ShaderGraph& graph);

@@ -73,10 +73,6 @@ class Writer {
   }
 
  private:
-  // The one place a product of an instruction's operands is written (semantics::Product): a float
-  // rule for products (issue 20 §3, legacy 0 * anything = 0) changes this function only.
-  static std::string EmitProduct(const std::string& a, const std::string& b) { return a + " * " + b; }
-
   std::string Ref(int id) const {
     const Node& node = graph_.nodes[static_cast<std::size_t>(id)];
     switch (node.op) {
@@ -96,7 +92,6 @@ class Writer {
       case NodeOp::kAdd: case NodeOp::kIntAdd: return arg(0) + " + " + arg(1);
       case NodeOp::kSub: case NodeOp::kIntSub: return arg(0) + " - " + arg(1);
       case NodeOp::kMul: return arg(0) + " * " + arg(1);
-      case NodeOp::kProduct: return EmitProduct(arg(0), arg(1));
       case NodeOp::kDiv: return arg(0) + " / " + arg(1);
       case NodeOp::kFloor: return fmt::format("floor({})", arg(0));
       case NodeOp::kSqrt: return fmt::format("sqrt({})", arg(0));
@@ -217,6 +212,14 @@ class Writer {
     }
   }
 
+  std::string_view FloatRulesDescription() const {
+    if (options_.float_rules == FloatRules::kLegacy) {
+      return "legacy (--float-rules legacy): every product of mul, mad, dp3, dp4, the m*x* macros, dst and\n"
+             "//   lit's power is (b == 0 ? 0 : a) * (a == 0 ? 0 : b), so 0 * inf and 0 * NaN give 0";
+    }
+    return "d3d9: IEEE products, 0 * inf and 0 * NaN give NaN (--float-rules legacy makes them 0)";
+  }
+
   std::string InterfaceComment() const {
     std::string text = fmt::format(
         "// vs_1_1 program {} translated by vs11 for {}.\n"
@@ -233,9 +236,11 @@ class Writer {
         "// result is bit-exact where the driver rounds division and sqrt correctly and keeps NaNs and denormals;\n"
         "// GLSL only promises 2.5 ULP for x / y and 1 / inversesqrt()'s bound for sqrt, which rcp, rsq and the\n"
         "// log2 reduction of log, logp and lit use. Everything else is exact by construction.\n"
+        "//   Float rules: {}\n"
         "//   Contraction: {}\n",
         options_.source_name.empty() ? "(unnamed)" : options_.source_name, TargetName(profile_.target()),
-        options_.constant_count - 1, options_.constant_count, ClipDescription(), profile_.OutputMatching(), profile_.Contraction());
+        options_.constant_count - 1, options_.constant_count, ClipDescription(), profile_.OutputMatching(),
+        FloatRulesDescription(), profile_.Contraction());
     return text;
   }
 
@@ -313,7 +318,7 @@ OutputVariable OutputVariableOf(int slot) {
 }
 
 std::string TranslateToGlsl(const Program& program, const TranslateOptions& options) {
-  const ShaderGraph graph = TraceShader(program, options.constant_count);
+  const ShaderGraph graph = TraceShader(program, options.constant_count, options.float_rules);
   const std::unique_ptr<Profile> profile = MakeProfile(options.target);
   return Writer(program, graph, *profile, options).Write();
 }

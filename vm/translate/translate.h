@@ -8,6 +8,7 @@
 
 #include <string>
 
+#include "vm/core/float_rules.h"
 #include "vm/core/isa.h"
 #include "vm/core/program.h"
 #include "vm/translate/profile.h"
@@ -33,6 +34,9 @@ struct TranslateOptions {
   // zero. An application linking the translation with its own fragment shader should leave it off:
   // GLSL ES asks the next stage's inputs to be invariant too.
   bool exact_on_driver = false;
+  // The rule every product follows (--float-rules; vm/core/float_rules.h): under kLegacy each product
+  // is written as the compares and selects of semantics::Product around its multiply.
+  FloatRules float_rules = FloatRules::kD3d9;
 };
 
 // The GLSL output that carries output slot `slot` (OutputSlot): "vs11_oPos" for oPos (the raw value;

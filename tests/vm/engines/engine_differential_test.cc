@@ -6,7 +6,8 @@
 //    whose lanes run through the special values (signed zeros, denormals, infinities, NaNs, the
 //    limits of exp and of a0);
 //  * thousands of random programs (all opcodes incl. macros, every register file, relative
-//    addressing, def, unwritten temporaries) over random inputs and constants.
+//    addressing, def, unwritten temporaries) over random inputs and constants;
+// each under both float rules (vm/core/float_rules.h), d3d9 and legacy.
 #include <algorithm>
 #include <array>
 #include <bit>
@@ -54,10 +55,12 @@ struct Comparison {
 
 bool IsNaN(float x) { return x != x; }
 
-// The engine compared with the reference: its kind and, for the jit, the instruction set forced.
+// The engine compared with the reference: its kind and, for the jit, the instruction set forced;
+// both run under `rules`.
 struct EngineUnderTest {
   EngineKind kind;
   JitIsa jit_isa = JitIsa::kBest;
+  FloatRules rules = FloatRules::kD3d9;
 };
 
 // Runs `program` on both engines and compares every output lane.
@@ -66,8 +69,8 @@ Comparison CompareEngines(const Program& program, const ConstantBank& constants,
   const std::size_t count = inputs.count();
   VertexArrays expected = MakeOutputArrays(count, program);
   VertexArrays actual = MakeOutputArrays(count, program);
-  MakeReferenceEngine(program, constants)->Run(inputs, expected);
-  MakeEngine(engine.kind, program, constants, {.jit_isa = engine.jit_isa})->Run(inputs, actual);
+  MakeReferenceEngine(program, constants, engine.rules)->Run(inputs, expected);
+  MakeEngine(engine.kind, program, constants, {.jit_isa = engine.jit_isa, .float_rules = engine.rules})->Run(inputs, actual);
   Comparison result;
   for (int slot : expected.registers()) {
     for (int c = 0; c < 4; ++c) {
@@ -80,7 +83,7 @@ Comparison CompareEngines(const Program& program, const ConstantBank& constants,
         }
         if (!result.difference.empty()) continue;
         std::ostringstream message;
-        message << OutputSlotName(slot) << "." << kLaneLetters[c] << " of vertex " << i << " of " << count
+        message << FloatRulesName(engine.rules) << ": " << OutputSlotName(slot) << "." << kLaneLetters[c] << " of vertex " << i << " of " << count
                 << ": " << EngineName(engine.kind) << " " << got << " (0x" << std::hex << Bits(got) << "), reference " << want << " (0x"
                 << Bits(want) << std::dec << ")\ninputs:";
         for (int reg : inputs.registers()) {
@@ -172,12 +175,14 @@ void SweepEveryOpcode(EngineUnderTest engine, const char* label) {
       }
     }
   }
-  std::printf("[ %s ] %d programs x %zu vertices compared bit for bit (%zu lanes: NaN from two NaNs)\n", label,
-              programs, count, nan_bit_mismatches);
+  std::printf("[ %s, %s ] %d programs x %zu vertices compared bit for bit (%zu lanes: NaN from two NaNs)\n", label,
+              std::string(FloatRulesName(engine.rules)).c_str(), programs, count, nan_bit_mismatches);
 }
 
 TEST_P(EngineDifferential, EveryOpcodeMaskSwizzleNegationAndSpecialValue) {
-  SweepEveryOpcode({EngineKind::kBatch}, hwy::TargetName(GetParam()));
+  for (FloatRules rules : kAllFloatRules) {
+    SweepEveryOpcode({EngineKind::kBatch, JitIsa::kBest, rules}, hwy::TargetName(GetParam()));
+  }
 }
 
 // Every operand position of every opcode, negated or not, carrying one NaN (quiet or signalling, either
@@ -216,11 +221,14 @@ void CheckLoneNaNOperands(EngineUnderTest engine, const char* label) {
       }
     }
   }
-  std::printf("[ %s ] %d programs x %zu vertices compared bit for bit, NaNs included\n", label, programs, count);
+  std::printf("[ %s, %s ] %d programs x %zu vertices compared bit for bit, NaNs included\n", label,
+              std::string(FloatRulesName(engine.rules)).c_str(), programs, count);
 }
 
 TEST_P(EngineDifferential, LoneNaNOperandKeepsItsBits) {
-  CheckLoneNaNOperands({EngineKind::kBatch}, hwy::TargetName(GetParam()));
+  for (FloatRules rules : kAllFloatRules) {
+    CheckLoneNaNOperands({EngineKind::kBatch, JitIsa::kBest, rules}, hwy::TargetName(GetParam()));
+  }
 }
 
 // ---- random programs --------------------------------------------------------------------------------
@@ -232,11 +240,11 @@ int RandomProgramCount() {
 }
 
 struct JitCoverage {
-  int compiled = 0;  // programs the jit compiler compiled (all, on a CPU with AVX2)
+  int compiled = 0;  // programs the jit compiler compiled under both rules (all, on a CPU with AVX2)
   int spilling = 0;  // of which the register allocator spilled values
 };
 
-// For kJit, also says how many programs ran as machine code.
+// Each program under both float rules. For kJit, also says how many programs ran as machine code.
 JitCoverage CompareRandomPrograms(EngineUnderTest engine, const char* label) {
   const int programs = RandomProgramCount();
   ProgramGenerator generator(20240611);
@@ -250,20 +258,24 @@ JitCoverage CompareRandomPrograms(EngineUnderTest engine, const char* label) {
     const std::size_t count = k % 10 == 0 ? std::uniform_int_distribution<std::size_t>(257, 1500)(sizes)
                                           : std::uniform_int_distribution<std::size_t>(1, 100)(sizes);
     vertices += count;
-    const Comparison comparison =
-        CompareEngines(program, constants, generator.Inputs(count), NanBits::kAnyNaN, engine);
-    EXPECT_TRUE(comparison.difference.empty()) << "random program " << k << ": " << comparison.difference;
-    if (!comparison.difference.empty()) return coverage;
-    nan_bit_mismatches += comparison.nan_bit_mismatches;
+    const VertexArrays inputs = generator.Inputs(count);
+    for (FloatRules rules : kAllFloatRules) {
+      engine.rules = rules;
+      const Comparison comparison = CompareEngines(program, constants, inputs, NanBits::kAnyNaN, engine);
+      EXPECT_TRUE(comparison.difference.empty()) << "random program " << k << ": " << comparison.difference;
+      if (!comparison.difference.empty()) return coverage;
+      nan_bit_mismatches += comparison.nan_bit_mismatches;
+    }
     if (engine.kind != EngineKind::kJit) continue;
     std::string why_not;
-    if (const auto compiled = jit::Compile(program, why_not, engine.jit_isa)) {
+    const auto compiled = jit::Compile(program, why_not, engine.jit_isa);
+    if (compiled && jit::Compile(program, why_not, engine.jit_isa, {}, FloatRules::kLegacy)) {
       ++coverage.compiled;
       if (compiled->spilled_values() > 0) ++coverage.spilling;
     }
   }
-  std::printf("[ %s ] %d random programs, %zu vertices compared bit for bit (%zu lanes: NaN from two NaNs)\n", label,
-              programs, vertices, nan_bit_mismatches);
+  std::printf("[ %s ] %d random programs under both float rules, %zu vertices compared bit for bit (%zu lanes: NaN "
+              "from two NaNs)\n", label, programs, vertices, nan_bit_mismatches);
   return coverage;
 }
 
@@ -299,9 +311,13 @@ TEST(JitIsas, TheTestsCoverEveryInstructionSetTheCpuHas) {
   std::printf("[ jit ] instruction sets covered:%s\n", covered.empty() ? " none (no AVX2: batch kernels)" : covered.c_str());
 }
 
-TEST_P(JitDifferential, EveryOpcodeMaskSwizzleNegationAndSpecialValue) { SweepEveryOpcode(Engine(), Label().c_str()); }
+TEST_P(JitDifferential, EveryOpcodeMaskSwizzleNegationAndSpecialValue) {
+  for (FloatRules rules : kAllFloatRules) SweepEveryOpcode({EngineKind::kJit, GetParam(), rules}, Label().c_str());
+}
 
-TEST_P(JitDifferential, LoneNaNOperandKeepsItsBits) { CheckLoneNaNOperands(Engine(), Label().c_str()); }
+TEST_P(JitDifferential, LoneNaNOperandKeepsItsBits) {
+  for (FloatRules rules : kAllFloatRules) CheckLoneNaNOperands({EngineKind::kJit, GetParam(), rules}, Label().c_str());
+}
 
 // A lane's uniform value is a promise that ends when the lane is written through lane(): the same
 // engine then reads the new values. Output lanes the program leaves alone are rewritten only when

@@ -1,7 +1,8 @@
 // vs11 translate (vm/translate): the traced program computes what the reference engine computes, bit
 // for bit, on random programs (the engines' differential generator); every program of programs/ and
 // 300 generated ones translate to GLSL that glslang compiles and links for GLSL 3.30 and GLSL ES
-// 3.00, and to SPIR-V that SPIRV-Tools validates; literals keep their bits; products are named.
+// 3.00, and to SPIR-V that SPIRV-Tools validates; literals keep their bits; under --float-rules
+// legacy every product of an instruction, and nothing else, follows the legacy rule.
 #include <algorithm>
 #include <bit>
 #include <cmath>
@@ -64,7 +65,7 @@ Value EvaluateNode(const ShaderGraph& graph, const Node& node, const std::vector
     case NodeOp::kComponent: out.f = values[static_cast<std::size_t>(node.args[0])].v[node.immediate]; break;
     case NodeOp::kAdd: out.f = f(0) + f(1); break;
     case NodeOp::kSub: out.f = f(0) - f(1); break;
-    case NodeOp::kMul: case NodeOp::kProduct: out.f = f(0) * f(1); break;
+    case NodeOp::kMul: out.f = f(0) * f(1); break;
     case NodeOp::kDiv: out.f = f(0) / f(1); break;
     case NodeOp::kFloor: out.f = std::floor(f(0)); break;
     case NodeOp::kSqrt: out.f = std::sqrt(f(0)); break;
@@ -104,6 +105,7 @@ std::array<Vec4f, kOutputSlotCount> EvaluateGraph(const ShaderGraph& graph, cons
 
 bool SameFloat(float a, float b) { return Bits(a) == Bits(b) || (std::isnan(a) && std::isnan(b)); }
 
+// Under both float rules: each program is traced and run under d3d9 and under legacy.
 TEST(ShaderGraph, MatchesTheReferenceEngineOnRandomPrograms) {
   constexpr int kPrograms = 600, kVertices = 8;
   random_program::ProgramGenerator generator(20261125);
@@ -111,22 +113,25 @@ TEST(ShaderGraph, MatchesTheReferenceEngineOnRandomPrograms) {
     const Program program = generator.MakeProgram();
     const ConstantBank bank = generator.Constants();
     const VertexArrays inputs = generator.Inputs(kVertices);
-    VertexArrays expected = MakeOutputArrays(kVertices, program);
-    MakeReferenceEngine(program, bank)->Run(inputs, expected);
-    const ShaderGraph graph = TraceShader(program, bank.size());
-    for (int vertex = 0; vertex < kVertices; ++vertex) {
-      std::array<Vec4f, kInputRegisterCount> vertex_inputs;
-      vertex_inputs.fill(kDefaultInput);
-      for (int reg : inputs.registers()) {
-        for (int c = 0; c < 4; ++c) vertex_inputs[reg][c] = inputs.lane(reg, c)[vertex];
-      }
-      const auto outputs = EvaluateGraph(graph, vertex_inputs.data(), bank);
-      for (int slot = 0; slot < kOutputSlotCount; ++slot) {
-        for (int c = 0; c < 4; ++c) {
-          const float want = expected.has(slot) ? expected.lane(slot, c)[vertex] : UnwrittenOutputValue(slot)[c];
-          ASSERT_TRUE(SameFloat(outputs[slot][c], want))
-              << "program " << k << " vertex " << vertex << " " << OutputSlotName(slot) << "." << kLaneLetters[c]
-              << ": translation " << outputs[slot][c] << ", reference " << want << "\n" << Disassemble(program);
+    for (FloatRules rules : kAllFloatRules) {
+      VertexArrays expected = MakeOutputArrays(kVertices, program);
+      MakeReferenceEngine(program, bank, rules)->Run(inputs, expected);
+      const ShaderGraph graph = TraceShader(program, bank.size(), rules);
+      for (int vertex = 0; vertex < kVertices; ++vertex) {
+        std::array<Vec4f, kInputRegisterCount> vertex_inputs;
+        vertex_inputs.fill(kDefaultInput);
+        for (int reg : inputs.registers()) {
+          for (int c = 0; c < 4; ++c) vertex_inputs[reg][c] = inputs.lane(reg, c)[vertex];
+        }
+        const auto outputs = EvaluateGraph(graph, vertex_inputs.data(), bank);
+        for (int slot = 0; slot < kOutputSlotCount; ++slot) {
+          for (int c = 0; c < 4; ++c) {
+            const float want = expected.has(slot) ? expected.lane(slot, c)[vertex] : UnwrittenOutputValue(slot)[c];
+            ASSERT_TRUE(SameFloat(outputs[slot][c], want))
+                << FloatRulesName(rules) << ", program " << k << " vertex " << vertex << " " << OutputSlotName(slot)
+                << "." << kLaneLetters[c] << ": translation " << outputs[slot][c] << ", reference " << want << "\n"
+                << Disassemble(program);
+          }
         }
       }
     }
@@ -139,9 +144,9 @@ constexpr Target kTargets[] = {Target::kGlsl330, Target::kGlslEs300, Target::kSp
 
 // Empty when `program` translates to text glslang compiles and links for every target, and for SPIR-V
 // to words SPIRV-Tools validates; else what failed, with the text.
-std::string CheckTranslations(const Program& program, const std::string& name) {
+std::string CheckTranslations(const Program& program, const std::string& name, FloatRules rules) {
   for (Target target : kTargets) {
-    const std::string glsl = TranslateToGlsl(program, {.target = target, .source_name = name});
+    const std::string glsl = TranslateToGlsl(program, {.target = target, .source_name = name, .float_rules = rules});
     const GlslangResult compiled = CompileWithGlslang(glsl, target);
     if (!compiled.ok) return std::string(TargetName(target)) + ": " + compiled.log + "\n" + glsl;
     if (target != Target::kSpirv) continue;
@@ -156,7 +161,10 @@ TEST(Translate, EveryProgramOfProgramsCompilesForEveryTarget) {
     if (entry.path().extension() != ".vsh") continue;
     const irradiance::ProgramForVerify loaded = irradiance::LoadProgramForVerify(entry.path());
     ASSERT_TRUE(loaded.program) << entry.path() << ": " << loaded.diagnostics.ToString();
-    EXPECT_EQ(CheckTranslations(*loaded.program, entry.path().filename().string()), "") << entry.path();
+    for (FloatRules rules : kAllFloatRules) {
+      EXPECT_EQ(CheckTranslations(*loaded.program, entry.path().filename().string(), rules), "")
+          << entry.path() << " under " << FloatRulesName(rules);
+    }
     ++checked;
   }
   EXPECT_GE(checked, 10) << "programs/ lost its programs";
@@ -169,12 +177,15 @@ int GeneratedProgramCount() {
   return scaled != nullptr ? std::max(1, std::atoi(scaled) / 10) : 300;
 }
 
+// Odd programs under legacy, even ones under d3d9: both rules, at the cost of one.
 TEST(Translate, GeneratedProgramsCompileForEveryTarget) {
   const int kPrograms = GeneratedProgramCount();
   random_program::ProgramGenerator generator(7);
   for (int k = 0; k < kPrograms; ++k) {
     const Program program = generator.MakeProgram();
-    ASSERT_EQ(CheckTranslations(program, "generated"), "") << "generated program " << k << ":\n" << Disassemble(program);
+    const FloatRules rules = k % 2 == 0 ? FloatRules::kD3d9 : FloatRules::kLegacy;
+    ASSERT_EQ(CheckTranslations(program, "generated", rules), "")
+        << "generated program " << k << " under " << FloatRulesName(rules) << ":\n" << Disassemble(program);
   }
 }
 
@@ -215,26 +226,48 @@ TEST(Translate, RelativeReadsSeeDefsAndTheBankEdge) {
   EXPECT_NE(glsl.find("layout(location = 0) in vec4 v0;  // dcl_position"), std::string::npos) << glsl;
 }
 
-int CountProducts(const std::string& source) {
-  const ShaderGraph graph = TraceShader(Assemble("vs.1.1\n" + source), kDefaultConstantCount);
+// The multiplications that follow the legacy rule: a multiply of two selects that give 0 where the
+// other operand is 0, the form of semantics::Product under FloatRules::kLegacy.
+int CountLegacyProducts(const std::string& source) {
+  const ShaderGraph graph =
+      TraceShader(Assemble("vs.1.1\n" + source), kDefaultConstantCount, FloatRules::kLegacy);
   const std::vector<bool> live = LiveNodes(graph);
+  auto is_zero_select = [&](int id) {
+    const Node& node = graph.nodes[static_cast<std::size_t>(id)];
+    if (node.op != NodeOp::kSelect) return false;
+    const Node& yes = graph.nodes[static_cast<std::size_t>(node.args[1])];
+    return yes.op == NodeOp::kFloatLiteral && yes.immediate == 0;
+  };
   int products = 0;
-  for (std::size_t n = 0; n < graph.nodes.size(); ++n) products += live[n] && graph.nodes[n].op == NodeOp::kProduct;
+  for (std::size_t n = 0; n < graph.nodes.size(); ++n) {
+    const Node& node = graph.nodes[n];
+    products += live[n] && node.op == NodeOp::kMul && is_zero_select(node.args[0]) && is_zero_select(node.args[1]);
+  }
   return products;
 }
 
-// Every product of an instruction's operands is one kind of node, written by one function of the
-// writer: where issue 20's legacy rule (0 * anything = 0) goes. exp's polynomial is not such a product.
-TEST(Translate, InstructionProductsAreNamedAsSuch) {
-  EXPECT_EQ(CountProducts("mul oD0, v0, c1\n"), 4);
-  EXPECT_EQ(CountProducts("mad oD0, v0, c1, v0\n"), 4);
-  EXPECT_EQ(CountProducts("dp3 oD0, v0, c1\n"), 3);
-  EXPECT_EQ(CountProducts("dp4 oD0, v0, c1\n"), 4);
-  EXPECT_EQ(CountProducts("m4x4 oD0, v0, c0\n"), 16);
-  EXPECT_EQ(CountProducts("m3x2 oD0.xy, v0, c0\n"), 6);
-  EXPECT_EQ(CountProducts("dst oD0, v0, c1\n"), 1);
-  EXPECT_EQ(CountProducts("lit oD0, v0\n"), 1);
-  EXPECT_EQ(CountProducts("exp oD0, v0.x\n"), 0);
+// Under legacy, every product of an instruction's operands follows the rule, and exp's polynomial
+// and 2^n scaling, which are not such products, do not.
+TEST(Translate, LegacyRuleCoversEveryInstructionProductAndNothingElse) {
+  EXPECT_EQ(CountLegacyProducts("mul oD0, v0, c1\n"), 4);
+  EXPECT_EQ(CountLegacyProducts("mad oD0, v0, c1, v0\n"), 4);
+  EXPECT_EQ(CountLegacyProducts("dp3 oD0, v0, c1\n"), 3);
+  EXPECT_EQ(CountLegacyProducts("dp4 oD0, v0, c1\n"), 4);
+  EXPECT_EQ(CountLegacyProducts("m4x4 oD0, v0, c0\n"), 16);
+  EXPECT_EQ(CountLegacyProducts("m3x2 oD0.xy, v0, c0\n"), 6);
+  EXPECT_EQ(CountLegacyProducts("dst oD0, v0, c1\n"), 1);
+  EXPECT_EQ(CountLegacyProducts("lit oD0, v0\n"), 1);
+  EXPECT_EQ(CountLegacyProducts("exp oD0, v0.x\n"), 0);
+  EXPECT_EQ(CountLegacyProducts("expp oD0, v0.x\n"), 0);
+}
+
+TEST(Translate, InterfaceNamesTheFloatRules) {
+  const Program program = Assemble("vs.1.1\nmul oD0, v0, c1\n");
+  EXPECT_NE(TranslateToGlsl(program, {}).find("//   Float rules: d3d9"), std::string::npos);
+  TranslateOptions options;
+  options.float_rules = FloatRules::kLegacy;
+  const std::string legacy = TranslateToGlsl(program, options);
+  EXPECT_NE(legacy.find("//   Float rules: legacy"), std::string::npos) << legacy;
 }
 
 TEST(Translate, ClipSpaceConversions) {
