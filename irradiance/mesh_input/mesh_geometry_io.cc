@@ -10,9 +10,12 @@
 namespace vs11::irradiance {
 
 std::optional<std::string> LoadMeshGeometry(const std::string& path, MeshGeometry& geometry,
-                                            std::vector<std::string>& warnings, double timeout_seconds) {
+                                            std::vector<std::string>& warnings, double timeout_seconds,
+                                            bool compute_normals) {
   mesh::MeshLoadOptions options;
   options.timeout_seconds = timeout_seconds;
+  options.repair_normals = true;
+  options.compute_normals = compute_normals;
   mesh::MeshLoadResult loaded = mesh::LoadMesh(path, options);
   if (!loaded.ok()) return loaded.error;
   auto source = std::make_shared<const mesh::Mesh>(std::move(*loaded.mesh));

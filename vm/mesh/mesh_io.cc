@@ -314,8 +314,9 @@ class MeshBuilder {
     }
     if (nonunit_normals_ > 0) {
       mesh_.warnings.push_back(fmt::format(
-          "{} normals are not of unit length ({} of them zero){}", nonunit_normals_, zero_normals_,
-          options_.transform_to_world ? "; nonzero ones are normalised where the node transform is applied" : ""));
+          "{} normals are not of unit length ({} of them zero){}{}", nonunit_normals_, zero_normals_,
+          options_.transform_to_world ? "; nonzero ones are normalised where the node transform is applied" : "",
+          zero_normals_ > 0 ? "; --compute-normals replaces them" : ""));
     }
     if (bones_without_node_ > 0) {
       mesh_.warnings.push_back(fmt::format("{} bones name no node of the scene: their skin matrix is the offset alone",
@@ -432,12 +433,84 @@ std::optional<std::string> CheckHeaderCounts(std::string_view head, std::uintmax
   return std::nullopt;
 }
 
-unsigned PostProcessFlags(const MeshLoadOptions& options) {
+unsigned PostProcessFlags(const MeshLoadOptions& options, bool repair_normals) {
   unsigned flags = aiProcess_Triangulate;
-  if (options.compute_normals) flags |= aiProcess_GenSmoothNormals;
+  if (options.compute_normals) flags |= aiProcess_GenSmoothNormals | aiProcess_ForceGenNormals;
+  if (repair_normals) flags |= aiProcess_GenSmoothNormals;
   if (options.compute_tangents) flags |= aiProcess_CalcTangentSpace;
   return flags;
 }
+
+bool IsUsableNormal(const aiVector3D& n) {
+  return std::isfinite(n.x) && std::isfinite(n.y) && std::isfinite(n.z) && n.SquareLength() > 0;
+}
+
+// MeshLoadOptions::repair_normals. Assimp computes normals only for meshes that have none, so the
+// normals of each part that needs some are taken away before post-processing and the file's usable
+// ones put back after: an STL whose facet normals are all zero (assimp-testmodels' Wuson.stl) is
+// lit instead of drawn black, and a good normal keeps its bits.
+class NormalRepair {
+ public:
+  // Returns whether any part needs normals computed (aiProcess_GenSmoothNormals).
+  bool Prepare(aiScene& scene) {
+    saved_.assign(scene.mNumMeshes, {});
+    repaired_.assign(scene.mNumMeshes, false);
+    for (unsigned i = 0; i < scene.mNumMeshes; ++i) {
+      aiMesh& m = *scene.mMeshes[i];
+      vertices_ += m.mNumVertices;
+      // Assimp computes no normal for points and lines: nothing to repair there.
+      if ((m.mPrimitiveTypes & (aiPrimitiveType_TRIANGLE | aiPrimitiveType_POLYGON)) == 0) continue;
+      std::size_t unusable = m.mNumVertices;
+      if (m.mNormals != nullptr) {
+        unusable = static_cast<std::size_t>(std::count_if(m.mNormals, m.mNormals + m.mNumVertices,
+                                                          [](const aiVector3D& n) { return !IsUsableNormal(n); }));
+      }
+      if (unusable == 0) continue;
+      if (m.mNormals != nullptr) {
+        saved_[i].assign(m.mNormals, m.mNormals + m.mNumVertices);
+        delete[] m.mNormals;  // aiMesh's destructor frees it the same way
+        m.mNormals = nullptr;
+      }
+      repaired_[i] = true;
+      computed_ += unusable;
+    }
+    return computed_ > 0;
+  }
+
+  // Puts the file's usable normals back. A vertex in no triangle with area keeps the file's normal
+  // (zero where the file had none) and is counted.
+  void Restore(const aiScene& scene) {
+    for (unsigned i = 0; i < scene.mNumMeshes && i < repaired_.size(); ++i) {
+      if (!repaired_[i] || scene.mMeshes[i] == nullptr) continue;
+      aiMesh& m = *scene.mMeshes[i];
+      const std::vector<aiVector3D>& saved = saved_[i];
+      if (!saved.empty() && saved.size() != m.mNumVertices) continue;  // post-processing never does this
+      if (m.mNormals == nullptr) {
+        m.mNormals = new aiVector3D[m.mNumVertices]();
+        std::copy(saved.begin(), saved.end(), m.mNormals);
+      }
+      for (unsigned v = 0; v < m.mNumVertices; ++v) {
+        const bool file_usable = !saved.empty() && IsUsableNormal(saved[v]);
+        if (file_usable || !IsUsableNormal(m.mNormals[v])) m.mNormals[v] = saved.empty() ? aiVector3D() : saved[v];
+        if (!file_usable && !IsUsableNormal(m.mNormals[v])) ++still_unusable_;
+      }
+    }
+  }
+
+  std::optional<std::string> Warning() const {
+    if (computed_ == 0) return std::nullopt;
+    std::string unlit;
+    if (still_unusable_ > 0) unlit = fmt::format("; {} of them are in no triangle with area and still have none", still_unusable_);
+    return fmt::format("{} of {} vertices have no usable normal (none, zero or not finite) in the file: computed "
+                       "smooth normals for them (the mean of the adjacent faces' normals){}",
+                       computed_, vertices_, unlit);
+  }
+
+ private:
+  std::vector<std::vector<aiVector3D>> saved_;  // per aiMesh: the file's normals, empty if none or kept
+  std::vector<bool> repaired_;
+  std::size_t vertices_ = 0, computed_ = 0, still_unusable_ = 0;
+};
 
 // What Assimp's post-processing steps and MeshBuilder index without checking. Assimp's own
 // aiProcess_ValidateDataStructure checks this too, but it also refuses sound files for things vs11
@@ -504,16 +577,21 @@ MeshLoadResult FromScene(const aiScene* scene, Assimp::Importer& importer, const
   report(internal::LoadStage::kVs11);
   // The importer owns the scene and hands it out as const; the check repairs its primitive flags.
   if (std::optional<std::string> error = CheckSceneIndices(*const_cast<aiScene*>(scene))) return {std::nullopt, fmt::format("{}: {}", name, *error)};
+  NormalRepair repair;
+  const bool repair_normals =
+      options.repair_normals && !options.compute_normals && repair.Prepare(*const_cast<aiScene*>(scene));
   report(internal::LoadStage::kAssimp);
-  scene = importer.ApplyPostProcessing(PostProcessFlags(options));
+  scene = importer.ApplyPostProcessing(PostProcessFlags(options, repair_normals));
   if (scene == nullptr) return assimp_error();
   report(internal::LoadStage::kVs11);
+  if (repair_normals) repair.Restore(*scene);
   MeshLoadResult result = MeshBuilder(*scene, options).Build();
   if (!result.ok()) {
     result.error = fmt::format("{}: {}", name, result.error);
   } else {
     std::vector<std::string>& warnings = result.mesh->warnings;
     warnings.insert(warnings.begin(), messages.messages.begin(), messages.messages.end());
+    if (std::optional<std::string> repaired = repair.Warning()) warnings.push_back(*repaired);
   }
   return result;
 }

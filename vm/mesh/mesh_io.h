@@ -95,9 +95,15 @@ struct Mesh {
 
 struct MeshLoadOptions {
   bool transform_to_world = true;
-  // Generate smooth normals for parts without any (Assimp's aiProcess_GenSmoothNormals). Existing
-  // normals are never replaced.
+  // Replace every part's normals with computed smooth ones (Assimp's aiProcess_GenSmoothNormals with
+  // aiProcess_ForceGenNormals), whatever the file holds.
   bool compute_normals = false;
+  // Compute smooth normals where the file gives none, or gives a zero or non-finite one: parts
+  // without normals get them all; in a part with some unusable normals only those vertices get the
+  // computed ones, and the file's usable normals keep their bits. A warning counts the vertices.
+  // Assimp's GenSmoothNormals weighs every face at a position equally (its unit face normal), not by
+  // area or angle. Points and lines have no normal to compute.
+  bool repair_normals = false;
   // Generate tangents and binormals from UV set 0 for parts without them (aiProcess_CalcTangentSpace).
   bool compute_tangents = false;
   // Assimp runs in a child process (mesh_sandbox.h) stopped after this many seconds; 0 = 60 s plus
