@@ -155,14 +155,21 @@ TEST_F(MeshLightingTest, IrrmapWritesMeshFilesAndStatistics) {
   EXPECT_TRUE(fs::exists(out / "mesh.png"));
 }
 
-TEST_F(MeshLightingTest, IrrmapRefusesAMeshWithoutNormalsAndWritesNothing) {
+TEST_F(MeshLightingTest, IrrmapLightsAMeshWithoutNormalsAndSaysSo) {
   const fs::path model = dir_ / "flat.obj";
   std::ofstream(model) << "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
-  vs11::testing::CommandResult run =
-      vs11::testing::RunIrrmap(fmt::format("sky --face-size 16 --mesh '{}' --out '{}'", model.string(), (dir_ / "out").string()));
-  EXPECT_EQ(run.status, 1);
-  EXPECT_THAT(run.output, HasSubstr("no normals"));
-  EXPECT_FALSE(fs::exists(dir_ / "out"));
+  const fs::path out = dir_ / "out";
+  vs11::testing::CommandResult run = vs11::testing::RunIrrmap(fmt::format(
+      "sky --face-size 16 --map-size 4 --error-normals 20 --sphere-size 16 --mesh '{}' --out '{}'", model.string(),
+      out.string()));
+  ASSERT_EQ(run.status, 0) << run.output;
+  EXPECT_THAT(run.output, HasSubstr("irrmap: warning: " + model.string() +
+                                    ": 3 of 3 vertices have no usable normal (none, zero or not finite) in the file: "
+                                    "computed smooth normals for them"));
+  std::ifstream in(out / "coeffs.json");
+  nlohmann::json coeffs = nlohmann::json::parse(in);
+  EXPECT_EQ(coeffs["mesh"]["unusable_normals"], 0);
+  EXPECT_TRUE(fs::exists(out / "mesh.png"));
 }
 
 }  // namespace
