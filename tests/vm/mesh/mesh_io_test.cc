@@ -137,6 +137,19 @@ TEST(LoadMesh, BadNormalsAreCountedInAWarning) {
   EXPECT_NEAR(std::hypot(short_normal[0], short_normal[1], short_normal[2]), 1.0, 1e-6);
 }
 
+// vs11 run --compute-normals: the zero facet normals of Debian's Wuson.stl are replaced too.
+TEST(LoadMesh, ComputeNormalsReplacesZeroNormalsOfTheFile) {
+  MeshLoadOptions options;
+  options.compute_normals = true;
+  MeshLoadResult result = LoadMesh(fs::path(kAssimpModels) / "STL/Wuson.stl", options);
+  ASSERT_TRUE(result.ok()) << result.error;
+  ASSERT_EQ(result.mesh->normals.size(), 11196u);
+  for (std::size_t i = 0; i < result.mesh->normals.size(); ++i) {
+    const Vec4f& n = result.mesh->normals[i];
+    ASSERT_NEAR(std::hypot(n[0], n[1], n[2]), 1.0, 1e-6) << "vertex " << i;
+  }
+}
+
 TEST(LoadMesh, WrongJsonTypesAreErrors) {
   for (const char* name : {"badArray", "badNumber", "badObject", "badString", "badUint", "badExtension"}) {
     const fs::path file = fs::path(kAssimpModels) / "glTF2/wrongTypes" / (std::string(name) + ".gltf");
