@@ -175,8 +175,8 @@ void AddJobOptions(CLI::App& app, JobCommandLine& line) {
                  "colours, tone mapped as mesh.png) and mesh.png (program | exact | relative error); vertices whose "
                  "normal the file omits or gives as zero get computed smooth normals, with a warning");
   app.add_flag("--compute-normals", line.compute_normals,
-               "replace every normal of --mesh with computed smooth ones (Assimp's GenSmoothNormals), even where "
-               "the file gives usable normals");
+               "replace every normal of --mesh with computed smooth ones (area-weighted, from its triangles), "
+               "even where the file gives usable normals");
   app.add_option("--mesh-timeout", mesh_timeout,
                  "stop reading --mesh after this many seconds (default 60 plus 1 per MiB): Assimp reads in a "
                  "separate process, and some corrupt files make it loop")

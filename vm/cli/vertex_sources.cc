@@ -232,7 +232,7 @@ void VertexSourceFlags::AddTo(CLI::App& command) {
                      "Stop reading --mesh after this many seconds (default 60 plus 1 per MiB): Assimp reads in a "
                      "separate process, and some corrupt files make it loop")
       ->check(CLI::PositiveNumber);
-  command.add_flag("--compute-normals", compute_normals, "Compute smooth normals for every part (Assimp's GenSmoothNormals), replacing the file's, zero ones included");
+  command.add_flag("--compute-normals", compute_normals, "Compute smooth normals for every part (area-weighted, from its triangles), replacing the file's, zero ones included");
   command.add_flag("--compute-tangents", compute_tangents, "Generate tangents and binormals from texcoord0");
   command.add_option("--blend-index-scale", blend_index_scale,
                      "Multiply blendindices by this (3 for a palette of 4x3 matrices addressed as c[a0.x + base])");
