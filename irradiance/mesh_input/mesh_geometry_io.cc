@@ -20,11 +20,12 @@ std::optional<std::string> LoadMeshGeometry(const std::string& path, MeshGeometr
   if (!loaded.ok()) return loaded.error;
   auto source = std::make_shared<const mesh::Mesh>(std::move(*loaded.mesh));
   for (const std::string& warning : source->warnings) warnings.push_back(fmt::format("{}: {}", path, warning));
-  if (source->normals.empty()) {
-    return fmt::format("{}: the mesh has no normals, and the irradiance is a function of the normal", path);
-  }
   if (source->indices.empty()) {
     return fmt::format("{}: the mesh has no triangles (points or lines only): nothing to light and draw", path);
+  }
+  // Not reached with repair_normals: a mesh with triangles gets computed normals where it has none.
+  if (source->normals.empty()) {
+    return fmt::format("{}: the mesh has no normals, and the irradiance is a function of the normal", path);
   }
   geometry = MeshGeometry{};
   geometry.name = path;
