@@ -90,7 +90,7 @@ def test_closing_the_generator_stops_the_work(tmp_path, monkeypatch):
 
 
 def test_the_gil_is_released_while_the_generator_waits(tmp_path):
-    write_pfm(tmp_path / "big.pfm", np.ones((512, 1024, 3), np.float32))
+    write_pfm(tmp_path / "big.pfm", np.ones((256, 512, 3), np.float32))
     ticks = []
     stop = threading.Event()
 
@@ -99,7 +99,7 @@ def test_the_gil_is_released_while_the_generator_waits(tmp_path):
             ticks.append(time.perf_counter())
             time.sleep(0.002)
 
-    generator = vs11.irradiance.batch([str(tmp_path / "big.pfm")], threads=1, face_size=256)
+    generator = vs11.irradiance.batch([str(tmp_path / "big.pfm")], threads=1, face_size=128)
     ticker = threading.Thread(target=tick)
     ticker.start()
     try:

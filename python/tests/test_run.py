@@ -129,14 +129,14 @@ def test_inputs_are_not_copied_into_numpy_arrays(dtype, columns):
     assert peak < positions.nbytes // 8, "run() made a NumPy copy of its input (%d bytes traced)" % peak
 
 
-# run() on 2^21 vertices in a fresh process (so that the peak resident size before it is this
+# run() on 2^20 vertices in a fresh process (so that the peak resident size before it is this
 # input's, not an earlier test's): the growth of the peak is what run() allocated and touched.
 NO_COPY_PROBE = r"""
 import resource
 import numpy as np
 import vs11
 program = vs11.assemble("vs_1_1\ndcl_position v0\nmov oPos, v0\n")
-inputs = np.ones((1 << 21, %d), np.float32)
+inputs = np.ones((1 << 20, %d), np.float32)
 program.run({"position": inputs[:1000]})  # the engine's first-call setup, on a small slice
 before = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
 out = program.run({"position": inputs})
@@ -145,10 +145,9 @@ print((after - before) * 1024, out["oPos"].nbytes, inputs.nbytes, int(out["oPos"
 """
 
 
-@pytest.mark.parametrize("columns", [4, 3])
-def test_c_contiguous_float32_inputs_are_read_in_place(columns):
-    probe = subprocess.run([sys.executable, "-c", NO_COPY_PROBE % columns], capture_output=True, text=True,
-                           check=True)
+def test_c_contiguous_float32_inputs_are_read_in_place():
+    # (n, 4), the issue's case; (n, 3) takes the same path (a stride-0 w), checked bit for bit below.
+    probe = subprocess.run([sys.executable, "-c", NO_COPY_PROBE % 4], capture_output=True, text=True, check=True)
     growth, output_bytes, input_bytes, w = map(int, probe.stdout.split())
     assert w == 1
     # The output (16 bytes a vertex) and a few KB of workspace; a copy of the input into the
