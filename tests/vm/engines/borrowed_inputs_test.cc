@@ -143,7 +143,7 @@ TEST(BorrowedInputs, ViewsReadTheCallersMemoryWithItsStrides) {
 
 TEST(BorrowedInputs, EveryEngineGivesTheBitsOfOwnedLanesForEveryProgram) {
   for (const auto& [name, program] : ProgramsFolder()) {
-    for (std::size_t count : {1, 255, 256, 257, 1000}) {
+    for (std::size_t count : {1, 257, 1000}) {  // a part of a batch; a whole batch and 1; 3 and a part
       const TwoLayouts inputs = MakeInputs(count);
       for (EngineKind kind : {EngineKind::kReference, EngineKind::kBatch, EngineKind::kJit}) {
         ExpectSameBits(RunOn(kind, program, inputs.borrowed), RunOn(kind, program, inputs.owned),
@@ -156,7 +156,7 @@ TEST(BorrowedInputs, EveryEngineGivesTheBitsOfOwnedLanesForEveryProgram) {
 // A call large enough to split over two threads (four of its pieces, MinVerticesPerPiece).
 TEST(BorrowedInputs, ASplitCallGivesTheBitsOfOwnedLanes) {
   for (const auto& [name, program] : ProgramsFolder()) {
-    if (name != "sh9_irradiance.vsh" && name != "skinning.vsh") continue;
+    if (name != "sh9_irradiance.vsh") continue;
     const std::size_t piece = MinVerticesPerPiece(program);
     ASSERT_NE(piece, kNeverSplit) << name;
     const TwoLayouts inputs = MakeInputs(4 * piece + 37);
