@@ -1,6 +1,7 @@
 #include "python/array_conversion.h"
 
 #include <cctype>
+#include <cstdint>
 #include <optional>
 #include <string>
 
@@ -50,6 +51,27 @@ void CopyLanes(const py::array& array, std::size_t count, int columns, VertexArr
   if (columns == 3) arrays.FillUniform(reg, 3, 1.0f);
 }
 
+// Whether the engines can read `array` where it lies (VertexArrays::Borrow): float32 whose strides
+// are whole floats (of either sign) and whose data is float-aligned.
+bool ReadableInPlace(const py::array& array) {
+  constexpr auto kFloat = static_cast<py::ssize_t>(sizeof(float));
+  return array.dtype().is(py::dtype::of<float>()) && array.shape(0) > 0 && array.strides(0) % kFloat == 0 &&
+         array.strides(1) % kFloat == 0 && reinterpret_cast<std::uintptr_t>(array.data()) % alignof(float) == 0;
+}
+
+// The w of every vertex of an (n, 3) array read in place: one float, read with stride 0.
+constexpr float kImpliedW = 1.0f;
+
+void BorrowLanes(const py::array& array, int columns, VertexArrays& arrays, int reg) {
+  const auto* base = static_cast<const float*>(array.data());
+  const std::ptrdiff_t row_stride = array.strides(0) / static_cast<py::ssize_t>(sizeof(float));
+  const std::ptrdiff_t column_stride = array.strides(1) / static_cast<py::ssize_t>(sizeof(float));
+  std::array<StridedLane, 4> lanes;
+  for (int c = 0; c < columns; ++c) lanes[c] = {base + c * column_stride, row_stride};
+  if (columns == 3) lanes[3] = {&kImpliedW, 0};
+  arrays.Borrow(reg, lanes);
+}
+
 // A float32 or float64 NumPy array of shape (rows, columns-in-`allowed`), or a ValueError naming `what`.
 py::array CheckedArray(const py::handle& value, const std::string& what, std::initializer_list<int> allowed_columns) {
   if (!py::isinstance<py::array>(value)) {
@@ -93,17 +115,22 @@ RunInputs InputsFromPython(const Program& program, const py::dict& inputs) {
   }
   const std::size_t count = static_cast<std::size_t>(supplied.front().array.shape(0));
   RunInputs result;
+  std::vector<int> converted;  // the registers whose values are converted into lanes of their own
   for (const Supplied& entry : supplied) {
     if (static_cast<std::size_t>(entry.array.shape(0)) != count) {
       throw py::value_error(fmt::format("inputs['{}'] has {} vertices but inputs['{}'] has {}", entry.key,
                                         entry.array.shape(0), supplied.front().key, count));
     }
     result.registers.push_back(entry.reg);
+    if (!ReadableInPlace(entry.array)) converted.push_back(entry.reg);
   }
-  result.arrays = MakeInputArrays(count, result.registers);
+  result.arrays = MakeInputArrays(count, converted);
   for (const Supplied& entry : supplied) {
     const int columns = static_cast<int>(entry.array.shape(1));
-    if (entry.array.dtype().is(py::dtype::of<float>())) {
+    if (ReadableInPlace(entry.array)) {
+      BorrowLanes(entry.array, columns, result.arrays, entry.reg);
+      result.borrowed.push_back(entry.array);
+    } else if (entry.array.dtype().is(py::dtype::of<float>())) {
       CopyLanes<float>(entry.array, count, columns, result.arrays, entry.reg);
     } else {
       CopyLanes<double>(entry.array, count, columns, result.arrays, entry.reg);

@@ -38,5 +38,6 @@ void WarnDiagnostics(const Diagnostics& diagnostics);
 void BindPrograms(py::module_& module);                    // program_bindings.cc
 void BindRun(py::class_<PyProgram>& program_class);         // run_bindings.cc
 void BindIrradiance(py::module_& irradiance_module);        // irradiance_bindings.cc
+void BindBatch(py::module_& irradiance_module);             // batch_bindings.cc
 
 }  // namespace vs11::python

@@ -1,10 +1,8 @@
-// vs11.irradiance: project, irradiance_map and batch, through irrmap's own library calls (RunIrrmap
-// and RunBatch, irradiance/jobs/), so their numbers are irrmap's: the same level and program choice,
-// the same coefficients and constants.
+// vs11.irradiance: project and irradiance_map, through irrmap's own library call (RunIrrmap,
+// irradiance/jobs/), so their numbers are irrmap's: the same level and program choice, the same
+// coefficients and constants. batch is in batch_bindings.cc.
 #include <cmath>
-#include <cstdlib>
 #include <filesystem>
-#include <fstream>
 #include <optional>
 #include <string>
 #include <vector>
@@ -15,7 +13,6 @@
 
 #include "irradiance/io/environment_io.h"
 #include "irradiance/io/environments.h"
-#include "irradiance/jobs/batch_job.h"
 #include "irradiance/jobs/irrmap_job.h"
 #include "irradiance/report/paper_program.h"
 #include "python/bindings.h"
@@ -213,55 +210,6 @@ py::array_t<float> IrradianceMap(const py::object& environment, const std::strin
   return result;
 }
 
-// A scratch folder removed when it goes out of scope.
-struct ScratchFolder {
-  fs::path path;
-  ScratchFolder() {
-    std::string pattern = (fs::temp_directory_path() / "vs11-batch-XXXXXX").string();
-    if (!mkdtemp(pattern.data())) throw std::runtime_error("cannot create a temporary folder for the batch output");
-    path = pattern;
-  }
-  ~ScratchFolder() {
-    std::error_code ec;
-    fs::remove_all(path, ec);
-  }
-};
-
-py::list Batch(const std::vector<std::string>& paths, int threads, const std::string& layout, int face_size,
-               std::optional<int> level, double max_error, const std::string& error_metric) {
-  if (threads < 0) throw py::value_error(fmt::format("threads={} must be >= 0 (0: every core)", threads));
-  ScratchFolder scratch;
-  irradiance::BatchOptions options;
-  options.inputs = paths;
-  options.output = scratch.path / "batch.jsonl";
-  options.threads = threads;
-  options.layout = layout;
-  options.face_size = face_size;
-  options.level = level;
-  options.max_error = max_error;
-  options.error_metric = error_metric;
-  irradiance::BatchSummary summary;
-  std::optional<std::string> error;
-  {
-    py::gil_scoped_release release;
-    error = irradiance::RunBatch(options, summary);
-  }
-  if (error) throw py::value_error(*error);
-  for (const irradiance::BatchFailure& failure : summary.failures) {
-    const std::string text = fmt::format("{}: {}", failure.input, failure.reason);
-    if (PyErr_WarnEx(PyExc_UserWarning, text.c_str(), 2) != 0) throw py::error_already_set();
-  }
-  // The records as irrmap batch wrote them, in input order (the file holds them in finishing order).
-  py::object loads = py::module_::import("json").attr("loads");
-  std::ifstream file(options.output);
-  py::list records;
-  for (std::string line; std::getline(file, line);) {
-    if (!line.empty()) records.append(loads(line));
-  }
-  records.attr("sort")(py::arg("key") = py::cpp_function([](const py::dict& record) { return record["input"]; }));
-  return records;
-}
-
 constexpr const char* kEnvironmentArguments =
     "environment: an image file (.hdr, .exr, .pfm, .dds, ...), a six-face pattern holding '{face}',\n"
     "  a built-in name (builtin_environments()), or a NumPy float array: (6, N, N, 3) cube faces in\n"
@@ -325,16 +273,7 @@ void BindIrradiance(py::module_& module) {
               "map_size: faces of the result (1 to 1024); engine: jit, batch or ref.\n"
               "\nExample:\n  e = vs11.irradiance.irradiance_map('studio', face_size=64, map_size=16)")
                  .c_str());
-  module.def("batch", &Batch, py::arg("paths"), py::arg("threads") = 0, py::arg("layout") = "auto",
-             py::arg("face_size") = 256, py::arg("level") = py::none(),
-             py::arg("max_error") = irradiance::kDefaultMaxLevelError,
-             py::arg("error_metric") = std::string(irradiance::ErrorMetricName(irradiance::kDefaultErrorMetric)),
-             "Projects many environment files as `irrmap batch` does (paths or glob patterns, every core\n"
-             "with threads=0) and returns its records, one dict per input in input order: input, face_size,\n"
-             "layout, level, level_size, estimated_error, error_metric, coefficients (9 x [r, g, b]) and constants\n"
-             "({'cAr': [x, y, z, w], ...}). An input that cannot be used is skipped with a UserWarning\n"
-             "naming it and why.\n\n"
-             "Example:\n  records = vs11.irradiance.batch(['envs/*.hdr'], threads=2)");
+  BindBatch(module);
 }
 
 }  // namespace vs11::python

@@ -103,7 +103,8 @@ std::string Footer() {
       "  irrmap sky --face-size 512 --no-ground-truth   # coefficients and irradiance.exr, no error table\n"
       "  irrmap studio --face-size 64 --mesh /usr/share/assimp/models/PLY/Wuson.ply --out wuson\n"
       "  irrmap studio --face-size 64 --no-ground-truth --map-format ktx2 --sh-export three,filament --out engine\n"
-      "  irrmap sky --face-size 64 --coefficients-only --sh-export unity,gltf,glsl,hlsl --out sh\n",
+      "  irrmap sky --face-size 64 --coefficients-only --sh-export unity,gltf,glsl,hlsl --out sh\n"
+      "  irrmap sky --face-size 16 --mesh /usr/share/assimp/models/STL/Wuson.stl --out stl  # zero normals: computed\n",
       vs11::irradiance::kRecommendedLevelSize);
 }
 
@@ -129,6 +130,7 @@ struct JobCommandLine {
   std::string font;
   std::string mesh_file;
   double mesh_timeout = 0;
+  bool compute_normals = false;
   int level = 0;
   std::string gl_device;  // empty, "list" or a device number
 };
@@ -208,8 +210,12 @@ void AddJobOptions(CLI::App& app, JobCommandLine& line) {
                "preview.png; coeffs.json, constants.vsh and irradiance.exr are written");
   app.set_version_flag("--version", "irrmap 0.1.0");
   app.add_option("--mesh", mesh_file,
-                 "also light this mesh (any format Assimp reads, with normals) as the paper's Fig. 3: mesh.ply "
-                 "(8-bit vertex colours, tone mapped as mesh.png) and mesh.png (program | exact | relative error)");
+                 "also light this mesh (any format Assimp reads) as the paper's Fig. 3: mesh.ply (8-bit vertex "
+                 "colours, tone mapped as mesh.png) and mesh.png (program | exact | relative error); vertices whose "
+                 "normal the file omits or gives as zero get computed smooth normals, with a warning");
+  app.add_flag("--compute-normals", line.compute_normals,
+               "replace every normal of --mesh with computed smooth ones (area-weighted, from its triangles), "
+               "even where the file gives usable normals");
   app.add_option("--mesh-timeout", mesh_timeout,
                  "stop reading --mesh after this many seconds (default 60 plus 1 per MiB): Assimp reads in a "
                  "separate process, and some corrupt files make it loop")
@@ -257,7 +263,8 @@ int RunJob(const CLI::App& app, JobCommandLine& line) {
     std::vector<std::string> mesh_warnings;
     options.mesh.emplace();
     std::optional<std::string> mesh_error =
-        vs11::irradiance::LoadMeshGeometry(line.mesh_file, *options.mesh, mesh_warnings, line.mesh_timeout);
+        vs11::irradiance::LoadMeshGeometry(line.mesh_file, *options.mesh, mesh_warnings, line.mesh_timeout,
+                                           line.compute_normals);
     for (const std::string& warning : mesh_warnings) fmt::print(stderr, "irrmap: warning: {}\n", warning);
     if (mesh_error) {
       fmt::print(stderr, "irrmap: error: {}\n", *mesh_error);

@@ -246,7 +246,7 @@ std::set<std::string> CompletedInputs(const fs::path& output, std::string& error
 }
 
 std::optional<std::string> RunBatch(const BatchOptions& options, BatchSummary& summary, const BatchProgress& progress,
-                                    const BatchFailureReport& report) {
+                                    const BatchFailureReport& report, const BatchRecordReport& record) {
   const auto start = std::chrono::steady_clock::now();
   summary = BatchSummary{};
   EnvironmentLayout layout = EnvironmentLayout::kAuto;
@@ -283,14 +283,15 @@ std::optional<std::string> RunBatch(const BatchOptions& options, BatchSummary& s
   std::optional<std::string> write_error;
   auto work = [&] {
     for (std::size_t i = next++; i < todo.size(); i = next++) {
-      nlohmann::ordered_json record;
-      std::optional<std::string> reason = ProcessInput(job, todo[i], record);
+      if (options.stop != nullptr && options.stop->load()) break;
+      nlohmann::ordered_json json;
+      std::optional<std::string> reason = ProcessInput(job, todo[i], json);
       std::string line;
       if (!reason) {
-        line = record.dump() + "\n";
+        line = json.dump() + "\n";
         if (!options.per_file_dir.empty()) {
           const fs::path path = options.per_file_dir / PerFileName(todo[i]);
-          if (std::optional<std::string> problem = WriteFileAtomically(path, record.dump(2) + "\n")) {
+          if (std::optional<std::string> problem = WriteFileAtomically(path, json.dump(2) + "\n")) {
             reason = fmt::format("cannot write {}: {}", path.string(), *problem);
           }
         }
@@ -304,6 +305,7 @@ std::optional<std::string> RunBatch(const BatchOptions& options, BatchSummary& s
         next = todo.size();  // stop: nothing more can be kept
       } else {
         ++summary.succeeded;
+        if (record) record(line);
       }
       ++finished;
       if (progress) progress(finished, todo.size());

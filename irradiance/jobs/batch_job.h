@@ -16,6 +16,7 @@
 // line cut off by an interruption is dropped first).
 #pragma once
 
+#include <atomic>
 #include <cstddef>
 #include <filesystem>
 #include <functional>
@@ -44,6 +45,9 @@ struct BatchOptions {
   std::optional<int> level;
   double max_error = kDefaultMaxLevelError;
   std::string error_metric{ErrorMetricName(kDefaultErrorMetric)};  // what max_error bounds, as irrmap's
+  // Set from another thread to stop early (the Python module's generator, closed): no input starts
+  // after a worker sees it; the inputs already running finish and are written. Null: run them all.
+  const std::atomic<bool>* stop = nullptr;
 };
 
 struct BatchFailure {
@@ -64,6 +68,9 @@ struct BatchSummary {
 using BatchProgress = std::function<void(std::size_t done, std::size_t total)>;
 // Called for every failed input as it fails, one call at a time.
 using BatchFailureReport = std::function<void(const BatchFailure& failure)>;
+// Called with every record's line (its JSON and the '\n') right after the line is written to the
+// output, from whichever worker finished it, one call at a time (with the failure reports).
+using BatchRecordReport = std::function<void(const std::string& line)>;
 
 // Parses "K/N" (0 <= K < N); nullopt when it is not that.
 std::optional<std::pair<int, int>> ParseShard(const std::string& text);
@@ -84,6 +91,7 @@ std::set<std::string> CompletedInputs(const std::filesystem::path& output, std::
 // Runs the batch. Returns a message for a problem with the options or the output file (nothing
 // processed); failures of single inputs go to summary.failures instead.
 std::optional<std::string> RunBatch(const BatchOptions& options, BatchSummary& summary,
-                                    const BatchProgress& progress = {}, const BatchFailureReport& report = {});
+                                    const BatchProgress& progress = {}, const BatchFailureReport& report = {},
+                                    const BatchRecordReport& record = {});
 
 }  // namespace vs11::irradiance

@@ -10,18 +10,22 @@
 namespace vs11::irradiance {
 
 std::optional<std::string> LoadMeshGeometry(const std::string& path, MeshGeometry& geometry,
-                                            std::vector<std::string>& warnings, double timeout_seconds) {
+                                            std::vector<std::string>& warnings, double timeout_seconds,
+                                            bool compute_normals) {
   mesh::MeshLoadOptions options;
   options.timeout_seconds = timeout_seconds;
+  options.repair_normals = true;
+  options.compute_normals = compute_normals;
   mesh::MeshLoadResult loaded = mesh::LoadMesh(path, options);
   if (!loaded.ok()) return loaded.error;
   auto source = std::make_shared<const mesh::Mesh>(std::move(*loaded.mesh));
   for (const std::string& warning : source->warnings) warnings.push_back(fmt::format("{}: {}", path, warning));
-  if (source->normals.empty()) {
-    return fmt::format("{}: the mesh has no normals, and the irradiance is a function of the normal", path);
-  }
   if (source->indices.empty()) {
     return fmt::format("{}: the mesh has no triangles (points or lines only): nothing to light and draw", path);
+  }
+  // Not reached with repair_normals: a mesh with triangles gets computed normals where it has none.
+  if (source->normals.empty()) {
+    return fmt::format("{}: the mesh has no normals, and the irradiance is a function of the normal", path);
   }
   geometry = MeshGeometry{};
   geometry.name = path;

@@ -1,4 +1,4 @@
-"""vs11.irradiance: project, irradiance_map and batch against irrmap's own outputs and physics."""
+"""vs11.irradiance: project and irradiance_map against irrmap's own outputs and physics (batch: test_batch.py)."""
 import json
 import math
 import subprocess
@@ -93,27 +93,3 @@ def test_bad_options_and_files_are_value_errors(tmp_path):
         vs11.irradiance.project(str(tmp_path / "missing.hdr"))
     with pytest.raises(ValueError, match="unknown order"):
         vs11.irradiance.project("sky", face_size=8, order="order9")
-
-
-def write_pfm(path, image):
-    """A little-endian RGB PFM (rows bottom to top, as the format stores them)."""
-    height, width, _ = image.shape
-    with open(path, "wb") as f:
-        f.write(b"PF\n%d %d\n-1.0\n" % (width, height))
-        f.write(np.ascontiguousarray(image[::-1], dtype="<f4").tobytes())
-
-
-def test_batch_records_are_irrmap_batch_records(tmp_path):
-    rng = np.random.default_rng(3)
-    paths = []
-    for name in ("b.pfm", "a.pfm"):
-        write_pfm(tmp_path / name, rng.uniform(0.0, 2.0, size=(8, 16, 3)))
-        paths.append(str(tmp_path / name))
-    (tmp_path / "broken.pfm").write_bytes(b"PF\n")
-    with pytest.warns(UserWarning, match="broken.pfm"):
-        records = vs11.irradiance.batch(paths + [str(tmp_path / "broken.pfm")], threads=2, face_size=8)
-    assert [r["input"] for r in records] == sorted(paths)
-    for record in records:
-        single = vs11.irradiance.project(record["input"], face_size=8, level=record["level"])
-        np.testing.assert_array_equal(np.array(record["coefficients"]), single.coefficients)
-        np.testing.assert_array_equal(np.array(list(record["constants"].values()), np.float32), single.constants)

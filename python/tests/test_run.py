@@ -90,7 +90,7 @@ def test_every_program_matches_vs11_run_bit_for_bit(programs_dir, vs11_tool, tmp
         program = vs11.load(path)
         inputs, flags = {}, []
         for name in program.inputs or ["v0"]:  # a program without inputs still runs n vertices
-            values = rng.uniform(-2, 2, size=(8, 4)).astype(np.float32)
+            values = rng.uniform(-2, 2, size=(300, 4)).astype(np.float32)  # a whole batch and a part
             write_csv(tmp_path / (name + ".csv"), values)
             inputs[name] = values
             flags += ["--input", "%s=%s" % (name, tmp_path / (name + ".csv"))]
@@ -127,6 +127,45 @@ def test_inputs_are_not_copied_into_numpy_arrays(dtype, columns):
     finally:
         tracemalloc.stop()
     assert peak < positions.nbytes // 8, "run() made a NumPy copy of its input (%d bytes traced)" % peak
+
+
+# run() on 2^20 vertices in a fresh process (so that the peak resident size before it is this
+# input's, not an earlier test's): the growth of the peak is what run() allocated and touched.
+NO_COPY_PROBE = r"""
+import resource
+import numpy as np
+import vs11
+program = vs11.assemble("vs_1_1\ndcl_position v0\nmov oPos, v0\n")
+inputs = np.ones((1 << 20, %d), np.float32)
+program.run({"position": inputs[:1000]})  # the engine's first-call setup, on a small slice
+before = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
+out = program.run({"position": inputs})
+after = resource.getrusage(resource.RUSAGE_SELF).ru_maxrss
+print((after - before) * 1024, out["oPos"].nbytes, inputs.nbytes, int(out["oPos"][-1, 3]))
+"""
+
+
+def test_c_contiguous_float32_inputs_are_read_in_place():
+    # (n, 4), the issue's case; (n, 3) takes the same path (a stride-0 w), checked bit for bit below.
+    probe = subprocess.run([sys.executable, "-c", NO_COPY_PROBE % 4], capture_output=True, text=True, check=True)
+    growth, output_bytes, input_bytes, w = map(int, probe.stdout.split())
+    assert w == 1
+    # The output (16 bytes a vertex) and a few KB of workspace; a copy of the input into the
+    # engines' layout would add 16 bytes a vertex more.
+    assert growth < output_bytes + input_bytes // 2, "run() grew the peak by %d bytes: a copy of the input" % growth
+
+
+@pytest.mark.parametrize("engine", ["ref", "batch", "jit"])
+def test_float32_views_read_in_place_give_the_bits_of_a_converted_copy(programs_dir, engine):
+    program = vs11.load(programs_dir / "sh9_irradiance.vsh")
+    constants = vs11.irradiance.project("studio", face_size=16, order="order2").constants
+    base = np.random.default_rng(5).uniform(-1, 1, size=(1000, 8)).astype(np.float32)
+    views = [base[:, :4], base[::-1, 2:6], base[::3, 1:4], np.asfortranarray(base[:, 4:8]),
+             np.ascontiguousarray(base[:, :3]), base[:, 5:1:-1]]
+    for view in views:
+        got = program.run({"v0": view}, constants, engine=engine, threads=2)["oD0"]
+        converted = program.run({"v0": view.astype(np.float64)}, constants, engine=engine)["oD0"]
+        assert got.view(np.uint32).tolist() == converted.view(np.uint32).tolist(), view.strides
 
 
 def test_gil_is_released_so_two_threads_run_engines_at_once(programs_dir):

@@ -1,5 +1,6 @@
 """The .pyi stubs name what the module has, with the same arguments, and every call has a docstring."""
 import ast
+import inspect
 import pathlib
 import re
 
@@ -26,7 +27,10 @@ def stub_functions(stub, owner):
 
 
 def pybind_arguments(function):
-    """The argument names of a pybind11 function, from the signature line its docstring starts with."""
+    """The argument names of a pybind11 function, from the signature line its docstring starts with
+    (or of a Python function, from its signature)."""
+    if inspect.isfunction(function):
+        return [name for name in inspect.signature(function).parameters if name != "self"]
     signature = function.__doc__.splitlines()[0]
     inside = signature[signature.index("(") + 1: signature.rindex(") ->")]
     names = [part.split(":")[0].strip() for part in re.split(r",\s*(?![^\[]*\])", inside) if part.strip()]
@@ -38,7 +42,8 @@ def test_stubs_match_the_module_and_every_call_is_documented(stub, owner):
     checked = 0
     for name, function, stub_names in stub_functions(stub, owner):
         assert pybind_arguments(function) == stub_names, name
-        description = function.__doc__.split("\n", 1)[1]
+        # pybind11's docstrings start with the signature line; a Python function's with its summary.
+        description = function.__doc__ if inspect.isfunction(function) else function.__doc__.split("\n", 1)[1]
         assert len(description.strip()) > 20, "%s has no docstring" % name
         checked += 1
     assert checked >= 4

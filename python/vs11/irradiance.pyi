@@ -1,6 +1,6 @@
 # Type stubs of vs11.irradiance. Docstrings: help(vs11.irradiance.project) and so on.
 import os
-from typing import Any, Optional, Sequence, Union
+from typing import Any, Generator, Iterable, Optional, Union
 
 import numpy as np
 import numpy.typing as npt
@@ -54,12 +54,15 @@ def irradiance_map(
     """The (6, map_size, map_size, 3) irradiance cube map irrmap writes as irradiance.exr."""
 
 def batch(
-    paths: Sequence[str],
+    paths: Iterable[str],
     threads: int = 0,
     layout: str = "auto",
     face_size: int = 256,
     level: Optional[int] = None,
     max_error: float = 0.005,
     error_metric: str = "peak",
-) -> list[dict[str, Any]]:
-    """`irrmap batch`'s records, one per input in input order; unusable inputs warn."""
+) -> Generator[dict[str, Any], None, None]:
+    """Yields `irrmap batch`'s records as the inputs finish (not in input order); unusable inputs warn.
+
+    The work runs on threads of its own with the GIL released; closing the generator stops it.
+    """

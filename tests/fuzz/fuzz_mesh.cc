@@ -27,6 +27,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   vs11::mesh::MeshLoadOptions options;
   options.compute_normals = (size & 1) != 0;
   options.compute_tangents = (size & 2) != 0;
+  options.repair_normals = (size & 4) != 0;  // irrmap --mesh sets it
   // Well inside .ci/sanitize's -timeout=60, so that a hang in Assimp ends as an error result.
   options.timeout_seconds = 10;
   vs11::mesh::MeshLoadResult result = vs11::mesh::LoadMeshFromMemory({data, size}, "", options);

@@ -210,9 +210,10 @@ void VertexSourceFlags::AddTo(CLI::App& command) {
       "Meshes: --mesh FILE binds inputs from the program's dcl_* (position, normal, texcoord<n>, color<n>,\n"
       "tangent, binormal, blendweight, blendindices), or --bind v#=ATTRIBUTE for DX8 programs. Positions and\n"
       "normals are in the scene's root space (each part moved by its node transform, normals by its\n"
-      "inverse transpose); skinned parts stay in mesh space for --bone-palette. Raw buffers: --buffer FILE\n"
-      "--stride BYTES --element v#=OFFSET:COUNT. .npy: --npy v#=FILE.npy, float32 (N, k), k 1-4. With\n"
-      "--out-npy, --out-buffer or --out-mesh and no --out, no CSV is printed.\n\n";
+      "inverse transpose); skinned parts stay in mesh space for --bone-palette. The program reads the file's\n"
+      "normals as they are (none: an error; zero: a warning); --compute-normals computes them all. Raw\n"
+      "buffers: --buffer FILE --stride BYTES --element v#=OFFSET:COUNT. .npy: --npy v#=FILE.npy, float32\n"
+      "(N, k), k 1-4. With --out-npy, --out-buffer or --out-mesh and no --out, no CSV is printed.\n\n";
   const std::string lines =
       "\n  vs11 run programs/directional_light.vsh --mesh /usr/share/assimp/models/PLY/Wuson.ply "
       "--const c0=1,0,0,0 --const c1=0,1,0,0 --const c2=0,0,1,0 --const c3=0,0,0,1 --const c4=1,0,0,0 "
@@ -231,7 +232,7 @@ void VertexSourceFlags::AddTo(CLI::App& command) {
                      "Stop reading --mesh after this many seconds (default 60 plus 1 per MiB): Assimp reads in a "
                      "separate process, and some corrupt files make it loop")
       ->check(CLI::PositiveNumber);
-  command.add_flag("--compute-normals", compute_normals, "Generate smooth normals for meshes without them");
+  command.add_flag("--compute-normals", compute_normals, "Compute smooth normals for every part (area-weighted, from its triangles), replacing the file's, zero ones included");
   command.add_flag("--compute-tangents", compute_tangents, "Generate tangents and binormals from texcoord0");
   command.add_option("--blend-index-scale", blend_index_scale,
                      "Multiply blendindices by this (3 for a palette of 4x3 matrices addressed as c[a0.x + base])");

@@ -83,6 +83,18 @@ VertexArrays::VertexArrays(std::size_t count, std::span<const int> registers, in
   if (count > kFloatsPerLine && (stride_ / kFloatsPerLine) % 2 == 0) stride_ += kFloatsPerLine;
   data_.assign(static_cast<std::size_t>(slots) * 4 * stride_, 0.0f);
   uniform_.assign(static_cast<std::size_t>(slots) * 4, 0.0f);
+  borrowed_.assign(static_cast<std::size_t>(slots) * 4, StridedLane{});
+}
+
+void VertexArrays::Borrow(int reg, const std::array<StridedLane, 4>& lanes) {
+  assert(reg >= 0 && reg < static_cast<int>(slot_of_.size()) && !has(reg));
+  // Borrowed slots come after the arrays' own, which alone have room in data_.
+  slot_of_[reg] = static_cast<int>(borrowed_.size() / 4);
+  for (const StridedLane& lane : lanes) {
+    assert(lane.base != nullptr);
+    borrowed_.push_back(lane);
+    uniform_.push_back(lane.stride == 0 ? std::optional<float>(*lane.base) : std::nullopt);
+  }
 }
 
 void VertexArrays::FillUniform(int reg, int component, float value) {

@@ -3,6 +3,7 @@
 #pragma once
 
 #include <array>
+#include <cassert>
 #include <cstddef>
 #include <memory>
 #include <new>
@@ -54,8 +55,23 @@ Vec4f UnwrittenOutputValue(int slot);
 // Which output lanes a program writes (for CSV headers and for the defaults above).
 std::array<WriteMask, kOutputSlotCount> WrittenOutputLanes(const Program& program);
 
+// One lane of vertex data read where it lies: vertex i's value is base[i * stride], the stride in
+// floats: 1 for `count` consecutive floats, 4 for one component of an array of (x, y, z, w)
+// structures (a C-contiguous (n, 4) float32 NumPy array), 0 for one value repeated.
+struct StridedLane {
+  const float* base = nullptr;
+  std::ptrdiff_t stride = 1;
+  float operator[](std::size_t i) const { return base[static_cast<std::ptrdiff_t>(i) * stride]; }
+  bool contiguous() const { return stride == 1; }
+};
+
 // Vertex data as structure of arrays: lane (register, component) is `count` consecutive floats.
 // Registers that are not present read kDefaultInput.
+//
+// A register may instead be borrowed (Borrow): its lanes are the caller's memory, read in place
+// with any stride, never copied or written. The engines read a borrowed lane that is not contiguous
+// a batch at a time (vm/engines/batch_engine.cc: kBatchSize vertices gathered into a lane of the
+// engine's own workspace, which stays in L1); view() reads any lane, lane() only the arrays' own.
 //
 // Each lane starts on a cache line, and consecutive lanes start an odd number of cache lines apart.
 // Lanes a whole number of pages apart (as `count` floats back to back are for a count that is a
@@ -73,12 +89,29 @@ class VertexArrays {
   VertexArrays(std::size_t count, std::span<const int> registers, int register_space);
   std::size_t count() const { return count_; }
   bool has(int reg) const { return reg >= 0 && reg < static_cast<int>(slot_of_.size()) && slot_of_[reg] >= 0; }
+  // A lane of the arrays' own (not borrowed): `count` consecutive floats.
   float* lane(int reg, int component) {
+    assert(!borrowed(reg));
     uniform_[Index(reg, component)].reset();  // the caller may write through the pointer
     return data_.data() + Index(reg, component) * stride_;
   }
-  const float* lane(int reg, int component) const { return data_.data() + Index(reg, component) * stride_; }
+  const float* lane(int reg, int component) const {
+    assert(!borrowed(reg));
+    return data_.data() + Index(reg, component) * stride_;
+  }
+  // Any lane, the arrays' own (stride 1) or borrowed.
+  StridedLane view(int reg, int component) const {
+    const StridedLane& lane = borrowed_[Index(reg, component)];
+    return lane.base != nullptr ? lane : StridedLane{data_.data() + Index(reg, component) * stride_, 1};
+  }
   std::vector<int> registers() const;
+
+  // Makes `reg`, which must not be present yet (and below the register space), read the caller's
+  // memory in place: component c of vertex i is lanes[c][i], for i < count(). The memory must stay
+  // valid and unchanged while an engine reads these arrays; nothing here writes it. A lane of
+  // stride 0 counts as filled by FillUniform with its one value.
+  void Borrow(int reg, const std::array<StridedLane, 4>& lanes);
+  bool borrowed(int reg) const { return has(reg) && borrowed_[Index(reg, 0)].base != nullptr; }
 
   void FillUniform(int reg, int component, float value);
   std::optional<float> uniform(int reg, int component) const { return uniform_[Index(reg, component)]; }
@@ -105,6 +138,7 @@ class VertexArrays {
   std::vector<int> slot_of_;
   std::vector<float, CacheLineAllocator<float>> data_;
   std::vector<std::optional<float>> uniform_;  // per lane
+  std::vector<StridedLane> borrowed_;          // per lane; base null: the lane is in data_
 };
 
 // Inputs: registers v0..v15. Outputs: the OutputSlot values.

@@ -86,6 +86,16 @@ void FillLane(float* lane, std::size_t count, float value) {
   }
 }
 
+// Vertices [start, start + n) of `lane` into `out`.
+void Gather(const StridedLane& lane, std::size_t start, std::size_t n, float* out) {
+  if (lane.contiguous()) {
+    std::memcpy(out, lane.base + start, n * sizeof(float));
+    return;
+  }
+  const float* from = lane.base + static_cast<std::ptrdiff_t>(start) * lane.stride;
+  for (std::size_t i = 0; i < n; ++i, from += lane.stride) out[i] = *from;
+}
+
 // The state one thread runs batches with: the lane table and the lanes the engine owns (the plan's
 // arena lanes, then a padded copy of each input and output lane for a batch shorter than kBatchSize).
 struct Workspace {
@@ -96,7 +106,7 @@ struct Workspace {
         address(hwy::AllocateAligned<std::int32_t>(kBatchSize)),
         read_lanes(kArenaLaneBase + plan.arena_lanes, nullptr),
         write_lanes(kArenaLaneBase + plan.arena_lanes, nullptr),
-        input_arrays(plan.input_lanes.size(), nullptr),
+        input_arrays(plan.input_lanes.size()),
         output_arrays(plan.output_lanes.size(), nullptr) {
     unstored.reserve(4 * kOutputSlotCount);
     std::fill_n(arena.get(), (plan.arena_lanes + input_arrays.size() + output_arrays.size()) * kLaneStride, 0.0f);
@@ -122,8 +132,8 @@ struct Workspace {
   hwy::AlignedFreeUniquePtr<std::int32_t[]> address;
   std::vector<const float*> read_lanes;
   std::vector<float*> write_lanes;
-  // Per Run: the caller's array behind each plan input and output lane, nullptr when absent.
-  std::vector<const float*> input_arrays;
+  // Per Run: the caller's array behind each plan input and output lane, null (base) when absent.
+  std::vector<StridedLane> input_arrays;
   std::vector<float*> output_arrays;
   // Per Run: output lanes no instruction stores, with the value they keep (filled batch by batch).
   std::vector<std::pair<float*, float>> unstored;
@@ -248,7 +258,7 @@ class BatchEngine final : public Engine {
     for (std::size_t k = 0; k < plan_.input_lanes.size(); ++k) {
       const std::uint16_t lane = plan_.input_lanes[k];
       const int reg = (lane - kInputLaneBase) / 4, c = (lane - kInputLaneBase) % 4;
-      workspace.input_arrays[k] = inputs.has(reg) ? inputs.lane(reg, c) : nullptr;
+      workspace.input_arrays[k] = inputs.has(reg) ? inputs.view(reg, c) : StridedLane{};
       if (!inputs.has(reg)) workspace.read_lanes[lane] = workspace.read_lanes[kDefaultInput[c] == 0.0f ? kZeroLane : kOneLane];
     }
 
@@ -258,9 +268,13 @@ class BatchEngine final : public Engine {
     // takes every whole granule at once, when it reads and writes only the caller's arrays (an absent
     // input's constant lane and an absent output's scratch lane hold one batch). A short rest runs on
     // padded copies.
-    // (The compiled program reads no absent input: their values are compiled in.)
+    // (The compiled program reads no absent input: their values are compiled in.) An input lane that
+    // is not contiguous (borrowed with a stride, VertexArrays::Borrow) is gathered batch by batch
+    // into its padded copy, which stays in L1: the caller's array is never copied whole.
     const bool whole_range =
-        compiled_ && std::ranges::none_of(workspace.output_arrays, [](const float* a) { return a == nullptr; });
+        compiled_ && std::ranges::none_of(workspace.output_arrays, [](const float* a) { return a == nullptr; }) &&
+        std::ranges::all_of(workspace.input_arrays,
+                            [](const StridedLane& a) { return a.base == nullptr || a.contiguous(); });
     for (std::size_t start = begin, n = 0; start < end; start += n) {
       const std::size_t left = end - start;
       bool full;
@@ -272,10 +286,11 @@ class BatchEngine final : public Engine {
         full = n == kBatchSize;
       }
       for (std::size_t k = 0; k < plan_.input_lanes.size(); ++k) {
-        const float* array = workspace.input_arrays[k];
-        if (array == nullptr) continue;
-        if (!full) std::memcpy(workspace.InputCopy(k), array + start, n * sizeof(float));
-        workspace.read_lanes[plan_.input_lanes[k]] = full ? array + start : workspace.InputCopy(k);
+        const StridedLane& array = workspace.input_arrays[k];
+        if (array.base == nullptr) continue;
+        const bool in_place = full && array.contiguous();
+        if (!in_place) Gather(array, start, n, workspace.InputCopy(k));
+        workspace.read_lanes[plan_.input_lanes[k]] = in_place ? array.base + start : workspace.InputCopy(k);
       }
       for (std::size_t k = 0; k < plan_.output_lanes.size(); ++k) {
         float* array = workspace.output_arrays[k];
@@ -285,9 +300,11 @@ class BatchEngine final : public Engine {
       }
       // The caller's arrays stream from memory: ask for the next batch while this one computes.
       if (!whole_range && start + kBatchSize < end) {
-        for (const float* array : workspace.input_arrays) {
-          if (array == nullptr) continue;
-          for (std::size_t k = 0; k < kBatchSize; k += kFloatsPerCacheLine) hwy::Prefetch(array + start + kBatchSize + k);
+        for (const StridedLane& array : workspace.input_arrays) {
+          if (array.base == nullptr || !array.contiguous()) continue;  // strided: the hardware's prefetcher
+          for (std::size_t k = 0; k < kBatchSize; k += kFloatsPerCacheLine) {
+            hwy::Prefetch(array.base + start + kBatchSize + k);
+          }
         }
       }
       frame.count = RoundUp(n, kVertexGranule);

@@ -99,7 +99,7 @@ void StartVertex(const VertexArrays& inputs, std::size_t vertex, const std::arra
                  VertexState& state) {
   state.inputs.fill(kDefaultInput);
   for (int reg : inputs.registers()) {
-    for (int c = 0; c < 4; ++c) state.inputs[reg][c] = inputs.lane(reg, c)[vertex];
+    for (int c = 0; c < 4; ++c) state.inputs[reg][c] = inputs.view(reg, c)[vertex];
   }
   state.temps = {};
   state.a0 = 0;

@@ -18,6 +18,7 @@
 #include <fmt/format.h>
 
 #include "vm/mesh/mesh_sandbox.h"
+#include "vm/mesh/smooth_normals.h"
 
 namespace vs11::mesh {
 namespace {
@@ -81,14 +82,26 @@ struct PartTransform {
     for (int r = 0; r < 3; ++r) out[r] = m[r][0] * d.x + m[r][1] * d.y + m[r][2] * d.z;
     return Normalized(out);
   }
-  Vec4f Normal(const aiVector3D& n) const {
+  Vec4f Normal(const aiVector3D& n) const { return Normal(Vec3d{n.x, n.y, n.z}); }
+  Vec4f Normal(const Vec3d& n) const {
     std::array<double, 3> out{};
-    for (int r = 0; r < 3; ++r) out[r] = normal[r][0] * n.x + normal[r][1] * n.y + normal[r][2] * n.z;
+    for (int r = 0; r < 3; ++r) out[r] = normal[r][0] * n[0] + normal[r][1] * n[1] + normal[r][2] * n[2];
     return Normalized(out);
   }
 };
 
 Vec4f Untransformed(const aiVector3D& v) { return {v.x, v.y, v.z, 1.0f}; }
+Vec4f Untransformed(const Vec3d& v) {
+  return {static_cast<float>(v[0]), static_cast<float>(v[1]), static_cast<float>(v[2]), 1.0f};
+}
+Vec3f ToVec3f(const aiVector3D& v) { return {v.x, v.y, v.z}; }
+
+bool HasTriangles(const aiMesh& m) {
+  for (unsigned f = 0; m.mFaces != nullptr && f < m.mNumFaces; ++f) {
+    if (m.mFaces[f].mNumIndices == 3 && m.mFaces[f].mIndices != nullptr) return true;
+  }
+  return false;
+}
 
 struct PlacedMesh {
   const aiMesh* mesh;
@@ -160,7 +173,10 @@ class MeshBuilder {
     const std::size_t n = mesh_.vertex_count;
     auto any = [&](auto has) { return std::any_of(placed.begin(), placed.end(), [&](const PlacedMesh& p) { return has(*p.mesh); }); };
     mesh_.positions.assign(n, kDefaultInput);
-    if (any([](const aiMesh& m) { return m.HasNormals(); })) mesh_.normals.assign(n, kDefaultInput);
+    const bool computes = options_.compute_normals || options_.repair_normals;
+    if (any([&](const aiMesh& m) { return m.HasNormals() || (computes && HasTriangles(m)); })) {
+      mesh_.normals.assign(n, kDefaultInput);
+    }
     if (any([](const aiMesh& m) { return m.HasTangentsAndBitangents(); })) {
       mesh_.tangents.assign(n, kDefaultInput);
       mesh_.binormals.assign(n, kDefaultInput);
@@ -188,17 +204,15 @@ class MeshBuilder {
     part.first_vertex = next_vertex_;
     part.vertex_count = m.mNumVertices;
     part.first_index = mesh_.indices.size();
+    std::vector<std::uint32_t> triangles;
+    if (std::optional<std::string> error = PartTriangles(m, part.mesh_name, triangles)) return error;
     const PartTransform transform(part.transformed ? part.transform : IdentityMatrix());
     const std::size_t base = next_vertex_;
+    std::vector<Vec4f> normals = PartNormals(m, triangles, transform, part.transformed);
+    if (!normals.empty()) std::copy(normals.begin(), normals.end(), mesh_.normals.begin() + static_cast<std::ptrdiff_t>(base));
     for (unsigned v = 0; v < m.mNumVertices; ++v) {
       Vec4f& position = mesh_.positions[base + v];
       position = part.transformed ? transform.Point(m.mVertices[v]) : Untransformed(m.mVertices[v]);
-      if (m.HasNormals()) {
-        const double length = m.mNormals[v].Length();
-        if (length == 0.0) ++zero_normals_;
-        if (std::abs(length - 1.0) > kUnitTolerance) ++nonunit_normals_;
-        mesh_.normals[base + v] = part.transformed ? transform.Normal(m.mNormals[v]) : Untransformed(m.mNormals[v]);
-      }
       if (m.HasTangentsAndBitangents()) {
         mesh_.tangents[base + v] = part.transformed ? transform.Direction(m.mTangents[v]) : Untransformed(m.mTangents[v]);
         mesh_.binormals[base + v] =
@@ -221,17 +235,7 @@ class MeshBuilder {
         mesh_.texcoord_components[set] = std::max(mesh_.texcoord_components[set], static_cast<int>(m.mNumUVComponents[set]));
       }
     }
-    for (unsigned f = 0; f < m.mNumFaces; ++f) {
-      const aiFace& face = m.mFaces[f];
-      if (face.mNumIndices != 3 || face.mIndices == nullptr) continue;  // points and lines (triangulation leaves nothing larger)
-      for (int k = 0; k < 3; ++k) {
-        if (face.mIndices[k] >= m.mNumVertices) {
-          return fmt::format("mesh '{}': face {} refers to vertex {} of {}", part.mesh_name, f, face.mIndices[k],
-                             m.mNumVertices);
-        }
-        mesh_.indices.push_back(static_cast<std::uint32_t>(base + face.mIndices[k]));
-      }
-    }
+    for (const std::uint32_t index : triangles) mesh_.indices.push_back(static_cast<std::uint32_t>(base + index));
     part.index_count = mesh_.indices.size() - part.first_index;
     if (part.skinned) {
       if (std::optional<std::string> error = AddBones(m, base)) return error;
@@ -239,6 +243,63 @@ class MeshBuilder {
     next_vertex_ += m.mNumVertices;
     mesh_.parts.push_back(std::move(part));
     return std::nullopt;
+  }
+
+  // The part's triangles, three vertex indices of its own each; points and lines add none
+  // (triangulation leaves nothing larger).
+  static std::optional<std::string> PartTriangles(const aiMesh& m, const std::string& name,
+                                                  std::vector<std::uint32_t>& triangles) {
+    for (unsigned f = 0; m.mFaces != nullptr && f < m.mNumFaces; ++f) {
+      const aiFace& face = m.mFaces[f];
+      if (face.mNumIndices != 3 || face.mIndices == nullptr) continue;
+      for (int k = 0; k < 3; ++k) {
+        if (face.mIndices[k] >= m.mNumVertices) {
+          return fmt::format("mesh '{}': face {} refers to vertex {} of {}", name, f, face.mIndices[k], m.mNumVertices);
+        }
+        triangles.push_back(face.mIndices[k]);
+      }
+    }
+    return std::nullopt;
+  }
+
+  // The normals the part's vertices get (empty: the part has none): the file's, or computed ones
+  // (smooth_normals.h) for every vertex with compute_normals and for the file's missing, zero and
+  // non-finite ones with repair_normals. A vertex in no triangle with area keeps the file's normal
+  // (kDefaultInput where the file has none) and is counted.
+  std::vector<Vec4f> PartNormals(const aiMesh& m, std::span<const std::uint32_t> triangles,
+                                 const PartTransform& transform, bool transformed) {
+    std::vector<bool> compute(m.mNumVertices, false);
+    std::size_t to_compute = 0;
+    if (!triangles.empty() && (options_.compute_normals || options_.repair_normals)) {
+      for (unsigned v = 0; v < m.mNumVertices; ++v) {
+        compute[v] = options_.compute_normals || !m.HasNormals() || !IsUsableNormal(ToVec3f(m.mNormals[v]));
+        to_compute += compute[v] ? 1 : 0;
+      }
+    }
+    if (!m.HasNormals() && to_compute == 0) return {};
+    std::vector<Vec3d> computed;
+    if (to_compute > 0) {
+      std::vector<Vec3f> positions(m.mNumVertices);
+      for (unsigned v = 0; v < m.mNumVertices; ++v) positions[v] = ToVec3f(m.mVertices[v]);
+      computed = AreaWeightedNormals(positions, triangles);
+      if (!options_.compute_normals) repaired_normals_ += to_compute;
+    }
+    std::vector<Vec4f> normals(m.mNumVertices, kDefaultInput);
+    for (unsigned v = 0; v < m.mNumVertices; ++v) {
+      if (compute[v] && computed[v] != Vec3d{}) {
+        normals[v] = transformed ? transform.Normal(computed[v]) : Untransformed(computed[v]);
+        continue;
+      }
+      if (compute[v]) ++uncomputed_normals_;
+      if (!m.HasNormals()) continue;
+      if (!compute[v]) {
+        const double length = m.mNormals[v].Length();
+        if (length == 0.0) ++zero_normals_;
+        if (std::abs(length - 1.0) > kUnitTolerance) ++nonunit_normals_;
+      }
+      normals[v] = transformed ? transform.Normal(m.mNormals[v]) : Untransformed(m.mNormals[v]);
+    }
+    return normals;
   }
 
   // Bones shared by several parts (same name, same offset matrix) get one palette entry.
@@ -314,8 +375,23 @@ class MeshBuilder {
     }
     if (nonunit_normals_ > 0) {
       mesh_.warnings.push_back(fmt::format(
-          "{} normals are not of unit length ({} of them zero){}", nonunit_normals_, zero_normals_,
-          options_.transform_to_world ? "; nonzero ones are normalised where the node transform is applied" : ""));
+          "{} normals are not of unit length ({} of them zero){}{}", nonunit_normals_, zero_normals_,
+          options_.transform_to_world ? "; nonzero ones are normalised where the node transform is applied" : "",
+          zero_normals_ > 0 ? "; --compute-normals replaces them" : ""));
+    }
+    if (repaired_normals_ > 0) {
+      std::string unlit;
+      if (uncomputed_normals_ > 0) {
+        unlit = fmt::format("; {} of them are in no triangle with area and still have none", uncomputed_normals_);
+      }
+      mesh_.warnings.push_back(fmt::format(
+          "{} of {} vertices have no usable normal (none, zero or not finite) in the file: computed smooth normals "
+          "for them (the area-weighted mean of the faces at each position){}",
+          repaired_normals_, mesh_.vertex_count, unlit));
+    } else if (uncomputed_normals_ > 0) {
+      mesh_.warnings.push_back(fmt::format(
+          "{} vertices are in no triangle with area: they have no computed normal and keep the file's",
+          uncomputed_normals_));
     }
     if (bones_without_node_ > 0) {
       mesh_.warnings.push_back(fmt::format("{} bones name no node of the scene: their skin matrix is the offset alone",
@@ -329,7 +405,8 @@ class MeshBuilder {
   std::size_t next_vertex_ = 0;
   std::map<std::pair<std::string, Matrix4d>, int> palette_;
   static constexpr double kUnitTolerance = 1e-3;
-  std::size_t zero_normals_ = 0, nonunit_normals_ = 0;
+  std::size_t zero_normals_ = 0, nonunit_normals_ = 0;  // among the file's normals that are kept
+  std::size_t repaired_normals_ = 0, uncomputed_normals_ = 0;
   std::size_t trimmed_vertices_ = 0, unweighted_vertices_ = 0, bones_without_node_ = 0;
 };
 
@@ -432,10 +509,14 @@ std::optional<std::string> CheckHeaderCounts(std::string_view head, std::uintmax
   return std::nullopt;
 }
 
+// Normals are vs11's (smooth_normals.h), computed after post-processing from its final triangles.
+// Assimp's GenSmoothNormals runs only where CalcTangentSpace needs normals for a part without any;
+// never with aiProcess_ForceGenNormals, which in Assimp 5.2 frees a point or line mesh's normals and
+// leaves the freed pointer in the mesh.
 unsigned PostProcessFlags(const MeshLoadOptions& options) {
   unsigned flags = aiProcess_Triangulate;
-  if (options.compute_normals) flags |= aiProcess_GenSmoothNormals;
   if (options.compute_tangents) flags |= aiProcess_CalcTangentSpace;
+  if (options.compute_tangents && options.compute_normals) flags |= aiProcess_GenSmoothNormals;
   return flags;
 }
 

@@ -95,10 +95,20 @@ struct Mesh {
 
 struct MeshLoadOptions {
   bool transform_to_world = true;
-  // Generate smooth normals for parts without any (Assimp's aiProcess_GenSmoothNormals). Existing
-  // normals are never replaced.
+  // Replace the normals of every part with triangles by computed smooth ones (AreaWeightedNormals in
+  // smooth_normals.h: vs11's own, from the triangles after triangulation, each face weighted by its
+  // area), whatever the file holds. A vertex in no triangle with area keeps the file's normal.
   bool compute_normals = false;
+  // Compute smooth normals (as above) only where the file gives none, or gives a zero or non-finite
+  // one: parts without normals get them all; in a part with some unusable normals only those
+  // vertices get computed ones, and the file's usable normals keep their bits. A warning counts the
+  // vertices. Points and lines have no normal to compute.
+  bool repair_normals = false;
   // Generate tangents and binormals from UV set 0 for parts without them (aiProcess_CalcTangentSpace).
+  // Assimp derives them from the normals it holds before vs11 computes any: the file's, and with
+  // compute_normals its own smooth ones (aiProcess_GenSmoothNormals) for parts without normals. So a
+  // tangent need not be exactly orthogonal to a normal vs11 computed, and a part whose file normals
+  // are zero gets no usable tangents.
   bool compute_tangents = false;
   // Assimp runs in a child process (mesh_sandbox.h) stopped after this many seconds; 0 = 60 s plus
   // 1 s per MiB of input. The tools' --mesh-timeout sets it.
