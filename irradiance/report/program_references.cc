@@ -179,24 +179,16 @@ std::optional<Setup> Begin(const ProgramMetadata& meta, const ReferenceOptions& 
   return setup;
 }
 
-// The start every lit case shares: `samples` vertices (at least one), the constants checked and
-// reserved (Begin), the tolerance its outputs are checked to, and its own random stream.
+// What the body of a lit case works with: the case it fills, a writer of its constants and inputs,
+// `count` vertices (the sample count, at least one), the tolerance its outputs are checked to and
+// its own random stream.
 struct LitCase {
-  Setup setup;
-  std::size_t count = 0;
-  double tolerance = 0.0;
-  Random random;
-
-  CaseWriter Writer() { return CaseWriter(setup.rc, setup.base); }
+  ReferenceCase& rc;
+  CaseWriter w;
+  std::size_t count;
+  double tolerance;
+  Random& random;
 };
-
-std::optional<LitCase> BeginLit(const ProgramMetadata& meta, const ReferenceOptions& options, int constant_registers,
-                                std::vector<int> input_registers, std::string& error) {
-  const std::size_t count = static_cast<std::size_t>(std::max(options.samples, 1));
-  std::optional<Setup> setup = Begin(meta, options, constant_registers, std::move(input_registers), count, error);
-  if (!setup) return std::nullopt;
-  return LitCase{std::move(*setup), count, meta.tolerance.value_or(kDefaultTolerance), Random(options.seed)};
-}
 
 ExpectedOutput& AddOutput(ReferenceCase& rc, int slot, WriteMask lanes, std::size_t vertices, double tolerance) {
   assert(rc.expected.size() < rc.expected.capacity());  // see Begin: references stay valid
@@ -223,6 +215,29 @@ std::string RegisterList(const ProgramMetadata& meta, int base) {
   add("texcoord", meta.texcoord, 'v');
   text += fmt::format(" constants=c{}", base);
   return text;
+}
+
+// The frame every lit case shares: the constants and `inputs` checked and reserved (Begin), the
+// body that draws the constants, inputs and expected outputs, then the inputs named, the case
+// described as `name`, and `primary_slot` (unless the metadata names another output) put first.
+template <class Body>
+std::optional<ReferenceCase> BuildLitCase(const ProgramMetadata& meta, const ReferenceOptions& options,
+                                          std::string_view name, int constant_registers,
+                                          std::vector<NamedInput> inputs, int primary_slot, std::string& error,
+                                          Body body) {
+  const std::size_t count = static_cast<std::size_t>(std::max(options.samples, 1));
+  std::vector<int> input_registers;
+  for (const NamedInput& input : inputs) input_registers.push_back(input.reg);
+  std::optional<Setup> setup = Begin(meta, options, constant_registers, std::move(input_registers), count, error);
+  if (!setup) return std::nullopt;
+  Random random(options.seed);
+  ReferenceCase& rc = setup->rc;
+  LitCase lit{rc, CaseWriter(rc, setup->base), count, meta.tolerance.value_or(kDefaultTolerance), random};
+  body(lit);
+  rc.named_inputs = std::move(inputs);
+  rc.description = std::string(name) + RegisterList(meta, setup->base);
+  PutPrimaryFirst(rc, meta.output.value_or(primary_slot));
+  return std::move(rc);
 }
 
 // ---- sh9 --------------------------------------------------------------------------------------------
@@ -324,47 +339,42 @@ std::optional<ReferenceCase> BuildSh9(const ProgramMetadata& meta, const Referen
 std::optional<ReferenceCase> BuildDirectionalLight(const ProgramMetadata& meta, const ReferenceOptions& options,
                                                    std::string& error) {
   const int position_reg = meta.position.value_or(0), normal_reg = meta.normal.value_or(1);
-  std::optional<LitCase> lit = BeginLit(meta, options, 13, {position_reg, normal_reg}, error);
-  if (!lit) return std::nullopt;
-  auto& [setup, count, tolerance, random] = *lit;
-  ReferenceCase& rc = setup.rc;
-  CaseWriter w = lit->Writer();
-  const std::array<glm::dvec4, 4> wvp = w.RandomMatrix4(0, random);
-  const std::array<glm::dvec4, 3> world = w.RandomWorld(4, random);
-  const glm::dvec3 light = glm::dvec3(w.SetConstant(7, glm::dvec4(random.UnitVector(), 0.0)));
-  const glm::dvec3 eye = glm::dvec3(w.SetConstant(8, glm::dvec4(random.UnitVector() * 6.0, 1.0)));
-  const glm::dvec4 diffuse = w.SetConstant(9, random.Colour());
-  const glm::dvec4 specular = w.SetConstant(10, random.Colour());
-  const glm::dvec4 ambient = w.SetConstant(11, random.Colour() * 0.2);
-  const double power = w.SetConstant(12, {0.0, 0.0, 0.0, std::round(random.Uniform(4, 32))}).w;
+  return BuildLitCase(meta, options, "directional_light", 13,
+                      {{position_reg, "position"}, {normal_reg, "normal"}}, kDiffuseSlot, error, [&](LitCase& frame) {
+    auto& [rc, w, count, tolerance, random] = frame;
+    const std::array<glm::dvec4, 4> wvp = w.RandomMatrix4(0, random);
+    const std::array<glm::dvec4, 3> world = w.RandomWorld(4, random);
+    const glm::dvec3 light = glm::dvec3(w.SetConstant(7, glm::dvec4(random.UnitVector(), 0.0)));
+    const glm::dvec3 eye = glm::dvec3(w.SetConstant(8, glm::dvec4(random.UnitVector() * 6.0, 1.0)));
+    const glm::dvec4 diffuse = w.SetConstant(9, random.Colour());
+    const glm::dvec4 specular = w.SetConstant(10, random.Colour());
+    const glm::dvec4 ambient = w.SetConstant(11, random.Colour() * 0.2);
+    const double power = w.SetConstant(12, {0.0, 0.0, 0.0, std::round(random.Uniform(4, 32))}).w;
 
-  ExpectedOutput& position = AddOutput(rc, kPositionSlot, kXyzw, count, tolerance);
-  ExpectedOutput& od0 = AddOutput(rc, kDiffuseSlot, kXyzw, count, tolerance);
-  ExpectedOutput& od1 = AddOutput(rc, kSpecularSlot, kXyzw, count, tolerance);
-  for (std::size_t i = 0; i < count; ++i) {
-    for (int attempt = 0;; ++attempt) {
-      const glm::dvec4 p = w.SetInput(position_reg, i, {random.Uniform(-1, 1), random.Uniform(-1, 1),
-                                                        random.Uniform(-1, 1), 1.0});
-      const glm::dvec4 n_in = w.SetInput(normal_reg, i, glm::dvec4(random.UnitVector(), 1.0));
-      const glm::dvec3 world_p(Rows4(world, p));
-      const glm::dvec3 n = glm::normalize(glm::dvec3(Rows3(world, glm::dvec3(n_in))));
-      const glm::dvec3 h = glm::normalize(glm::normalize(eye - world_p) + light);
-      const double n_dot_l = glm::dot(n, light), n_dot_h = glm::dot(n, h);
-      if (attempt < kMaxRedraws &&
-          (std::abs(n_dot_l) < kDiscontinuityMargin || std::abs(n_dot_h) < kDiscontinuityMargin)) {
-        continue;
+    ExpectedOutput& position = AddOutput(rc, kPositionSlot, kXyzw, count, tolerance);
+    ExpectedOutput& od0 = AddOutput(rc, kDiffuseSlot, kXyzw, count, tolerance);
+    ExpectedOutput& od1 = AddOutput(rc, kSpecularSlot, kXyzw, count, tolerance);
+    for (std::size_t i = 0; i < count; ++i) {
+      for (int attempt = 0;; ++attempt) {
+        const glm::dvec4 p = w.SetInput(position_reg, i, {random.Uniform(-1, 1), random.Uniform(-1, 1),
+                                                          random.Uniform(-1, 1), 1.0});
+        const glm::dvec4 n_in = w.SetInput(normal_reg, i, glm::dvec4(random.UnitVector(), 1.0));
+        const glm::dvec3 world_p(Rows4(world, p));
+        const glm::dvec3 n = glm::normalize(glm::dvec3(Rows3(world, glm::dvec3(n_in))));
+        const glm::dvec3 h = glm::normalize(glm::normalize(eye - world_p) + light);
+        const double n_dot_l = glm::dot(n, light), n_dot_h = glm::dot(n, h);
+        if (attempt < kMaxRedraws &&
+            (std::abs(n_dot_l) < kDiscontinuityMargin || std::abs(n_dot_h) < kDiscontinuityMargin)) {
+          continue;
+        }
+        const glm::dvec4 lit = Lit(n_dot_l, n_dot_h, power);
+        position.values[i] = Rows4(wvp, p);
+        od0.values[i] = ambient + diffuse * lit.y;
+        od1.values[i] = specular * lit.z;
+        break;
       }
-      const glm::dvec4 lit = Lit(n_dot_l, n_dot_h, power);
-      position.values[i] = Rows4(wvp, p);
-      od0.values[i] = ambient + diffuse * lit.y;
-      od1.values[i] = specular * lit.z;
-      break;
     }
-  }
-  rc.named_inputs = {{position_reg, "position"}, {normal_reg, "normal"}};
-  rc.description = "directional_light" + RegisterList(meta, setup.base);
-  PutPrimaryFirst(rc, meta.output.value_or(kDiffuseSlot));
-  return std::move(rc);
+  });
 }
 
 // ---- point_light ------------------------------------------------------------------------------------
@@ -372,38 +382,33 @@ std::optional<ReferenceCase> BuildDirectionalLight(const ProgramMetadata& meta, 
 std::optional<ReferenceCase> BuildPointLight(const ProgramMetadata& meta, const ReferenceOptions& options,
                                              std::string& error) {
   const int position_reg = meta.position.value_or(0), normal_reg = meta.normal.value_or(1);
-  std::optional<LitCase> lit = BeginLit(meta, options, 11, {position_reg, normal_reg}, error);
-  if (!lit) return std::nullopt;
-  auto& [setup, count, tolerance, random] = *lit;
-  ReferenceCase& rc = setup.rc;
-  CaseWriter w = lit->Writer();
-  const std::array<glm::dvec4, 4> wvp = w.RandomMatrix4(0, random);
-  const std::array<glm::dvec4, 3> world = w.RandomWorld(4, random);
-  // The light 4 to 8 units from the origin, so it stays outside the objects (|P| <= about 3.5).
-  const glm::dvec3 light_pos =
-      glm::dvec3(w.SetConstant(7, glm::dvec4(random.UnitVector() * random.Uniform(4, 8), 1.0)));
-  const glm::dvec4 atten =
-      w.SetConstant(8, {random.Uniform(0.5, 1), random.Uniform(0.05, 0.2), random.Uniform(0.01, 0.05), 0.0});
-  const glm::dvec4 diffuse = w.SetConstant(9, random.Colour() * 8.0);
-  const glm::dvec4 ambient = w.SetConstant(10, random.Colour() * 0.2);
+  return BuildLitCase(meta, options, "point_light", 11,
+                      {{position_reg, "position"}, {normal_reg, "normal"}}, kDiffuseSlot, error, [&](LitCase& frame) {
+    auto& [rc, w, count, tolerance, random] = frame;
+    const std::array<glm::dvec4, 4> wvp = w.RandomMatrix4(0, random);
+    const std::array<glm::dvec4, 3> world = w.RandomWorld(4, random);
+    // The light 4 to 8 units from the origin, so it stays outside the objects (|P| <= about 3.5).
+    const glm::dvec3 light_pos =
+        glm::dvec3(w.SetConstant(7, glm::dvec4(random.UnitVector() * random.Uniform(4, 8), 1.0)));
+    const glm::dvec4 atten =
+        w.SetConstant(8, {random.Uniform(0.5, 1), random.Uniform(0.05, 0.2), random.Uniform(0.01, 0.05), 0.0});
+    const glm::dvec4 diffuse = w.SetConstant(9, random.Colour() * 8.0);
+    const glm::dvec4 ambient = w.SetConstant(10, random.Colour() * 0.2);
 
-  ExpectedOutput& position = AddOutput(rc, kPositionSlot, kXyzw, count, tolerance);
-  ExpectedOutput& od0 = AddOutput(rc, kDiffuseSlot, kXyzw, count, tolerance);
-  for (std::size_t i = 0; i < count; ++i) {
-    const glm::dvec4 p =
-        w.SetInput(position_reg, i, {random.Uniform(-1, 1), random.Uniform(-1, 1), random.Uniform(-1, 1), 1.0});
-    const glm::dvec4 n_in = w.SetInput(normal_reg, i, glm::dvec4(random.UnitVector(), 1.0));
-    const glm::dvec3 to_light = light_pos - glm::dvec3(Rows4(world, p));
-    const double d = glm::length(to_light);
-    const glm::dvec3 n = glm::normalize(glm::dvec3(Rows3(world, glm::dvec3(n_in))));
-    const double attenuation = 1.0 / (atten.x + atten.y * d + atten.z * d * d);
-    position.values[i] = Rows4(wvp, p);
-    od0.values[i] = ambient + diffuse * (std::max(glm::dot(n, to_light / d), 0.0) * attenuation);
-  }
-  rc.named_inputs = {{position_reg, "position"}, {normal_reg, "normal"}};
-  rc.description = "point_light" + RegisterList(meta, setup.base);
-  PutPrimaryFirst(rc, meta.output.value_or(kDiffuseSlot));
-  return std::move(rc);
+    ExpectedOutput& position = AddOutput(rc, kPositionSlot, kXyzw, count, tolerance);
+    ExpectedOutput& od0 = AddOutput(rc, kDiffuseSlot, kXyzw, count, tolerance);
+    for (std::size_t i = 0; i < count; ++i) {
+      const glm::dvec4 p =
+          w.SetInput(position_reg, i, {random.Uniform(-1, 1), random.Uniform(-1, 1), random.Uniform(-1, 1), 1.0});
+      const glm::dvec4 n_in = w.SetInput(normal_reg, i, glm::dvec4(random.UnitVector(), 1.0));
+      const glm::dvec3 to_light = light_pos - glm::dvec3(Rows4(world, p));
+      const double d = glm::length(to_light);
+      const glm::dvec3 n = glm::normalize(glm::dvec3(Rows3(world, glm::dvec3(n_in))));
+      const double attenuation = 1.0 / (atten.x + atten.y * d + atten.z * d * d);
+      position.values[i] = Rows4(wvp, p);
+      od0.values[i] = ambient + diffuse * (std::max(glm::dot(n, to_light / d), 0.0) * attenuation);
+    }
+  });
 }
 
 // ---- fog --------------------------------------------------------------------------------------------
@@ -411,32 +416,26 @@ std::optional<ReferenceCase> BuildPointLight(const ProgramMetadata& meta, const 
 std::optional<ReferenceCase> BuildFog(const ProgramMetadata& meta, const ReferenceOptions& options,
                                       std::string& error) {
   const int position_reg = meta.position.value_or(0);
-  std::optional<LitCase> lit = BeginLit(meta, options, 8, {position_reg}, error);
-  if (!lit) return std::nullopt;
-  auto& [setup, count, tolerance, random] = *lit;
-  ReferenceCase& rc = setup.rc;
-  CaseWriter w = lit->Writer();
-  const std::array<glm::dvec4, 4> wvp = w.RandomMatrix4(0, random);
-  std::array<glm::dvec4, 3> world_view = w.RandomWorld(4, random);
-  // Push the scene 2 to 10 units in front of the eye (view-space z), as a camera would see it.
-  world_view[2] = w.SetConstant(6, world_view[2] + glm::dvec4(0, 0, 0, random.Uniform(2, 10)));
-  const double density1 = random.Uniform(0.02, 0.2), density2 = random.Uniform(0.02, 0.2);
-  const glm::dvec4 fog = w.SetConstant(
-      7, {0.0, -density1 * std::numbers::log2e, -density2 * density2 * std::numbers::log2e, 0.0});
+  return BuildLitCase(meta, options, "fog", 8, {{position_reg, "position"}}, kFogSlot, error, [&](LitCase& frame) {
+    auto& [rc, w, count, tolerance, random] = frame;
+    const std::array<glm::dvec4, 4> wvp = w.RandomMatrix4(0, random);
+    std::array<glm::dvec4, 3> world_view = w.RandomWorld(4, random);
+    // Push the scene 2 to 10 units in front of the eye (view-space z), as a camera would see it.
+    world_view[2] = w.SetConstant(6, world_view[2] + glm::dvec4(0, 0, 0, random.Uniform(2, 10)));
+    const double density1 = random.Uniform(0.02, 0.2), density2 = random.Uniform(0.02, 0.2);
+    const glm::dvec4 fog = w.SetConstant(
+        7, {0.0, -density1 * std::numbers::log2e, -density2 * density2 * std::numbers::log2e, 0.0});
 
-  ExpectedOutput& position = AddOutput(rc, kPositionSlot, kXyzw, count, tolerance);
-  ExpectedOutput& o_fog = AddOutput(rc, kFogSlot, kX, count, tolerance);
-  for (std::size_t i = 0; i < count; ++i) {
-    const glm::dvec4 p =
-        w.SetInput(position_reg, i, {random.Uniform(-1, 1), random.Uniform(-1, 1), random.Uniform(-1, 1), 1.0});
-    const double d = glm::length(glm::dvec3(Rows4(world_view, p)));
-    position.values[i] = Rows4(wvp, p);
-    o_fog.values[i] = glm::dvec4(std::exp2(fog.y * d + fog.z * d * d), 0.0, 0.0, 0.0);
-  }
-  rc.named_inputs = {{position_reg, "position"}};
-  rc.description = "fog" + RegisterList(meta, setup.base);
-  PutPrimaryFirst(rc, meta.output.value_or(kFogSlot));
-  return std::move(rc);
+    ExpectedOutput& position = AddOutput(rc, kPositionSlot, kXyzw, count, tolerance);
+    ExpectedOutput& o_fog = AddOutput(rc, kFogSlot, kX, count, tolerance);
+    for (std::size_t i = 0; i < count; ++i) {
+      const glm::dvec4 p =
+          w.SetInput(position_reg, i, {random.Uniform(-1, 1), random.Uniform(-1, 1), random.Uniform(-1, 1), 1.0});
+      const double d = glm::length(glm::dvec3(Rows4(world_view, p)));
+      position.values[i] = Rows4(wvp, p);
+      o_fog.values[i] = glm::dvec4(std::exp2(fog.y * d + fog.z * d * d), 0.0, 0.0, 0.0);
+    }
+  });
 }
 
 // ---- skinning ---------------------------------------------------------------------------------------
@@ -448,41 +447,36 @@ std::optional<ReferenceCase> BuildSkinning(const ProgramMetadata& meta, const Re
                                            std::string& error) {
   const int position_reg = meta.position.value_or(0), weights_reg = meta.weights.value_or(1),
             indices_reg = meta.indices.value_or(2), normal_reg = meta.normal.value_or(3);
-  std::optional<LitCase> lit = BeginLit(meta, options, kSkinningPaletteOffset + 3 * kSkinningBones,
-                                        {position_reg, weights_reg, indices_reg, normal_reg}, error);
-  if (!lit) return std::nullopt;
-  auto& [setup, count, tolerance, random] = *lit;
-  ReferenceCase& rc = setup.rc;
-  CaseWriter w = lit->Writer();
-  const std::array<glm::dvec4, 4> view_proj = w.RandomMatrix4(0, random);
-  const glm::dvec3 light = glm::dvec3(w.SetConstant(4, glm::dvec4(random.UnitVector(), 0.0)));
-  const glm::dvec4 diffuse = w.SetConstant(5, random.Colour());
-  std::array<std::array<glm::dvec4, 3>, kSkinningBones> bones;
-  for (int b = 0; b < kSkinningBones; ++b) bones[b] = w.RandomWorld(kSkinningPaletteOffset + 3 * b, random);
+  return BuildLitCase(meta, options, "skinning", kSkinningPaletteOffset + 3 * kSkinningBones,
+                      {{position_reg, "position"}, {weights_reg, "weights"}, {indices_reg, "indices"},
+                       {normal_reg, "normal"}},
+                      kDiffuseSlot, error, [&](LitCase& frame) {
+    auto& [rc, w, count, tolerance, random] = frame;
+    const std::array<glm::dvec4, 4> view_proj = w.RandomMatrix4(0, random);
+    const glm::dvec3 light = glm::dvec3(w.SetConstant(4, glm::dvec4(random.UnitVector(), 0.0)));
+    const glm::dvec4 diffuse = w.SetConstant(5, random.Colour());
+    std::array<std::array<glm::dvec4, 3>, kSkinningBones> bones;
+    for (int b = 0; b < kSkinningBones; ++b) bones[b] = w.RandomWorld(kSkinningPaletteOffset + 3 * b, random);
 
-  ExpectedOutput& position = AddOutput(rc, kPositionSlot, kXyzw, count, tolerance);
-  ExpectedOutput& od0 = AddOutput(rc, kDiffuseSlot, kXyzw, count, tolerance);
-  for (std::size_t i = 0; i < count; ++i) {
-    const glm::dvec4 p =
-        w.SetInput(position_reg, i, {random.Uniform(-1, 1), random.Uniform(-1, 1), random.Uniform(-1, 1), 1.0});
-    const double w0 = random.Uniform(0, 1);
-    const glm::dvec4 weights = w.SetInput(weights_reg, i, {w0, 1.0 - w0, 0.0, 1.0});
-    const int b0 = static_cast<int>(random.Next() % kSkinningBones);
-    const int b1 = static_cast<int>(random.Next() % kSkinningBones);
-    w.SetInput(indices_reg, i, {3.0 * b0, 3.0 * b1, 0.0, 1.0});
-    const glm::dvec4 n_in = w.SetInput(normal_reg, i, glm::dvec4(random.UnitVector(), 1.0));
-    const glm::dvec3 skinned =
-        glm::dvec3(Rows4(bones[b0], p)) * weights.x + glm::dvec3(Rows4(bones[b1], p)) * weights.y;
-    const glm::dvec3 normal = glm::dvec3(Rows3(bones[b0], glm::dvec3(n_in))) * weights.x +
-                              glm::dvec3(Rows3(bones[b1], glm::dvec3(n_in))) * weights.y;
-    position.values[i] = Rows4(view_proj, glm::dvec4(skinned, p.w));
-    od0.values[i] = diffuse * std::max(glm::dot(glm::normalize(normal), light), 0.0);
-  }
-  rc.named_inputs = {{position_reg, "position"}, {weights_reg, "weights"}, {indices_reg, "indices"},
-                     {normal_reg, "normal"}};
-  rc.description = "skinning" + RegisterList(meta, setup.base);
-  PutPrimaryFirst(rc, meta.output.value_or(kDiffuseSlot));
-  return std::move(rc);
+    ExpectedOutput& position = AddOutput(rc, kPositionSlot, kXyzw, count, tolerance);
+    ExpectedOutput& od0 = AddOutput(rc, kDiffuseSlot, kXyzw, count, tolerance);
+    for (std::size_t i = 0; i < count; ++i) {
+      const glm::dvec4 p =
+          w.SetInput(position_reg, i, {random.Uniform(-1, 1), random.Uniform(-1, 1), random.Uniform(-1, 1), 1.0});
+      const double w0 = random.Uniform(0, 1);
+      const glm::dvec4 weights = w.SetInput(weights_reg, i, {w0, 1.0 - w0, 0.0, 1.0});
+      const int b0 = static_cast<int>(random.Next() % kSkinningBones);
+      const int b1 = static_cast<int>(random.Next() % kSkinningBones);
+      w.SetInput(indices_reg, i, {3.0 * b0, 3.0 * b1, 0.0, 1.0});
+      const glm::dvec4 n_in = w.SetInput(normal_reg, i, glm::dvec4(random.UnitVector(), 1.0));
+      const glm::dvec3 skinned =
+          glm::dvec3(Rows4(bones[b0], p)) * weights.x + glm::dvec3(Rows4(bones[b1], p)) * weights.y;
+      const glm::dvec3 normal = glm::dvec3(Rows3(bones[b0], glm::dvec3(n_in))) * weights.x +
+                                glm::dvec3(Rows3(bones[b1], glm::dvec3(n_in))) * weights.y;
+      position.values[i] = Rows4(view_proj, glm::dvec4(skinned, p.w));
+      od0.values[i] = diffuse * std::max(glm::dot(glm::normalize(normal), light), 0.0);
+    }
+  });
 }
 
 // ---- all_instructions -------------------------------------------------------------------------------
@@ -503,73 +497,69 @@ std::optional<ReferenceCase> BuildAllInstructions(const ProgramMetadata& meta, c
                                                   std::string& error) {
   const int position_reg = meta.position.value_or(0), normal_reg = meta.normal.value_or(1),
             texcoord_reg = meta.texcoord.value_or(2);
-  std::optional<LitCase> lit = BeginLit(meta, options, 19, {position_reg, normal_reg, texcoord_reg}, error);
-  if (!lit) return std::nullopt;
-  auto& [setup, count, tolerance, random] = *lit;
-  ReferenceCase& rc = setup.rc;
-  CaseWriter w = lit->Writer();
-  const std::array<glm::dvec4, 4> wvp = w.RandomMatrix4(0, random);
-  const std::array<glm::dvec4, 3> world = w.RandomWorld(4, random);
-  const glm::dvec3 light_pos =
-      glm::dvec3(w.SetConstant(7, glm::dvec4(random.UnitVector() * random.Uniform(4, 8), 1.0)));
-  std::array<glm::dvec4, 4> m3x4;
-  for (int i = 0; i < 4; ++i) m3x4[i] = w.SetConstant(8 + i, glm::dvec4(random.UnitVector() * 2.0, 0.0));
-  std::array<glm::dvec4, 2> tex;
-  for (int i = 0; i < 2; ++i) {
-    tex[i] = w.SetConstant(12 + i, {random.Uniform(-2, 2), random.Uniform(-2, 2), random.Uniform(-2, 2), 0.0});
-  }
-  const glm::dvec4 diffuse = w.SetConstant(14, random.Colour());
-  const glm::dvec4 specular = w.SetConstant(15, random.Colour());
-  const double power = w.SetConstant(16, {0.0, 0.0, 0.0, std::round(random.Uniform(4, 32))}).w;
-  const glm::dvec3 half = glm::dvec3(w.SetConstant(17, glm::dvec4(random.UnitVector(), 0.0)));
-  const glm::dvec4 fog_plane = w.SetConstant(18, glm::dvec4(random.UnitVector() * 0.3, 0.5));
-
-  const double partial_tolerance = meta.tolerance.value_or(kPartialPrecisionTolerance);
-  ExpectedOutput& o_pos = AddOutput(rc, kPositionSlot, kXyzw, count, tolerance);
-  ExpectedOutput& od0 = AddOutput(rc, kDiffuseSlot, kXyzw, count, tolerance);
-  ExpectedOutput& od1 = AddOutput(rc, kSpecularSlot, kXyzw, count, tolerance);
-  ExpectedOutput& ot0 = AddOutput(rc, kTexCoord0Slot + 0, kXy, count, tolerance);
-  ExpectedOutput& ot1 = AddOutput(rc, kTexCoord0Slot + 1, kXy, count, tolerance);
-  ExpectedOutput& ot2 = AddOutput(rc, kTexCoord0Slot + 2, kXyzw, count, partial_tolerance);
-  ExpectedOutput& ot3 = AddOutput(rc, kTexCoord0Slot + 3, kXyzw, count, partial_tolerance);
-  ExpectedOutput& ot4 = AddOutput(rc, kTexCoord0Slot + 4, kXyzw, count, tolerance);
-  ExpectedOutput& ot5 = AddOutput(rc, kTexCoord0Slot + 5, kXyzw, count, tolerance);
-  ExpectedOutput& o_fog = AddOutput(rc, kFogSlot, kX, count, tolerance);
-  for (std::size_t i = 0; i < count; ++i) {
-    for (int attempt = 0;; ++attempt) {
-      const glm::dvec4 p =
-          w.SetInput(position_reg, i, {random.Uniform(-1, 1), random.Uniform(-1, 1), random.Uniform(-1, 1), 1.0});
-      const glm::dvec4 n_in = w.SetInput(normal_reg, i, glm::dvec4(random.UnitVector(), 1.0));
-      const glm::dvec4 t = w.SetInput(texcoord_reg, i, {random.Uniform(-2, 3), random.Uniform(0.1, 4),
-                                                        random.Uniform(-1, 1), random.Uniform(-1, 1)});
-      const glm::dvec3 n = glm::normalize(glm::dvec3(Rows3(world, glm::dvec3(n_in))));
-      const glm::dvec3 to_light = light_pos - glm::dvec3(Rows4(world, p));
-      const double d = glm::length(to_light);
-      const double n_dot_l = glm::dot(n, to_light / d), n_dot_h = glm::dot(n, half);
-      const glm::dvec4 transformed = Rows3(tex, glm::dvec3(t));
-      if (attempt < kMaxRedraws &&
-          (std::abs(n_dot_l) < kDiscontinuityMargin || std::abs(n_dot_h) < kDiscontinuityMargin ||
-           NearInteger(transformed.x, kDiscontinuityMargin) || NearInteger(transformed.y, kDiscontinuityMargin))) {
-        continue;
-      }
-      const glm::dvec4 lit = Lit(n_dot_l, n_dot_h, power);
-      o_pos.values[i] = Rows4(wvp, p);
-      od0.values[i] = diffuse * lit.y + specular * lit.z;
-      for (int c = 0; c < 4; ++c) od1.values[i][c] = std::min(2.0 * std::abs(n_in[c]), kHalf);
-      ot0.values[i] = {Fraction(transformed.x), Fraction(transformed.y), 0.0, 0.0};
-      ot1.values[i] = {std::exp2(t.x), std::log2(std::abs(t.y)), 0.0, 0.0};
-      ot2.values[i] = {std::exp2(std::floor(t.x)), t.x - std::floor(t.x), std::exp2(t.x), 1.0};
-      ot3.values[i] = Logp(t.y);
-      ot4.values[i] = Rows3(m3x4, n);
-      ot5.values[i] = {1.0, d, d * d, 1.0 / d};
-      o_fog.values[i] = {glm::dot(p, fog_plane), 0.0, 0.0, 0.0};
-      break;
+  return BuildLitCase(meta, options, "all_instructions", 19,
+                      {{position_reg, "position"}, {normal_reg, "normal"}, {texcoord_reg, "texcoord"}}, kDiffuseSlot,
+                      error, [&](LitCase& frame) {
+    auto& [rc, w, count, tolerance, random] = frame;
+    const std::array<glm::dvec4, 4> wvp = w.RandomMatrix4(0, random);
+    const std::array<glm::dvec4, 3> world = w.RandomWorld(4, random);
+    const glm::dvec3 light_pos =
+        glm::dvec3(w.SetConstant(7, glm::dvec4(random.UnitVector() * random.Uniform(4, 8), 1.0)));
+    std::array<glm::dvec4, 4> m3x4;
+    for (int i = 0; i < 4; ++i) m3x4[i] = w.SetConstant(8 + i, glm::dvec4(random.UnitVector() * 2.0, 0.0));
+    std::array<glm::dvec4, 2> tex;
+    for (int i = 0; i < 2; ++i) {
+      tex[i] = w.SetConstant(12 + i, {random.Uniform(-2, 2), random.Uniform(-2, 2), random.Uniform(-2, 2), 0.0});
     }
-  }
-  rc.named_inputs = {{position_reg, "position"}, {normal_reg, "normal"}, {texcoord_reg, "texcoord"}};
-  rc.description = "all_instructions" + RegisterList(meta, setup.base);
-  PutPrimaryFirst(rc, meta.output.value_or(kDiffuseSlot));
-  return std::move(rc);
+    const glm::dvec4 diffuse = w.SetConstant(14, random.Colour());
+    const glm::dvec4 specular = w.SetConstant(15, random.Colour());
+    const double power = w.SetConstant(16, {0.0, 0.0, 0.0, std::round(random.Uniform(4, 32))}).w;
+    const glm::dvec3 half = glm::dvec3(w.SetConstant(17, glm::dvec4(random.UnitVector(), 0.0)));
+    const glm::dvec4 fog_plane = w.SetConstant(18, glm::dvec4(random.UnitVector() * 0.3, 0.5));
+
+    const double partial_tolerance = meta.tolerance.value_or(kPartialPrecisionTolerance);
+    ExpectedOutput& o_pos = AddOutput(rc, kPositionSlot, kXyzw, count, tolerance);
+    ExpectedOutput& od0 = AddOutput(rc, kDiffuseSlot, kXyzw, count, tolerance);
+    ExpectedOutput& od1 = AddOutput(rc, kSpecularSlot, kXyzw, count, tolerance);
+    ExpectedOutput& ot0 = AddOutput(rc, kTexCoord0Slot + 0, kXy, count, tolerance);
+    ExpectedOutput& ot1 = AddOutput(rc, kTexCoord0Slot + 1, kXy, count, tolerance);
+    ExpectedOutput& ot2 = AddOutput(rc, kTexCoord0Slot + 2, kXyzw, count, partial_tolerance);
+    ExpectedOutput& ot3 = AddOutput(rc, kTexCoord0Slot + 3, kXyzw, count, partial_tolerance);
+    ExpectedOutput& ot4 = AddOutput(rc, kTexCoord0Slot + 4, kXyzw, count, tolerance);
+    ExpectedOutput& ot5 = AddOutput(rc, kTexCoord0Slot + 5, kXyzw, count, tolerance);
+    ExpectedOutput& o_fog = AddOutput(rc, kFogSlot, kX, count, tolerance);
+    for (std::size_t i = 0; i < count; ++i) {
+      for (int attempt = 0;; ++attempt) {
+        const glm::dvec4 p =
+            w.SetInput(position_reg, i, {random.Uniform(-1, 1), random.Uniform(-1, 1), random.Uniform(-1, 1), 1.0});
+        const glm::dvec4 n_in = w.SetInput(normal_reg, i, glm::dvec4(random.UnitVector(), 1.0));
+        const glm::dvec4 t = w.SetInput(texcoord_reg, i, {random.Uniform(-2, 3), random.Uniform(0.1, 4),
+                                                          random.Uniform(-1, 1), random.Uniform(-1, 1)});
+        const glm::dvec3 n = glm::normalize(glm::dvec3(Rows3(world, glm::dvec3(n_in))));
+        const glm::dvec3 to_light = light_pos - glm::dvec3(Rows4(world, p));
+        const double d = glm::length(to_light);
+        const double n_dot_l = glm::dot(n, to_light / d), n_dot_h = glm::dot(n, half);
+        const glm::dvec4 transformed = Rows3(tex, glm::dvec3(t));
+        if (attempt < kMaxRedraws &&
+            (std::abs(n_dot_l) < kDiscontinuityMargin || std::abs(n_dot_h) < kDiscontinuityMargin ||
+             NearInteger(transformed.x, kDiscontinuityMargin) || NearInteger(transformed.y, kDiscontinuityMargin))) {
+          continue;
+        }
+        const glm::dvec4 lit = Lit(n_dot_l, n_dot_h, power);
+        o_pos.values[i] = Rows4(wvp, p);
+        od0.values[i] = diffuse * lit.y + specular * lit.z;
+        for (int c = 0; c < 4; ++c) od1.values[i][c] = std::min(2.0 * std::abs(n_in[c]), kHalf);
+        ot0.values[i] = {Fraction(transformed.x), Fraction(transformed.y), 0.0, 0.0};
+        ot1.values[i] = {std::exp2(t.x), std::log2(std::abs(t.y)), 0.0, 0.0};
+        ot2.values[i] = {std::exp2(std::floor(t.x)), t.x - std::floor(t.x), std::exp2(t.x), 1.0};
+        ot3.values[i] = Logp(t.y);
+        ot4.values[i] = Rows3(m3x4, n);
+        ot5.values[i] = {1.0, d, d * d, 1.0 / d};
+        o_fog.values[i] = {glm::dot(p, fog_plane), 0.0, 0.0, 0.0};
+        break;
+      }
+    }
+  });
 }
 
 constexpr std::array<ReferenceInfo, 6> kReferences = {{

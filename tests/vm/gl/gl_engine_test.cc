@@ -27,6 +27,8 @@
 
 #include "irradiance/report/verify.h"
 #include "tests/vm/engines/random_program.h"
+#include "vm/asm/assembler.h"
+#include "vm/core/float_rules.h"
 #include "vm/engines/engine_factory.h"
 #include "vm/translate/translate.h"
 
@@ -74,12 +76,14 @@ struct Comparison {
 
 bool IsDenormal(float x) { return std::fpclassify(x) == FP_SUBNORMAL; }
 
-Comparison CompareWithReference(const Program& program, const ConstantBank& bank, const VertexArrays& inputs) {
+Comparison CompareWithReference(const Program& program, const ConstantBank& bank, const VertexArrays& inputs,
+                                FloatRules rules = FloatRules::kD3d9) {
   Comparison comparison;
   VertexArrays expected = MakeOutputArrays(inputs.count(), program);
   VertexArrays actual = MakeOutputArrays(inputs.count(), program);
-  MakeEngine(EngineKind::kReference, program, bank)->Run(inputs, expected);
-  std::unique_ptr<Engine> gl = MakeEngine(EngineKind::kGl, program, bank);
+  const EngineOptions options{.float_rules = rules};
+  MakeEngine(EngineKind::kReference, program, bank, options)->Run(inputs, expected);
+  std::unique_ptr<Engine> gl = MakeEngine(EngineKind::kGl, program, bank, options);
   gl->Run(inputs, actual);
   comparison.error = gl->error();
   if (!comparison.error.empty()) return comparison;
@@ -264,6 +268,47 @@ Program ProgramFromFile(const char* name) {
 }
 
 // More vertices than one draw takes (65536): the call is split, every vertex lands in its place.
+// --float-rules through the gl engine: an infinite constant times a zero lane in every instruction
+// that multiplies gives NaN under d3d9 and 0 under legacy, the reference engine's bits under each
+// (tests/vm/engines/float_rules_test.cc pins those bits on every CPU engine).
+TEST_F(GlEngineTest, InfinityTimesZeroFollowsTheEnginesFloatRules) {
+  AssembleOptions assemble;
+  assemble.require_position = false;
+  const AssembleResult assembled = AssembleSource(
+      "vs.1.1\nmul oD0, c0, v0\nmov r0, v2\nmad oD1, c0, v0, r0\ndp3 oT0, c0, v0\ndp4 oT1, c0, v0\nm4x4 oT2, v0, c2\n"
+      "m4x3 oT3.xyz, v0, c2\nm3x4 oT4, v0, c2\nm3x3 oT5.xyz, v0, c2\nm3x2 oT6.xy, v0, c2\ndst oT7, c0, v0\n"
+      "lit oPos, v1\n",
+      "infinity_times_zero.vsh", assemble);
+  ASSERT_TRUE(assembled.program) << assembled.diagnostics.ToString();
+  const float inf = INFINITY;
+  ConstantBank bank;
+  bank[0] = {inf, -inf, -inf, std::bit_cast<float>(0x7FC00000u)};
+  for (int row = 2; row <= 5; ++row) bank[row] = {inf, -inf, inf, -inf};
+  const int registers[] = {0, 1, 2};
+  VertexArrays inputs = MakeInputArrays(1, registers);
+  const Vec4f v0 = {0.0f, -0.0f, 0.0f, 0.0f}, v1 = {1.0f, inf, 0.0f, 0.0f}, v2 = {1.0f, 2.0f, 3.0f, 4.0f};
+  for (int c = 0; c < 4; ++c) {
+    inputs.lane(0, c)[0] = v0[c];
+    inputs.lane(1, c)[0] = v1[c];
+    inputs.lane(2, c)[0] = v2[c];
+  }
+  for (FloatRules rules : kAllFloatRules) {
+    VertexArrays outputs = MakeOutputArrays(1, *assembled.program);
+    std::unique_ptr<Engine> gl = MakeEngine(EngineKind::kGl, *assembled.program, bank, {.float_rules = rules});
+    gl->Run(inputs, outputs);
+    ASSERT_EQ(gl->error(), "");
+    const float mul_x = outputs.lane(static_cast<int>(OutputSlot::kDiffuse), 0)[0];
+    if (rules == FloatRules::kD3d9) {
+      EXPECT_TRUE(std::isnan(mul_x)) << "d3d9: inf * 0 gave " << mul_x;
+    } else {
+      EXPECT_EQ(Bits(mul_x), 0u) << "legacy: inf * 0 gave " << mul_x;
+    }
+    const Comparison comparison = CompareWithReference(*assembled.program, bank, inputs, rules);
+    EXPECT_EQ(comparison.differing, 0) << FloatRulesName(rules) << ": " << comparison.first;
+    EXPECT_EQ(comparison.flushed, 0);
+  }
+}
+
 TEST_F(GlEngineTest, ACallLargerThanOneDrawGivesEveryVertexItsOutputs) {
   std::mt19937 rng(22);
   const Comparison comparison =
