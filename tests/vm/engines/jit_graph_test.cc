@@ -145,8 +145,10 @@ TEST(JitGraph, EvaluatesToTheReferenceEngineOnRandomProgramsInTwoGroups) {
     const Program program = generator.MakeProgram();
     const ConstantBank bank = generator.Constants();
     const VertexArrays inputs = generator.Inputs(kVertices * kGroups);
+    // Every other program under the legacy rule, whose products the graph traces as selects.
+    const FloatRules rules = k % 2 == 0 ? FloatRules::kD3d9 : FloatRules::kLegacy;
     VertexArrays expected = MakeOutputArrays(kVertices * kGroups, program);
-    MakeReferenceEngine(program, bank)->Run(inputs, expected);
+    MakeReferenceEngine(program, bank, rules)->Run(inputs, expected);
     // As the batch engine compiles it: absent registers and lanes of one value are literals.
     std::vector<UniformInput> uniform;
     for (int reg = 0; reg < kInputRegisterCount; ++reg) {
@@ -158,7 +160,7 @@ TEST(JitGraph, EvaluatesToTheReferenceEngineOnRandomProgramsInTwoGroups) {
         }
       }
     }
-    const Graph graph = TraceProgram(program, kGroups, uniform);
+    const Graph graph = TraceProgram(program, kGroups, uniform, rules);
     const std::vector<float> constants = ConstantTable(program, bank);
     const std::array<WriteMask, kOutputSlotCount> written = WrittenOutputLanes(program);
     for (int vertex = 0; vertex < kVertices; ++vertex) {
@@ -169,7 +171,8 @@ TEST(JitGraph, EvaluatesToTheReferenceEngineOnRandomProgramsInTwoGroups) {
         }
       }
       const Evaluation evaluation = Evaluate(graph, groups, constants, bank.size());
-      ASSERT_EQ(evaluation.error, "") << "program " << k << "\n" << Disassemble(program);
+      ASSERT_EQ(evaluation.error, "")
+          << "program " << k << " (" << FloatRulesName(rules) << ")\n" << Disassemble(program);
       for (int g = 0; g < kGroups; ++g) {
         for (int slot = 0; slot < kOutputSlotCount; ++slot) {
           for (int c = 0; c < 4; ++c) {
@@ -181,7 +184,7 @@ TEST(JitGraph, EvaluatesToTheReferenceEngineOnRandomProgramsInTwoGroups) {
             if (stored == evaluation.stores.end()) continue;
             const float want = expected.lane(slot, c)[g * kVertices + vertex];
             ASSERT_TRUE(SameFloat(stored->second, want))
-                << "program " << k << " group " << g << " vertex " << vertex << " " << OutputSlotName(slot) << "."
+                << "program " << k << " (" << FloatRulesName(rules) << ") group " << g << " vertex " << vertex << " " << OutputSlotName(slot) << "."
                 << kLaneLetters[c] << ": graph " << stored->second << ", reference " << want << "\n" << Disassemble(program);
           }
         }
@@ -212,7 +215,7 @@ TEST(JitGraph, ALaneReadByThreeInstructionsIsLoadedOnce) {
                                             "dp4 r0.y, v0, c1\n"
                                             "dp4 r0.z, v0, c2\n"
                                             "mov oPos, r0\n"),
-                                   1, {});
+                                   1, {}, FloatRules::kD3d9);
   EXPECT_EQ(NodesOf(graph, Op::kInput).size(), 4u);      // v0.xyzw
   EXPECT_EQ(NodesOf(graph, Op::kConstant).size(), 12u);  // c0..c2, four components each
   EXPECT_EQ(NodesOf(graph, Op::kStore).size(), 4u);
@@ -221,7 +224,7 @@ TEST(JitGraph, ALaneReadByThreeInstructionsIsLoadedOnce) {
 TEST(JitGraph, UniformInputsAreLiteralsNotLoads) {
   const Program program = Assemble("dcl_position v0\nmov oPos, v0\n");
   const std::vector<UniformInput> uniform = {{0, 1, 2.5f}};
-  const Graph graph = TraceProgram(program, 1, uniform);
+  const Graph graph = TraceProgram(program, 1, uniform, FloatRules::kD3d9);
   std::set<std::uint32_t> loaded;
   for (const Node* node : NodesOf(graph, Op::kInput)) loaded.insert(node->immediate & kLaneMask);
   EXPECT_EQ(loaded, (std::set<std::uint32_t>{static_cast<std::uint32_t>(batch::InputLane(0, 0)),
@@ -233,7 +236,7 @@ TEST(JitGraph, UniformInputsAreLiteralsNotLoads) {
 
 TEST(JitGraph, EachGroupLoadsAndStoresItsOwnLanes) {
   constexpr int kGroups = 3;
-  const Graph graph = TraceProgram(Assemble("dcl_position v0\nadd oPos, v0, c0\n"), kGroups, {});
+  const Graph graph = TraceProgram(Assemble("dcl_position v0\nadd oPos, v0, c0\n"), kGroups, {}, FloatRules::kD3d9);
   std::map<std::uint32_t, int> loads_per_group, stores_per_group;
   for (const Node* node : NodesOf(graph, Op::kInput)) ++loads_per_group[node->immediate >> kGroupShift];
   for (const Node* node : NodesOf(graph, Op::kStore)) ++stores_per_group[node->immediate >> kGroupShift];
@@ -247,14 +250,14 @@ TEST(JitGraph, EachGroupLoadsAndStoresItsOwnLanes) {
 }
 
 TEST(JitGraph, RelativeReadsGatherOnlyAfterA0IsWritten) {
-  const Graph before = TraceProgram(Assemble("dcl_position v0\nmov oPos, c[a0.x + 5]\n"), 1, {});
+  const Graph before = TraceProgram(Assemble("dcl_position v0\nmov oPos, c[a0.x + 5]\n"), 1, {}, FloatRules::kD3d9);
   EXPECT_TRUE(NodesOf(before, Op::kGather).empty());
   std::set<std::uint32_t> read;
   for (const Node* node : NodesOf(before, Op::kConstant)) read.insert(node->immediate);
   EXPECT_EQ(read, (std::set<std::uint32_t>{batch::ConstantIndex(5, 0), batch::ConstantIndex(5, 1),
                                            batch::ConstantIndex(5, 2), batch::ConstantIndex(5, 3)}));
 
-  const Graph after = TraceProgram(Assemble("dcl_position v0\nmov a0.x, v0.x\nmov oPos, c[a0.x + 5]\n"), 1, {});
+  const Graph after = TraceProgram(Assemble("dcl_position v0\nmov a0.x, v0.x\nmov oPos, c[a0.x + 5]\n"), 1, {}, FloatRules::kD3d9);
   const std::vector<const Node*> gathers = NodesOf(after, Op::kGather);
   ASSERT_EQ(gathers.size(), 4u);
   std::set<std::uint32_t> components;
