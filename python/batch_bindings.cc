@@ -168,7 +168,8 @@ void BindBatch(py::module_& module) {
                           "One `irrmap batch` run on a thread of its own; use vs11.irradiance.batch(), which\n"
                           "wraps it in a generator.")
       .def(py::init(&StartBatch), py::arg("paths"), py::arg("threads"), py::arg("layout"), py::arg("face_size"),
-           py::arg("level"), py::arg("max_error"), py::arg("error_metric"))
+           py::arg("level"), py::arg("max_error"),
+           py::arg("error_metric") = std::string(irradiance::ErrorMetricName(irradiance::kDefaultErrorMetric)))
       .def("__iter__", [](py::object self) { return self; })
       .def("__next__", &BatchStream::Next)
       .def("close", &BatchStream::Close,
