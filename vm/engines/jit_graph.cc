@@ -66,7 +66,6 @@ Int ShiftLeft(Int x) { return {Trace(Op::kShiftLeft, x.id, kNoArg, kNoArg, kBits
 template <int kBits>
 Int ShiftRight(Int x) { return {Trace(Op::kShiftRight, x.id, kNoArg, kNoArg, kBits)}; }
 inline Mask operator>(Int a, Int b) { return {Trace(Op::kIntGreater, a.id, b.id)}; }
-inline Mask operator&(Mask a, Mask b) { return {Trace(Op::kMaskAnd, a.id, b.id)}; }
 inline Int IfThenElseZero(Mask condition, Int value) { return {Trace(Op::kSelectZero, condition.id, value.id)}; }
 inline Int LiteralInt(std::int32_t value) { return ConstantInt(Float{}, value); }
 
