@@ -27,6 +27,7 @@
 
 #include "irradiance/report/verify.h"
 #include "tests/vm/engines/random_program.h"
+#include "tests/vm/gl/infinity_times_zero.h"
 #include "vm/asm/assembler.h"
 #include "vm/core/float_rules.h"
 #include "vm/engines/engine_factory.h"
@@ -272,29 +273,14 @@ Program ProgramFromFile(const char* name) {
 // that multiplies gives NaN under d3d9 and 0 under legacy, the reference engine's bits under each
 // (tests/vm/engines/float_rules_test.cc pins those bits on every CPU engine).
 TEST_F(GlEngineTest, InfinityTimesZeroFollowsTheEnginesFloatRules) {
-  AssembleOptions assemble;
-  assemble.require_position = false;
-  const AssembleResult assembled = AssembleSource(
-      "vs.1.1\nmul oD0, c0, v0\nmov r0, v2\nmad oD1, c0, v0, r0\ndp3 oT0, c0, v0\ndp4 oT1, c0, v0\nm4x4 oT2, v0, c2\n"
-      "m4x3 oT3.xyz, v0, c2\nm3x4 oT4, v0, c2\nm3x3 oT5.xyz, v0, c2\nm3x2 oT6.xy, v0, c2\ndst oT7, c0, v0\n"
-      "lit oPos, v1\n",
-      "infinity_times_zero.vsh", assemble);
-  ASSERT_TRUE(assembled.program) << assembled.diagnostics.ToString();
-  const float inf = INFINITY;
-  ConstantBank bank;
-  bank[0] = {inf, -inf, -inf, std::bit_cast<float>(0x7FC00000u)};
-  for (int row = 2; row <= 5; ++row) bank[row] = {inf, -inf, inf, -inf};
-  const int registers[] = {0, 1, 2};
-  VertexArrays inputs = MakeInputArrays(1, registers);
-  const Vec4f v0 = {0.0f, -0.0f, 0.0f, 0.0f}, v1 = {1.0f, inf, 0.0f, 0.0f}, v2 = {1.0f, 2.0f, 3.0f, 4.0f};
-  for (int c = 0; c < 4; ++c) {
-    inputs.lane(0, c)[0] = v0[c];
-    inputs.lane(1, c)[0] = v1[c];
-    inputs.lane(2, c)[0] = v2[c];
-  }
+  const gl_test::InfinityTimesZero test = gl_test::MakeInfinityTimesZero();
+  ASSERT_TRUE(test.assembled.program) << test.assembled.diagnostics.ToString();
+  const Program& program = *test.assembled.program;
+  const ConstantBank& bank = test.bank;
+  const VertexArrays& inputs = test.inputs;
   for (FloatRules rules : kAllFloatRules) {
-    VertexArrays outputs = MakeOutputArrays(1, *assembled.program);
-    std::unique_ptr<Engine> gl = MakeEngine(EngineKind::kGl, *assembled.program, bank, {.float_rules = rules});
+    VertexArrays outputs = MakeOutputArrays(1, program);
+    std::unique_ptr<Engine> gl = MakeEngine(EngineKind::kGl, program, bank, {.float_rules = rules});
     gl->Run(inputs, outputs);
     ASSERT_EQ(gl->error(), "");
     const float mul_x = outputs.lane(static_cast<int>(OutputSlot::kDiffuse), 0)[0];
@@ -303,7 +289,7 @@ TEST_F(GlEngineTest, InfinityTimesZeroFollowsTheEnginesFloatRules) {
     } else {
       EXPECT_EQ(Bits(mul_x), 0u) << "legacy: inf * 0 gave " << mul_x;
     }
-    const Comparison comparison = CompareWithReference(*assembled.program, bank, inputs, rules);
+    const Comparison comparison = CompareWithReference(program, bank, inputs, rules);
     EXPECT_EQ(comparison.differing, 0) << FloatRulesName(rules) << ": " << comparison.first;
     EXPECT_EQ(comparison.flushed, 0);
   }
