@@ -19,6 +19,27 @@ void InitializeGlslangOnce() {
 
 constexpr int kDefaultGlslVersion = 100;  // used only by a text without #version, which we never write
 
+// Vulkan 1.0 and SPIR-V 1.0, for a shader in `source` (GLSL or HLSL).
+void SetVulkanEnvironment(glslang::TShader& shader, glslang::EShSource source) {
+  shader.setEnvInput(source, EShLangVertex, glslang::EShClientVulkan, 100);
+  shader.setEnvClient(glslang::EShClientVulkan, glslang::EShTargetVulkan_1_0);
+  shader.setEnvTarget(glslang::EShTargetSpv, glslang::EShTargetSpv_1_0);
+}
+
+// Parses `shader` and links it, alone, into `program`; where either fails, `log` says why.
+bool ParseAndLink(glslang::TShader& shader, EShMessages messages, glslang::TProgram& program, std::string& log) {
+  if (!shader.parse(GetDefaultResources(), kDefaultGlslVersion, false, messages)) {
+    log = std::string(shader.getInfoLog()) + shader.getInfoDebugLog();
+    return false;
+  }
+  program.addShader(&shader);
+  if (!program.link(messages)) {
+    log = std::string(program.getInfoLog()) + program.getInfoDebugLog();
+    return false;
+  }
+  return true;
+}
+
 }  // namespace
 
 GlslangResult CompileWithGlslang(const std::string& glsl, Target target) {
@@ -30,22 +51,12 @@ GlslangResult CompileWithGlslang(const std::string& glsl, Target target) {
   shader.setStringsWithLengthsAndNames(&text, nullptr, &name, 1);
   auto messages = static_cast<EShMessages>(EShMsgDefault);
   if (target == Target::kSpirv) {
-    shader.setEnvInput(glslang::EShSourceGlsl, EShLangVertex, glslang::EShClientVulkan, 100);
-    shader.setEnvClient(glslang::EShClientVulkan, glslang::EShTargetVulkan_1_0);
-    shader.setEnvTarget(glslang::EShTargetSpv, glslang::EShTargetSpv_1_0);
+    SetVulkanEnvironment(shader, glslang::EShSourceGlsl);
     // Debug info keeps the source (with its interface comment) and the variables' names in the binary.
     messages = static_cast<EShMessages>(EShMsgSpvRules | EShMsgVulkanRules | EShMsgDebugInfo);
   }
-  if (!shader.parse(GetDefaultResources(), kDefaultGlslVersion, false, messages)) {
-    result.log = std::string(shader.getInfoLog()) + shader.getInfoDebugLog();
-    return result;
-  }
   glslang::TProgram program;
-  program.addShader(&shader);
-  if (!program.link(messages)) {
-    result.log = std::string(program.getInfoLog()) + program.getInfoDebugLog();
-    return result;
-  }
+  if (!ParseAndLink(shader, messages, program, result.log)) return result;
   if (target == Target::kSpirv) {
     glslang::SpvOptions options;
     options.generateDebugInfo = true;
@@ -69,20 +80,10 @@ GlslangResult CompileHlslWithGlslang(const std::string& hlsl, const std::string&
   const char* name = "hlsl";
   shader.setStringsWithLengthsAndNames(&text, nullptr, &name, 1);
   shader.setEntryPoint(entry_point.c_str());
-  shader.setEnvInput(glslang::EShSourceHlsl, EShLangVertex, glslang::EShClientVulkan, 100);
-  shader.setEnvClient(glslang::EShClientVulkan, glslang::EShTargetVulkan_1_0);
-  shader.setEnvTarget(glslang::EShTargetSpv, glslang::EShTargetSpv_1_0);
+  SetVulkanEnvironment(shader, glslang::EShSourceHlsl);
   const auto messages = static_cast<EShMessages>(EShMsgSpvRules | EShMsgVulkanRules | EShMsgReadHlsl);
-  if (!shader.parse(GetDefaultResources(), kDefaultGlslVersion, false, messages)) {
-    result.log = std::string(shader.getInfoLog()) + shader.getInfoDebugLog();
-    return result;
-  }
   glslang::TProgram program;
-  program.addShader(&shader);
-  if (!program.link(messages)) {
-    result.log = std::string(program.getInfoLog()) + program.getInfoDebugLog();
-    return result;
-  }
+  if (!ParseAndLink(shader, messages, program, result.log)) return result;
   result.ok = true;
   return result;
 }
