@@ -2,7 +2,8 @@
 // sh9 references add their 14 fixed normals), items_per_second = vertices per second, and the
 // program's instruction-slot count (vm/core/program.h ComputeStats) as the counter "slots".
 //
-// /jit runs the CPU's best jit instruction set; /jit_avx2 is added where AVX-512 is the best.
+// /jit runs the CPU's best jit instruction set; /jit_avx2 is added where AVX-512 is the best, and
+// beside it /batch_avx2, the batch engine on Highway's AVX2 kernels (what an AVX2-only machine runs).
 // /batch_legacy and /jit_legacy run under --float-rules legacy (vm/core/float_rules.h).
 // BM_Program/<name>/threads:T/<vertices> runs /jit with T threads (capped at the cores: the default
 // pool's size) over 1024, 65536 and 1M vertices, real time (the CPU time of one thread would
@@ -25,6 +26,7 @@
 #include <vector>
 
 #include <benchmark/benchmark.h>
+#include <hwy/targets.h>
 
 #include "bench/bench_common.h"
 #include "irradiance/report/program_references.h"
@@ -80,14 +82,17 @@ ProgramCase CaseFor(const irradiance::ProgramMetadata& metadata, int vertices) {
   return FallbackCase(vertices);
 }
 
+// `highway_target`: the Highway target the batch engine's kernels are taken from (0: the CPU's best).
 void RunProgram(benchmark::State& state, const std::filesystem::path& path, EngineKind kind, EngineOptions options,
-                int vertices) {
+                int vertices, std::int64_t highway_target = 0) {
   const irradiance::ProgramForVerify loaded = LoadBenchProgram(path);
   const Program& program = *loaded.program;
   const ProgramCase c = CaseFor(loaded.metadata, vertices);
   const std::size_t count = c.inputs.count();
   VertexArrays outputs = MakeOutputArrays(count, program);
+  if (highway_target != 0) hwy::SetSupportedTargetsForTest(highway_target);
   std::unique_ptr<Engine> engine = MakeEngine(kind, program, c.constants, options);
+  if (highway_target != 0) hwy::SetSupportedTargetsForTest(0);
   for (auto _ : state) {
     engine->Run(c.inputs, outputs);
     benchmark::ClobberMemory();
@@ -132,6 +137,13 @@ const bool kRegistered = [] {
     const std::vector<JitIsa> isas = jit::SupportedIsas();
     for (std::size_t k = 0; k + 1 < isas.size(); ++k) {
       add(std::string("jit_").append(jit::IsaName(isas[k])), EngineKind::kJit, {.jit_isa = isas[k]});
+    }
+    // The batch engine's AVX2 kernels beside jit_avx2: what an AVX2-only machine runs with either.
+    if (isas.size() > 1 && (hwy::SupportedTargets() & HWY_AVX2) != 0) {
+      const std::string name = "BM_Program/" + path.stem().string() + "/batch_avx2";
+      benchmark::RegisterBenchmark(name.c_str(), [path](benchmark::State& state) {
+        RunProgram(state, path, EngineKind::kBatch, {}, kProgramVertices, HWY_AVX2);
+      })->Unit(benchmark::kMicrosecond);
     }
   }
   return true;
