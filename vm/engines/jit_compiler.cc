@@ -451,8 +451,7 @@ class AvxProgram final : public CompiledProgram {
         spilled_values_(cached.spilled_values()),
         spilled_masks_(cached.spilled_masks()),
         isa_(cached.shape().isa),
-        vertices_per_iteration_(cached.vertices_per_iteration()),
-        vector_bytes_(cached.shape().bytes()) {}
+        vertices_per_iteration_(cached.vertices_per_iteration()) {}
 
   void Run(RunArguments arguments) const override {
     arguments.literals = literals_.data();
@@ -469,10 +468,11 @@ class AvxProgram final : public CompiledProgram {
   int vertices_per_iteration() const override { return vertices_per_iteration_; }
 
  private:
-  // Large outputs, every lane aligned as vmovntps requires.
+  // Large outputs, written a whole cache line of each lane per iteration (every lane aligned to one).
   bool Streams(const RunArguments& arguments) const {
+    if (sizeof(float) * static_cast<std::size_t>(vertices_per_iteration_) < kCacheLineBytes) return false;
     if (arguments.count * sizeof(float) * stored_lanes_.size() < kStreamingOutputBytes) return false;
-    const auto alignment = static_cast<std::uintptr_t>(vector_bytes_);
+    const auto alignment = static_cast<std::uintptr_t>(kCacheLineBytes);
     return std::ranges::all_of(stored_lanes_, [&](int lane) {
       return reinterpret_cast<std::uintptr_t>(arguments.write_lanes[lane]) % alignment == 0;
     });
@@ -514,7 +514,6 @@ class AvxProgram final : public CompiledProgram {
   int spilled_values_, spilled_masks_;
   JitIsa isa_;
   int vertices_per_iteration_;
-  int vector_bytes_;
 };
 
 // Bytes of code per traced node, generously: an operation is one or two instructions, a reload or

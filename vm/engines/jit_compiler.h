@@ -42,7 +42,12 @@ struct RunArguments {
 // aligned to a vector, stores them around the caches (vmovntps): they would not stay there, and a
 // cached store first reads the line it overwrites (all_instructions, 65536 vertices, 33 output lanes:
 // 6.6 ns per vertex with cached stores, 4.9 with streaming ones).
+// Only a loop that writes whole cache lines of each output lane per iteration streams (AVX-512, or two
+// AVX2 vertex groups, whose stores of a lane are adjacent: vm/engines/jit_graph.cc): a streaming
+// store of half a line leaves a partial line to the write-combining buffers, which write it out
+// slowly (sh9_vertex_od0 with one AVX2 group: 169 us per 65536 vertices streaming, 86 caching).
 inline constexpr std::size_t kStreamingOutputBytes = std::size_t{1} << 20;
+inline constexpr std::size_t kCacheLineBytes = 64;
 
 class CompiledProgram {
  public:

@@ -3,7 +3,7 @@
 // it, computes what the reference engine computes, bit for bit, on random programs, with two vertex
 // groups traced side by side; identical loads are one node, uniform inputs are literals, relative
 // reads gather only after a0 is written, and every output lane the program writes is stored once
-// per group.
+// per group, the groups' stores of a lane side by side.
 #include "vm/engines/jit_graph.h"
 
 #include <algorithm>
@@ -247,6 +247,23 @@ TEST(JitGraph, EachGroupLoadsAndStoresItsOwnLanes) {
   EXPECT_EQ(loads_per_group.size(), static_cast<std::size_t>(kGroups));
   // The constants are shared: one load of each component for all groups.
   EXPECT_EQ(NodesOf(graph, Op::kConstant).size(), 4u);
+}
+
+// A lane's groups are neighbouring vectors in its array: their stores side by side fill a cache line
+// at once (what a streaming store needs, vm/engines/jit_compiler.h kCacheLineBytes).
+TEST(JitGraph, TheGroupsStoresOfALaneAreAdjacent) {
+  constexpr int kGroups = 2;
+  const Graph graph = TraceProgram(Assemble("dcl_position v0\ndcl_normal v1\nadd oPos, v0, c0\n"
+                                            "mul oD0, v1, c1\nmov oT0.xy, v1\n"),
+                                   kGroups, {}, FloatRules::kD3d9);
+  const std::vector<const Node*> stores = NodesOf(graph, Op::kStore);
+  ASSERT_EQ(stores.size(), 10u * kGroups);
+  for (std::size_t k = 0; k < stores.size(); k += kGroups) {
+    for (int g = 0; g < kGroups; ++g) {
+      EXPECT_EQ(stores[k + g]->immediate & kLaneMask, stores[k]->immediate & kLaneMask) << "store " << k + g;
+      EXPECT_EQ(stores[k + g]->immediate >> kGroupShift, static_cast<std::uint32_t>(g)) << "store " << k + g;
+    }
+  }
 }
 
 TEST(JitGraph, RelativeReadsGatherOnlyAfterA0IsWritten) {
