@@ -9,6 +9,7 @@
 #include <cstring>
 #include <limits>
 #include <map>
+#include <optional>
 #include <tuple>
 
 #include <xbyak/xbyak.h>
@@ -273,17 +274,78 @@ class Emitter : public Xbyak::CodeGenerator {
     literals_.push_back(std::bit_cast<float>(bits));
     return literal_index_[bits] = static_cast<int>(literals_.size()) - 1;
   }
+  // The literal repeated across a whole vector in the pool (for AVX2, which has no broadcast
+  // operands): its first float's index.
+  int WideLiteralIndex(std::uint32_t bits) {
+    const auto it = wide_literal_index_.find(bits);
+    if (it != wide_literal_index_.end()) return it->second;
+    const int first = static_cast<int>(literals_.size());
+    literals_.insert(literals_.end(), static_cast<std::size_t>(shape_.lanes), std::bit_cast<float>(bits));
+    return wide_literal_index_[bits] = first;
+  }
+
+  // Which argument of `op` may be a memory operand (the instruction's last source: b of a binary
+  // operation or select, the only source of a unary one), or kNoArg.
+  static int MemoryArgument(Op op) {
+    switch (op) {
+      case Op::kAdd: case Op::kSub: case Op::kMul: case Op::kDiv:
+      case Op::kLess: case Op::kGreater: case Op::kGreaterEqual: case Op::kEqual: case Op::kUnordered:
+      case Op::kIntGreater: case Op::kIntAdd: case Op::kIntSub: case Op::kAnd: case Op::kOr: case Op::kXor:
+      case Op::kSelect: case Op::kSelectZero:
+        return 1;
+      case Op::kFloor: case Op::kSqrt: case Op::kShiftLeft: case Op::kShiftRight: case Op::kToInt: case Op::kToFloat:
+        return 0;
+      default:
+        return kNoArg;
+    }
+  }
+
+  // Where `value`, which is in no register, can be read by `user`'s instruction straight from memory:
+  // a spilled vector, and with AVX-512 a constant or literal broadcast from its float ({1to16}; not
+  // for the masked move of a select-zero) or with AVX2 a literal stored repeated. Such an operand
+  // takes no register, which spares the loop's other values. An input lane is loaded into a
+  // register instead: read from memory at each of its uses, all_instructions and skinning ran
+  // 3-5 % slower.
+  std::optional<Xbyak::Address> MemoryOperand(int value, Op user) {
+    const Node& node = nodes_[static_cast<std::size_t>(value)];
+    switch (node.op) {
+      case Op::kInput: return std::nullopt;  // (folded, 3-5 % slower: loaded again at every use)
+      case Op::kConstant:
+        if (!wide_ || user == Op::kSelectZero) return std::nullopt;
+        return ptr_b[regs_.constants + 4 * node.immediate];
+      case Op::kLiteral:
+        if (!wide_) return ptr[regs_.literals + 4 * WideLiteralIndex(node.immediate)];
+        if (user == Op::kSelectZero) return std::nullopt;
+        return ptr_b[regs_.literals + 4 * LiteralIndex(node.immediate)];
+      case Op::kConstantCount: return std::nullopt;
+      default:
+        if (spill_slot_[value] < 0 || InMaskRegister(value)) return std::nullopt;
+        return ptr[regs_.spill + shape_.bytes() * spill_slot_[value]];
+    }
+  }
 
   void Emit(int n) {
     const Node& node = nodes_[static_cast<std::size_t>(n)];
     if (Rematerializable(node.op)) return;  // loaded where it is used
-    // Operands into registers.
+    // Operands into registers, but for one that the instruction can read from memory where it is.
+    const int memory_argument = MemoryArgument(node.op);
     std::array<int, 3> in = {0, 0, 0};  // registers
     for (int a = 0; a < 3; ++a) {
       const int arg = node.args[a];
-      if (arg == kNoArg) continue;
+      if (arg == kNoArg || a == memory_argument) continue;
       if (where_[arg] == kNoArg) Materialize(arg, TakeRegister(arg, n, node.args));
       in[a] = where_[arg];
+    }
+    std::optional<Xbyak::Address> memory;
+    if (memory_argument != kNoArg) {
+      const int arg = node.args[memory_argument];
+      if (where_[arg] == kNoArg) memory = MemoryOperand(arg, node.op);
+      if (memory) {
+        ++loop_memory_operations_;
+      } else {
+        if (where_[arg] == kNoArg) Materialize(arg, TakeRegister(arg, n, node.args));
+        in[memory_argument] = where_[arg];
+      }
     }
     if (node.op == Op::kGather) {
       EmitGather(n, V(in[0]));
@@ -305,22 +367,30 @@ class Emitter : public Xbyak::CodeGenerator {
     const int reg = TakeRegister(n, n, {kNoArg, kNoArg, kNoArg});
     where_[n] = reg;
     register_value_[reg] = n;
-    EmitOperation(node, reg, in);
+    if (memory) {
+      EmitOperation(node, reg, in, memory_argument, *memory);
+    } else {
+      EmitOperation(node, reg, in, kNoArg, Xbyak::Address(0));
+    }
   }
 
   // The operation itself, on registers `in` into `out`. AVX-512 keeps masks in mask registers, which
   // selects use directly, and has no VEX-only forms (vroundps, vblendvps, vpand): the EVEX
   // equivalents compute the same bits.
-  void EmitOperation(const Node& node, int out, const std::array<int, 3>& in) {
-    const Xbyak::Xmm a = V(in[0]), b = V(in[1]), c = V(in[2]), result = V(out);
+  // Argument `memory_argument` (if not kNoArg) is read from `memory` instead of a register.
+  void EmitOperation(const Node& node, int out, const std::array<int, 3>& in, int memory_argument,
+                     const Xbyak::Address& memory) {
+    const Xbyak::Xmm a_register = V(in[0]), b_register = V(in[1]), c = V(in[2]), result = V(out);
+    const Xbyak::Operand& a = memory_argument == 0 ? static_cast<const Xbyak::Operand&>(memory) : a_register;
+    const Xbyak::Operand& b = memory_argument == 1 ? static_cast<const Xbyak::Operand&>(memory) : b_register;
     const auto compare = [&](std::uint8_t predicate) {
-      wide_ ? vcmpps(K(out), a, b, predicate) : vcmpps(result, a, b, predicate);
+      wide_ ? vcmpps(K(out), a_register, b, predicate) : vcmpps(result, a_register, b, predicate);
     };
     switch (node.op) {
-      case Op::kAdd: vaddps(result, a, b); break;
-      case Op::kSub: vsubps(result, a, b); break;
-      case Op::kMul: vmulps(result, a, b); break;
-      case Op::kDiv: vdivps(result, a, b); break;
+      case Op::kAdd: vaddps(result, a_register, b); break;
+      case Op::kSub: vsubps(result, a_register, b); break;
+      case Op::kMul: vmulps(result, a_register, b); break;
+      case Op::kDiv: vdivps(result, a_register, b); break;
       // Toward -inf, no precision exception.
       case Op::kFloor: wide_ ? vrndscaleps(result, a, 0x09) : vroundps(result, a, 0x09); break;
       case Op::kSqrt: vsqrtps(result, a); break;
@@ -330,17 +400,17 @@ class Emitter : public Xbyak::CodeGenerator {
       case Op::kGreaterEqual: compare(0x1D); break;  // GE_OQ
       case Op::kEqual: compare(0x00); break;         // EQ_OQ
       case Op::kUnordered: compare(0x03); break;     // UNORD_Q
-      case Op::kIntGreater: wide_ ? vpcmpgtd(K(out), a, b) : vpcmpgtd(result, a, b); break;
-      case Op::kMaskAnd: wide_ ? kandw(K(out), K(in[0]), K(in[1])) : vpand(result, a, b); break;
+      case Op::kIntGreater: wide_ ? vpcmpgtd(K(out), a_register, b) : vpcmpgtd(result, a_register, b); break;
+      case Op::kMaskAnd: wide_ ? kandw(K(out), K(in[0]), K(in[1])) : vpand(result, a_register, b_register); break;
       case Op::kSelect:  // mask ? yes : no
-        wide_ ? vblendmps(result | K(in[0]), c, b) : vblendvps(result, c, b, a);
+        wide_ ? vblendmps(result | K(in[0]), c, b) : vblendvps(result, c, b, a_register);
         break;
-      case Op::kSelectZero: wide_ ? vmovdqa32(result | K(in[0]) | T_z, b) : vpand(result, a, b); break;
-      case Op::kIntAdd: vpaddd(result, a, b); break;
-      case Op::kIntSub: vpsubd(result, a, b); break;
-      case Op::kAnd: wide_ ? vpandd(result, a, b) : vpand(result, a, b); break;
-      case Op::kOr: wide_ ? vpord(result, a, b) : vpor(result, a, b); break;
-      case Op::kXor: wide_ ? vpxord(result, a, b) : vpxor(result, a, b); break;
+      case Op::kSelectZero: wide_ ? vmovdqa32(result | K(in[0]) | T_z, b) : vpand(result, a_register, b); break;
+      case Op::kIntAdd: vpaddd(result, a_register, b); break;
+      case Op::kIntSub: vpsubd(result, a_register, b); break;
+      case Op::kAnd: wide_ ? vpandd(result, a_register, b) : vpand(result, a_register, b); break;
+      case Op::kOr: wide_ ? vpord(result, a_register, b) : vpor(result, a_register, b); break;
+      case Op::kXor: wide_ ? vpxord(result, a_register, b) : vpxor(result, a_register, b); break;
       case Op::kShiftLeft: vpslld(result, a, static_cast<std::uint8_t>(node.immediate)); break;
       case Op::kShiftRight: vpsrad(result, a, static_cast<std::uint8_t>(node.immediate)); break;
       case Op::kToInt: vcvttps2dq(result, a); break;
@@ -414,6 +484,7 @@ class Emitter : public Xbyak::CodeGenerator {
   int spilled_masks_ = 0;
   std::vector<float> literals_;
   std::map<std::uint32_t, int> literal_index_;
+  std::map<std::uint32_t, int> wide_literal_index_;
   std::size_t hoisted_;
   int available_registers_ = 0;  // the shape's registers less the hoisted constants
   std::vector<int> pinned_values_;
