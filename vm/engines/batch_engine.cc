@@ -206,7 +206,8 @@ class BatchEngine final : public Engine {
   // The compiled program for this run's inputs: the input lanes that hold one value throughout
   // (absent registers' defaults, lanes VertexArrays::FillUniform filled) are compiled in, not read.
   void SelectCompiled(const VertexArrays& inputs) {
-    std::vector<jit::UniformInput> uniform;
+    std::vector<jit::UniformInput>& uniform = uniform_inputs_;  // its storage kept: no allocation per call
+    uniform.clear();
     for (const std::uint16_t lane : plan_.input_lanes) {
       const int reg = (lane - kInputLaneBase) / 4, c = (lane - kInputLaneBase) % 4;
       if (!inputs.has(reg)) {
@@ -225,7 +226,7 @@ class BatchEngine final : public Engine {
     std::unique_ptr<jit::CompiledProgram> compiled = jit::Compile(program_, why_not, isa_, uniform, rules_);
     if (!compiled) return;  // keep the one that reads every lane
     if (variants_.size() == kMaxVariants) variants_.erase(variants_.begin() + 1);  // the first reads every lane
-    variants_.emplace_back(std::move(uniform), std::move(compiled));
+    variants_.emplace_back(uniform, std::move(compiled));
     compiled_ = variants_.back().second.get();
   }
 
@@ -339,6 +340,7 @@ class BatchEngine final : public Engine {
   FloatRules rules_;
   std::vector<std::pair<std::vector<jit::UniformInput>, std::unique_ptr<jit::CompiledProgram>>> variants_;
   const jit::CompiledProgram* compiled_ = nullptr;
+  std::vector<jit::UniformInput> uniform_inputs_;  // SelectCompiled's
   std::vector<Workspace> workspaces_;
 };
 
