@@ -4,6 +4,7 @@
 //
 // /jit runs the CPU's best jit instruction set; /jit_avx2 is added where AVX-512 is the best, and
 // beside it /batch_avx2, the batch engine on Highway's AVX2 kernels (what an AVX2-only machine runs).
+// BM_Program/skinning/<engine>/bones_shared_by_64 gives each run of 64 vertices one pair of bones.
 // /batch_legacy and /jit_legacy run under --float-rules legacy (vm/core/float_rules.h).
 // BM_Program/<name>/threads:T/<vertices> runs /jit with T threads (capped at the cores: the default
 // pool's size) over 1024, 65536 and 1M vertices, real time (the CPU time of one thread would
@@ -82,12 +83,24 @@ ProgramCase CaseFor(const irradiance::ProgramMetadata& metadata, int vertices) {
   return FallbackCase(vertices);
 }
 
+// Skinning's inputs with each run of 64 vertices given its first vertex's bones, as a mesh's
+// neighbouring vertices share theirs (the reference draws two bones per vertex at random).
+constexpr int kBoneIndexRegister = 2;  // programs/skinning.vsh: v2.x and v2.y select the bones
+constexpr std::size_t kVerticesSharingBones = 64;
+void ShareBones(VertexArrays& inputs) {
+  for (int c = 0; c < 2; ++c) {
+    float* index = inputs.lane(kBoneIndexRegister, c);
+    for (std::size_t i = 0; i < inputs.count(); ++i) index[i] = index[i - i % kVerticesSharingBones];
+  }
+}
+
 // `highway_target`: the Highway target the batch engine's kernels are taken from (0: the CPU's best).
 void RunProgram(benchmark::State& state, const std::filesystem::path& path, EngineKind kind, EngineOptions options,
-                int vertices, std::int64_t highway_target = 0) {
+                int vertices, std::int64_t highway_target = 0, bool share_bones = false) {
   const irradiance::ProgramForVerify loaded = LoadBenchProgram(path);
   const Program& program = *loaded.program;
-  const ProgramCase c = CaseFor(loaded.metadata, vertices);
+  ProgramCase c = CaseFor(loaded.metadata, vertices);
+  if (share_bones) ShareBones(c.inputs);
   const std::size_t count = c.inputs.count();
   VertexArrays outputs = MakeOutputArrays(count, program);
   if (highway_target != 0) hwy::SetSupportedTargetsForTest(highway_target);
@@ -144,6 +157,18 @@ const bool kRegistered = [] {
       benchmark::RegisterBenchmark(name.c_str(), [path](benchmark::State& state) {
         RunProgram(state, path, EngineKind::kBatch, {}, kProgramVertices, HWY_AVX2);
       })->Unit(benchmark::kMicrosecond);
+    }
+    // /<engine>/bones_shared_by_64: skinning as a mesh gives it bones (ShareBones).
+    if (path.stem() == "skinning") {
+      std::vector<std::pair<std::string, EngineOptions>> engines = {{"batch", {}}, {"jit", {}}};
+      if (isas.size() > 1) engines.emplace_back("jit_avx2", EngineOptions{.jit_isa = JitIsa::kAvx2});
+      for (const auto& [label, options] : engines) {
+        const EngineKind kind = label == "batch" ? EngineKind::kBatch : EngineKind::kJit;
+        const std::string name = "BM_Program/skinning/" + label + "/bones_shared_by_64";
+        benchmark::RegisterBenchmark(name.c_str(), [path, kind, options](benchmark::State& state) {
+          RunProgram(state, path, kind, options, kProgramVertices, 0, /*share_bones=*/true);
+        })->Unit(benchmark::kMicrosecond);
+      }
     }
   }
   return true;

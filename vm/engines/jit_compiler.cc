@@ -422,22 +422,45 @@ class Emitter : public Xbyak::CodeGenerator {
 
   // vgatherdps wants its result and index in different registers and clears its mask (with AVX2 a
   // third vector register, with AVX-512 k1), so the result and the mask are taken while the index
-  // still holds its register.
+  // still holds its register, and before the branch below: both paths leave the registers alike.
+  // Where every vertex of the vector reads the same row (a skinned mesh's neighbouring vertices
+  // share their bones), one broadcast load replaces the gather's one load per vertex; the gather
+  // stays for a vector whose vertices differ. Either way the same float is read for each vertex.
   void EmitGather(int n, const Xbyak::Xmm& index) {
     const Node& node = nodes_[static_cast<std::size_t>(n)];
     const int index_value = node.args[0];
     const int reg = TakeRegister(n, n, node.args);
     where_[n] = reg;
     register_value_[reg] = n;
-    const Xbyak::Address address = ptr[regs_.constants + index * 4 + 4 * static_cast<int>(node.immediate)];
+    const Xbyak::Xmm result = V(reg), first_lane = Xbyak::Xmm(index.getIdx());
+    const Xbyak::Xmm mask = wide_ ? result : V(TakeRegister(n, n, {index_value, n, kNoArg}));
+    const int component_bytes = 4 * static_cast<int>(node.immediate);
+    const Xbyak::Reg32 row = regs_.lane.cvt32();
+    Xbyak::Label divergent, done;
+    vpbroadcastd(result, first_lane);
+    if (wide_) {
+      vpcmpeqd(k1, result, index);
+      kortestw(k1, k1);  // carry: every lane equal
+      jnc(divergent, T_NEAR);
+    } else {
+      vpcmpeqd(result, result, index);
+      vmovmskps(row, result);
+      cmp(row, (1 << shape_.lanes) - 1);
+      jne(divergent, T_NEAR);
+    }
+    vmovd(row, first_lane);  // a float offset, never negative (vm/core/constant_gather.h): rax is zero-extended
+    vbroadcastss(result, ptr[regs_.constants + regs_.lane * 4 + component_bytes]);
+    jmp(done, T_NEAR);
+    L(divergent);
+    const Xbyak::Address address = ptr[regs_.constants + index * 4 + component_bytes];
     if (wide_) {
       kxnorw(k1, k1, k1);
-      vgatherdps(V(reg) | k1, address);
+      vgatherdps(result | k1, address);
     } else {
-      const Xbyak::Xmm mask = V(TakeRegister(n, n, {index_value, n, kNoArg}));
       vpcmpeqd(mask, mask, mask);
-      vgatherdps(V(reg), address, mask);
+      vgatherdps(result, address, mask);
     }
+    L(done);
     ++loop_memory_operations_;
     if (!Hoisted(index_value) && NextUse(index_value, n) == std::numeric_limits<int>::max()) {
       register_value_[where_[index_value]] = kNoArg;
@@ -590,6 +613,7 @@ class AvxProgram final : public CompiledProgram {
 // Bytes of code per traced node, generously: an operation is one or two instructions, a reload or
 // spill adds one or two more (each at most 11 bytes).
 constexpr std::size_t kCodeBytesPerNode = 48;
+constexpr std::size_t kCodeBytesPerGather = 128;  // the uniformity test, two paths and their jumps
 constexpr std::size_t kCodeBytesFixed = 512;
 // A program whose longest chain of dependent operations is at least this long (exp, log and lit's
 // series) runs several vertex groups per iteration, interleaved instruction by instruction, so that
@@ -647,7 +671,10 @@ std::unique_ptr<CompiledProgram> Compile(const Program& program, std::string& wh
     // Each constant kept in a register saves a load per iteration but takes a register from the
     // loop's values, which may then be reloaded or spilled more: the count with the fewest loads
     // and stores in the loop wins (code generation takes microseconds).
-    const std::size_t code_size = kCodeBytesFixed + kCodeBytesPerNode * graph.nodes().size();
+    const auto gathers = static_cast<std::size_t>(
+        std::ranges::count_if(graph.nodes(), [](const Node& node) { return node.op == Op::kGather; }));
+    const std::size_t code_size =
+        kCodeBytesFixed + kCodeBytesPerNode * graph.nodes().size() + kCodeBytesPerGather * gathers;
     std::vector<std::uint8_t> buffer(code_size);
     int best_hoisted = 0, fewest = std::numeric_limits<int>::max();
     for (int hoisted = 0; hoisted <= shape.registers - kMinLoopRegisters && hoisted <= best_hoisted + 2; ++hoisted) {

@@ -258,3 +258,58 @@ TEST_P(JitCompiledLoop, ComputesExactlyCountVerticesAndNothingPastThem) {
 
 }  // namespace
 }  // namespace vs11
+
+namespace vs11 {
+namespace {
+
+// Relative reads take one broadcast load where every vertex of a vector reads the same row and a
+// gather where they differ (vm/engines/jit_compiler.cc EmitGather): both paths, and vectors that
+// differ in one lane only, in the first or the last, or read outside the bank, give the reference
+// engine's bits.
+TEST(JitCompiler, RelativeReadsMatchTheReferenceWhetherTheRowIsSharedOrNot) {
+  const Program program = AssembleOrFail(
+      "vs_1_1\ndcl_position v0\ndcl_blendindices v1\n"
+      "mov a0.x, v1.x\nm4x3 r0.xyz, v0, c[a0.x + 6]\nmov r0.w, c[a0.x + 7].w\n"
+      "mov a0.x, v1.y\nadd oD0, v0, c[a0.x + 2]\nmov oPos, r0\n",
+      "relative_rows");
+  std::mt19937 rng(23);
+  const ConstantBank bank = RandomConstants(program, rng);
+  const std::vector<float> constants = ConstantTable(bank);
+  constexpr std::size_t kVectors = 16, kVertices = 64 * kVectors;  // whole iterations at every ISA
+  VertexArrays inputs = RandomInputs(kVertices, rng);
+  float* first_index = inputs.lane(1, 0);
+  float* second_index = inputs.lane(1, 1);
+  std::uniform_int_distribution<int> bone(0, 20);
+  for (std::size_t block = 0; block < kVectors; ++block) {
+    // Per block of 64 vertices: one row for all, a row per vertex, or one row but for the first
+    // or last vertex of every 8; the second index sometimes outside the bank (row 0 for all).
+    const int shared = bone(rng);
+    for (std::size_t i = 64 * block; i < 64 * (block + 1); ++i) {
+      const std::size_t kind = block % 4, lane = i % 8;
+      const bool odd_one = (kind == 2 && lane == 0) || (kind == 3 && lane == 7);
+      first_index[i] = static_cast<float>(kind == 1 || odd_one ? bone(rng) : shared);
+      second_index[i] = block % 3 == 0 ? 200.0f : static_cast<float>(kind == 1 ? bone(rng) : shared);
+    }
+  }
+  VertexArrays expected = MakeOutputArrays(kVertices, program);
+  MakeReferenceEngine(program, bank)->Run(inputs, expected);
+  for (const JitIsa isa : jit::SupportedIsas()) {
+    std::string why_not;
+    const std::unique_ptr<jit::CompiledProgram> compiled = jit::Compile(program, why_not, isa);
+    ASSERT_NE(compiled, nullptr) << why_not;
+    const std::vector<Lane> actual = RunCompiled(*compiled, inputs, constants, bank.size());
+    for (const int slot : {static_cast<int>(OutputSlot::kPosition), static_cast<int>(OutputSlot::kDiffuse)}) {
+      for (int c = 0; c < 4; ++c) {
+        const float* lane = actual[static_cast<std::size_t>(4 * slot + c)]->data();
+        const float* reference = std::as_const(expected).lane(slot, c);
+        for (std::size_t i = 0; i < kVertices; ++i) {
+          ASSERT_EQ(Bits(lane[i]), Bits(reference[i]))
+              << jit::IsaName(isa) << " " << OutputSlotName(slot) << "." << "xyzw"[c] << " of vertex " << i;
+        }
+      }
+    }
+  }
+}
+
+}  // namespace
+}  // namespace vs11
