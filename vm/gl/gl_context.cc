@@ -34,10 +34,20 @@ struct EglEntryPoints {
   PFNEGLGETPLATFORMDISPLAYEXTPROC get_platform_display = nullptr;
   std::string client_extensions;
 
+  // EGL_EXT_device_base is EGL_EXT_device_enumeration and EGL_EXT_device_query in one name.
   bool CanEnumerateDevices() const {
     return query_devices != nullptr && query_device_string != nullptr && get_platform_display != nullptr &&
-           HasExtension(client_extensions.c_str(), "EGL_EXT_device_enumeration") &&
+           (HasExtension(client_extensions.c_str(), "EGL_EXT_device_enumeration") ||
+            HasExtension(client_extensions.c_str(), "EGL_EXT_device_base")) &&
            HasExtension(client_extensions.c_str(), "EGL_EXT_platform_device");
+  }
+  // Why CanEnumerateDevices is false, with what libEGL offers.
+  std::string CannotEnumerateText() const {
+    return fmt::format(
+        "EGL cannot enumerate devices (it needs EGL_EXT_device_enumeration or EGL_EXT_device_base, "
+        "EGL_EXT_platform_device and their entry points; is libegl1 with a vendor library such as libegl-mesa0 "
+        "installed?); EGL's client extensions: {}",
+        client_extensions.empty() ? "none" : client_extensions);
   }
 };
 
@@ -87,8 +97,7 @@ EGLDisplay OpenDisplay(std::optional<int> device, std::string& error) {
   EGLDisplay display = EGL_NO_DISPLAY;
   if (device) {
     if (!entry.CanEnumerateDevices()) {
-      error = "EGL cannot enumerate devices (no EGL_EXT_device_enumeration and EGL_EXT_platform_device; is "
-              "libegl1 with a vendor library such as libegl-mesa0 installed?)";
+      error = entry.CannotEnumerateText();
       return EGL_NO_DISPLAY;
     }
     if (*device < 0 || *device >= static_cast<int>(devices.size())) {
@@ -251,8 +260,7 @@ ScopedCurrent::~ScopedCurrent() {
 
 std::vector<GlDeviceInfo> ListGlDevices(std::string& error) {
   if (!Entry().CanEnumerateDevices()) {
-    error = "EGL cannot enumerate devices (no EGL_EXT_device_enumeration and EGL_EXT_platform_device; is libegl1 "
-            "with a vendor library such as libegl-mesa0 installed?)";
+    error = Entry().CannotEnumerateText();
     return {};
   }
   std::vector<GlDeviceInfo> list;
