@@ -86,6 +86,7 @@ class Emitter : public Xbyak::CodeGenerator {
       mov(kLanePointerRegisters[k], ptr[(IsStoreLane(lane) ? r.write_lanes : r.read_lanes) + 8 * LaneIndex(lane)]);
     }
     HoistConstants();
+    if (!wide_) StoreConstantVectors();
     loop_memory_operations_ = 0;  // the body's from here
     xor_(r.offset, r.offset);
     Xbyak::Label loop, done;
@@ -186,6 +187,19 @@ class Emitter : public Xbyak::CodeGenerator {
       const int value = by_use[k].second;
       Materialize(value, shape_.registers - 1 - static_cast<int>(k));
       pinned_values_.push_back(value);
+    }
+  }
+  // AVX2 has no broadcast operands: before the loop, every constant not kept in a register is
+  // stored once as a whole vector in a slot of the spill buffer, which operations then read as a
+  // memory operand (MemoryOperand) instead of broadcasting it into a register at each iteration.
+  void StoreConstantVectors() {
+    const Xbyak::Xmm scratch = V(0);  // holds no value yet; the hoisted constants sit at the top
+    for (std::size_t n = 0; n < nodes_.size(); ++n) {
+      const int value = static_cast<int>(n);
+      if (!live_[n] || nodes_[n].op != Op::kConstant || Hoisted(value)) continue;
+      spill_slot_[value] = spill_slots_++;
+      vbroadcastss(scratch, ptr[regs_.constants + 4 * nodes_[n].immediate]);
+      vmovups(ptr[regs_.spill + shape_.bytes() * spill_slot_[value]], scratch);
     }
   }
   bool Hoisted(int value) const {
@@ -302,7 +316,7 @@ class Emitter : public Xbyak::CodeGenerator {
 
   // Where `value`, which is in no register, can be read by `user`'s instruction straight from memory:
   // a spilled vector, and with AVX-512 a constant or literal broadcast from its float ({1to16}; not
-  // for the masked move of a select-zero) or with AVX2 a literal stored repeated. Such an operand
+  // for the masked move of a select-zero) or with AVX2 a constant or literal stored as a vector. Such an operand
   // takes no register, which spares the loop's other values. An input lane is loaded into a
   // register instead: read from memory at each of its uses, all_instructions and skinning ran
   // 3-5 % slower.
@@ -311,7 +325,8 @@ class Emitter : public Xbyak::CodeGenerator {
     switch (node.op) {
       case Op::kInput: return std::nullopt;  // (folded, 3-5 % slower: loaded again at every use)
       case Op::kConstant:
-        if (!wide_ || user == Op::kSelectZero) return std::nullopt;
+        if (!wide_) return ptr[regs_.spill + shape_.bytes() * spill_slot_[value]];  // StoreConstantVectors
+        if (user == Op::kSelectZero) return std::nullopt;
         return ptr_b[regs_.constants + 4 * node.immediate];
       case Op::kLiteral:
         if (!wide_) return ptr[regs_.literals + 4 * WideLiteralIndex(node.immediate)];
