@@ -28,7 +28,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       vs11::AssembleSource({reinterpret_cast<const char*>(data), size}, "input.vsh", options, NoFiles);
   if (!assembled.program) return 0;
   using vs11::translate::Target;
-  for (Target target : {Target::kGlsl330, Target::kGlslEs300, Target::kSpirv}) {
+  for (Target target : {Target::kGlsl330, Target::kGlslEs300, Target::kGlslEs320, Target::kSpirv}) {
     vs11::translate::TranslateOptions translate_options;
     translate_options.target = target;
     const std::string glsl = vs11::translate::TranslateToGlsl(*assembled.program, translate_options);

@@ -32,12 +32,14 @@ void AddTranslateCommand(CLI::App& app) {
       "Examples:\n"
       "  vs11 translate programs/sh9_irradiance.vsh --to glsl330\n"
       "  vs11 translate programs/skinning.vsh --to glsles300 --clip d3d -o skinning.vert\n"
+      "  vs11 translate programs/sh9_irradiance.vsh --to glsles320 -o sh9.vert\n"
       "  vs11 translate programs/point_light.vsh --to spirv -o point_light.spv\n"
       "  vs11 translate programs/skinning.vsh --to spirv --float-rules legacy -o skinning_legacy.spv");
   command->add_option("input", args->input, "Program (.vsh source or .vso bytecode)")->required();
-  command->add_option("--to", args->target, "Target: glsl330, glsles300 or spirv")
+  command->add_option("--to", args->target,
+                      "Target: glsl330, glsles300, glsles320 (every output precise: no fused multiply-adds) or spirv")
       ->required()
-      ->check(CLI::IsMember({"glsl330", "glsles300", "spirv"}));
+      ->check(CLI::IsMember({"glsl330", "glsles300", "glsles320", "spirv"}));
   command->add_option("-o,--output", args->output, "File to write; - for stdout (GLSL only)")->capture_default_str();
   command->add_option("--clip", args->clip,
                       "gl_Position's clip space: d3d (as written), gl (z' = 2z - w) or vulkan (y' = -y); default: gl "

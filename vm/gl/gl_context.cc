@@ -199,6 +199,7 @@ bool GlContext::SetUp(std::string& error) {
     error = fmt::format("the context is '{}' on '{}', not OpenGL ES 3.0 or later", version_, renderer_);
     return false;
   }
+  es32_ = major > 3 || minor >= 2;
   glGenFramebuffers(1, &framebuffer_);
   glBindFramebuffer(GL_FRAMEBUFFER, framebuffer_);
   glGenRenderbuffers(1, &renderbuffer_);

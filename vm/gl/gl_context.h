@@ -55,6 +55,7 @@ class GlContext {
   bool MakeCurrent(std::string& error);
   const std::string& renderer() const { return renderer_; }  // GL_RENDERER
   const std::string& version() const { return version_; }    // GL_VERSION
+  bool es32() const { return es32_; }                         // OpenGL ES 3.2 or later: GLSL ES 3.20
 
  private:
   GlContext() = default;
@@ -65,6 +66,7 @@ class GlContext {
   void* context_ = nullptr;  // EGLContext
   unsigned framebuffer_ = 0, renderbuffer_ = 0;
   std::string renderer_, version_;
+  bool es32_ = false;
 };
 
 // Makes `context` current on the calling thread for the scope, then makes current again whatever

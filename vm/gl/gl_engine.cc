@@ -113,12 +113,13 @@ bool GlEngine::Build(int constant_count, std::string& error) {
   const std::array<WriteMask, kOutputSlotCount> written = WrittenOutputLanes(program_);
   for (int slot = 0; slot < kOutputSlotCount; ++slot) {
     if (written[static_cast<std::size_t>(slot)].bits() == 0) continue;
-    const translate::OutputVariable variable = translate::OutputVariableOf(slot);
+    const translate::OutputVariable variable = translate::OutputVariableOf(slot, /*exact_on_driver=*/true);
     captures_.push_back({slot, variable.components, output_floats_});
     varyings.push_back(variable.name);
     output_floats_ += variable.components;
   }
-  const std::string glsl = translate::TranslateToGlsl(program_, GlTranslateOptions(options_, constant_count));
+  const std::string glsl =
+      translate::TranslateToGlsl(program_, GlTranslateOptions(options_, constant_count, context_->es32()));
   program_object_ = LinkTransformFeedbackProgram(glsl, varyings, error);
   if (program_object_ == 0) {
     GLint uniform_vectors = 0;
@@ -188,12 +189,8 @@ void GlEngine::ScatterOutputs(const float* captured, std::size_t first, std::siz
   const auto stride = static_cast<std::size_t>(output_floats_);
   for (const Capture& capture : captures_) {
     if (!outputs.has(capture.slot)) continue;
-    for (int c = 0; c < 4; ++c) {
+    for (int c = 0; c < capture.components; ++c) {  // four: oFog and oPts too (OutputVariableOf)
       float* lane = outputs.lane(capture.slot, c) + first;
-      if (c >= capture.components) {  // oFog and oPts hold one float: the other lanes are never written
-        std::fill(lane, lane + count, UnwrittenOutputValue(capture.slot)[static_cast<std::size_t>(c)]);
-        continue;
-      }
       const float* source = captured + capture.offset + c;
       for (std::size_t v = 0; v < count; ++v) lane[v] = source[v * stride];
     }
@@ -233,9 +230,9 @@ bool GlEngine::RunDraw(const VertexArrays& inputs, std::size_t first, std::size_
 
 }  // namespace
 
-translate::TranslateOptions GlTranslateOptions(const EngineOptions& options, int constant_count) {
+translate::TranslateOptions GlTranslateOptions(const EngineOptions& options, int constant_count, bool es32) {
   translate::TranslateOptions translation;
-  translation.target = translate::Target::kGlslEs300;
+  translation.target = es32 ? translate::Target::kGlslEs320 : translate::Target::kGlslEs300;
   translation.clip = translate::ClipSpace::kD3d;
   translation.constant_count = constant_count;
   translation.exact_on_driver = true;

@@ -15,10 +15,12 @@
 
 namespace vs11::gl {
 
-// The translation the gl engine runs for `options`: GLSL ES 3.00 for the OpenGL ES 3.0 context, D3D's
-// clip space (the capture reads the raw vs11_oPos; gl_Position is not used), a bank of `constant_count`
-// registers. Every engine option that changes the arithmetic reaches the translation here.
-translate::TranslateOptions GlTranslateOptions(const EngineOptions& options, int constant_count);
+// The translation the gl engine runs for `options`: GLSL ES 3.20 with every output `precise` on an
+// OpenGL ES 3.2 context (`es32`), so that no driver fuses a multiply and an add, else GLSL ES 3.00;
+// D3D's clip space (the capture reads the raw vs11_oPos; gl_Position is not used), a bank of
+// `constant_count` registers. Every engine option that changes the arithmetic reaches the
+// translation here.
+translate::TranslateOptions GlTranslateOptions(const EngineOptions& options, int constant_count, bool es32);
 
 // Never null: where the context or the program cannot be had, an engine whose error() says why
 // (MakeFailedEngine). EngineOptions::threads does not apply (the driver keeps its own threads:

@@ -27,9 +27,12 @@ GLuint CompileShader(GLenum kind, const std::string& source, std::string& error)
   return 0;
 }
 
-// ES 3.0 needs a fragment shader to link a program, even when rasterisation is discarded.
-constexpr char kFragmentSource[] = "#version 300 es\nprecision highp float;\nout vec4 colour;\n"
-                                   "void main() { colour = vec4(0.0); }\n";
+// OpenGL ES needs a fragment shader to link a program, even when rasterisation is discarded. It takes
+// the vertex shader's first line, its #version, since the shaders of a program share one version.
+std::string FragmentSourceFor(const std::string& vertex_source) {
+  return vertex_source.substr(0, vertex_source.find('\n') + 1) +
+         "precision highp float;\nout vec4 colour;\nvoid main() { colour = vec4(0.0); }\n";
+}
 
 }  // namespace
 
@@ -58,7 +61,7 @@ unsigned LinkTransformFeedbackProgram(const std::string& vertex_source, const st
                                       std::string& error) {
   const GLuint vertex = CompileShader(GL_VERTEX_SHADER, vertex_source, error);
   if (vertex == 0) return 0;
-  const GLuint fragment = CompileShader(GL_FRAGMENT_SHADER, kFragmentSource, error);
+  const GLuint fragment = CompileShader(GL_FRAGMENT_SHADER, FragmentSourceFor(vertex_source), error);
   if (fragment == 0) {
     glDeleteShader(vertex);
     return 0;

@@ -16,7 +16,8 @@ namespace vs11::gl {
 // GL_RENDERER, or nullopt with `error` set.
 std::optional<std::string> CreateLlvmpipeContext(std::optional<int> lp_threads, std::string& error);
 
-// Compiles `vertex_source` (GLSL ES 3.00) with an empty fragment shader, and links them capturing
+// Compiles `vertex_source` (GLSL ES, its #version on the first line) with an empty fragment shader of
+// the same version, and links them capturing
 // `varyings` interleaved. The program object, or 0 with `error` holding the info log.
 unsigned LinkTransformFeedbackProgram(const std::string& vertex_source, const std::vector<std::string>& varyings,
                                       std::string& error);

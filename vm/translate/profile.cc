@@ -3,7 +3,7 @@
 namespace vs11::translate {
 
 std::optional<Target> TargetFromName(std::string_view name) {
-  for (Target target : {Target::kGlsl330, Target::kGlslEs300, Target::kSpirv}) {
+  for (Target target : {Target::kGlsl330, Target::kGlslEs300, Target::kGlslEs320, Target::kSpirv}) {
     if (TargetName(target) == name) return target;
   }
   return std::nullopt;
@@ -13,6 +13,7 @@ std::string_view TargetName(Target target) {
   switch (target) {
     case Target::kGlsl330: return "glsl330";
     case Target::kGlslEs300: return "glsles300";
+    case Target::kGlslEs320: return "glsles320";
     case Target::kSpirv: return "spirv";
   }
   return "glsl330";
@@ -22,6 +23,7 @@ std::unique_ptr<Profile> MakeProfile(Target target) {
   switch (target) {
     case Target::kGlsl330: return MakeGlsl330Profile();
     case Target::kGlslEs300: return MakeGlslEs300Profile();
+    case Target::kGlslEs320: return MakeGlslEs320Profile();
     case Target::kSpirv: return MakeSpirvProfile();
   }
   return MakeGlsl330Profile();

@@ -1,5 +1,5 @@
 // The targets of `vs11 translate`, one file each behind this interface (as MojoShader's profiles):
-// profile_glsl330.cc, profile_glsles300.cc, profile_spirv.cc. The shader body is the same GLSL for
+// profile_glsl330.cc, profile_glsles300.cc, profile_glsles320.cc, profile_spirv.cc. The shader body is the same GLSL for
 // every target (glsl_writer.cc); a profile supplies only what its dialect spells differently and
 // what it makes of the finished text.
 #pragma once
@@ -13,8 +13,9 @@
 
 namespace vs11::translate {
 
-enum class Target { kGlsl330, kGlslEs300, kSpirv };
-std::optional<Target> TargetFromName(std::string_view name);  // "glsl330" | "glsles300" | "spirv"
+enum class Target { kGlsl330, kGlslEs300, kGlslEs320, kSpirv };
+// "glsl330" | "glsles300" | "glsles320" | "spirv"
+std::optional<Target> TargetFromName(std::string_view name);
 std::string_view TargetName(Target target);
 
 // What a profile makes of the GLSL: the text itself, or a binary compiled from it.
@@ -44,6 +45,7 @@ class Profile {
 
 std::unique_ptr<Profile> MakeGlsl330Profile();
 std::unique_ptr<Profile> MakeGlslEs300Profile();
+std::unique_ptr<Profile> MakeGlslEs320Profile();
 std::unique_ptr<Profile> MakeSpirvProfile();
 std::unique_ptr<Profile> MakeProfile(Target target);
 

@@ -156,7 +156,7 @@ class Writer {
     text += "  // outputs (unwritten lanes hold vs11's values)\n";
     for (const OutputDeclaration& output : OutputVariables()) {
       const auto& lanes = graph_.outputs[static_cast<std::size_t>(output.slot)];
-      if (output.scalar) {
+      if (Scalar(output)) {
         text += fmt::format("  {} = {};\n", output.name, Ref(lanes[0]));
       } else {
         text += fmt::format("  {} = vec4({}, {}, {}, {});\n", output.name, Ref(lanes[0]), Ref(lanes[1]), Ref(lanes[2]),
@@ -164,10 +164,15 @@ class Writer {
       }
     }
     text += "  gl_Position = " + ClipConversion() + ";\n";
-    if (graph_.written[static_cast<int>(OutputSlot::kPointSize)].bits() != 0) text += "  gl_PointSize = oPts;\n";
+    if (graph_.written[static_cast<int>(OutputSlot::kPointSize)].bits() != 0) {
+      text += options_.exact_on_driver ? "  gl_PointSize = oPts.x;\n" : "  gl_PointSize = oPts;\n";
+    }
     text += "}\n";
     return text;
   }
+
+  // oFog and oPts are floats, lane x, but for exact_on_driver (OutputVariableOf).
+  bool Scalar(const OutputDeclaration& output) const { return output.scalar && !options_.exact_on_driver; }
 
   ClipSpace EffectiveClip() const {
     if (options_.clip != ClipSpace::kTargetApi) return options_.clip;
@@ -268,7 +273,7 @@ class Writer {
     }
     for (const OutputDeclaration& output : OutputVariables()) {
       text += fmt::format("{}{}out {} {};\n", options_.exact_on_driver ? "invariant " : "",
-                          profile_.OutputQualifiers(output.location), output.scalar ? "float" : "vec4",
+                          profile_.OutputQualifiers(output.location), Scalar(output) ? "float" : "vec4",
                           output.name);
     }
     return text;
@@ -310,9 +315,9 @@ std::optional<ClipSpace> ClipSpaceFromName(std::string_view name) {
   return std::nullopt;
 }
 
-OutputVariable OutputVariableOf(int slot) {
+OutputVariable OutputVariableOf(int slot, bool exact_on_driver) {
   for (const OutputDeclaration& output : OutputVariables()) {
-    if (output.slot == slot) return {output.name, output.scalar ? 1 : 4};
+    if (output.slot == slot) return {output.name, output.scalar && !exact_on_driver ? 1 : 4};
   }
   return {OutputSlotName(slot), 4};
 }

@@ -41,12 +41,14 @@ struct TranslateOptions {
 
 // The GLSL output that carries output slot `slot` (OutputSlot): "vs11_oPos" for oPos (the raw value;
 // gl_Position may be converted), "oD0", "oT3", "oFog"; `components` 1 for oFog and oPts, else 4. What
-// a transform-feedback capture names (the gl engine, vm/gl/gl_engine.h).
+// a transform-feedback capture names (the gl engine, vm/gl/gl_engine.h). Under exact_on_driver oFog
+// and oPts are vec4s as well, every lane as the program wrote it, as the engines keep them (`mov oFog,
+// r0` writes four lanes, of which D3D uses x).
 struct OutputVariable {
   std::string name;
   int components = 4;
 };
-OutputVariable OutputVariableOf(int slot);
+OutputVariable OutputVariableOf(int slot, bool exact_on_driver = false);
 
 // The GLSL that `options.target` starts from (for SPIR-V: the Vulkan GLSL that is compiled). Never
 // fails: every program the engines run has a translation.

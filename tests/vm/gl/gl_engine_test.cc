@@ -89,7 +89,7 @@ Comparison CompareWithReference(const Program& program, const ConstantBank& bank
   comparison.error = gl->error();
   if (!comparison.error.empty()) return comparison;
   for (int slot : expected.registers()) {
-    const int lanes = translate::OutputVariableOf(slot).components;
+    const int lanes = translate::OutputVariableOf(slot, /*exact_on_driver=*/true).components;
     for (int c = 0; c < lanes; ++c) {
       for (std::size_t v = 0; v < inputs.count(); ++v) {
         const float want = expected.lane(slot, c)[v], have = actual.lane(slot, c)[v];
@@ -205,7 +205,7 @@ void CountKinds(const Program& program, const ConstantBank& bank, const VertexAr
   ASSERT_EQ(gl->error(), "");
   bool exact = true;
   for (int slot : expected.registers()) {
-    for (int c = 0; c < translate::OutputVariableOf(slot).components; ++c) {
+    for (int c = 0; c < translate::OutputVariableOf(slot, /*exact_on_driver=*/true).components; ++c) {
       for (std::size_t v = 0; v < inputs.count(); ++v) {
         const float want = expected.lane(slot, c)[v], have = actual.lane(slot, c)[v];
         if (Bits(want) == Bits(have) || (std::isnan(want) && std::isnan(have))) continue;
@@ -323,7 +323,7 @@ TEST_F(GlEngineTest, SetConstantsBetweenRunsGivesEachBanksOutputs) {
     ASSERT_EQ(gl->error(), "");
     MakeEngine(EngineKind::kReference, program, bank)->Run(inputs, expected);
     for (int slot : expected.registers()) {
-      for (int c = 0; c < translate::OutputVariableOf(slot).components; ++c) {
+      for (int c = 0; c < translate::OutputVariableOf(slot, /*exact_on_driver=*/true).components; ++c) {
         for (std::size_t v = 0; v < inputs.count(); ++v) {
           ASSERT_EQ(Bits(actual.lane(slot, c)[v]), Bits(expected.lane(slot, c)[v]))
               << "bank of " << bank_size << ", " << OutputSlotName(slot) << "." << kLaneLetters[c] << " of vertex " << v;

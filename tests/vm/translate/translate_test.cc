@@ -140,7 +140,7 @@ TEST(ShaderGraph, MatchesTheReferenceEngineOnRandomPrograms) {
 
 // ---- the text: compiles for every target -----------------------------------------------------------
 
-constexpr Target kTargets[] = {Target::kGlsl330, Target::kGlslEs300, Target::kSpirv};
+constexpr Target kTargets[] = {Target::kGlsl330, Target::kGlslEs300, Target::kGlslEs320, Target::kSpirv};
 
 // Empty when `program` translates to text glslang compiles and links for every target, and for SPIR-V
 // to words SPIRV-Tools validates; else what failed, with the text.
