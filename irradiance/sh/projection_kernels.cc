@@ -143,6 +143,76 @@ void CubeMoments(const CubeTexels& faces, const FaceWeights& weights, int size, 
   }
 }
 
+using BlockLaneSums = double[kBlockMoments * 3][kMaxFloatLanes];
+
+// Adds the products of texels [begin, end) of one face (at most kTermsPerLane vectors of them) and
+// their block weights into `face` (double lanes, [moment * 3 + channel]).
+void AddBlockMoments(const float* HWY_RESTRICT rgb, const BlockWeights& weights, std::size_t begin, std::size_t end,
+                     BlockLaneSums& HWY_RESTRICT face) {
+  const DF df;
+  const DD dd;
+  const std::size_t lanes = hn::Lanes(df);
+  const VF zero = hn::Zero(df);
+  ChannelSums m0{zero, zero, zero}, m1 = m0, m2 = m0, m3 = m0, m4 = m0, m5 = m0, m6 = m0, m7 = m0, m8 = m0;
+  auto add_texels = [&](const float* HWY_RESTRICT texels, const BlockWeights& w, std::size_t x) HWY_ATTR {
+    VF red, green, blue;
+    hn::LoadInterleaved3(df, texels, red, green, blue);
+    Accumulate(hn::LoadU(df, w[0] + x), red, green, blue, m0);
+    Accumulate(hn::LoadU(df, w[1] + x), red, green, blue, m1);
+    Accumulate(hn::LoadU(df, w[2] + x), red, green, blue, m2);
+    Accumulate(hn::LoadU(df, w[3] + x), red, green, blue, m3);
+    Accumulate(hn::LoadU(df, w[4] + x), red, green, blue, m4);
+    Accumulate(hn::LoadU(df, w[5] + x), red, green, blue, m5);
+    Accumulate(hn::LoadU(df, w[6] + x), red, green, blue, m6);
+    Accumulate(hn::LoadU(df, w[7] + x), red, green, blue, m7);
+    Accumulate(hn::LoadU(df, w[8] + x), red, green, blue, m8);
+  };
+  std::size_t x = begin;
+  for (; x + lanes <= end; x += lanes) add_texels(rgb + 3 * x, weights, x);
+  if (x < end) {
+    // Fewer texels than a vector (faces of 1 and 2): the missing ones get radiance 0 and weights 0.
+    HWY_ALIGN float rgb_tail[3 * kMaxFloatLanes] = {};
+    HWY_ALIGN float tails[kBlockMoments][kMaxFloatLanes] = {};
+    std::copy(rgb + 3 * x, rgb + 3 * end, rgb_tail);
+    BlockWeights tail_weights;
+    for (int j = 0; j < kBlockMoments; ++j) {
+      std::copy(weights[j] + x, weights[j] + end, tails[j]);
+      tail_weights[j] = tails[j];
+    }
+    add_texels(rgb_tail, tail_weights, 0);
+  }
+  int i = 0;
+  for (const ChannelSums* m : {&m0, &m1, &m2, &m3, &m4, &m5, &m6, &m7, &m8}) {
+    for (VF v : {m->red, m->green, m->blue}) {
+      hn::Store(hn::Add(hn::Load(dd, face[i]), WidenedPairSums(v)), dd, face[i]);
+      ++i;
+    }
+  }
+}
+
+void CubeBlockMoments(const CubeTexels& faces, const BlockWeights& weights, int size, CubeMomentSums& out) {
+  const DF df;
+  const DD dd;
+  const std::size_t texels = static_cast<std::size_t>(size) * size;
+  const std::size_t block_texels = kTermsPerLane * hn::Lanes(df);
+  // Block by block across the six faces, so that each block of weights is read from memory once.
+  HWY_ALIGN BlockLaneSums sums[kFaces] = {};
+  for (std::size_t begin = 0; begin < texels; begin += block_texels) {
+    const std::size_t end = std::min(texels, begin + block_texels);
+    for (int f = 0; f < kFaces; ++f) AddBlockMoments(faces[f], weights, begin, end, sums[f]);
+  }
+  for (int f = 0; f < kFaces; ++f) {
+    out[f] = {};
+    for (int j = 0; j < kBlockMoments; ++j) {
+      for (int c = 0; c < 3; ++c) {
+        double sum = 0.0;
+        for (std::size_t lane = 0; lane < hn::Lanes(dd); ++lane) sum += sums[f][3 * j + c][lane];
+        out[f][kBlockMomentSlots[j].power_of_t][3 * kBlockMomentSlots[j].moment + c] = sum;
+      }
+    }
+  }
+}
+
 void HalveRowPair(const float* HWY_RESTRICT upper, const float* HWY_RESTRICT lower, float* HWY_RESTRICT out,
                   int out_width) {
   int x = 0;
@@ -184,10 +254,15 @@ HWY_AFTER_NAMESPACE();
 namespace vs11::irradiance::kernels {
 
 HWY_EXPORT(CubeMoments);
+HWY_EXPORT(CubeBlockMoments);
 HWY_EXPORT(HalveRowPair);
 
 void CubeMoments(const CubeTexels& faces, const FaceWeights& weights, int size, CubeMomentSums& out) {
   HWY_DYNAMIC_DISPATCH(CubeMoments)(faces, weights, size, out);
+}
+
+void CubeBlockMoments(const CubeTexels& faces, const BlockWeights& weights, int size, CubeMomentSums& out) {
+  HWY_DYNAMIC_DISPATCH(CubeBlockMoments)(faces, weights, size, out);
 }
 
 void HalveRowPair(const float* upper, const float* lower, float* out, int out_width) {
