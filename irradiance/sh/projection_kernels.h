@@ -81,4 +81,9 @@ void CubeBlockMoments(const CubeTexels& faces, const BlockWeights& weights, int 
 // texels). The order of the additions is fixed, so every target gives the same bits.
 void HalveRowPair(const float* upper, const float* lower, float* out, int out_width);
 
+// HalveRowPair, also copying the two rows (2 * out_width texels each) to `copy_upper` and
+// `copy_lower` from the loads the halving makes: one pass over the rows for a pyramid's refill.
+void CopyAndHalveRowPair(const float* upper, const float* lower, float* copy_upper, float* copy_lower, float* out,
+                         int out_width);
+
 }  // namespace vs11::irradiance::kernels

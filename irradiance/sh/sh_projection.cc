@@ -5,7 +5,6 @@
 #include <cmath>
 #include <cassert>
 #include <cstddef>
-#include <cstring>
 #include <mutex>
 
 #include "irradiance/io/cube_map.h"
@@ -317,17 +316,15 @@ bool RefillEnvironmentMips(const CubeMap& env, CubeMipChain& chain) {
     chain.levels[0].faces = env.faces;
     return true;
   }
-  // One pass over the environment: each pair of rows is copied into level 0 and, while still in
-  // cache, halved into level 1.
+  // One pass over the environment: each pair of rows is copied into level 0 and halved into level 1
+  // from the same loads.
   const int size = env.face_size;
-  const std::size_t row_bytes = static_cast<std::size_t>(size) * sizeof(glm::vec3);
   for (int f = 0; f < kCubeFaceCount; ++f) {
     const Image& source = env.faces[f];
     Image& finest = chain.levels[0].faces[f];
     for (int y = 0; y < size; y += 2) {
-      std::memcpy(PixelFloats(finest, y), PixelFloats(source, y), 2 * row_bytes);
-      kernels::HalveRowPair(PixelFloats(finest, y), PixelFloats(finest, y + 1),
-                            PixelFloats(chain.levels[1].faces[f], y / 2), size / 2);
+      kernels::CopyAndHalveRowPair(PixelFloats(source, y), PixelFloats(source, y + 1), PixelFloats(finest, y),
+                                   PixelFloats(finest, y + 1), PixelFloats(chain.levels[1].faces[f], y / 2), size / 2);
     }
     FillLevelsFromTwo(chain, f);
   }

@@ -149,16 +149,23 @@ TEST_P(ProjectionKernels, EveryLevelKeepsPrecisionAt2048WithAnHdrSun) {
 TEST_P(ProjectionKernels, HalvingIsTheScalarBoxMeanBitForBit) {
   std::mt19937 random(7);
   std::uniform_real_distribution<float> value(-10.0f, 1000.0f);
-  for (int width : {1, 3, 8, 15, 16, 17, 33, 64, 100}) {
+  // Widths below, at and above one group of 2 L texels (L = 4, 8, 16 lanes) and several groups.
+  for (int width : {1, 3, 4, 8, 15, 16, 17, 32, 33, 48, 64, 100}) {
     std::vector<float> upper(6 * width), lower(6 * width), out(3 * width, -1.0f);
     for (float& v : upper) v = value(random);
     for (float& v : lower) v = value(random);
+    std::vector<float> copied_out(3 * width, -1.0f), copied_upper(6 * width, -1.0f), copied_lower(6 * width, -1.0f);
     kernels::HalveRowPair(upper.data(), lower.data(), out.data(), width);
+    kernels::CopyAndHalveRowPair(upper.data(), lower.data(), copied_upper.data(), copied_lower.data(),
+                                 copied_out.data(), width);
+    EXPECT_EQ(copied_upper, upper) << "width " << width;
+    EXPECT_EQ(copied_lower, lower) << "width " << width;
     for (int x = 0; x < width; ++x) {
       for (int c = 0; c < 3; ++c) {
         const float expected =
             ((upper[6 * x + c] + upper[6 * x + 3 + c]) + (lower[6 * x + c] + lower[6 * x + 3 + c])) * 0.25f;
         ASSERT_EQ(out[3 * x + c], expected) << "width " << width << " texel " << x << " channel " << c;
+        ASSERT_EQ(copied_out[3 * x + c], expected) << "width " << width << " texel " << x << " channel " << c;
       }
     }
   }
