@@ -4,6 +4,9 @@
 //   environment level k (mean radiance per texel)  x  basis level k (sum over the texel's 4^k
 //   finest children of y_lm(dir) dOmega)  summed over the 6 (size >> k)^2 texels  ~=  L_lm
 //
+// (The basis levels are kept as nine block sums per texel of one face, from which each face's nine
+// summed basis weights follow exactly: see BasisLevel.)
+//
 // Level 0 of the mip product is exactly the direct projection (up to float storage); coarser levels
 // treat the radiance as constant over each 2^k x 2^k block, which blurs only what the nine
 // coefficients cannot hold anyway once the block is small compared with the band-2 lobes.
