@@ -56,13 +56,15 @@ glm::dvec3 TexelDirection(CubeFace face, int x, int y, int size) {
   return glm::normalize(FaceDirection(face, s, t));
 }
 
+double TexelCornerArea(int i, int j, int size) {
+  assert(size > 0 && i >= 0 && i <= size && j >= 0 && j <= size);
+  return CornerArea(FaceCoordinate(i, size), FaceCoordinate(j, size));
+}
+
 double TexelSolidAngle(int x, int y, int size) {
   assert(size > 0 && x >= 0 && x < size && y >= 0 && y < size);
-  const double u0 = FaceCoordinate(x, size);
-  const double u1 = FaceCoordinate(x + 1, size);
-  const double v0 = FaceCoordinate(y, size);
-  const double v1 = FaceCoordinate(y + 1, size);
-  return CornerArea(u1, v1) - CornerArea(u0, v1) - CornerArea(u1, v0) + CornerArea(u0, v0);
+  return TexelCornerArea(x + 1, y + 1, size) - TexelCornerArea(x, y + 1, size) - TexelCornerArea(x + 1, y, size) +
+         TexelCornerArea(x, y, size);
 }
 
 FacePoint DirectionToFace(glm::dvec3 d) {

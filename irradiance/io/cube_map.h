@@ -72,6 +72,11 @@ glm::dvec3 TexelDirection(CubeFace face, int x, int y, int size);
 // Exact solid angle of texel (x, y) (the same for every face), closed form
 //   A(u, v) = atan2(u v, sqrt(u^2 + v^2 + 1)) summed over the texel's corners; the six faces add to 4 pi.
 double TexelSolidAngle(int x, int y, int size);
+// A(u, v) at corner (i, j) of a face of `size` (0 <= i, j <= size: u, v = 2 i / size - 1, 2 j / size - 1).
+// TexelSolidAngle(x, y, size) is exactly
+//   TexelCornerArea(x + 1, y + 1) - TexelCornerArea(x, y + 1) - TexelCornerArea(x + 1, y) + TexelCornerArea(x, y)
+// added in that order, so a table of corner areas gives its bits with one atan2 per texel instead of four.
+double TexelCornerArea(int i, int j, int size);
 // The face a direction lands on and its (s, t) there; the inverse of FaceDirection.
 struct FacePoint {
   CubeFace face;

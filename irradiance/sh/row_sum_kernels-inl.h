@@ -26,7 +26,6 @@ namespace hn = hwy::HWY_NAMESPACE;
 
 // Up to kRowSumLanes doubles per vector: 8 with AVX-512, 4 with AVX2, 2 with SSE and EMU128, 1 scalar.
 using DD = hn::CappedTag<double, kRowSumLanes>;
-using DF = hn::Rebind<float, DD>;  // as many floats, to widen
 using VD = hn::Vec<DD>;
 constexpr int kLanesPerVector = static_cast<int>(hn::MaxLanes(DD()));
 constexpr int kGroups = kRowSumLanes / kLanesPerVector;
@@ -68,49 +67,6 @@ HWY_INLINE void AddProducts(VD factor, const double* HWY_RESTRICT red, const dou
   sums.red[k] = hn::Add(sums.red[k], hn::Mul(factor, hn::LoadU(dd, red + offset)));
   sums.green[k] = hn::Add(sums.green[k], hn::Mul(factor, hn::LoadU(dd, green + offset)));
   sums.blue[k] = hn::Add(sums.blue[k], hn::Mul(factor, hn::LoadU(dd, blue + offset)));
-}
-
-// Texels x .. x + kRowSumLanes - 1 of a weighted row (all of them present).
-HWY_INLINE void AddWeightedTexels(const float* HWY_RESTRICT w, const double* HWY_RESTRICT r,
-                                  const double* HWY_RESTRICT g, const double* HWY_RESTRICT b, PartialSums& sums) {
-  for (int k = 0; k < kGroups; ++k) {
-    const VD weight = hn::PromoteTo(DD(), hn::LoadU(DF(), w + k * kLanesPerVector));
-    AddProducts(weight, r, g, b, k, sums);
-  }
-}
-
-// A row shorter than kRowSumLanes puts at most one term in each partial sum, so adding its terms in
-// order from +0 gives the same bits as the partial sums do (a lone -0 term becomes +0 either way), and
-// the vectors' zero-padded tail, which costs more than the row (the coarsest levels), is not needed.
-ChannelSums ShortWeightedRowSum(const float* HWY_RESTRICT w, const RadianceRow& radiance, int n) {
-  ChannelSums total{0.0, 0.0, 0.0};
-  for (int x = 0; x < n; ++x) {
-    const double weight = w[x];
-    total[0] += weight * radiance.red[x];
-    total[1] += weight * radiance.green[x];
-    total[2] += weight * radiance.blue[x];
-  }
-  return total;
-}
-
-ChannelSums WeightedRowSum(const float* HWY_RESTRICT w, const RadianceRow& radiance, int n) {
-  if (n < kRowSumLanes) return ShortWeightedRowSum(w, radiance, n);
-  PartialSums sums;
-  Clear(sums);
-  int x = 0;
-  for (; x + kRowSumLanes <= n; x += kRowSumLanes) {
-    AddWeightedTexels(w + x, radiance.red + x, radiance.green + x, radiance.blue + x, sums);
-  }
-  if (x < n) {
-    HWY_ALIGN float w_tail[kRowSumLanes] = {};
-    HWY_ALIGN double r_tail[kRowSumLanes] = {}, g_tail[kRowSumLanes] = {}, b_tail[kRowSumLanes] = {};
-    std::copy(w + x, w + n, w_tail);
-    std::copy(radiance.red + x, radiance.red + n, r_tail);
-    std::copy(radiance.green + x, radiance.green + n, g_tail);
-    std::copy(radiance.blue + x, radiance.blue + n, b_tail);
-    AddWeightedTexels(w_tail, r_tail, g_tail, b_tail, sums);
-  }
-  return Fold(sums);
 }
 
 // The columns of a CosineTable, from one texel on.
@@ -167,11 +123,6 @@ HWY_INLINE void AddTo(ChannelSums& sum, const ChannelSums& term) {
 }
 
 }  // namespace
-
-void AddWeightedRowSums(const float* const* weights, int count, const RadianceRow& radiance, int n,
-                        ChannelSums* sums) {
-  for (int i = 0; i < count; ++i) AddTo(sums[i], WeightedRowSum(weights[i], radiance, n));
-}
 
 void AddClampedCosineSums(const CosineTable& table, const ChannelSums* normals, int count, ChannelSums* sums) {
   for (int row = 0; row < table.rows; ++row) {

@@ -12,8 +12,6 @@
 namespace vs11::irradiance::kernels {
 namespace HWY_NAMESPACE {
 // Defined by irradiance/sh/row_sum_kernels_<target>.cc.
-void AddWeightedRowSums(const float* const* weights, int count, const RadianceRow& radiance, int n,
-                        ChannelSums* sums);
 void AddClampedCosineSums(const CosineTable& table, const ChannelSums* normals, int count, ChannelSums* sums);
 }  // namespace HWY_NAMESPACE
 }  // namespace vs11::irradiance::kernels
@@ -24,13 +22,7 @@ namespace vs11::irradiance::kernels {
 // Every target Highway compiles for needs its irradiance/sh/row_sum_kernels_<target>.cc.
 static_assert((HWY_TARGETS & ~(HWY_SCALAR | HWY_EMU128 | HWY_SSSE3 | HWY_SSE4 | HWY_AVX2 | HWY_AVX3)) == 0,
               "add an irradiance/sh/row_sum_kernels_<target>.cc for the new Highway target");
-HWY_EXPORT(AddWeightedRowSums);
 HWY_EXPORT(AddClampedCosineSums);
-
-void AddWeightedRowSums(const float* const* weights, int count, const RadianceRow& radiance, int n,
-                        ChannelSums* sums) {
-  HWY_DYNAMIC_DISPATCH(AddWeightedRowSums)(weights, count, radiance, n, sums);
-}
 
 void AddClampedCosineSums(const CosineTable& table, const ChannelSums* normals, int count, ChannelSums* sums) {
   HWY_DYNAMIC_DISPATCH(AddClampedCosineSums)(table, normals, count, sums);

@@ -1,5 +1,4 @@
-// Double-precision row sums of the SH projection's coarse levels (irradiance/sh/sh_projection.cc,
-// ProjectLevel) and of the brute-force ground truth (irradiance/sh/ground_truth.cc). Compiled for every
+// Double-precision row sums of the brute-force ground truth (irradiance/sh/ground_truth.cc). Compiled for every
 // Highway target, each in its own irradiance/sh/row_sum_kernels_<target>.cc (see
 // irradiance/sh/row_sum_kernels-inl.h for why), and dispatched at run time to the best target the CPU
 // has; the tests run them on every target the CPU supports (hwy::SetSupportedTargetsForTest).
@@ -26,11 +25,6 @@ struct RadianceRow {
   const double* green;
   const double* blue;
 };
-
-// For each i < count: sums[i] += the sum over x < n of weights[i][x] * radiance[x], per channel. Each
-// float weight is widened to double, so each product of a weight and a float-valued radiance is exact.
-void AddWeightedRowSums(const float* const* weights, int count, const RadianceRow& radiance, int n,
-                        ChannelSums* sums);
 
 // Rows of texels as structure-of-arrays doubles: texel x of row y is element y * row_size + x of each
 // array. (wx, wy, wz) is the texel's direction times its solid angle.

@@ -5,21 +5,13 @@
 #include <cmath>
 #include <cassert>
 #include <cstddef>
-#include <cstring>
 #include <mutex>
 
 #include "irradiance/io/cube_map.h"
 #include "irradiance/sh/projection_kernels.h"
-#include "irradiance/sh/row_sum_kernels.h"
 
 namespace vs11::irradiance {
 namespace {
-
-// Solid angles of the texels of row y (the same on every face).
-void RowSolidAngles(int y, int size, std::vector<double>& out) {
-  out.resize(size);
-  for (int x = 0; x < size; ++x) out[x] = TexelSolidAngle(x, y, size);
-}
 
 // Adds one face row's products basis * radiance * solid angle (radiance from `row`) into `sums`.
 void AccumulateDirectRow(CubeFace face, int y, int size, const glm::vec3* row,
@@ -32,10 +24,6 @@ void AccumulateDirectRow(CubeFace face, int y, int size, const glm::vec3* row,
     for (int i = 0; i < kSh9Coefficients; ++i) row_sums[i] += basis[i] * weighted;
   }
   for (int i = 0; i < kSh9Coefficients; ++i) sums[i] += row_sums[i];
-}
-
-std::size_t LevelTexels(int size) {
-  return static_cast<std::size_t>(kCubeFaceCount) * size * size;
 }
 
 // True when chain.levels are LevelCount(face_size) cube maps of faces face_size >> k.
@@ -120,79 +108,127 @@ void AddFaceFromMoments(const kernels::FaceMomentSums& m, const FaceLinearForm& 
   sums[ShIndex(2, 2)] += kShN4 * (quadratic(0, 0) - quadratic(1, 1));
 }
 
-// The finest level's per-texel weights of one face (see FinestWeights), from its solid angles.
-FinestWeights MakeFinestWeights(const std::vector<double>& solid_angles, int size) {
-  FinestWeights weights;
-  weights.q.resize(solid_angles.size());
-  weights.qr.resize(solid_angles.size());
-  weights.qr2.resize(solid_angles.size());
-  for (int y = 0; y < size; ++y) {
-    const double t = FaceCoordinate(y, size);
-    for (int x = 0; x < size; ++x) {
-      const double s = FaceCoordinate(x, size);
-      const std::size_t i = static_cast<std::size_t>(y) * size + x;
-      const double r2 = 1.0 / (1.0 + s * s + t * t);
-      weights.q[i] = static_cast<float>(solid_angles[i]);
-      weights.qr[i] = static_cast<float>(solid_angles[i] * std::sqrt(r2));
-      weights.qr2[i] = static_cast<float>(solid_angles[i] * r2);
-    }
-  }
-  return weights;
+// The finest level's weights of texel (x, y) of a face (see FinestWeights), from its solid angle q.
+void StoreFinestWeights(int x, int y, int size, double q, FinestWeights& weights) {
+  const double s = FaceCoordinate(x, size), t = FaceCoordinate(y, size);
+  const std::size_t i = static_cast<std::size_t>(y) * size + x;
+  const double r2 = 1.0 / (1.0 + s * s + t * t);
+  weights.q[i] = static_cast<float>(q);
+  weights.qr[i] = static_cast<float>(q * std::sqrt(r2));
+  weights.qr2[i] = static_cast<float>(q * r2);
 }
 
-// Face f of levels 1.. of `pyramid` (already sized). Level 0 is computed in double and summed (in
-// double) into its parents; every coarser level is then the double sum of its four
-// double children, rounded to float once. The double sums of one face take 18 bytes per texel of
-// it (a sixth of a whole level 1).
-void BuildBasisFace(int f, const std::vector<double>& solid_angles, BasisPyramid& pyramid) {
-  const int face_size = pyramid.face_size;
-  const int count = static_cast<int>(pyramid.levels.size());
-  std::array<std::vector<double>, kSh9Coefficients> parent;
-  const CubeFace face = kAllCubeFaces[f];
-  const int parent_size = face_size / 2;
-  for (auto& p : parent) p.assign(static_cast<std::size_t>(parent_size) * parent_size, 0.0);
-  for (int y = 0; y < face_size; ++y) {
-    const std::size_t parent_row = static_cast<std::size_t>(y / 2) * parent_size;
-    for (int x = 0; x < face_size; ++x) {
-      const std::array<double, kSh9Coefficients> basis = ShBasis(TexelDirection(face, x, y, face_size));
-      const double solid_angle = solid_angles[static_cast<std::size_t>(y) * face_size + x];
-      for (int i = 0; i < kSh9Coefficients; ++i) {
-        if (parent_size > 0) parent[i][parent_row + x / 2] += basis[i] * solid_angle;
+// The solid angles of texels (x0 .. x0 + count - 1, y) of a face of `size`, bit for bit
+// TexelSolidAngle, from two rows of corner areas: `upper` holds corners (x0 .., y) on entry and
+// corners (x0 .., y + 1) on return, so that the next row reuses them (one atan2 per texel).
+void NextRowSolidAngles(int x0, int y, int count, int size, std::vector<double>& upper, std::vector<double>& lower,
+                        std::vector<double>& out) {
+  lower.resize(count + 1);
+  for (int i = 0; i <= count; ++i) lower[i] = TexelCornerArea(x0 + i, y + 1, size);
+  out.resize(count);
+  for (int x = 0; x < count; ++x) out[x] = lower[x + 1] - lower[x] - upper[x + 1] + upper[x];
+  upper.swap(lower);
+}
+
+// The corner areas of row y of corners, from corner x0 on (count + 1 of them).
+std::vector<double> CornerRow(int x0, int y, int count, int size) {
+  std::vector<double> row(count + 1);
+  for (int i = 0; i <= count; ++i) row[i] = TexelCornerArea(x0 + i, y, size);
+  return row;
+}
+
+// Tiles of the pyramid's build: at least kMinTile finest texels on an edge (or the whole face), and
+// at most kTilesPerEdge of them on a face's edge (at most 64 tasks).
+constexpr int kMinTile = 32;
+constexpr int kTilesPerEdge = 8;
+
+// A block's nine weights (kernels::kBlockMomentSlots) in double, before they are rounded to float.
+using BlockMomentValues = std::array<double, kernels::kBlockMoments>;
+
+// The nine products a finest texel adds to the weights of each block that holds it.
+BlockMomentValues FinestBlockMoments(double q, double s, double t) {
+  const double r2 = 1.0 / (1.0 + s * s + t * t);
+  const double r_powers[3] = {1.0, std::sqrt(r2), r2};
+  const double s_powers[2] = {1.0, s};
+  const double t_powers[3] = {1.0, t, t * t};
+  BlockMomentValues values;
+  for (int j = 0; j < kernels::kBlockMoments; ++j) {
+    const kernels::BlockMomentSlot slot = kernels::kBlockMomentSlots[j];
+    values[j] = q * r_powers[kernels::kMomentPowerOfR[slot.moment]] * s_powers[kernels::kMomentPowerOfS[slot.moment]] *
+                t_powers[slot.power_of_t];
+  }
+  return values;
+}
+
+void AddTo(BlockMomentValues& sum, const BlockMomentValues& term) {
+  for (int j = 0; j < kernels::kBlockMoments; ++j) sum[j] += term[j];
+}
+
+// Rounds `blocks` (n x n block values at `level`, whose block (0, 0) is block (x0, y0) of the level)
+// into the pyramid, and returns the next level's blocks: each the double sum of its four children,
+// (upper left + upper right) + (lower left + lower right).
+std::vector<BlockMomentValues> StoreAndHalve(const std::vector<BlockMomentValues>& blocks, int n, int x0, int y0,
+                                             BasisLevel& level) {
+  for (int y = 0; y < n; ++y) {
+    for (int x = 0; x < n; ++x) {
+      const std::size_t to = static_cast<std::size_t>(y0 + y) * level.size + (x0 + x);
+      for (int j = 0; j < kernels::kBlockMoments; ++j) {
+        level.weights[j][to] = static_cast<float>(blocks[static_cast<std::size_t>(y) * n + x][j]);
       }
     }
   }
-  for (int k = 1; k < count; ++k) {
-    BasisLevel& level = pyramid.levels[k];
-    const int size = level.size;
-    const std::size_t face_offset = static_cast<std::size_t>(f) * size * size;
-    for (int i = 0; i < kSh9Coefficients; ++i) {
-      for (std::size_t t = 0; t < parent[i].size(); ++t) {
-        level.weights[i][face_offset + t] = static_cast<float>(parent[i][t]);
-      }
-    }
-    if (k + 1 == count) break;
-    const int half = size / 2;
-    for (int i = 0; i < kSh9Coefficients; ++i) {
-      std::vector<double> next(static_cast<std::size_t>(half) * half, 0.0);
-      auto child = [&](int cx, int cy) { return parent[i][static_cast<std::size_t>(cy) * size + cx]; };
-      for (int y = 0; y < half; ++y) {
-        for (int x = 0; x < half; ++x) {
-          next[static_cast<std::size_t>(y) * half + x] = (child(2 * x, 2 * y) + child(2 * x + 1, 2 * y)) +
-                                                         (child(2 * x, 2 * y + 1) + child(2 * x + 1, 2 * y + 1));
-        }
-      }
-      parent[i] = std::move(next);
+  const int half = n / 2;
+  std::vector<BlockMomentValues> parents(static_cast<std::size_t>(half) * half);
+  for (int y = 0; y < half; ++y) {
+    for (int x = 0; x < half; ++x) {
+      auto child = [&](int cx, int cy) { return blocks[static_cast<std::size_t>(2 * y + cy) * n + 2 * x + cx]; };
+      BlockMomentValues upper = child(0, 0), lower = child(0, 1);
+      AddTo(upper, child(1, 0));
+      AddTo(lower, child(1, 1));
+      AddTo(upper, lower);
+      parents[static_cast<std::size_t>(y) * half + x] = upper;
     }
   }
+  return parents;
+}
+
+// The finest weights and the coarse levels of the square tile of `tile` x `tile` finest texels whose
+// upper left texel is (x0, y0) (tile a power of two dividing the face size), up to level
+// log2(tile) - 1. Returns the tile's own nine sums in double: its one block of level log2(tile), not
+// yet stored (BuildAboveTiles stores it with its neighbours).
+BlockMomentValues BuildTile(int x0, int y0, int tile, BasisPyramid& pyramid) {
+  const int size = pyramid.face_size;
+  const int half = std::max(tile / 2, 1);
+  // Level 1 of the tile (or, for a one-texel face, its only texel), summed in double.
+  std::vector<BlockMomentValues> blocks(static_cast<std::size_t>(half) * half, BlockMomentValues{});
+  std::vector<double> upper = CornerRow(x0, y0, tile, size), lower, solid_angles;
+  for (int y = 0; y < tile; ++y) {
+    NextRowSolidAngles(x0, y0 + y, tile, size, upper, lower, solid_angles);
+    const double t = FaceCoordinate(y0 + y, size);
+    for (int x = 0; x < tile; ++x) {
+      StoreFinestWeights(x0 + x, y0 + y, size, solid_angles[x], pyramid.finest);
+      AddTo(blocks[static_cast<std::size_t>(y / 2) * half + x / 2],
+            FinestBlockMoments(solid_angles[x], FaceCoordinate(x0 + x, size), t));
+    }
+  }
+  for (int n = tile / 2, k = 1; n > 1; n /= 2, ++k) blocks = StoreAndHalve(blocks, n, x0 >> k, y0 >> k, pyramid.levels[k]);
+  return blocks.front();
+}
+
+// Level `level` (n x n blocks, one per tile, from BuildTile) and every coarser level.
+void BuildAboveTiles(std::vector<BlockMomentValues> blocks, int n, int level, BasisPyramid& pyramid) {
+  if (level == 0) return;  // a face of one texel has no coarse levels
+  for (; n >= 1; n /= 2, ++level) blocks = StoreAndHalve(blocks, n, 0, 0, pyramid.levels[level]);
 }
 
 // Solid angles of every texel of a face of `size` (the same on all six faces), row-major.
 std::vector<double> FaceSolidAngles(int size) {
   std::vector<double> solid_angles;
   solid_angles.reserve(static_cast<std::size_t>(size) * size);
-  std::vector<double> row;
+  if (size == 0) return solid_angles;
+  std::vector<double> upper = CornerRow(0, 0, size, size), lower, row;
   for (int y = 0; y < size; ++y) {
-    RowSolidAngles(y, size, row);
+    NextRowSolidAngles(0, y, size, size, upper, lower, row);
     solid_angles.insert(solid_angles.end(), row.begin(), row.end());
   }
   return solid_angles;
@@ -202,7 +238,17 @@ std::vector<double> FaceSolidAngles(int size) {
 
 FinestWeights BuildFinestWeights(int face_size) {
   assert(face_size >= 0);
-  return MakeFinestWeights(FaceSolidAngles(face_size), face_size);
+  const std::vector<double> solid_angles = FaceSolidAngles(face_size);
+  FinestWeights weights;
+  weights.q.resize(solid_angles.size());
+  weights.qr.resize(solid_angles.size());
+  weights.qr2.resize(solid_angles.size());
+  for (int y = 0; y < face_size; ++y) {
+    for (int x = 0; x < face_size; ++x) {
+      StoreFinestWeights(x, y, face_size, solid_angles[static_cast<std::size_t>(y) * face_size + x], weights);
+    }
+  }
+  return weights;
 }
 
 Sh9Rgb ProjectFinest(const CubeMap& map, const FinestWeights& weights) {
@@ -221,9 +267,10 @@ Sh9Rgb ProjectFinest(const CubeMap& map, const FinestWeights& weights) {
 Sh9Rgb ProjectDirect(const CubeMap& env) {
   const int size = env.face_size;
   Sh9Rgb sh;
-  std::vector<double> solid_angles;
+  if (size == 0) return sh;
+  std::vector<double> upper = CornerRow(0, 0, size, size), lower, solid_angles;
   for (int y = 0; y < size; ++y) {
-    RowSolidAngles(y, size, solid_angles);
+    NextRowSolidAngles(0, y, size, size, upper, lower, solid_angles);
     for (CubeFace face : kAllCubeFaces) {
       const Image& image = env.face(face);
       assert(image.width == size && image.height == size);
@@ -269,17 +316,15 @@ bool RefillEnvironmentMips(const CubeMap& env, CubeMipChain& chain) {
     chain.levels[0].faces = env.faces;
     return true;
   }
-  // One pass over the environment: each pair of rows is copied into level 0 and, while still in
-  // cache, halved into level 1.
+  // One pass over the environment: each pair of rows is copied into level 0 and halved into level 1
+  // from the same loads.
   const int size = env.face_size;
-  const std::size_t row_bytes = static_cast<std::size_t>(size) * sizeof(glm::vec3);
   for (int f = 0; f < kCubeFaceCount; ++f) {
     const Image& source = env.faces[f];
     Image& finest = chain.levels[0].faces[f];
     for (int y = 0; y < size; y += 2) {
-      std::memcpy(PixelFloats(finest, y), PixelFloats(source, y), 2 * row_bytes);
-      kernels::HalveRowPair(PixelFloats(finest, y), PixelFloats(finest, y + 1),
-                            PixelFloats(chain.levels[1].faces[f], y / 2), size / 2);
+      kernels::CopyAndHalveRowPair(PixelFloats(source, y), PixelFloats(source, y + 1), PixelFloats(finest, y),
+                                   PixelFloats(finest, y + 1), PixelFloats(chain.levels[1].faces[f], y / 2), size / 2);
     }
     FillLevelsFromTwo(chain, f);
   }
@@ -298,22 +343,30 @@ std::optional<BasisPyramid> BuildBasisPyramid(int face_size, int threads,
     BasisLevel& level = pyramid.levels[k];
     level.size = face_size >> k;
     if (k == 0) continue;  // level 0 is evaluated from texel coordinates (ProjectFinest), not stored
-    for (auto& w : level.weights) w.assign(LevelTexels(level.size), 0.0f);
+    for (auto& w : level.weights) w.resize(static_cast<std::size_t>(level.size) * level.size);
   }
-  const std::vector<double> solid_angles = FaceSolidAngles(face_size);
-  pyramid.finest = MakeFinestWeights(solid_angles, face_size);
-  // Faces write disjoint parts of every level, so they are built in parallel, one task per face;
-  // the result does not depend on `threads`.
+  const std::size_t face_texels = static_cast<std::size_t>(face_size) * face_size;
+  pyramid.finest.q.resize(face_texels);
+  pyramid.finest.qr.resize(face_texels);
+  pyramid.finest.qr2.resize(face_texels);
+  // Tiles write disjoint parts of every level, so they are built in parallel, and the levels above
+  // them from their sums afterwards; the result does not depend on `threads`.
+  const int tile = std::max(std::min(face_size, kMinTile), face_size / kTilesPerEdge);
+  const int tiles_per_edge = face_size / tile;
+  const std::size_t tile_count = static_cast<std::size_t>(tiles_per_edge) * tiles_per_edge;
+  std::vector<BlockMomentValues> tile_sums(tile_count);
   std::mutex progress_mutex;
-  int faces_done = 0;
+  std::size_t tiles_done = 0;
   ThreadPool& workers = pool != nullptr ? *pool : ThreadPool::Default();
-  workers.Run(kCubeFaceCount, threads, [&](std::size_t f, int) {
-    BuildBasisFace(static_cast<int>(f), solid_angles, pyramid);
+  workers.Run(tile_count, threads, [&](std::size_t i, int) {
+    const int x0 = static_cast<int>(i % tiles_per_edge) * tile, y0 = static_cast<int>(i / tiles_per_edge) * tile;
+    tile_sums[i] = BuildTile(x0, y0, tile, pyramid);
     if (progress) {
       std::lock_guard<std::mutex> lock(progress_mutex);
-      progress(static_cast<double>(++faces_done) / kCubeFaceCount);
+      progress(static_cast<double>(++tiles_done) / static_cast<double>(tile_count));
     }
   });
+  BuildAboveTiles(std::move(tile_sums), tiles_per_edge, count - LevelCount(tiles_per_edge), pyramid);
   return pyramid;
 }
 
@@ -326,28 +379,14 @@ Sh9Rgb ProjectLevel(const CubeMipChain& env, const BasisPyramid& basis, int leve
   const BasisLevel& weights = basis.levels[level];
   const int size = map.face_size;
   assert(weights.size == size);
-
-  // One de-interleaved radiance row (converted to double once, used by all nine weights), reused
-  // for every row of every face.
-  std::vector<double> r(size), g(size), b(size);
-  std::array<kernels::ChannelSums, kSh9Coefficients> sums{};
-  for (int f = 0; f < kCubeFaceCount; ++f) {
-    const Image& image = map.faces[f];
-    for (int y = 0; y < size; ++y) {
-      const glm::vec3* row = &image.at(0, y);
-      for (int x = 0; x < size; ++x) {
-        r[x] = row[x].x;
-        g[x] = row[x].y;
-        b[x] = row[x].z;
-      }
-      std::array<const float*, kSh9Coefficients> weight_rows;
-      for (int i = 0; i < kSh9Coefficients; ++i) weight_rows[i] = weights.Row(i, f, y);
-      kernels::AddWeightedRowSums(weight_rows.data(), kSh9Coefficients, {r.data(), g.data(), b.data()}, size,
-                                  sums.data());
-    }
-  }
+  kernels::CubeTexels texels;
+  for (int f = 0; f < kCubeFaceCount; ++f) texels[f] = PixelFloats(map.faces[f], 0);
+  kernels::BlockWeights block_weights;
+  for (int j = 0; j < kernels::kBlockMoments; ++j) block_weights[j] = weights.weights[j].data();
+  kernels::CubeMomentSums moments;
+  kernels::CubeBlockMoments(texels, block_weights, size, moments);
   Sh9Rgb sh;
-  for (int i = 0; i < kSh9Coefficients; ++i) sh.coefficients[i] = glm::dvec3(sums[i][0], sums[i][1], sums[i][2]);
+  for (int f = 0; f < kCubeFaceCount; ++f) AddFaceFromMoments(moments[f], LinearFormOf(kAllCubeFaces[f]), sh.coefficients);
   return sh;
 }
 

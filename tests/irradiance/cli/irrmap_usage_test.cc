@@ -69,12 +69,13 @@ TEST_F(IrrmapUsage, NoGroundTruthWritesTheMapButNoErrorsOrPreview) {
   EXPECT_THAT(json, Not(HasSubstr("max_relative_error")));
 }
 
-TEST(BasisPyramidProgress, ReportsEachFaceUpToOne) {
+TEST(BasisPyramidProgress, ReportsEachTileUpToOne) {
+  // 256 is cut into 8 x 8 tiles of 32 x 32 texels.
   std::vector<double> fractions;
-  std::optional<BasisPyramid> pyramid = BuildBasisPyramid(8, 2, [&](double f) { fractions.push_back(f); });
+  std::optional<BasisPyramid> pyramid = BuildBasisPyramid(256, 2, [&](double f) { fractions.push_back(f); });
   ASSERT_TRUE(pyramid);
-  ASSERT_EQ(fractions.size(), 6u);
-  for (std::size_t i = 0; i < fractions.size(); ++i) EXPECT_DOUBLE_EQ(fractions[i], (i + 1) / 6.0);
+  ASSERT_EQ(fractions.size(), 64u);
+  for (std::size_t i = 0; i < fractions.size(); ++i) EXPECT_DOUBLE_EQ(fractions[i], (i + 1) / 64.0);
 }
 
 }  // namespace

@@ -159,30 +159,34 @@ TEST(ShProjection, BasisPyramidLevelsAreSumsOfTheirChildren) {
   const std::optional<BasisPyramid> pyramid = BuildBasisPyramid(kSize);
   ASSERT_TRUE(pyramid.has_value());
   ASSERT_EQ(pyramid->levels.size(), 5u);
-  // Level 0 is not stored: each weight is y_lm(dir) dOmega, rounded to float as the levels are.
+  // Level 0 is not stored: ProjectFinest evaluates it from texel coordinates.
   EXPECT_TRUE(pyramid->levels[0].weights[0].empty());
-  auto finest = [&](int i, int f, int y, int x) {
-    return static_cast<float>(ShBasis(TexelDirection(kAllCubeFaces[f], x, y, kSize))[i] * TexelSolidAngle(x, y, kSize));
+  // A finest texel's nine products, in kernels::kBlockMomentSlots order, written out.
+  auto finest = [&](int j, int y, int x) {
+    const double q = TexelSolidAngle(x, y, kSize);
+    const double s = 2.0 * (x + 0.5) / kSize - 1.0, t = 2.0 * (y + 0.5) / kSize - 1.0;
+    const double r = 1.0 / std::sqrt(1.0 + s * s + t * t);
+    const double products[kernels::kBlockMoments] = {q,         q * r,         q * r * s,         q * r * t, q * r * r,
+                                                     q * r * r * s, q * r * r * t, q * r * r * s * t, q * r * r * t * t};
+    return products[j];
   };
   for (int k = 1; k < 5; ++k) {
     const BasisLevel& level = pyramid->levels[k];
     ASSERT_EQ(level.size, kSize >> k);
     const int block = 1 << k;
-    for (int i = 0; i < kSh9Coefficients; ++i) {
-      for (int f = 0; f < kCubeFaceCount; ++f) {
-        for (int y = 0; y < level.size; ++y) {
-          for (int x = 0; x < level.size; ++x) {
-            double sum = 0.0;
-            double magnitude = 0.0;
-            for (int cy = 0; cy < block; ++cy) {
-              for (int cx = 0; cx < block; ++cx) {
-                const double w = finest(i, f, y * block + cy, x * block + cx);
-                sum += w;
-                magnitude += std::abs(w);
-              }
+    for (int j = 0; j < kernels::kBlockMoments; ++j) {
+      for (int y = 0; y < level.size; ++y) {
+        for (int x = 0; x < level.size; ++x) {
+          double sum = 0.0;
+          double magnitude = 0.0;
+          for (int cy = 0; cy < block; ++cy) {
+            for (int cx = 0; cx < block; ++cx) {
+              const double w = finest(j, y * block + cy, x * block + cx);
+              sum += w;
+              magnitude += std::abs(w);
             }
-            EXPECT_NEAR(level.Row(i, f, y)[x], sum, kFloatStorageRelative * magnitude);
           }
+          EXPECT_NEAR(level.Row(j, y)[x], sum, kFloatStorageRelative * magnitude) << "level " << k << " moment " << j;
         }
       }
     }
@@ -195,17 +199,38 @@ TEST(ShProjection, BasisPyramidLevelsAreSumsOfTheirChildren) {
   const double r2 = 1.0 / (1.0 + s * s + t * t);
   EXPECT_EQ(pyramid->finest.qr[i], static_cast<float>(q * std::sqrt(r2)));
   EXPECT_EQ(pyramid->finest.qr2[i], static_cast<float>(q * r2));
+  // The same as BuildFinestWeights, which ProjectFinest's callers without a pyramid use.
+  const FinestWeights alone = BuildFinestWeights(kSize);
+  EXPECT_EQ(pyramid->finest.q, alone.q);
+  EXPECT_EQ(pyramid->finest.qr, alone.qr);
+  EXPECT_EQ(pyramid->finest.qr2, alone.qr2);
 }
 
 TEST(ShProjection, BasisPyramidIsTheSameForAnyThreadCount) {
-  const std::optional<BasisPyramid> one = BuildBasisPyramid(16, 1);
+  // 256 is cut into 64 tiles, so that several threads take part.
+  constexpr int kSize = 256;
+  const std::optional<BasisPyramid> one = BuildBasisPyramid(kSize, 1);
   ASSERT_TRUE(one.has_value());
-  for (int threads : {2, 4, 6, 9}) {
-    const std::optional<BasisPyramid> many = BuildBasisPyramid(16, threads);
+  for (int threads : {2, 4, 9}) {
+    const std::optional<BasisPyramid> many = BuildBasisPyramid(kSize, threads);
     ASSERT_TRUE(many.has_value());
     ASSERT_EQ(many->levels.size(), one->levels.size());
     for (std::size_t k = 0; k < one->levels.size(); ++k) {
       EXPECT_EQ(many->levels[k].weights, one->levels[k].weights) << threads << " threads, level " << k;
+    }
+    EXPECT_EQ(many->finest.q, one->finest.q);
+    EXPECT_EQ(many->finest.qr2, one->finest.qr2);
+  }
+}
+
+TEST(ShProjection, TexelSolidAnglesFromCornerTablesAreTheClosedFormBitForBit) {
+  // BuildFinestWeights and ProjectDirect take each corner's area once (TexelCornerArea); the
+  // weights they keep must be TexelSolidAngle's, rounded the same way.
+  constexpr int kSize = 24;
+  const FinestWeights weights = BuildFinestWeights(kSize);
+  for (int y = 0; y < kSize; ++y) {
+    for (int x = 0; x < kSize; ++x) {
+      ASSERT_EQ(weights.q[static_cast<std::size_t>(y) * kSize + x], static_cast<float>(TexelSolidAngle(x, y, kSize)));
     }
   }
 }
