@@ -316,14 +316,14 @@ class Emitter : public Xbyak::CodeGenerator {
 
   // Where `value`, which is in no register, can be read by `user`'s instruction straight from memory:
   // a spilled vector, and with AVX-512 a constant or literal broadcast from its float ({1to16}; not
-  // for the masked move of a select-zero) or with AVX2 a constant or literal stored as a vector. Such an operand
-  // takes no register, which spares the loop's other values. An input lane is loaded into a
-  // register instead: read from memory at each of its uses, all_instructions and skinning ran
-  // 3-5 % slower.
+  // for the masked move of a select-zero) or with AVX2 a constant or literal stored as a vector.
+  // Such an operand takes no register, which spares the loop's other values. An input lane is
+  // loaded into a register instead: read from memory at each of its uses, all_instructions and
+  // skinning ran 3-5 % slower.
   std::optional<Xbyak::Address> MemoryOperand(int value, Op user) {
     const Node& node = nodes_[static_cast<std::size_t>(value)];
     switch (node.op) {
-      case Op::kInput: return std::nullopt;  // (folded, 3-5 % slower: loaded again at every use)
+      case Op::kInput: return std::nullopt;
       case Op::kConstant:
         if (!wide_) return ptr[regs_.spill + shape_.bytes() * spill_slot_[value]];  // StoreConstantVectors
         if (user == Op::kSelectZero) return std::nullopt;
