@@ -382,22 +382,22 @@ class Emitter : public Xbyak::CodeGenerator {
     const int reg = TakeRegister(n, n, {kNoArg, kNoArg, kNoArg});
     where_[n] = reg;
     register_value_[reg] = n;
-    if (memory) {
-      EmitOperation(node, reg, in, memory_argument, *memory);
-    } else {
-      EmitOperation(node, reg, in, kNoArg, Xbyak::Address(0));
-    }
+    EmitOperation(node, reg, in, memory_argument, memory);
   }
 
   // The operation itself, on registers `in` into `out`. AVX-512 keeps masks in mask registers, which
   // selects use directly, and has no VEX-only forms (vroundps, vblendvps, vpand): the EVEX
   // equivalents compute the same bits.
-  // Argument `memory_argument` (if not kNoArg) is read from `memory` instead of a register.
+  // Where `memory` holds an address, argument `memory_argument` is read from it instead of a register.
   void EmitOperation(const Node& node, int out, const std::array<int, 3>& in, int memory_argument,
-                     const Xbyak::Address& memory) {
+                     const std::optional<Xbyak::Address>& memory) {
     const Xbyak::Xmm a_register = V(in[0]), b_register = V(in[1]), c = V(in[2]), result = V(out);
-    const Xbyak::Operand& a = memory_argument == 0 ? static_cast<const Xbyak::Operand&>(memory) : a_register;
-    const Xbyak::Operand& b = memory_argument == 1 ? static_cast<const Xbyak::Operand&>(memory) : b_register;
+    const auto operand = [&](int argument, const Xbyak::Xmm& in_register) -> const Xbyak::Operand& {
+      if (memory && memory_argument == argument) return *memory;
+      return in_register;
+    };
+    const Xbyak::Operand& a = operand(0, a_register);
+    const Xbyak::Operand& b = operand(1, b_register);
     const auto compare = [&](std::uint8_t predicate) {
       wide_ ? vcmpps(K(out), a_register, b, predicate) : vcmpps(result, a_register, b, predicate);
     };
