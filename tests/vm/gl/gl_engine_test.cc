@@ -17,7 +17,6 @@
 #include <map>
 #include <optional>
 #include <random>
-#include <set>
 #include <string>
 #include <thread>
 #include <vector>
@@ -27,7 +26,7 @@
 
 #include "irradiance/report/verify.h"
 #include "tests/vm/engines/random_program.h"
-#include "tests/vm/gl/infinity_times_zero.h"
+#include "tests/vm/gl/gl_test_cases.h"
 #include "vm/asm/assembler.h"
 #include "vm/core/float_rules.h"
 #include "vm/engines/engine_factory.h"
@@ -44,29 +43,13 @@ class GlEngineTest : public ::testing::Test {
   void SetUp() override { gl::RegisterGlEngine(); }
 };
 
-// Ordinary values: what an application gives a program. Every input lane and constant in [-4, 4].
-float Ordinary(std::mt19937& rng) { return std::uniform_real_distribution<float>(-4.0f, 4.0f)(rng); }
-
-VertexArrays OrdinaryInputs(std::size_t count, std::mt19937& rng) {
-  VertexArrays inputs = MakeInputArrays(count, random_program::kInputs);
-  for (int reg : random_program::kInputs) {
-    for (int c = 0; c < 4; ++c) {
-      for (std::size_t i = 0; i < count; ++i) inputs.lane(reg, c)[i] = Ordinary(rng);
-    }
-  }
-  return inputs;
-}
-
-ConstantBank OrdinaryConstants(std::mt19937& rng) {
-  ConstantBank bank;
-  for (int reg = 0; reg < bank.size(); ++reg) {
-    for (int c = 0; c < 4; ++c) bank[reg][c] = Ordinary(rng);
-  }
-  return bank;
-}
+using gl_test::Opcodes;
+using gl_test::Ordinary;
+using gl_test::OrdinaryConstants;
+using gl_test::OrdinaryInputs;
 
 // How the gl engine's outputs compare with the reference engine's, over every lane the translation's
-// interface carries of every output register the program writes (oFog and oPts are one float: lane x).
+// interface carries of every output register the program writes (all four lanes, oFog's and oPts' too).
 struct Comparison {
   std::string error;  // the gl engine's
   int lanes = 0;
@@ -107,17 +90,6 @@ Comparison CompareWithReference(const Program& program, const ConstantBank& bank
     }
   }
   return comparison;
-}
-
-// The program's executable mnemonics, for messages.
-std::string Opcodes(const Program& program) {
-  std::set<std::string> names;
-  for (const Instruction& instruction : program.instructions) {
-    if (instruction.info().is_executable()) names.insert(std::string(instruction.info().mnemonic));
-  }
-  std::string text;
-  for (const std::string& name : names) text += (text.empty() ? "" : " ") + name;
-  return text;
 }
 
 // Ordinary inputs and constants can still make a denormal (fog's exp of a large negative number):

@@ -10,7 +10,6 @@
 #include <cstdio>
 #include <filesystem>
 #include <random>
-#include <set>
 #include <string>
 #include <vector>
 
@@ -19,7 +18,7 @@
 
 #include "irradiance/report/verify.h"
 #include "tests/vm/engines/random_program.h"
-#include "tests/vm/gl/infinity_times_zero.h"
+#include "tests/vm/gl/gl_test_cases.h"
 #include "vm/asm/assembler.h"
 #include "vm/engines/reference_engine.h"
 #include "vm/gl/gl_runner.h"
@@ -136,37 +135,9 @@ Outcome RunOnLlvmpipe(const Program& program, const ConstantBank& bank, const Ve
   return outcome;
 }
 
-// The program's executable mnemonics, for messages.
-std::string Opcodes(const Program& program) {
-  std::set<std::string> names;
-  for (const Instruction& instruction : program.instructions) {
-    if (instruction.info().is_executable()) names.insert(std::string(instruction.info().mnemonic));
-  }
-  std::string text;
-  for (const std::string& name : names) text += (text.empty() ? "" : " ") + name;
-  return text;
-}
-
-// What an application gives a program: every input lane and constant an ordinary float in [-4, 4].
-VertexArrays OrdinaryInputs(std::size_t count, std::mt19937& rng) {
-  VertexArrays inputs = MakeInputArrays(count, random_program::kInputs);
-  std::uniform_real_distribution<float> value(-4.0f, 4.0f);
-  for (int reg : random_program::kInputs) {
-    for (int c = 0; c < 4; ++c) {
-      for (std::size_t i = 0; i < count; ++i) inputs.lane(reg, c)[i] = value(rng);
-    }
-  }
-  return inputs;
-}
-
-ConstantBank OrdinaryConstants(std::mt19937& rng) {
-  ConstantBank bank;
-  std::uniform_real_distribution<float> value(-4.0f, 4.0f);
-  for (int reg = 0; reg < bank.size(); ++reg) {
-    for (int c = 0; c < 4; ++c) bank[reg][c] = value(rng);
-  }
-  return bank;
-}
+using gl_test::Opcodes;
+using gl_test::OrdinaryConstants;
+using gl_test::OrdinaryInputs;
 
 // Every program of programs/ on llvmpipe. With ordinary inputs every lane is the reference engine's,
 // bit for bit (the assertion); with the differential tests' special values (denormals, infinities,
