@@ -171,14 +171,7 @@ void CheckSignsOfZeroProducts(const EngineUnderTest& engine) {
   SCOPED_TRACE(engine.label);
   const std::vector<float>& values = random_program::SpecialValues();
   const std::size_t n = values.size();
-  const int registers[] = {0, 1};
-  VertexArrays inputs = MakeInputArrays(n * n, registers);
-  for (std::size_t i = 0; i < n * n; ++i) {
-    for (int c = 0; c < 4; ++c) {
-      inputs.lane(0, c)[i] = values[i / n];
-      inputs.lane(1, c)[i] = values[i % n];
-    }
-  }
+  const VertexArrays inputs = random_program::EveryPairOf(values);
   const Program program = AssembleOrDie("vs.1.1\nmov r0, v1\nmul oD0, v0, r0\n");
   for (FloatRules rules : kAllFloatRules) {
     const VertexArrays outputs = Run(engine, program, ConstantBank(), inputs, rules);

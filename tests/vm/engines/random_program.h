@@ -11,6 +11,7 @@
 #include <initializer_list>
 #include <limits>
 #include <random>
+#include <span>
 #include <vector>
 
 #include "vm/core/isa.h"
@@ -32,6 +33,21 @@ inline const std::vector<float>& SpecialValues() {
       std::bit_cast<float>(0x7FC12345u) /* NaN with payload */, 1e-30f, 1e30f, 128.0f, 127.99f, -150.0f,
       -149.5f, 0.99999994f, 3.0f};
   return values;
+}
+
+// Every ordered pair of `values` in v0 and v1, all four lanes: vertex i holds values[i / n] in v0 and
+// values[i % n] in v1 (n values), so a two-operand instruction meets each pair once.
+inline VertexArrays EveryPairOf(std::span<const float> values) {
+  const std::size_t n = values.size();
+  const int registers[] = {0, 1};
+  VertexArrays inputs = MakeInputArrays(n * n, registers);
+  for (std::size_t i = 0; i < n * n; ++i) {
+    for (int c = 0; c < 4; ++c) {
+      inputs.lane(0, c)[i] = values[i / n];
+      inputs.lane(1, c)[i] = values[i % n];
+    }
+  }
+  return inputs;
 }
 
 inline Instruction MakeInstruction(Opcode opcode, DestOperand dest, std::initializer_list<SourceOperand> sources) {

@@ -209,15 +209,7 @@ TEST(TranslationOnLlvmpipe, ZeroProductsKeepTheReferenceSigns) {
   const AssembleResult assembled = AssembleSource("vs.1.1\nmov r0, v1\nmul oD0, v0, r0\nmov oD1, c0\n", "mul.vsh", assemble);
   ASSERT_TRUE(assembled.program) << assembled.diagnostics.ToString();
   const float values[] = {0.0f, -0.0f, 1.0f, -2.5f, INFINITY, -INFINITY, std::bit_cast<float>(0x7FC00000u), FLT_MAX};
-  const std::size_t n = std::size(values);
-  const int registers[] = {0, 1};
-  VertexArrays inputs = MakeInputArrays(n * n, registers);
-  for (std::size_t i = 0; i < n * n; ++i) {
-    for (int c = 0; c < 4; ++c) {
-      inputs.lane(0, c)[i] = values[i / n];
-      inputs.lane(1, c)[i] = values[i % n];
-    }
-  }
+  const VertexArrays inputs = random_program::EveryPairOf(values);
   for (FloatRules rules : kAllFloatRules) {
     const Outcome outcome = RunOnLlvmpipe(*assembled.program, ConstantBank(), inputs, rules);
     ASSERT_EQ(outcome.error, "");
