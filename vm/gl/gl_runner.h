@@ -17,8 +17,8 @@ namespace vs11::gl {
 std::optional<std::string> CreateLlvmpipeContext(std::optional<int> lp_threads, std::string& error);
 
 // Compiles `vertex_source` (GLSL ES, its #version on the first line) with an empty fragment shader of
-// the same version, and links them capturing
-// `varyings` interleaved. The program object, or 0 with `error` holding the info log.
+// the same version, and links them capturing `varyings` interleaved. The program object, or 0 with
+// `error` holding the info log.
 unsigned LinkTransformFeedbackProgram(const std::string& vertex_source, const std::vector<std::string>& varyings,
                                       std::string& error);
 
