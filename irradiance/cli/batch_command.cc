@@ -66,6 +66,7 @@ void RunBatchCommand(BatchArguments& arguments) {
   options.shard_index = shard->first;
   options.shard_count = shard->second;
   if (arguments.level >= 0) options.level = arguments.level;
+  if (std::optional<std::string> usage = CheckBatchOptions(options)) throw CLI::ValidationError(*usage);
   BatchSummary summary;
   const bool terminal = isatty(fileno(stderr)) != 0;
   auto report = [terminal](const BatchFailure& failure) {
@@ -103,9 +104,15 @@ void AddBatchCommand(CLI::App& app) {
       "reason and skipped; the exit status is then 1 and the summary lists every such file.\n"
       "Inputs are expanded (globs), de-duplicated and sorted; --shard K/N keeps every N-th from the\n"
       "K-th (K from 0), so N machines given the same inputs split them with no coordinator.\n"
-      "--resume keeps the lines already in -o FILE and skips their inputs (an interrupted run loses\n"
-      "nothing; a half-written last line is dropped); without it an existing -o FILE is an error.\n"
+      "--resume keeps the lines already in -o FILE and skips their inputs, known by their canonical\n"
+      "path (an interrupted run loses nothing; a half-written last line is dropped); a FILE that is not\n"
+      "wholly irrmap batch's records is refused and left as it is; without --resume an existing -o FILE\n"
+      "is an error. -o FILE is locked for the run (FILE.lock says by whom), and --per-file DIR for the\n"
+      "run's shard: a second run into them ends at once, naming the first; the lock of a run that died\n"
+      "is free. Two inputs that --per-file would give one name (x/y.exr, x__y.exr) are refused.\n"
       "Progress (files/s, time left) goes to stderr: a bar on a terminal, otherwise a line every 5 s.\n"
+      "Exit status: 0 success, 1 an input failed (the others are written) or -o FILE or --per-file DIR\n"
+      "cannot be used, 2 a usage error (an unknown option, a bad option value; before any work).\n"
       "\n"
       "Examples:\n"
       "  irrmap batch 'panoramas/*.exr' -o sh.jsonl\n"

@@ -19,6 +19,7 @@
 #include <nlohmann/json.hpp>
 
 #include "irradiance/io/environment_io.h"
+#include "irradiance/jobs/batch_output.h"
 #include "irradiance/sh/constants_output.h"
 #include "irradiance/sh/ground_truth.h"
 #include "irradiance/sh/sh9.h"
@@ -54,15 +55,6 @@ std::string Trimmed(const std::string& line) {
   const std::size_t first = line.find_first_not_of(" \t\r");
   if (first == std::string::npos) return {};
   return line.substr(first, line.find_last_not_of(" \t\r") - first + 1);
-}
-
-// The per-file output of `input`: its path with separators as "__", so that inputs of the same
-// name in different folders do not collide.
-std::string PerFileName(std::string input) {
-  if (input.starts_with("./")) input.erase(0, 2);
-  std::string name;
-  for (char c : input) name += c == '/' ? std::string("__") : std::string(1, c);
-  return name + ".json";
 }
 
 // Basis pyramids by face size, each built once, by the first worker that needs it.
@@ -119,6 +111,7 @@ std::optional<std::string> ProcessInput(Job& job, const std::string& input, nloh
   nlohmann::ordered_json coefficients = nlohmann::ordered_json::array();
   for (const glm::dvec3& c : levels[level].coefficients) coefficients.push_back({c.r, c.g, c.b});
   record = {{"input", input},
+            {"path", InputKey(input)},
             {"face_size", face_size},
             {"layout", layout},
             {"level", level},
@@ -150,14 +143,24 @@ std::optional<std::string> CheckOptions(const BatchOptions& options, Environment
   if (options.level && *options.level < 0) return fmt::format("--level {} is out of range: levels start at 0", *options.level);
   if (options.threads < 0) return fmt::format("--threads {} must be >= 0 (0: every core)", options.threads);
   if (options.output.empty()) return std::string("no output file given (-o FILE.jsonl)");
-  std::error_code ec;
-  if (fs::exists(options.output, ec) && !options.resume) {
-    return fmt::format("{} exists: pass --resume to continue it, or remove it", options.output.string());
-  }
+  if (options.inputs.empty() && options.list_files.empty()) return std::string("no input files given");
   return std::nullopt;
 }
 
+// The lock of a --per-file folder, one per shard: shards of one input list write disjoint names
+// (CheckPerFileNames), so they may share the folder; two runs of one shard may not.
+fs::path PerFileLock(const BatchOptions& options) {
+  return options.per_file_dir /
+         fmt::format(".irrmap-batch-shard-{}-of-{}.lock", options.shard_index, options.shard_count);
+}
+
 }  // namespace
+
+std::optional<std::string> CheckBatchOptions(const BatchOptions& options) {
+  EnvironmentLayout layout = EnvironmentLayout::kAuto;
+  ErrorMetric metric = kDefaultErrorMetric;
+  return CheckOptions(options, layout, metric);
+}
 
 std::optional<std::pair<int, int>> ParseShard(const std::string& text) {
   int index = 0, count = 0;
@@ -198,7 +201,8 @@ std::vector<std::string> ExpandBatchInputs(const std::vector<std::string>& input
     }
   }
   std::sort(out.begin(), out.end());
-  out.erase(std::unique(out.begin(), out.end()), out.end());
+  std::set<std::string> keys;
+  std::erase_if(out, [&keys](const std::string& input) { return !keys.insert(InputKey(input)).second; });
   return out;
 }
 
@@ -208,41 +212,6 @@ std::vector<std::string> ShardOf(const std::vector<std::string>& sorted_inputs, 
     if (static_cast<int>(i % count) == index_of_shard) out.push_back(sorted_inputs[i]);
   }
   return out;
-}
-
-std::set<std::string> CompletedInputs(const fs::path& output, std::string& error) {
-  std::set<std::string> done;
-  std::error_code ec;
-  if (!fs::exists(output, ec)) return done;
-  std::ifstream in(output, std::ios::binary);
-  if (!in) {
-    error = fmt::format("cannot read {} to resume it", output.string());
-    return {};
-  }
-  const std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  in.close();
-  const std::size_t complete = text.rfind('\n') == std::string::npos ? 0 : text.rfind('\n') + 1;
-  if (complete < text.size()) {
-    fs::resize_file(output, complete, ec);
-    if (ec) {
-      error = fmt::format("cannot cut the unfinished last line off {} ({})", output.string(), ec.message());
-      return {};
-    }
-  }
-  std::size_t begin = 0;
-  for (int number = 1; begin < complete; ++number) {
-    const std::size_t end = text.find('\n', begin);
-    const std::string line = text.substr(begin, end - begin);
-    begin = end + 1;
-    if (Trimmed(line).empty()) continue;
-    const nlohmann::json record = nlohmann::json::parse(line, nullptr, false);
-    if (record.is_discarded() || !record.is_object() || !record.contains("input") || !record["input"].is_string()) {
-      error = fmt::format("{}:{}: not a record of irrmap batch (a JSON object with \"input\")", output.string(), number);
-      return {};
-    }
-    done.insert(record["input"].get<std::string>());
-  }
-  return done;
 }
 
 std::optional<std::string> RunBatch(const BatchOptions& options, BatchSummary& summary, const BatchProgress& progress,
@@ -258,22 +227,27 @@ std::optional<std::string> RunBatch(const BatchOptions& options, BatchSummary& s
   if (all.empty()) return std::string("no input files given");
   const std::vector<std::string> shard = ShardOf(all, options.shard_index, options.shard_count);
   summary.selected = shard.size();
-  const std::set<std::string> completed = options.resume ? CompletedInputs(options.output, error) : std::set<std::string>{};
-  if (!error.empty()) return error;
+  const bool per_file = !options.per_file_dir.empty();
+  if (per_file) {
+    if (std::optional<std::string> collision = CheckPerFileNames(options.per_file_dir, all, {})) return collision;
+  }
+  BatchOutput out;
+  if (std::optional<std::string> problem = out.Open(options.output, options.resume)) return problem;
   std::vector<std::string> todo;
   for (const std::string& input : shard) {
-    if (completed.count(input) == 0) todo.push_back(input);
+    if (out.completed().count(InputKey(input)) == 0) todo.push_back(input);
   }
   summary.resumed = shard.size() - todo.size();
-
-  std::error_code ec;
-  if (options.output.has_parent_path()) fs::create_directories(options.output.parent_path(), ec);
-  if (!options.per_file_dir.empty()) {
+  std::optional<OutputLock> per_file_lock;
+  if (per_file) {
+    std::error_code ec;
     fs::create_directories(options.per_file_dir, ec);
     if (ec) return fmt::format("cannot create {} ({})", options.per_file_dir.string(), ec.message());
+    per_file_lock = OutputLock::Take(PerFileLock(options), options.per_file_dir.string(), error);
+    if (!per_file_lock) return error;
+    if (std::optional<std::string> overwrite = CheckPerFileNames(options.per_file_dir, {}, todo)) return overwrite;
   }
-  std::unique_ptr<std::FILE, int (*)(std::FILE*)> out(std::fopen(options.output.c_str(), "ab"), &std::fclose);
-  if (!out) return fmt::format("cannot open {} for appending", options.output.string());
+  if (std::optional<std::string> problem = out.BeginWriting()) return problem;
 
   Job job(options, layout, metric);
   std::mutex mutex;  // guards `out`, `summary`, the callbacks and `failures`
@@ -289,7 +263,7 @@ std::optional<std::string> RunBatch(const BatchOptions& options, BatchSummary& s
       std::string line;
       if (!reason) {
         line = json.dump() + "\n";
-        if (!options.per_file_dir.empty()) {
+        if (per_file) {
           const fs::path path = options.per_file_dir / PerFileName(todo[i]);
           if (std::optional<std::string> problem = WriteFileAtomically(path, json.dump(2) + "\n")) {
             reason = fmt::format("cannot write {}: {}", path.string(), *problem);
@@ -300,7 +274,7 @@ std::optional<std::string> RunBatch(const BatchOptions& options, BatchSummary& s
       if (reason) {
         failures.push_back({i, {todo[i], *reason}});
         if (report) report(failures.back().second);
-      } else if (std::fwrite(line.data(), 1, line.size(), out.get()) != line.size() || std::fflush(out.get()) != 0) {
+      } else if (!out.Append(line)) {
         write_error = fmt::format("cannot write to {}", options.output.string());
         next = todo.size();  // stop: nothing more can be kept
       } else {

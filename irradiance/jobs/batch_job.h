@@ -2,18 +2,22 @@
 // one process, every core busy, one JSON Lines record per file.
 //
 // Inputs: paths, glob patterns (*, ?, [...]) and list files (one path or pattern per line, # starts
-// a comment), expanded, de-duplicated and sorted, so every run and every machine sees the same
-// order; --shard K/N then keeps the inputs whose index i in that order has i % N == K.
+// a comment), expanded, de-duplicated (by InputKey: one file named two ways is one input) and
+// sorted, so every run and every machine sees the same order; --shard K/N then keeps the inputs
+// whose index i in that order has i % N == K.
 //
 // Output: one line per finished input, appended and flushed as soon as it is done (an interrupted
 // run keeps every finished line):
-//   {"input": PATH, "face_size", "layout", "level", "level_size", "estimated_error", "error_metric"
-//    (what estimated_error and --max-error measure),
+//   {"input": PATH as given, "path": its InputKey (batch_output.h), "face_size", "layout", "level",
+//    "level_size", "estimated_error", "error_metric" (what estimated_error and --max-error measure),
 //    "coefficients": 9 x [r, g, b] (L00, L1-1, ..., L22), "constants": {"cAr": [x, y, z, w], ...}}
 // and optionally, per input, DIR/<input with '/' as '__'>.json holding the same record, written
-// atomically. A file that cannot be read or used is reported (its path and why) and skipped; the
-// others go on. --resume keeps the records already in the output and skips their inputs (a last
-// line cut off by an interruption is dropped first).
+// atomically; two inputs of one name there are refused before any work. A file that cannot be read
+// or used is reported (its path and why) and skipped; the others go on. --resume keeps the records
+// already in the output and skips their inputs, known by "path" (a last line cut off by an
+// interruption is dropped first; a file that is not wholly records is left untouched and refused).
+// The output is locked for the run (OutputLock, "OUTPUT.lock"), and DIR for the run's shard: a
+// second run into them ends at once, naming the first.
 #pragma once
 
 #include <atomic>
@@ -21,7 +25,6 @@
 #include <filesystem>
 #include <functional>
 #include <optional>
-#include <set>
 #include <string>
 #include <vector>
 
@@ -83,10 +86,9 @@ std::vector<std::string> ExpandBatchInputs(const std::vector<std::string>& input
 // The inputs with index % count == index_of_shard.
 std::vector<std::string> ShardOf(const std::vector<std::string>& sorted_inputs, int index_of_shard, int count);
 
-// The "input" of every complete line of a JSON Lines output; a last line without its newline is cut
-// off the file (it was being written when a run stopped). `error` set when the file exists but
-// cannot be read, repaired or holds a complete line that is not a record.
-std::set<std::string> CompletedInputs(const std::filesystem::path& output, std::string& error);
+// The problem with the options themselves (a usage error: a bad value, no output or input given),
+// or nullopt; RunBatch checks them first too.
+std::optional<std::string> CheckBatchOptions(const BatchOptions& options);
 
 // Runs the batch. Returns a message for a problem with the options or the output file (nothing
 // processed); failures of single inputs go to summary.failures instead.

@@ -26,7 +26,8 @@ def batch(
 
     The work starts at once, on threads of its own, with the GIL released; the generator yields
     each record as irrmap batch writes it, in the order the inputs finish (not input order), as a
-    dict: input, face_size, layout, level, level_size, estimated_error, error_metric, coefficients (9 x [r, g, b])
+    dict: input, path (its canonical path), face_size, layout, level, level_size, estimated_error, error_metric,
+    coefficients (9 x [r, g, b])
     and constants ({'cAr': [x, y, z, w], ...}). An input that cannot be used is a UserWarning
     naming it and why, issued when the generator reaches it. Errors of the run itself (a pattern
     that matches nothing, a bad layout) raise ValueError from the first next(); threads < 0 raises

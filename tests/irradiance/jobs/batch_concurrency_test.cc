@@ -1,12 +1,14 @@
 // irrmap batch under concurrency and interruption: every record at --threads 1, 2, 4 and 8 is what a
 // single-file irrmap run gives for that file (BC6H and 8-bit DDS cube maps of two sizes, copies of
-// the same file among them, EXR crosses, HDR and PFM lat-longs), and a run killed with SIGKILL again
-// and again, resumed each time, ends with every input once and the values of an uninterrupted run.
+// the same file among them, EXR crosses, HDR and PFM lat-longs), a run killed with SIGKILL again
+// and again, resumed each time, ends with every input once and the values of an uninterrupted run,
+// and two --resume runs started at once into one output write every input once between them.
 #include <signal.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <algorithm>
+#include <array>
 #include <chrono>
 #include <cstdio>
 #include <cmath>
@@ -243,6 +245,36 @@ TEST_F(BatchConcurrency, KilledAndResumedRunsLoseNothingAndDuplicateNothing) {
         << input;
   }
   EXPECT_EQ(resumed.count(Input("broken.dds")), 0u);
+}
+
+// A requeued job while the old one still runs: the output's lock lets one of them write, and the
+// other ends at once (status 1) naming the holder; neither duplicates a record, and a third run finds
+// every input done.
+TEST_F(BatchConcurrency, TwoResumeRunsStartedAtOnceWriteEveryInputOnce) {
+  const std::vector<std::string> inputs = WriteInputs();
+  const fs::path output = Path("both.jsonl");
+  const std::vector<std::string> args = {Input("*"), "--threads", "2", "--face-size", std::to_string(kLatLongFaceSize),
+                                         "-o", output.string(), "--resume"};
+  const pid_t first = StartBatch(args, Path("first.log"));
+  const pid_t second = StartBatch(args, Path("second.log"));
+  const std::array<int, 2> statuses = {Wait(first), Wait(second)};
+  const std::array<std::string, 2> logs = {envtest::ReadBytes(Path("first.log")), envtest::ReadBytes(Path("second.log"))};
+  for (int run = 0; run < 2; ++run) {
+    if (statuses[run] == 0) continue;
+    EXPECT_EQ(statuses[run], 1) << logs[run];
+    EXPECT_NE(logs[run].find("is in use by another irrmap batch: pid "), std::string::npos) << logs[run];
+  }
+  EXPECT_TRUE(statuses[0] == 0 || statuses[1] == 0) << logs[0] << logs[1];
+  EXPECT_EQ(Records(output).size(), inputs.size());  // Records fails on a duplicate
+
+  const int third = Wait(StartBatch(args, Path("third.log")));
+  const std::string third_log = envtest::ReadBytes(Path("third.log"));
+  EXPECT_EQ(third, 0) << third_log;
+  EXPECT_NE(third_log.find(fmt::format("0 written to {}, {} already there", output.string(), inputs.size())),
+            std::string::npos)
+      << third_log;
+  EXPECT_EQ(Records(output).size(), inputs.size());
+  EXPECT_FALSE(fs::exists(fs::path(output) += ".lock")) << "the lock file outlived the runs";
 }
 
 }  // namespace

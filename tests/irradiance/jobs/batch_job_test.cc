@@ -1,7 +1,11 @@
 // irrmap batch (irradiance/jobs/batch_job.h): records of good files, bad files reported and skipped,
-// resuming a cut-off output, and shards that partition the inputs exactly.
+// resuming a cut-off output (and changing nothing in a file that is not one), the output's lock,
+// inputs known by their canonical path, --per-file names that collide, and shards that partition the
+// inputs exactly.
 #include "irradiance/jobs/batch_job.h"
 
+#include <fcntl.h>
+#include <sys/file.h>
 #include <unistd.h>
 
 #include <filesystem>
@@ -230,6 +234,160 @@ TEST_F(BatchJob, CommandExitsOneAndListsTheFailuresAfterWritingTheRest) {
   EXPECT_EQ(Records(Path("out.jsonl")).count(good), 1u);
   const testing::CommandResult usage = testing::RunIrrmap("batch " + good + " -o " + Path("x.jsonl").string() + " --shard 2/2");
   EXPECT_EQ(usage.status, 2) << usage.output;
+}
+
+// --resume reads the whole file before it changes anything: a file that is not wholly irrmap batch's
+// output (an input given as -o by mistake, notes, another tool's JSON Lines, a record followed by
+// something else) is left byte for byte as it was, and the error names the first line that is wrong.
+TEST_F(BatchJob, ResumeChangesNothingInAFileThatIsNotItsOutput) {
+  const std::string good = WriteSky("good.exr", 0.0);
+  BatchSummary summary;
+  BatchOptions first = Options({good});
+  ASSERT_EQ(RunBatch(first, summary), std::nullopt);
+  const std::string record = ReadText(first.output);
+  ASSERT_TRUE(record.ends_with("\n"));
+
+  std::string pfm = "PF\n4 2\n-1.0\n";
+  for (int i = 0; i < 4 * 2 * 3; ++i) pfm += std::string("\x00\x00\x80\x3f", 4);  // 1.0f, no newline at the end
+  const std::vector<std::pair<std::string, std::string>> files = {
+      {"in.pfm", pfm},
+      {"notes.txt", "line 1\ntail"},
+      {"other.jsonl", "{\"input\": \"a.exr\", \"score\": 3}\n"},
+      {"record_then_text.jsonl", record + "not json\n" + record},
+      {"record_then_tail.jsonl", record + "tail"},
+  };
+  const std::map<std::string, std::string> expected_line = {{"in.pfm", ":1: "},
+                                                            {"notes.txt", ":1: "},
+                                                            {"other.jsonl", ":1: "},
+                                                            {"record_then_text.jsonl", ":2: "},
+                                                            {"record_then_tail.jsonl", ":2: "}};
+  for (const auto& [name, bytes] : files) {
+    WriteBytes(name, bytes);
+    BatchOptions options = Options({good});
+    options.output = Path(name);
+    options.resume = true;
+    const std::optional<std::string> error = RunBatch(options, summary);
+    ASSERT_NE(error, std::nullopt) << name;
+    EXPECT_NE(error->find(Path(name).string() + expected_line.at(name)), std::string::npos) << *error;
+    EXPECT_NE(error->find("nothing in it was changed"), std::string::npos) << *error;
+    EXPECT_EQ(ReadText(Path(name)), bytes) << name;
+    EXPECT_FALSE(fs::exists(Path(name + ".lock"))) << name;
+  }
+  // The start of a record without its newline is a stopped run's: cut off, and the input done again.
+  WriteBytes("cut.jsonl", record + "{\"inp");
+  BatchOptions options = Options({good, WriteSky("other.exr", 90.0)});
+  options.output = Path("cut.jsonl");
+  options.resume = true;
+  ASSERT_EQ(RunBatch(options, summary), std::nullopt);
+  EXPECT_EQ(summary.resumed, 1u);
+  EXPECT_EQ(summary.succeeded, 1u);
+  EXPECT_EQ(Records(options.output).size(), 2u);
+}
+
+// The lock on the output: held by another process (here, by this one through another descriptor), the
+// run ends before any work with the holder's words; a lock file left by a process that has ended
+// (no flock on it) blocks nothing, and is gone after the run.
+TEST_F(BatchJob, AHeldOutputLockRefusesTheRunAndAStaleOneDoesNot) {
+  const std::string good = WriteSky("good.exr", 0.0);
+  BatchOptions options = Options({good});
+  options.resume = true;
+  const fs::path lock_file = Path("out.jsonl.lock");
+  const std::string holder = "pid 4242 on node17 since 2024-01-02 03:04:05 +0000\n";
+  WriteBytes("out.jsonl.lock", holder);
+  const int fd = open(lock_file.c_str(), O_RDWR);
+  ASSERT_GE(fd, 0);
+  ASSERT_EQ(flock(fd, LOCK_EX | LOCK_NB), 0);
+  BatchSummary summary;
+  const std::optional<std::string> error = RunBatch(options, summary);
+  ASSERT_NE(error, std::nullopt);
+  EXPECT_NE(error->find(options.output.string() + " is in use by another irrmap batch: pid 4242 on node17 since "
+                        "2024-01-02 03:04:05 +0000"),
+            std::string::npos)
+      << *error;
+  EXPECT_FALSE(fs::exists(options.output));
+  EXPECT_EQ(ReadText(lock_file), holder);
+  close(fd);  // the holder ends; its lock file stays behind
+
+  ASSERT_EQ(RunBatch(options, summary), std::nullopt);
+  EXPECT_EQ(summary.succeeded, 1u);
+  EXPECT_FALSE(fs::exists(lock_file));
+}
+
+// A --per-file folder is locked per shard: another run of the same shard into it is refused, another
+// shard may write beside it (their inputs, and so their names, differ).
+TEST_F(BatchJob, APerFileFolderIsLockedForItsShard) {
+  const std::string good = WriteSky("good.exr", 0.0);
+  fs::create_directories(Path("each"));
+  const fs::path lock_file = Path("each") / ".irrmap-batch-shard-0-of-1.lock";
+  WriteBytes("each/.irrmap-batch-shard-0-of-1.lock", "pid 4242 on node17 since 2024-01-02 03:04:05 +0000\n");
+  const int fd = open(lock_file.c_str(), O_RDWR);
+  ASSERT_GE(fd, 0);
+  ASSERT_EQ(flock(fd, LOCK_EX | LOCK_NB), 0);
+  BatchOptions options = Options({good});
+  options.per_file_dir = Path("each");
+  BatchSummary summary;
+  const std::optional<std::string> error = RunBatch(options, summary);
+  ASSERT_NE(error, std::nullopt);
+  EXPECT_NE(error->find("is in use by another irrmap batch: pid 4242 on node17"), std::string::npos) << *error;
+  EXPECT_EQ(Records(options.output).size(), 0u);
+
+  options.shard_count = 2;
+  options.output = Path("shard0of2.jsonl");
+  ASSERT_EQ(RunBatch(options, summary), std::nullopt);
+  EXPECT_EQ(summary.succeeded, 1u);
+  close(fd);
+}
+
+// x/y.exr and x__y.exr would both be written to x__y.exr.json: refused before any work, as is a file
+// of that name that holds another input's record (written by an earlier run).
+TEST_F(BatchJob, PerFileNamesThatCollideAreRefusedBeforeAnyWork) {
+  fs::create_directories(Path("x"));
+  const std::string nested = WriteSky("x/y.exr", 0.0);
+  const std::string flat = WriteSky("x__y.exr", 60.0);
+  BatchOptions options = Options({nested, flat});
+  options.per_file_dir = Path("each");
+  BatchSummary summary;
+  const std::optional<std::string> error = RunBatch(options, summary);
+  ASSERT_NE(error, std::nullopt);
+  EXPECT_NE(error->find(nested + " and " + flat + " would both be written to "), std::string::npos) << *error;
+  EXPECT_FALSE(fs::exists(options.output));
+  EXPECT_FALSE(fs::exists(Path("each")) && !fs::is_empty(Path("each")));
+
+  options.inputs = {nested};
+  ASSERT_EQ(RunBatch(options, summary), std::nullopt);
+  options.inputs = {flat};
+  options.output = Path("flat.jsonl");
+  const std::optional<std::string> overwrite = RunBatch(options, summary);
+  ASSERT_NE(overwrite, std::nullopt);
+  EXPECT_NE(overwrite->find("holds the record of " + nested + ", not of " + flat), std::string::npos) << *overwrite;
+  EXPECT_FALSE(fs::exists(options.output));
+}
+
+// An input is known by its canonical path: a run with relative paths, resumed with absolute ones (or
+// with "." and ".." in them), does no input again; the same file named twice is one input.
+TEST_F(BatchJob, ResumeKnowsAnInputByItsCanonicalPath) {
+  const std::string a = WriteSky("a.exr", 0.0);
+  const std::string b = WriteSky("b.exr", 45.0);
+  const std::string relative_a = fs::relative(a).string();
+  BatchOptions options = Options({relative_a, fs::relative(b).string()});
+  ASSERT_NE(relative_a, a);
+  BatchSummary summary;
+  ASSERT_EQ(RunBatch(options, summary), std::nullopt);
+  EXPECT_EQ(summary.succeeded, 2u);
+
+  options.resume = true;
+  for (const std::vector<std::string>& inputs :
+       {std::vector<std::string>{a, b}, std::vector<std::string>{(Path(".") / "a.exr").string(),
+                                                                 (Path("..") / dir_.filename() / "b.exr").string()}}) {
+    options.inputs = inputs;
+    ASSERT_EQ(RunBatch(options, summary), std::nullopt);
+    EXPECT_EQ(summary.resumed, 2u) << inputs[0];
+    EXPECT_EQ(summary.succeeded, 0u) << inputs[0];
+  }
+  EXPECT_EQ(Records(options.output).size(), 2u);
+
+  std::string error;
+  EXPECT_EQ(ExpandBatchInputs({a, relative_a, (Path(".") / "a.exr").string()}, {}, error).size(), 1u);
 }
 
 }  // namespace
