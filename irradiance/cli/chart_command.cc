@@ -21,6 +21,9 @@ struct ChartArguments {
 };
 
 void RunChart(const ChartArguments& arguments) {
+  if (std::optional<std::string> usage = CheckSpeedAccuracyOptions(arguments.options)) {
+    throw CLI::ValidationError(*usage);
+  }
   if (std::optional<std::string> error = CheckOutputFolder(arguments.out_dir)) throw SubcommandFailure(*error);
   SpeedAccuracyResult result;
   const auto progress = [](std::string_view environment, int index, int count) {
@@ -73,6 +76,8 @@ void AddChartCommand(CLI::App& app) {
       "The chart plots time (log x) against the --error-metric figure (log y; relative: the mean), one\n"
       "colour per environment (named by the file's base name), solid for mip and dashed for direct, each\n"
       "point labelled by its level. gnuplot draws it.\n"
+      "Exit status: 0 success, 1 an environment or an output failed, 2 a usage error (an unknown option,\n"
+      "a bad option value; before any work).\n"
       "\n"
       "Examples:\n"
       "  irrmap chart                          # every built-in at 256x256, into out/\n"

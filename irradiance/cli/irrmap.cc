@@ -24,7 +24,8 @@
 namespace {
 
 constexpr int kProgressBarWidth = 30;
-// Exit status: 1 for a failed job, 2 for a command line that does not parse.
+// Exit status: 1 for a failed job, 2 (vs11::cli::kUsageErrorStatus) for a command line that does not
+// parse or holds a bad option value.
 constexpr int kJobError = 1;
 
 std::string JoinNames() {
@@ -89,6 +90,9 @@ std::string Footer() {
       "order2.\n"
       "--window trades ringing (negative irradiance opposite a small bright light) against blur;\n"
       "`irrmap stability` measures both.\n"
+      "\n"
+      "Exit status: 0 success, 1 the environment, --mesh or an output failed (no output file is left),\n"
+      "2 a usage error (an unknown option, a bad option value; before any work).\n"
       "\n"
       "Examples:\n"
       "  irrmap                                       # built-in sky, 256x256 faces, level by --max-error, out/\n"
@@ -246,6 +250,10 @@ int RunJob(const CLI::App& app, JobCommandLine& line) {
   options.out_dir = line.out_dir;
   options.font = line.font;
   if (app.count("--level") > 0) options.level = line.level;
+  if (std::optional<std::string> usage = vs11::irradiance::CheckIrrmapOptions(options)) {
+    fmt::print(stderr, "irrmap: error: {}\nRun with --help for more information.\n", *usage);
+    return vs11::cli::kUsageErrorStatus;
+  }
   if (line.gl_device == "list") {
     std::string error;
     const std::vector<vs11::gl::GlDeviceInfo> devices = vs11::gl::ListGlDevices(error);

@@ -53,6 +53,8 @@ void AddStabilityCommand(CLI::App& app) {
       "  sweep.png       max and mean error against the light's radius, per window\n"
       "  ringing.png     lowest irradiance over the sphere against the light's radius, per window\n"
       "  levels.png      error of each mip level against level 0, per environment\n"
+      "Exit status: 0 success, 1 an output failed, 2 a usage error (an unknown option, a bad option value;\n"
+      "before any work).\n"
       "\n"
       "Examples:\n"
       "  irrmap stability --out irradiance/images/stability   # the report the README links to");
@@ -72,6 +74,7 @@ void AddStabilityCommand(CLI::App& app) {
   command->add_option("--threads", options->threads, "worker threads (0 = every core)")->capture_default_str();
   command->callback([options, out_dir] {
     options->out_dir = *out_dir;
+    if (std::optional<std::string> usage = CheckStabilityOptions(*options)) throw CLI::ValidationError(*usage);
     if (std::optional<std::string> error = CheckOutputFolder(options->out_dir)) throw SubcommandFailure(*error);
     StabilityReport report;
     if (std::optional<std::string> error = RunStability(*options, report, TerminalProgress())) {

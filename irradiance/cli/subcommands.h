@@ -1,6 +1,8 @@
 // irrmap's subcommands beside the default job (`irrmap [ENV] ...`). Each one registers itself on
 // the app with its own options and does its work in its CLI11 callback; a failure throws
-// SubcommandFailure, which main prints as "irrmap: error: ..." with exit status 1.
+// SubcommandFailure, which main prints as "irrmap: error: ..." with exit status 1, and a bad option
+// value, checked before any work, throws CLI::ValidationError: a usage error, exit status 2, as
+// CLI11's own.
 #pragma once
 
 #include <stdexcept>

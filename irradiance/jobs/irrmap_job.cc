@@ -106,7 +106,8 @@ std::string LevelRange(int face_size) {
                      LevelCount(face_size) - 1);
 }
 
-std::optional<std::string> CheckOptions(const IrrmapOptions& options, CheckedOptions& checked) {
+// The options' own values; the environment and the output folder are CheckOptions'.
+std::optional<std::string> CheckOptionValues(const IrrmapOptions& options, CheckedOptions& checked) {
   std::optional<EnvironmentLayout> layout = ParseLayout(options.layout);
   if (!layout) {
     return fmt::format("unknown layout '{}' (use auto, faces, hcross, vcross, hstrip, vstrip, latlong or angular)",
@@ -153,12 +154,16 @@ std::optional<std::string> CheckOptions(const IrrmapOptions& options, CheckedOpt
     return fmt::format("--sphere-size {} is out of range: {} to {}", options.sphere_diameter, kMinPreviewSphereDiameter,
                        kMaxSphereDiameter);
   }
+  if (options.write_files && options.out_dir.empty()) return std::string("the output directory is empty");
+  if (options.environment.empty()) return std::string("no environment given");
+  return CheckExportOptions(options.map_format, options.sh_exports, checked.exports);
+}
+
+std::optional<std::string> CheckOptions(const IrrmapOptions& options, CheckedOptions& checked) {
+  if (std::optional<std::string> error = CheckOptionValues(options, checked)) return error;
   if (options.write_files) {
-    if (options.out_dir.empty()) return std::string("the output directory is empty");
     if (std::optional<std::string> error = CheckOutputFolder(options.out_dir)) return error;
   }
-  if (auto error = CheckExportOptions(options.map_format, options.sh_exports, checked.exports)) return error;
-  if (options.environment.empty()) return std::string("no environment given");
   std::error_code ec;
   const bool exists = options.cube || fs::exists(options.environment, ec);
   checked.builtin = IsBuiltinName(options.environment) && !exists;
@@ -729,6 +734,11 @@ std::optional<std::string> CheckEngine(EngineKind kind, const EngineOptions& eng
 }
 
 }  // namespace
+
+std::optional<std::string> CheckIrrmapOptions(const IrrmapOptions& options) {
+  CheckedOptions checked;
+  return CheckOptionValues(options, checked);
+}
 
 std::optional<std::string> RunIrrmap(const IrrmapOptions& options, IrrmapReport& report,
                                      const IrrmapProgress& progress) {

@@ -217,6 +217,10 @@ struct IrrmapReport {
 // decreases within a stage and reaches 1.
 using IrrmapProgress = std::function<void(std::string_view stage, double fraction)>;
 
+// What is wrong with the options' own values (a usage error: an unknown name, a number out of
+// range), or nullopt; RunIrrmap checks them first, then the environment and the output folder.
+std::optional<std::string> CheckIrrmapOptions(const IrrmapOptions& options);
+
 // Runs the job. Returns nullopt on success; otherwise a message saying what is wrong (bad option,
 // unreadable or unusable environment, write failure), in which case no output file is left behind
 // (out_dir may have been created). Options are checked before any work starts.

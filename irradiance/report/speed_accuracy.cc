@@ -77,7 +77,9 @@ double MedianBatchMs(const SpeedAccuracyOptions& options, F&& update) {
   return means[means.size() / 2];
 }
 
-std::optional<std::string> CheckOptions(const SpeedAccuracyOptions& options) {
+}  // namespace
+
+std::optional<std::string> CheckSpeedAccuracyOptions(const SpeedAccuracyOptions& options) {
   if (!ParseLayout(options.layout)) return fmt::format("unknown layout '{}'", options.layout);
   if (std::optional<std::string> error = CheckFaceSizeOption("--face-size", options.face_size)) return error;
   if (options.error_normals < 1) return fmt::format("--error-normals {} must be >= 1", options.error_normals);
@@ -89,8 +91,6 @@ std::optional<std::string> CheckOptions(const SpeedAccuracyOptions& options) {
   }
   return std::nullopt;
 }
-
-}  // namespace
 
 double ChartErrorFigure(const ErrorStats& error, ErrorMetric metric) {
   return metric == ErrorMetric::kRelative ? error.mean_relative : ErrorFigure(error, metric);
@@ -108,7 +108,7 @@ std::string_view ProjectionMethodName(ProjectionMethod method) {
 std::optional<std::string> RunSpeedAccuracySweep(const SpeedAccuracyOptions& options, SpeedAccuracyResult& result,
                                                  const SpeedAccuracyProgress& progress) {
   result = SpeedAccuracyResult{};
-  if (std::optional<std::string> error = CheckOptions(options)) return error;
+  if (std::optional<std::string> error = CheckSpeedAccuracyOptions(options)) return error;
   result.metric = *ParseErrorMetric(options.error_metric);
   const EnvironmentLayout layout = *ParseLayout(options.layout);
   const std::vector<std::string> names =

@@ -79,6 +79,9 @@ struct SpeedAccuracyResult {
 // Progress: the environment being measured (index from 0 of `count`).
 using SpeedAccuracyProgress = std::function<void(std::string_view environment, int index, int count)>;
 
+// What is wrong with the options themselves (a bad value: a usage error), or nullopt.
+std::optional<std::string> CheckSpeedAccuracyOptions(const SpeedAccuracyOptions& options);
+
 // Runs the sweep. nullopt on success, otherwise what is wrong (a bad option, an environment that
 // cannot be loaded or whose face size is not a power of two).
 std::optional<std::string> RunSpeedAccuracySweep(const SpeedAccuracyOptions& options, SpeedAccuracyResult& result,

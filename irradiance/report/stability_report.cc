@@ -457,9 +457,7 @@ std::string ReportPercent(double fraction) {
   return fmt::format("{:.3g} %", p);
 }
 
-std::optional<std::string> RunStability(const StabilityOptions& options, StabilityReport& report,
-                                        const StabilityProgress& progress) {
-  report = StabilityReport{};
+std::optional<std::string> CheckStabilityOptions(const StabilityOptions& options) {
   if (auto error = CheckFaceSizeOption("--face-size", options.face_size, kMaxStabilityFaceSize)) return error;
   if (auto error = CheckFaceSizeOption("--precision-face-size", options.precision_face_size, kMaxStabilityFaceSize)) {
     return error;
@@ -475,6 +473,13 @@ std::optional<std::string> RunStability(const StabilityOptions& options, Stabili
   }
   if (options.threads < 0) return fmt::format("--threads {} must be >= 0", options.threads);
   if (options.out_dir.empty()) return std::string("the output directory is empty");
+  return std::nullopt;
+}
+
+std::optional<std::string> RunStability(const StabilityOptions& options, StabilityReport& report,
+                                        const StabilityProgress& progress) {
+  report = StabilityReport{};
+  if (std::optional<std::string> error = CheckStabilityOptions(options)) return error;
   report.options = options;
   report.threads = options.threads > 0 ? options.threads
                                        : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));

@@ -58,6 +58,9 @@ struct StabilityReport {
 
 using StabilityProgress = std::function<void(std::string_view stage, double fraction)>;
 
+// What is wrong with the options themselves (a bad value: a usage error), or nullopt.
+std::optional<std::string> CheckStabilityOptions(const StabilityOptions& options);
+
 // Runs every measurement. nullopt on success, else what went wrong (bad option, program load).
 std::optional<std::string> RunStability(const StabilityOptions& options, StabilityReport& report,
                                         const StabilityProgress& progress = {});

@@ -1,5 +1,5 @@
-// irrmap's command line: --version, usage errors (status 2), the output folder checked before any
-// work, --face-size against a cube-map file, --no-ground-truth; and the basis pyramid's progress.
+// irrmap's command line: --version, usage errors (status 2, in every subcommand, bad option values
+// too; a failed input stays 1), the output folder checked before any work, --face-size against a cube-map file, --no-ground-truth; and the basis pyramid's progress.
 #include <string>
 
 #include "irradiance/io/environments.h"
@@ -25,6 +25,44 @@ TEST_F(IrrmapUsage, VersionAndUsageErrors) {
   EXPECT_EQ(flag.status, 2);
   EXPECT_THAT(flag.output, HasSubstr("--frobnicate"));
   EXPECT_EQ(RunIrrmap("--face-size notanumber").status, 2);
+}
+
+// A bad option value is a usage error (2) wherever it is given, checked before any work; an input or
+// output that fails is 1.
+TEST_F(IrrmapUsage, EveryBadOptionValueOfEverySubcommandExitsTwo) {
+  ASSERT_EQ(WriteCrossExr(MakeSky(8), Path("sky.exr")), std::nullopt);
+  const std::string batch = fmt::format("batch '{}' -o '{}' ", Path("sky.exr").string(), Path("out.jsonl").string());
+  const std::string single = fmt::format("sky --face-size 16 --coefficients-only --out '{}' ", Path("out").string());
+  const std::string chart = fmt::format("chart sky --face-size 16 --out '{}' ", Path("chart").string());
+  const std::string stability = fmt::format("stability --out '{}' ", Path("stability").string());
+  const std::vector<std::string> usage_errors = {
+      batch + "--layout bogus", batch + "--error-metric x", batch + "--face-size 3", batch + "--max-error nan",
+      batch + "--max-error 1", batch + "--threads -1", batch + "--shard 2/2", fmt::format("batch -o '{}'", Path("o.jsonl").string()),
+      single + "--layout bogus", single + "--error-metric x", single + "--face-size 3", single + "--max-error nan",
+      single + "--threads -1", single + "--engine foo", single + "--window x", single + "--order x",
+      single + "--map-size 0", single + "--map-format png", single + "--sh-export foo", single + "--window-width 0",
+      single + "--sphere-size 1", single + "--error-normals 0",
+      chart + "--layout bogus", chart + "--error-metric x", chart + "--face-size 3", chart + "--threads -1",
+      chart + "--batches 0", chart + "--min-batch-ms nan",
+      stability + "--face-size 3", stability + "--max-error nan", stability + "--error-metric x",
+      stability + "--threads -1", stability + "--error-normals 3"};
+  for (const std::string& command : usage_errors) {
+    const CommandResult run = RunIrrmap(command);
+    EXPECT_EQ(run.status, 2) << command << "\n" << run.output;
+    EXPECT_THAT(run.output, HasSubstr("irrmap: error: ")) << command;
+    EXPECT_THAT(run.output, HasSubstr("Run with --help")) << command;
+  }
+  EXPECT_FALSE(fs::exists(Path("out.jsonl")));
+  for (const std::string& command :
+       {fmt::format("{}'{}'", batch, Path("missing.exr").string()),
+        fmt::format("{}'{}'", single.substr(4), Path("missing.exr").string()),
+        fmt::format("batch '{}' -o '{}'", Path("*.none").string(), Path("none.jsonl").string())}) {
+    const CommandResult run = RunIrrmap(command);
+    EXPECT_EQ(run.status, 1) << command << "\n" << run.output;
+  }
+  for (const char* help : {"--help", "batch --help", "chart --help", "stability --help"}) {
+    EXPECT_THAT(RunIrrmap(help).output, HasSubstr("Exit status: 0 success, 1 ")) << help;
+  }
 }
 
 TEST_F(IrrmapUsage, AnOutputPathThatIsAFileFailsBeforeAnyWork) {
