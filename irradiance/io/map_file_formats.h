@@ -3,6 +3,7 @@
 // DDS (dds_writer.h) or KTX2 (ktx2_writer.h).
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <filesystem>
 #include <optional>
@@ -14,6 +15,8 @@
 namespace vs11::irradiance {
 
 enum class MapFileFormat { kExr, kDds, kKtx2 };
+inline constexpr std::array<MapFileFormat, 3> kAllMapFileFormats = {MapFileFormat::kExr, MapFileFormat::kDds,
+                                                                    MapFileFormat::kKtx2};
 
 // "exr", "dds", "ktx2" and back; nullopt for any other name.
 std::string_view MapFileFormatName(MapFileFormat format);

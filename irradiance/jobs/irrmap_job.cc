@@ -23,6 +23,7 @@
 #include "irradiance/io/environment_io.h"
 #include "irradiance/io/environments.h"
 #include "irradiance/jobs/engine_exports.h"
+#include "irradiance/jobs/irrmap_outputs.h"
 #include "irradiance/render/preview.h"
 #include "irradiance/report/preview_errors.h"
 #include "irradiance/report/verify.h"
@@ -41,13 +42,6 @@ namespace {
 namespace fs = std::filesystem;
 using Clock = std::chrono::steady_clock;
 
-// Output file names inside out_dir.
-constexpr std::string_view kCoefficientsFile = "coeffs.json";
-constexpr std::string_view kConstantsFile = "constants.vsh";
-constexpr std::string_view kProgramFile = "program.vsh";
-constexpr std::string_view kPreviewFile = "preview.png";
-constexpr std::string_view kMeshFile = "mesh.ply";
-constexpr std::string_view kMeshPictureFile = "mesh.png";
 // Each level's coefficient update is repeated until this much time has passed (or kMaxTimingRuns
 // runs), and the mean is reported: a 1 x 1 level takes a few microseconds.
 constexpr double kMinTimingMs = 20.0;
@@ -419,7 +413,7 @@ std::string ConstantsFileComment(const IrrmapReport& report, const PaperProgram&
 std::optional<std::string> WriteJobOutputs(const IrrmapOptions& options, const CheckedOptions& checked,
                                            const PaperProgram& program, std::vector<PendingOutput> more,
                                            IrrmapReport& report) {
-  const std::string coefficients_text = CoefficientsJson(report, options, checked).dump(2) + "\n";
+  std::string coefficients_text;
   const std::string constants_text =
       report.order == ShOrder::kOrder2
           ? ConstantsDefText(report.constants, program.constant_base(), ConstantsFileComment(report, program))
@@ -431,10 +425,16 @@ std::optional<std::string> WriteJobOutputs(const IrrmapOptions& options, const C
       {kProgramFile, [&](const fs::path& path) { return WriteFileAtomically(path, program_text); }},
   };
   for (PendingOutput& output : more) outputs.push_back(std::move(output));
+  nlohmann::ordered_json coefficients = CoefficientsJson(report, options, checked);
+  coefficients["files"] = nlohmann::ordered_json::array();  // this run's, to tell them from an earlier run's
+  for (const PendingOutput& output : outputs) coefficients["files"].push_back(std::string(output.name));
+  coefficients_text = coefficients.dump(2) + "\n";
   std::vector<fs::path> written;
   std::optional<std::string> write_error =
       Timed(report, "write", [&] { return WriteOutputs(options.out_dir, outputs, written); });
   if (write_error) return write_error;
+  const std::vector<std::string> leftovers = LeftoverOutputWarnings(options.out_dir, written);
+  report.warnings.insert(report.warnings.end(), leftovers.begin(), leftovers.end());
   report.files = std::move(written);
   return std::nullopt;
 }

@@ -26,7 +26,8 @@
 //                    "error_vs_full_order2", "max_relative_error", "peak_error", "rms_error" (vs
 //                    the truth), "constants":
 //                    {"cE" | "cAr" ...: [x, y, z, w]}}, "program_estimates": [{"order", "level",
-//                    "estimated_error"}, ...]
+//                    "estimated_error"}, ...], "files": the names of the files this run wrote (any
+//                    other file of irrmap's in out_dir is an earlier run's, and named in a warning)
 //   program.vsh      the chosen program (irradiance/sh/sh_order.h): sh_order0.vsh, sh_order1.vsh,
 //                    sh_zh3.vsh or the paper's sh9_irradiance.vsh
 //   constants.vsh    its registers as `def` lines at the registers the program reads
