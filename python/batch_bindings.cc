@@ -8,6 +8,7 @@
 #include <deque>
 #include <filesystem>
 #include <mutex>
+#include <new>
 #include <optional>
 #include <string>
 #include <thread>
@@ -74,6 +75,11 @@ class BatchStream {
         case Item::kEnd:
           if (!item->text.empty()) throw py::value_error(item->text);
           throw py::stop_iteration();
+        case Item::kOutOfMemory:
+          PyErr_SetString(PyExc_MemoryError, item->text.c_str());
+          throw py::error_already_set();
+        case Item::kCrashed:
+          throw std::runtime_error(item->text);
       }
     }
   }
@@ -101,21 +107,32 @@ class BatchStream {
 
  private:
   struct Item {
-    enum Kind { kRecord, kFailure, kEnd } kind;
+    enum Kind { kRecord, kFailure, kEnd, kOutOfMemory, kCrashed } kind;  // the last three end the stream
     std::string text;  // the record's JSON line, "input: reason", or the run's error
   };
   static constexpr std::chrono::milliseconds kPollInterval{100};
 
+  // An exception must not leave this thread (std::terminate would end the interpreter): the run's
+  // own shortage of memory ends the stream with MemoryError, anything else with RuntimeError. (An
+  // input that runs out of memory is that input's failure, a UserWarning, and the others go on.)
   void Work() {
-    irradiance::BatchSummary summary;
-    const std::optional<std::string> error = irradiance::RunBatch(
-        options_, summary, {},
-        [this](const irradiance::BatchFailure& failure) {
-          Push({Item::kFailure, fmt::format("{}: {}", failure.input, failure.reason)});
-        },
-        [this](const std::string& line) { Push({Item::kRecord, line}); });
+    Item end{Item::kEnd, ""};
+    try {
+      irradiance::BatchSummary summary;
+      const std::optional<std::string> error = irradiance::RunBatch(
+          options_, summary, {},
+          [this](const irradiance::BatchFailure& failure) {
+            Push({Item::kFailure, fmt::format("{}: {}", failure.input, failure.reason)});
+          },
+          [this](const std::string& line) { Push({Item::kRecord, line}); });
+      end.text = error.value_or("");
+    } catch (const std::bad_alloc&) {
+      end = {Item::kOutOfMemory, "out of memory while running the batch"};
+    } catch (const std::exception& e) {
+      end = {Item::kCrashed, e.what()};
+    }
     std::lock_guard lock(mutex_);
-    items_.push_back({Item::kEnd, error.value_or("")});
+    items_.push_back(std::move(end));
     ready_.notify_all();
   }
 
@@ -132,7 +149,7 @@ class BatchStream {
     std::unique_lock lock(mutex_);
     if (!ready_.wait_for(lock, kPollInterval, [this] { return !items_.empty(); })) return std::nullopt;
     Item item = items_.front();
-    if (item.kind != Item::kEnd) items_.pop_front();
+    if (item.kind == Item::kRecord || item.kind == Item::kFailure) items_.pop_front();
     return item;
   }
 

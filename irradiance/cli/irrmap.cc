@@ -3,8 +3,9 @@
 #include <unistd.h>
 
 #include <chrono>
-#include <optional>
 #include <cstdio>
+#include <new>
+#include <optional>
 #include <string>
 
 #include <CLI/CLI.hpp>
@@ -27,6 +28,7 @@ constexpr int kProgressBarWidth = 30;
 // Exit status: 1 for a failed job, 2 (vs11::cli::kUsageErrorStatus) for a command line that does not
 // parse or holds a bad option value.
 constexpr int kJobError = 1;
+constexpr int kUsageError = 2;
 
 std::string JoinNames() {
   std::string out;
@@ -152,7 +154,9 @@ void AddJobOptions(CLI::App& app, JobCommandLine& line) {
                              "{{face}}, or a built-in: {}", JoinNames()))
       ->capture_default_str();
   app.add_option("--layout", options.layout,
-                 "layout of a file: auto (by aspect ratio), faces, hcross, vcross, hstrip, vstrip, latlong, angular")
+                 "layout of a file: auto (by aspect ratio: 4:3 hcross, 3:4 vcross, 6:1 hstrip, 1:6 vstrip, 2:1 latlong; "
+                 "a square image, an angular map or one cube face, must be named), faces, hcross, vcross, hstrip, "
+                 "vstrip, latlong, angular")
       ->capture_default_str();
   app.add_option("--face-size", options.face_size,
                  "face size of a built-in environment, or of the cube a latlong/angular map is resampled to; "
@@ -286,12 +290,12 @@ int RunJob(const CLI::App& app, JobCommandLine& line) {
   for (const std::string& warning : report.warnings) fmt::print(stderr, "irrmap: warning: {}\n", warning);
   if (error) {
     fmt::print(stderr, "irrmap: error: {}\n", *error);
-    return kJobError;
+    return report.usage_error ? kUsageError : kJobError;
   }
   const double total_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
 
-  fmt::print("environment {}, layout {}, face size {}, coefficients from level {} ({}x{}), {} threads\n\n",
-             report.environment, report.layout, report.face_size, report.level, report.levels[report.level].size,
+  fmt::print("environment {}, layout {} ({}), face size {}, coefficients from level {} ({}x{}), {} threads\n\n",
+             report.environment, report.layout, report.layout_reason, report.face_size, report.level, report.levels[report.level].size,
              report.levels[report.level].size, report.threads);
   if (!options.coefficients_only) fmt::print("{}\n", vs11::irradiance::FormatLevelTable(report));
   fmt::print("stage times:\n{}  {:<15} {:>10.3f} ms\n\n", vs11::irradiance::FormatTimings(report), "total", total_ms);
@@ -316,11 +320,16 @@ int main(int argc, char** argv) {
   vs11::irradiance::cli::AddSubcommands(app);
   try {
     if (std::optional<int> status = vs11::cli::ParseCommandLine(app, argc, argv, "irrmap")) return *status;
+    // A subcommand (irrmap chart, irrmap stability ...) did its work in its own callback.
+    if (!app.get_subcommands().empty()) return 0;
+    return RunJob(app, line);
   } catch (const vs11::irradiance::cli::SubcommandFailure& failure) {
     fmt::print(stderr, "irrmap: error: {}\n", failure.what());
     return kJobError;
+  } catch (const std::bad_alloc&) {
+    // The jobs report their own shortage with what they were doing; this is the rest (a subcommand's
+    // tables, the tool's own output).
+    std::fputs("irrmap: error: out of memory\n", stderr);
+    return kJobError;
   }
-  // A subcommand (irrmap chart, irrmap stability ...) did its work in its own callback.
-  if (!app.get_subcommands().empty()) return 0;
-  return RunJob(app, line);
 }

@@ -11,6 +11,7 @@
 #include <cmath>
 #include <cstdint>
 #include <exception>
+#include <new>
 #include <numbers>
 #include <random>
 #include <system_error>
@@ -116,7 +117,7 @@ LoadResult Failure(std::string message) {
 std::string AcceptedAspectRatios() {
   std::string text;
   for (const LayoutInfo& info : kLayoutInfo) {
-    if (info.aspect_columns == 0) continue;
+    if (info.aspect_columns == 0 || info.layout == Layout::kAngular) continue;  // see DetectLayout
     if (!text.empty()) text += ", ";
     text += fmt::format("{}:{} {}", info.aspect_columns, info.aspect_rows, info.description);
   }
@@ -125,7 +126,8 @@ std::string AcceptedAspectRatios() {
 
 std::optional<Layout> DetectLayout(int width, int height) {
   for (const LayoutInfo& info : kLayoutInfo) {
-    if (info.aspect_columns == 0) continue;
+    // A square image is an angular map or one face of a cube: never guessed (EnvironmentFromImage asks for the layout).
+    if (info.aspect_columns == 0 || info.layout == Layout::kAngular) continue;
     if (static_cast<std::int64_t>(width) * info.aspect_rows ==
         static_cast<std::int64_t>(height) * info.aspect_columns) {
       return info.layout;
@@ -138,7 +140,8 @@ std::optional<Layout> DetectLayout(int width, int height) {
 // one square face). Checked on the header's size before any pixel is read, and again on the image.
 std::optional<std::string> CheckLayoutSize(Layout layout, int width, int height) {
   if (layout == Layout::kAuto) {
-    if (DetectLayout(width, height)) return std::nullopt;
+    // A square image is read, and then refused by EnvironmentFromImage with its own message.
+    if (DetectLayout(width, height) || width == height) return std::nullopt;
     return fmt::format("cannot detect the layout of a {} x {} image: the accepted aspect ratios are {}",
                        width, height, AcceptedAspectRatios());
   }
@@ -209,6 +212,7 @@ LoadResult LoadFaces(const fs::path& path) {
   }
   LoadedEnvironment environment;
   environment.layout = Layout::kFaces;
+  environment.layout_reason = fmt::format("six files: the path holds \"{}\"", kFaceToken);
   std::string first_name;
   for (CubeFace face : kAllCubeFaces) {
     const int index = static_cast<int>(face);
@@ -425,9 +429,22 @@ LoadResult EnvironmentFromImage(Image image, EnvironmentLayout layout, int face_
     if (std::optional<std::string> error = CheckLayoutSize(layout, image.width, image.height)) {
       return Failure(std::move(*error));
     }
-    if (layout == Layout::kAuto) layout = *DetectLayout(image.width, image.height);
-
     LoadedEnvironment environment;
+    environment.layout_reason = "as given";
+    if (layout == Layout::kAuto) {
+      if (image.width == image.height) {
+        LoadResult refused = Failure(fmt::format(
+            "cannot tell the layout of a square {} x {} image: it may be an angular map (--layout angular) or one "
+            "face of a cube (--layout faces, with \"{}\" in the path); name it with --layout",
+            image.width, image.height, kFaceToken));
+        refused.needs_layout = true;
+        return refused;
+      }
+      layout = *DetectLayout(image.width, image.height);
+      const LayoutInfo& info = Info(layout);
+      environment.layout_reason = fmt::format("detected from the {}:{} aspect ratio of the {} x {} image",
+                                              info.aspect_columns, info.aspect_rows, image.width, image.height);
+    }
     environment.layout = layout;
     if (const std::size_t changed = SanitizeRadiance(image); changed > 0) {
       environment.warnings.push_back(SanitizeWarning(changed, image.pixels.size(), "image"));
@@ -444,6 +461,10 @@ LoadResult EnvironmentFromImage(Image image, EnvironmentLayout layout, int face_
     LoadResult result;
     result.environment = std::move(environment);
     return result;
+  } catch (const std::bad_alloc&) {
+    const int size = FindCubeGrid(layout) != nullptr ? image.width / FindCubeGrid(layout)->columns : face_size;
+    return Failure(fmt::format("out of memory while building the cube map (faces of {} need about {} MB)", size,
+                               (static_cast<std::size_t>(size) * size * kCubeFaceCount * sizeof(glm::vec3) >> 20) + 1));
   } catch (const std::exception& e) {
     return Failure(fmt::format("cannot build the cube map: {}", e.what()));
   }
@@ -468,6 +489,7 @@ LoadResult LoadEnvironment(const std::filesystem::path& path, const LoadOptions&
       layout = Layout::kVerticalStrip;
     }
     LoadResult result = EnvironmentFromImage(std::move(*read.image), layout, options.face_size);
+    if (result.ok() && read.is_dds_cube_map) result.environment->layout_reason = "a DDS cube map";
     if (!result.ok()) {
       result.error = fmt::format("{}: {}", path.string(), result.error);
       return result;
@@ -476,6 +498,8 @@ LoadResult LoadEnvironment(const std::filesystem::path& path, const LoadOptions&
       warning = fmt::format("{}: {}", path.string(), warning);
     }
     return result;
+  } catch (const std::bad_alloc&) {
+    return Failure(fmt::format("{}: out of memory while reading it", path.string()));
   } catch (const std::exception& e) {
     return Failure(fmt::format("{}: {}", path.string(), e.what()));
   }

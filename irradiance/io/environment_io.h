@@ -112,6 +112,9 @@ struct LoadOptions {
 struct LoadedEnvironment {
   CubeMap cube;
   EnvironmentLayout layout = EnvironmentLayout::kAuto;  // the layout read (never kAuto)
+  // Why that layout: "as given", "detected from the 2:1 aspect ratio of the 512 x 256 image", "a DDS
+  // cube map", "six files: the path holds "{face}"".
+  std::string layout_reason;
   std::vector<std::string> warnings;                    // e.g. how many texels were sanitised
 };
 
@@ -119,15 +122,19 @@ struct LoadedEnvironment {
 struct LoadResult {
   std::optional<LoadedEnvironment> environment;
   std::string error;  // empty when `environment` is set
+  // The layout cannot be told from the image (a square one with kAuto): the caller must name it, a
+  // usage error rather than a bad file.
+  bool needs_layout = false;
   bool ok() const { return environment.has_value(); }
 };
 
 // Loads an environment map of any layout above. With LoadOptions::layout == kAuto the layout is
 // chosen in this order: a path holding "{face}" is six face files; a DDS file flagged as a cube map
 // is its six faces; otherwise the aspect ratio: 4:3 hcross, 3:4 vcross, 6:1 hstrip, 1:6 vstrip,
-// 2:1 latlong, 1:1 angular, anything else an error. An explicit layout must fit the image size
-// (4N x 3N for hcross and so on, 2:1 for latlong, square for angular); a DDS cube map only fits
-// kAuto and kVerticalStrip.
+// 2:1 latlong, anything else an error. A square image is refused (needs_layout): it may be an
+// angular map or a single cube face, and guessing either gives plausible wrong numbers. An explicit
+// layout must fit the image size (4N x 3N for hcross and so on, 2:1 for latlong, square for
+// angular); a DDS cube map only fits kAuto and kVerticalStrip.
 // Lat-long and angular maps are resampled to options.face_size by ResampleLatLong/ResampleAngular.
 // Formats: whatever OpenImageIO reads, among them Radiance .hdr, OpenEXR, PFM, TIFF, PNG, JPEG and
 // DDS (8-bit, BC1-BC5, BC6H unsigned and signed, BC7), plus the uncompressed float DDS formats

@@ -12,6 +12,7 @@
 #include <map>
 #include <memory>
 #include <mutex>
+#include <new>
 #include <sstream>
 #include <utility>
 
@@ -20,6 +21,7 @@
 
 #include "irradiance/io/environment_io.h"
 #include "irradiance/jobs/batch_output.h"
+#include "irradiance/jobs/float_range.h"
 #include "irradiance/sh/constants_output.h"
 #include "irradiance/sh/ground_truth.h"
 #include "irradiance/sh/sh9.h"
@@ -86,14 +88,16 @@ struct Job {
   std::vector<glm::dvec3> error_normals = SphereNormals(kLevelErrorNormals);
 };
 
-// The record of one input, or the reason it has none.
-std::optional<std::string> ProcessInput(Job& job, const std::string& input, nlohmann::ordered_json& record) {
+// The record of one input, or the reason it has none. `face_size` is set to the input's once it is
+// loaded.
+std::optional<std::string> ProjectInput(Job& job, const std::string& input, nlohmann::ordered_json& record,
+                                        int& face_size) {
   LoadOptions load;
   load.layout = job.layout;
   load.face_size = job.options.face_size;
   LoadResult loaded = LoadEnvironment(input, load);
   if (!loaded.ok()) return loaded.error;
-  const int face_size = loaded.environment->cube.face_size;
+  face_size = loaded.environment->cube.face_size;
   if (std::optional<std::string> error = CheckPyramidFaceSize("", face_size)) return error;
   const std::string layout(LayoutName(loaded.environment->layout));
   std::optional<CubeMipChain> mips = BuildEnvironmentMips(std::move(loaded.environment->cube));
@@ -108,6 +112,11 @@ std::optional<std::string> ProcessInput(Job& job, const std::string& input, nloh
   for (int level = 0; level < level_count; ++level) levels.push_back(ProjectLevel(*mips, *basis, level));
   const std::vector<double> estimated = EstimateLevelErrors(levels, job.error_normals, job.metric);
   const int level = job.options.level ? *job.options.level : CoarsestLevelWithin(estimated, job.options.max_error);
+  const SevenConstants constants = PackTable1(levels[level]);
+  const TexelRange range = RangeOfTexels(mips->levels[0]);
+  if (std::optional<std::string> error = CheckCoefficientsFitFloat(levels[level], constants.registers, range)) {
+    return error;
+  }
   nlohmann::ordered_json coefficients = nlohmann::ordered_json::array();
   for (const glm::dvec3& c : levels[level].coefficients) coefficients.push_back({c.r, c.g, c.b});
   record = {{"input", input},
@@ -119,8 +128,22 @@ std::optional<std::string> ProcessInput(Job& job, const std::string& input, nloh
             {"estimated_error", estimated[level]},
             {"error_metric", std::string(ErrorMetricName(job.metric))},
             {"coefficients", std::move(coefficients)},
-            {"constants", ConstantsJson(PackTable1(levels[level]))}};
+            {"constants", ConstantsJson(constants)}};
+  if (!AllNumbersFinite(record)) return BeyondFloatRangeMessage("a figure of the record is", range);
   return std::nullopt;
+}
+
+// ProjectInput, with running out of memory as this input's failure: its memory is freed on the way
+// out, and the inputs after it still run (on --resume too, where an abort would stop at it again).
+std::optional<std::string> ProcessInput(Job& job, const std::string& input, nlohmann::ordered_json& record) {
+  int face_size = job.options.face_size;
+  try {
+    return ProjectInput(job, input, record, face_size);
+  } catch (const std::bad_alloc&) {
+    record = nullptr;
+    return fmt::format("out of memory while projecting it (face size {} needs about {} MB)", face_size,
+                       (ProjectionMemoryBytes(face_size) >> 20) + 1);
+  }
 }
 
 std::optional<std::string> CheckOptions(const BatchOptions& options, EnvironmentLayout& layout, ErrorMetric& metric) {

@@ -11,6 +11,7 @@
 #include <cstddef>
 #include <functional>
 #include <memory>
+#include <new>
 #include <system_error>
 #include <thread>
 #include <type_traits>
@@ -179,6 +180,7 @@ std::optional<std::string> LoadCube(const IrrmapOptions& options, const CheckedO
     cube = *options.cube;
     report.environment = options.environment;
     report.layout = options.layout;
+    report.layout_reason = "as given";
     if (std::optional<std::string> error = CheckPyramidFaceSize(options.environment, cube.face_size)) return error;
     if (options.level && *options.level >= LevelCount(cube.face_size)) {
       return fmt::format("--level {} is out of range: {}", *options.level, LevelRange(cube.face_size));
@@ -191,6 +193,7 @@ std::optional<std::string> LoadCube(const IrrmapOptions& options, const CheckedO
     cube = std::move(*made);
     report.environment = fmt::format("{} (built-in)", options.environment);
     report.layout = "builtin";
+    report.layout_reason = "a built-in environment";
     if (checked.layout != EnvironmentLayout::kAuto) {
       report.warnings.push_back(fmt::format("--layout {} ignored for a built-in environment", options.layout));
     }
@@ -200,11 +203,13 @@ std::optional<std::string> LoadCube(const IrrmapOptions& options, const CheckedO
   load.layout = checked.layout;
   load.face_size = options.face_size;
   LoadResult loaded = LoadEnvironment(options.environment, load);
+  report.usage_error = loaded.needs_layout;
   if (!loaded.ok()) return loaded.error;
   for (std::string& warning : loaded.environment->warnings) report.warnings.push_back(std::move(warning));
   cube = std::move(loaded.environment->cube);
   report.environment = options.environment;
   report.layout = std::string(LayoutName(loaded.environment->layout));
+  report.layout_reason = loaded.environment->layout_reason;
   const bool resampled = loaded.environment->layout == EnvironmentLayout::kLatLong ||
                          loaded.environment->layout == EnvironmentLayout::kAngular;
   if (options.face_size_given && !resampled && cube.face_size != options.face_size) {
@@ -370,7 +375,13 @@ std::optional<std::string> WriteOutputs(const fs::path& out_dir, const std::vect
   for (const PendingOutput& output : outputs) {
     const fs::path target = out_dir / output.name;
     const fs::path temporary = TemporaryPathBeside(target);
-    if (std::optional<std::string> error = output.write(temporary)) {
+    std::optional<std::string> error;
+    try {
+      error = output.write(temporary);
+    } catch (const std::bad_alloc&) {
+      error = "out of memory";
+    }
+    if (error) {
       RemoveQuietly(temporary);
       for (const PendingRename& finished : renames) RemoveQuietly(finished.temporary);
       return fmt::format("cannot write {}: {}", target.string(), *error);
@@ -534,6 +545,7 @@ std::optional<std::string> LoadStage(IrrmapRun& run) {
   if (error) return error;
   if (run.progress) run.progress("load", 1.0);
   run.face_size = run.report.face_size = cube.face_size;
+  run.report.texel_range = RangeOfTexels(cube);
   // The pyramid takes the map as its level 0 rather than a second copy.
   run.mips = Timed(run.report, "env_mips", [&] { return BuildEnvironmentMips(std::move(cube)); });
   run.basis = Timed(run.report, "basis_pyramid", [&] {
@@ -568,6 +580,20 @@ std::optional<std::string> CoefficientsStage(IrrmapRun& run) {
   report.program_vs_full_order2 =
       IrradianceDifference(ReduceToOrder(report.coefficients, report.order), report.levels[0].coefficients,
                            SphereNormals(kLevelErrorNormals), run.checked.metric);
+  // Every level's constants feed the level table and the preview, not only the chosen one's.
+  for (const LevelReport& row : report.levels) {
+    const SevenConstants constants = PackTable1(row.coefficients);
+    if (std::optional<std::string> error = CheckCoefficientsFitFloat(row.coefficients, constants.registers,
+                                                                     report.texel_range)) {
+      return fmt::format("{}: level {}: {}", report.environment, row.level, *error);
+    }
+  }
+  std::vector<glm::vec4> program_registers;
+  for (const NamedRegister& r : report.program_constants) program_registers.push_back(r.value);
+  if (std::optional<std::string> error =
+          CheckCoefficientsFitFloat(report.coefficients, program_registers, report.texel_range)) {
+    return fmt::format("{}: {}", report.environment, *error);
+  }
   std::string error;
   run.program = Timed(report, "program", [&] { return PaperProgram::Load(error); });
   if (!run.program) return error;
@@ -609,6 +635,10 @@ std::optional<std::string> IrradianceMapStage(IrrmapRun& run) {
       for (glm::vec3& texel : face.pixels) texel = glm::vec3(values[k++]);
     }
   });
+  if (!AllTexelsFinite(run.irradiance_map)) {
+    return fmt::format("{}: {}", run.report.environment,
+                       BeyondFloatRangeMessage("the irradiance map is", run.report.texel_range));
+  }
   const MapFileFormat format = run.checked.exports.map_format;
   const std::string_view file = IrradianceMapFileName(format);
   if (std::optional<std::string> warning = HalfRangeWarning(run.irradiance_map, format, file)) {
@@ -706,19 +736,30 @@ std::optional<std::string> PreviewStage(IrrmapRun& run) {
   return std::nullopt;
 }
 
-using Stage = std::optional<std::string> (*)(IrrmapRun&);
+struct Stage {
+  const char* doing;  // "while ..." in an out-of-memory message
+  std::optional<std::string> (*run)(IrrmapRun&);
+};
 
 // The stages the options ask for, in order.
 std::vector<Stage> StagesFor(const IrrmapOptions& options) {
-  std::vector<Stage> stages = {LoadStage, CoefficientsStage};
-  if (options.mesh) stages.push_back(MeshStage);
-  stages.push_back(ShExportStage);
+  std::vector<Stage> stages = {{"loading the environment and building its pyramids", LoadStage},
+                               {"projecting every level", CoefficientsStage}};
+  if (options.mesh) stages.push_back({"lighting the mesh", MeshStage});
+  stages.push_back({"exporting the coefficients", ShExportStage});
   if (options.coefficients_only) return stages;
-  stages.push_back(IrradianceMapStage);
+  stages.push_back({"computing the irradiance map", IrradianceMapStage});
   if (options.no_ground_truth) return stages;
-  stages.push_back(GroundTruthStage);
-  stages.push_back(PreviewStage);
+  stages.push_back({"computing the ground truth", GroundTruthStage});
+  stages.push_back({"rendering the preview", PreviewStage});
   return stages;
+}
+
+// The message of a job that ran out of memory `doing` something, with what its pyramids take.
+std::string OutOfMemoryMessage(const IrrmapRun& run, std::string_view doing) {
+  const int face_size = run.face_size > 0 ? run.face_size : run.options.face_size;
+  return fmt::format("{}: out of memory while {} (face size {} needs about {} MB)", run.options.environment, doing,
+                     face_size, (ProjectionMemoryBytes(face_size) >> 20) + 1);
 }
 
 // An engine that depends on a driver (the gl engine) is built once for the paper's program before any
@@ -752,14 +793,29 @@ std::optional<std::string> RunIrrmap(const IrrmapOptions& options, IrrmapReport&
     error = CheckEngine(run.checked.engine, run.engine_options);
   }
   if (!error) {
-    for (Stage stage : StagesFor(options)) {
-      if ((error = stage(run))) break;
+    for (const Stage& stage : StagesFor(options)) {
+      try {
+        error = stage.run(run);
+      } catch (const std::bad_alloc&) {
+        error = OutOfMemoryMessage(run, stage.doing);
+      }
+      if (error) break;
     }
   }
   if (error) return error;
+  // The last guard: a figure no stage checked (an error measured from an irradiance beyond float
+  // range at the ground truth's normals) fails the job rather than becoming null in coeffs.json.
+  if (!AllNumbersFinite(CoefficientsJson(report, options, run.checked))) {
+    return fmt::format("{}: {}", report.environment,
+                       BeyondFloatRangeMessage("a figure of coeffs.json is", report.texel_range));
+  }
   report.irradiance_map = run.irradiance_map;
   if (!options.write_files) return std::nullopt;
-  return WriteJobOutputs(options, run.checked, *run.chosen_program, std::move(run.outputs), report);
+  try {
+    return WriteJobOutputs(options, run.checked, *run.chosen_program, std::move(run.outputs), report);
+  } catch (const std::bad_alloc&) {  // WriteOutputs has removed its temporaries
+    return OutOfMemoryMessage(run, "writing the outputs");
+  }
 }
 
 // ---- The output folder -----------------------------------------------------------------------------

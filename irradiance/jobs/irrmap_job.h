@@ -60,6 +60,7 @@
 #include <glm/glm.hpp>
 
 #include "irradiance/io/cube_map.h"
+#include "irradiance/jobs/float_range.h"
 #include "irradiance/jobs/mesh_lighting.h"
 #include "irradiance/report/paper_program.h"
 #include "irradiance/sh/ground_truth.h"
@@ -181,7 +182,12 @@ struct IrrmapReport {
   bool errors_measured = false;  // the levels' errors against the ground truth (not with --no-ground-truth)
   std::string environment;  // "sky (built-in)" or the path
   std::string layout;       // "builtin" or the layout read
+  std::string layout_reason;  // why that layout (LoadedEnvironment::layout_reason)
+  // The job failed for something the caller must fix in its options, not in the input (a square
+  // image whose layout must be named): a usage error.
+  bool usage_error = false;
   int face_size = 0;
+  TexelRange texel_range;   // of the environment's cube map, named when a result is beyond float range
   int level = 0;            // the chosen level
   int threads = 0;          // worker threads used
   Sh9Rgb coefficients;      // of the chosen level

@@ -311,9 +311,9 @@ void HalveRows(const float* HWY_RESTRICT upper, const float* HWY_RESTRICT lower,
         hn::StoreU(up_v, df, up_copy + v * kLanes);
         hn::StoreU(down_v, df, down_copy + v * kLanes);
       }
-      const VF top = hn::Add(up_v, shifted(up, up_v, v, last_group));
-      const VF bottom = hn::Add(down_v, shifted(down, down_v, v, last_group));
-      sums[v] = hn::Mul(hn::Add(top, bottom), quarter);
+      const VF top = hn::Add(hn::Mul(up_v, quarter), hn::Mul(shifted(up, up_v, v, last_group), quarter));
+      const VF bottom = hn::Add(hn::Mul(down_v, quarter), hn::Mul(shifted(down, down_v, v, last_group), quarter));
+      sums[v] = hn::Add(top, bottom);
     }
     VF outputs[kHalvingVectorsOut] = {hn::Zero(df), hn::Zero(df), hn::Zero(df)};
     for (int n = 0; n < kHalvingSourceCount; ++n) {
@@ -334,9 +334,9 @@ void HalveRows(const float* HWY_RESTRICT upper, const float* HWY_RESTRICT lower,
   }
   for (; x < out_width; ++x) {
     for (int c = 0; c < 3; ++c) {
-      const float top = upper[6 * x + c] + upper[6 * x + 3 + c];
-      const float bottom = lower[6 * x + c] + lower[6 * x + 3 + c];
-      out[3 * x + c] = (top + bottom) * 0.25f;
+      const float top = upper[6 * x + c] * 0.25f + upper[6 * x + 3 + c] * 0.25f;
+      const float bottom = lower[6 * x + c] * 0.25f + lower[6 * x + 3 + c] * 0.25f;
+      out[3 * x + c] = top + bottom;
     }
   }
 }

@@ -76,9 +76,12 @@ using BlockWeights = std::array<const float*, kBlockMoments>;
 // in memory order: the weights already hold t, so rows need no separate treatment.
 void CubeBlockMoments(const CubeTexels& faces, const BlockWeights& weights, int size, CubeMomentSums& out);
 
-// One row of a 2 x 2 box-filtered mip level: out[x] = ((a + b) + (c + d)) * 0.25 per channel, where
+// One row of a 2 x 2 box-filtered mip level: out[x] = (a/4 + b/4) + (c/4 + d/4) per channel, where
 // a, b are texels 2x, 2x + 1 of `upper` and c, d of `lower` (interleaved rgb rows of 2 * out_width
-// texels). The order of the additions is fixed, so every target gives the same bits.
+// texels). The order of the additions is fixed, so every target gives the same bits. Quartering
+// first keeps every sum within float range for any finite texels (((a + b) + (c + d)) / 4 overflows
+// above FLT_MAX / 4) and gives the same bits as that wherever it does not overflow, except for
+// texels under 2^-124, whose quarters lose bits as subnormals.
 void HalveRowPair(const float* upper, const float* lower, float* out, int out_width);
 
 // HalveRowPair, also copying the two rows (2 * out_width texels each) to `copy_upper` and

@@ -234,6 +234,56 @@ std::vector<double> FaceSolidAngles(int size) {
   return solid_angles;
 }
 
+// Terms radiance x weight are formed and summed (16 to a lane) in float, so radiance above about
+// FLT_MAX / 34 (weights reach 2.1 sr on a 1 x 1 face) overflows them. Such a projection is run
+// again with every weight scaled by 2^-kOverflowShift, which keeps the terms below 2^126 for any
+// finite radiance, and its sums scaled back in double: scaling by a power of two is exact, so the
+// result is the one float arithmetic without an upper exponent limit would give (terms under
+// 2^-120, negligible beside such radiance, lose bits as subnormals). Maps that do not overflow
+// never take this path and keep their bits.
+constexpr int kOverflowShift = 6;
+
+bool AllFinite(const kernels::CubeMomentSums& moments) {
+  for (const kernels::FaceMomentSums& face : moments) {
+    for (const auto& power : face) {
+      for (double sum : power) {
+        if (!std::isfinite(sum)) return false;
+      }
+    }
+  }
+  return true;
+}
+
+std::vector<float> ScaledDown(const float* weights, std::size_t count) {
+  std::vector<float> scaled(weights, weights + count);
+  for (float& w : scaled) w = std::ldexp(w, -kOverflowShift);
+  return scaled;
+}
+
+// `moments(weights)` computes a cube's moment sums from its weights (kernels::CubeMoments or
+// CubeBlockMoments); `weights` are the level's, `count` floats each. Runs it once, and again with
+// scaled-down weights when the float terms overflowed.
+template <std::size_t kWeightArrays, class Moments>
+kernels::CubeMomentSums OverflowSafeMoments(const std::array<const float*, kWeightArrays>& weights,
+                                            std::size_t count, const Moments& moments) {
+  kernels::CubeMomentSums sums;
+  moments(weights, sums);
+  if (AllFinite(sums)) return sums;
+  std::array<std::vector<float>, kWeightArrays> scaled;
+  std::array<const float*, kWeightArrays> scaled_weights;
+  for (std::size_t j = 0; j < kWeightArrays; ++j) {
+    scaled[j] = ScaledDown(weights[j], count);
+    scaled_weights[j] = scaled[j].data();
+  }
+  moments(scaled_weights, sums);
+  for (kernels::FaceMomentSums& face : sums) {
+    for (auto& power : face) {
+      for (double& sum : power) sum = std::ldexp(sum, kOverflowShift);
+    }
+  }
+  return sums;
+}
+
 }  // namespace
 
 FinestWeights BuildFinestWeights(int face_size) {
@@ -258,8 +308,11 @@ Sh9Rgb ProjectFinest(const CubeMap& map, const FinestWeights& weights) {
   if (size == 0) return sh;
   kernels::CubeTexels texels;
   for (int f = 0; f < kCubeFaceCount; ++f) texels[f] = PixelFloats(map.faces[f], 0);
-  kernels::CubeMomentSums moments;
-  kernels::CubeMoments(texels, {weights.q.data(), weights.qr.data(), weights.qr2.data()}, size, moments);
+  const std::array<const float*, 3> face_weights = {weights.q.data(), weights.qr.data(), weights.qr2.data()};
+  const kernels::CubeMomentSums moments = OverflowSafeMoments(
+      face_weights, weights.q.size(), [&](const std::array<const float*, 3>& w, kernels::CubeMomentSums& out) {
+        kernels::CubeMoments(texels, {w[0], w[1], w[2]}, size, out);
+      });
   for (int f = 0; f < kCubeFaceCount; ++f) AddFaceFromMoments(moments[f], LinearFormOf(kAllCubeFaces[f]), sh.coefficients);
   return sh;
 }
@@ -370,6 +423,13 @@ std::optional<BasisPyramid> BuildBasisPyramid(int face_size, int threads,
   return pyramid;
 }
 
+std::size_t ProjectionMemoryBytes(int face_size) {
+  const std::size_t face_texels = static_cast<std::size_t>(std::max(face_size, 0)) * std::max(face_size, 0);
+  constexpr std::size_t kCubeAndMipBytesPerFaceTexel = kCubeFaceCount * sizeof(glm::vec3) * 4 / 3;
+  constexpr std::size_t kBasisBytesPerFaceTexel = 24;
+  return face_texels * (kCubeAndMipBytesPerFaceTexel + kBasisBytesPerFaceTexel);
+}
+
 Sh9Rgb ProjectLevel(const CubeMipChain& env, const BasisPyramid& basis, int level) {
   assert(!env.levels.empty() && env.levels[0].face_size == basis.face_size);
   assert(level >= 0 && level < static_cast<int>(env.levels.size()) &&
@@ -383,8 +443,11 @@ Sh9Rgb ProjectLevel(const CubeMipChain& env, const BasisPyramid& basis, int leve
   for (int f = 0; f < kCubeFaceCount; ++f) texels[f] = PixelFloats(map.faces[f], 0);
   kernels::BlockWeights block_weights;
   for (int j = 0; j < kernels::kBlockMoments; ++j) block_weights[j] = weights.weights[j].data();
-  kernels::CubeMomentSums moments;
-  kernels::CubeBlockMoments(texels, block_weights, size, moments);
+  const kernels::CubeMomentSums moments = OverflowSafeMoments(
+      block_weights, static_cast<std::size_t>(size) * size,
+      [&](const kernels::BlockWeights& w, kernels::CubeMomentSums& out) {
+        kernels::CubeBlockMoments(texels, w, size, out);
+      });
   Sh9Rgb sh;
   for (int f = 0; f < kCubeFaceCount; ++f) AddFaceFromMoments(moments[f], LinearFormOf(kAllCubeFaces[f]), sh.coefficients);
   return sh;

@@ -44,7 +44,7 @@ struct CubeMipChain {
 
 // Builds the pyramid down to 1 x 1; each texel of level k + 1 is the mean (in float) of its 2 x 2
 // children in level k, per face (faces are not filtered across their edges, which is exact for a
-// box filter). Returns std::nullopt when the face size is not a positive power of two: odd sizes
+// box filter), finite for any finite texels (kernels::HalveRowPair). Returns std::nullopt when the face size is not a positive power of two: odd sizes
 // have no exact 2 x 2 parentage, and dropping a row or column would silently lose light.
 std::optional<CubeMipChain> BuildEnvironmentMips(const CubeMap& env);
 // The same, taking `env` as level 0 instead of copying it (a map of 1024 faces is 75 MB). `env` is
@@ -94,7 +94,9 @@ FinestWeights BuildFinestWeights(int face_size);
 // over at most 16 terms per lane, then in double (never one float sum over the map, which the
 // stability report shows failing at 2048^2); the result stays within 1e-6 of the largest
 // coefficient of ProjectDirect, tested up to 2048 with a 1e6 sun. Results differ between SIMD
-// targets (AVX-512, AVX2, ...) by float rounding only.
+// targets (AVX-512, AVX2, ...) by float rounding only. Any finite radiance gives finite coefficients
+// (double, possibly beyond float range): where the float terms overflow (texels above about
+// FLT_MAX / 34), the projection is run again with its weights scaled by a power of two, exactly.
 Sh9Rgb ProjectFinest(const CubeMap& env, const FinestWeights& weights);
 
 // Built once per face size and reused for every environment of that size (paper section 3.3 step 1).
@@ -119,6 +121,11 @@ std::optional<BasisPyramid> BuildBasisPyramid(int face_size, int threads = 1,
                                               const std::function<void(double)>& progress = {},
                                               ThreadPool* pool = nullptr);
 
+// About how many bytes projecting an environment of `face_size` holds at once: its cube map and mip
+// pyramid (16 bytes per texel of the six faces) and the basis pyramid (24 bytes per texel of one
+// face). Named in out-of-memory messages.
+std::size_t ProjectionMemoryBytes(int face_size);
+
 // Level 0 is ProjectFinest(env.levels[0], basis.finest). A coarser level k is projected the same way
 // with the block sums of its BasisLevel as weights: for each face, the nine sums over its texels of
 // mean radiance (float) x weight (float), each term formed in float and summed in float lanes over at
@@ -128,7 +135,7 @@ std::optional<BasisPyramid> BuildBasisPyramid(int face_size, int threads = 1,
 // every finest texel), tested at every level of faces 1 to 256 and 2048 with a 1e6 sun. Results
 // differ between SIMD targets by float rounding only, and not with the thread count. Cost: 27 float
 // multiply-adds per texel of the level, with 12 bytes of radiance and 6 bytes of weights (36 bytes
-// shared by the six faces) read per texel.
+// shared by the six faces) read per texel. Finite radiance gives finite coefficients, as ProjectFinest.
 // Preconditions (asserted): env.levels[0].face_size == basis.face_size and
 // 0 <= level < env.levels.size() and level < basis.levels.size().
 Sh9Rgb ProjectLevel(const CubeMipChain& env, const BasisPyramid& basis, int level);

@@ -1,3 +1,5 @@
+#include <cstdio>
+#include <new>
 #include <optional>
 #include <string>
 
@@ -42,6 +44,9 @@ int main(int argc, char** argv) {
     if (std::optional<int> status = vs11::cli::ParseCommandLine(app, argc, argv, "vs11", usage)) return *status;
   } catch (const vs11::cli::CommandFailure& failure) {
     return failure.exit_code;
+  } catch (const std::bad_alloc&) {
+    std::fputs("vs11: error: out of memory\n", stderr);
+    return 1;
   }
   return 0;
 }

@@ -1,11 +1,23 @@
 #include "vm/core/thread_pool.h"
 
 #include <algorithm>
+#include <cstdio>
+#include <exception>
 
 namespace vs11 {
 
 ThreadPool::ThreadPool(int threads) {
-  for (int t = 1; t < threads; ++t) workers_.emplace_back([this] { WorkerLoop(); });
+  for (int t = 1; t < threads; ++t) {
+    try {
+      workers_.emplace_back([this] { WorkerLoop(); });
+    } catch (const std::exception& error) {
+      // Out of threads (std::system_error: RLIMIT_NPROC, a cgroup's pids.max) or of memory for a stack: the pool
+      // runs on the threads it has, down to its callers alone, which every call takes part in.
+      std::fprintf(stderr, "warning: could start only %d of %d threads (%s); running on %d\n", t, threads,
+                   error.what(), t);
+      break;
+    }
+  }
 }
 
 ThreadPool::~ThreadPool() {

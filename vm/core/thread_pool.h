@@ -23,7 +23,9 @@ namespace vs11 {
 class ThreadPool {
  public:
   // A pool whose calls run on up to `threads` threads: the caller and `threads - 1` workers
-  // (`threads` < 1 counts as 1: no workers, every task runs on its caller).
+  // (`threads` < 1 counts as 1: no workers, every task runs on its caller). Where the system refuses
+  // a thread, the pool keeps the workers it has (threads() says how many), with a warning on stderr:
+  // never an exception.
   explicit ThreadPool(int threads);
   ~ThreadPool();  // waits for the workers; no call may be in flight
   ThreadPool(const ThreadPool&) = delete;

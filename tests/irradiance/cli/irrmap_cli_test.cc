@@ -57,5 +57,24 @@ TEST_F(IrrmapCli, NanTexelsAreZeroedWithAWarningAndTheRunSucceeds) {
   EXPECT_TRUE(fs::exists(Path("out") / "coeffs.json"));
 }
 
+TEST_F(IrrmapCli, ASquareImageIsAUsageErrorAskingForTheLayout) {
+  ASSERT_TRUE(WriteFloatImage(Path("cube_px.exr"), Image(16, 16, glm::vec3(1.0f))));
+  const CommandResult run = RunIrrmap(QuickRun(Path("cube_px.exr"), Path("out")));
+  EXPECT_EQ(run.status, 2) << run.output;
+  EXPECT_THAT(run.output, HasSubstr("cube_px.exr: cannot tell the layout of a square 16 x 16 image"));
+  EXPECT_THAT(run.output, HasSubstr("--layout angular"));
+  EXPECT_FALSE(fs::exists(Path("out")) && !fs::is_empty(Path("out")));
+  const CommandResult named = RunIrrmap(QuickRun(Path("cube_px.exr"), Path("out")) + " --layout angular --face-size 4");
+  EXPECT_EQ(named.status, 0) << named.output;
+  EXPECT_THAT(named.output, HasSubstr("layout angular (as given)"));
+}
+
+TEST_F(IrrmapCli, TheReportSaysWhichLayoutWasDetectedAndWhy) {
+  WritePfm(Path("lat.pfm"), Image(16, 8, glm::vec3(1.0f)));
+  const CommandResult run = RunIrrmap(QuickRun(Path("lat.pfm"), Path("out")) + " --face-size 4");
+  EXPECT_EQ(run.status, 0) << run.output;
+  EXPECT_THAT(run.output, HasSubstr("layout latlong (detected from the 2:1 aspect ratio of the 16 x 8 image)"));
+}
+
 }  // namespace
 }  // namespace vs11::irradiance

@@ -343,7 +343,7 @@ INSTANTIATE_TEST_SUITE_P(EnvironmentIoImageLayouts, EnvironmentIoAutoDetect,
                                          EnvironmentLayout::kVerticalCross,
                                          EnvironmentLayout::kHorizontalStrip,
                                          EnvironmentLayout::kVerticalStrip,
-                                         EnvironmentLayout::kLatLong, EnvironmentLayout::kAngular),
+                                         EnvironmentLayout::kLatLong),  // a square image is refused
                          [](const testing::TestParamInfo<EnvironmentLayout>& info) {
                            return std::string(LayoutName(info.param));
                          });
@@ -458,9 +458,34 @@ TEST_F(EnvironmentIoResample, AngularFileIsOrientedAsDocumented) {
   ASSERT_TRUE(WriteFloatImage(Path("probe.exr"), MakeAngular(128, SmoothRadiance)));
   LoadOptions options;
   options.face_size = 16;
+  options.layout = EnvironmentLayout::kAngular;
   const LoadedEnvironment& loaded = Load(Path("probe.exr"), options);
   EXPECT_EQ(loaded.layout, EnvironmentLayout::kAngular);
+  EXPECT_EQ(loaded.layout_reason, "as given");
   ExpectCubesNear(loaded.cube, CubeFromFunction(16, SmoothRadiance), kSmoothResampleError);
+}
+
+TEST_F(EnvironmentIoResample, ASquareImageIsNeverGuessedAndAsksForTheLayout) {
+  // An angular probe and one cube face are both square: reading either as the other gives
+  // plausible wrong numbers, so auto names neither.
+  for (int size : {1, 16, 128}) {
+    ASSERT_TRUE(WriteFloatImage(Path("cube_px.exr"), Image(size, size, glm::vec3(1.0f))));
+    const LoadResult result = LoadEnvironment(Path("cube_px.exr"), LoadOptions{});
+    ASSERT_FALSE(result.ok());
+    EXPECT_TRUE(result.needs_layout);
+    EXPECT_THAT(result.error, HasSubstr(fmt::format("cube_px.exr: cannot tell the layout of a square {} x {} image",
+                                                    size, size)));
+    EXPECT_THAT(result.error, HasSubstr("--layout angular"));
+  }
+}
+
+TEST_F(EnvironmentIoResample, TheLayoutSaysWhyItWasChosen) {
+  ASSERT_TRUE(WriteFloatImage(Path("lat.exr"), Image(64, 32, glm::vec3(1.0f))));
+  LoadOptions options;
+  options.face_size = 8;
+  EXPECT_EQ(Load(Path("lat.exr"), options).layout_reason, "detected from the 2:1 aspect ratio of the 64 x 32 image");
+  ASSERT_TRUE(WriteFloatImage(Path("strip.exr"), Image(48, 8, glm::vec3(1.0f))));
+  EXPECT_EQ(Load(Path("strip.exr"), options).layout_reason, "detected from the 6:1 aspect ratio of the 48 x 8 image");
 }
 
 TEST(EnvironmentIoEnergy, LatLongResamplingKeepsTheIntegralOfASmoothMap) {
@@ -786,6 +811,8 @@ TEST_F(EnvironmentIoWrite, LatLongAndAngularExportsResampleBackToTheCube) {
     ASSERT_EQ(WriteCubeMap(cube, path, layout), std::nullopt);
     LoadOptions options;
     options.face_size = 16;
+    // A square angular map is read only when named (auto refuses a square image).
+    if (layout == EnvironmentLayout::kAngular) options.layout = layout;
     const LoadedEnvironment& loaded = Load(path, options);
     EXPECT_EQ(loaded.layout, layout);
     ExpectCubesNear(loaded.cube, cube, kExportRoundTripError);

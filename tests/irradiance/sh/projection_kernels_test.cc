@@ -3,6 +3,7 @@
 // mip halving against its scalar definition, bit for bit.
 #include <algorithm>
 #include <cmath>
+#include <limits>
 #include <map>
 #include <numbers>
 #include <optional>
@@ -171,6 +172,19 @@ TEST_P(ProjectionKernels, HalvingIsTheScalarBoxMeanBitForBit) {
         ASSERT_EQ(out[3 * x + c], expected) << "width " << width << " texel " << x << " channel " << c;
         ASSERT_EQ(copied_out[3 * x + c], expected) << "width " << width << " texel " << x << " channel " << c;
       }
+    }
+  }
+}
+
+TEST_P(ProjectionKernels, HalvingOfTexelsAtFloatMaxStaysFinite) {
+  // ((a + b) + (c + d)) / 4 overflows above FLT_MAX / 4; the mean of finite texels never does.
+  for (int width : {1, 4, 16, 33}) {
+    std::vector<float> upper(6 * width, std::numeric_limits<float>::max()), lower(6 * width, 3e38f);
+    std::vector<float> out(3 * width, -1.0f);
+    kernels::HalveRowPair(upper.data(), lower.data(), out.data(), width);
+    for (float v : out) {
+      ASSERT_TRUE(std::isfinite(v)) << "width " << width;
+      ASSERT_EQ(v, std::numeric_limits<float>::max() * 0.5f + 1.5e38f) << "width " << width;
     }
   }
 }
