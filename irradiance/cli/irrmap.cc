@@ -259,6 +259,10 @@ int RunJob(const CLI::App& app, JobCommandLine& line) {
                options.engine);
   }
   options.face_size_given = app.count("--face-size") > 0;
+  if (std::optional<std::string> error = vs11::irradiance::CheckOutputsAreNotInputs(options, line.mesh_file)) {
+    fmt::print(stderr, "irrmap: error: {}\n", *error);
+    return vs11::cli::kUsageErrorStatus;
+  }
   if (!line.mesh_file.empty()) {
     std::vector<std::string> mesh_warnings;
     options.mesh.emplace();

@@ -8,7 +8,6 @@
 #include <algorithm>
 #include <cstdint>
 #include <exception>
-#include <fstream>
 #include <iterator>
 #include <limits>
 #include <memory>
@@ -18,6 +17,7 @@
 #include "vm/asm/preprocessor_expression.h"
 #include "vm/asm/preprocessor_lines.h"
 #include "vm/asm/preprocessor_tokens.h"
+#include "vm/core/input_file.h"
 
 namespace vs11 {
 namespace {
@@ -568,13 +568,9 @@ std::vector<Token> Preprocessor::Substitute(const Macro& macro, const Args& args
 }  // namespace
 
 std::optional<std::string> ReadFileFromDisk(const std::filesystem::path& path) {
-  std::error_code error;
-  if (!std::filesystem::is_regular_file(path, error)) return std::nullopt;
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return std::nullopt;
-  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (in.bad()) return std::nullopt;
-  return text;
+  // Only regular files: a FIFO named by an #include would block until someone writes to it.
+  if (InputFileProblem(path, /*pipes_allowed=*/false)) return std::nullopt;
+  return ReadInputFile(path, kMaxProgramFileBytes).bytes;
 }
 
 PreprocessResult Preprocess(std::string_view text, const std::string& file_name, const PreprocessOptions& options,

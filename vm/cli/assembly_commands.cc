@@ -63,6 +63,7 @@ void AddAsmCommand(CLI::App& app) {
   command->add_option("-o,--output", args->output, "Bytecode file to write")->required();
   args->flags.AddTo(*command);
   command->callback([args] {
+    CheckInputsAndOutputs({args->input}, {args->output});
     Program program = LoadProgramOrFail(args->input, args->flags);
     std::vector<std::uint8_t> bytes = BytesFromWords(Encode(program));
     if (std::optional<std::string> error = WriteFileAtomically(args->output, bytes)) Fail(*error);
@@ -80,6 +81,7 @@ void AddDisasmCommand(CLI::App& app) {
   command->add_option("input", args->input, "Bytecode file (.vso)")->required();
   command->add_option("-o,--output", args->output, "Write the text here instead of stdout");
   command->callback([args] {
+    CheckInputsAndOutputs({args->input}, {args->output});
     ProgramFlags flags;
     flags.skip_validation = true;  // disassembly shows what is there, valid or not
     LoadedProgram loaded = LoadProgram(args->input, flags.ToOptions());

@@ -85,6 +85,7 @@ void AddCountCommand(CLI::App& app) {
   command->callback([args] {
     nlohmann::json rows = nlohmann::json::array();
     // A program that does not load is reported and skipped; the others are still counted.
+    CheckInputsAndOutputs(args->programs, {});
     std::vector<std::pair<std::string, Program>> programs;
     bool any_failed = false;
     for (const std::string& path : args->programs) {

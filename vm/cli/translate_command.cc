@@ -54,6 +54,7 @@ void AddTranslateCommand(CLI::App& app) {
       std::fputs("vs11: error: --to spirv writes a binary: name a file with -o\n", stderr);
       throw CommandFailure{kUsageErrorStatus};
     }
+    CheckInputsAndOutputs({args->input}, {args->output});
     Program program = LoadProgramOrFail(args->input, args->flags);
     options.constant_count = args->flags.constant_count;
     if (!args->clip.empty()) options.clip = *translate::ClipSpaceFromName(args->clip);
