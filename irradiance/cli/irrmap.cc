@@ -18,6 +18,7 @@
 #include "irradiance/render/preview.h"
 #include "irradiance/sh/engine_sh.h"
 #include "vm/cli/parse_command_line.h"
+#include "vm/core/atomic_file.h"
 #include "vm/gl/gl_context.h"
 #include "vm/gl/gl_engine.h"
 
@@ -300,6 +301,7 @@ int RunJob(const CLI::App& app, JobCommandLine& line) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  vs11::RemoveTemporariesOnSignals();  // an interrupted run leaves no half-written file
   vs11::gl::RegisterGlEngine();
   CLI::App app{fmt::format(
       "irrmap: irradiance environment map of an environment, with 9 spherical-harmonic coefficients per\n"

@@ -133,4 +133,18 @@ TEST_F(Vs11Streams, RunDoesNotOverwriteAnNpyInputWithItsOutputArray) {
   EXPECT_EQ(Read(dir_ / "arrays" / "oPos.npy"), input);
 }
 
+TEST_F(Vs11Streams, OutputFilesThatDoNotAllFitLeaveNoneOfThem) {
+  std::string rows;
+  for (int i = 0; i < 1000; ++i) rows += "1,2,3,4\n";
+  const std::string many = Write("many.csv", rows);
+  const fs::path folder = dir_ / "out";
+  fs::create_directories(folder);
+  // The files may be at most 20 KiB: each .npy (16 KB) fits, the interleaved buffer (32 KB) does not.
+  const CommandResult r = RunShell("trap \"\" XFSZ; ulimit -f 40; exec " + kVs11 + " run " + program_ + " --consts " +
+                                   constants_ + " --input v0=" + many + " --out-npy " + folder.string() +
+                                   " --out-buffer " + (folder / "all.bin").string());
+  EXPECT_EQ(r.status, 1) << r.output;
+  EXPECT_TRUE(fs::is_empty(folder)) << (fs::is_empty(folder) ? "" : fs::directory_iterator(folder)->path().string());
+}
+
 }  // namespace
