@@ -211,11 +211,11 @@ void AddRunCommand(CLI::App& app) {
   auto args = std::make_shared<RunArgs>();
   CLI::App* command = app.add_subcommand("run", "Run a vs_1_1 program over vertices and print its outputs as CSV");
   command->footer(kRunFooter);
-  command->add_option("program", args->program, "Program (.vsh or .vso)")->required();
+  command->add_option("program", args->program, "Program (.vsh or .vso; - reads standard input, once per command line)")->required();
   command->add_option("--const", args->const_flags, "Constant register value, e.g. c4=1,0,0,1");
-  command->add_option("--consts", args->consts_files, "File of `def c#, x, y, z, w` or `c# = x y z w` lines");
+  command->add_option("--consts", args->consts_files, "File of `def c#, x, y, z, w` or `c# = x y z w` lines (- reads standard input)");
   command->add_option("--input", args->input_flags,
-                      "Input register from a CSV file, e.g. v1=normals.csv or v0=out.csv:oPos (columns by name)");
+                      "Input register from a CSV file, e.g. v1=normals.csv or v0=out.csv:oPos (columns by name); v1=- reads standard input");
   command->add_option("--sphere", args->sphere, "Run over N unit normals spread over the sphere")->check(CLI::Range(1, 100000000));
   command->add_option("--sphere-reg", args->sphere_register, "Input register for --sphere normals (default: dcl_normal)");
   command->add_option("--out", args->out, "Write the CSV here (atomically) instead of stdout");
