@@ -4,10 +4,8 @@
 // after the files an example names are made from the fixture table below. An example that names a
 // file the table cannot make fails, so a new example is tested the day it is written. The few that
 // cannot run in a test are listed in kNotRun with the reason, and printed when skipped.
-#include <sys/wait.h>
 
 #include <algorithm>
-#include <array>
 #include <cctype>
 #include <cstdio>
 #include <filesystem>
@@ -51,14 +49,7 @@ CommandResult RunShell(const fs::path& dir, const std::string& command) {
   // The README's Slurm job script reads the variables Slurm sets for each array task.
   const std::string line = "cd '" + dir.string() + "' && SLURM_ARRAY_TASK_ID=3 SLURM_CPUS_PER_TASK=2 PATH='" + (kBinary / "vm").string() + ":" +
                            (kBinary / "irradiance").string() + "':\"$PATH\" bash .example.sh 2>&1";
-  CommandResult result;
-  FILE* pipe = popen(line.c_str(), "r");
-  if (pipe == nullptr) return result;
-  std::array<char, 4096> buffer;
-  while (std::size_t n = std::fread(buffer.data(), 1, buffer.size(), pipe)) result.output.append(buffer.data(), n);
-  const int status = pclose(pipe);
-  result.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
-  return result;
+  return vs11::testing::RunCommandLine(line);
 }
 
 void WriteEnvironment(const fs::path& path, vs11::irradiance::EnvironmentLayout layout) {

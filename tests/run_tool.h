@@ -18,9 +18,8 @@ struct CommandResult {
   std::string output;  // stdout and stderr together
 };
 
-// `tool` is the executable's path inside the build folder.
-inline CommandResult RunTool(const std::string& tool, const std::string& args) {
-  std::string command = std::string(VS11_BINARY_DIR) + "/" + tool + " " + args + " 2>&1";
+// Runs a shell command line (pipes, redirections), its stdout captured; add 2>&1 for stderr too.
+inline CommandResult RunCommandLine(const std::string& command) {
   CommandResult result;
   FILE* pipe = popen(command.c_str(), "r");
   if (pipe == nullptr) return result;
@@ -29,6 +28,11 @@ inline CommandResult RunTool(const std::string& tool, const std::string& args) {
   int status = pclose(pipe);
   result.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return result;
+}
+
+// `tool` is the executable's path inside the build folder.
+inline CommandResult RunTool(const std::string& tool, const std::string& args) {
+  return RunCommandLine(std::string(VS11_BINARY_DIR) + "/" + tool + " " + args + " 2>&1");
 }
 
 inline CommandResult RunVs11(const std::string& args) { return RunTool("vm/vs11", args); }

@@ -67,6 +67,7 @@ void RunBatchCommand(BatchArguments& arguments) {
   options.shard_count = shard->second;
   if (arguments.level >= 0) options.level = arguments.level;
   if (std::optional<std::string> usage = CheckBatchOptions(options)) throw CLI::ValidationError(*usage);
+  if (std::optional<std::string> error = BatchOutputOverwritesInput(options)) throw CLI::ValidationError("-o", *error);
   BatchSummary summary;
   const bool terminal = isatty(fileno(stderr)) != 0;
   auto report = [terminal](const BatchFailure& failure) {

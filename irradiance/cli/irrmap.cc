@@ -19,6 +19,7 @@
 #include "irradiance/render/preview.h"
 #include "irradiance/sh/engine_sh.h"
 #include "vm/cli/parse_command_line.h"
+#include "vm/core/atomic_file.h"
 #include "vm/gl/gl_context.h"
 #include "vm/gl/gl_engine.h"
 
@@ -271,6 +272,10 @@ int RunJob(const CLI::App& app, JobCommandLine& line) {
                options.engine);
   }
   options.face_size_given = app.count("--face-size") > 0;
+  if (std::optional<std::string> error = vs11::irradiance::CheckOutputsAreNotInputs(options, line.mesh_file)) {
+    fmt::print(stderr, "irrmap: error: {}\n", *error);
+    return vs11::cli::kUsageErrorStatus;
+  }
   if (!line.mesh_file.empty()) {
     std::vector<std::string> mesh_warnings;
     options.mesh.emplace();
@@ -308,6 +313,7 @@ int RunJob(const CLI::App& app, JobCommandLine& line) {
 }  // namespace
 
 int main(int argc, char** argv) {
+  vs11::RemoveTemporariesOnSignals();  // an interrupted run leaves no half-written file
   vs11::gl::RegisterGlEngine();
   CLI::App app{fmt::format(
       "irrmap: irradiance environment map of an environment, with 9 spherical-harmonic coefficients per\n"

@@ -17,6 +17,7 @@
 #include <OpenImageIO/imageio.h>
 
 #include "irradiance/io/dds_reader.h"
+#include "vm/core/input_file.h"
 
 namespace vs11::irradiance {
 namespace {
@@ -151,7 +152,8 @@ std::optional<std::string> CheckIsFile(const fs::path& path, ImageFile& file) {
   std::error_code ec;
   const fs::file_status status = fs::status(path, ec);
   if (ec || !fs::exists(status)) return "file not found";
-  if (!fs::is_regular_file(status)) return "not a regular file";
+  // Images are read by seeking (OpenImageIO, DDS): a pipe is refused too, like a device or a folder.
+  if (std::optional<std::string> problem = InputFileProblem(path, /*pipes_allowed=*/false)) return problem;
   const std::uintmax_t size = fs::file_size(path, ec);
   if (!ec) file.size = size;
   if (size == 0 && !ec) return "file is empty";

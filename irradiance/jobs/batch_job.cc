@@ -28,6 +28,7 @@
 #include "irradiance/sh/sh_projection.h"
 #include "vm/asm/program_file.h"
 #include "vm/core/atomic_file.h"
+#include "vm/core/input_file.h"
 
 namespace vs11::irradiance {
 namespace {
@@ -194,6 +195,13 @@ std::optional<std::pair<int, int>> ParseShard(const std::string& text) {
   return std::pair{index, count};
 }
 
+std::optional<std::string> BatchOutputOverwritesInput(const BatchOptions& options) {
+  std::string ignored;  // a list that cannot be read is reported by RunBatch
+  std::vector<fs::path> inputs(options.list_files.begin(), options.list_files.end());
+  for (const std::string& input : ExpandBatchInputs(options.inputs, options.list_files, ignored)) inputs.push_back(input);
+  return OutputOverwritesInput(options.output, inputs);
+}
+
 std::vector<std::string> ExpandBatchInputs(const std::vector<std::string>& inputs,
                                            const std::vector<fs::path>& list_files, std::string& error) {
   std::vector<std::string> out;
@@ -244,6 +252,7 @@ std::optional<std::string> RunBatch(const BatchOptions& options, BatchSummary& s
   EnvironmentLayout layout = EnvironmentLayout::kAuto;
   ErrorMetric metric = kDefaultErrorMetric;
   if (std::optional<std::string> error = CheckOptions(options, layout, metric)) return error;
+  if (std::optional<std::string> error = BatchOutputOverwritesInput(options)) return error;
   std::string error;
   const std::vector<std::string> all = ExpandBatchInputs(options.inputs, options.list_files, error);
   if (!error.empty()) return error;

@@ -83,6 +83,10 @@ std::optional<std::pair<int, int>> ParseShard(const std::string& text);
 std::vector<std::string> ExpandBatchInputs(const std::vector<std::string>& inputs,
                                            const std::vector<std::filesystem::path>& list_files, std::string& error);
 
+// "OUT is the input IN: refusing to overwrite it" when -o is one of the inputs or list files (the
+// same file, however spelled), checked before anything is read or written; else nullopt.
+std::optional<std::string> BatchOutputOverwritesInput(const BatchOptions& options);
+
 // The inputs with index % count == index_of_shard.
 std::vector<std::string> ShardOf(const std::vector<std::string>& sorted_inputs, int index_of_shard, int count);
 

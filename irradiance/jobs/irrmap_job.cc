@@ -35,6 +35,7 @@
 #include "vm/asm/assembler.h"
 #include "vm/asm/program_file.h"
 #include "vm/core/atomic_file.h"
+#include "vm/core/input_file.h"
 #include "vm/engines/engine_factory.h"
 
 namespace vs11::irradiance {
@@ -158,6 +159,9 @@ std::optional<std::string> CheckOptions(const IrrmapOptions& options, CheckedOpt
   if (std::optional<std::string> error = CheckOptionValues(options, checked)) return error;
   if (options.write_files) {
     if (std::optional<std::string> error = CheckOutputFolder(options.out_dir)) return error;
+  }
+  if (options.write_files) {
+    if (auto error = CheckOutputsAreNotInputs(options, options.mesh ? options.mesh->name : "")) return error;
   }
   std::error_code ec;
   const bool exists = options.cube || fs::exists(options.environment, ec);
@@ -831,6 +835,29 @@ std::optional<std::string> CheckOutputFolder(const fs::path& out_dir) {
   }
   if (::access(existing.c_str(), W_OK | X_OK) != 0) {
     return fmt::format("cannot write into {}: {} is not writable", out_dir.string(), existing.string());
+  }
+  return std::nullopt;
+}
+
+std::optional<std::string> CheckOutputsAreNotInputs(const IrrmapOptions& options, const fs::path& mesh_file) {
+  std::vector<fs::path> inputs = {options.environment, mesh_file};
+  if (const std::size_t token = options.environment.find(kFaceToken); token != std::string::npos) {
+    for (const auto* names : {&kFaceFileNames, &kSignedFaceFileNames}) {
+      for (std::string_view face : *names) {
+        inputs.push_back(std::string(options.environment).replace(token, kFaceToken.size(), face));
+      }
+    }
+  }
+  CheckedExports exports;  // unknown names are CheckOptions' to report; then only the default map
+  CheckExportOptions(options.map_format, options.sh_exports, exports);
+  // The files StagesFor's stages write.
+  std::vector<std::string_view> names = {kCoefficientsFile, kConstantsFile, kProgramFile};
+  if (!mesh_file.empty()) names.insert(names.end(), {kMeshFile, kMeshPictureFile});
+  for (ShExportFormat format : exports.sh_exports) names.push_back(ShExportFileName(format));
+  if (!options.coefficients_only) names.push_back(IrradianceMapFileName(exports.map_format));
+  if (!options.coefficients_only && !options.no_ground_truth) names.push_back(kPreviewFile);
+  for (std::string_view name : names) {
+    if (auto error = OutputOverwritesInput(options.out_dir / name, inputs)) return error;
   }
   return std::nullopt;
 }

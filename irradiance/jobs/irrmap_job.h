@@ -159,6 +159,12 @@ struct MeshReport {
 // at once rather than after the whole job.
 std::optional<std::string> CheckOutputFolder(const std::filesystem::path& out_dir);
 
+// Whether a file this run may write into out_dir is one of its inputs (the environment file, each
+// face file of a "{face}" pattern, `mesh_file`), which it would replace: "OUTPUT is the input INPUT:
+// refusing to overwrite it", or nullopt. Same file means same inode, through links and spellings.
+std::optional<std::string> CheckOutputsAreNotInputs(const IrrmapOptions& options,
+                                                    const std::filesystem::path& mesh_file);
+
 // One row of the level table.
 struct LevelReport {
   int level = 0;

@@ -14,6 +14,7 @@
 
 #include "vm/asm/assembler.h"
 #include "vm/asm/validator.h"
+#include "vm/core/input_file.h"
 #include "vm/engines/engine_factory.h"
 
 namespace vs11::irradiance {
@@ -257,20 +258,21 @@ Diagnostics ValidateFragment(const Program& program, int constant_count, bool dx
 ProgramForVerify LoadProgramForVerify(const std::filesystem::path& path, const LoadProgramOptions& options,
                                       std::optional<bool> fragment) {
   ProgramForVerify result;
-  std::optional<std::string> text = ReadWholeFile(path);
-  if (!text) {
-    result.diagnostics.Error({path.string()}, DiagnosticCode::kCannotReadFile,
-                             "cannot read the file (missing, unreadable or a folder)");
+  // Read once: a pipe (/dev/stdin, "-") cannot be read a second time.
+  const std::string name = InputDisplayName(path);
+  InputBytes text = ReadInputFile(path, kMaxProgramFileBytes);
+  if (!text.bytes) {
+    result.diagnostics.Error({name}, DiagnosticCode::kCannotReadFile, text.error);
     return result;
   }
-  MetadataResult metadata = ParseProgramMetadata(*text, path.string());
+  MetadataResult metadata = ParseProgramMetadata(*text.bytes, name);
   LoadProgramOptions load_options = options;
   if (fragment) {
     load_options.assemble.require_position = !*fragment;
   } else if (metadata.metadata.fragment) {
     load_options.assemble.require_position = false;
   }
-  LoadedProgram loaded = LoadProgram(path, load_options);
+  LoadedProgram loaded = LoadProgramBytes(*text.bytes, name, load_options);
   if (!loaded.from_bytecode) {
     result.diagnostics.Append(metadata.diagnostics);
     result.metadata = std::move(metadata.metadata);

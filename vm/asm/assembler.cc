@@ -15,6 +15,7 @@
 
 #include "vm/asm/lexer.h"
 #include "vm/asm/validator.h"
+#include "vm/core/input_file.h"
 
 namespace vs11 {
 namespace {
@@ -601,13 +602,13 @@ AssembleResult AssembleSource(std::string_view text, const std::string& file_nam
 }
 
 AssembleResult AssembleFile(const std::filesystem::path& path, const AssembleOptions& options) {
-  std::optional<std::string> text = ReadFileFromDisk(path);
-  if (!text) {
+  InputBytes text = ReadInputFile(path, kMaxProgramFileBytes);
+  if (!text.bytes) {
     AssembleResult result;
-    result.diagnostics.Error(SourceLoc{path.string(), 0, 0}, DiagnosticCode::kCannotReadFile, "cannot read the file");
+    result.diagnostics.Error(SourceLoc{InputDisplayName(path), 0, 0}, DiagnosticCode::kCannotReadFile, text.error);
     return result;
   }
-  return AssembleSource(*text, path.string(), options, ReadFileFromDisk);
+  return AssembleSource(*text.bytes, InputDisplayName(path), options, ReadFileFromDisk);
 }
 
 }  // namespace vs11

@@ -8,7 +8,6 @@
 #include <algorithm>
 #include <cstdint>
 #include <exception>
-#include <fstream>
 #include <iterator>
 #include <limits>
 #include <memory>
@@ -18,6 +17,7 @@
 #include "vm/asm/preprocessor_expression.h"
 #include "vm/asm/preprocessor_lines.h"
 #include "vm/asm/preprocessor_tokens.h"
+#include "vm/core/input_file.h"
 
 namespace vs11 {
 namespace {
@@ -307,6 +307,12 @@ void Preprocessor::HandleDefine(const std::vector<Token>& rest, int column) {
     Error(name->column, DiagnosticCode::kMacroDefinition, "'defined' cannot be used as a macro name");
     return;
   }
+  if (macro_ids_.size() >= options_.max_macros && macro_ids_.count(name->text) == 0) {
+    Error(name->column, DiagnosticCode::kTooManyMacros,
+          fmt::format("more than {} macros defined; a vs_1_1 program needs a few tens", options_.max_macros));
+    stopped_ = true;
+    return;
+  }
   Macro macro;
   macro.id = macro_ids_.emplace(name->text, static_cast<int>(macro_ids_.size())).first->second;
   macro.self = std::make_shared<const std::vector<int>>(1, macro.id);
@@ -462,8 +468,11 @@ std::vector<Token> Preprocessor::Expand(std::vector<Token> input, int depth) {
       output.push_back(std::move(token));
       continue;
     }
+    // Each piece's hide set was built in time proportional to its size, so that is work too.
     std::size_t units = kTokenWork;
-    for (const Token& piece : replacement) units += piece.text.size() + kTokenWork;
+    for (const Token& piece : replacement) {
+      units += piece.text.size() + kTokenWork + (piece.hide_set ? piece.hide_set->size() : 0);
+    }
     if (!ChargeWork(units, token.column)) break;
     pending.insert(pending.end(), std::make_move_iterator(replacement.rbegin()),
                    std::make_move_iterator(replacement.rend()));
@@ -484,6 +493,14 @@ bool Preprocessor::ReplaceMacro(const Macro& macro, const Token& name, std::vect
     pending->resize(rparen);
   }
   hide_set = HideSetUnion(hide_set, macro.self);
+  if (hide_set->size() > kMaxMacroNesting) {
+    Error(name.column, DiagnosticCode::kExpansionLimit,
+          fmt::format("macros nested more than {} deep: each expands into the next (at '{}'; a chain of "
+                      "#defines each naming the next?)",
+                      kMaxMacroNesting, name.text));
+    stopped_ = true;
+    return false;
+  }
   *out = Substitute(macro, args, depth);
   for (Token& token : *out) {
     token.hide_set = HideSetUnion(token.hide_set, hide_set);
@@ -568,13 +585,9 @@ std::vector<Token> Preprocessor::Substitute(const Macro& macro, const Args& args
 }  // namespace
 
 std::optional<std::string> ReadFileFromDisk(const std::filesystem::path& path) {
-  std::error_code error;
-  if (!std::filesystem::is_regular_file(path, error)) return std::nullopt;
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return std::nullopt;
-  std::string text((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
-  if (in.bad()) return std::nullopt;
-  return text;
+  // Only regular files: a FIFO named by an #include would block until someone writes to it.
+  if (InputFileProblem(path, /*pipes_allowed=*/false)) return std::nullopt;
+  return ReadInputFile(path, kMaxProgramFileBytes).bytes;
 }
 
 PreprocessResult Preprocess(std::string_view text, const std::string& file_name, const PreprocessOptions& options,

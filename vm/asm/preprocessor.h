@@ -20,7 +20,16 @@ struct PreprocessOptions {
   std::vector<std::pair<std::string, std::string>> defines;   // -D NAME[=VALUE]; VALUE defaults to "1"
   int max_include_depth = 64;                                  // deeper nesting (or a cycle) is an error
   std::size_t max_output_bytes = std::size_t{64} << 20;        // bounds runaway macro growth
+  // Distinct macro names a program may #define (-D included). Real programs define tens; the bound
+  // keeps the macro table, and a hostile file's time, small.
+  std::size_t max_macros = 65536;
 };
+
+// How many macros may expand into one another to produce one token (a chain of #defines each
+// naming the next, or macros nested in macro arguments). Each expansion step carries the set of
+// macros that produced it, so the cost of a chain grows with the square of its length; the bound
+// keeps it linear in the input. D3DX's own headers nest a few levels.
+inline constexpr std::size_t kMaxMacroNesting = 256;
 
 // One line of preprocessed text and where each of its characters came from.
 struct PreprocessedLine {

@@ -1,14 +1,12 @@
 #include "vm/asm/program_file.h"
 
 #include <cstdio>
-#include <fstream>
-#include <sstream>
-#include <system_error>
 
 #include <fmt/format.h>
 
 #include "vm/asm/bytecode.h"
 #include "vm/asm/validator.h"
+#include "vm/core/input_file.h"
 
 namespace vs11 {
 namespace {
@@ -57,30 +55,26 @@ LoadedProgram LoadBytecode(const std::filesystem::path& path, std::string_view b
 }  // namespace
 
 std::optional<std::string> ReadWholeFile(const std::filesystem::path& path) {
-  std::error_code error;
-  if (std::filesystem::is_directory(path, error)) return std::nullopt;
-  std::ifstream in(path, std::ios::binary);
-  if (!in) return std::nullopt;
-  std::ostringstream content;
-  content << in.rdbuf();
-  if (in.bad()) return std::nullopt;
-  return std::move(content).str();
+  return ReadInputFile(path, kMaxInputFileBytes).bytes;
 }
 
-LoadedProgram LoadProgram(const std::filesystem::path& path, const LoadProgramOptions& options) {
-  std::optional<std::string> bytes = ReadWholeFile(path);
-  if (!bytes) {
-    LoadedProgram loaded;
-    loaded.diagnostics.Error({path.string()}, DiagnosticCode::kCannotReadFile,
-                             "cannot read the file (missing, unreadable or a folder)");
-    return loaded;
-  }
-  if (LooksLikeBytecode(path, *bytes)) return LoadBytecode(path, *bytes, options);
-  AssembleResult assembled = AssembleSource(*bytes, path.string(), options.assemble);
+LoadedProgram LoadProgramBytes(std::string_view bytes, const std::string& name, const LoadProgramOptions& options) {
+  if (LooksLikeBytecode(name, bytes)) return LoadBytecode(name, bytes, options);
+  AssembleResult assembled = AssembleSource(bytes, name, options.assemble);
   LoadedProgram loaded;
   loaded.diagnostics = std::move(assembled.diagnostics);
   if (!loaded.diagnostics.HasErrors()) loaded.program = std::move(assembled.program);
   return loaded;
+}
+
+LoadedProgram LoadProgram(const std::filesystem::path& path, const LoadProgramOptions& options) {
+  InputBytes bytes = ReadInputFile(path, kMaxProgramFileBytes);
+  if (!bytes.bytes) {
+    LoadedProgram loaded;
+    loaded.diagnostics.Error({InputDisplayName(path)}, DiagnosticCode::kCannotReadFile, bytes.error);
+    return loaded;
+  }
+  return LoadProgramBytes(*bytes.bytes, InputDisplayName(path), options);
 }
 
 }  // namespace vs11

@@ -26,10 +26,14 @@ struct LoadedProgram {
 };
 
 // Bytecode when the file starts with a vertex-shader version token in little-endian order or has the
-// extension .vso/.cso/.bin; source otherwise.
+// extension .vso/.cso/.bin; source otherwise. The file is read once (a pipe or "-" for standard
+// input work too), up to kMaxProgramFileBytes (vm/core/input_file.h).
 LoadedProgram LoadProgram(const std::filesystem::path& path, const LoadProgramOptions& options = {});
+// The same for a file already read; `name` is its name in messages (and its extension counts).
+LoadedProgram LoadProgramBytes(std::string_view bytes, const std::string& name, const LoadProgramOptions& options = {});
 
-// Reads a whole file as bytes; nullopt when it cannot be opened.
+// Reads a whole file as bytes (ReadInputFile, up to kMaxInputFileBytes); nullopt when it cannot be
+// read.
 std::optional<std::string> ReadWholeFile(const std::filesystem::path& path);
 
 }  // namespace vs11

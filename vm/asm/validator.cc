@@ -703,7 +703,32 @@ class Validator {
             fmt::format("defines {}; def can only set an absolute constant register c#", RegisterName(reg)));
       return;
     }
-    if (CheckRange(index, reg, "the definition")) CheckMask(index);
+    if (!CheckRange(index, reg, "the definition")) return;
+    CheckMask(index);
+    // The spec lets a later def of a register win (§3.3); more defs than registers can only be
+    // redefinitions, so that is where a program stops: a hostile one cannot hold 100k of them.
+    if (++definitions_ > options_.constant_count) {
+      if (definitions_ == options_.constant_count + 1) {
+        Error(index, DiagnosticCode::kTooManyDefinitions,
+              fmt::format("more def instructions than the {} constant registers (--max-constants): every one "
+                          "past that count redefines a register",
+                          options_.constant_count));
+      }
+      return;
+    }
+    auto [earlier, first] = defined_at_.emplace(reg.index, index);
+    if (!first) {
+      Warning(index, DiagnosticCode::kDuplicateDefinition,
+              fmt::format("c{} is defined again; this later value wins and the earlier def{} does nothing",
+                          reg.index, LineOf(earlier->second)));
+      earlier->second = index;
+    }
+  }
+
+  // " (line N)" for an instruction with a source line, else "".
+  std::string LineOf(int index) const {
+    const SourceLoc loc = program_.LocOf(index);
+    return loc.line > 0 ? fmt::format(" (line {})", loc.line) : "";
   }
 
   const Program& program_;
@@ -719,6 +744,8 @@ class Validator {
   int last_position_write_ = -1;
   std::array<int, kInputRegisterCount> declared_at_{};  // first dcl of each v#, or -1
   std::map<std::pair<int, int>, int> usage_declared_at_;
+  int definitions_ = 0;
+  std::map<int, int> defined_at_;  // the last def of each c#
 };
 
 }  // namespace

@@ -59,10 +59,11 @@ void AddAsmCommand(CLI::App& app) {
       "A DX8 program that reads temporary lanes nothing wrote is assembled with a warning (the lanes read 0);\n"
       "--strict refuses it, as DX9 vs_1_1 always does.\n\n"
       "Examples:\n  vs11 asm programs/sh9_irradiance.vsh -o sh9.vso -D CV_BASE=4");
-  command->add_option("input", args->input, "Source file (.vsh)")->required();
+  command->add_option("input", args->input, "Source file (.vsh; - reads standard input)")->required();
   command->add_option("-o,--output", args->output, "Bytecode file to write")->required();
   args->flags.AddTo(*command);
   command->callback([args] {
+    CheckInputsAndOutputs({args->input}, {args->output});
     Program program = LoadProgramOrFail(args->input, args->flags);
     std::vector<std::uint8_t> bytes = BytesFromWords(Encode(program));
     if (std::optional<std::string> error = WriteFileAtomically(args->output, bytes)) Fail(*error);
@@ -77,9 +78,10 @@ void AddDisasmCommand(CLI::App& app) {
   CLI::App* command = app.add_subcommand("disasm", "Print vs_1_1 bytecode as DX9 assembly that re-assembles identically");
   command->footer("Malformed streams are rejected with the word offset of the bad token.\n\n"
                   "Examples:\n  vs11 disasm sh9.vso");
-  command->add_option("input", args->input, "Bytecode file (.vso)")->required();
+  command->add_option("input", args->input, "Bytecode file (.vso; - reads standard input)")->required();
   command->add_option("-o,--output", args->output, "Write the text here instead of stdout");
   command->callback([args] {
+    CheckInputsAndOutputs({args->input}, {args->output});
     ProgramFlags flags;
     flags.skip_validation = true;  // disassembly shows what is there, valid or not
     LoadedProgram loaded = LoadProgram(args->input, flags.ToOptions());
@@ -111,7 +113,7 @@ void AddValidateCommand(CLI::App& app) {
                   "Examples:\n  vs11 validate programs/sh9_irradiance.vsh\n"
                   "  vs11 validate --strict programs/sh9_irradiance.vsh\n"
                   "  vs11 validate --json programs/sh9_irradiance.vsh");
-  command->add_option("input", args->input, "Program (.vsh source or .vso bytecode)")->required();
+  command->add_option("input", args->input, "Program (.vsh source or .vso bytecode; - reads standard input)")->required();
   command->add_flag("--json", args->json,
                     "Print {file, valid, diagnostics: [{severity, code, message, file, line, column, word}], "
                     "instructions, slots} on stdout instead of text");

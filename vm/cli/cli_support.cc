@@ -1,11 +1,15 @@
 #include "vm/cli/cli_support.h"
 
+#include <algorithm>
 #include <cstdio>
+#include <filesystem>
 
 #include <fmt/format.h>
 
 #include "irradiance/report/verify.h"
 #include "vm/cli/commands.h"
+#include "vm/cli/parse_command_line.h"
+#include "vm/core/input_file.h"
 #include "vm/engines/engine_factory.h"
 #include "vm/gl/gl_context.h"
 
@@ -127,6 +131,26 @@ FloatRules FloatRulesFlag::Rules() const { return FloatRulesFromName(name).value
 void Fail(const std::string& message) {
   std::fprintf(stderr, "error: %s\n", message.c_str());
   throw CommandFailure{1};
+}
+
+std::string ReadInputOrFail(const std::string& path, std::size_t max_bytes) {
+  InputBytes input = ReadInputFile(path, max_bytes);
+  if (!input.bytes) Fail(fmt::format("{}: {}", InputDisplayName(path), input.error));
+  return std::move(*input.bytes);
+}
+
+void CheckInputsAndOutputs(const std::vector<std::string>& inputs, const std::vector<std::string>& outputs) {
+  auto usage_error = [](const std::string& message) {
+    std::fprintf(stderr, "error: %s\n", message.c_str());
+    throw CommandFailure{kUsageErrorStatus};
+  };
+  if (std::count(inputs.begin(), inputs.end(), kStandardInputName) > 1) {
+    usage_error("standard input ('-') can be read only once; name the other inputs as files");
+  }
+  const std::vector<std::filesystem::path> input_paths(inputs.begin(), inputs.end());
+  for (const std::string& output : outputs) {
+    if (std::optional<std::string> error = OutputOverwritesInput(output, input_paths)) usage_error(*error);
+  }
 }
 
 }  // namespace vs11::cli

@@ -70,4 +70,12 @@ void RunOrFail(Engine& engine, const VertexArrays& inputs, VertexArrays& outputs
 // Prints "error: MESSAGE" to stderr and throws CommandFailure{1}.
 [[noreturn]] void Fail(const std::string& message);
 
+// The whole of an input file named on the command line ("-": standard input), read once and at most
+// `max_bytes` (vm/core/input_file.h); or Fail with "NAME: why".
+std::string ReadInputOrFail(const std::string& path, std::size_t max_bytes);
+
+// Before any work: a usage error (exit 2) when two inputs are "-" (standard input can be read only
+// once) or when one of `outputs` is the same file as one of `inputs`, which it would overwrite.
+void CheckInputsAndOutputs(const std::vector<std::string>& inputs, const std::vector<std::string>& outputs);
+
 }  // namespace vs11::cli

@@ -77,7 +77,7 @@ void AddCountCommand(CLI::App& app) {
       "runs over 65536 normals on each engine (ref, batch, jit).\n"
       "A program that does not load is reported on stderr and left out; the status is then 1.\n\n"
       "Examples:\n  vs11 count programs/*.vsh\n  vs11 count programs/sh9_irradiance.vsh --json");
-  command->add_option("programs", args->programs, "Programs (.vsh or .vso)")->required();
+  command->add_option("programs", args->programs, "Programs (.vsh or .vso; - reads standard input)")->required();
   command->add_flag("--json", args->json, "Print a JSON array of objects instead of a table");
   command->add_flag("--no-timing", args->no_timing, "Skip the timed runs");
   command->add_option("--threads", args->threads, "Threads for the batch and jit engines")->check(CLI::Range(1, 256));
@@ -85,6 +85,7 @@ void AddCountCommand(CLI::App& app) {
   command->callback([args] {
     nlohmann::json rows = nlohmann::json::array();
     // A program that does not load is reported and skipped; the others are still counted.
+    CheckInputsAndOutputs(args->programs, {});
     std::vector<std::pair<std::string, Program>> programs;
     bool any_failed = false;
     for (const std::string& path : args->programs) {

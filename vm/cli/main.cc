@@ -7,6 +7,7 @@
 
 #include "vm/cli/commands.h"
 #include "vm/cli/parse_command_line.h"
+#include "vm/core/atomic_file.h"
 #include "vm/gl/gl_engine.h"
 
 namespace {
@@ -24,6 +25,7 @@ std::string UsageMessage(const CLI::App& app, const CLI::ParseError& error, int 
 }  // namespace
 
 int main(int argc, char** argv) {
+  vs11::RemoveTemporariesOnSignals();  // an interrupted run leaves no half-written file
   vs11::gl::RegisterGlEngine();
   CLI::App app{"vs11: assemble, validate, run, verify, count and translate Direct3D vs_1_1 vertex shader programs"};
   app.require_subcommand(1);

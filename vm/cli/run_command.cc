@@ -1,6 +1,7 @@
 // vs11 run: the program over vertices from CSV files or over a sphere of normals.
 #include <charconv>
 #include <cstdio>
+#include <filesystem>
 #include <memory>
 
 #include <fmt/format.h>
@@ -11,6 +12,7 @@
 #include "vm/cli/trace_output.h"
 #include "vm/cli/vertex_sources.h"
 #include "vm/core/atomic_file.h"
+#include "vm/core/input_file.h"
 #include "vm/engines/engine_factory.h"
 #include "vm/io/vertex_io.h"
 
@@ -36,10 +38,9 @@ ConstantBank LoadConstants(const std::vector<std::string>& files, const std::vec
                            int count, std::vector<int>& assigned) {
   ConstantBank bank(count);
   for (const std::string& file : files) {
-    std::optional<std::string> text = ReadWholeFile(file);
-    if (!text) Fail(fmt::format("{}: cannot read the constants file", file));
+    const std::string text = ReadInputOrFail(file, kMaxConstantsFileBytes);
     Diagnostics diagnostics;
-    ParseConstantsText(*text, file, bank, diagnostics, &assigned);
+    ParseConstantsText(text, InputDisplayName(file), bank, diagnostics, &assigned);
     std::fputs(diagnostics.ToString().c_str(), stderr);
     if (diagnostics.HasErrors()) throw CommandFailure{1};
   }
@@ -68,10 +69,9 @@ SuppliedInputs ReadCsvInputs(const std::vector<std::string>& input_flags) {
     std::string error;
     std::optional<InputSpec> spec = ParseInputSpec(flag, error);
     if (!spec) Fail("--input " + error);
-    std::optional<std::string> text = ReadWholeFile(spec->file);
-    if (!text) Fail(fmt::format("{}: cannot read the input file", spec->file));
+    const std::string text = ReadInputOrFail(spec->file, kMaxVertexCsvBytes);
     Diagnostics diagnostics;
-    std::vector<Vec4f> rows = ParseVertexCsv(*text, spec->file, diagnostics, spec->columns);
+    std::vector<Vec4f> rows = ParseVertexCsv(text, InputDisplayName(spec->file), diagnostics, spec->columns);
     std::fputs(diagnostics.ToString().c_str(), stderr);
     if (diagnostics.HasErrors()) throw CommandFailure{1};
     supplied.emplace_back(spec->reg, std::move(rows));
@@ -117,8 +117,32 @@ VertexArrays FillInputArrays(const SuppliedInputs& supplied, std::size_t count, 
   return inputs;
 }
 
+// The files `vs11 run` reads and writes, for CheckInputsAndOutputs.
+std::vector<std::string> RunInputFiles(const RunArgs& args) {
+  std::vector<std::string> files = {args.program, args.sources.mesh, args.sources.buffer};
+  files.insert(files.end(), args.consts_files.begin(), args.consts_files.end());
+  for (const std::string& flag : args.input_flags) {
+    std::string error;
+    if (std::optional<InputSpec> spec = ParseInputSpec(flag, error)) files.push_back(spec->file);
+  }
+  for (const std::string& flag : args.sources.npy_inputs) files.push_back(flag.substr(flag.find('=') + 1));
+  std::erase(files, std::string());
+  return files;
+}
+
+std::vector<std::string> RunOutputFiles(const RunArgs& args) {
+  std::vector<std::string> files = {args.out, args.sources.out_buffer, args.sources.out_mesh, args.trace.json_file};
+  if (!args.sources.out_npy_dir.empty()) {  // every name --out-npy may write, before the program says which
+    for (int slot = 0; slot < kOutputSlotCount; ++slot) {
+      files.push_back((std::filesystem::path(args.sources.out_npy_dir) / (OutputSlotName(slot) + ".npy")).string());
+    }
+  }
+  return files;
+}
+
 void RunProgram(const RunArgs& args) {
   if (args.engine.ListGlDevicesIfAsked("")) return;
+  CheckInputsAndOutputs(RunInputFiles(args), RunOutputFiles(args));
   Program program = LoadProgramOrFail(args.program, args.flags);
   std::vector<int> constants_given;
   ConstantBank constants =
@@ -187,11 +211,11 @@ void AddRunCommand(CLI::App& app) {
   auto args = std::make_shared<RunArgs>();
   CLI::App* command = app.add_subcommand("run", "Run a vs_1_1 program over vertices and print its outputs as CSV");
   command->footer(kRunFooter);
-  command->add_option("program", args->program, "Program (.vsh or .vso)")->required();
+  command->add_option("program", args->program, "Program (.vsh or .vso; - reads standard input, once per command line)")->required();
   command->add_option("--const", args->const_flags, "Constant register value, e.g. c4=1,0,0,1");
-  command->add_option("--consts", args->consts_files, "File of `def c#, x, y, z, w` or `c# = x y z w` lines");
+  command->add_option("--consts", args->consts_files, "File of `def c#, x, y, z, w` or `c# = x y z w` lines (- reads standard input)");
   command->add_option("--input", args->input_flags,
-                      "Input register from a CSV file, e.g. v1=normals.csv or v0=out.csv:oPos (columns by name)");
+                      "Input register from a CSV file, e.g. v1=normals.csv or v0=out.csv:oPos (columns by name); v1=- reads standard input");
   command->add_option("--sphere", args->sphere, "Run over N unit normals spread over the sphere")->check(CLI::Range(1, 100000000));
   command->add_option("--sphere-reg", args->sphere_register, "Input register for --sphere normals (default: dcl_normal)");
   command->add_option("--out", args->out, "Write the CSV here (atomically) instead of stdout");

@@ -35,7 +35,7 @@ void AddTranslateCommand(CLI::App& app) {
       "  vs11 translate programs/sh9_irradiance.vsh --to glsles320 -o sh9.vert\n"
       "  vs11 translate programs/point_light.vsh --to spirv -o point_light.spv\n"
       "  vs11 translate programs/skinning.vsh --to spirv --float-rules legacy -o skinning_legacy.spv");
-  command->add_option("input", args->input, "Program (.vsh source or .vso bytecode)")->required();
+  command->add_option("input", args->input, "Program (.vsh source or .vso bytecode; - reads standard input)")->required();
   command->add_option("--to", args->target,
                       "Target: glsl330, glsles300, glsles320 (every output precise: no fused multiply-adds) or spirv")
       ->required()
@@ -54,6 +54,7 @@ void AddTranslateCommand(CLI::App& app) {
       std::fputs("vs11: error: --to spirv writes a binary: name a file with -o\n", stderr);
       throw CommandFailure{kUsageErrorStatus};
     }
+    CheckInputsAndOutputs({args->input}, {args->output});
     Program program = LoadProgramOrFail(args->input, args->flags);
     options.constant_count = args->flags.constant_count;
     if (!args->clip.empty()) options.clip = *translate::ClipSpaceFromName(args->clip);

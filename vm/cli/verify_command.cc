@@ -41,6 +41,7 @@ std::string ReferenceHelp() {
 
 void RunVerify(const VerifyFlags& flags) {
   if (flags.engine_flags.ListGlDevicesIfAsked(flags.against_engine)) return;
+  CheckInputsAndOutputs({flags.program, flags.coeffs}, {});
   irr::ProgramForVerify loaded = irr::LoadProgramForVerify(flags.program, flags.program_flags.ToOptions(),
                                                                 flags.program_flags.FragmentFlag());
   std::fputs(loaded.diagnostics.ToString().c_str(), stderr);

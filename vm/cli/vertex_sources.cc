@@ -151,7 +151,13 @@ std::vector<OutputColumn> OutputColumns(const Program& program, const VertexArra
   return columns;
 }
 
-void WriteNpyOutputs(const std::string& dir, const std::vector<OutputColumn>& columns) {
+// A file of --out-npy or --out-buffer, made in memory so that all of them are written at once.
+struct OutputFile {
+  std::filesystem::path path;
+  std::vector<std::uint8_t> bytes;
+};
+
+void AddNpyOutputs(const std::string& dir, const std::vector<OutputColumn>& columns, std::vector<OutputFile>& files) {
   std::error_code error;
   std::filesystem::create_directories(dir, error);
   if (error) Fail(fmt::format("{}: cannot create the folder ({})", dir, error.message()));
@@ -161,12 +167,13 @@ void WriteNpyOutputs(const std::string& dir, const std::vector<OutputColumn>& co
     array.columns = column.components;
     array.values.reserve(array.rows * array.columns);
     for (const Vec4f& row : column.rows) array.values.insert(array.values.end(), row.begin(), row.begin() + column.components);
-    const std::filesystem::path path = std::filesystem::path(dir) / (column.name + ".npy");
-    if (std::optional<std::string> message = WriteFileAtomically(path, mesh::FormatNpy(array))) Fail(*message);
+    files.push_back({std::filesystem::path(dir) / (column.name + ".npy"), mesh::FormatNpy(array)});
   }
 }
 
-void WriteBufferOutput(const std::string& file, const std::vector<OutputColumn>& columns, std::size_t count) {
+// Returns the line that describes the buffer's layout, printed once it is written.
+std::string AddBufferOutput(const std::string& file, const std::vector<OutputColumn>& columns, std::size_t count,
+                            std::vector<OutputFile>& files) {
   std::vector<mesh::InterleavedColumn> interleaved;
   std::string layout;
   std::size_t offset = 0;
@@ -175,10 +182,8 @@ void WriteBufferOutput(const std::string& file, const std::vector<OutputColumn>&
     layout += fmt::format(" {}={}:{}", column.name, offset, column.components);
     offset += 4 * static_cast<std::size_t>(column.components);
   }
-  if (std::optional<std::string> message = WriteFileAtomically(file, mesh::FormatInterleaved(interleaved, count))) {
-    Fail(*message);
-  }
-  std::fprintf(stderr, "%s: %zu vertices, stride %zu:%s\n", file.c_str(), count, offset, layout.c_str());
+  files.push_back({file, mesh::FormatInterleaved(interleaved, count)});
+  return fmt::format("{}: {} vertices, stride {}:{}\n", file, count, offset, layout);
 }
 
 void WriteMeshOutput(const std::string& file, const mesh::Mesh& mesh, const std::vector<OutputColumn>& columns) {
@@ -260,8 +265,16 @@ void WriteVertexOutputs(const VertexSourceFlags& flags, const VertexSources& sou
                         const VertexArrays& outputs) {
   if (!flags.WritesOutputFiles()) return;
   const std::vector<OutputColumn> columns = OutputColumns(program, outputs);
-  if (!flags.out_npy_dir.empty()) WriteNpyOutputs(flags.out_npy_dir, columns);
-  if (!flags.out_buffer.empty()) WriteBufferOutput(flags.out_buffer, columns, outputs.count());
+  std::vector<OutputFile> contents;
+  if (!flags.out_npy_dir.empty()) AddNpyOutputs(flags.out_npy_dir, columns, contents);
+  const std::string layout =
+      flags.out_buffer.empty() ? "" : AddBufferOutput(flags.out_buffer, columns, outputs.count(), contents);
+  std::vector<FileToWrite> files;  // all or none: a full disk leaves no subset of them
+  for (const OutputFile& file : contents) {
+    files.push_back({file.path, {reinterpret_cast<const char*>(file.bytes.data()), file.bytes.size()}});
+  }
+  if (std::optional<std::string> message = WriteFilesAtomically(files)) Fail(*message);
+  std::fputs(layout.c_str(), stderr);
   if (!flags.out_mesh.empty()) WriteMeshOutput(flags.out_mesh, *sources.mesh, columns);
 }
 

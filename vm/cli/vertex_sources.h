@@ -44,7 +44,7 @@ struct VertexSources {
 VertexSources CollectVertexSources(const VertexSourceFlags& flags, const Program& program, ConstantBank& constants,
                                    mesh::RegisterData& supplied);
 
-// --out-npy, --out-buffer and --out-mesh, each file written atomically.
+// --out-npy and --out-buffer, written all or none (a failure leaves none of them), then --out-mesh.
 void WriteVertexOutputs(const VertexSourceFlags& flags, const VertexSources& sources, const Program& program,
                         const VertexArrays& outputs);
 

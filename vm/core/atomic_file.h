@@ -3,6 +3,7 @@
 // one folder is atomic on POSIX file systems, and a temporary beside the target is in its folder).
 #pragma once
 
+#include <chrono>
 #include <cstdint>
 #include <filesystem>
 #include <optional>
@@ -21,6 +22,23 @@ std::filesystem::path TemporaryPathBeside(const std::filesystem::path& target);
 // Removes `path` if it exists. Errors are ignored: this is clean-up after a failure already reported.
 void RemoveQuietly(const std::filesystem::path& path);
 
+// Every path TemporaryPathBeside gives is registered until CommitRenames renames it or RemoveQuietly
+// removes it. After this call (once, at the start of a tool's main), SIGINT, SIGTERM and SIGHUP
+// first remove every registered temporary and then end the process as the signal would have; a
+// signal the caller ignores stays ignored. Libraries leave the signals to their host (Python's
+// KeyboardInterrupt), so nothing installs this implicitly.
+void RemoveTemporariesOnSignals();
+
+// Temporaries that only a process killed outright (SIGKILL, a crash, a power cut) leaves behind:
+// one whose PID is no live process here and that nobody has written for this long. The age keeps
+// a run on another machine that shares the folder (its PID means nothing here) safe: a temporary
+// being written is written to continually.
+inline constexpr std::chrono::minutes kStaleTemporaryAge{10};
+
+// Removes the stale temporaries (kStaleTemporaryAge) of TemporaryPathBeside's form in `folder`.
+// TemporaryPathBeside calls it once per folder and process. Errors are ignored.
+void RemoveStaleTemporaries(const std::filesystem::path& folder);
+
 struct PendingRename {
   std::filesystem::path temporary;  // written and closed
   std::filesystem::path target;
@@ -31,6 +49,15 @@ struct PendingRename {
 // renamed before it stay. `renamed`, when given, receives each target renamed.
 std::optional<std::string> CommitRenames(std::span<const PendingRename> renames,
                                          std::vector<std::filesystem::path>* renamed = nullptr);
+
+// Writes several files, all or none: every one is written to its temporary first, and only when all
+// are written are they renamed into place (CommitRenames). On a failure to write (a full disk, a
+// read-only folder) no target is touched and no temporary is left.
+struct FileToWrite {
+  std::filesystem::path path;
+  std::string_view bytes;
+};
+std::optional<std::string> WriteFilesAtomically(std::span<const FileToWrite> files);
 
 // Writes `bytes` to `path` through a temporary: on failure `path` is untouched and no temporary is
 // left. Returns nullopt on success, else a message that names `path` and what failed.

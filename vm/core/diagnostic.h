@@ -39,6 +39,7 @@ enum class Severity { kError, kWarning, kNote };
   X(kIncludeNotFound, "include-not-found")                                                               \
   X(kIncludeTooDeep, "include-too-deep")                                                                 \
   X(kExpansionLimit, "expansion-limit")                                                                  \
+  X(kTooManyMacros, "too-many-macros")                                                                   \
   X(kErrorDirective, "error-directive")                                                                  \
   X(kWarningDirective, "warning-directive")                                                              \
   X(kPreprocessorFailure, "preprocessor-failure")                                                        \
@@ -83,6 +84,8 @@ enum class Severity { kError, kWarning, kNote };
   X(kBadDeclaration, "bad-declaration")                                                                  \
   X(kDuplicateDeclaration, "duplicate-declaration")                                                      \
   X(kBadDefinition, "bad-definition")                                                                    \
+  X(kDuplicateDefinition, "duplicate-definition")                                                        \
+  X(kTooManyDefinitions, "too-many-definitions")                                                          \
   /* Bytecode decoder (vm/asm/bytecode.h, spec §4). */                                                   \
   X(kBytecodeTruncated, "bytecode-truncated")                                                            \
   X(kBytecodeTrailingWords, "bytecode-trailing-words")                                                   \

@@ -11,6 +11,7 @@
 #include "vm/asm/disassembler.h"
 #include "vm/asm/lexer.h"
 #include "vm/asm/program_file.h"
+#include "vm/core/input_file.h"
 #include "vm/io/vertex_io.h"
 
 namespace vs11 {
@@ -139,7 +140,10 @@ std::optional<std::string> SourceLines::Line(const SourceLoc& loc) {
   if (loc.file.empty() || loc.line <= 0) return std::nullopt;
   auto [it, inserted] = files_.try_emplace(loc.file);
   if (inserted) {
-    if (std::optional<std::string> text = ReadWholeFile(loc.file)) {
+    // Only a regular file can be read again: a pipe's program (/dev/stdin) is gone once assembled.
+    std::optional<std::string> text;
+    if (!InputFileProblem(loc.file, /*pipes_allowed=*/false)) text = ReadWholeFile(loc.file);
+    if (text) {
       std::vector<std::string> lines;
       std::size_t start = 0;
       while (start <= text->size()) {

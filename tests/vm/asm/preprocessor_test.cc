@@ -577,3 +577,42 @@ TEST(Preprocessor, ReadFileFromDiskReadsBytesAndReportsMissingFiles) {
 
 }  // namespace
 }  // namespace vs11
+
+namespace vs11 {
+namespace {
+
+// `count` #defines, each naming the one before, the first `v0`; then a line using the last.
+std::string ChainedDefines(int count) {
+  std::string text = "#define A0 v0\n";
+  for (int i = 1; i < count; ++i) text += fmt::format("#define A{} A{}\n", i, i - 1);
+  return text + fmt::format("mov oPos, A{}\n", count - 1);
+}
+
+TEST(PreprocessorBounds, AChainOfDefinesWithinTheNestingBoundExpandsFully) {
+  EXPECT_THAT(CleanTexts(ChainedDefines(static_cast<int>(kMaxMacroNesting))), ElementsAre("mov oPos, v0"));
+}
+
+TEST(PreprocessorBounds, AChainOfDefinesDeeperThanTheBoundIsAnErrorAtItsUse) {
+  const int count = 60000;  // under the bound on macros; quadratic in its length before: seconds
+  const PreprocessResult result = PreprocessText(ChainedDefines(count));
+  const Diagnostic& error = OnlyError(result);
+  EXPECT_EQ(error.code, DiagnosticCode::kExpansionLimit);
+  EXPECT_EQ(error.loc.line, count + 1);
+  EXPECT_EQ(error.loc.column, 11);
+  EXPECT_THAT(error.message, HasSubstr(fmt::format("nested more than {} deep", kMaxMacroNesting)));
+}
+
+TEST(PreprocessorBounds, MoreMacrosThanTheBoundIsAnErrorAtTheFirstOneOver) {
+  PreprocessOptions options;
+  options.max_macros = 3;
+  options.defines = {{"FROM_THE_COMMAND_LINE", "1"}};
+  const PreprocessResult result = PreprocessText("#define A 1\n#define A 2\n#undef A\n#define B 1\n#define C 1\nmov\n", options);
+  const Diagnostic& error = OnlyError(result);
+  EXPECT_EQ(error.code, DiagnosticCode::kTooManyMacros);
+  EXPECT_EQ(error.loc.line, 5);  // a redefinition or an #undef does not make a new macro
+  EXPECT_EQ(error.loc.column, 9);
+  EXPECT_THAT(Texts(result), ::testing::IsEmpty());  // nothing after the error is taken
+}
+
+}  // namespace
+}  // namespace vs11

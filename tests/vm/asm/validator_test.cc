@@ -6,10 +6,13 @@
 #include <string_view>
 #include <vector>
 
+#include <fmt/format.h>
+#include <gmock/gmock.h>
 #include <gtest/gtest.h>
 
 #include "vm/asm/assembler.h"
 #include "vm/core/isa.h"
+#include "vm/core/machine.h"
 #include "vm/core/program.h"
 
 namespace vs11 {
@@ -803,6 +806,48 @@ TEST(Validator, UsesTheSourceLineAndColumnOfTheInstruction) {
   ASSERT_EQ(d.all().size(), 1u);
   EXPECT_EQ(d.all().front().loc, (SourceLoc{"shader.vsh", 17, 5}));
   EXPECT_EQ(d.all().front().message.rfind("add: ", 0), 0u) << d.all().front().message;
+}
+
+}  // namespace
+}  // namespace vs11
+
+namespace vs11 {
+namespace {
+
+// `count` def lines, register c(i % registers), then a position write.
+std::string Definitions(int count, int registers) {
+  std::string text = "vs_1_1\ndcl_position v0\n";
+  for (int i = 0; i < count; ++i) text += fmt::format("def c{}, {}, 0, 0, 1\n", i % registers, i);
+  return text + "mov oPos, v0\n";
+}
+
+TEST(ValidatorDefinitions, ARedefinedRegisterIsAWarningAndTheLastValueWins) {
+  const Program program = Assemble(Definitions(3, 2));  // c0, c1, then c0 again
+  const Diagnostics diagnostics = Validate(program);
+  ASSERT_EQ(diagnostics.all().size(), 1u) << diagnostics.ToString();
+  const Diagnostic& warning = diagnostics.all().front();
+  EXPECT_EQ(warning.severity, Severity::kWarning);
+  EXPECT_EQ(warning.code, DiagnosticCode::kDuplicateDefinition);
+  EXPECT_EQ(warning.loc.line, 5);
+  EXPECT_THAT(warning.message, ::testing::HasSubstr("c0 is defined again"));
+  EXPECT_THAT(warning.message, ::testing::HasSubstr("(line 3)"));
+  EXPECT_EQ(ApplyDefinitions(program, ConstantBank())[0][0], 2.0f);
+}
+
+TEST(ValidatorDefinitions, AsManyDefsAsRegistersAreValid) {
+  EXPECT_TRUE(Clean(Validate(Assemble(Definitions(kDefaultConstantCount, kDefaultConstantCount)))));
+}
+
+TEST(ValidatorDefinitions, MoreDefsThanRegistersIsOneErrorAtTheFirstOneOver) {
+  const Diagnostics diagnostics = Validate(Assemble(Definitions(100000, kDefaultConstantCount)));
+  ASSERT_EQ(diagnostics.all().size(), 1u) << diagnostics.all().front().message;
+  const Diagnostic& error = diagnostics.all().front();
+  EXPECT_EQ(error.code, DiagnosticCode::kTooManyDefinitions);
+  EXPECT_EQ(error.loc.line, kDefaultConstantCount + 3);
+  EXPECT_EQ(error.loc.column, 1);
+  ValidatorOptions device;  // a device with more registers takes more
+  device.constant_count = 256;
+  EXPECT_EQ(Validate(Assemble(Definitions(200, 200)), device).error_count(), 0);
 }
 
 }  // namespace

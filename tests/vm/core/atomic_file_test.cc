@@ -1,7 +1,13 @@
 // Writing through a temporary beside the target: what a reader sees, and what a failure leaves.
 #include "vm/core/atomic_file.h"
 
+#include <signal.h>
+#include <sys/resource.h>
+#include <sys/wait.h>
+#include <unistd.h>
+
 #include <algorithm>
+#include <chrono>
 #include <filesystem>
 #include <fstream>
 #include <set>
@@ -9,6 +15,7 @@
 #include <string>
 #include <vector>
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 namespace vs11 {
@@ -105,6 +112,97 @@ TEST_F(AtomicFileTest, CommitRenamesEveryFileAndReportsThemInOrder) {
   EXPECT_FALSE(CommitRenames(renames, &renamed));
   EXPECT_EQ(renamed, (std::vector<fs::path>{dir_ / "x.json", dir_ / "y.json"}));
   EXPECT_EQ(Entries(), (std::vector<std::string>{"x.json", "y.json"}));
+}
+
+// Runs `body` in a child process and returns its wait status; the child never returns into the test.
+template <class Body>
+int InChild(Body body) {
+  const pid_t child = ::fork();
+  if (child == 0) {
+    body();
+    ::_exit(0);
+  }
+  int status = 0;
+  ::waitpid(child, &status, 0);
+  return status;
+}
+
+// A PID that was a process a moment ago and is none now.
+pid_t DeadPid() {
+  const pid_t child = ::fork();
+  if (child == 0) ::_exit(0);
+  ::waitpid(child, nullptr, 0);
+  return child;
+}
+
+class AtomicFileSignalTest : public AtomicFileTest, public ::testing::WithParamInterface<int> {};
+
+TEST_P(AtomicFileSignalTest, ASignalWhileWritingLeavesNoTemporaryAndStillEndsTheProcess) {
+  const int signal = GetParam();
+  const int status = InChild([&] {
+    RemoveTemporariesOnSignals();
+    const fs::path temporary = TemporaryPathBeside(dir_ / "map.exr");
+    std::ofstream(temporary) << "half of a file";
+    ::raise(signal);
+  });
+  ASSERT_TRUE(WIFSIGNALED(status)) << status;
+  EXPECT_EQ(WTERMSIG(status), signal);
+  EXPECT_TRUE(Entries().empty());
+}
+
+INSTANTIATE_TEST_SUITE_P(InterruptAndTerminate, AtomicFileSignalTest, ::testing::Values(SIGINT, SIGTERM));
+
+TEST_F(AtomicFileTest, ASignalAfterTheRenameLeavesTheFinishedFile) {
+  const int status = InChild([&] {
+    RemoveTemporariesOnSignals();
+    if (WriteFileAtomically(dir_ / "done.txt", std::string_view("done"))) ::_exit(3);
+    ::raise(SIGTERM);
+  });
+  ASSERT_TRUE(WIFSIGNALED(status)) << status;
+  EXPECT_EQ(Entries(), std::vector<std::string>{"done.txt"});
+}
+
+TEST_F(AtomicFileTest, StaleTemporaryOfADeadProcessIsRemovedByTheNextWrite) {
+  using namespace std::chrono_literals;
+  const pid_t dead = DeadPid();
+  const std::string stale = fmt::format(".map.exr.tmp-{}-0badc0de-0.exr", dead);
+  const std::string fresh = fmt::format(".map.exr.tmp-{}-0badc0de-1.exr", dead);
+  const std::string living = fmt::format(".map.exr.tmp-{}-0badc0de-2.exr", ::getppid());
+  const std::string someone_elses = ".map.exr.tmp-backup";
+  for (const std::string& name : {stale, fresh, living, someone_elses}) std::ofstream(dir_ / name) << "x";
+  for (const std::string& name : {stale, living, someone_elses}) {
+    fs::last_write_time(dir_ / name, fs::file_time_type::clock::now() - kStaleTemporaryAge - 1min);
+  }
+  ASSERT_FALSE(WriteFileAtomically(dir_ / "out.txt", std::string_view("new")));
+  // A fresh one may be another machine's, writing into a shared folder: its PID means nothing here.
+  std::vector<std::string> kept = {fresh, living, someone_elses, "out.txt"};
+  std::sort(kept.begin(), kept.end());
+  EXPECT_EQ(Entries(), kept);
+}
+
+TEST_F(AtomicFileTest, AFailedWriteOfSeveralFilesLeavesNoneOfThem) {
+  const std::string small(100, 's');
+  const std::string large(64 << 10, 'l');
+  std::ofstream(dir_ / "b.bin") << "old";
+  // A full disk: the second file cannot grow past the limit (SIGXFSZ ignored: write fails instead).
+  const int status = InChild([&] {
+    ::signal(SIGXFSZ, SIG_IGN);
+    const rlimit limit{16 << 10, 16 << 10};
+    ::setrlimit(RLIMIT_FSIZE, &limit);
+    const FileToWrite files[] = {{dir_ / "a.bin", small}, {dir_ / "b.bin", large}, {dir_ / "c.bin", small}};
+    const std::optional<std::string> error = WriteFilesAtomically(files);
+    ::_exit(error && error->find("b.bin") != std::string::npos ? 0 : 1);
+  });
+  ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << status;
+  EXPECT_EQ(Entries(), std::vector<std::string>{"b.bin"});
+  EXPECT_EQ(Read(dir_ / "b.bin"), "old");
+}
+
+TEST_F(AtomicFileTest, SeveralFilesAllLand) {
+  const FileToWrite files[] = {{dir_ / "a.txt", "a"}, {dir_ / "b.txt", "b"}};
+  ASSERT_FALSE(WriteFilesAtomically(files));
+  EXPECT_EQ(Entries(), (std::vector<std::string>{"a.txt", "b.txt"}));
+  EXPECT_EQ(Read(dir_ / "b.txt"), "b");
 }
 
 }  // namespace

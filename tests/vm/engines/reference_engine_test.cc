@@ -301,5 +301,23 @@ TEST(ReferenceEngine, EngineFillsUnwrittenOutputsWithDefaults) {
   EXPECT_EQ(outputs.lane(static_cast<int>(OutputSlot::kSpecular), 3)[1], 0.0f);  // partly written: 0
 }
 
+TEST(ReferenceEngine, ManyDefinitionsGiveTheLastValueOfEachRegisterToEveryVertex) {
+  std::string text = "vs.1.1\n";  // unvalidated: 4096 defs, each register defined 1024 times
+  for (int i = 0; i < 4096; ++i) text += "def c" + std::to_string(i % 4) + ", " + std::to_string(i) + ", 0, 0, 1\n";
+  text += "add r0, c0, c1\nadd r1, c2, c3\nadd oPos, r0, r1\n";
+  AssembleOptions options;
+  options.validate = false;
+  AssembleResult assembled = AssembleSource(text, "defs.vsh", options);
+  ASSERT_TRUE(assembled.program) << assembled.diagnostics.ToString();
+  const std::vector<int> registers = {0};
+  VertexArrays inputs = MakeInputArrays(3, registers);
+  VertexArrays outputs = MakeOutputArrays(3, *assembled.program);
+  MakeEngine(EngineKind::kReference, *assembled.program, ConstantBank())->Run(inputs, outputs);
+  for (std::size_t vertex = 0; vertex < 3; ++vertex) {
+    EXPECT_EQ(outputs.lane(static_cast<int>(OutputSlot::kPosition), 0)[vertex], 4092.0f + 4093 + 4094 + 4095);
+    EXPECT_EQ(outputs.lane(static_cast<int>(OutputSlot::kPosition), 3)[vertex], 4.0f);
+  }
+}
+
 }  // namespace
 }  // namespace vs11

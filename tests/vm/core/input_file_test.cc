@@ -1,0 +1,121 @@
+// Inputs read once, with a limit, devices refused; outputs that are inputs recognised however named.
+#include "vm/core/input_file.h"
+
+#include <fcntl.h>
+#include <unistd.h>
+
+#include <filesystem>
+#include <fstream>
+#include <string>
+#include <vector>
+
+#include <gtest/gtest.h>
+
+namespace vs11 {
+namespace {
+
+namespace fs = std::filesystem;
+
+class InputFileTest : public ::testing::Test {
+ protected:
+  void SetUp() override {
+    const ::testing::TestInfo* info = ::testing::UnitTest::GetInstance()->current_test_info();
+    dir_ = fs::path(::testing::TempDir()) / (std::string("input_file_") + info->name());
+    fs::remove_all(dir_);
+    fs::create_directories(dir_);
+  }
+  void TearDown() override { fs::remove_all(dir_); }
+  fs::path Write(const std::string& name, const std::string& text) {
+    std::ofstream(dir_ / name, std::ios::binary) << text;
+    return dir_ / name;
+  }
+  fs::path dir_;
+};
+
+// A pipe holding `text` with its writing end closed, named by path as /dev/stdin or <(...) name one.
+class FilledPipe {
+ public:
+  explicit FilledPipe(const std::string& text) {
+    EXPECT_EQ(::pipe(fds_), 0);
+    EXPECT_EQ(::write(fds_[1], text.data(), text.size()), static_cast<ssize_t>(text.size()));
+    ::close(fds_[1]);
+  }
+  ~FilledPipe() { ::close(fds_[0]); }
+  fs::path path() const { return "/proc/self/fd/" + std::to_string(fds_[0]); }
+
+ private:
+  int fds_[2] = {-1, -1};
+};
+
+TEST_F(InputFileTest, ReadsARegularFileWhole) {
+  const InputBytes read = ReadInputFile(Write("p.vsh", "vs.1.1\nmov oPos, v0\n"), kMaxProgramFileBytes);
+  ASSERT_TRUE(read.bytes) << read.error;
+  EXPECT_EQ(*read.bytes, "vs.1.1\nmov oPos, v0\n");
+}
+
+TEST_F(InputFileTest, ReadsAPipeGivenByPath) {
+  FilledPipe pipe("vs_1_1\n");
+  const InputBytes read = ReadInputFile(pipe.path(), kMaxProgramFileBytes);
+  ASSERT_TRUE(read.bytes) << read.error;
+  EXPECT_EQ(*read.bytes, "vs_1_1\n");
+}
+
+TEST_F(InputFileTest, AStreamLongerThanTheLimitIsAnErrorNamingTheLimit) {
+  FilledPipe pipe(std::string(3 << 10, 'x'));
+  const InputBytes read = ReadInputFile(pipe.path(), 1 << 10);
+  EXPECT_FALSE(read.bytes);
+  EXPECT_NE(read.error.find("larger than the limit"), std::string::npos) << read.error;
+}
+
+TEST_F(InputFileTest, AFileLargerThanTheLimitIsRefusedBeforeItIsRead) {
+  const InputBytes read = ReadInputFile(Write("big.csv", std::string(2 << 20, '1')), 1 << 20);
+  EXPECT_FALSE(read.bytes);
+  EXPECT_NE(read.error.find("limit of 1 MiB"), std::string::npos) << read.error;
+}
+
+TEST_F(InputFileTest, DevicesFoldersAndMissingFilesAreRefusedWithTheReason) {
+  const std::vector<std::pair<fs::path, std::string>> cases = {
+      {"/dev/zero", "is a device"}, {"/dev/null", "is a device"}, {dir_, "is a folder"}, {dir_ / "no", "no such file"}};
+  for (const auto& [path, reason] : cases) {
+    const InputBytes read = ReadInputFile(path, kMaxProgramFileBytes);
+    EXPECT_FALSE(read.bytes) << path;
+    EXPECT_NE(read.error.find(reason), std::string::npos) << path << ": " << read.error;
+  }
+}
+
+TEST_F(InputFileTest, ImagesNeedARegularFileButProgramsTakePipes) {
+  FilledPipe pipe("x");
+  EXPECT_FALSE(InputFileProblem(Write("a.pfm", "x"), false));
+  EXPECT_EQ(InputFileProblem(pipe.path(), false), "is a pipe, not a regular file");
+  EXPECT_FALSE(InputFileProblem(pipe.path(), true));
+  EXPECT_EQ(InputFileProblem("/dev/zero", true), "is a device, not a file or a pipe");
+}
+
+TEST_F(InputFileTest, StandardInputIsNamedForMessages) {
+  EXPECT_EQ(InputDisplayName("-"), "<stdin>");
+  EXPECT_EQ(InputDisplayName("a.vsh"), "a.vsh");
+}
+
+TEST_F(InputFileTest, AnOutputIsRecognisedAsAnInputHoweverItIsSpelled) {
+  const fs::path input = Write("in.csv", "1,2,3\n");
+  fs::create_symlink(input, dir_ / "link.csv");
+  fs::create_hard_link(input, dir_ / "hard.csv");
+  const std::vector<fs::path> inputs = {dir_ / "other.csv", input};
+  for (const fs::path& output : {input, dir_ / "." / "in.csv", dir_ / "link.csv", dir_ / "hard.csv",
+                                 dir_ / ".." / dir_.filename() / "in.csv"}) {
+    const std::optional<std::string> error = OutputOverwritesInput(output, inputs);
+    ASSERT_TRUE(error) << output;
+    EXPECT_NE(error->find("refusing to overwrite"), std::string::npos) << *error;
+  }
+}
+
+TEST_F(InputFileTest, NewOutputsAndStandardStreamsAreNoInputs) {
+  const fs::path input = Write("in.csv", "1\n");
+  const std::vector<fs::path> inputs = {input, "-"};
+  EXPECT_FALSE(OutputOverwritesInput(dir_ / "new.csv", inputs));
+  EXPECT_FALSE(OutputOverwritesInput(Write("other.csv", "1\n"), inputs));
+  EXPECT_FALSE(OutputOverwritesInput("-", inputs));
+}
+
+}  // namespace
+}  // namespace vs11

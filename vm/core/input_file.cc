@@ -1,0 +1,127 @@
+#include "vm/core/input_file.h"
+
+#include <fcntl.h>
+#include <sys/stat.h>
+#include <unistd.h>
+
+#include <algorithm>
+#include <cerrno>
+#include <cstring>
+#include <system_error>
+
+#include <fmt/format.h>
+
+namespace vs11 {
+namespace {
+
+namespace fs = std::filesystem;
+
+constexpr std::size_t kReadChunkBytes = std::size_t{1} << 16;
+
+bool IsStandardInput(const fs::path& path) { return path.native() == kStandardInputName; }
+
+// What is wrong with a file of this mode, or nullopt. A terminal is accepted: `vs11 validate -`
+// typed at the keyboard ends at Ctrl-D.
+std::optional<std::string> ModeProblem(mode_t mode, bool is_terminal, bool pipes_allowed) {
+  const char* kind = nullptr;
+  if (S_ISREG(mode)) return std::nullopt;
+  if (S_ISFIFO(mode) || (S_ISCHR(mode) && is_terminal)) {
+    if (pipes_allowed) return std::nullopt;
+    kind = "is a pipe";
+  } else if (S_ISDIR(mode)) {
+    kind = "is a folder";
+  } else if (S_ISCHR(mode) || S_ISBLK(mode)) {
+    kind = "is a device";
+  } else if (S_ISSOCK(mode)) {
+    kind = "is a socket";
+  } else {
+    kind = "is of an unknown kind";
+  }
+  return fmt::format("{}, not a {}", kind, pipes_allowed ? "file or a pipe" : "regular file");
+}
+
+std::string TooLarge(std::size_t max_bytes) {
+  return fmt::format("larger than the limit of {} MiB for this kind of file", max_bytes >> 20);
+}
+
+// Reads `fd` to its end, failing past `max_bytes`.
+InputBytes ReadDescriptor(int fd, std::size_t max_bytes, std::size_t expected_size) {
+  InputBytes result;
+  std::string bytes;
+  bytes.reserve(std::min(expected_size, max_bytes) + 1);
+  char chunk[kReadChunkBytes];
+  for (;;) {
+    const ssize_t got = ::read(fd, chunk, sizeof chunk);
+    if (got < 0 && errno == EINTR) continue;
+    if (got < 0) {
+      result.error = fmt::format("read failed ({})", std::strerror(errno));
+      return result;
+    }
+    if (got == 0) break;
+    if (bytes.size() + static_cast<std::size_t>(got) > max_bytes) {
+      result.error = TooLarge(max_bytes);
+      return result;
+    }
+    bytes.append(chunk, static_cast<std::size_t>(got));
+  }
+  result.bytes = std::move(bytes);
+  return result;
+}
+
+}  // namespace
+
+std::string InputDisplayName(const fs::path& path) { return IsStandardInput(path) ? "<stdin>" : path.string(); }
+
+std::optional<std::string> InputFileProblem(const fs::path& path, bool pipes_allowed) {
+  struct stat status {};
+  if (::stat(path.c_str(), &status) != 0) return errno == ENOENT ? "no such file" : std::strerror(errno);
+  return ModeProblem(status.st_mode, false, pipes_allowed);
+}
+
+InputBytes ReadInputFile(const fs::path& path, std::size_t max_bytes) {
+  const bool standard_input = IsStandardInput(path);
+  InputBytes result;
+  // Opening a device can have effects (a tape rewinds); a path is looked at before it is opened.
+  if (!standard_input) {
+    struct stat status {};
+    if (::stat(path.c_str(), &status) != 0) {
+      result.error = fmt::format("cannot read the file ({})", errno == ENOENT ? "no such file" : std::strerror(errno));
+      return result;
+    }
+    if (S_ISBLK(status.st_mode) || S_ISDIR(status.st_mode) || S_ISSOCK(status.st_mode)) {
+      result.error = *ModeProblem(status.st_mode, false, true);
+      return result;
+    }
+  }
+  const int fd = standard_input ? STDIN_FILENO : ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NOCTTY);
+  if (fd < 0) {
+    result.error = fmt::format("cannot read the file ({})", std::strerror(errno));
+    return result;
+  }
+  struct stat status {};
+  if (::fstat(fd, &status) != 0) {
+    result.error = fmt::format("cannot read the file ({})", std::strerror(errno));
+  } else if (std::optional<std::string> problem = ModeProblem(status.st_mode, ::isatty(fd) == 1, true)) {
+    result.error = *problem;
+  } else if (S_ISREG(status.st_mode) && static_cast<std::uintmax_t>(status.st_size) > max_bytes) {
+    result.error = TooLarge(max_bytes);
+  } else {
+    result = ReadDescriptor(fd, max_bytes, S_ISREG(status.st_mode) ? static_cast<std::size_t>(status.st_size) : 0);
+  }
+  if (!standard_input) ::close(fd);
+  return result;
+}
+
+std::optional<std::string> OutputOverwritesInput(const fs::path& output, std::span<const fs::path> inputs) {
+  if (output.empty() || IsStandardInput(output)) return std::nullopt;
+  for (const fs::path& input : inputs) {
+    if (input.empty() || IsStandardInput(input)) continue;
+    std::error_code error;  // set when either does not exist: then they are not one file
+    if (fs::equivalent(output, input, error) && !error) {
+      return fmt::format("{} is the input {}: refusing to overwrite it", output.string(), input.string());
+    }
+  }
+  return std::nullopt;
+}
+
+}  // namespace vs11
