@@ -18,9 +18,9 @@ struct CommandResult {
   std::string output;  // stdout and stderr together
 };
 
-// `tool` is the executable's path inside the build folder.
-inline CommandResult RunTool(const std::string& tool, const std::string& args) {
-  std::string command = std::string(VS11_BINARY_DIR) + "/" + tool + " " + args + " 2>&1";
+// A shell command line, stdout and stderr captured together.
+inline CommandResult RunCommandLine(const std::string& command_line) {
+  const std::string command = command_line + " 2>&1";
   CommandResult result;
   FILE* pipe = popen(command.c_str(), "r");
   if (pipe == nullptr) return result;
@@ -29,6 +29,11 @@ inline CommandResult RunTool(const std::string& tool, const std::string& args) {
   int status = pclose(pipe);
   result.status = WIFEXITED(status) ? WEXITSTATUS(status) : -1;
   return result;
+}
+
+// `tool` is the executable's path inside the build folder.
+inline CommandResult RunTool(const std::string& tool, const std::string& args) {
+  return RunCommandLine(std::string(VS11_BINARY_DIR) + "/" + tool + " " + args);
 }
 
 inline CommandResult RunVs11(const std::string& args) { return RunTool("vm/vs11", args); }

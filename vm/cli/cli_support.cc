@@ -1,11 +1,13 @@
 #include "vm/cli/cli_support.h"
 
+#include <algorithm>
 #include <cstdio>
 
 #include <fmt/format.h>
 
 #include "irradiance/report/verify.h"
 #include "vm/cli/commands.h"
+#include "vm/cli/parse_command_line.h"
 #include "vm/engines/engine_factory.h"
 #include "vm/gl/gl_context.h"
 
@@ -124,9 +126,21 @@ void FloatRulesFlag::AddTo(CLI::App& command) {
 
 FloatRules FloatRulesFlag::Rules() const { return FloatRulesFromName(name).value_or(FloatRules::kD3d9); }
 
+void NoteRegisterOnce(std::string_view option, char letter, int index, std::vector<int>& seen) {
+  if (std::find(seen.begin(), seen.end(), index) != seen.end()) {
+    FailUsage(fmt::format("{} {}{} is given twice: give each register once", option, letter, index));
+  }
+  seen.push_back(index);
+}
+
 void Fail(const std::string& message) {
   std::fprintf(stderr, "error: %s\n", message.c_str());
   throw CommandFailure{1};
+}
+
+void FailUsage(const std::string& message) {
+  std::fprintf(stderr, "error: %s\n", message.c_str());
+  throw CommandFailure{kUsageErrorStatus};
 }
 
 }  // namespace vs11::cli

@@ -5,6 +5,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <CLI/CLI.hpp>
@@ -67,7 +68,13 @@ std::unique_ptr<Engine> MakeEngineOrFail(EngineKind kind, const Program& program
 // Runs `engine`; prints its error and throws CommandFailure{1} when the run failed (a driver's error).
 void RunOrFail(Engine& engine, const VertexArrays& inputs, VertexArrays& outputs);
 
+// A usage error when a repeatable option (--input, --npy, --element, --const) names the register
+// `letter``index` a second time, which would otherwise silently keep one of the values; else notes it.
+void NoteRegisterOnce(std::string_view option, char letter, int index, std::vector<int>& seen);
+
 // Prints "error: MESSAGE" to stderr and throws CommandFailure{1}.
 [[noreturn]] void Fail(const std::string& message);
+// The same for a flag's value that no input can make right (exit 2, as CLI11's own usage errors).
+[[noreturn]] void FailUsage(const std::string& message);
 
 }  // namespace vs11::cli

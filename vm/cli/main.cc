@@ -1,3 +1,5 @@
+#include <cstdio>
+#include <new>
 #include <optional>
 #include <string>
 
@@ -19,9 +21,7 @@ std::string UsageMessage(const CLI::App& app, const CLI::ParseError& error, int 
   return error.what();
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
+int Main(int argc, char** argv) {
   vs11::gl::RegisterGlEngine();
   CLI::App app{"vs11: assemble, validate, run, verify, count and translate Direct3D vs_1_1 vertex shader programs"};
   app.require_subcommand(1);
@@ -44,4 +44,16 @@ int main(int argc, char** argv) {
     return failure.exit_code;
   }
   return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  try {
+    return Main(argc, argv);
+  } catch (const std::bad_alloc&) {
+    // An output file is written through a temporary, removed on the way here: nothing is left half written.
+    std::fputs("vs11: error: out of memory (fewer vertices, or a larger memory limit, may help)\n", stderr);
+    return 1;
+  }
 }
