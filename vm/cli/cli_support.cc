@@ -1,6 +1,8 @@
 #include "vm/cli/cli_support.h"
 
 #include <algorithm>
+#include <charconv>
+#include <limits>
 #include <cstdio>
 
 #include <fmt/format.h>
@@ -125,6 +127,17 @@ void FloatRulesFlag::AddTo(CLI::App& command) {
 }
 
 FloatRules FloatRulesFlag::Rules() const { return FloatRulesFromName(name).value_or(FloatRules::kD3d9); }
+
+CLI::Validator SizeNumber() {
+  return CLI::Validator(
+      [](std::string& text) {
+        std::size_t value = 0;
+        auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+        if (error == std::errc() && end == text.data() + text.size()) return std::string();
+        return fmt::format("'{}' is not a whole number from 0 to {}", text, std::numeric_limits<std::size_t>::max());
+      },
+      "");
+}
 
 void NoteRegisterOnce(std::string_view option, char letter, int index, std::vector<int>& seen) {
   if (std::find(seen.begin(), seen.end(), index) != seen.end()) {

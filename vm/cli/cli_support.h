@@ -68,6 +68,10 @@ std::unique_ptr<Engine> MakeEngineOrFail(EngineKind kind, const Program& program
 // Runs `engine`; prints its error and throws CommandFailure{1} when the run failed (a driver's error).
 void RunOrFail(Engine& engine, const VertexArrays& inputs, VertexArrays& outputs);
 
+// A CLI11 check for an option read into a std::size_t (--stride, --trace): a decimal number that fits
+// it, so that -1 or 2^64 is a usage error rather than 2^64 - 1.
+CLI::Validator SizeNumber();
+
 // A usage error when a repeatable option (--input, --npy, --element, --const) names the register
 // `letter``index` a second time, which would otherwise silently keep one of the values; else notes it.
 void NoteRegisterOnce(std::string_view option, char letter, int index, std::vector<int>& seen);

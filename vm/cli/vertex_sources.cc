@@ -251,7 +251,7 @@ void VertexSourceFlags::AddTo(CLI::App& command) {
   command.add_option("--bone-palette", bone_palette, "Write each bone's 4x3 skin matrix into c[BASE + 3b], e.g. c6");
   command.add_option("--npy", npy_inputs, "Input register from a float32 .npy array (N, k), e.g. v0=positions.npy");
   command.add_option("--buffer", buffer, "Vertices from a raw interleaved float32 buffer (with --stride, --element)");
-  command.add_option("--stride", stride, "Bytes per vertex in --buffer");
+  command.add_option("--stride", stride, "Bytes per vertex in --buffer")->check(SizeNumber());
   command.add_option("--element", elements, "Register, byte offset and float count in --buffer, e.g. v3=12:3");
   command.add_option("--out-npy", out_npy_dir, "Write each written output register to DIR/oPos.npy, DIR/oD0.npy, ...");
   command.add_option("--out-buffer", out_buffer, "Write the written output registers interleaved as raw float32");

@@ -56,6 +56,20 @@ TEST_F(RunInputBounds, ElementOffsetThatWrapsAroundIsAUsageError) {
   EXPECT_NE(fine.output.find("\n3,0,0,1\n7,0,0,1\n"), std::string::npos) << fine.output;
 }
 
+// CLI11 read -1 and 2^64 into a std::size_t as 2^64 - 1.
+TEST_F(RunInputBounds, StrideAndTraceVerticesBeyondSizeTAreUsageErrors) {
+  for (const char* value : {"-1", "18446744073709551616", "-16"}) {
+    CommandResult stride = Run("--buffer " + buffer_ + " --stride " + value + " --element v0=0:4");
+    EXPECT_EQ(stride.status, 2) << stride.output;
+    EXPECT_NE(stride.output.find(std::string("--stride: '") + value + "' is not a whole number"), std::string::npos)
+        << stride.output;
+    CommandResult trace = Run("--input v0=" + csv_ + " --trace 0," + value);
+    EXPECT_EQ(trace.status, 2) << trace.output;
+    EXPECT_NE(trace.output.find(std::string("--trace: '") + value + "' is not a whole number"), std::string::npos)
+        << trace.output;
+  }
+}
+
 TEST_F(RunInputBounds, EveryRegisterGivenTwiceIsAUsageError) {
   vs11::mesh::NpyArray array;
   array.rows = 2;
