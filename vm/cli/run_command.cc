@@ -157,6 +157,7 @@ void RunProgram(const RunArgs& args) {
   auto write_csv = [&](const ByteSink& sink) { WriteOutputCsv(program, outputs, prefix, sink); };
   if (args.out.empty()) {
     write_csv(StdoutSink());
+    if (std::fflush(stdout) != 0) Fail("cannot write to standard output");
   } else if (std::optional<std::string> error = WriteStreamedAtomically(args.out, write_csv)) {
     Fail(*error);
   }

@@ -168,6 +168,12 @@ TEST_F(RunInputBounds, OutputsStreamUnderAnAddressSpaceLimit) {
   EXPECT_EQ(fs::file_size(dir_ / "npy/oPos.npy"), 128u + 100000u * 16);
 }
 
+// A CSV that cannot be written to stdout (a full disk) is a failure, not exit 0.
+TEST_F(RunInputBounds, FailedWriteToStandardOutputIsAnError) {
+  CommandResult r = Run("--input v0=" + csv_ + " >/dev/full");
+  EXPECT_EQ(r.status, 1) << r.output;
+}
+
 // Where even the inputs do not fit: an error and exit 1, not an abort, and no file.
 TEST_F(RunInputBounds, OutOfMemoryIsAnErrorAndLeavesNoFile) {
 #ifdef VS11_SANITIZED_BUILD
