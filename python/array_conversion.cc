@@ -142,10 +142,11 @@ RunInputs InputsFromPython(const Program& program, const py::dict& inputs) {
 ConstantBank ConstantsFromPython(const py::object& constants, int constant_count, std::vector<int>& given) {
   ConstantBank bank(constant_count);
   if (constants.is_none()) return bank;
+  auto out_of_range = [&](const std::string& what, const std::string& index) {
+    return py::value_error(fmt::format("{}: c{} is out of range (the program has c0 to c{})", what, index, constant_count - 1));
+  };
   auto set_row = [&](int index, const py::handle& row, const std::string& what) {
-    if (index < 0 || index >= constant_count) {
-      throw py::value_error(fmt::format("{}: c{} is out of range (the program has c0 to c{})", what, index, constant_count - 1));
-    }
+    if (index < 0 || index >= constant_count) throw out_of_range(what, std::to_string(index));
     py::array_t<double, py::array::forcecast> values;
     try {
       values = py::array_t<double, py::array::forcecast>::ensure(row);
@@ -161,8 +162,10 @@ ConstantBank ConstantsFromPython(const py::object& constants, int constant_count
       std::optional<int> index;
       std::string name;
       if (py::isinstance<py::int_>(key)) {
-        index = key.cast<int>();
-        name = fmt::format("constants[{}]", *index);
+        const long long value = SaturatedInt(key);
+        name = fmt::format("constants[{}]", std::string(py::str(key)));
+        if (value < 0 || value >= constant_count) throw out_of_range(name, std::string(py::str(key)));
+        index = static_cast<int>(value);
       } else if (py::isinstance<py::str>(key)) {
         name = fmt::format("constants['{}']", key.cast<std::string>());
         index = irradiance::ParseConstantRegister(key.cast<std::string>());

@@ -175,6 +175,7 @@ std::unique_ptr<BatchStream> StartBatch(const std::vector<std::string>& paths, i
   options.level = level;
   options.max_error = max_error;
   options.error_metric = error_metric;
+  options.naming = irradiance::OptionNaming::kPythonArgument;
   return std::make_unique<BatchStream>(std::move(options));
 }
 

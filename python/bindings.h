@@ -2,6 +2,7 @@
 // exception, and the entry points module.cc calls.
 #pragma once
 
+#include <limits>
 #include <string>
 
 #include <pybind11/numpy.h>
@@ -34,6 +35,15 @@ py::list DiagnosticsToPython(const Diagnostics& diagnostics);
 
 // Issues one Python warning (UserWarning) per warning diagnostic.
 void WarnDiagnostics(const Diagnostics& diagnostics);
+
+// A Python int of any size (2**70 too) as a long long, saturated at its ends: a caller's number out
+// of every range is then a ValueError naming it, not pybind11's overflow error.
+inline long long SaturatedInt(const py::handle& value) {
+  int overflow = 0;
+  const long long result = PyLong_AsLongLongAndOverflow(value.ptr(), &overflow);
+  if (overflow != 0) return overflow > 0 ? std::numeric_limits<long long>::max() : std::numeric_limits<long long>::min();
+  return result;
+}
 
 void BindPrograms(py::module_& module);                    // program_bindings.cc
 void BindRun(py::class_<PyProgram>& program_class);         // run_bindings.cc

@@ -16,6 +16,7 @@
 #include "irradiance/jobs/irrmap_job.h"
 #include "irradiance/report/paper_program.h"
 #include "python/bindings.h"
+#include "vm/core/checked_arithmetic.h"
 
 namespace vs11::python {
 namespace {
@@ -81,6 +82,17 @@ void SetEnvironmentArray(const py::array& array, irradiance::IrrmapOptions& opti
         "environment: shape ({}) is neither (6, N, N, 3) cube faces nor an (H, 2H, 3) lat-long map", shape));
   }
   if (array.size() == 0) throw py::value_error("environment: the array is empty");
+  // A view broadcast to any shape costs NumPy nothing: refuse sizes the copy below could not hold
+  // before the int sizes of Image wrap around.
+  if (faces && array.shape(1) > irradiance::kMaxFaceSize) {
+    throw py::value_error(fmt::format("environment: faces of {0}x{0}, above the largest face size {1}", array.shape(1),
+                                      irradiance::kMaxFaceSize));
+  }
+  const std::optional<std::size_t> pixels = CheckedMul<std::size_t>(array.shape(0), 2 * array.shape(0));
+  if (latlong && (!pixels || *pixels > irradiance::kMaxImagePixels)) {
+    throw py::value_error(fmt::format("environment: a lat-long map of {}x{}, more than the {} pixels of the largest "
+                                      "image", 2 * array.shape(0), array.shape(0), irradiance::kMaxImagePixels));
+  }
   if (faces) {
     const int size = static_cast<int>(array.shape(1));
     CubeMap cube(size);
@@ -119,6 +131,7 @@ irradiance::IrrmapOptions OptionsFor(const py::object& environment, const std::s
   options.order = order;
   options.window = window;
   options.write_files = false;
+  options.naming = irradiance::OptionNaming::kPythonArgument;
   options.coefficients_only = true;
   if (py::isinstance<py::array>(environment)) {
     SetEnvironmentArray(py::reinterpret_borrow<py::array>(environment), options);

@@ -15,15 +15,15 @@ namespace {
 
 constexpr int kMaxThreads = 256;  // as the tools' --threads
 
-EngineKind CheckedEngine(const std::string& engine, int threads) {
+EngineKind CheckedEngine(const std::string& engine, const py::int_& threads) {
   std::optional<EngineKind> kind = EngineKindFromName(engine);
   if (!kind) throw py::value_error(fmt::format("engine='{}': use 'ref', 'batch' or 'jit'", engine));
   if (*kind == EngineKind::kGl) {
     throw py::value_error("engine='gl': the gl engine runs in the vs11 and irrmap tools only (the module does not "
                           "link EGL)");
   }
-  if (threads < 1 || threads > kMaxThreads) {
-    throw py::value_error(fmt::format("threads={} is out of range: 1 to {}", threads, kMaxThreads));
+  if (SaturatedInt(threads) < 1 || SaturatedInt(threads) > kMaxThreads) {
+    throw py::value_error(fmt::format("threads={} is out of range: 1 to {}", std::string(py::str(py::handle(threads))), kMaxThreads));
   }
   return *kind;
 }
@@ -44,7 +44,7 @@ void WarnUnsetRegisters(const PyProgram& self, const std::vector<int>& constants
 }
 
 py::dict Run(const PyProgram& self, const py::dict& inputs, const py::object& constants, const std::string& engine,
-             int threads, const std::string& float_rules) {
+             const py::int_& threads, const std::string& float_rules) {
   const EngineKind kind = CheckedEngine(engine, threads);
   const FloatRules rules = CheckedFloatRules(float_rules);
   std::vector<int> constants_given;
@@ -55,23 +55,25 @@ py::dict Run(const PyProgram& self, const py::dict& inputs, const py::object& co
   {
     // Nothing below touches a Python object: other Python threads (and other engines) run meanwhile.
     py::gil_scoped_release release;
-    MakeEngine(kind, self.program, bank, EngineOptions{.threads = threads, .float_rules = rules})
+    MakeEngine(kind, self.program, bank, EngineOptions{.threads = static_cast<int>(SaturatedInt(threads)), .float_rules = rules})
         ->Run(run_inputs.arrays, *outputs);
   }
   return OutputsToPython(std::move(outputs));
 }
 
-py::object Trace(const PyProgram& self, const py::dict& inputs, const py::object& constants, long long vertex,
+py::object Trace(const PyProgram& self, const py::dict& inputs, const py::object& constants, const py::int_& vertex_number,
                  const std::string& engine, const std::string& float_rules) {
-  const EngineKind kind = CheckedEngine(engine, 1);
+  const EngineKind kind = CheckedEngine(engine, py::int_(1));
+  const long long vertex = SaturatedInt(vertex_number);
+  const std::string vertex_text = py::str(py::handle(vertex_number));
   const FloatRules rules = CheckedFloatRules(float_rules);
   std::vector<int> constants_given;
   const ConstantBank bank = ConstantsFromPython(constants, self.constant_count, constants_given);
   const RunInputs run_inputs = InputsFromPython(self.program, inputs);
   const std::size_t count = run_inputs.arrays.count();
-  if (count == 0) throw py::index_error(fmt::format("vertex {}: the inputs hold no vertices", vertex));
+  if (count == 0) throw py::index_error(fmt::format("vertex {}: the inputs hold no vertices", vertex_text));
   if (vertex < 0 || static_cast<std::size_t>(vertex) >= count) {
-    throw py::index_error(fmt::format("vertex {}: there are {} vertices (0 to {})", vertex, count, count - 1));
+    throw py::index_error(fmt::format("vertex {}: there are {} vertices (0 to {})", vertex_text, count, count - 1));
   }
   WarnUnsetRegisters(self, constants_given, run_inputs.registers);
   VertexArrays outputs = MakeOutputArrays(run_inputs.arrays.count(), self.program);

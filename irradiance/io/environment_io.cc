@@ -19,6 +19,7 @@
 
 #include <OpenImageIO/imageio.h>
 
+#include "irradiance/io/option_names.h"
 #include "irradiance/io/image_reader.h"
 #include "vm/core/atomic_file.h"
 
@@ -544,8 +545,8 @@ std::optional<std::string> WriteCubeMap(const CubeMap& cube, const std::filesyst
 
 std::optional<std::string> CheckFaceSizeOption(std::string_view option, int face_size, int max_size) {
   if (IsPowerOfTwo(face_size) && face_size <= max_size) return std::nullopt;
-  return fmt::format("{} {} must be a power of two from 1 to {} (the mip pyramid halves it down to 1x1)", option,
-                     face_size, max_size);
+  return fmt::format("{} must be a power of two from 1 to {} (the mip pyramid halves it down to 1x1)",
+                     OptionWithValue(option, face_size), max_size);
 }
 
 std::optional<std::string> CheckPyramidFaceSize(std::string_view source, int face_size) {

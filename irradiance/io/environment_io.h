@@ -91,7 +91,7 @@ inline constexpr std::array<std::string_view, kCubeFaceCount> kSignedFaceFileNam
 // Largest face size the lat-long and angular resamplers build (16384^2 x 6 texels is 19 GB).
 inline constexpr int kMaxFaceSize = 16384;
 // The face-size rules, each stated once (IsPowerOfTwo is in cube_map.h). An option naming a face
-// size (`option`: "--face-size") must be a power of two from 1 to `max_size`: nullopt if it is,
+// size (`option`: "--face-size" or "face_size", irradiance/io/option_names.h) must be a power of two from 1 to `max_size`: nullopt if it is,
 // else the message. A loaded cube's face must be a power of two for the mip pyramid (exact 2x2
 // parents down to 1x1): nullopt if it is, else the message, prefixed with "SOURCE: " when `source`
 // is not empty.

@@ -106,7 +106,8 @@ std::optional<std::string> ProjectInput(Job& job, const std::string& input, nloh
   if (!mips || !basis) return fmt::format("cannot build the mip pyramids of face size {}", face_size);
   const int level_count = LevelCount(face_size);
   if (job.options.level && *job.options.level >= level_count) {
-    return fmt::format("--level {} is out of range: face size {} has levels 0 to {}", *job.options.level, face_size,
+    return fmt::format("{} is out of range: face size {} has levels 0 to {}",
+                       OptionWithValue(OptionName(job.options.naming, "level"), *job.options.level), face_size,
                        level_count - 1);
   }
   std::vector<Sh9Rgb> levels;
@@ -148,6 +149,9 @@ std::optional<std::string> ProcessInput(Job& job, const std::string& input, nloh
 }
 
 std::optional<std::string> CheckOptions(const BatchOptions& options, EnvironmentLayout& layout, ErrorMetric& metric) {
+  auto named = [&](std::string_view flag, const auto& value) {
+    return OptionWithValue(OptionName(options.naming, flag), value);
+  };
   std::optional<EnvironmentLayout> parsed = ParseLayout(options.layout);
   if (!parsed) {
     return fmt::format("unknown layout '{}' (use auto, faces, hcross, vcross, hstrip, vstrip, latlong or angular)",
@@ -157,15 +161,17 @@ std::optional<std::string> CheckOptions(const BatchOptions& options, Environment
   if (options.shard_count < 1 || options.shard_index < 0 || options.shard_index >= options.shard_count) {
     return fmt::format("--shard {}/{} is out of range: K/N with 0 <= K < N", options.shard_index, options.shard_count);
   }
-  if (std::optional<std::string> error = CheckFaceSizeOption("--face-size", options.face_size)) return error;
+  if (std::optional<std::string> error = CheckFaceSizeOption(OptionName(options.naming, "face-size"), options.face_size)) return error;
   if (!(options.max_error > 0.0 && options.max_error < 1.0)) {
-    return fmt::format("--max-error {} is out of range: a fraction above 0 and below 1", options.max_error);
+    return fmt::format("{} is out of range: a fraction above 0 and below 1", named("max-error", options.max_error));
   }
   const std::optional<ErrorMetric> parsed_metric = ParseErrorMetric(options.error_metric);
   if (!parsed_metric) return fmt::format("unknown error metric '{}' (use {})", options.error_metric, ErrorMetricNames());
   metric = *parsed_metric;
-  if (options.level && *options.level < 0) return fmt::format("--level {} is out of range: levels start at 0", *options.level);
-  if (options.threads < 0) return fmt::format("--threads {} must be >= 0 (0: every core)", options.threads);
+  if (options.level && *options.level < 0) {
+    return fmt::format("{} is out of range: levels start at 0", named("level", *options.level));
+  }
+  if (options.threads < 0) return fmt::format("{} must be >= 0 (0: every core)", named("threads", options.threads));
   if (options.output.empty()) return std::string("no output file given (-o FILE.jsonl)");
   if (options.inputs.empty() && options.list_files.empty()) return std::string("no input files given");
   return std::nullopt;

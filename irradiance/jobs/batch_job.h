@@ -28,6 +28,7 @@
 #include <string>
 #include <vector>
 
+#include "irradiance/io/option_names.h"
 #include "irradiance/sh/level_choice.h"
 #include "vm/core/thread_pool.h"
 
@@ -51,6 +52,7 @@ struct BatchOptions {
   // Set from another thread to stop early (the Python module's generator, closed): no input starts
   // after a worker sees it; the inputs already running finish and are written. Null: run them all.
   const std::atomic<bool>* stop = nullptr;
+  OptionNaming naming = OptionNaming::kFlag;  // "--max-error 2" (the tool) or "max_error=2" (Python)
 };
 
 struct BatchFailure {

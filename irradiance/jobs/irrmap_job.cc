@@ -102,8 +102,16 @@ std::string LevelRange(int face_size) {
                      LevelCount(face_size) - 1);
 }
 
+// "--level 9" or "level=9".
+std::string LevelWithValue(const IrrmapOptions& options) {
+  return OptionWithValue(OptionName(options.naming, "level"), options.level.value_or(0));
+}
+
 // The options' own values; the environment and the output folder are CheckOptions'.
 std::optional<std::string> CheckOptionValues(const IrrmapOptions& options, CheckedOptions& checked) {
+  auto named = [&](std::string_view flag, const auto& value) {
+    return OptionWithValue(OptionName(options.naming, flag), value);
+  };
   std::optional<EnvironmentLayout> layout = ParseLayout(options.layout);
   if (!layout) {
     return fmt::format("unknown layout '{}' (use auto, faces, hcross, vcross, hstrip, vstrip, latlong or angular)",
@@ -125,29 +133,29 @@ std::optional<std::string> CheckOptionValues(const IrrmapOptions& options, Check
     checked.order = ShOrder::kOrder2;
   }
   if (!(options.window_width > 0.0) || options.window_width > kMaxWindowWidth) {
-    return fmt::format("--window-width {} is out of range: above 0, at most {}", options.window_width,
+    return fmt::format("{} is out of range: above 0, at most {}", named("window-width", options.window_width),
                        kMaxWindowWidth);
   }
   if (!(options.max_error > 0.0 && options.max_error < 1.0)) {
-    return fmt::format("--max-error {} is out of range: a fraction above 0 and below 1 (0.005 = 0.5 %)",
-                       options.max_error);
+    return fmt::format("{} is out of range: a fraction above 0 and below 1 (0.005 = 0.5 %)",
+                       named("max-error", options.max_error));
   }
   std::optional<ErrorMetric> metric = ParseErrorMetric(options.error_metric);
   if (!metric) return fmt::format("unknown error metric '{}' (use {})", options.error_metric, ErrorMetricNames());
   checked.metric = *metric;
-  if (std::optional<std::string> error = CheckFaceSizeOption("--face-size", options.face_size)) return error;
+  if (std::optional<std::string> error = CheckFaceSizeOption(OptionName(options.naming, "face-size"), options.face_size)) return error;
   if (options.level && *options.level < 0) {
-    return fmt::format("--level {} is out of range: levels start at 0 (full resolution)", *options.level);
+    return fmt::format("{} is out of range: levels start at 0 (full resolution)", named("level", *options.level));
   }
   if (options.map_size < 1 || options.map_size > kMaxMapSize) {
-    return fmt::format("--map-size {} is out of range: 1 to {}", options.map_size, kMaxMapSize);
+    return fmt::format("{} is out of range: 1 to {}", named("map-size", options.map_size), kMaxMapSize);
   }
-  if (options.threads < 0) return fmt::format("--threads {} must be >= 0 (0: every core)", options.threads);
+  if (options.threads < 0) return fmt::format("{} must be >= 0 (0: every core)", named("threads", options.threads));
   if (options.error_normals < 1 || options.error_normals > kMaxErrorNormals) {
-    return fmt::format("--error-normals {} is out of range: 1 to {}", options.error_normals, kMaxErrorNormals);
+    return fmt::format("{} is out of range: 1 to {}", named("error-normals", options.error_normals), kMaxErrorNormals);
   }
   if (options.sphere_diameter < kMinPreviewSphereDiameter || options.sphere_diameter > kMaxSphereDiameter) {
-    return fmt::format("--sphere-size {} is out of range: {} to {}", options.sphere_diameter, kMinPreviewSphereDiameter,
+    return fmt::format("{} is out of range: {} to {}", named("sphere-size", options.sphere_diameter), kMinPreviewSphereDiameter,
                        kMaxSphereDiameter);
   }
   if (options.write_files && options.out_dir.empty()) return std::string("the output directory is empty");
@@ -171,7 +179,7 @@ std::optional<std::string> CheckOptions(const IrrmapOptions& options, CheckedOpt
                        BuiltinList());
   }
   if (checked.builtin && options.level && *options.level >= LevelCount(options.face_size)) {
-    return fmt::format("--level {} is out of range: {}", *options.level, LevelRange(options.face_size));
+    return fmt::format("{} is out of range: {}", named("level", *options.level), LevelRange(options.face_size));
   }
   const unsigned cores = std::thread::hardware_concurrency();
   checked.threads = options.threads > 0 ? options.threads : static_cast<int>(std::max(1u, cores));
@@ -187,7 +195,7 @@ std::optional<std::string> LoadCube(const IrrmapOptions& options, const CheckedO
     report.layout_reason = "as given";
     if (std::optional<std::string> error = CheckPyramidFaceSize(options.environment, cube.face_size)) return error;
     if (options.level && *options.level >= LevelCount(cube.face_size)) {
-      return fmt::format("--level {} is out of range: {}", *options.level, LevelRange(cube.face_size));
+      return fmt::format("{} is out of range: {}", LevelWithValue(options), LevelRange(cube.face_size));
     }
     return std::nullopt;
   }
@@ -199,7 +207,8 @@ std::optional<std::string> LoadCube(const IrrmapOptions& options, const CheckedO
     report.layout = "builtin";
     report.layout_reason = "a built-in environment";
     if (checked.layout != EnvironmentLayout::kAuto) {
-      report.warnings.push_back(fmt::format("--layout {} ignored for a built-in environment", options.layout));
+      report.warnings.push_back(fmt::format("{} ignored for a built-in environment",
+                                            OptionWithValue(OptionName(options.naming, "layout"), options.layout)));
     }
     return std::nullopt;
   }
@@ -217,14 +226,14 @@ std::optional<std::string> LoadCube(const IrrmapOptions& options, const CheckedO
   const bool resampled = loaded.environment->layout == EnvironmentLayout::kLatLong ||
                          loaded.environment->layout == EnvironmentLayout::kAngular;
   if (options.face_size_given && !resampled && cube.face_size != options.face_size) {
-    report.warnings.push_back(fmt::format("--face-size {} ignored: {} is a cube map ({}) with faces of {}x{}; only "
+    report.warnings.push_back(fmt::format("{} ignored: {} is a cube map ({}) with faces of {}x{}; only "
                                           "lat-long and angular maps are resampled",
-                                          options.face_size, options.environment, report.layout, cube.face_size,
-                                          cube.face_size));
+                                          OptionWithValue(OptionName(options.naming, "face-size"), options.face_size),
+                                          options.environment, report.layout, cube.face_size, cube.face_size));
   }
   if (std::optional<std::string> error = CheckPyramidFaceSize(options.environment, cube.face_size)) return error;
   if (options.level && *options.level >= LevelCount(cube.face_size)) {
-    return fmt::format("--level {} is out of range: {}", *options.level, LevelRange(cube.face_size));
+    return fmt::format("{} is out of range: {}", LevelWithValue(options), LevelRange(cube.face_size));
   }
   return std::nullopt;
 }

@@ -61,6 +61,7 @@
 
 #include "irradiance/io/cube_map.h"
 #include "irradiance/jobs/float_range.h"
+#include "irradiance/io/option_names.h"
 #include "irradiance/jobs/mesh_lighting.h"
 #include "irradiance/report/paper_program.h"
 #include "irradiance/sh/ground_truth.h"
@@ -127,6 +128,8 @@ struct IrrmapOptions {
   std::optional<CubeMap> cube;
   // False: no file is written and out_dir is not used; the results are in the report only.
   bool write_files = true;
+  // How option errors and warnings name an option: "--max-error 2" (the tool) or "max_error=2" (Python).
+  OptionNaming naming = OptionNaming::kFlag;
   // --mesh: also light this mesh (irradiance/jobs/mesh_lighting.h) and write mesh.ply and mesh.png, with
   // its statistics under "mesh" in coeffs.json.
   std::optional<MeshGeometry> mesh;

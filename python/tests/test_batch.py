@@ -123,3 +123,9 @@ def test_errors_of_the_run_are_value_errors(tmp_path):
         next(vs11.irradiance.batch([str(tmp_path / "*.hdr")]))
     with pytest.raises(ValueError, match="unknown layout"):
         next(vs11.irradiance.batch([str(tmp_path / "a.hdr")], layout="sideways"))
+    # The messages name the Python argument, not irrmap's flag.
+    for options, message in [({"max_error": 2.0}, r"^max_error=2 is out of range"),
+                             ({"face_size": 3}, r"^face_size=3 must be a power of two"),
+                             ({"level": -1}, r"^level=-1 is out of range")]:
+        with pytest.raises(ValueError, match=message):
+            next(vs11.irradiance.batch([str(tmp_path / "a.hdr")], **options))

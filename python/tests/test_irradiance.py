@@ -88,6 +88,31 @@ def test_bad_environment_arrays_are_value_errors(array, message):
         vs11.irradiance.project(array)
 
 
+@pytest.mark.parametrize("options,message", [
+    ({"max_error": 1.0}, r"^max_error=1 is out of range"),
+    ({"max_error": float("nan")}, r"^max_error=nan is out of range"),
+    ({"face_size": 3}, r"^face_size=3 must be a power of two"),
+    ({"level": -1}, r"^level=-1 is out of range"),
+    ({"level": 9, "face_size": 8}, r"^level=9 is out of range"),
+    ({"map_size": 0}, r"^map_size=0 is out of range"),
+])
+def test_option_errors_name_the_python_argument(options, message):
+    call = vs11.irradiance.irradiance_map if "map_size" in options else vs11.irradiance.project
+    with pytest.raises(ValueError, match=message) as error:
+        call("sky", **options)
+    assert "--" not in str(error.value)
+
+
+def test_environment_arrays_too_large_to_copy_are_value_errors():
+    # Broadcast views cost NumPy nothing; their sizes wrapped around the int sizes of the copy.
+    faces = np.broadcast_to(np.float32(1), (6, 2**20, 2**20, 3))
+    with pytest.raises(ValueError, match="above the largest face size"):
+        vs11.irradiance.project(faces)
+    latlong = np.broadcast_to(np.float32(1), (2**29, 2**30, 3))
+    with pytest.raises(ValueError, match="more than the .* pixels of the largest image"):
+        vs11.irradiance.project(latlong)
+
+
 def test_bad_options_and_files_are_value_errors(tmp_path):
     with pytest.raises(ValueError, match="neither an existing file nor a built-in"):
         vs11.irradiance.project(str(tmp_path / "missing.hdr"))

@@ -228,6 +228,10 @@ def test_bad_inputs_are_value_errors(inputs, message):
 @pytest.mark.parametrize("constants,message", [
     ({"c96": [0, 0, 0, 0]}, r"c96 is out of range"),
     ({"x4": [0, 0, 0, 0]}, r"not a constant register"),
+    ({2**70: [0, 0, 0, 0]}, r"constants\[1180591620717411303424\]: c1180591620717411303424 is out of range"),
+    ({-2**70: [0, 0, 0, 0]}, r"is out of range"),
+    ({-1: [0, 0, 0, 0]}, r"constants\[-1\]: c-1 is out of range"),
+    ({96: [0, 0, 0, 0]}, r"constants\[96\]: c96 is out of range"),
     ({4: [1, 2, 3]}, r"expected 4 numbers"),
     (np.zeros((97, 4)), r"97 rows"),
     (np.zeros((3, 3)), r"shape \(3, 3\)"),
@@ -238,12 +242,25 @@ def test_bad_constants_are_value_errors(constants, message):
         program.run({"v0": np.zeros((2, 4))}, constants)
 
 
+def test_vertex_counts_whose_arrays_cannot_exist_are_value_errors():
+    # A broadcast view of 2^58 rows costs NumPy nothing; the four output registers' size wrapped
+    # around to a few floats, which the engine then wrote far beyond.
+    program = vs11.assemble("vs_1_1\ndcl_position v0\nmov oPos, v0\nmov oD0, v0\nmov oD1, v0\nmov oT0, v0\n")
+    huge = np.broadcast_to(np.zeros(4, np.float32), (2**58, 4))
+    with pytest.raises(ValueError, match="would not fit in the address space"):
+        program.run({"v0": huge})
+
+
 def test_bad_engine_and_threads_are_value_errors():
     program = vs11.assemble("vs_1_1\ndcl_position v0\nmov oPos, v0\n")
     with pytest.raises(ValueError, match="engine='gpu'"):
         program.run({"v0": np.zeros((2, 4))}, engine="gpu")
     with pytest.raises(ValueError, match="threads=0"):
         program.run({"v0": np.zeros((2, 4))}, threads=0)
+    with pytest.raises(ValueError, match=r"threads=1180591620717411303424 is out of range"):
+        program.run({"v0": np.zeros((2, 4))}, threads=2**70)
+    with pytest.raises(TypeError):
+        program.run({"v0": np.zeros((2, 4))}, threads=2.0)
     # The gl engine lives in the tools (it links EGL); the module says so instead of returning NaN.
     with pytest.raises(ValueError, match="engine='gl': the gl engine runs in the vs11 and irrmap tools only"):
         program.run({"v0": np.zeros((2, 4))}, engine="gl")
@@ -283,3 +300,5 @@ def test_trace_is_what_vs11_run_trace_json_writes(programs_dir, vs11_tool, tmp_p
     assert json.loads((tmp_path / "t.json").read_text())["vertices"][0] == trace
     with pytest.raises(IndexError, match="there are 3 vertices"):
         program.trace({"v0": normals}, constants, vertex=3)
+    with pytest.raises(IndexError, match="vertex 1180591620717411303424: there are 3 vertices"):
+        program.trace({"v0": normals}, constants, vertex=2**70)

@@ -6,6 +6,7 @@
 //   CORPUS_DIR/fuzz_mesh         assimp-testmodels files under 16 KB
 //   CORPUS_DIR/fuzz_mesh_wire    the sandboxed mesh loader's replies for those that load
 //   CORPUS_DIR/fuzz_npy          .npy files of 1 to 4 columns
+//   CORPUS_DIR/fuzz_buffer_element  "STRIDE v#=OFFSET:COUNT..." lines, each with a buffer of floats
 // plus, for each target, the committed files in tests/fuzz/seeds/<target>/.
 #include <cctype>
 #include <cstdio>
@@ -138,6 +139,26 @@ bool WriteNpySeeds(const fs::path& dir) {
   return ok;
 }
 
+// Layouts as `vs11 run --buffer` takes them (tests/fuzz/fuzz_buffer_element.cc), among them one whose
+// end wrapped around, each followed by three vertices of floats.
+bool WriteBufferElementSeeds(const fs::path& dir) {
+  const struct {
+    const char* name;
+    const char* layout;
+    int stride;
+  } seeds[] = {{"one", "16 v0=0:4", 16},
+               {"three", "32 v0=0:3 v3=12:3 v7=24:2", 32},
+               {"odd_stride", "13 v1=1:3 v2=9:1", 13},
+               {"wrapped", "16 v0=18446744073709551600:4", 16}};
+  bool ok = true;
+  for (const auto& seed : seeds) {
+    std::string text = std::string(seed.layout) + "\n";
+    for (int i = 0; i < 3 * seed.stride; ++i) text.push_back(static_cast<char>(i));
+    ok &= WriteOrComplain(dir / seed.name, AsBytes(text));
+  }
+  return ok;
+}
+
 int main(int argc, char** argv) {
   if (argc != 3) {
     std::fprintf(stderr, "usage: make_fuzz_seeds SOURCE_DIR CORPUS_DIR\n");
@@ -146,7 +167,7 @@ int main(int argc, char** argv) {
   fs::path source_dir = argv[1], corpus_dir = argv[2];
   bool ok = true;
   for (const char* target : {"fuzz_assembler", "fuzz_bytecode", "fuzz_environment", "fuzz_mesh", "fuzz_mesh_wire", "fuzz_npy",
-                             "fuzz_translate"}) {
+                             "fuzz_buffer_element", "fuzz_translate"}) {
     fs::create_directories(corpus_dir / target);
     fs::path committed = source_dir / "tests" / "fuzz" / "seeds" / target;
     if (fs::is_directory(committed)) {
@@ -158,5 +179,6 @@ int main(int argc, char** argv) {
   ok &= WriteMeshSeeds(corpus_dir / "fuzz_mesh");
   ok &= WriteMeshReplySeeds(corpus_dir / "fuzz_mesh", corpus_dir / "fuzz_mesh_wire");
   ok &= WriteNpySeeds(corpus_dir / "fuzz_npy");
+  ok &= WriteBufferElementSeeds(corpus_dir / "fuzz_buffer_element");
   return ok ? 0 : 1;
 }

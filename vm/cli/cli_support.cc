@@ -1,8 +1,10 @@
 #include "vm/cli/cli_support.h"
 
 #include <algorithm>
+#include <charconv>
 #include <cstdio>
 #include <filesystem>
+#include <limits>
 
 #include <fmt/format.h>
 
@@ -128,6 +130,24 @@ void FloatRulesFlag::AddTo(CLI::App& command) {
 
 FloatRules FloatRulesFlag::Rules() const { return FloatRulesFromName(name).value_or(FloatRules::kD3d9); }
 
+CLI::Validator SizeNumber() {
+  return CLI::Validator(
+      [](std::string& text) {
+        std::size_t value = 0;
+        auto [end, error] = std::from_chars(text.data(), text.data() + text.size(), value);
+        if (error == std::errc() && end == text.data() + text.size()) return std::string();
+        return fmt::format("'{}' is not a whole number from 0 to {}", text, std::numeric_limits<std::size_t>::max());
+      },
+      "");
+}
+
+void NoteRegisterOnce(std::string_view option, char letter, int index, std::vector<int>& seen) {
+  if (std::find(seen.begin(), seen.end(), index) != seen.end()) {
+    FailUsage(fmt::format("{} {}{} is given twice: give each register once", option, letter, index));
+  }
+  seen.push_back(index);
+}
+
 void Fail(const std::string& message) {
   std::fprintf(stderr, "error: %s\n", message.c_str());
   throw CommandFailure{1};
@@ -139,17 +159,18 @@ std::string ReadInputOrFail(const std::string& path, std::size_t max_bytes) {
   return std::move(*input.bytes);
 }
 
+void FailUsage(const std::string& message) {
+  std::fprintf(stderr, "error: %s\n", message.c_str());
+  throw CommandFailure{kUsageErrorStatus};
+}
+
 void CheckInputsAndOutputs(const std::vector<std::string>& inputs, const std::vector<std::string>& outputs) {
-  auto usage_error = [](const std::string& message) {
-    std::fprintf(stderr, "error: %s\n", message.c_str());
-    throw CommandFailure{kUsageErrorStatus};
-  };
   if (std::count(inputs.begin(), inputs.end(), kStandardInputName) > 1) {
-    usage_error("standard input ('-') can be read only once; name the other inputs as files");
+    FailUsage("standard input ('-') can be read only once; name the other inputs as files");
   }
   const std::vector<std::filesystem::path> input_paths(inputs.begin(), inputs.end());
   for (const std::string& output : outputs) {
-    if (std::optional<std::string> error = OutputOverwritesInput(output, input_paths)) usage_error(*error);
+    if (std::optional<std::string> error = OutputOverwritesInput(output, input_paths)) FailUsage(*error);
   }
 }
 

@@ -5,6 +5,7 @@
 #include <memory>
 #include <optional>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include <CLI/CLI.hpp>
@@ -67,8 +68,18 @@ std::unique_ptr<Engine> MakeEngineOrFail(EngineKind kind, const Program& program
 // Runs `engine`; prints its error and throws CommandFailure{1} when the run failed (a driver's error).
 void RunOrFail(Engine& engine, const VertexArrays& inputs, VertexArrays& outputs);
 
+// A CLI11 check for an option read into a std::size_t (--stride, --trace): a decimal number that fits
+// it, so that -1 or 2^64 is a usage error rather than 2^64 - 1.
+CLI::Validator SizeNumber();
+
+// A usage error when a repeatable option (--input, --npy, --element, --const) names the register
+// `letter``index` a second time, which would otherwise silently keep one of the values; else notes it.
+void NoteRegisterOnce(std::string_view option, char letter, int index, std::vector<int>& seen);
+
 // Prints "error: MESSAGE" to stderr and throws CommandFailure{1}.
 [[noreturn]] void Fail(const std::string& message);
+// The same for a flag's value that no input can make right (exit 2, as CLI11's own usage errors).
+[[noreturn]] void FailUsage(const std::string& message);
 
 // The whole of an input file named on the command line ("-": standard input), read once and at most
 // `max_bytes` (vm/core/input_file.h); or Fail with "NAME: why".

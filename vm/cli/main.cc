@@ -22,10 +22,7 @@ std::string UsageMessage(const CLI::App& app, const CLI::ParseError& error, int 
   return error.what();
 }
 
-}  // namespace
-
-int main(int argc, char** argv) {
-  vs11::RemoveTemporariesOnSignals();  // an interrupted run leaves no half-written file
+int Main(int argc, char** argv) {
   vs11::gl::RegisterGlEngine();
   CLI::App app{"vs11: assemble, validate, run, verify, count and translate Direct3D vs_1_1 vertex shader programs"};
   app.require_subcommand(1);
@@ -46,9 +43,19 @@ int main(int argc, char** argv) {
     if (std::optional<int> status = vs11::cli::ParseCommandLine(app, argc, argv, "vs11", usage)) return *status;
   } catch (const vs11::cli::CommandFailure& failure) {
     return failure.exit_code;
-  } catch (const std::bad_alloc&) {
-    std::fputs("vs11: error: out of memory\n", stderr);
-    return 1;
   }
   return 0;
+}
+
+}  // namespace
+
+int main(int argc, char** argv) {
+  vs11::RemoveTemporariesOnSignals();  // an interrupted run leaves no half-written file
+  try {
+    return Main(argc, argv);
+  } catch (const std::bad_alloc&) {
+    // An output file is written through a temporary, removed on the way here: nothing is left half written.
+    std::fputs("vs11: error: out of memory (fewer vertices, or a larger memory limit, may help)\n", stderr);
+    return 1;
+  }
 }

@@ -9,6 +9,7 @@
 #include "irradiance/sh/ground_truth.h"
 #include "vm/cli/cli_support.h"
 #include "vm/cli/commands.h"
+#include "vm/cli/streamed_output.h"
 #include "vm/cli/trace_output.h"
 #include "vm/cli/vertex_sources.h"
 #include "vm/core/atomic_file.h"
@@ -23,7 +24,7 @@ namespace {
 int InputRegisterFromName(const std::string& name) {
   std::string error;
   std::optional<InputSpec> spec = ParseInputSpec(name + "=", error);
-  if (!spec) Fail(error);
+  if (!spec) FailUsage("--sphere-reg " + error);
   return spec->reg;
 }
 
@@ -44,9 +45,15 @@ ConstantBank LoadConstants(const std::vector<std::string>& files, const std::vec
     std::fputs(diagnostics.ToString().c_str(), stderr);
     if (diagnostics.HasErrors()) throw CommandFailure{1};
   }
+  std::vector<int> flagged, once;
   for (const std::string& assignment : assignments) {
-    if (std::optional<std::string> error = ParseConstantAssignment(assignment, bank, &assigned)) Fail("--const: " + *error);
+    const std::size_t before = flagged.size();
+    if (std::optional<std::string> error = ParseConstantAssignment(assignment, bank, &flagged)) {
+      FailUsage("--const: " + *error);
+    }
+    for (std::size_t i = before; i < flagged.size(); ++i) NoteRegisterOnce("--const", 'c', flagged[i], once);
   }
+  assigned.insert(assigned.end(), flagged.begin(), flagged.end());
   return bank;
 }
 
@@ -65,10 +72,16 @@ using SuppliedInputs = mesh::RegisterData;  // register, one row per vertex
 // --input v#=FILE.csv[:COLUMNS], each file read and parsed, its problems printed.
 SuppliedInputs ReadCsvInputs(const std::vector<std::string>& input_flags) {
   SuppliedInputs supplied;
+  std::vector<int> given;
   for (const std::string& flag : input_flags) {
     std::string error;
     std::optional<InputSpec> spec = ParseInputSpec(flag, error);
-    if (!spec) Fail("--input " + error);
+    if (!spec) FailUsage("--input " + error);
+    NoteRegisterOnce("--input", 'v', spec->reg, given);
+  }
+  for (const std::string& flag : input_flags) {
+    std::string error;
+    std::optional<InputSpec> spec = ParseInputSpec(flag, error);
     const std::string text = ReadInputOrFail(spec->file, kMaxVertexCsvBytes);
     Diagnostics diagnostics;
     std::vector<Vec4f> rows = ParseVertexCsv(text, InputDisplayName(spec->file), diagnostics, spec->columns);
@@ -88,7 +101,7 @@ void AddSphereInput(const RunArgs& args, const Program& program, SuppliedInputs&
   std::vector<Vec4f> rows;
   for (const glm::dvec3& n : irradiance::SphereNormals(args.sphere)) {
     rows.push_back({static_cast<float>(n.x), static_cast<float>(n.y), static_cast<float>(n.z), 1.0f});
-    prefix.rows.push_back({rows.back()[0], rows.back()[1], rows.back()[2]});
+    prefix.values.insert(prefix.values.end(), rows.back().begin(), rows.back().begin() + 3);
   }
   std::string name = fmt::format("v{}", reg);
   prefix.header = {name + ".x", name + ".y", name + ".z"};
@@ -166,10 +179,11 @@ void RunProgram(const RunArgs& args) {
   }
   WriteVertexOutputs(args.sources, sources, program, outputs);
   if (args.out.empty() && (args.sources.WritesOutputFiles() || args.trace.active())) return;
-  std::string csv = FormatOutputCsv(program, outputs, prefix);
+  auto write_csv = [&](const ByteSink& sink) { WriteOutputCsv(program, outputs, prefix, sink); };
   if (args.out.empty()) {
-    std::fputs(csv.c_str(), stdout);
-  } else if (std::optional<std::string> error = WriteFileAtomically(args.out, csv)) {
+    write_csv(StdoutSink());
+    if (std::fflush(stdout) != 0) Fail("cannot write to standard output");
+  } else if (std::optional<std::string> error = WriteStreamedAtomically(args.out, write_csv)) {
     Fail(*error);
   }
 }

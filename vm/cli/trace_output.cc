@@ -24,7 +24,8 @@ void TraceFlags::AddTo(CLI::App& command) {
   CLI::Option* trace = command.add_option("--trace", vertices,
                      "Debug these vertices (0-based, comma-separated): every instruction with its source line, "
                      "the values read and the lanes written, on stdout")
-      ->delimiter(',');
+      ->delimiter(',')
+      ->check(SizeNumber());
   command.add_option("--trace-json", json_file, "Also write the --trace record as JSON to this file")->needs(trace);
 }
 

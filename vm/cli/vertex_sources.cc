@@ -9,7 +9,8 @@
 
 #include "vm/asm/program_file.h"
 #include "vm/cli/cli_support.h"
-#include "vm/core/atomic_file.h"
+#include "vm/cli/streamed_output.h"
+#include "vm/core/regular_file.h"
 #include "vm/mesh/mesh_export.h"
 #include "vm/mesh/npy.h"
 #include "vm/mesh/vertex_buffer.h"
@@ -27,11 +28,12 @@ void WarnNonFinite(const std::string& source, const std::vector<Vec4f>& rows) {
   if (nonfinite > 0) Warn(fmt::format("{}: {} of {} vertices hold NaN or infinity", source, nonfinite, rows.size()));
 }
 
-std::pair<int, std::string> SplitRegisterAssignment(const std::string& flag, const char* option, const char* example) {
+// "v3=FILE.npy" -> {3, "FILE.npy"}.
+std::pair<int, std::string> SplitRegisterAssignment(const std::string& flag) {
   const std::size_t equals = flag.find('=');
-  if (equals == std::string::npos) Fail(fmt::format("{} '{}': expected {}", option, flag, example));
+  if (equals == std::string::npos) FailUsage(fmt::format("--npy '{}': expected v#=FILE.npy", flag));
   std::optional<int> reg = mesh::InputRegisterFromName(flag.substr(0, equals));
-  if (!reg) Fail(fmt::format("{} '{}': '{}' is not an input register v0-v15", option, flag, flag.substr(0, equals)));
+  if (!reg) FailUsage(fmt::format("--npy '{}': '{}' is not an input register v0-v15", flag, flag.substr(0, equals)));
   return {*reg, flag.substr(equals + 1)};
 }
 
@@ -41,14 +43,14 @@ int ConstantRegisterFromName(const std::string& name) {
     auto [ptr, ec] = std::from_chars(name.data() + 1, name.data() + name.size(), index);
     if (ec != std::errc() || ptr != name.data() + name.size()) index = -1;
   }
-  if (index < 0) Fail(fmt::format("--bone-palette '{}': expected a constant register such as c6", name));
+  if (index < 0) FailUsage(fmt::format("--bone-palette '{}': expected a constant register such as c6", name));
   return index;
 }
 
 std::optional<mesh::Mesh> LoadBoundMesh(const VertexSourceFlags& flags, const Program& program,
                                         ConstantBank& constants, mesh::RegisterData& supplied) {
   if (flags.mesh.empty()) {
-    if (!flags.binds.empty() || !flags.bone_palette.empty()) Fail("--bind and --bone-palette need --mesh");
+    if (!flags.binds.empty() || !flags.bone_palette.empty()) FailUsage("--bind and --bone-palette need --mesh");
     return std::nullopt;
   }
   mesh::MeshLoadOptions options;
@@ -61,7 +63,7 @@ std::optional<mesh::Mesh> LoadBoundMesh(const VertexSourceFlags& flags, const Pr
 
   std::vector<mesh::RegisterBinding> overrides, bindings;
   for (const std::string& bind : flags.binds) {
-    if (std::optional<std::string> error = mesh::ParseBindings(bind, overrides)) Fail("--bind " + *error);
+    if (std::optional<std::string> error = mesh::ParseBindings(bind, overrides)) FailUsage("--bind " + *error);
   }
   if (std::optional<std::string> error = mesh::ResolveBindings(program, overrides, bindings)) Fail(*error);
   if (bindings.empty()) {
@@ -82,8 +84,10 @@ std::optional<mesh::Mesh> LoadBoundMesh(const VertexSourceFlags& flags, const Pr
 }
 
 void ReadNpyInputs(const VertexSourceFlags& flags, mesh::RegisterData& supplied) {
+  std::vector<int> given;
+  for (const std::string& flag : flags.npy_inputs) NoteRegisterOnce("--npy", 'v', SplitRegisterAssignment(flag).first, given);
   for (const std::string& flag : flags.npy_inputs) {
-    auto [reg, file] = SplitRegisterAssignment(flag, "--npy", "v#=FILE.npy");
+    auto [reg, file] = SplitRegisterAssignment(flag);
     mesh::NpyResult result = mesh::ReadNpy(file);
     if (!result.ok()) Fail(result.error);
     std::vector<Vec4f> rows(result.array->rows);
@@ -98,19 +102,21 @@ void ReadNpyInputs(const VertexSourceFlags& flags, mesh::RegisterData& supplied)
 
 void ReadBufferInput(const VertexSourceFlags& flags, mesh::RegisterData& supplied) {
   if (flags.buffer.empty()) {
-    if (!flags.elements.empty() || flags.stride != 0) Fail("--stride and --element need --buffer");
+    if (!flags.elements.empty() || flags.stride != 0) FailUsage("--stride and --element need --buffer");
     return;
   }
   std::vector<mesh::BufferElement> elements;
   for (const std::string& text : flags.elements) {
     mesh::BufferElement element;
-    if (std::optional<std::string> error = mesh::ParseBufferElement(text, element)) Fail(*error);
+    if (std::optional<std::string> error = mesh::ParseBufferElement(text, element)) FailUsage(*error);
     elements.push_back(element);
   }
+  if (std::optional<std::string> error = mesh::CheckBufferLayout(flags.stride, elements)) FailUsage(*error);
+  if (std::optional<std::string> why = WhyNotARegularFile(flags.buffer)) Fail(fmt::format("{}: {}", flags.buffer, *why));
   std::error_code error;
   const std::uintmax_t size = std::filesystem::file_size(flags.buffer, error);
   if (error) Fail(fmt::format("{}: cannot read the buffer file", flags.buffer));
-  if (flags.stride > 0 && size / flags.stride > mesh::kMaxMeshVertices) {
+  if (size / flags.stride > mesh::kMaxMeshVertices) {
     Fail(fmt::format("{}: more than {} vertices (the limit)", flags.buffer, mesh::kMaxMeshVertices));
   }
   std::optional<std::string> bytes = ReadWholeFile(flags.buffer);
@@ -127,12 +133,11 @@ void ReadBufferInput(const VertexSourceFlags& flags, mesh::RegisterData& supplie
   }
 }
 
-// Each output register the program writes, as rows of four (oFog and oPts: one value).
+// Each output register the program writes: four lanes (oFog and oPts: one value).
 struct OutputColumn {
   int slot;
   std::string name;
   int components;
-  std::vector<Vec4f> rows;
 };
 
 std::vector<OutputColumn> OutputColumns(const Program& program, const VertexArrays& outputs) {
@@ -141,62 +146,63 @@ std::vector<OutputColumn> OutputColumns(const Program& program, const VertexArra
   for (int slot = 0; slot < kOutputSlotCount; ++slot) {
     if (written[slot].bits() == 0 || !outputs.has(slot)) continue;
     const bool scalar = slot == static_cast<int>(OutputSlot::kFog) || slot == static_cast<int>(OutputSlot::kPointSize);
-    OutputColumn column{slot, OutputSlotName(slot), scalar ? 1 : 4, std::vector<Vec4f>(outputs.count())};
-    for (int lane = 0; lane < column.components; ++lane) {
-      const float* values = outputs.lane(slot, lane);
-      for (std::size_t i = 0; i < outputs.count(); ++i) column.rows[i][lane] = values[i];
-    }
-    columns.push_back(std::move(column));
+    columns.push_back({slot, OutputSlotName(slot), scalar ? 1 : 4});
   }
   return columns;
 }
 
-// A file of --out-npy or --out-buffer, made in memory so that all of them are written at once.
-struct OutputFile {
-  std::filesystem::path path;
-  std::vector<std::uint8_t> bytes;
-};
+// The column's values as rows of four (what the mesh writer takes; a mesh is at most kMaxMeshVertices).
+std::vector<Vec4f> ColumnRows(const OutputColumn& column, const VertexArrays& outputs) {
+  std::vector<Vec4f> rows(outputs.count());
+  for (int lane = 0; lane < column.components; ++lane) {
+    const float* values = outputs.lane(column.slot, lane);
+    for (std::size_t i = 0; i < outputs.count(); ++i) rows[i][lane] = values[i];
+  }
+  return rows;
+}
 
-void AddNpyOutputs(const std::string& dir, const std::vector<OutputColumn>& columns, std::vector<OutputFile>& files) {
+void AddNpyOutputs(const std::string& dir, const std::vector<OutputColumn>& columns, const VertexArrays& outputs,
+                   std::vector<StreamedFile>& files) {
   std::error_code error;
   std::filesystem::create_directories(dir, error);
   if (error) Fail(fmt::format("{}: cannot create the folder ({})", dir, error.message()));
   for (const OutputColumn& column : columns) {
-    mesh::NpyArray array;
-    array.rows = column.rows.size();
-    array.columns = column.components;
-    array.values.reserve(array.rows * array.columns);
-    for (const Vec4f& row : column.rows) array.values.insert(array.values.end(), row.begin(), row.begin() + column.components);
-    files.push_back({std::filesystem::path(dir) / (column.name + ".npy"), mesh::FormatNpy(array)});
+    files.push_back({std::filesystem::path(dir) / (column.name + ".npy"), [&outputs, &column](const ByteSink& sink) {
+                       sink(mesh::NpyHeader(outputs.count(), column.components));
+                       StreamInterleaved(outputs, {{column.slot, column.components}}, sink);
+                     }});
   }
 }
 
 // Returns the line that describes the buffer's layout, printed once it is written.
-std::string AddBufferOutput(const std::string& file, const std::vector<OutputColumn>& columns, std::size_t count,
-                            std::vector<OutputFile>& files) {
-  std::vector<mesh::InterleavedColumn> interleaved;
+std::string AddBufferOutput(const std::string& file, const std::vector<OutputColumn>& columns,
+                            const VertexArrays& outputs, std::vector<StreamedFile>& files) {
+  std::vector<InterleavedColumn> interleaved;
   std::string layout;
   std::size_t offset = 0;
   for (const OutputColumn& column : columns) {
-    interleaved.push_back({&column.rows, column.components});
+    interleaved.push_back({column.slot, column.components});
     layout += fmt::format(" {}={}:{}", column.name, offset, column.components);
     offset += 4 * static_cast<std::size_t>(column.components);
   }
-  files.push_back({file, mesh::FormatInterleaved(interleaved, count)});
-  return fmt::format("{}: {} vertices, stride {}:{}\n", file, count, offset, layout);
+  files.push_back({file, [&outputs, interleaved](const ByteSink& sink) { StreamInterleaved(outputs, interleaved, sink); }});
+  return fmt::format("{}: {} vertices, stride {}:{}\n", file, outputs.count(), offset, layout);
 }
 
-void WriteMeshOutput(const std::string& file, const mesh::Mesh& mesh, const std::vector<OutputColumn>& columns) {
+void WriteMeshOutput(const std::string& file, const mesh::Mesh& mesh, const std::vector<OutputColumn>& columns,
+                     const VertexArrays& outputs) {
   mesh::ExportAttributes attributes;
   std::string carried;
   int uv_set = 0;
+  std::vector<std::vector<Vec4f>> rows;
+  rows.reserve(columns.size());  // the attributes point into it
   for (const OutputColumn& column : columns) {
     if (column.slot == static_cast<int>(OutputSlot::kDiffuse)) {
-      attributes.color = &column.rows;
+      attributes.color = &rows.emplace_back(ColumnRows(column, outputs));
       carried += " oD0 -> vertex colour 0 (RGBA);";
     } else if (column.slot >= static_cast<int>(OutputSlot::kTexCoord0)) {
       const int set = column.slot - static_cast<int>(OutputSlot::kTexCoord0);
-      attributes.texcoords[set] = &column.rows;
+      attributes.texcoords[set] = &rows.emplace_back(ColumnRows(column, outputs));
       carried += fmt::format(" {}.xy -> UV set {};", column.name, uv_set++);
     }
   }
@@ -244,7 +250,7 @@ void VertexSourceFlags::AddTo(CLI::App& command) {
   command.add_option("--bone-palette", bone_palette, "Write each bone's 4x3 skin matrix into c[BASE + 3b], e.g. c6");
   command.add_option("--npy", npy_inputs, "Input register from a float32 .npy array (N, k), e.g. v0=positions.npy");
   command.add_option("--buffer", buffer, "Vertices from a raw interleaved float32 buffer (with --stride, --element)");
-  command.add_option("--stride", stride, "Bytes per vertex in --buffer");
+  command.add_option("--stride", stride, "Bytes per vertex in --buffer")->check(SizeNumber());
   command.add_option("--element", elements, "Register, byte offset and float count in --buffer, e.g. v3=12:3");
   command.add_option("--out-npy", out_npy_dir, "Write each written output register to DIR/oPos.npy, DIR/oD0.npy, ...");
   command.add_option("--out-buffer", out_buffer, "Write the written output registers interleaved as raw float32");
@@ -257,7 +263,7 @@ VertexSources CollectVertexSources(const VertexSourceFlags& flags, const Program
   sources.mesh = LoadBoundMesh(flags, program, constants, supplied);
   ReadNpyInputs(flags, supplied);
   ReadBufferInput(flags, supplied);
-  if (!flags.out_mesh.empty() && !sources.mesh) Fail("--out-mesh needs --mesh (it writes the input mesh)");
+  if (!flags.out_mesh.empty() && !sources.mesh) FailUsage("--out-mesh needs --mesh (it writes the input mesh)");
   return sources;
 }
 
@@ -265,17 +271,12 @@ void WriteVertexOutputs(const VertexSourceFlags& flags, const VertexSources& sou
                         const VertexArrays& outputs) {
   if (!flags.WritesOutputFiles()) return;
   const std::vector<OutputColumn> columns = OutputColumns(program, outputs);
-  std::vector<OutputFile> contents;
-  if (!flags.out_npy_dir.empty()) AddNpyOutputs(flags.out_npy_dir, columns, contents);
-  const std::string layout =
-      flags.out_buffer.empty() ? "" : AddBufferOutput(flags.out_buffer, columns, outputs.count(), contents);
-  std::vector<FileToWrite> files;  // all or none: a full disk leaves no subset of them
-  for (const OutputFile& file : contents) {
-    files.push_back({file.path, {reinterpret_cast<const char*>(file.bytes.data()), file.bytes.size()}});
-  }
-  if (std::optional<std::string> message = WriteFilesAtomically(files)) Fail(*message);
+  std::vector<StreamedFile> files;  // all or none: a full disk leaves no subset of them
+  if (!flags.out_npy_dir.empty()) AddNpyOutputs(flags.out_npy_dir, columns, outputs, files);
+  const std::string layout = flags.out_buffer.empty() ? "" : AddBufferOutput(flags.out_buffer, columns, outputs, files);
+  if (std::optional<std::string> message = WriteStreamedFilesAtomically(files)) Fail(*message);
   std::fputs(layout.c_str(), stderr);
-  if (!flags.out_mesh.empty()) WriteMeshOutput(flags.out_mesh, *sources.mesh, columns);
+  if (!flags.out_mesh.empty()) WriteMeshOutput(flags.out_mesh, *sources.mesh, columns, outputs);
 }
 
 }  // namespace vs11::cli

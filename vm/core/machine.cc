@@ -3,9 +3,11 @@
 #include <algorithm>
 #include <cctype>
 #include <cstring>
+#include <stdexcept>
 
 #include <fmt/format.h>
 
+#include "vm/core/checked_arithmetic.h"
 
 namespace vs11 {
 
@@ -79,6 +81,13 @@ VertexArrays::VertexArrays(std::size_t count, std::span<const int> registers, in
     if (reg >= 0 && reg < register_space && slot_of_[reg] < 0) slot_of_[reg] = slots++;
   }
   constexpr std::size_t kFloatsPerLine = 16;
+  // `count` may come from a caller's array (a NumPy view broadcast to 2^62 rows costs it nothing):
+  // a size that wraps around would allocate a few bytes and write far beyond them.
+  const std::optional<std::size_t> padded = CheckedAdd<std::size_t>(count, 2 * kFloatsPerLine);
+  const std::optional<std::size_t> bytes = padded ? CheckedMul<std::size_t>(*padded, 4 * sizeof(float) * slots) : std::nullopt;
+  if (!bytes || *bytes / sizeof(float) > data_.max_size()) {
+    throw std::length_error(fmt::format("{} vertices: the vertex arrays would not fit in the address space", count));
+  }
   stride_ = (count + kFloatsPerLine - 1) / kFloatsPerLine * kFloatsPerLine;
   if (count > kFloatsPerLine && (stride_ / kFloatsPerLine) % 2 == 0) stride_ += kFloatsPerLine;
   data_.assign(static_cast<std::size_t>(slots) * 4 * stride_, 0.0f);

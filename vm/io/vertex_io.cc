@@ -66,7 +66,8 @@ std::vector<std::string_view> SplitLines(std::string_view text) {
   return lines;
 }
 
-// Parses "c12" at the cursor; returns the index or an error text.
+// Parses "c12" at the cursor; returns the index or an error text ("expected ..." where the text is
+// no register).
 std::optional<int> ConstantRegister(Cursor& cursor, std::string& error) {
   cursor.SkipSeparators();
   if (cursor.pos >= cursor.line.size() || std::tolower(static_cast<unsigned char>(cursor.line[cursor.pos])) != 'c') {
@@ -76,6 +77,11 @@ std::optional<int> ConstantRegister(Cursor& cursor, std::string& error) {
   ++cursor.pos;
   int index = 0;
   auto [ptr, ec] = std::from_chars(cursor.line.data() + cursor.pos, cursor.line.data() + cursor.line.size(), index);
+  if (ec == std::errc::result_out_of_range) {
+    error = fmt::format("c{} is beyond every constant register",
+                        cursor.line.substr(cursor.pos, static_cast<std::size_t>(ptr - cursor.line.data()) - cursor.pos));
+    return std::nullopt;
+  }
   if (ec != std::errc() || ptr == cursor.line.data() + cursor.pos) {
     error = "expected a register number after 'c'";
     return std::nullopt;
@@ -118,8 +124,9 @@ void ParseConstantsText(std::string_view text, const std::string& file_name, Con
     int register_column = (cursor.SkipSeparators(), cursor.column());
     std::optional<int> index = ConstantRegister(cursor, error);
     if (!index) {
-      error_at(register_column, DiagnosticCode::kConstantLine,
-               error + (is_def ? "" : " (lines are `def c#, x, y, z, w` or `c# = x y z w`)"));
+      const bool syntax = error.starts_with("expected");
+      error_at(register_column, syntax ? DiagnosticCode::kConstantLine : DiagnosticCode::kConstantRegisterRange,
+               error + (is_def || !syntax ? "" : " (lines are `def c#, x, y, z, w` or `c# = x y z w`)"));
       continue;
     }
     cursor.SkipSeparators();
@@ -468,7 +475,10 @@ std::string FormatFloat(float value) {
   return fmt::format("{}", value);  // fmt prints the shortest round-trip form
 }
 
-std::string FormatOutputCsv(const Program& program, const VertexArrays& outputs, const CsvColumns& prefix) {
+void WriteOutputCsv(const Program& program, const VertexArrays& outputs, const CsvColumns& prefix,
+                    const std::function<void(std::string_view)>& write) {
+  // Rows formatted per piece handed to `write`: 4096 rows of at most 80 cells of 16 characters.
+  constexpr std::size_t kRowsPerPiece = 4096;
   std::array<WriteMask, kOutputSlotCount> written = WrittenOutputLanes(program);
   std::vector<std::string> header = prefix.header;
   std::vector<std::pair<int, int>> columns;
@@ -479,15 +489,33 @@ std::string FormatOutputCsv(const Program& program, const VertexArrays& outputs,
       columns.emplace_back(slot, lane);
     }
   }
-  std::string out = fmt::format("{}\n", fmt::join(header, ","));
+  std::string piece = fmt::format("{}\n", fmt::join(header, ","));
+  const std::size_t prefix_width = prefix.header.size();
   for (std::size_t i = 0; i < outputs.count(); ++i) {
-    std::vector<std::string> cells;
-    if (i < prefix.rows.size()) {
-      for (float v : prefix.rows[i]) cells.push_back(FormatFloat(v));
+    const char* separator = "";
+    if (prefix_width > 0 && (i + 1) * prefix_width <= prefix.values.size()) {
+      for (std::size_t c = 0; c < prefix_width; ++c, separator = ",") {
+        piece += separator;
+        piece += FormatFloat(prefix.values[i * prefix_width + c]);
+      }
     }
-    for (auto [slot, lane] : columns) cells.push_back(FormatFloat(outputs.lane(slot, lane)[i]));
-    out += fmt::format("{}\n", fmt::join(cells, ","));
+    for (auto [slot, lane] : columns) {
+      piece += separator;
+      piece += FormatFloat(outputs.lane(slot, lane)[i]);
+      separator = ",";
+    }
+    piece += '\n';
+    if ((i + 1) % kRowsPerPiece == 0) {
+      write(piece);
+      piece.clear();
+    }
   }
+  write(piece);
+}
+
+std::string FormatOutputCsv(const Program& program, const VertexArrays& outputs, const CsvColumns& prefix) {
+  std::string out;
+  WriteOutputCsv(program, outputs, prefix, [&out](std::string_view piece) { out += piece; });
   return out;
 }
 

@@ -1,6 +1,7 @@
 // Text formats around a program run: constant files, --const flags, vertex CSV in and out.
 #pragma once
 
+#include <functional>
 #include <optional>
 #include <string>
 #include <string_view>
@@ -48,13 +49,16 @@ struct InputSpec {
 };
 std::optional<InputSpec> ParseInputSpec(std::string_view flag, std::string& error);
 
-// Formats the written output lanes as CSV with a header `oPos.x,...,oD0.z`. `prefix_columns` (header,
-// per-row values) come first when given.
+// Formats the written output lanes as CSV with a header `oPos.x,...,oD0.z`. `prefix` columns (header,
+// then header.size() values per row, row after row) come first when given.
 struct CsvColumns {
   std::vector<std::string> header;
-  std::vector<std::vector<float>> rows;
+  std::vector<float> values;
 };
 std::string FormatOutputCsv(const Program& program, const VertexArrays& outputs, const CsvColumns& prefix = {});
+// The same text handed to `write` a few hundred KB at a time, for output of any size.
+void WriteOutputCsv(const Program& program, const VertexArrays& outputs, const CsvColumns& prefix,
+                    const std::function<void(std::string_view)>& write);
 
 // Shortest text that reads back as the same float.
 std::string FormatFloat(float value);

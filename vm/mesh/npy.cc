@@ -7,6 +7,7 @@
 #include <fmt/format.h>
 
 #include "vm/asm/program_file.h"
+#include "vm/core/regular_file.h"
 
 namespace vs11::mesh {
 namespace {
@@ -167,6 +168,7 @@ NpyResult ParseNpy(std::span<const std::uint8_t> bytes, const std::string& name)
 }
 
 NpyResult ReadNpy(const std::filesystem::path& path) {
+  if (std::optional<std::string> why = WhyNotARegularFile(path)) return {std::nullopt, fmt::format("{}: {}", path.string(), *why)};
   std::error_code error;
   const std::uintmax_t size = std::filesystem::file_size(path, error);
   if (error) return {std::nullopt, fmt::format("{}: cannot read the file", path.string())};
@@ -178,18 +180,22 @@ NpyResult ReadNpy(const std::filesystem::path& path) {
   return ParseNpy({reinterpret_cast<const std::uint8_t*>(text->data()), text->size()}, path.string());
 }
 
-std::vector<std::uint8_t> FormatNpy(const NpyArray& array) {
-  std::string header = fmt::format("{{'descr': '<f4', 'fortran_order': False, 'shape': ({}, {}), }}", array.rows,
-                                   array.columns);
+std::string NpyHeader(std::size_t rows, int columns) {
+  std::string header = fmt::format("{{'descr': '<f4', 'fortran_order': False, 'shape': ({}, {}), }}", rows, columns);
   const std::size_t unpadded = kMagicSize + 4 + header.size() + 1;
   header.append((64 - unpadded % 64) % 64, ' ');
   header.push_back('\n');
-  std::vector<std::uint8_t> bytes(kMagic, kMagic + kMagicSize);
+  std::string bytes(kMagic, kMagicSize);
   bytes.push_back(1);
   bytes.push_back(0);
-  bytes.push_back(static_cast<std::uint8_t>(header.size() & 0xFF));
-  bytes.push_back(static_cast<std::uint8_t>(header.size() >> 8));
-  bytes.insert(bytes.end(), header.begin(), header.end());
+  bytes.push_back(static_cast<char>(header.size() & 0xFF));
+  bytes.push_back(static_cast<char>(header.size() >> 8));
+  return bytes + header;
+}
+
+std::vector<std::uint8_t> FormatNpy(const NpyArray& array) {
+  const std::string header = NpyHeader(array.rows, array.columns);
+  std::vector<std::uint8_t> bytes(header.begin(), header.end());
   const auto* data = reinterpret_cast<const std::uint8_t*>(array.values.data());
   bytes.insert(bytes.end(), data, data + array.values.size() * sizeof(float));
   return bytes;

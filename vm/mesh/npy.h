@@ -38,5 +38,7 @@ NpyResult ReadNpy(const std::filesystem::path& path);
 
 // Version 1.0, '<f4', C order, shape (rows, columns), header padded to 64 bytes.
 std::vector<std::uint8_t> FormatNpy(const NpyArray& array);
+// FormatNpy's bytes before the data, for a writer that streams the rows * columns floats after it.
+std::string NpyHeader(std::size_t rows, int columns);
 
 }  // namespace vs11::mesh

@@ -5,6 +5,8 @@
 
 #include <fmt/format.h>
 
+#include "vm/core/checked_arithmetic.h"
+
 namespace vs11::mesh {
 namespace {
 
@@ -34,17 +36,31 @@ std::optional<std::string> ParseBufferElement(std::string_view text, BufferEleme
   return std::nullopt;
 }
 
+std::optional<std::string> CheckBufferLayout(std::size_t stride, const std::vector<BufferElement>& elements) {
+  if (stride == 0 || stride > kMaxBufferStride) return fmt::format("--stride {}: must be 1 to {} bytes", stride, kMaxBufferStride);
+  if (elements.empty()) return "--buffer needs at least one --element v#=OFFSET:COUNT";
+  for (std::size_t i = 0; i < elements.size(); ++i) {
+    const BufferElement& e = elements[i];
+    if (e.reg < 0 || e.reg >= kInputRegisterCount) return fmt::format("--element v{}: not an input register v0-v15", e.reg);
+    if (e.components < 1 || e.components > 4) {
+      return fmt::format("--element v{}={}:{}: the count must be 1 to 4 floats", e.reg, e.offset, e.components);
+    }
+    const std::optional<std::size_t> end = CheckedEnd<std::size_t>(e.offset, e.components, sizeof(float));
+    if (!end || *end > stride) {
+      return fmt::format("--element v{}={}:{} ends past the {}-byte stride (at byte {})", e.reg, e.offset, e.components,
+                         stride, end ? fmt::format("{}", *end) : std::string("2^64 or more"));
+    }
+    for (std::size_t j = 0; j < i; ++j) {
+      if (elements[j].reg == e.reg) return fmt::format("--element v{} is given twice: give each register once", e.reg);
+    }
+  }
+  return std::nullopt;
+}
+
 std::optional<std::string> ReadInterleaved(std::span<const std::uint8_t> bytes, std::size_t stride,
                                            const std::vector<BufferElement>& elements, const std::string& name,
                                            RegisterData& registers) {
-  if (stride == 0 || stride > kMaxBufferStride) return fmt::format("--stride {}: must be 1 to {} bytes", stride, kMaxBufferStride);
-  if (elements.empty()) return "--buffer needs at least one --element v#=OFFSET:COUNT";
-  for (const BufferElement& e : elements) {
-    if (e.offset + 4 * static_cast<std::size_t>(e.components) > stride) {
-      return fmt::format("--element v{}={}:{} ends at byte {}, past the {}-byte stride", e.reg, e.offset, e.components,
-                         e.offset + 4 * e.components, stride);
-    }
-  }
+  if (std::optional<std::string> error = CheckBufferLayout(stride, elements)) return error;
   if (bytes.size() % stride != 0) {
     return fmt::format("{}: {} bytes is not a whole number of {}-byte vertices", name, bytes.size(), stride);
   }
@@ -59,21 +75,6 @@ std::optional<std::string> ReadInterleaved(std::span<const std::uint8_t> bytes, 
     registers.emplace_back(e.reg, std::move(values));
   }
   return std::nullopt;
-}
-
-std::vector<std::uint8_t> FormatInterleaved(const std::vector<InterleavedColumn>& columns, std::size_t count) {
-  std::size_t stride = 0;
-  for (const InterleavedColumn& column : columns) stride += 4 * static_cast<std::size_t>(column.components);
-  std::vector<std::uint8_t> bytes(stride * count);
-  std::uint8_t* out = bytes.data();
-  for (std::size_t v = 0; v < count; ++v) {
-    for (const InterleavedColumn& column : columns) {
-      const std::size_t size = 4 * static_cast<std::size_t>(column.components);
-      std::memcpy(out, (*column.values)[v].data(), size);
-      out += size;
-    }
-  }
-  return bytes;
 }
 
 }  // namespace vs11::mesh

@@ -27,17 +27,15 @@ struct BufferElement {
 // "v3=12:3" -> {3, 12, 3}. Returns an error message on failure.
 std::optional<std::string> ParseBufferElement(std::string_view text, BufferElement& element);
 
-// Reads every element of every vertex into `registers` (appended, one entry per element).
+// Whether the layout is one a buffer can have, whatever its bytes: a stride of 1 to
+// kMaxBufferStride, at least one element, each of 1 to 4 floats ending within the stride (the
+// end computed without wrapping around), no register twice. The message names the flag at fault.
+std::optional<std::string> CheckBufferLayout(std::size_t stride, const std::vector<BufferElement>& elements);
+
+// Reads every element of every vertex into `registers` (appended, one entry per element), after
+// CheckBufferLayout; no read leaves `bytes`.
 std::optional<std::string> ReadInterleaved(std::span<const std::uint8_t> bytes, std::size_t stride,
                                            const std::vector<BufferElement>& elements, const std::string& name,
                                            RegisterData& registers);
-
-// One column of an interleaved output: `components` floats taken from `values`.
-struct InterleavedColumn {
-  const std::vector<Vec4f>* values;
-  int components;
-};
-// Vertex after vertex, the columns in order, each `components` floats (stride = 4 * sum).
-std::vector<std::uint8_t> FormatInterleaved(const std::vector<InterleavedColumn>& columns, std::size_t count);
 
 }  // namespace vs11::mesh

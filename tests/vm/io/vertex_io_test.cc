@@ -205,7 +205,7 @@ TEST(VertexIo, OutputCsvNamesWrittenLanes) {
   ASSERT_TRUE(assembled.program) << assembled.diagnostics.ToString();
   VertexArrays outputs = MakeOutputArrays(1, *assembled.program);
   outputs.lane(static_cast<int>(OutputSlot::kDiffuse), 2)[0] = 0.1f;
-  std::string csv = FormatOutputCsv(*assembled.program, outputs, {{"n"}, {{7.0f}}});
+  std::string csv = FormatOutputCsv(*assembled.program, outputs, {{"n"}, {7.0f}});
   EXPECT_EQ(csv, "n,oPos.x,oPos.y,oPos.z,oPos.w,oD0.x,oD0.z\n7,0,0,0,0,0,0.1\n");
 }
 

@@ -75,6 +75,11 @@ TEST(Npy, RefusesAnythingButFloat32RowsOfOneToFour) {
       {NpyWithHeader("{'descr': '<f4', 'fortran_order': Maybe, 'shape': (2, 3), }", 24), "neither True"},
       {NpyWithHeader("{'descr': '<f4', 'fortran_order': False, 'shape': (-2, 3), }", 24), "non-negative"},
       {NpyWithHeader("{'descr': '<f4', 'fortran_order': False, 'shape': (99999999999, 3), }", 24), "over the limit"},
+      // rows * 4 * 4 wraps to 0 bytes of data; rows beyond size_t.
+      {NpyWithHeader("{'descr': '<f4', 'fortran_order': False, 'shape': (1152921504606846976, 4), }", 0), "over the limit"},
+      {NpyWithHeader("{'descr': '<f4', 'fortran_order': True, 'shape': (4611686018427387904, 4), }", 0), "over the limit"},
+      {NpyWithHeader("{'descr': '<f4', 'fortran_order': False, 'shape': (18446744073709551616,), }", 0), "non-negative"},
+      {NpyWithHeader("{'descr': '<f4', 'fortran_order': False, 'shape': (2, 4611686018427387905), }", 0), "1 to 4"},
       {NpyWithHeader("{'descr': '<f4', 'fortran_order': False, 'shape': (2, 3), 'extra': 1}", 24), "unknown header key"},
       {NpyWithHeader("{'descr': '<f4', 'fortran_order': False, 'shape': (2, 3), }", 24, 4), "version 4"},
   };
