@@ -61,6 +61,7 @@
 #include "irradiance/io/cube_map.h"
 #include "irradiance/jobs/mesh_lighting.h"
 #include "irradiance/report/paper_program.h"
+#include "irradiance/sh/engine_sh.h"
 #include "irradiance/sh/ground_truth.h"
 #include "irradiance/sh/level_choice.h"
 #include "irradiance/sh/sh9.h"
@@ -180,6 +181,8 @@ struct IrrmapReport {
   bool errors_measured = false;  // the levels' errors against the ground truth (not with --no-ground-truth)
   std::string environment;  // "sky (built-in)" or the path
   std::string layout;       // "builtin" or the layout read
+  // How engines see that input, which decides each --sh-export's frame (irradiance/sh/engine_sh.h).
+  ShSourceKind sh_source = ShSourceKind::kCube;
   int face_size = 0;
   int level = 0;            // the chosen level
   int threads = 0;          // worker threads used
