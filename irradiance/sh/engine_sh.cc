@@ -172,8 +172,9 @@ constexpr std::string_view kFilamentConvention =
 constexpr std::string_view kUnityConvention =
     "Unity's ShadeSH9 constants: ShadeSH9(float4(n, 1)) = dot(unity_SHA[rgb], float4(n, 1)) + "
     "dot(unity_SHB[rgb], n.xyzz * n.yzzx) + unity_SHC.rgb * (n.x^2 - n.y^2) = E(n) / pi, the radiance a "
-    "white Lambertian surface reflects. These seven vectors are vs11's seven constants (constants.vsh: the "
-    "paper's Table 1 registers cAr cAg cAb cBr cBg cBb cC) divided by pi, in the same packing; only SHC.w "
+    "white Lambertian surface reflects. These seven vectors are the paper's Table 1 registers (cAr cAg cAb "
+    "cBr cBg cBb cC, as in constants.vsh) of the coefficients in Unity's frame, divided by pi, in the same "
+    "packing (for a cube map Unity's frame is vs11's, so they are constants.vsh's over pi); only SHC.w "
     "differs (Unity stores 1, vs11's cC.w is unused). {frame}";
 
 constexpr std::string_view kGltfConvention =
