@@ -319,19 +319,24 @@ void ExpectBrightestAtUp(const Sh9Rgb& sh, ShSourceKind kind, const std::string&
   }
 }
 
-// A small bright light at the top of a lat-long image is above every engine's world.
-TEST(EngineExportFrames, ALightAtTheTopOfALatLongImageIsEveryEnginesUp) {
-  Image latlong(64, 32, glm::vec3(0.05f));
-  for (int x = 0; x < latlong.width; ++x) latlong.at(x, 0) = glm::vec3(40.0f);
-  const envtest::fs::path path = envtest::fs::path(testing::TempDir()) / "engine_sh_top_light.exr";
-  ASSERT_TRUE(envtest::WriteFloatImage(path, latlong));
+// The coefficients of `latlong` written to a file and read back as irrmap reads it.
+Sh9Rgb ProjectLatLongFile(const Image& latlong, const std::string& file_name) {
+  const envtest::fs::path path = envtest::fs::path(testing::TempDir()) / file_name;
+  EXPECT_TRUE(envtest::WriteFloatImage(path, latlong));
   LoadOptions options;
   options.layout = EnvironmentLayout::kLatLong;
   options.face_size = kFaceSize;
   const LoadResult loaded = LoadEnvironment(path, options);
   envtest::fs::remove(path);
-  ASSERT_TRUE(loaded.ok()) << loaded.error;
-  ExpectBrightestAtUp(ProjectDirect(loaded.environment->cube), ShSourceKind::kLatLong,
+  EXPECT_TRUE(loaded.ok()) << loaded.error;
+  return loaded.ok() ? ProjectDirect(loaded.environment->cube) : Sh9Rgb{};
+}
+
+// A small bright light at the top of a lat-long image is above every engine's world.
+TEST(EngineExportFrames, ALightAtTheTopOfALatLongImageIsEveryEnginesUp) {
+  Image latlong(64, 32, glm::vec3(0.05f));
+  for (int x = 0; x < latlong.width; ++x) latlong.at(x, 0) = glm::vec3(40.0f);
+  ExpectBrightestAtUp(ProjectLatLongFile(latlong, "engine_sh_top_light.exr"), ShSourceKind::kLatLong,
                       "a light at the top of a lat-long image");
 }
 
@@ -343,15 +348,7 @@ Sh9Rgb PanoramaWithSpot(double u, double t) {
   for (int dy = -1; dy <= 0; ++dy) {
     for (int dx = -1; dx <= 0; ++dx) latlong.at((x + dx + latlong.width) % latlong.width, y + dy) = glm::vec3(400.0f);
   }
-  const envtest::fs::path path = envtest::fs::path(testing::TempDir()) / "engine_sh_panorama_spot.exr";
-  EXPECT_TRUE(envtest::WriteFloatImage(path, latlong));
-  LoadOptions options;
-  options.layout = EnvironmentLayout::kLatLong;
-  options.face_size = kFaceSize;
-  const LoadResult loaded = LoadEnvironment(path, options);
-  envtest::fs::remove(path);
-  EXPECT_TRUE(loaded.ok()) << loaded.error;
-  return loaded.ok() ? ProjectDirect(loaded.environment->cube) : Sh9Rgb{};
+  return ProjectLatLongFile(latlong, "engine_sh_panorama_spot.exr");
 }
 
 glm::dvec3 BrightestNormal(const EngineFormula& formula, int normals) {
