@@ -189,7 +189,7 @@ constexpr std::string_view kGltfConvention =
 constexpr std::string_view kShaderConvention =
     "{function}: the irradiance E(n) of the nine SH terms (not divided by pi: multiply by albedo / pi for a "
     "Lambertian surface's radiance), as the paper's 11-instruction vs_1_1 program computes it, with vs11's "
-    "seven constants (constants.vsh, Table 1) baked in. n: a unit normal; {frame} So vs11Irradiance(n) equals "
+    "seven constants (constants.vsh, Table 1) baked in. n: a unit normal. {frame} So vs11Irradiance(n) equals "
     "the lookup {lookup}; a right-handed engine that mirrors cube maps in x (three.js's CubeTexture, Filament) "
     "passes {minus_x} instead of n, and three.js showing the panorama as an equirectangular texture passes "
     "{swap_xz}.";
