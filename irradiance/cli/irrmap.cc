@@ -60,7 +60,12 @@ std::string Footer() {
       "                  LightProbe), sh_filament.txt (IndirectLight irradiance, as cmgen --sh-shader),\n"
       "                  sh_unity.json (unity_SHAr..unity_SHC: the 7 constants / pi), sh_gltf.json\n"
       "                  (EXT_lights_image_based irradianceCoefficients), sh_irradiance.glsl/.hlsl\n"
-      "                  (a function of the normal with the 7 constants baked in)\n"
+      "                  (a function of the normal with the 7 constants baked in). Each is in the\n"
+      "                  frame in which that engine shows the input: a lat-long panorama as the engine\n"
+      "                  maps one (three.js's equirectUv and Unity's Skybox/Panoramic put the image\n"
+      "                  centre at +X), a cube map as its cube texture (three.js's CubeTexture mirrored\n"
+      "                  in x); sh_three.json and sh_unity.json also hold the engine's other way of\n"
+      "                  showing the file under \"other_view\"\n"
       "  preview.png     diffuse spheres as in the paper's Fig. 3: exact convolution, SH9 from full\n"
       "                  resolution, from the 64x64 and 16x16 levels (and the chosen one, marked *),\n"
       "                  error images under them (in --error-metric's terms, captioned with the\n"
@@ -244,7 +249,8 @@ void AddEngineExportOptions(CLI::App& app, vs11::irradiance::IrrmapOptions& opti
       ->capture_default_str();
   app.add_option("--sh-export", options.sh_exports,
                  fmt::format("also write the nine coefficients for these engines, each in its own convention and "
-                             "world frame (comma-separated or repeated): {}",
+                             "world frame, as that engine shows the input (a lat-long panorama or a cube map) "
+                             "(comma-separated or repeated): {}",
                              vs11::irradiance::ShExportFormatNames()))
       ->delimiter(',');
 }

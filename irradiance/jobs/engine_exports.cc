@@ -22,6 +22,10 @@ std::optional<std::string> CheckExportOptions(std::string_view map_format, std::
   return std::nullopt;
 }
 
+ShSourceKind ShSourceKindOf(EnvironmentLayout layout) {
+  return layout == EnvironmentLayout::kLatLong ? ShSourceKind::kLatLong : ShSourceKind::kCube;
+}
+
 std::string ExportSourceLine(const IrrmapReport& report, std::string_view window_name) {
   const int size = report.levels.at(report.level).size;
   return fmt::format("Written by irrmap from {}, face size {}, coefficients from level {} ({}x{}), window {}.",

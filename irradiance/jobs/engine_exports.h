@@ -8,6 +8,7 @@
 #include <string_view>
 #include <vector>
 
+#include "irradiance/io/environment_io.h"
 #include "irradiance/io/map_file_formats.h"
 #include "irradiance/jobs/irrmap_job.h"
 #include "irradiance/sh/engine_sh.h"
@@ -22,6 +23,11 @@ struct CheckedExports {
 // nullopt when every name is known ("unknown map format 'png' (use exr, dds or ktx2)" otherwise).
 std::optional<std::string> CheckExportOptions(std::string_view map_format, std::span<const std::string> sh_exports,
                                               CheckedExports& checked);
+
+// How engines see an input of `layout`: a lat-long map is a panorama they map themselves; every other
+// layout (faces, crosses, strips, DDS cubes, angular maps, which no engine shows as they are) reaches
+// them as a cube map.
+ShSourceKind ShSourceKindOf(EnvironmentLayout layout);
 
 // "Written by irrmap from sky (built-in), face size 256, coefficients from level 4 (16x16), window none."
 std::string ExportSourceLine(const IrrmapReport& report, std::string_view window_name);

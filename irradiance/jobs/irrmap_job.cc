@@ -193,6 +193,7 @@ std::optional<std::string> LoadCube(const IrrmapOptions& options, const CheckedO
     report.environment = options.environment;
     report.layout = options.layout;
     report.layout_reason = "as given";
+    report.sh_source = ShSourceKindOf(checked.layout);
     if (std::optional<std::string> error = CheckPyramidFaceSize(options.environment, cube.face_size)) return error;
     if (options.level && *options.level >= LevelCount(cube.face_size)) {
       return fmt::format("{} is out of range: {}", LevelWithValue(options), LevelRange(cube.face_size));
@@ -223,6 +224,7 @@ std::optional<std::string> LoadCube(const IrrmapOptions& options, const CheckedO
   report.environment = options.environment;
   report.layout = std::string(LayoutName(loaded.environment->layout));
   report.layout_reason = loaded.environment->layout_reason;
+  report.sh_source = ShSourceKindOf(loaded.environment->layout);
   const bool resampled = loaded.environment->layout == EnvironmentLayout::kLatLong ||
                          loaded.environment->layout == EnvironmentLayout::kAngular;
   if (options.face_size_given && !resampled && cube.face_size != options.face_size) {
@@ -672,7 +674,8 @@ std::optional<std::string> ShExportStage(IrrmapRun& run) {
   const std::string source = ExportSourceLine(run.report, ShWindowName(run.checked.window));
   for (ShExportFormat format : run.checked.exports.sh_exports) {
     run.outputs.push_back({ShExportFileName(format), [&run, format, source](const fs::path& path) {
-                             return WriteFileAtomically(path, ShExportText(format, run.report.coefficients, source));
+                             return WriteFileAtomically(
+                                 path, ShExportText(format, run.report.sh_source, run.report.coefficients, source));
                            }});
   }
   return std::nullopt;

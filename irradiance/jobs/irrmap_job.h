@@ -60,10 +60,11 @@
 #include <glm/glm.hpp>
 
 #include "irradiance/io/cube_map.h"
-#include "irradiance/jobs/float_range.h"
 #include "irradiance/io/option_names.h"
+#include "irradiance/jobs/float_range.h"
 #include "irradiance/jobs/mesh_lighting.h"
 #include "irradiance/report/paper_program.h"
+#include "irradiance/sh/engine_sh.h"
 #include "irradiance/sh/ground_truth.h"
 #include "irradiance/sh/level_choice.h"
 #include "irradiance/sh/sh9.h"
@@ -195,6 +196,8 @@ struct IrrmapReport {
   // The job failed for something the caller must fix in its options, not in the input (a square
   // image whose layout must be named): a usage error.
   bool usage_error = false;
+  // How engines see that input, which decides each --sh-export's frame (irradiance/sh/engine_sh.h).
+  ShSourceKind sh_source = ShSourceKind::kCube;
   int face_size = 0;
   TexelRange texel_range;   // of the environment's cube map, named when a result is beyond float range
   int level = 0;            // the chosen level

@@ -2,6 +2,7 @@
 
 #include <cassert>
 #include <cmath>
+#include <functional>
 #include <numbers>
 
 #include <fmt/format.h>
@@ -14,15 +15,85 @@ struct FormatInfo {
   ShExportFormat format;
   std::string_view name;
   std::string_view file_name;
-  bool mirrors_x;
+  // The engine's world, for the convention text.
+  std::string_view world;
+  // AssumedView and OtherView, indexed by ShSourceKind (kCube, kLatLong); other may be nullptr.
+  std::array<const EngineView*, 2> assumed;
+  std::array<const EngineView*, 2> other;
 };
+
+constexpr SignedAxes kUnchanged = {{0, 1, 2}, {1, 1, 1}};
+constexpr SignedAxes kMirroredInX = {{0, 1, 2}, {-1, 1, 1}};
+
+constexpr EngineView kThreeEquirect = {
+    "equirect",
+    "an equirectangular texture (scene.background or scene.environment with "
+    "THREE.EquirectangularReflectionMapping, PMREMGenerator.fromEquirectangular, "
+    "WebGLCubeRenderTarget.fromEquirectangularTexture: all through equirectUv, u = atan2(z, x) / 2pi + 0.5, "
+    "v = asin(y) / pi + 0.5, so the image centre is three.js's +X and three quarters across is +Z): vs11's "
+    "direction (x, y, z) is three.js's (z, y, x)",
+    {{2, 1, 0}, {1, 1, 1}}};
+constexpr EngineView kThreeCubeTexture = {
+    "cube_texture",
+    "a THREE.CubeTexture of six faces in the Direct3D/OpenGL face table (CubeTextureLoader; a cube map file, "
+    "or a panorama turned into faces by irrmap, cmgen or Babylon.js), which three.js samples at (-x, y, z): "
+    "vs11's direction (x, y, z) is three.js's (-x, y, z)",
+    kMirroredInX};
+constexpr EngineView kThreeCubeRenderTarget = {
+    "cube_render_target",
+    "the same six faces in a WebGLCubeRenderTarget (LightProbeGenerator.fromCubeRenderTarget), which three.js "
+    "samples without the mirror: vs11's direction (x, y, z) is three.js's (x, y, z)",
+    kUnchanged};
+constexpr EngineView kFilamentCmgen = {
+    "cmgen",
+    "the cube cmgen makes (of a lat-long image through its equirectangularToCubemap, which gives the same cube "
+    "vs11 makes), mirrored in x as cmgen does by default: vs11's direction (x, y, z) is Filament's (-x, y, z)",
+    kMirroredInX};
+constexpr EngineView kFilamentNoMirror = {
+    "cmgen_no_mirror",
+    "the cube of cmgen --no-mirror: vs11's direction (x, y, z) is Filament's (x, y, z), so sh[3], sh[4] and "
+    "sh[7] change sign",
+    kUnchanged};
+constexpr EngineView kUnityPanoramic = {
+    "panoramic",
+    "the Skybox/Panoramic shader's lat-long mapping (ToRadialCoords: u = 0.5 - atan2(z, x) / 2pi, "
+    "v = 1 - acos(y) / pi, so the image centre is Unity's +X and a quarter across is +Z; a Cubemap imported "
+    "with the Latitude-Longitude mapping is taken to match it, the importer's source not being public): vs11's "
+    "direction (x, y, z) is Unity's (z, y, -x)",
+    {{2, 1, 0}, {1, 1, -1}}};
+constexpr EngineView kUnityCubemap = {
+    "cubemap",
+    "a Cubemap of six faces in the Direct3D face table (a cube map file, or a panorama turned into faces by "
+    "irrmap, cmgen or Babylon.js), sampled with the world direction as it is (Unity is left-handed like "
+    "Direct3D): vs11's direction (x, y, z) is Unity's (x, y, z)",
+    kUnchanged};
+constexpr EngineView kGltfCube = {
+    "cube",
+    "the cube map's own frame, in which Babylon.js (the extension's reference loader) evaluates the "
+    "coefficients: at the very vector it samples the light's specularImages cube with (its reflection matrix, "
+    "and z flipped in right-handed scenes, apply to both alike); the cube Babylon.js makes of a panorama "
+    "(HDRCubeTexture, PanoramaToCubeMapTools) is the one vs11 makes: vs11's direction (x, y, z) unchanged",
+    kUnchanged};
+constexpr EngineView kShaderCube = {
+    "cube",
+    "the direction of a cube map lookup of the irradiance.dds or irradiance.ktx2 irrmap writes (Direct3D's "
+    "and Vulkan's face table: left-handed, +Y up), which for a panorama is the direction vs11's lat-long "
+    "convention gives its pixels (image centre +Z, three quarters across +X): vs11's direction unchanged",
+    kUnchanged};
+
 constexpr std::array<FormatInfo, 6> kFormats = {{
-    {ShExportFormat::kThree, "three", "sh_three.json", true},
-    {ShExportFormat::kFilament, "filament", "sh_filament.txt", true},
-    {ShExportFormat::kUnity, "unity", "sh_unity.json", false},
-    {ShExportFormat::kGltf, "gltf", "sh_gltf.json", false},
-    {ShExportFormat::kGlsl, "glsl", "sh_irradiance.glsl", false},
-    {ShExportFormat::kHlsl, "hlsl", "sh_irradiance.hlsl", false},
+    {ShExportFormat::kThree, "three", "sh_three.json", "three.js's world, right-handed, +Y up",
+     {&kThreeCubeTexture, &kThreeEquirect}, {&kThreeCubeRenderTarget, &kThreeCubeTexture}},
+    {ShExportFormat::kFilament, "filament", "sh_filament.txt", "Filament's world, right-handed, +Y up",
+     {&kFilamentCmgen, &kFilamentCmgen}, {&kFilamentNoMirror, &kFilamentNoMirror}},
+    {ShExportFormat::kUnity, "unity", "sh_unity.json", "Unity's world, left-handed, +Y up",
+     {&kUnityCubemap, &kUnityPanoramic}, {nullptr, &kUnityCubemap}},
+    {ShExportFormat::kGltf, "gltf", "sh_gltf.json", "glTF's world, +Y up", {&kGltfCube, &kGltfCube},
+     {nullptr, nullptr}},
+    {ShExportFormat::kGlsl, "glsl", "sh_irradiance.glsl", "the cube map's own, +Y up", {&kShaderCube, &kShaderCube},
+     {nullptr, nullptr}},
+    {ShExportFormat::kHlsl, "hlsl", "sh_irradiance.hlsl", "the cube map's own, +Y up", {&kShaderCube, &kShaderCube},
+     {nullptr, nullptr}},
 }};
 
 const FormatInfo& Info(ShExportFormat format) { return kFormats[static_cast<int>(format)]; }
@@ -38,8 +109,22 @@ constexpr std::array<const char*, 7> kUnityNames = {"unity_SHAr", "unity_SHAg", 
                                                     "unity_SHBg", "unity_SHBb", "unity_SHC"};
 constexpr double kUnitySHCw = 1.0;  // what Unity stores in the unused w of SHC
 
-// The coefficients as the engine's frame sees them.
-Sh9Rgb InEngineFrame(ShExportFormat format, const Sh9Rgb& sh) { return MirrorsX(format) ? MirrorX(sh) : sh; }
+int KindIndex(ShSourceKind kind) { return kind == ShSourceKind::kLatLong ? 1 : 0; }
+
+// "Frame: WORLD, the lat-long panorama shown as VIEW. Shown instead as OTHER, ...": the convention
+// text's frame sentence for `format` and `kind`.
+std::string FrameSentence(ShExportFormat format, ShSourceKind kind, std::string_view other_where) {
+  const EngineView& view = AssumedView(format, kind);
+  std::string text = fmt::format("Frame: {}, with the {} shown as {}.", Info(format).world,
+                                 kind == ShSourceKind::kLatLong ? "lat-long panorama irrmap read" : "cube map irrmap read",
+                                 view.description);
+  if (const EngineView* other = OtherView(format, kind)) {
+    text += fmt::format(" Shown instead as {}: {}.", other->description, other_where);
+  }
+  return text;
+}
+
+constexpr std::string_view kOtherViewInJson = "the numbers for that are under \"other_view\"";
 
 nlohmann::ordered_json TriplesJson(const ShTriples& triples) {
   nlohmann::ordered_json rows = nlohmann::ordered_json::array();
@@ -72,73 +157,84 @@ constexpr std::string_view kThreeConvention =
     "shGetIrradianceAt applies the cosine lobe (pi, 2pi/3, pi/4) itself, and the renderer then multiplies by "
     "albedo / pi. Real SH basis without the Condon-Shortley sign, order (0,0), (1,-1) y, (1,0) z, (1,1) x, "
     "(2,-2) xy, (2,-1) yz, (2,0) 3z^2-1, (2,1) xz, (2,2) x^2-y^2; the r, g, b of coefficient i at sh[3i..3i+2]. "
-    "Frame: three.js's world, right-handed, +Y up, the environment as a THREE.CubeTexture of the same cube "
-    "shows it (three.js mirrors cube textures in x): vs11's cube direction (x, y, z) is three.js's (-x, y, z). "
-    "Load with new THREE.LightProbe().fromJSON(json), or new THREE.LightProbe(new "
-    "THREE.SphericalHarmonics3().fromArray(json.sh)).";
+    "{frame} Load with new THREE.LightProbe(new THREE.SphericalHarmonics3().fromArray(json.sh), "
+    "json.intensity).";
 
 constexpr std::string_view kFilamentConvention =
     "Filament IndirectLight::Builder::irradiance(3, sh), as cmgen --sh-shader prints it: the irradiance "
     "divided by pi, pre-scaled for Filament's shader, sh[i] = k_i L_lm with k = 0.282095, 0.325735 (x3), "
     "0.273137 (x2), 0.078848, 0.273137, 0.136569 (A_l |Y_lm| / pi). The shader computes max(0, sum sh[i] "
     "p_i(n)), p = 1, y, z, x, yx, yz, 3z^2-1, zx, x^2-y^2, and multiplies by the diffuse colour.\n"
-    "Frame: Filament's world, right-handed, +Y up, with the environment mirrored in x as cmgen mirrors it by "
-    "default: vs11's cube direction (x, y, z) is Filament's (-x, y, z). (cmgen --no-mirror would give "
-    "sh[3], sh[4] and sh[7] with the opposite sign.)\n"
+    "{frame}\n"
     "The nine lines below the comment are cmgen's format; Filament's samples read sh.txt from its first line, "
     "so drop the comment lines for them.";
 
 constexpr std::string_view kUnityConvention =
     "Unity's ShadeSH9 constants: ShadeSH9(float4(n, 1)) = dot(unity_SHA[rgb], float4(n, 1)) + "
     "dot(unity_SHB[rgb], n.xyzz * n.yzzx) + unity_SHC.rgb * (n.x^2 - n.y^2) = E(n) / pi, the radiance a "
-    "white Lambertian surface reflects. These seven vectors are vs11's seven constants (constants.vsh: the "
-    "paper's Table 1 registers cAr cAg cAb cBr cBg cBb cC) divided by pi, in the same packing; only SHC.w "
-    "differs (Unity stores 1, vs11's cC.w is unused). Frame: Unity's world, left-handed, +Y up, which is "
-    "vs11's cube frame (Direct3D's) unchanged: a cube map irrmap read is the same cube map in Unity.";
+    "white Lambertian surface reflects. These seven vectors are the paper's Table 1 registers (cAr cAg cAb "
+    "cBr cBg cBb cC, as in constants.vsh) of the coefficients in Unity's frame, divided by pi, in the same "
+    "packing (for a cube map Unity's frame is vs11's, so they are constants.vsh's over pi); only SHC.w "
+    "differs (Unity stores 1, vs11's cC.w is unused). {frame}";
 
 constexpr std::string_view kGltfConvention =
     "glTF EXT_lights_image_based irradianceCoefficients: 9 x [r, g, b], the irradiance SH coefficients "
     "E_lm = A_l L_lm (A = pi, 2pi/3, pi/4) in the real basis with the Condon-Shortley sign, as Babylon.js "
     "(the extension's reference loader) reads them: E(n) = sum E_lm Y_lm(n) with Y = 0.282095, "
     "-0.488603 y, 0.488603 z, -0.488603 x, 1.092548 xy, -1.092548 yz, 0.315392 (3z^2-1), -1.092548 xz, "
-    "0.546274 (x^2-y^2), order (0,0) (1,-1) (1,0) (1,1) (2,-2) (2,-1) (2,0) (2,1) (2,2). Frame: the cube "
-    "map's own, +Y up, in which Babylon.js evaluates them: at the very vector it samples the light's "
-    "specularImages cube with (its reflection matrix, and z flipped in right-handed scenes, apply to both "
-    "alike), so they agree with the cube irrmap read, or wrote, used as specularImages; vs11's cube direction "
-    "(x, y, z) unchanged. Put the array in a light of "
-    "\"extensions\": {\"EXT_lights_image_based\": {\"lights\": [...]}}.";
+    "0.546274 (x^2-y^2), order (0,0) (1,-1) (1,0) (1,1) (2,-2) (2,-1) (2,0) (2,1) (2,2). {frame} They "
+    "agree with the cube irrmap read, or wrote, used as specularImages. Put the array in a light of "
+    "\"extensions\": {{\"EXT_lights_image_based\": {{\"lights\": [...]}}}}.";
 
 constexpr std::string_view kShaderConvention =
     "{function}: the irradiance E(n) of the nine SH terms (not divided by pi: multiply by albedo / pi for a "
     "Lambertian surface's radiance), as the paper's 11-instruction vs_1_1 program computes it, with vs11's "
-    "seven constants (constants.vsh, Table 1) baked in. n: a unit normal in the cube map's own frame "
-    "(Direct3D's and Vulkan's face table: left-handed, +Y up), so that vs11Irradiance(n) equals the lookup {lookup} "
-    "of the irradiance.dds or irradiance.ktx2 irrmap writes; a right-handed engine that mirrors cube maps in "
-    "x (three.js, Filament) passes {minus_x} instead of n.";
+    "seven constants (constants.vsh, Table 1) baked in. n: a unit normal. {frame} So vs11Irradiance(n) equals "
+    "the lookup {lookup}; a right-handed engine that mirrors cube maps in x (three.js's CubeTexture, Filament) "
+    "passes {minus_x} instead of n, and three.js showing the panorama as an equirectangular texture passes "
+    "{swap_xz}.";
 
-std::string JsonFile(std::string_view convention, std::string_view source, const char* key,
-                     nlohmann::ordered_json value) {
+std::string ConventionText(std::string_view convention, ShExportFormat format, ShSourceKind kind,
+                           std::string_view other_where) {
+  return fmt::format(fmt::runtime(convention), fmt::arg("frame", FrameSentence(format, kind, other_where)));
+}
+
+// A JSON export: "convention", "source", "view", the numbers of the assumed view (`numbers`), then
+// "other_view" with the other view's numbers where the engine has one.
+std::string JsonFile(ShExportFormat format, ShSourceKind kind, std::string_view convention, std::string_view source,
+                     const std::function<void(const EngineView&, nlohmann::ordered_json&)>& numbers) {
   nlohmann::ordered_json json;
-  json["convention"] = std::string(convention);
+  json["convention"] = ConventionText(convention, format, kind, kOtherViewInJson);
   json["source"] = std::string(source);
-  json[key] = std::move(value);
+  const EngineView& view = AssumedView(format, kind);
+  json["view"] = std::string(view.name);
+  numbers(view, json);
+  if (const EngineView* other = OtherView(format, kind)) {
+    nlohmann::ordered_json alternative;
+    alternative["view"] = std::string(other->name);
+    numbers(*other, alternative);
+    json["other_view"] = std::move(alternative);
+  }
   return json.dump(2) + "\n";
 }
 
-std::string ThreeText(const Sh9Rgb& sh, std::string_view source) {
+void ThreeNumbers(const Sh9Rgb& sh, const EngineView& view, nlohmann::ordered_json& json) {
   nlohmann::ordered_json flat = nlohmann::ordered_json::array();
-  for (const glm::dvec3& c : ThreeJsCoefficients(sh)) flat.insert(flat.end(), {c.r, c.g, c.b});
-  nlohmann::ordered_json json;
-  json["convention"] = std::string(kThreeConvention);
-  json["source"] = std::string(source);
+  for (const glm::dvec3& c : ThreeJsCoefficients(sh, view)) flat.insert(flat.end(), {c.r, c.g, c.b});
   json["sh"] = std::move(flat);
   json["intensity"] = 1.0;
-  return json.dump(2) + "\n";
 }
 
-std::string FilamentText(const Sh9Rgb& sh, std::string_view source) {
-  std::string out = CommentLines("// ", kFilamentConvention) + CommentLines("// ", source);
-  const ShTriples triples = FilamentIrradianceSh(sh);
+void UnityNumbers(const Sh9Rgb& sh, const EngineView& view, nlohmann::ordered_json& json) {
+  const std::array<glm::dvec4, 7> vectors = UnityShConstants(sh, view);
+  for (int i = 0; i < 7; ++i) json[kUnityNames[i]] = {vectors[i].x, vectors[i].y, vectors[i].z, vectors[i].w};
+}
+
+std::string FilamentText(ShSourceKind kind, const Sh9Rgb& sh, std::string_view source) {
+  std::string out = CommentLines(
+      "// ", ConventionText(kFilamentConvention, ShExportFormat::kFilament, kind, "run cmgen so, or negate those three"));
+  out += CommentLines("// ", source);
+  const ShTriples triples = FilamentIrradianceSh(sh, AssumedView(ShExportFormat::kFilament, kind));
   for (int i = 0; i < kSh9Coefficients; ++i) {
     const glm::dvec3& c = triples[i];
     out += fmt::format("({:.9g}, {:.9g}, {:.9g}); // {}, irradiance, pre-scaled base\n", c.r, c.g, c.b,
@@ -147,27 +243,22 @@ std::string FilamentText(const Sh9Rgb& sh, std::string_view source) {
   return out;
 }
 
-std::string UnityText(const Sh9Rgb& sh, std::string_view source) {
-  nlohmann::ordered_json json;
-  json["convention"] = std::string(kUnityConvention);
-  json["source"] = std::string(source);
-  const std::array<glm::dvec4, 7> vectors = UnityShConstants(sh);
-  for (int i = 0; i < 7; ++i) json[kUnityNames[i]] = {vectors[i].x, vectors[i].y, vectors[i].z, vectors[i].w};
-  return json.dump(2) + "\n";
-}
-
-// The shader function, in GLSL (vec3/vec4) or HLSL (float3/float4).
-std::string ShaderText(const Sh9Rgb& sh, std::string_view source, bool hlsl) {
+// The shader function, in GLSL (vec3/vec4) or HLSL (float3/float4). Its frame is the cube's for every
+// input, so the baked constants are vs11's own.
+std::string ShaderText(ShExportFormat format, ShSourceKind kind, const Sh9Rgb& sh, std::string_view source) {
+  const bool hlsl = format == ShExportFormat::kHlsl;
   const std::string_view vec3 = hlsl ? "float3" : "vec3";
   const std::string_view vec4 = hlsl ? "float4" : "vec4";
   const std::string function = fmt::format("{} vs11Irradiance({} n)", vec3, vec3);
   std::string out = CommentLines(
       "// ", fmt::format(fmt::runtime(kShaderConvention), fmt::arg("function", function),
+                         fmt::arg("frame", FrameSentence(format, kind, "")),
                          fmt::arg("lookup", hlsl ? "TextureCube.Sample(sampler, n).rgb" : "texture(samplerCube, n).rgb"),
-                         fmt::arg("minus_x", fmt::format("{}(-n.x, n.y, n.z)", vec3))));
+                         fmt::arg("minus_x", fmt::format("{}(-n.x, n.y, n.z)", vec3)),
+                         fmt::arg("swap_xz", fmt::format("{}(n.z, n.y, n.x)", vec3))));
   out += CommentLines("// ", source);
   out += function + " {\n";
-  const SevenConstants constants = PackTable1(sh);
+  const SevenConstants constants = PackTable1(InEngineFrame(AssumedView(format, kind), sh));
   for (int i = 0; i < 7; ++i) {
     const glm::vec4& r = constants.registers[i];
     out += fmt::format("  const {} {} = {}({}, {}, {}, {});\n", vec4, SevenConstants::kNames[i], vec4,
@@ -200,10 +291,45 @@ std::string ShExportFormatNames() {
 
 std::string_view ShExportFileName(ShExportFormat format) { return Info(format).file_name; }
 
-bool MirrorsX(ShExportFormat format) { return Info(format).mirrors_x; }
+const EngineView& AssumedView(ShExportFormat format, ShSourceKind kind) {
+  return *Info(format).assumed[KindIndex(kind)];
+}
 
-glm::dvec3 EngineDirection(ShExportFormat format, glm::dvec3 d) {
-  return MirrorsX(format) ? glm::dvec3(-d.x, d.y, d.z) : d;
+const EngineView* OtherView(ShExportFormat format, ShSourceKind kind) { return Info(format).other[KindIndex(kind)]; }
+
+glm::dvec3 EngineDirection(const EngineView& view, glm::dvec3 d) {
+  glm::dvec3 out;
+  for (int i = 0; i < 3; ++i) out[i] = view.to_engine.sign[i] * d[view.to_engine.axis[i]];
+  return out;
+}
+
+Sh9Rgb InEngineFrame(const EngineView& view, const Sh9Rgb& sh) {
+  // The engine's direction is R d; the environment there is E(R^T n). Band 1 is v . d with
+  // v = (L11, L1-1, L10), so v' = R v; band 2 is d^T M d with M symmetric, so M' = R M R^T.
+  glm::dmat3 r(0.0);  // glm is column-major: r[column][row]
+  for (int i = 0; i < 3; ++i) r[view.to_engine.axis[i]][i] = view.to_engine.sign[i];
+  Sh9Rgb out;
+  for (int c = 0; c < 3; ++c) {
+    const auto l = [&](int i) { return sh.coefficients[i][c]; };
+    out.coefficients[0][c] = l(0);
+    const glm::dvec3 v = r * glm::dvec3(l(3), l(1), l(2));
+    out.coefficients[3][c] = v.x;
+    out.coefficients[1][c] = v.y;
+    out.coefficients[2][c] = v.z;
+    // xy, yz, xz terms kShN2 L; 3z^2 - 1 = 2z^2 - x^2 - y^2 on the sphere; x^2 - y^2.
+    const double off_xy = 0.5 * kShN2 * l(4), off_yz = 0.5 * kShN2 * l(5), off_xz = 0.5 * kShN2 * l(7);
+    const double zonal = kShN3 * l(6), sectoral = kShN4 * l(8);
+    const glm::dmat3 m(-zonal + sectoral, off_xy, off_xz,  //
+                       off_xy, -zonal - sectoral, off_yz,  //
+                       off_xz, off_yz, 2.0 * zonal);
+    const glm::dmat3 m2 = r * m * glm::transpose(r);
+    out.coefficients[4][c] = 2.0 * m2[0][1] / kShN2;
+    out.coefficients[5][c] = 2.0 * m2[1][2] / kShN2;
+    out.coefficients[7][c] = 2.0 * m2[0][2] / kShN2;
+    out.coefficients[6][c] = m2[2][2] / (2.0 * kShN3);
+    out.coefficients[8][c] = (m2[0][0] - m2[1][1]) / (2.0 * kShN4);
+  }
+  return out;
 }
 
 Sh9Rgb MirrorX(const Sh9Rgb& sh) {
@@ -212,39 +338,45 @@ Sh9Rgb MirrorX(const Sh9Rgb& sh) {
   return mirrored;
 }
 
-ShTriples ThreeJsCoefficients(const Sh9Rgb& sh) { return InEngineFrame(ShExportFormat::kThree, sh).coefficients; }
+ShTriples ThreeJsCoefficients(const Sh9Rgb& sh, const EngineView& view) { return InEngineFrame(view, sh).coefficients; }
 
-ShTriples FilamentIrradianceSh(const Sh9Rgb& sh) {
-  ShTriples out = InEngineFrame(ShExportFormat::kFilament, sh).coefficients;
+ShTriples FilamentIrradianceSh(const Sh9Rgb& sh, const EngineView& view) {
+  ShTriples out = InEngineFrame(view, sh).coefficients;
   for (int i = 0; i < kSh9Coefficients; ++i) out[i] *= kEnginePreScale[i];
   return out;
 }
 
-ShTriples GltfIrradianceCoefficients(const Sh9Rgb& sh) {
-  ShTriples out = InEngineFrame(ShExportFormat::kGltf, sh).coefficients;
+ShTriples GltfIrradianceCoefficients(const Sh9Rgb& sh, const EngineView& view) {
+  ShTriples out = InEngineFrame(view, sh).coefficients;
   for (int i = 0; i < kSh9Coefficients; ++i) {
     out[i] *= kShBandFactor[kBandOf[i]] * kCondonShortleySign[i];
   }
   return out;
 }
 
-std::array<glm::dvec4, 7> UnityShConstants(const Sh9Rgb& sh) {
-  const SevenConstants constants = PackTable1(sh);
+std::array<glm::dvec4, 7> UnityShConstants(const Sh9Rgb& sh, const EngineView& view) {
+  const SevenConstants constants = PackTable1(InEngineFrame(view, sh));
   std::array<glm::dvec4, 7> out;
   for (int i = 0; i < 7; ++i) out[i] = glm::dvec4(constants.registers[i]) / std::numbers::pi;
   out[SevenConstants::kC].w = kUnitySHCw;
   return out;
 }
 
-std::string ShExportText(ShExportFormat format, const Sh9Rgb& sh, std::string_view source) {
+std::string ShExportText(ShExportFormat format, ShSourceKind kind, const Sh9Rgb& sh, std::string_view source) {
   switch (format) {
-    case ShExportFormat::kThree: return ThreeText(sh, source);
-    case ShExportFormat::kFilament: return FilamentText(sh, source);
-    case ShExportFormat::kUnity: return UnityText(sh, source);
+    case ShExportFormat::kThree:
+      return JsonFile(format, kind, kThreeConvention, source,
+                      [&sh](const EngineView& view, nlohmann::ordered_json& json) { ThreeNumbers(sh, view, json); });
+    case ShExportFormat::kFilament: return FilamentText(kind, sh, source);
+    case ShExportFormat::kUnity:
+      return JsonFile(format, kind, kUnityConvention, source,
+                      [&sh](const EngineView& view, nlohmann::ordered_json& json) { UnityNumbers(sh, view, json); });
     case ShExportFormat::kGltf:
-      return JsonFile(kGltfConvention, source, "irradianceCoefficients", TriplesJson(GltfIrradianceCoefficients(sh)));
-    case ShExportFormat::kGlsl: return ShaderText(sh, source, false);
-    case ShExportFormat::kHlsl: return ShaderText(sh, source, true);
+      return JsonFile(format, kind, kGltfConvention, source, [&sh](const EngineView& view, nlohmann::ordered_json& json) {
+        json["irradianceCoefficients"] = TriplesJson(GltfIrradianceCoefficients(sh, view));
+      });
+    case ShExportFormat::kGlsl:
+    case ShExportFormat::kHlsl: return ShaderText(format, kind, sh, source);
   }
   return {};
 }

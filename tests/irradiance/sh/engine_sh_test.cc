@@ -5,10 +5,12 @@
 //   Unity      UnityCG.cginc ShadeSH9: SHEvalLinearL0L1 + SHEvalLinearL2, E/pi
 //   glTF       EXT_lights_image_based as Babylon.js reads it: sum E_lm Y_lm(n) with its signed basis
 //   GLSL/HLSL  the baked function's own arithmetic
-// and each engine's frame, also as its sources state it: three.js samples a CubeTexture at
-// (-x, y, z) (flipEnvMap), cmgen mirrors the cube in x by default; Unity samples cube maps with the
-// world direction, Babylon.js evaluates glTF's coefficients at the vector of its specular cube
-// lookup, and the shader functions take a cube lookup's direction: the cube map's frame.
+// and each engine's frame, also as its sources state it, for a cube map: three.js samples a
+// CubeTexture at (-x, y, z) (flipEnvMap), cmgen mirrors the cube in x by default; Unity samples cube
+// maps with the world direction, Babylon.js evaluates glTF's coefficients at the vector of its
+// specular cube lookup, and the shader functions take a cube lookup's direction: the cube map's
+// frame. For a lat-long panorama, EnginePanoramaDirection: where each engine's own lat-long formula
+// puts a point of the image.
 #include "irradiance/sh/engine_sh.h"
 
 #include <algorithm>
@@ -19,6 +21,7 @@
 #include <regex>
 #include <sstream>
 #include <string>
+#include <tuple>
 #include <vector>
 
 #include <gmock/gmock.h>
@@ -51,7 +54,7 @@ struct EngineFormula {
 };
 
 // The engine's direction for a direction of vs11's cube frame, from each engine's documentation.
-glm::dvec3 ToEngineFrame(ShExportFormat format, glm::dvec3 d) {
+glm::dvec3 CubeToEngineFrame(ShExportFormat format, glm::dvec3 d) {
   switch (format) {
     case ShExportFormat::kThree:     // flipEnvMap = -1 for a CubeTexture
     case ShExportFormat::kFilament:  // cmgen's default mirror: dst(N) = src(-N.x, N.y, N.z)
@@ -63,6 +66,53 @@ glm::dvec3 ToEngineFrame(ShExportFormat format, glm::dvec3 d) {
       return d;
   }
   return d;
+}
+
+// Where each engine shows the point (u, t) of a lat-long image, u across from the left edge and t
+// down from the top row, both in [0, 1], written from the engine's own lat-long formula.
+glm::dvec3 EnginePanoramaDirection(ShExportFormat format, double u, double t) {
+  switch (format) {
+    case ShExportFormat::kThree: {
+      // common.glsl.js equirectUv: u = atan(z, x) / 2pi + 0.5, v = asin(y) / pi + 0.5; HDRLoader and
+      // EXRLoader put the image's top row at v = 1.
+      const double longitude = 2 * kPi * (u - 0.5), latitude = kPi * (0.5 - t);
+      return {std::cos(latitude) * std::cos(longitude), std::sin(latitude), std::cos(latitude) * std::sin(longitude)};
+    }
+    case ShExportFormat::kFilament: {
+      // cmgen's CubemapUtils::equirectangularToCubemap: x = atan2(s.x, s.z) / pi, y = asin(s.y) * 2 / pi
+      // (top row y = 1), then mirrorCubemap: dst(N) = src(-N.x, N.y, N.z).
+      const double longitude = 2 * kPi * (u - 0.5), latitude = kPi * (0.5 - t);
+      const glm::dvec3 s(std::cos(latitude) * std::sin(longitude), std::sin(latitude),
+                         std::cos(latitude) * std::cos(longitude));
+      return {-s.x, s.y, s.z};
+    }
+    case ShExportFormat::kUnity: {
+      // Skybox-Panoramic.shader ToRadialCoords: u = 0.5 - atan2(z, x) / 2pi, v = 1 - acos(y) / pi
+      // (Unity's v = 1 is the image's top row).
+      const double longitude = 2 * kPi * (0.5 - u), polar = kPi * t;
+      return {std::sin(polar) * std::cos(longitude), std::cos(polar), std::sin(polar) * std::sin(longitude)};
+    }
+    case ShExportFormat::kGltf: {
+      // Babylon.js PanoramaToCubeMapTools (HDRCubeTexture): the texel whose FACE_* corner vector is
+      // v reads column atan2(v.z, v.x) / 2pi + 0.5 and row H - 1 - acos(v.y) / pi H; its corner
+      // tables give, against the GL face table of the cube it fills, v = (b.z, -b.y, b.x) for the
+      // lookup direction b.
+      const double theta = 2 * kPi * (u - 0.5), phi = kPi * (1 - t);
+      const glm::dvec3 v(std::sin(phi) * std::cos(theta), std::cos(phi), std::sin(phi) * std::sin(theta));
+      return {v.z, -v.y, v.x};
+    }
+    case ShExportFormat::kGlsl:
+    case ShExportFormat::kHlsl:
+      return LatLongDirection(u, t);  // the function's frame is defined as vs11's own lat-long convention
+  }
+  return {};
+}
+
+// The engine's direction for a direction `d` of the environment irrmap read from an input of `kind`.
+glm::dvec3 ToEngineFrame(ShExportFormat format, ShSourceKind kind, glm::dvec3 d) {
+  if (kind == ShSourceKind::kCube) return CubeToEngineFrame(format, d);
+  const glm::dvec2 uv = DirectionToLatLong(d);  // where d lies in the lat-long file
+  return EnginePanoramaDirection(format, uv.x, uv.y);
 }
 
 std::vector<glm::dvec3> Triples(const nlohmann::json& flat_or_rows) {
@@ -204,14 +254,14 @@ glm::dvec3 Vs11Value(const Sh9Rgb& sh, glm::dvec3 n, const EngineFormula& formul
   return formula.clamped_at_zero ? glm::max(e, glm::dvec3(0.0)) : e;
 }
 
-class EngineExport : public testing::TestWithParam<ShExportFormat> {};
+class EngineExport : public testing::TestWithParam<std::tuple<ShExportFormat, ShSourceKind>> {};
 
 // The engine's formula on the exported numbers, at 1000 normals of its frame, against vs11's
-// irradiance at the same directions of the cube map.
+// irradiance at the same directions of the environment as read from a cube map or a panorama.
 TEST_P(EngineExport, EnginesFormulaMatchesVs11sIrradianceAtTheSameDirections) {
-  const ShExportFormat format = GetParam();
+  const auto [format, kind] = GetParam();
   const Sh9Rgb sh = StudioCoefficients();
-  const std::string text = ShExportText(format, sh, "studio, face size 32");
+  const std::string text = ShExportText(format, kind, sh, "studio, face size 32");
   const EngineFormula formula = FormulaOf(format, text);
   const std::vector<glm::dvec3> normals = SphereNormals(kNormals);
   double peak = 0.0;
@@ -222,7 +272,7 @@ TEST_P(EngineExport, EnginesFormulaMatchesVs11sIrradianceAtTheSameDirections) {
   ASSERT_GT(peak, 0.0);
   double worst = 0.0;
   for (const glm::dvec3& n : normals) {
-    const glm::dvec3 difference = formula.evaluate(ToEngineFrame(format, n)) - Vs11Value(sh, n, formula);
+    const glm::dvec3 difference = formula.evaluate(ToEngineFrame(format, kind, n)) - Vs11Value(sh, n, formula);
     worst = std::max({worst, std::abs(difference.r), std::abs(difference.g), std::abs(difference.b)});
   }
   EXPECT_LE(worst, kPeakTolerance * peak) << ShExportFormatName(format) << ": worst " << worst / peak
@@ -231,8 +281,8 @@ TEST_P(EngineExport, EnginesFormulaMatchesVs11sIrradianceAtTheSameDirections) {
 
 // Each file begins with its convention, naming the engine, its frame and what it stores.
 TEST_P(EngineExport, FileStatesItsConventionAtTheTop) {
-  const ShExportFormat format = GetParam();
-  const std::string text = ShExportText(format, StudioCoefficients(), "SOURCE LINE");
+  const auto [format, kind] = GetParam();
+  const std::string text = ShExportText(format, kind, StudioCoefficients(), "SOURCE LINE");
   const std::string head = text.substr(0, 160);
   switch (format) {
     case ShExportFormat::kThree: EXPECT_THAT(head, HasSubstr("\"convention\": \"three.js SphericalHarmonics3")); break;
@@ -244,18 +294,22 @@ TEST_P(EngineExport, FileStatesItsConventionAtTheTop) {
   }
   EXPECT_THAT(text, HasSubstr("+Y up"));
   EXPECT_THAT(text, HasSubstr("SOURCE LINE"));
+  EXPECT_THAT(text, HasSubstr(kind == ShSourceKind::kLatLong ? "lat-long panorama" : "cube map irrmap read"));
 }
 
-INSTANTIATE_TEST_SUITE_P(Formats, EngineExport, testing::ValuesIn(kAllShExportFormats),
-                         [](const testing::TestParamInfo<ShExportFormat>& info) {
-                           return std::string(ShExportFormatName(info.param));
-                         });
+INSTANTIATE_TEST_SUITE_P(
+    Formats, EngineExport,
+    testing::Combine(testing::ValuesIn(kAllShExportFormats), testing::Values(ShSourceKind::kCube, ShSourceKind::kLatLong)),
+    [](const testing::TestParamInfo<std::tuple<ShExportFormat, ShSourceKind>>& info) {
+      return std::string(ShExportFormatName(std::get<0>(info.param))) +
+             (std::get<1>(info.param) == ShSourceKind::kLatLong ? "LatLong" : "Cube");
+    });
 
 // The engine's formula at `up` against every other normal.
-void ExpectBrightestAtUp(const Sh9Rgb& sh, const std::string& environment) {
+void ExpectBrightestAtUp(const Sh9Rgb& sh, ShSourceKind kind, const std::string& environment) {
   const glm::dvec3 up(0.0, 1.0, 0.0);
   for (ShExportFormat format : kAllShExportFormats) {
-    const EngineFormula formula = FormulaOf(format, ShExportText(format, sh, environment));
+    const EngineFormula formula = FormulaOf(format, ShExportText(format, kind, sh, environment));
     const double at_up = formula.evaluate(up).g;
     EXPECT_GT(at_up, formula.evaluate(-up).g) << ShExportFormatName(format);
     int brighter = 0;
@@ -265,19 +319,107 @@ void ExpectBrightestAtUp(const Sh9Rgb& sh, const std::string& environment) {
   }
 }
 
-// A small bright light at the top of a lat-long image is above every engine's world.
-TEST(EngineExportFrames, ALightAtTheTopOfALatLongImageIsEveryEnginesUp) {
-  Image latlong(64, 32, glm::vec3(0.05f));
-  for (int x = 0; x < latlong.width; ++x) latlong.at(x, 0) = glm::vec3(40.0f);
-  const envtest::fs::path path = envtest::fs::path(testing::TempDir()) / "engine_sh_top_light.exr";
-  ASSERT_TRUE(envtest::WriteFloatImage(path, latlong));
+// The coefficients of `latlong` written to a file and read back as irrmap reads it.
+Sh9Rgb ProjectLatLongFile(const Image& latlong, const std::string& file_name) {
+  const envtest::fs::path path = envtest::fs::path(testing::TempDir()) / file_name;
+  EXPECT_TRUE(envtest::WriteFloatImage(path, latlong));
   LoadOptions options;
   options.layout = EnvironmentLayout::kLatLong;
   options.face_size = kFaceSize;
   const LoadResult loaded = LoadEnvironment(path, options);
   envtest::fs::remove(path);
-  ASSERT_TRUE(loaded.ok()) << loaded.error;
-  ExpectBrightestAtUp(ProjectDirect(loaded.environment->cube), "a light at the top of a lat-long image");
+  EXPECT_TRUE(loaded.ok()) << loaded.error;
+  return loaded.ok() ? ProjectDirect(loaded.environment->cube) : Sh9Rgb{};
+}
+
+// A small bright light at the top of a lat-long image is above every engine's world.
+TEST(EngineExportFrames, ALightAtTheTopOfALatLongImageIsEveryEnginesUp) {
+  Image latlong(64, 32, glm::vec3(0.05f));
+  for (int x = 0; x < latlong.width; ++x) latlong.at(x, 0) = glm::vec3(40.0f);
+  ExpectBrightestAtUp(ProjectLatLongFile(latlong, "engine_sh_top_light.exr"), ShSourceKind::kLatLong,
+                      "a light at the top of a lat-long image");
+}
+
+// The environment of a 128 x 64 lat-long file, dim everywhere but for a 2 x 2 pixel spot centred at
+// (u, t) of the image (u across from the left, t down from the top).
+Sh9Rgb PanoramaWithSpot(double u, double t) {
+  Image latlong(128, 64, glm::vec3(0.02f));
+  const int x = static_cast<int>(std::lround(u * latlong.width)), y = static_cast<int>(std::lround(t * latlong.height));
+  for (int dy = -1; dy <= 0; ++dy) {
+    for (int dx = -1; dx <= 0; ++dx) latlong.at((x + dx + latlong.width) % latlong.width, y + dy) = glm::vec3(400.0f);
+  }
+  return ProjectLatLongFile(latlong, "engine_sh_panorama_spot.exr");
+}
+
+glm::dvec3 BrightestNormal(const EngineFormula& formula, int normals) {
+  glm::dvec3 brightest(0.0);
+  double best = -1e300;
+  for (const glm::dvec3& n : SphereNormals(normals)) {
+    const double value = formula.evaluate(n).g;
+    if (value > best) {
+      best = value;
+      brightest = n;
+    }
+  }
+  return brightest;
+}
+
+// A small light at a known point of a panorama is brightest, in every engine's export, at the
+// direction where that engine's own lat-long formula shows that point: for three.js the image centre
+// is +X (equirectUv), for Unity +X too (Skybox/Panoramic), for Filament (cmgen) and the shaders +Z.
+TEST(EngineExportFrames, ASpotInAPanoramaIsBrightestWhereEachEngineShowsIt) {
+  constexpr int kSearchNormals = 40000;           // about 1 degree apart
+  const double kMaxAngle = 3.0 * kPi / 180.0;     // the search grid and the 2 x 2 spot's offset
+  for (const glm::dvec2 spot : {glm::dvec2(0.5, 0.5), glm::dvec2(0.75, 0.5), glm::dvec2(0.125, 0.375),
+                                glm::dvec2(0.3125, 0.75)}) {
+    const Sh9Rgb sh = PanoramaWithSpot(spot.x, spot.y);
+    for (ShExportFormat format : kAllShExportFormats) {
+      const EngineFormula formula = FormulaOf(format, ShExportText(format, ShSourceKind::kLatLong, sh, "spot"));
+      const glm::dvec3 brightest = BrightestNormal(formula, kSearchNormals);
+      const glm::dvec3 expected = EnginePanoramaDirection(format, spot.x, spot.y);
+      EXPECT_GT(glm::dot(brightest, expected), std::cos(kMaxAngle))
+          << ShExportFormatName(format) << ", spot at u " << spot.x << ", t " << spot.y << ": brightest ("
+          << brightest.x << ", " << brightest.y << ", " << brightest.z << "), the engine shows it at (" << expected.x
+          << ", " << expected.y << ", " << expected.z << ")";
+    }
+  }
+}
+
+// Where one engine shows a file two ways, the JSON export's "other_view" holds the numbers for the
+// second: three.js's CubeTexture of a panorama turned into faces, its cube render target of a cube
+// map, Unity's Cubemap of a panorama turned into faces (each the cube's frame, mirrored for a
+// CubeTexture).
+TEST(EngineExportFrames, OtherViewHoldsTheNumbersOfTheEnginesSecondWay) {
+  const Sh9Rgb sh = StudioCoefficients();
+  struct Case {
+    ShExportFormat format;
+    ShSourceKind kind;
+    std::string view, other;
+    std::function<glm::dvec3(glm::dvec3)> other_frame;
+  };
+  const Case cases[] = {
+      {ShExportFormat::kThree, ShSourceKind::kLatLong, "equirect", "cube_texture",
+       [](glm::dvec3 d) { return glm::dvec3(-d.x, d.y, d.z); }},
+      {ShExportFormat::kThree, ShSourceKind::kCube, "cube_texture", "cube_render_target", [](glm::dvec3 d) { return d; }},
+      {ShExportFormat::kUnity, ShSourceKind::kLatLong, "panoramic", "cubemap", [](glm::dvec3 d) { return d; }},
+  };
+  for (const Case& c : cases) {
+    const nlohmann::json json = nlohmann::json::parse(ShExportText(c.format, c.kind, sh, "studio"));
+    EXPECT_EQ(json.at("view"), c.view);
+    ASSERT_TRUE(json.contains("other_view")) << c.view;
+    EXPECT_EQ(json["other_view"].at("view"), c.other);
+    const EngineFormula formula = FormulaOf(c.format, json["other_view"].dump());
+    double worst = 0.0, peak = 0.0;
+    for (const glm::dvec3& n : SphereNormals(kNormals)) {
+      const glm::dvec3 expected = Vs11Value(sh, n, formula);
+      const glm::dvec3 difference = formula.evaluate(c.other_frame(n)) - expected;
+      peak = std::max({peak, std::abs(expected.r), std::abs(expected.g), std::abs(expected.b)});
+      worst = std::max({worst, std::abs(difference.r), std::abs(difference.g), std::abs(difference.b)});
+    }
+    EXPECT_LE(worst, kPeakTolerance * peak) << c.other;
+  }
+  EXPECT_FALSE(nlohmann::json::parse(ShExportText(ShExportFormat::kGltf, ShSourceKind::kLatLong, sh, ""))
+                   .contains("other_view"));
 }
 
 // The sky without its sun is brightest straight up in every engine; with its sun (35 degrees high,
@@ -286,13 +428,13 @@ TEST(EngineExportFrames, ALightAtTheTopOfALatLongImageIsEveryEnginesUp) {
 TEST(EngineExportFrames, TheSkyIsBrightestAboveAndTowardsItsSunInEveryEngine) {
   SkyParams no_sun;
   no_sun.sun_irradiance = glm::vec3(0.0f);
-  ExpectBrightestAtUp(ProjectDirect(MakeSky(kFaceSize, no_sun)), "the sky without its sun");
+  ExpectBrightestAtUp(ProjectDirect(MakeSky(kFaceSize, no_sun)), ShSourceKind::kCube, "the sky without its sun");
 
   const Sh9Rgb sky = ProjectDirect(MakeSky(kFaceSize));
   const SkyParams defaults;
   const glm::dvec3 sun = DirectionFromAzimuthElevation(defaults.sun_azimuth_degrees, defaults.sun_elevation_degrees);
   for (ShExportFormat format : kAllShExportFormats) {
-    const EngineFormula formula = FormulaOf(format, ShExportText(format, sky, "sky"));
+    const EngineFormula formula = FormulaOf(format, ShExportText(format, ShSourceKind::kCube, sky, "sky"));
     glm::dvec3 brightest(0.0);
     double best = -1e300;
     for (const glm::dvec3& n : SphereNormals(kNormals)) {
@@ -302,7 +444,7 @@ TEST(EngineExportFrames, TheSkyIsBrightestAboveAndTowardsItsSunInEveryEngine) {
         brightest = n;
       }
     }
-    const glm::dvec3 engine_sun = ToEngineFrame(format, sun);
+    const glm::dvec3 engine_sun = CubeToEngineFrame(format, sun);
     EXPECT_GT(brightest.y, std::sin(defaults.sun_elevation_degrees * kPi / 180.0)) << ShExportFormatName(format)
                                                                                   << ": between the sun and up";
     // Near the pole the 1000 normals resolve azimuth coarsely: within 25 degrees of the sun's.
@@ -322,7 +464,7 @@ TEST(EngineExportFrames, TheSkyIsBrightestAboveAndTowardsItsSunInEveryEngine) {
 TEST(EngineExportUnity, VectorsAreVs11sSevenConstantsOverPi) {
   const Sh9Rgb sh = StudioCoefficients();
   const SevenConstants constants = PackTable1(sh);
-  const std::array<glm::dvec4, 7> unity = UnityVectors(ShExportText(ShExportFormat::kUnity, sh, ""));
+  const std::array<glm::dvec4, 7> unity = UnityVectors(ShExportText(ShExportFormat::kUnity, ShSourceKind::kCube, sh, ""));
   for (int i = 0; i < 7; ++i) {
     const glm::dvec4 expected = glm::dvec4(constants.registers[i]) / kPi;
     for (int c = 0; c < (i == SevenConstants::kC ? 3 : 4); ++c) {
@@ -337,7 +479,7 @@ TEST(EngineExportShaders, BakeTheSevenConstantsBitForBit) {
   const Sh9Rgb sh = StudioCoefficients();
   const SevenConstants constants = PackTable1(sh);
   for (ShExportFormat format : {ShExportFormat::kGlsl, ShExportFormat::kHlsl}) {
-    const std::vector<glm::dvec4> baked = ShaderConstants(ShExportText(format, sh, ""));
+    const std::vector<glm::dvec4> baked = ShaderConstants(ShExportText(format, ShSourceKind::kCube, sh, ""));
     ASSERT_EQ(baked.size(), 7u);
     for (int i = 0; i < 7; ++i) EXPECT_EQ(glm::vec4(baked[i]), constants.registers[i]) << SevenConstants::kNames[i];
   }
@@ -345,7 +487,7 @@ TEST(EngineExportShaders, BakeTheSevenConstantsBitForBit) {
 
 // The GLSL function compiles in glslang, called from a vertex shader, for desktop and ES targets.
 TEST(EngineExportShaders, GlslFunctionCompilesInGlslang) {
-  const std::string function = ShExportText(ShExportFormat::kGlsl, StudioCoefficients(), "studio");
+  const std::string function = ShExportText(ShExportFormat::kGlsl, ShSourceKind::kCube, StudioCoefficients(), "studio");
   const std::string main_body =
       "\nin vec3 normal;\nout vec3 irradiance;\n"
       "void main() { irradiance = vs11Irradiance(normalize(normal)); gl_Position = vec4(normal, 1.0); }\n";
@@ -362,7 +504,7 @@ TEST(EngineExportShaders, GlslFunctionCompilesInGlslang) {
 // The HLSL function compiles in glslang's HLSL front end, called from a vertex shader's entry point;
 // a misspelt call is refused, so the front end did read it.
 TEST(EngineExportShaders, HlslFunctionCompilesInGlslangsHlslFrontEnd) {
-  const std::string function = ShExportText(ShExportFormat::kHlsl, StudioCoefficients(), "studio");
+  const std::string function = ShExportText(ShExportFormat::kHlsl, ShSourceKind::kCube, StudioCoefficients(), "studio");
   const std::string entry =
       "\nfloat4 main(float3 normal : NORMAL) : SV_Position {\n"
       "  return float4(vs11Irradiance(normalize(normal)), 1.0);\n}\n";
