@@ -167,8 +167,6 @@ std::optional<std::string> CheckOptions(const IrrmapOptions& options, CheckedOpt
   if (std::optional<std::string> error = CheckOptionValues(options, checked)) return error;
   if (options.write_files) {
     if (std::optional<std::string> error = CheckOutputFolder(options.out_dir)) return error;
-  }
-  if (options.write_files) {
     if (auto error = CheckOutputsAreNotInputs(options, options.mesh ? options.mesh->name : "")) return error;
   }
   std::error_code ec;
@@ -179,7 +177,7 @@ std::optional<std::string> CheckOptions(const IrrmapOptions& options, CheckedOpt
                        BuiltinList());
   }
   if (checked.builtin && options.level && *options.level >= LevelCount(options.face_size)) {
-    return fmt::format("{} is out of range: {}", named("level", *options.level), LevelRange(options.face_size));
+    return fmt::format("{} is out of range: {}", LevelWithValue(options), LevelRange(options.face_size));
   }
   const unsigned cores = std::thread::hardware_concurrency();
   checked.threads = options.threads > 0 ? options.threads : static_cast<int>(std::max(1u, cores));

@@ -10,7 +10,7 @@
 #include "vm/asm/program_file.h"
 #include "vm/cli/cli_support.h"
 #include "vm/cli/streamed_output.h"
-#include "vm/core/regular_file.h"
+#include "vm/core/input_file.h"
 #include "vm/mesh/mesh_export.h"
 #include "vm/mesh/npy.h"
 #include "vm/mesh/vertex_buffer.h"
@@ -112,7 +112,7 @@ void ReadBufferInput(const VertexSourceFlags& flags, mesh::RegisterData& supplie
     elements.push_back(element);
   }
   if (std::optional<std::string> error = mesh::CheckBufferLayout(flags.stride, elements)) FailUsage(*error);
-  if (std::optional<std::string> why = WhyNotARegularFile(flags.buffer)) Fail(fmt::format("{}: {}", flags.buffer, *why));
+  if (std::optional<std::string> why = InputFileProblem(flags.buffer, /*pipes_allowed=*/false)) Fail(fmt::format("{}: {}", flags.buffer, *why));
   std::error_code error;
   const std::uintmax_t size = std::filesystem::file_size(flags.buffer, error);
   if (error) Fail(fmt::format("{}: cannot read the buffer file", flags.buffer));

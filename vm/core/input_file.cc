@@ -27,7 +27,7 @@ std::optional<std::string> ModeProblem(mode_t mode, bool is_terminal, bool pipes
   if (S_ISREG(mode)) return std::nullopt;
   if (S_ISFIFO(mode) || (S_ISCHR(mode) && is_terminal)) {
     if (pipes_allowed) return std::nullopt;
-    kind = "is a pipe";
+    kind = "is a named pipe (FIFO)";
   } else if (S_ISDIR(mode)) {
     kind = "is a folder";
   } else if (S_ISCHR(mode) || S_ISBLK(mode)) {

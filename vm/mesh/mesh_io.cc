@@ -17,7 +17,7 @@
 #include <assimp/scene.h>
 #include <fmt/format.h>
 
-#include "vm/core/regular_file.h"
+#include "vm/core/input_file.h"
 #include "vm/mesh/mesh_sandbox.h"
 #include "vm/mesh/smooth_normals.h"
 
@@ -634,7 +634,7 @@ bool IsMeshFileExtension(const std::string& extension) {
 MeshLoadResult LoadMesh(const std::filesystem::path& path, const MeshLoadOptions& options) {
   const std::string name = path.string();
   std::error_code error;
-  if (std::optional<std::string> why = WhyNotARegularFile(path)) return {std::nullopt, name + ": " + *why};
+  if (std::optional<std::string> why = InputFileProblem(path, /*pipes_allowed=*/false)) return {std::nullopt, name + ": " + *why};
   const std::uintmax_t size = std::filesystem::file_size(path, error);
   if (error) return {std::nullopt, fmt::format("{}: cannot read its size ({})", name, error.message())};
   std::vector<std::uint8_t> head(std::min<std::uintmax_t>(size, kHeaderBytes));

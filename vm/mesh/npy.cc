@@ -7,7 +7,7 @@
 #include <fmt/format.h>
 
 #include "vm/asm/program_file.h"
-#include "vm/core/regular_file.h"
+#include "vm/core/input_file.h"
 
 namespace vs11::mesh {
 namespace {
@@ -168,7 +168,7 @@ NpyResult ParseNpy(std::span<const std::uint8_t> bytes, const std::string& name)
 }
 
 NpyResult ReadNpy(const std::filesystem::path& path) {
-  if (std::optional<std::string> why = WhyNotARegularFile(path)) return {std::nullopt, fmt::format("{}: {}", path.string(), *why)};
+  if (std::optional<std::string> why = InputFileProblem(path, /*pipes_allowed=*/false)) return {std::nullopt, fmt::format("{}: {}", path.string(), *why)};
   std::error_code error;
   const std::uintmax_t size = std::filesystem::file_size(path, error);
   if (error) return {std::nullopt, fmt::format("{}: cannot read the file", path.string())};

@@ -106,11 +106,11 @@ TEST_F(RunInputBounds, InputThatIsNotARegularFileSaysWhatItIs) {
                                   "--buffer " + fifo.string() + " --stride 16 --element v0=0:4"}) {
     CommandResult r = Run(args);
     EXPECT_EQ(r.status, 1) << args << "\n" << r.output;
-    EXPECT_NE(r.output.find(fifo.string() + ": a named pipe (FIFO), not a regular file"), std::string::npos) << r.output;
+    EXPECT_NE(r.output.find(fifo.string() + ": is a named pipe (FIFO), not a regular file"), std::string::npos) << r.output;
   }
   CommandResult folder = Run("--mesh " + dir_.string());
   EXPECT_EQ(folder.status, 1) << folder.output;
-  EXPECT_NE(folder.output.find("a folder, not a regular file"), std::string::npos) << folder.output;
+  EXPECT_NE(folder.output.find("is a folder, not a regular file"), std::string::npos) << folder.output;
   CommandResult missing = Run("--buffer " + (dir_ / "none.bin").string() + " --stride 16 --element v0=0:4");
   EXPECT_EQ(missing.status, 1) << missing.output;
   EXPECT_NE(missing.output.find("none.bin: no such file"), std::string::npos) << missing.output;

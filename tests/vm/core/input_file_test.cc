@@ -86,7 +86,7 @@ TEST_F(InputFileTest, DevicesFoldersAndMissingFilesAreRefusedWithTheReason) {
 TEST_F(InputFileTest, ImagesNeedARegularFileButProgramsTakePipes) {
   FilledPipe pipe("x");
   EXPECT_FALSE(InputFileProblem(Write("a.pfm", "x"), false));
-  EXPECT_EQ(InputFileProblem(pipe.path(), false), "is a pipe, not a regular file");
+  EXPECT_EQ(InputFileProblem(pipe.path(), false), "is a named pipe (FIFO), not a regular file");
   EXPECT_FALSE(InputFileProblem(pipe.path(), true));
   EXPECT_EQ(InputFileProblem("/dev/zero", true), "is a device, not a file or a pipe");
 }
