@@ -222,7 +222,7 @@ TEST_F(ResourceLimits, Vs11ToolsUnderAnAddressSpaceLimitExitCleanly) {
   }
 }
 
-TEST_F(ResourceLimits, ThreadCreationFailingFallsBackToFewerThreadsWithAWarning) {
+TEST_F(ResourceLimits, WorkersThatCannotStartFallBackToFewerWithAWarning) {
   // Thread stacks of 1 GiB with far less address space left: no worker can start. vs11 only: Debian's
   // liblog4cplus, which OpenImageIO pulls into irrmap, starts a thread before main and aborts when it
   // cannot (the same ThreadPool serves both tools).
@@ -236,7 +236,7 @@ TEST_F(ResourceLimits, ThreadCreationFailingFallsBackToFewerThreadsWithAWarning)
   }
 }
 
-TEST_F(ResourceLimits, IrrmapWithThreadsUnderATightLimitNeverAborts) {
+TEST_F(ResourceLimits, IrrmapWithTwoWorkersUnderATightLimitNeverAborts) {
   // The case: irrmap sky --face-size 512 --threads 2 under little more than it needs to start.
   for (rlim_t extra : {0 * kMiB, 64 * kMiB, 160 * kMiB}) {
     const LimitedRun run = RunIrrmapLimited(
