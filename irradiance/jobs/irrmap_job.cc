@@ -24,6 +24,7 @@
 #include "irradiance/io/environment_io.h"
 #include "irradiance/io/environments.h"
 #include "irradiance/jobs/engine_exports.h"
+#include "irradiance/jobs/irrmap_checks.h"
 #include "irradiance/jobs/irrmap_outputs.h"
 #include "irradiance/render/preview.h"
 #include "irradiance/report/preview_errors.h"
@@ -51,9 +52,6 @@ constexpr int kMaxTimingRuns = 1000;
 // The preview shows the levels whose faces have these sizes (besides level 0 and the chosen one),
 // the sizes of the paper's Fig. 3.
 constexpr std::array<int, 2> kPreviewLevelSizes = {64, 16};
-constexpr int kMaxSphereDiameter = 2048;
-constexpr int kMaxErrorNormals = 1 << 20;
-constexpr double kMaxWindowWidth = 1e6;
 
 double MillisecondsSince(Clock::time_point start) {
   return std::chrono::duration<double, std::milli>(Clock::now() - start).count();
@@ -73,116 +71,6 @@ auto Timed(IrrmapReport& report, std::string name, F&& stage) {
   }
 }
 
-
-std::string BuiltinList() {
-  std::string out;
-  for (const std::string& name : BuiltinEnvironmentNames()) out += (out.empty() ? "" : ", ") + name;
-  return out;
-}
-
-bool IsBuiltinName(std::string_view name) {
-  const std::vector<std::string> names = BuiltinEnvironmentNames();
-  return std::find(names.begin(), names.end(), name) != names.end();
-}
-
-// What the options say once checked.
-struct CheckedOptions {
-  EnvironmentLayout layout = EnvironmentLayout::kAuto;
-  EngineKind engine = EngineKind::kBatch;
-  ShWindow window = ShWindow::kNone;
-  std::optional<ShOrder> order;  // nullopt: chosen by max_error
-  ErrorMetric metric = kDefaultErrorMetric;
-  bool builtin = false;
-  int threads = 1;
-  CheckedExports exports;  // --map-format, --sh-export
-};
-
-std::string LevelRange(int face_size) {
-  return fmt::format("face size {} has levels 0 ({}x{}) to {} (1x1)", face_size, face_size, face_size,
-                     LevelCount(face_size) - 1);
-}
-
-// "--level 9" or "level=9".
-std::string LevelWithValue(const IrrmapOptions& options) {
-  return OptionWithValue(OptionName(options.naming, "level"), options.level.value_or(0));
-}
-
-// The options' own values; the environment and the output folder are CheckOptions'.
-std::optional<std::string> CheckOptionValues(const IrrmapOptions& options, CheckedOptions& checked) {
-  auto named = [&](std::string_view flag, const auto& value) {
-    return OptionWithValue(OptionName(options.naming, flag), value);
-  };
-  std::optional<EnvironmentLayout> layout = ParseLayout(options.layout);
-  if (!layout) {
-    return fmt::format("unknown layout '{}' (use auto, faces, hcross, vcross, hstrip, vstrip, latlong or angular)",
-                       options.layout);
-  }
-  checked.layout = *layout;
-  std::optional<EngineKind> engine = EngineKindFromName(options.engine);
-  if (!engine) return fmt::format("unknown engine '{}' (use ref, batch, jit or gl)", options.engine);
-  checked.engine = *engine;
-  std::optional<ShWindow> window = ParseShWindow(options.window);
-  if (!window) {
-    return fmt::format("unknown window '{}' (use none, hanning, lanczos, dering or nonneg)", options.window);
-  }
-  checked.window = *window;
-  if (options.order != "auto") {
-    checked.order = ParseShOrder(options.order);
-    if (!checked.order) return fmt::format("unknown order '{}' (use auto, {})", options.order, ShOrderNames());
-  } else if (options.level) {
-    checked.order = ShOrder::kOrder2;
-  }
-  if (!(options.window_width > 0.0) || options.window_width > kMaxWindowWidth) {
-    return fmt::format("{} is out of range: above 0, at most {}", named("window-width", options.window_width),
-                       kMaxWindowWidth);
-  }
-  if (!(options.max_error > 0.0 && options.max_error < 1.0)) {
-    return fmt::format("{} is out of range: a fraction above 0 and below 1 (0.005 = 0.5 %)",
-                       named("max-error", options.max_error));
-  }
-  std::optional<ErrorMetric> metric = ParseErrorMetric(options.error_metric);
-  if (!metric) return fmt::format("unknown error metric '{}' (use {})", options.error_metric, ErrorMetricNames());
-  checked.metric = *metric;
-  if (std::optional<std::string> error = CheckFaceSizeOption(OptionName(options.naming, "face-size"), options.face_size)) return error;
-  if (options.level && *options.level < 0) {
-    return fmt::format("{} is out of range: levels start at 0 (full resolution)", named("level", *options.level));
-  }
-  if (options.map_size < 1 || options.map_size > kMaxMapSize) {
-    return fmt::format("{} is out of range: 1 to {}", named("map-size", options.map_size), kMaxMapSize);
-  }
-  if (options.threads < 0) return fmt::format("{} must be >= 0 (0: every core)", named("threads", options.threads));
-  if (options.error_normals < 1 || options.error_normals > kMaxErrorNormals) {
-    return fmt::format("{} is out of range: 1 to {}", named("error-normals", options.error_normals), kMaxErrorNormals);
-  }
-  if (options.sphere_diameter < kMinPreviewSphereDiameter || options.sphere_diameter > kMaxSphereDiameter) {
-    return fmt::format("{} is out of range: {} to {}", named("sphere-size", options.sphere_diameter), kMinPreviewSphereDiameter,
-                       kMaxSphereDiameter);
-  }
-  if (options.write_files && options.out_dir.empty()) return std::string("the output directory is empty");
-  if (options.environment.empty()) return std::string("no environment given");
-  return CheckExportOptions(options.map_format, options.sh_exports, checked.exports);
-}
-
-std::optional<std::string> CheckOptions(const IrrmapOptions& options, CheckedOptions& checked) {
-  if (std::optional<std::string> error = CheckOptionValues(options, checked)) return error;
-  if (options.write_files) {
-    if (std::optional<std::string> error = CheckOutputFolder(options.out_dir)) return error;
-    if (auto error = CheckOutputsAreNotInputs(options, options.mesh ? options.mesh->name : "")) return error;
-  }
-  std::error_code ec;
-  const bool exists = options.cube || fs::exists(options.environment, ec);
-  checked.builtin = IsBuiltinName(options.environment) && !exists;
-  if (!checked.builtin && !exists && options.environment.find(kFaceToken) == std::string::npos) {
-    return fmt::format("environment '{}' is neither an existing file nor a built-in ({})", options.environment,
-                       BuiltinList());
-  }
-  if (checked.builtin && options.level && *options.level >= LevelCount(options.face_size)) {
-    return fmt::format("{} is out of range: {}", LevelWithValue(options), LevelRange(options.face_size));
-  }
-  const unsigned cores = std::thread::hardware_concurrency();
-  checked.threads = options.threads > 0 ? options.threads : static_cast<int>(std::max(1u, cores));
-  return std::nullopt;
-}
 
 std::optional<std::string> LoadCube(const IrrmapOptions& options, const CheckedOptions& checked,
                                     IrrmapReport& report, CubeMap& cube) {
@@ -790,11 +678,6 @@ std::optional<std::string> CheckEngine(EngineKind kind, const EngineOptions& eng
 
 }  // namespace
 
-std::optional<std::string> CheckIrrmapOptions(const IrrmapOptions& options) {
-  CheckedOptions checked;
-  return CheckOptionValues(options, checked);
-}
-
 std::optional<std::string> RunIrrmap(const IrrmapOptions& options, IrrmapReport& report,
                                      const IrrmapProgress& progress) {
   report = IrrmapReport{};
@@ -830,46 +713,6 @@ std::optional<std::string> RunIrrmap(const IrrmapOptions& options, IrrmapReport&
   } catch (const std::bad_alloc&) {  // WriteOutputs has removed its temporaries
     return OutOfMemoryMessage(run, "writing the outputs");
   }
-}
-
-// ---- The output folder -----------------------------------------------------------------------------
-
-std::optional<std::string> CheckOutputFolder(const fs::path& out_dir) {
-  std::error_code ec;
-  // The folder itself, or the nearest existing folder above it, where it would be created.
-  fs::path existing = out_dir;
-  while (!existing.empty() && !fs::exists(existing, ec)) existing = existing.parent_path();
-  if (existing.empty()) existing = ".";
-  if (!fs::is_directory(existing, ec)) {
-    return fmt::format("cannot write into {}: {} is not a directory", out_dir.string(), existing.string());
-  }
-  if (::access(existing.c_str(), W_OK | X_OK) != 0) {
-    return fmt::format("cannot write into {}: {} is not writable", out_dir.string(), existing.string());
-  }
-  return std::nullopt;
-}
-
-std::optional<std::string> CheckOutputsAreNotInputs(const IrrmapOptions& options, const fs::path& mesh_file) {
-  std::vector<fs::path> inputs = {options.environment, mesh_file};
-  if (const std::size_t token = options.environment.find(kFaceToken); token != std::string::npos) {
-    for (const auto* names : {&kFaceFileNames, &kSignedFaceFileNames}) {
-      for (std::string_view face : *names) {
-        inputs.push_back(std::string(options.environment).replace(token, kFaceToken.size(), face));
-      }
-    }
-  }
-  CheckedExports exports;  // unknown names are CheckOptions' to report; then only the default map
-  CheckExportOptions(options.map_format, options.sh_exports, exports);
-  // The files StagesFor's stages write.
-  std::vector<std::string_view> names = {kCoefficientsFile, kConstantsFile, kProgramFile};
-  if (!mesh_file.empty()) names.insert(names.end(), {kMeshFile, kMeshPictureFile});
-  for (ShExportFormat format : exports.sh_exports) names.push_back(ShExportFileName(format));
-  if (!options.coefficients_only) names.push_back(IrradianceMapFileName(exports.map_format));
-  if (!options.coefficients_only && !options.no_ground_truth) names.push_back(kPreviewFile);
-  for (std::string_view name : names) {
-    if (auto error = OutputOverwritesInput(options.out_dir / name, inputs)) return error;
-  }
-  return std::nullopt;
 }
 
 }  // namespace vs11::irradiance
