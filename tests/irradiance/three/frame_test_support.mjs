@@ -1,9 +1,10 @@
-// What the engine frame tests (three_frames_test.mjs, cmgen_frames_test.mjs) share: test images
-// written as Radiance .hdr files (the format irrmap, three.js's HDRLoader and cmgen all read), irrmap
-// run on them, and a small check helper.
+// What the engine tests (three_frames_test.mjs, cmgen_frames_test.mjs, three_loaders_test.mjs) share:
+// test images written as Radiance .hdr files (the format irrmap, three.js's HDRLoader and cmgen all
+// read), irrmap run on them, and a small check helper.
 import { execFileSync } from 'node:child_process';
 import fs from 'node:fs';
 import path from 'node:path';
+import { pathToFileURL } from 'node:url';
 
 // A float RGB image, rows from the top.
 export class FloatImage {
@@ -67,6 +68,19 @@ export function runIrrmap(irrmap, input, outDir, args) {
   return outDir;
 }
 
+// three.js from the node_modules/three folder `threeDir`: `importThree(file)` imports a file of it, after
+// printing its version; exits 77 (ctest's SKIP_RETURN_CODE) where it is not installed.
+export async function threeModules(threeDir) {
+  if (!fs.existsSync(path.join(threeDir, 'package.json'))) {
+    console.log(`three.js is not installed at ${threeDir}: run .ci/setup (npm ci of tests/irradiance/three)`);
+    process.exit(77);
+  }
+  const importThree = (file) => import(pathToFileURL(path.join(threeDir, file)).href);
+  const THREE = await importThree('build/three.module.js');
+  console.log(`three.js ${readJson(path.join(threeDir, 'package.json')).version} (REVISION ${THREE.REVISION})`);
+  return { THREE, importThree };
+}
+
 // "--name value" pairs of process.argv.
 export function parseArgs(names) {
   const args = {};
@@ -102,6 +116,23 @@ export function sphereDirections(count) {
     out.push([r * Math.cos(golden * i), y, r * Math.sin(golden * i)]);
   }
   return out;
+}
+
+// LightProbeGenerator.fromCubeTexture draws each face on a canvas and reads its pixels back as bytes;
+// this stand-in canvas (node has none) hands it each face's { width, height, data } unchanged (callers
+// pass values times 255, as it divides by 255).
+export function installCanvasStandIn() {
+  globalThis.document = {
+    createElement: () => {
+      let image = null;
+      return {
+        getContext: () => ({
+          drawImage: (drawn) => { image = drawn; },
+          getImageData: () => ({ data: image.data, width: image.width, height: image.height }),
+        }),
+      };
+    },
+  };
 }
 
 export const degrees = (radians) => (radians * 180) / Math.PI;

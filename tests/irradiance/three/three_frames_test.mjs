@@ -9,23 +9,15 @@
 // and its brightest normal with the direction where three.js shows the light.
 //
 // node three_frames_test.mjs --irrmap BIN --three NODE_MODULES/three --readme README.md --work DIR
-import { pathToFileURL } from 'node:url';
 import {
-  FloatImage, angleBetween, check, degrees, finish, fs, horizontalCross, parseArgs, path, readJson, runIrrmap,
-  sphereDirections, writeHdr,
+  FloatImage, angleBetween, check, degrees, finish, fs, horizontalCross, installCanvasStandIn, parseArgs, path, readJson,
+  runIrrmap, sphereDirections, threeModules, writeHdr,
 } from './frame_test_support.mjs';
 
 const args = parseArgs(['irrmap', 'three', 'readme', 'work']);
-if (!fs.existsSync(path.join(args.three, 'package.json'))) {
-  console.log(`three.js is not installed at ${args.three}: run .ci/setup (npm ci of tests/irradiance/three)`);
-  process.exit(77);  // ctest's SKIP_RETURN_CODE
-}
-const importThree = (file) => import(pathToFileURL(path.join(args.three, file)).href);
-const THREE = await importThree('build/three.module.js');
+const { THREE, importThree } = await threeModules(args.three);
 const { HDRLoader } = await importThree('examples/jsm/loaders/HDRLoader.js');
 const { LightProbeGenerator } = await importThree('examples/jsm/lights/LightProbeGenerator.js');
-const threeVersion = readJson(path.join(args.three, 'package.json')).version;
-console.log(`three.js ${threeVersion} (REVISION ${THREE.REVISION})`);
 
 // What three.js does with an equirectangular texture, written from common.glsl.js's equirectUv
 // (u = atan(z, x) / 2pi + 0.5, v = asin(y) / pi + 0.5) and checked against that text here.
@@ -100,19 +92,7 @@ function panoramaProbe({ width, height, data }) {
   return sh;
 }
 
-// LightProbeGenerator.fromCubeTexture draws each face on a canvas and reads its pixels back as bytes;
-// this stand-in canvas hands it the float faces (times 255, as it divides by 255) unchanged.
-globalThis.document = {
-  createElement: () => {
-    let image = null;
-    return {
-      getContext: () => ({
-        drawImage: (drawn) => { image = drawn; },
-        getImageData: () => ({ data: image.data, width: image.width, height: image.height }),
-      }),
-    };
-  },
-};
+installCanvasStandIn();
 function cubeTextureProbe(faces) {
   const images = faces.map(({ width, height, data }) => {
     const rgba = new Float32Array(width * height * 4);
