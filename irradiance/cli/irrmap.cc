@@ -52,9 +52,16 @@ std::string Footer() {
       "                  program.vsh --fragment --consts constants.vsh --sphere 6 --sphere-reg v0`\n"
       "                  (the program writes no oPos)\n"
       "  irradiance.exr  irradiance cube map (horizontal cross, float), every texel computed by the\n"
-      "                  chosen vs_1_1 program on the emulated machine; --map-format dds or ktx2\n"
-      "                  writes irradiance.dds or irradiance.ktx2 instead: an RGBA16F cube map texture\n"
-      "                  (DXGI R16G16B16A16_FLOAT with the DX10 header; VK_FORMAT_R16G16B16A16_SFLOAT)\n"
+      "                  chosen vs_1_1 program on the emulated machine; --map-format writes instead the\n"
+      "                  file an engine loads as a cube map:\n"
+      "                    hdr-faces  irradiance_px.hdr .. irradiance_nz.hdr, six Radiance faces: three.js\n"
+      "                               (HDRCubeTextureLoader; its DDSLoader and KTX2Loader take neither\n"
+      "                               file below as a float cube)\n"
+      "                    ktx        irradiance.ktx, KTX 1.1 RGBA16F, mirrored in x as cmgen's cubes:\n"
+      "                               Filament (ktxreader's Ktx1Reader)\n"
+      "                    dds        irradiance.dds, DXGI R16G16B16A16_FLOAT with the DX10 header:\n"
+      "                               Babylon.js, Direct3D, DirectXTex\n"
+      "                    ktx2       irradiance.ktx2, VK_FORMAT_R16G16B16A16_SFLOAT: Vulkan loaders\n"
       "  sh_*            with --sh-export: the nine coefficients in each engine's convention and world\n"
       "                  frame, the convention stated at the top of the file: sh_three.json (three.js\n"
       "                  LightProbe), sh_filament.txt (IndirectLight irradiance, as cmgen --sh-shader),\n"
@@ -114,7 +121,8 @@ std::string Footer() {
       "  irrmap gradient --face-size 32 --engine gl --out gl-out    # evaluated on Mesa's llvmpipe\n"
       "  irrmap sky --face-size 512 --no-ground-truth   # coefficients and irradiance.exr, no error table\n"
       "  irrmap studio --face-size 64 --mesh /usr/share/assimp/models/PLY/Wuson.ply --out wuson\n"
-      "  irrmap studio --face-size 64 --no-ground-truth --map-format ktx2 --sh-export three,filament --out engine\n"
+      "  irrmap studio --face-size 64 --no-ground-truth --map-format hdr-faces --sh-export three --out three\n"
+      "  irrmap studio --face-size 64 --no-ground-truth --map-format ktx --sh-export filament --out filament\n"
       "  irrmap sky --face-size 64 --coefficients-only --sh-export unity,gltf,glsl,hlsl --out sh\n"
       "  irrmap sky --face-size 16 --mesh /usr/share/assimp/models/STL/Wuson.stl --out stl  # zero normals: computed\n",
       vs11::irradiance::kRecommendedLevelSize);
@@ -242,9 +250,11 @@ void AddJobOptions(CLI::App& app, JobCommandLine& line) {
 // --map-format and --sh-export: outputs engines load as they are.
 void AddEngineExportOptions(CLI::App& app, vs11::irradiance::IrrmapOptions& options) {
   app.add_option("--map-format", options.map_format,
-                 fmt::format("file of the irradiance cube map: {} (exr: irradiance.exr, a float cross; dds, ktx2: "
-                             "irradiance.dds, irradiance.ktx2, RGBA16F cube map textures with the faces as "
-                             "Direct3D and Vulkan address them)",
+                 fmt::format("file of the irradiance cube map: {} (exr: irradiance.exr, a float cross; hdr-faces: "
+                             "six Radiance faces irradiance_px.hdr .. irradiance_nz.hdr, for three.js's "
+                             "HDRCubeTextureLoader; ktx: irradiance.ktx, KTX 1.1 RGBA16F mirrored as cmgen's, for "
+                             "Filament; dds, ktx2: irradiance.dds, irradiance.ktx2, RGBA16F cube map textures for "
+                             "Babylon.js and Direct3D, and Vulkan)",
                              vs11::irradiance::kMapFileFormatNames))
       ->capture_default_str();
   app.add_option("--sh-export", options.sh_exports,

@@ -1,12 +1,15 @@
 // The file formats of irrmap's irradiance cube map (--map-format): a horizontal cross of 32-bit floats
-// in OpenEXR (environment_io.h), or a cube map texture of half floats that engines load as it is:
-// DDS (dds_writer.h) or KTX2 (ktx2_writer.h).
+// in OpenEXR (environment_io.h); a cube map texture of half floats, DDS (dds_writer.h), KTX2
+// (ktx2_writer.h) or Filament's KTX 1.1 (ktx1_writer.h, mirrored in x as cmgen writes its cubes); or
+// six Radiance RGBE faces, the one HDR cube three.js's stock loaders build a CubeTexture from
+// (HDRCubeTextureLoader).
 #pragma once
 
 #include <array>
 #include <cstddef>
 #include <filesystem>
 #include <optional>
+#include <span>
 #include <string>
 #include <string_view>
 
@@ -14,23 +17,28 @@
 
 namespace vs11::irradiance {
 
-enum class MapFileFormat { kExr, kDds, kKtx2 };
-inline constexpr std::array<MapFileFormat, 3> kAllMapFileFormats = {MapFileFormat::kExr, MapFileFormat::kDds,
-                                                                    MapFileFormat::kKtx2};
+enum class MapFileFormat { kExr, kDds, kKtx2, kKtx, kHdrFaces };
+inline constexpr std::array<MapFileFormat, 5> kAllMapFileFormats = {
+    MapFileFormat::kExr, MapFileFormat::kDds, MapFileFormat::kKtx2, MapFileFormat::kKtx, MapFileFormat::kHdrFaces};
 
-// "exr", "dds", "ktx2" and back; nullopt for any other name.
+// "exr", "dds", "ktx2", "ktx", "hdr-faces" and back; nullopt for any other name.
 std::string_view MapFileFormatName(MapFileFormat format);
 std::optional<MapFileFormat> ParseMapFileFormat(std::string_view name);
-inline constexpr std::string_view kMapFileFormatNames = "exr, dds or ktx2";
+inline constexpr std::string_view kMapFileFormatNames = "exr, dds, ktx2, ktx or hdr-faces";
 
-// "irradiance.exr", "irradiance.dds", "irradiance.ktx2".
-std::string_view IrradianceMapFileName(MapFileFormat format);
+// The files of the map: "irradiance.exr", "irradiance.dds", "irradiance.ktx2", "irradiance.ktx", or for
+// hdr-faces six,
+// "irradiance_px.hdr" ... "irradiance_nz.hdr" in +x -x +y -y +z -z order.
+std::span<const std::string_view> IrradianceMapFileNames(MapFileFormat format);
 
-// Writes `cube` in `format` to `path`, atomically; nullopt, or what failed.
-std::optional<std::string> WriteMapFile(const CubeMap& cube, MapFileFormat format, const std::filesystem::path& path);
+// Writes file `file` (an index into IrradianceMapFileNames(format)) of `cube` in `format` to `path`,
+// atomically; nullopt, or what failed. Precondition (asserted): file < IrradianceMapFileNames(format).size().
+std::optional<std::string> WriteMapFile(const CubeMap& cube, MapFileFormat format, std::size_t file,
+                                        const std::filesystem::path& path);
 
-// For the half-float formats, a warning when some values lie beyond the largest half (65504) and are
-// clamped to it; nullopt otherwise. `file` names the output in the message.
-std::optional<std::string> HalfRangeWarning(const CubeMap& cube, MapFileFormat format, std::string_view file);
+// What `format` cannot hold of `cube`, as a warning naming `file`; nullopt when it holds all of it.
+// The half-float formats clamp values beyond the largest half (65504); Radiance RGBE holds no
+// negative value (a nine-term irradiance dips below 0 opposite a strong light) and writes 0.
+std::optional<std::string> MapRangeWarning(const CubeMap& cube, MapFileFormat format, std::string_view file);
 
 }  // namespace vs11::irradiance

@@ -163,7 +163,9 @@ std::optional<std::string> CheckOutputsAreNotInputs(const IrrmapOptions& options
   std::vector<std::string_view> names = {kCoefficientsFile, kConstantsFile, kProgramFile};
   if (!mesh_file.empty()) names.insert(names.end(), {kMeshFile, kMeshPictureFile});
   for (ShExportFormat format : exports.sh_exports) names.push_back(ShExportFileName(format));
-  if (!options.coefficients_only) names.push_back(IrradianceMapFileName(exports.map_format));
+  if (!options.coefficients_only) {
+    for (std::string_view name : IrradianceMapFileNames(exports.map_format)) names.push_back(name);
+  }
   if (!options.coefficients_only && !options.no_ground_truth) names.push_back(kPreviewFile);
   for (std::string_view name : names) {
     if (auto error = OutputOverwritesInput(options.out_dir / name, inputs)) return error;

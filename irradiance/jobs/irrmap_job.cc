@@ -12,12 +12,14 @@
 #include <functional>
 #include <memory>
 #include <new>
+#include <span>
 #include <system_error>
 #include <thread>
 #include <type_traits>
 #include <utility>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 #include <nlohmann/json.hpp>
 
 #include "irradiance/io/cube_map.h"
@@ -541,13 +543,16 @@ std::optional<std::string> IrradianceMapStage(IrrmapRun& run) {
                        BeyondFloatRangeMessage("the irradiance map is", run.report.texel_range));
   }
   const MapFileFormat format = run.checked.exports.map_format;
-  const std::string_view file = IrradianceMapFileName(format);
-  if (std::optional<std::string> warning = HalfRangeWarning(run.irradiance_map, format, file)) {
+  const std::span<const std::string_view> files = IrradianceMapFileNames(format);
+  if (std::optional<std::string> warning =
+          MapRangeWarning(run.irradiance_map, format, fmt::format("{}", fmt::join(files, ", ")))) {
     run.report.warnings.push_back(*warning);
   }
-  run.outputs.push_back({file, [&run, format](const fs::path& path) {
-                           return WriteMapFile(run.irradiance_map, format, path);
-                         }});
+  for (std::size_t file = 0; file < files.size(); ++file) {
+    run.outputs.push_back({files[file], [&run, format, file](const fs::path& path) {
+                             return WriteMapFile(run.irradiance_map, format, file, path);
+                           }});
+  }
   return std::nullopt;
 }
 

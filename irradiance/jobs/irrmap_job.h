@@ -33,7 +33,8 @@
 //   constants.vsh    its registers as `def` lines at the registers the program reads
 //                    (`vs11 run --consts constants.vsh`, or paste into a program)
 //   irradiance.exr   the chosen program's irradiance cube map, horizontal cross, 32-bit float, map_size per face
-//                    (irradiance.dds or irradiance.ktx2 instead with IrrmapOptions::map_format)
+//                    (irradiance.dds, irradiance.ktx2 or irradiance_px.hdr .. irradiance_nz.hdr instead
+//                    with IrrmapOptions::map_format)
 //   sh_*.json/.txt/.glsl/.hlsl  with IrrmapOptions::sh_exports: coeffs.json's nine coefficients in each
 //                    engine's convention (irradiance/sh/engine_sh.h), also with coefficients_only
 //   preview.png      see irradiance/render/preview.h
@@ -138,7 +139,7 @@ struct IrrmapOptions {
   int mesh_panel_size = kMeshPanelSize;  // pixels of each of mesh.png's three panels
   // --map-format: the irradiance cube map's file, MapFileFormatName names (irradiance/io/map_file_formats.h):
   // "exr" (irradiance.exr, a float cross), "dds" (irradiance.dds) or "ktx2" (irradiance.ktx2), both
-  // RGBA16F cube map textures.
+  // RGBA16F cube map textures, or "hdr-faces" (irradiance_px.hdr .. irradiance_nz.hdr, Radiance RGBE).
   std::string map_format = "exr";
   // --sh-export: also the nine coefficients in these engines' conventions and frames, one file each
   // (ShExportFormatName names and ShExportFileName files, irradiance/sh/engine_sh.h).

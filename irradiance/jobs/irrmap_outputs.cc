@@ -17,7 +17,9 @@ namespace fs = std::filesystem;
 std::vector<std::string_view> EveryOutputName() {
   std::vector<std::string_view> names = {kCoefficientsFile, kConstantsFile, kProgramFile,
                                          kPreviewFile,      kMeshFile,      kMeshPictureFile};
-  for (MapFileFormat format : kAllMapFileFormats) names.push_back(IrradianceMapFileName(format));
+  for (MapFileFormat format : kAllMapFileFormats) {
+    for (std::string_view name : IrradianceMapFileNames(format)) names.push_back(name);
+  }
   for (ShExportFormat format : kAllShExportFormats) names.push_back(ShExportFileName(format));
   return names;
 }

@@ -1,11 +1,14 @@
-// The irradiance cube as DDS and KTX2 files (dds_writer.h, ktx2_writer.h), read back: the DDS
-// through vs11's own DDS reader and the environment loader, the KTX2 through a parser written here
-// from the KTX 2.0 and Khronos Data Format specifications, every field checked against them.
+// The irradiance cube as DDS and KTX2 files (dds_writer.h, ktx2_writer.h) and six Radiance faces
+// (map_file_formats.h), read back: the DDS through vs11's own DDS reader and the environment loader,
+// the KTX2 through a parser written here from the KTX 2.0 and Khronos Data Format specifications,
+// every field checked against them, the faces through the six-face loader.
 #include <algorithm>
 #include <cmath>
 #include <cstdint>
 #include <cstring>
+#include <span>
 #include <string>
+#include <string_view>
 #include <vector>
 
 #include "irradiance/io/dds_reader.h"
@@ -140,7 +143,7 @@ TEST_F(CubeTextureWriters, DdsReadsBackThroughVs11sDdsReader) {
 
 TEST_F(CubeTextureWriters, DdsLoadsAsTheSameCubeThroughTheEnvironmentLoader) {
   const CubeMap cube = MakeTestCube(kFaceSize);
-  ASSERT_EQ(WriteMapFile(cube, MapFileFormat::kDds, Path("irradiance.dds")), std::nullopt);
+  ASSERT_EQ(WriteMapFile(cube, MapFileFormat::kDds, 0, Path("irradiance.dds")), std::nullopt);
   const LoadResult loaded = LoadEnvironment(Path("irradiance.dds"));
   ASSERT_TRUE(loaded.ok()) << loaded.error;
   EXPECT_TRUE(loaded.environment->warnings.empty());
@@ -161,11 +164,11 @@ TEST_F(CubeTextureWriters, ValuesBeyondHalfRangeAreClampedAndCounted) {
   const std::vector<std::uint8_t> bytes = FileBytes(Path("bright.dds"));
   const std::size_t texel = 148 + 2 * 4 * 8;  // +y is the third face of 2 x 2 texels
   EXPECT_EQ(DecodeHalf(static_cast<std::uint16_t>(bytes[texel + 2] | (bytes[texel + 3] << 8))), -kHalfMax);
-  const std::optional<std::string> warning = HalfRangeWarning(cube, MapFileFormat::kDds, "irradiance.dds");
+  const std::optional<std::string> warning = MapRangeWarning(cube, MapFileFormat::kDds, "irradiance.dds");
   ASSERT_TRUE(warning.has_value());
   EXPECT_THAT(*warning, HasSubstr("irradiance.dds: 2 colour values"));
-  EXPECT_EQ(HalfRangeWarning(cube, MapFileFormat::kExr, "irradiance.exr"), std::nullopt);
-  EXPECT_EQ(HalfRangeWarning(MakeTestCube(2), MapFileFormat::kKtx2, "irradiance.ktx2"), std::nullopt);
+  EXPECT_EQ(MapRangeWarning(cube, MapFileFormat::kExr, "irradiance.exr"), std::nullopt);
+  EXPECT_EQ(MapRangeWarning(MakeTestCube(2), MapFileFormat::kKtx2, "irradiance.ktx2"), std::nullopt);
 }
 
 // ---- KTX2 -------------------------------------------------------------------------------------
@@ -296,11 +299,65 @@ TEST(MapFileFormats, NamesFilesAndRefusesOthers) {
   EXPECT_EQ(ParseMapFileFormat("exr"), MapFileFormat::kExr);
   EXPECT_EQ(ParseMapFileFormat("dds"), MapFileFormat::kDds);
   EXPECT_EQ(ParseMapFileFormat("ktx2"), MapFileFormat::kKtx2);
-  EXPECT_EQ(ParseMapFileFormat("ktx"), std::nullopt);
+  EXPECT_EQ(ParseMapFileFormat("ktx1"), std::nullopt);
   EXPECT_EQ(ParseMapFileFormat("DDS"), std::nullopt);
-  for (MapFileFormat format : {MapFileFormat::kExr, MapFileFormat::kDds, MapFileFormat::kKtx2}) {
-    EXPECT_EQ(IrradianceMapFileName(format), "irradiance." + std::string(MapFileFormatName(format)));
+  EXPECT_EQ(ParseMapFileFormat("hdr-faces"), MapFileFormat::kHdrFaces);
+  EXPECT_EQ(ParseMapFileFormat("hdr"), std::nullopt);
+  EXPECT_EQ(ParseMapFileFormat("ktx"), MapFileFormat::kKtx);
+  for (MapFileFormat format : {MapFileFormat::kExr, MapFileFormat::kDds, MapFileFormat::kKtx2, MapFileFormat::kKtx}) {
+    EXPECT_THAT(IrradianceMapFileNames(format),
+                testing::ElementsAre("irradiance." + std::string(MapFileFormatName(format))));
   }
+  EXPECT_THAT(IrradianceMapFileNames(MapFileFormat::kHdrFaces),
+              testing::ElementsAre("irradiance_px.hdr", "irradiance_nx.hdr", "irradiance_py.hdr", "irradiance_ny.hdr",
+                                   "irradiance_pz.hdr", "irradiance_nz.hdr"));
+}
+
+// ---- Six Radiance faces ------------------------------------------------------------------------
+
+// The six files, read back by irrmap's own six-face loader as "irradiance_{face}.hdr", are the cube
+// to RGBE's precision (8 bits of mantissa: within 1/128 of a texel's largest channel).
+TEST_F(CubeTextureWriters, HdrFacesLoadAsTheSameCubeThroughTheEnvironmentLoader) {
+  const CubeMap cube = MakeTestCube(kFaceSize);
+  const std::span<const std::string_view> files = IrradianceMapFileNames(MapFileFormat::kHdrFaces);
+  for (std::size_t file = 0; file < files.size(); ++file) {
+    ASSERT_EQ(WriteMapFile(cube, MapFileFormat::kHdrFaces, file, Path(std::string(files[file]))), std::nullopt);
+  }
+  const LoadResult loaded = LoadEnvironment(Path("irradiance_{face}.hdr"));
+  ASSERT_TRUE(loaded.ok()) << loaded.error;
+  for (CubeFace face : kAllCubeFaces) {
+    for (int y = 0; y < kFaceSize; ++y) {
+      for (int x = 0; x < kFaceSize; ++x) {
+        const glm::vec3 want = cube.face(face).at(x, y);
+        const glm::vec3 got = loaded.environment->cube.face(face).at(x, y);
+        const float largest = std::max({want.r, want.g, want.b});
+        for (int c = 0; c < 3; ++c) {
+          EXPECT_NEAR(got[c], want[c], largest / 128.0f) << CubeFaceName(face) << " (" << x << ", " << y << ")";
+        }
+      }
+    }
+  }
+}
+
+// RGBE holds no negative value: a nine-term irradiance's dips below 0 are written as 0 and counted.
+TEST_F(CubeTextureWriters, HdrFacesWriteNegativeValuesAsZeroAndCountThem) {
+  CubeMap cube = MakeTestCube(2);
+  cube.face(CubeFace::kNegativeZ).at(1, 0) = glm::vec3(-0.5f, 2.0f, -1e-3f);
+  const std::span<const std::string_view> files = IrradianceMapFileNames(MapFileFormat::kHdrFaces);
+  for (std::size_t file = 0; file < files.size(); ++file) {
+    ASSERT_EQ(WriteMapFile(cube, MapFileFormat::kHdrFaces, file, Path(std::string(files[file]))), std::nullopt);
+  }
+  const LoadResult loaded = LoadEnvironment(Path("irradiance_{face}.hdr"));
+  ASSERT_TRUE(loaded.ok()) << loaded.error;
+  const glm::vec3 texel = loaded.environment->cube.face(CubeFace::kNegativeZ).at(1, 0);
+  EXPECT_EQ(texel.r, 0.0f);
+  EXPECT_NEAR(texel.g, 2.0f, 2.0f / 128.0f);
+  EXPECT_EQ(texel.b, 0.0f);
+  const std::optional<std::string> warning = MapRangeWarning(cube, MapFileFormat::kHdrFaces, "irradiance_nz.hdr");
+  ASSERT_TRUE(warning.has_value());
+  EXPECT_THAT(*warning, HasSubstr("irradiance_nz.hdr: 2 colour values are negative"));
+  EXPECT_EQ(MapRangeWarning(MakeTestCube(2), MapFileFormat::kHdrFaces, "irradiance_nz.hdr"), std::nullopt);
+  EXPECT_EQ(MapRangeWarning(cube, MapFileFormat::kExr, "irradiance.exr"), std::nullopt);
 }
 
 }  // namespace

@@ -1,4 +1,4 @@
-// irrmap's outputs for engines: --map-format (the irradiance cube as DDS or KTX2) and --sh-export
+// irrmap's outputs for engines: --map-format (the irradiance cube as DDS, KTX2, KTX or six .hdr faces) and --sh-export
 // (the coefficients in engines' conventions), through RunIrrmap.
 #include <algorithm>
 #include <cmath>
@@ -102,11 +102,34 @@ TEST_F(IrrmapExports, DdsMapReadsBackAsTheIrradianceMap) {
   EXPECT_GT(negative, 0) << "the studio's map rings below 0 somewhere; those texels keep their sign";
 }
 
+// Six files for three.js, each in coeffs.json's "files"; the studio's negative (ringing) texels, which
+// RGBE cannot hold, are named in a warning.
+TEST_F(IrrmapExports, HdrFacesWritesSixFacesAndWarnsOfNegativeTexels) {
+  options_.map_format = "hdr-faces";
+  ASSERT_EQ(RunIrrmap(options_, report_), std::nullopt);
+  const std::vector<std::string> faces = {"irradiance_nx.hdr", "irradiance_ny.hdr", "irradiance_nz.hdr",
+                                          "irradiance_px.hdr", "irradiance_py.hdr", "irradiance_pz.hdr"};
+  std::vector<std::string> expected = {"coeffs.json", "constants.vsh"};
+  expected.insert(expected.end(), faces.begin(), faces.end());
+  expected.push_back("program.vsh");
+  EXPECT_EQ(OutFiles(), expected);
+  const nlohmann::json coefficients = nlohmann::json::parse(envtest::ReadBytes(options_.out_dir / "coeffs.json"));
+  for (const std::string& face : faces) EXPECT_THAT(coefficients.at("files"), testing::Contains(face));
+  EXPECT_THAT(report_.warnings, testing::Contains(HasSubstr("are negative (the nine-term irradiance dips below 0)")));
+}
+
+TEST_F(IrrmapExports, KtxMapIsOneKtx1CubeFile) {
+  options_.map_format = "ktx";
+  ASSERT_EQ(RunIrrmap(options_, report_), std::nullopt);
+  EXPECT_EQ(OutFiles(), (std::vector<std::string>{"coeffs.json", "constants.vsh", "irradiance.ktx", "program.vsh"}));
+  EXPECT_EQ(fs::file_size(options_.out_dir / "irradiance.ktx"), 68u + 6 * 8 * 8 * 8);
+}
+
 TEST_F(IrrmapExports, UnknownFormatsAreRefusedBeforeAnyWork) {
   options_.map_format = "png";
   std::optional<std::string> error = RunIrrmap(options_, report_);
   ASSERT_TRUE(error.has_value());
-  EXPECT_THAT(*error, HasSubstr("unknown map format 'png' (use exr, dds or ktx2)"));
+  EXPECT_THAT(*error, HasSubstr("unknown map format 'png' (use exr, dds, ktx2, ktx or hdr-faces)"));
   options_.map_format = "exr";
   options_.sh_exports = {"unity", "unreal"};
   error = RunIrrmap(options_, report_);
