@@ -1,6 +1,5 @@
 #include "irradiance/io/dds_reader.h"
 
-// The system fmt goes first so that OpenImageIO's headers reuse it instead of their bundled copy.
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -16,7 +15,7 @@
 #include <utility>
 #include <vector>
 
-#include <OpenImageIO/imageio.h>
+#include <Imath/half.h>
 
 namespace vs11::irradiance {
 namespace {
@@ -202,11 +201,16 @@ void DecodePixels(const Format& format, const unsigned char* data, std::size_t c
   switch (format.decoder) {
     case Decoder::kFloat32:
     case Decoder::kHalf: {
-      const OIIO::TypeDesc type =
-          format.decoder == Decoder::kHalf ? OIIO::TypeDesc::HALF : OIIO::TypeDesc::FLOAT;
       std::vector<float> floats(count * format.channels);
-      OIIO::convert_pixel_values(type, data, OIIO::TypeDesc::FLOAT, floats.data(),
-                                 static_cast<int>(floats.size()));
+      if (format.decoder == Decoder::kHalf) {
+        for (std::size_t i = 0; i < floats.size(); ++i) {
+          std::uint16_t bits;
+          std::memcpy(&bits, data + 2 * i, 2);
+          floats[i] = imath_half_to_float(bits);
+        }
+      } else {
+        std::memcpy(floats.data(), data, floats.size() * sizeof(float));
+      }
       for (std::size_t i = 0; i < count; ++i) {
         const float* p = &floats[i * format.channels];
         out[i] = glm::vec3(p[0], p[1], p[2]);
@@ -223,8 +227,7 @@ void DecodePixels(const Format& format, const unsigned char* data, std::size_t c
         halfs[3 * i + 2] = SmallFloatToHalf(bits >> 22, 5);
       }
       std::vector<float> floats(count * 3);
-      OIIO::convert_pixel_values(OIIO::TypeDesc::HALF, halfs.data(), OIIO::TypeDesc::FLOAT,
-                                 floats.data(), static_cast<int>(floats.size()));
+      for (std::size_t i = 0; i < floats.size(); ++i) floats[i] = imath_half_to_float(halfs[i]);
       for (std::size_t i = 0; i < count; ++i) {
         out[i] = glm::vec3(floats[3 * i], floats[3 * i + 1], floats[3 * i + 2]);
       }

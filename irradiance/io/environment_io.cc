@@ -1,6 +1,5 @@
 #include "irradiance/io/environment_io.h"
 
-// The system fmt goes first so that OpenImageIO's headers reuse it instead of their bundled copy.
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -17,8 +16,7 @@
 #include <system_error>
 #include <utility>
 
-#include <OpenImageIO/imageio.h>
-
+#include "irradiance/io/image_io_module.h"
 #include "irradiance/io/option_names.h"
 #include "irradiance/io/image_reader.h"
 #include "vm/core/atomic_file.h"
@@ -99,12 +97,6 @@ const CubeGrid* FindCubeGrid(Layout layout) {
 // written: OpenImageIO 2.4 has no PFM writer, tested in environment_io_test.cc.)
 constexpr std::array<std::string_view, 4> kFloatExtensions = {".exr", ".hdr", ".tif", ".tiff"};
 constexpr double kByteMax = 255.0;
-// IEC 61966-2-1 sRGB transfer function constants.
-constexpr double kSrgbDecodeThreshold = 0.04045;
-constexpr double kSrgbEncodeThreshold = 0.0031308;
-constexpr double kSrgbLinearSlope = 12.92;
-constexpr double kSrgbOffset = 0.055;
-constexpr double kSrgbGamma = 2.4;
 // Size of the exported lat-long (kExportScale N x kExportScale N / 2) and angular maps relative to
 // the face size N: a little finer than the cube's centre texels (pi / (2 N) against 2 / N radians).
 constexpr int kExportScale = 4;
@@ -269,16 +261,12 @@ std::optional<fs::path> WriteTemporary(const Image& image, const fs::path& path,
     return std::nullopt;
   }
   const bool as_float = format == "openexr" || (format.empty() && HasFloatExtension(path));
-  auto output = OIIO::ImageOutput::create(format.empty() ? path.string() : std::string(format));
-  if (!output) {
-    error = fmt::format("{}: unsupported output format ({})", path.string(),
-                        OiioMessage(OIIO::geterror()));
+  std::string module_error;
+  const ImageIoApi* image_io = ImageIo(module_error);
+  if (!image_io) {
+    error = fmt::format("{}: {}", path.string(), module_error);
     return std::nullopt;
   }
-  OIIO::ImageSpec spec(image.width, image.height, 3,
-                       as_float ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8);
-  spec.attribute("oiio:ColorSpace", as_float ? "Linear" : "sRGB");
-  if (std::string_view(output->format_name()) == "openexr") spec.attribute("compression", "zip");
 
   std::vector<float> floats;
   std::vector<std::uint8_t> bytes;
@@ -300,17 +288,10 @@ std::optional<fs::path> WriteTemporary(const Image& image, const fs::path& path,
   }
 
   const fs::path temporary = TemporaryPathBeside(path);
-  if (!output->open(temporary.string(), spec)) {
-    error =
-        fmt::format("{}: cannot create file ({})", path.string(), OiioMessage(output->geterror()));
-    RemoveQuietly(temporary);
-    return std::nullopt;
-  }
-  const bool written =
-      output->write_image(as_float ? OIIO::TypeDesc::FLOAT : OIIO::TypeDesc::UINT8, data);
-  const bool closed = output->close();
-  if (!written || !closed) {
-    error = fmt::format("{}: write failed ({})", path.string(), OiioMessage(output->geterror()));
+  const OiioWriteRequest request{format.empty() ? path.string() : std::string(format), temporary,
+                                 image.width, image.height, as_float, data};
+  if (std::optional<std::string> failure = image_io->write(request)) {
+    error = fmt::format("{}: {}", path.string(), *failure);
     RemoveQuietly(temporary);
     return std::nullopt;
   }
@@ -342,16 +323,6 @@ std::optional<EnvironmentLayout> ParseLayout(std::string_view name) {
 }
 
 std::string_view LayoutName(EnvironmentLayout layout) { return Info(layout).name; }
-
-double SrgbToLinear(double encoded) {
-  if (encoded <= kSrgbDecodeThreshold) return encoded / kSrgbLinearSlope;
-  return std::pow((encoded + kSrgbOffset) / (1.0 + kSrgbOffset), kSrgbGamma);
-}
-
-double LinearToSrgb(double linear) {
-  if (linear <= kSrgbEncodeThreshold) return linear * kSrgbLinearSlope;
-  return (1.0 + kSrgbOffset) * std::pow(linear, 1.0 / kSrgbGamma) - kSrgbOffset;
-}
 
 std::size_t SanitizeRadiance(Image& image) {
   std::size_t changed = 0;

@@ -3,7 +3,7 @@
 #include <algorithm>
 #include <cmath>
 
-#include <OpenImageIO/imageio.h>
+#include <Imath/half.h>
 
 namespace vs11::irradiance {
 
@@ -29,8 +29,7 @@ std::vector<std::uint8_t> Rgba16fFaceBytes(const CubeMap& cube) {
     }
   }
   std::vector<std::uint16_t> halfs(floats.size());
-  OIIO::convert_pixel_values(OIIO::TypeDesc::FLOAT, floats.data(), OIIO::TypeDesc::HALF, halfs.data(),
-                             static_cast<int>(floats.size()));
+  for (std::size_t i = 0; i < floats.size(); ++i) halfs[i] = imath_float_to_half(floats[i]);
   std::vector<std::uint8_t> bytes;
   bytes.reserve(halfs.size() * 2);
   for (std::uint16_t half : halfs) {  // little-endian whatever the host

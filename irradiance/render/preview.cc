@@ -11,10 +11,9 @@
 #include <utility>
 
 #include <fmt/format.h>
-#include <OpenImageIO/imagebuf.h>
-#include <OpenImageIO/imagebufalgo.h>
 
 #include "irradiance/io/environment_io.h"
+#include "irradiance/io/image_io_module.h"
 
 namespace vs11::irradiance {
 namespace {
@@ -95,8 +94,8 @@ void OutlineCrossCells(Image& image, int x0, int y0, int cell) {
   }
 }
 
-// Draws the labels with OpenImageIO, each shrunk to its max_width, and records where they went;
-// returns a warning when that is not possible.
+// Draws the labels with OpenImageIO (its module, image_io_module.h), each shrunk to its max_width,
+// and records where they went; returns a warning when that is not possible.
 std::optional<std::string> DrawLabels(Image& image, const std::vector<Label>& labels,
                                       const PreviewOptions& options,
                                       std::vector<PreviewResult::PlacedLabel>& placed) {
@@ -105,16 +104,17 @@ std::optional<std::string> DrawLabels(Image& image, const std::vector<Label>& la
     return fmt::format("preview: font {} not found, labels left out (install fonts-dejavu-core)",
                        options.font.string());
   }
-  OIIO::ImageBuf buffer(OIIO::ImageSpec(image.width, image.height, 3, OIIO::TypeDesc::FLOAT));
-  buffer.set_pixels(OIIO::ROI(0, image.width, 0, image.height, 0, 1, 0, 3), OIIO::TypeDesc::FLOAT,
-                    image.pixels.data());
-  const std::array<float, 3> colour = {kTextValue, kTextValue, kTextValue};
+  std::string module_error;
+  const ImageIoApi* image_io = ImageIo(module_error);
+  if (!image_io) return fmt::format("preview: {}; labels left out", module_error);
+  const std::string font = options.font.string();
+  Image canvas = image;  // a failed label leaves the image without any
   for (const Label& label : labels) {
     int size = options.font_size;
     std::string text = label.text;
-    OIIO::ROI box = OIIO::ImageBufAlgo::text_size(text, size, options.font.string());
-    auto too_wide = [&] { return label.max_width > 0 && box.defined() && box.width() > label.max_width; };
-    while (too_wide() && size > kMinFontSize) box = OIIO::ImageBufAlgo::text_size(text, --size, options.font.string());
+    std::optional<TextBox> box = image_io->text_size(text, size, font);
+    auto too_wide = [&] { return label.max_width > 0 && box && box->width() > label.max_width; };
+    while (too_wide() && size > kMinFontSize) box = image_io->text_size(text, --size, font);
     // Still too wide at the smallest size (tiny spheres): shortened with "..", keeping a trailing
     // " *" (the chosen level's mark).
     const std::string mark = text.ends_with(" *") ? " *" : "";
@@ -122,22 +122,19 @@ std::optional<std::string> DrawLabels(Image& image, const std::vector<Label>& la
     while (too_wide() && !stem.empty()) {
       stem.pop_back();
       text = stem + ".." + mark;
-      box = OIIO::ImageBufAlgo::text_size(text, size, options.font.string());
+      box = image_io->text_size(text, size, font);
     }
-    const bool ok = OIIO::ImageBufAlgo::render_text(
-        buffer, label.x, label.y, text, size, options.font.string(), colour,
-        label.centred ? OIIO::ImageBufAlgo::TextAlignX::Center : OIIO::ImageBufAlgo::TextAlignX::Left);
-    if (box.defined()) {
-      const int left = label.centred ? label.x - box.width() / 2 : label.x + box.xbegin;
-      placed.push_back({text, left, left + box.width(), label.y + box.ybegin, label.y + box.yend, size});
+    const std::optional<std::string> failure =
+        image_io->render_text(canvas, label.x, label.y, text, size, font, kTextValue, label.centred);
+    if (box) {
+      const int left = label.centred ? label.x - box->width() / 2 : label.x + box->xbegin;
+      placed.push_back({text, left, left + box->width(), label.y + box->ybegin, label.y + box->yend, size});
     }
-    if (!ok) {
-      return fmt::format("preview: cannot draw text with font {} ({}), labels left out",
-                         options.font.string(), buffer.geterror());
+    if (failure) {
+      return fmt::format("preview: cannot draw text with font {} ({}), labels left out", font, *failure);
     }
   }
-  buffer.get_pixels(OIIO::ROI(0, image.width, 0, image.height, 0, 1, 0, 3), OIIO::TypeDesc::FLOAT,
-                    image.pixels.data());
+  image = std::move(canvas);
   return std::nullopt;
 }
 

@@ -23,5 +23,11 @@ if ! grep -q "No Such Generator" <<<"$output"; then
   echo "FAIL: configuring did not fail the way VS11_CI_BREAK_CONFIGURE asks, so this test proves nothing"
   failed=1
 fi
-((failed == 0)) && echo "PASS: .ci/run exited $status and stopped before the sanitizer stage"
+# CI runs the README's test command (its second Quick start line) as it is written there.
+readme_test_command=$(grep -m1 '^bash .ci/setup --tests && ctest ' "$source_dir/README.md")
+if [[ -z $readme_test_command ]] || ! grep -qF "($readme_test_command)" "$source_dir/.ci/run"; then
+  echo "FAIL: .ci/run does not run the README's test command '${readme_test_command}' verbatim"
+  failed=1
+fi
+((failed == 0)) && echo "PASS: .ci/run exited $status and stopped before the sanitizer stage, and runs the README's test command"
 exit "$failed"
