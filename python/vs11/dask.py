@@ -22,6 +22,7 @@ import json
 import os
 import re
 import tempfile
+import time
 import warnings
 from typing import Any, Callable, Iterable, Optional, Union
 
@@ -174,6 +175,9 @@ def label_dataset(
 def _report_progress(futures: list[Any], progress: Union[bool, Callable[[int, int], None]]) -> None:
     if progress is True and futures:
         _distributed.progress(futures)  # blocks until every task is done (a widget in a notebook)
+        # The scheduler's side of the bar sends every 100 ms until a send finds the bar gone; a
+        # cluster closed before that logs the cancelled sender as an error (distributed 2022.12).
+        time.sleep(0.3)
     elif callable(progress):
         total = len(futures)
         for done, _ in enumerate(_distributed.as_completed(futures), 1):
