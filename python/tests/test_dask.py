@@ -22,6 +22,7 @@ if __name__ == "__main__":
 
 distributed = pytest.importorskip("dask.distributed")
 import cloudpickle  # noqa: E402  (Dask's own dependency)
+import dask  # noqa: E402
 import dask.bag  # noqa: E402
 
 import vs11.dask  # noqa: E402
@@ -38,6 +39,9 @@ cloudpickle.register_pickle_by_value(sys.modules[__name__])
 def client():
     # The worker processes import vs11 from where this process does.
     os.environ["PYTHONPATH"] = os.pathsep.join([str(pathlib.Path(vs11.__file__).parents[1])] + sys.path[1:])
+    # Fewer deaths before a task is given up (KilledWorker) than Dask's 3: the poisoned input's test
+    # is quicker. The kill-once tests need at least one.
+    dask.config.set({"distributed.scheduler.allowed-failures": 2})
     with distributed.LocalCluster(n_workers=2, threads_per_worker=1, processes=True, dashboard_address=":0",
                                   silence_logs=40) as cluster, distributed.Client(cluster) as connected:
         yield connected
@@ -184,6 +188,38 @@ def test_a_killed_workers_tasks_are_done_again_with_no_record_missing_or_twice(c
                                     face_size=FACE_SIZE, progress=False)
     assert (again.inputs, again.written, again.already_done) == (13, 0, 12)
     assert_every_record_once_bit_for_bit(out, expected)
+
+
+def kill_own_worker_always(path, victim):
+    if path == victim:
+        os.kill(os.getpid(), signal.SIGKILL)
+    return path
+
+
+def test_a_partition_that_kills_every_worker_is_recorded_as_failed_and_the_others_are_written(
+        client, dataset, expected, tmp_path):
+    paths, _ = dataset
+    bag = dask.bag.from_sequence(paths, npartitions=4).map(kill_own_worker_always, paths[0])
+    summary = vs11.dask.label_dataset(client, bag, tmp_path, face_size=FACE_SIZE, progress=False)
+    # Partition 0 kills every worker that runs it. A dying worker takes the tasks queued on it
+    # along, which Dask counts against them too, so another partition may be given up as well.
+    failed = [f["input"] for f in summary.failed]
+    assert "<partition 0 of the bag>" in failed
+    assert all("KilledWorker" in f["error"] and f["path"] == "" for f in summary.failed)
+    assert summary.written == 12 - 3 * len(failed)
+    failed_file = tmp_path / "failed-00000-task.jsonl"
+    assert json.loads(failed_file.read_text())["error"] == summary.failed[0]["error"]
+    records = read_parts(tmp_path)
+    assert len(records) == summary.written and paths[0] not in [r["input"] for _, r in records]
+    for _, record in records:
+        assert repr(record) == repr(expected[record["path"]])
+
+    # Resumed without the poison: only the lost partition runs, and its failure file goes.
+    again = vs11.dask.label_dataset(client, dask.bag.from_sequence(paths, npartitions=4), tmp_path,
+                                    face_size=FACE_SIZE, progress=False)
+    assert (again.written, again.already_done, again.failed) == (12 - summary.written, summary.written, [])
+    assert not list(tmp_path.glob("failed-*.jsonl"))
+    assert_every_record_once_bit_for_bit(tmp_path, expected)
 
 
 def test_the_stub_matches_the_module():

@@ -33,7 +33,7 @@ from dask import distributed as _distributed
 from . import irradiance as _irradiance
 
 PART_PATTERN = re.compile(r"^part-(\d+)-[0-9a-f]+\.jsonl$")
-FAILED_PATTERN = re.compile(r"^failed-(\d+)-[0-9a-f]+\.jsonl$")
+FAILED_PATTERN = re.compile(r"^failed-(\d+)-(?:[0-9a-f]+|task)\.jsonl$")
 
 
 @dataclasses.dataclass
@@ -124,8 +124,8 @@ def label_dataset(
       are the ones batch() yields, whichever worker made them.
 
     An input that cannot be read or used is recorded with its error (failed-*.jsonl, summary.failed)
-    and the others go on; so is every input of a task Dask gave up on (a worker lost
-    `allowed_failures` times while running it). A task whose worker dies is run again elsewhere and
+    and the others go on; so is every input of a task Dask gave up on (KilledWorker: its workers
+    died running it more than allowed-failures times), or for a bag the partition. A task whose worker dies is run again elsewhere and
     writes the same part, replacing it, so no record is lost or written twice.
     """
     output_dir = os.fspath(output_dir)
@@ -141,10 +141,9 @@ def label_dataset(
     if isinstance(paths, _bag.Bag):
         scattered = client.scatter(done, broadcast=True) if done else None
         label = delayed(_label_chunk, pure=False)
-        tasks = [(chunk, label(chunk, first + i, output_dir, scattered, options))
-                 for i, chunk in enumerate(paths.to_delayed(optimize_graph=True))]
-        futures = client.compute([task for _, task in tasks])
-        inputs_of = {f.key: chunk for f, (chunk, _) in zip(futures, tasks)}
+        futures = client.compute([label(chunk, first + i, output_dir, scattered, options)
+                                  for i, chunk in enumerate(paths.to_delayed(optimize_graph=True))])
+        inputs_of = {f.key: (first + i, None) for i, f in enumerate(futures)}
     else:
         inputs = expand_inputs(paths)
         summary.inputs = len(inputs)
@@ -155,10 +154,10 @@ def label_dataset(
         # pure=False: a key of its own for every task of every run.
         futures = [client.submit(_label_chunk, chunk, first + i, output_dir, None, options, pure=False)
                    for i, chunk in enumerate(chunks)]
-        inputs_of = {f.key: chunk for f, chunk in zip(futures, chunks)}
+        inputs_of = {f.key: (first + i, chunk) for i, (f, chunk) in enumerate(zip(futures, chunks))}
     _report_progress(futures, progress)
     for future in futures:
-        result = _result(client, future, inputs_of[future.key])
+        result = _result(future, *inputs_of[future.key], output_dir)
         summary.written += result["written"]
         summary.already_done += result["already_done"]
         if isinstance(paths, _bag.Bag):
@@ -184,19 +183,23 @@ def _report_progress(futures: list[Any], progress: Union[bool, Callable[[int, in
             progress(done, total)
 
 
-def _result(client: Any, future: Any, chunk: Any) -> dict[str, Any]:
-    """A task's result; a task Dask gave up on (KilledWorker: its workers died allowed_failures
-    times; or its part could not be written) counts every input of its chunk as failed."""
+def _result(future: Any, number: int, chunk: Optional[list[str]], output_dir: str) -> dict[str, Any]:
+    """A task's result. A task Dask gave up on (KilledWorker: workers died running it
+    allowed_failures times; or its part could not be written) fails every input of its chunk, or,
+    for a bag (whose partition may be what kills the worker: not computed again here), the
+    partition; the failures are written to a failure file here, on the client."""
     try:
         return future.result()
     except Exception as error:
         reason = "its task failed: %s: %s" % (type(error).__name__, error)
-        try:
-            inputs = list(client.compute(chunk).result()) if not isinstance(chunk, list) else chunk
-        except Exception:  # the bag's own partition is what fails
-            inputs = ["<partition %s of the bag>" % future.key]
-        return {"written": 0, "already_done": 0, "inputs": len(inputs), "parts": [], "failed_files": [],
-                "failed": [{"input": p, "path": input_key(p), "error": reason} for p in inputs]}
+        if chunk is None:
+            failed = [{"input": "<partition %d of the bag>" % number, "path": "", "error": reason}]
+        else:
+            failed = [{"input": p, "path": input_key(p), "error": reason} for p in chunk]
+        failed_file = os.path.join(output_dir, "failed-%05d-task.jsonl" % number)
+        _write_atomically(failed_file, failed)
+        return {"written": 0, "already_done": 0, "inputs": len(chunk or []), "parts": [],
+                "failed_files": [failed_file], "failed": failed}
 
 
 def _label_chunk(paths: Iterable[str], number: int, output_dir: str, done: Optional[set[str]],
@@ -286,7 +289,8 @@ def _remove_stale_failures(output_dir: str, failed_now: set[str], written_now: l
         path = os.path.join(output_dir, name)
         with open(path, encoding="utf-8") as f:
             failures = [json.loads(line) for line in f if line.strip()]
-        if all(failure["path"] in done or failure["path"] in failed_now for failure in failures):
+        # A bag's partition has no path (""): every partition runs again on resume.
+        if all(not failure["path"] or failure["path"] in done or failure["path"] in failed_now for failure in failures):
             os.unlink(path)
 
 
