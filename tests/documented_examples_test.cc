@@ -57,6 +57,14 @@ void WriteEnvironment(const fs::path& path, vs11::irradiance::EnvironmentLayout 
   ASSERT_EQ(vs11::irradiance::WriteCubeMap(sky, path, layout), std::nullopt) << path;
 }
 
+// Four crosses and all.txt, the list of them the Slurm and merge examples read.
+void WriteDatasetList(const fs::path& dir) {
+  for (int i = 0; i < 4; ++i) {
+    WriteEnvironment(dir / fmt::format("env{}.exr", i), vs11::irradiance::EnvironmentLayout::kHorizontalCross);
+  }
+  WriteText(dir / "all.txt", "env*.exr\n");
+}
+
 void MakeWithTool(const fs::path& dir, const std::string& command) {
   const CommandResult made = RunShell(dir, command);
   ASSERT_EQ(made.status, 0) << "fixture: " << command << "\n" << made.output;
@@ -108,17 +116,18 @@ const std::map<std::string, std::function<void(const fs::path&)>>& Fixtures() {
          WriteEnvironment(dir / "yard.exr", EnvironmentLayout::kLatLong);
          WriteText(dir / "files.txt", "hall.exr\nyard.exr\n");
        }},
-      {"all.txt",
-       [](const fs::path& dir) {
-         for (int i = 0; i < 4; ++i) WriteEnvironment(dir / fmt::format("env{}.exr", i), EnvironmentLayout::kHorizontalCross);
-         WriteText(dir / "all.txt", "env*.exr\n");
-       }},
+      {"all.txt", WriteDatasetList},
       {"data/*/*.hdr",  // --shard 3/16: the fourth file is the shard's
        [](const fs::path& dir) {
          for (int i = 0; i < 4; ++i) {
            fs::create_directories(dir / "data" / fmt::format("set{}", i));
            WriteEnvironment(dir / "data" / fmt::format("set{}", i) / "probe.hdr", EnvironmentLayout::kHorizontalCross);
          }
+       }},
+      {"out/part-*.jsonl",  // irrmap batch-merge's parts: all.txt's inputs in two shards
+       [](const fs::path& dir) {
+         WriteDatasetList(dir);
+         for (int k = 0; k < 2; ++k) MakeWithTool(dir, fmt::format("irrmap batch --list all.txt -o out/part-{0}.jsonl --shard {0}/2", k));
        }},
       {"wuson_out/oPos.npy",  // as the example before it writes them with --out-npy wuson_out
        [](const fs::path& dir) {
@@ -142,6 +151,7 @@ constexpr NotRun kNotRun[] = {
     {"build/bench/vs11_bench", "a benchmark run: minutes"},
     {"build/bench/vs11_compare_llvmpipe --cpu-time", "the full llvmpipe comparison: minutes"},
     {"python3 bench/compare_cmgen.py", "needs Filament's cmgen and minutes"},
+    {"python3 bench/irradiance/dataset_throughput.py", "a benchmark run: about a minute on two cores"},
     {"irrmap stability", "about a minute of work on two cores; tests/irradiance/report/stability_test.cc covers it"},
 };
 
@@ -230,7 +240,7 @@ std::vector<std::string> SubcommandNames(const std::string& help) {
 const std::vector<HelpPage> kHelpPages = {
     {"vs11", ""},    {"vs11", "asm"},       {"vs11", "disasm"}, {"vs11", "validate"},  {"vs11", "run"},
     {"vs11", "count"}, {"vs11", "verify"},  {"vs11", "translate"}, {"irrmap", ""},     {"irrmap", "chart"},   {"irrmap", "stability"},
-    {"irrmap", "batch"},
+    {"irrmap", "batch"}, {"irrmap", "batch-merge"},
 };
 
 TEST(DocumentedExamples, EveryHelpPageIsInTheList) {
@@ -257,7 +267,9 @@ TEST_P(DocumentedHelpExamples, RunAsWritten) {
 
 INSTANTIATE_TEST_SUITE_P(Pages, DocumentedHelpExamples, ::testing::ValuesIn(kHelpPages),
                          [](const ::testing::TestParamInfo<HelpPage>& info) {
-                           return info.param.tool + (info.param.subcommand.empty() ? "" : "_" + info.param.subcommand);
+                           std::string name = info.param.tool + (info.param.subcommand.empty() ? "" : "_" + info.param.subcommand);
+                           std::replace(name.begin(), name.end(), '-', '_');  // batch-merge
+                           return name;
                          });
 
 // ---- README code blocks ---------------------------------------------------------------------------
@@ -310,8 +322,8 @@ void CheckSynopsis(const std::vector<std::string>& lines, const std::string& whe
     std::string subcommand;
     if (first == "vs11" || first == "irrmap") {
       tool = first;
-      const bool is_word = !second.empty() && std::all_of(second.begin(), second.end(), [](char c) {
-        return c >= 'a' && c <= 'z';
+      const bool is_word = !second.empty() && second[0] != '-' && std::all_of(second.begin(), second.end(), [](char c) {
+        return (c >= 'a' && c <= 'z') || c == '-';  // batch-merge
       });
       if (is_word) subcommand = second;
     }

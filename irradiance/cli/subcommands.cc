@@ -7,6 +7,7 @@ void AddSubcommands(CLI::App& app) {
   AddChartCommand(app);
   AddStabilityCommand(app);
   AddBatchCommand(app);
+  AddBatchMergeCommand(app);
 }
 
 }  // namespace vs11::irradiance::cli

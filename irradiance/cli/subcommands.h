@@ -21,5 +21,6 @@ void AddSubcommands(CLI::App& app);
 void AddChartCommand(CLI::App& app);  // irrmap chart (chart_command.cc)
 void AddStabilityCommand(CLI::App& app);  // stability_command.cc
 void AddBatchCommand(CLI::App& app);      // irrmap batch (batch_command.cc)
+void AddBatchMergeCommand(CLI::App& app);  // irrmap batch-merge (batch_merge_command.cc)
 
 }  // namespace vs11::irradiance::cli

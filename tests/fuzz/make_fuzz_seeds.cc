@@ -7,6 +7,7 @@
 //   CORPUS_DIR/fuzz_mesh_wire    the sandboxed mesh loader's replies for those that load
 //   CORPUS_DIR/fuzz_npy          .npy files of 1 to 4 columns
 //   CORPUS_DIR/fuzz_buffer_element  "STRIDE v#=OFFSET:COUNT..." lines, each with a buffer of floats
+//   CORPUS_DIR/fuzz_batch_merge  only its committed seeds: shard outputs (records, a duplicate, a cut-off line)
 // plus, for each target, the committed files in tests/fuzz/seeds/<target>/.
 #include <cctype>
 #include <cstdio>
@@ -167,7 +168,7 @@ int main(int argc, char** argv) {
   fs::path source_dir = argv[1], corpus_dir = argv[2];
   bool ok = true;
   for (const char* target : {"fuzz_assembler", "fuzz_bytecode", "fuzz_environment", "fuzz_mesh", "fuzz_mesh_wire", "fuzz_npy",
-                             "fuzz_buffer_element", "fuzz_translate"}) {
+                             "fuzz_buffer_element", "fuzz_translate", "fuzz_batch_merge"}) {
     fs::create_directories(corpus_dir / target);
     fs::path committed = source_dir / "tests" / "fuzz" / "seeds" / target;
     if (fs::is_directory(committed)) {
