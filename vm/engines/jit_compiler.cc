@@ -18,9 +18,14 @@
 #include "vm/core/machine.h"
 #include "vm/engines/batch_plan.h"
 #include "vm/engines/jit_graph.h"
+#include "vm/ir/graph.h"
 
 namespace vs11::jit {
 namespace {
+
+using ir::Node;
+using ir::Op;
+constexpr int kNoArg = ir::kNoNode;
 
 // ---- register allocation and code --------------------------------------------------------------------
 
@@ -51,13 +56,14 @@ class Emitter : public Xbyak::CodeGenerator {
   // leaving the others to the values computed in it.
   // The code is generated into `buffer`, plain memory: an Emitter lives only while Compile runs (it
   // refers to Compile's graph), and ExecutableCode copies the code a compiled program keeps.
-  Emitter(const std::vector<Node>& nodes, VectorShape shape, int groups, int hoisted, std::span<std::uint8_t> buffer)
+  Emitter(const ir::Graph& graph, VectorShape shape, int groups, int hoisted, std::span<std::uint8_t> buffer)
       : Xbyak::CodeGenerator(buffer.size(), buffer.data()),
-        nodes_(nodes),
+        graph_(graph),
+        nodes_(graph.nodes()),
         shape_(shape),
         wide_(shape.isa == JitIsa::kAvx512),
         groups_(groups),
-        spill_slot_(nodes.size(), -1),
+        spill_slot_(graph.size(), -1),
         hoisted_(static_cast<std::size_t>(hoisted)) {
     assert(hoisted >= 0 && hoisted <= shape.registers - kMinLoopRegisters);
   }
@@ -207,21 +213,9 @@ class Emitter : public Xbyak::CodeGenerator {
   }
 
   void FindUses() {
-    live_.assign(nodes_.size(), false);
-    uses_.assign(nodes_.size(), {});
-    for (std::size_t n = nodes_.size(); n-- > 0;) {
-      if (nodes_[n].op == Op::kStore) live_[n] = true;
-      if (!live_[n]) continue;
-      for (int arg : nodes_[n].args) {
-        if (arg != kNoArg) live_[static_cast<std::size_t>(arg)] = true;
-      }
-    }
-    for (std::size_t n = 0; n < nodes_.size(); ++n) {
-      if (!live_[n]) continue;
-      for (int arg : nodes_[n].args) {
-        if (arg != kNoArg) uses_[static_cast<std::size_t>(arg)].push_back(static_cast<int>(n));
-      }
-    }
+    ir::Liveness liveness = ir::FindLiveness(graph_);
+    live_ = std::move(liveness.live);
+    uses_ = std::move(liveness.users);
     register_value_.fill(kNoArg);
     where_.assign(nodes_.size(), kNoArg);
   }
@@ -304,7 +298,7 @@ class Emitter : public Xbyak::CodeGenerator {
     switch (op) {
       case Op::kAdd: case Op::kSub: case Op::kMul: case Op::kDiv:
       case Op::kLess: case Op::kGreater: case Op::kGreaterEqual: case Op::kEqual: case Op::kUnordered:
-      case Op::kIntGreater: case Op::kIntAdd: case Op::kIntSub: case Op::kAnd: case Op::kOr: case Op::kXor:
+      case Op::kIntGreater: case Op::kIntAdd: case Op::kIntSub: case Op::kIntAnd: case Op::kIntOr: case Op::kIntXor:
       case Op::kSelect: case Op::kSelectZero:
         return 1;
       case Op::kFloor: case Op::kSqrt: case Op::kShiftLeft: case Op::kShiftRight: case Op::kToInt: case Op::kToFloat:
@@ -416,22 +410,24 @@ class Emitter : public Xbyak::CodeGenerator {
       case Op::kEqual: compare(0x00); break;         // EQ_OQ
       case Op::kUnordered: compare(0x03); break;     // UNORD_Q
       case Op::kIntGreater: wide_ ? vpcmpgtd(K(out), a_register, b) : vpcmpgtd(result, a_register, b); break;
-      case Op::kMaskAnd: wide_ ? kandw(K(out), K(in[0]), K(in[1])) : vpand(result, a_register, b_register); break;
       case Op::kSelect:  // mask ? yes : no
         wide_ ? vblendmps(result | K(in[0]), c, b) : vblendvps(result, c, b, a_register);
         break;
       case Op::kSelectZero: wide_ ? vmovdqa32(result | K(in[0]) | T_z, b) : vpand(result, a_register, b); break;
       case Op::kIntAdd: vpaddd(result, a_register, b); break;
       case Op::kIntSub: vpsubd(result, a_register, b); break;
-      case Op::kAnd: wide_ ? vpandd(result, a_register, b) : vpand(result, a_register, b); break;
-      case Op::kOr: wide_ ? vpord(result, a_register, b) : vpor(result, a_register, b); break;
-      case Op::kXor: wide_ ? vpxord(result, a_register, b) : vpxor(result, a_register, b); break;
+      case Op::kIntAnd: wide_ ? vpandd(result, a_register, b) : vpand(result, a_register, b); break;
+      case Op::kIntOr: wide_ ? vpord(result, a_register, b) : vpor(result, a_register, b); break;
+      case Op::kIntXor: wide_ ? vpxord(result, a_register, b) : vpxor(result, a_register, b); break;
       case Op::kShiftLeft: vpslld(result, a, static_cast<std::uint8_t>(node.immediate)); break;
       case Op::kShiftRight: vpsrad(result, a, static_cast<std::uint8_t>(node.immediate)); break;
       case Op::kToInt: vcvttps2dq(result, a); break;
       case Op::kToFloat: vcvtdq2ps(result, a); break;
       case Op::kInput: case Op::kConstant: case Op::kLiteral: case Op::kConstantCount: case Op::kGather:
       case Op::kStore: break;  // handled by Emit
+      // Not in the jit's graph: lowered away (ir::LowerToBitOperations) or not recorded by its bindings.
+      case Op::kAbs: case Op::kNegate: case Op::kBitsOf: case Op::kFloatFromBits: case Op::kRelativeRow:
+      case Op::kComponent: assert(false && "not lowered"); break;
     }
   }
 
@@ -504,8 +500,9 @@ class Emitter : public Xbyak::CodeGenerator {
                 "TakeRegister needs a mask register that holds no pinned value");
   static_assert(kMinLoopRegisters > std::tuple_size_v<PinnedValues>,
                 "TakeRegister needs a vector register that holds no pinned value");
-  bool InMaskRegister(int value) const { return wide_ && IsMask(nodes_[static_cast<std::size_t>(value)].op); }
+  bool InMaskRegister(int value) const { return wide_ && nodes_[static_cast<std::size_t>(value)].type == ir::Type::kMask; }
 
+  const ir::Graph& graph_;
   const std::vector<Node>& nodes_;
   const VectorShape shape_;
   const bool wide_;   // AVX-512
@@ -625,7 +622,7 @@ class AvxProgram final : public CompiledProgram {
   int vertices_per_iteration_;
 };
 
-// Bytes of code per traced node, generously: an operation is one or two instructions, a reload or
+// Bytes of code per recorded node, generously: an operation is one or two instructions, a reload or
 // spill adds one or two more (each at most 11 bytes).
 constexpr std::size_t kCodeBytesPerNode = 48;
 constexpr std::size_t kCodeBytesPerGather = 128;  // the uniformity test, two paths and their jumps
@@ -673,13 +670,13 @@ std::unique_ptr<CompiledProgram> Compile(const Program& program, std::string& wh
     return nullptr;
   }
   const VectorShape shape = isa == JitIsa::kAvx512 ? kAvx512Shape : kAvx2Shape;
-  Graph graph = TraceProgram(program, 1, uniform_inputs, rules);
+  ir::Graph graph = RecordLoopBody(program, 1, uniform_inputs, rules);
   int groups = 1;
   // Two groups, with AVX2 or AVX-512: four groups of 16 spilled more than they hid (measured on
   // all_instructions, 1.6 vs 2.8 ms per 65536 vertices), and one group of 16 was slower still.
-  if (LongestChain(graph) >= kLongChain) {
+  if (ir::LongestChain(graph) >= kLongChain) {
     groups = 2;
-    graph = TraceProgram(program, groups, uniform_inputs, rules);
+    graph = RecordLoopBody(program, groups, uniform_inputs, rules);
   }
   static_assert(batch::kVertexGranule % 64 == 0, "an iteration takes at most 64 vertices");
   try {
@@ -693,15 +690,15 @@ std::unique_ptr<CompiledProgram> Compile(const Program& program, std::string& wh
     std::vector<std::uint8_t> buffer(code_size);
     int best_hoisted = 0, fewest = std::numeric_limits<int>::max();
     for (int hoisted = 0; hoisted <= shape.registers - kMinLoopRegisters && hoisted <= best_hoisted + 2; ++hoisted) {
-      Emitter trial(graph.nodes(), shape, groups, hoisted, buffer);
+      Emitter trial(graph, shape, groups, hoisted, buffer);
       trial.Generate();
       if (trial.loop_memory_operations() < fewest) fewest = trial.loop_memory_operations(), best_hoisted = hoisted;
       if (trial.hoisted() < static_cast<std::size_t>(hoisted)) break;  // no constants left to keep
     }
     std::vector<std::uint8_t> streaming_buffer(code_size);
-    Emitter cached(graph.nodes(), shape, groups, best_hoisted, buffer);
+    Emitter cached(graph, shape, groups, best_hoisted, buffer);
     cached.Generate();
-    Emitter streaming(graph.nodes(), shape, groups, best_hoisted, streaming_buffer);
+    Emitter streaming(graph, shape, groups, best_hoisted, streaming_buffer);
     streaming.Generate(/*streaming_stores=*/true);
     return std::make_unique<AvxProgram>(cached, streaming);
   } catch (const Xbyak::Error& error) {
