@@ -214,11 +214,11 @@ std::vector<const Node*> NodesOf(const Graph& graph, Op op) {
 
 TEST(JitGraph, ALaneReadByThreeInstructionsIsLoadedOnce) {
   const Graph graph = RecordLoopBody(Assemble("dcl_position v0\n"
-                                            "dp4 r0.x, v0, c0\n"
-                                            "dp4 r0.y, v0, c1\n"
-                                            "dp4 r0.z, v0, c2\n"
-                                            "mov oPos, r0\n"),
-                                   1, {}, FloatRules::kD3d9);
+                                              "dp4 r0.x, v0, c0\n"
+                                              "dp4 r0.y, v0, c1\n"
+                                              "dp4 r0.z, v0, c2\n"
+                                              "mov oPos, r0\n"),
+                                     1, {}, FloatRules::kD3d9);
   EXPECT_EQ(NodesOf(graph, Op::kInput).size(), 4u);      // v0.xyzw
   EXPECT_EQ(NodesOf(graph, Op::kConstant).size(), 12u);  // c0..c2, four components each
   EXPECT_EQ(NodesOf(graph, Op::kStore).size(), 4u);
@@ -257,8 +257,8 @@ TEST(JitGraph, EachGroupLoadsAndStoresItsOwnLanes) {
 TEST(JitGraph, TheGroupsStoresOfALaneAreAdjacent) {
   constexpr int kGroups = 2;
   const Graph graph = RecordLoopBody(Assemble("dcl_position v0\ndcl_normal v1\nadd oPos, v0, c0\n"
-                                            "mul oD0, v1, c1\nmov oT0.xy, v1\n"),
-                                   kGroups, {}, FloatRules::kD3d9);
+                                              "mul oD0, v1, c1\nmov oT0.xy, v1\n"),
+                                     kGroups, {}, FloatRules::kD3d9);
   const std::vector<const Node*> stores = NodesOf(graph, Op::kStore);
   ASSERT_EQ(stores.size(), 10u * kGroups);
   for (std::size_t k = 0; k < stores.size(); k += kGroups) {
