@@ -17,12 +17,21 @@ const char* OpName(Op op) {
 int Graph::Add(Op op, Type type, Operands operands, std::uint32_t immediate) {
   const Args args = {operands.a, operands.b, operands.c};
   if (op != Op::kStore) {
-    const auto key = std::make_tuple(op, type, region_, args, immediate);
-    if (const auto it = existing_.find(key); it != existing_.end()) return it->second;
-    existing_.emplace(key, static_cast<int>(nodes_.size()));
+    const Key key = {static_cast<std::uint64_t>(op) | static_cast<std::uint64_t>(type) << 8 |
+                         static_cast<std::uint64_t>(static_cast<std::uint16_t>(region_)) << 16 |
+                         static_cast<std::uint64_t>(immediate) << 32,
+                     args};
+    const auto [it, added] = existing_.try_emplace(key, static_cast<int>(nodes_.size()));
+    if (!added) return it->second;
   }
   nodes_.push_back({op, type, args, immediate, instruction_, region_});
   return static_cast<int>(nodes_.size()) - 1;
+}
+
+std::size_t Graph::KeyHash::operator()(const Key& key) const {
+  std::uint64_t hash = key.head * 0x9E3779B97F4A7C15u;
+  for (int arg : key.args) hash = (hash ^ static_cast<std::uint32_t>(arg)) * 0x100000001B3u;
+  return static_cast<std::size_t>(hash ^ (hash >> 29));
 }
 
 Liveness FindLiveness(const Graph& graph, std::span<const int> roots) {

@@ -19,9 +19,9 @@
 
 #include <array>
 #include <cstdint>
-#include <map>
+#include <cstddef>
 #include <span>
-#include <tuple>
+#include <unordered_map>
 #include <vector>
 
 namespace vs11::ir {
@@ -116,7 +116,16 @@ class Graph {
  private:
   std::vector<Node> nodes_;
   std::vector<Region> regions_ = {Region{}};
-  std::map<std::tuple<Op, Type, int, Args, std::uint32_t>, int> existing_;
+  // Sharing: the node of each (op, type, region, args, immediate), packed into one key.
+  struct Key {
+    std::uint64_t head;  // op, type, region, immediate
+    Args args;
+    bool operator==(const Key&) const = default;
+  };
+  struct KeyHash {
+    std::size_t operator()(const Key& key) const;
+  };
+  std::unordered_map<Key, int, KeyHash> existing_;
   int instruction_ = -1;
   int region_ = 0;
 };
