@@ -193,7 +193,7 @@ int OutputFloats(const Case& c) {
 // with the lanes up to the last one that is not GL's default (0, 0, 0, 1) in every vertex; every
 // output register the program writes, as the translation declares it.
 void BindTranslation(Case& c, const VertexArrays& supplied, std::size_t count) {
-  const translate::ShaderGraph graph = translate::TraceShader(*c.program, c.constants.size());
+  const translate::ShaderGraph graph = translate::RecordShader(*c.program, c.constants.size());
   for (int reg = 0; reg < kInputRegisterCount; ++reg) {
     if (!graph.inputs_read[static_cast<std::size_t>(reg)] || !supplied.has(reg)) continue;
     int components = 1;

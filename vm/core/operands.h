@@ -1,10 +1,10 @@
 // How an instruction reads its sources and writes its destination, written once (§3.1): fetch every
 // source (register, then swizzle, then negation) before the result is stored through the write mask,
 // so that `add r0, r0.yzwx, r0` reads the old r0. The reference engine runs these templates on floats
-// (one vertex); the jit's tracer runs them on graph values, and so builds its graph from the same
-// rules. An engine supplies only where a register's value lives, as a machine type M:
+// (one vertex); vm/ir/record.cc runs them on graph values, and so builds the IR from the same rules.
+// An engine supplies only where a register's value lives, as a machine type M:
 //
-//   using Float = ...;                         // the lane type (float, a traced value)
+//   using Float = ...;                         // the lane type (float, a recorded value)
 //   using Vec4 = std::array<Float, 4>;
 //   Vec4 ReadConstant(long index, bool relative) const;  // c[index] or c[a0.x + index]
 //   Vec4 ReadInput(long index) const;                     // v#, index < kInputRegisterCount
@@ -117,6 +117,18 @@ void Execute(M& machine, const Instruction& instruction) {
     return;  // nop, dcl, def
   }
   StoreDest(machine, instruction.dest, result, info.result_lanes());
+}
+
+// The one opcode dispatch: `instruction` on `machine` with its row's kernel. The reference engine runs
+// it on floats, vm/ir/record.cc on graph values (which the jit and the translator read).
+template <FloatRules kRules, class M>
+void ExecuteInstruction(M& machine, const Instruction& instruction) {
+  switch (instruction.opcode) {
+#define VS11_EXECUTE_CASE(name, ...) \
+  case Opcode::k##name: Execute<name##Semantics, kRules>(machine, instruction); break;
+    VS11_OPCODES(VS11_EXECUTE_CASE)
+#undef VS11_EXECUTE_CASE
+  }
 }
 
 }  // namespace vs11::semantics

@@ -18,9 +18,15 @@
 #include "vm/core/machine.h"
 #include "vm/engines/batch_plan.h"
 #include "vm/engines/jit_graph.h"
+#include "vm/engines/register_allocator.h"
+#include "vm/ir/graph.h"
 
 namespace vs11::jit {
 namespace {
+
+using ir::Node;
+using ir::Op;
+constexpr int kNoArg = ir::kNoNode;
 
 // ---- register allocation and code --------------------------------------------------------------------
 
@@ -37,27 +43,19 @@ constexpr VectorShape kAvx512Shape{JitIsa::kAvx512, 16, 32};
 constexpr int kMaxVectorRegisters = 32;
 // Vector registers always left to the loop's values (the others may hold constants for good).
 constexpr int kMinLoopRegisters = 4;
-// An operation's operands stay in their registers while its other operands and its result are
-// placed: the register allocator never evicts these.
-using PinnedValues = std::array<int, 3>;
-
-bool Rematerializable(Op op) {
-  return op == Op::kInput || op == Op::kConstant || op == Op::kLiteral || op == Op::kConstantCount;
-}
-
 class Emitter : public Xbyak::CodeGenerator {
  public:
   // `hoisted`: how many of the most used constants are loaded into registers once, before the loop,
   // leaving the others to the values computed in it.
   // The code is generated into `buffer`, plain memory: an Emitter lives only while Compile runs (it
   // refers to Compile's graph), and ExecutableCode copies the code a compiled program keeps.
-  Emitter(const std::vector<Node>& nodes, VectorShape shape, int groups, int hoisted, std::span<std::uint8_t> buffer)
+  Emitter(const ir::Graph& graph, VectorShape shape, int groups, int hoisted, std::span<std::uint8_t> buffer)
       : Xbyak::CodeGenerator(buffer.size(), buffer.data()),
-        nodes_(nodes),
+        nodes_(graph.nodes()),
         shape_(shape),
         wide_(shape.isa == JitIsa::kAvx512),
         groups_(groups),
-        spill_slot_(nodes.size(), -1),
+        allocator_(graph, kMaskRegisterEnd),
         hoisted_(static_cast<std::size_t>(hoisted)) {
     assert(hoisted >= 0 && hoisted <= shape.registers - kMinLoopRegisters);
   }
@@ -68,7 +66,6 @@ class Emitter : public Xbyak::CodeGenerator {
   void Generate(bool streaming_stores = false) {
     streaming_stores_ = streaming_stores;
     const Registers& r = regs_;
-    FindUses();
     const std::vector<int> pointer_lanes = KeepLanePointers();
     for (std::size_t k = 0; k < pointer_lanes.size(); ++k) push(kLanePointerRegisters[k]);
     mov(r.read_lanes, ptr[r.arguments + offsetof(RunArguments, read_lanes)]);
@@ -94,7 +91,7 @@ class Emitter : public Xbyak::CodeGenerator {
     jz(done, T_NEAR);
     L(loop);
     for (std::size_t n = 0; n < nodes_.size(); ++n) {
-      if (live_[n]) Emit(static_cast<int>(n));
+      if (allocator_.live(static_cast<int>(n))) Emit(static_cast<int>(n));
     }
     add(r.offset, shape_.bytes() * groups_);
     cmp(r.offset, r.end);
@@ -107,15 +104,15 @@ class Emitter : public Xbyak::CodeGenerator {
   }
 
   const std::vector<float>& literals() const { return literals_; }
-  int spill_slots() const { return spill_slots_; }
+  int spill_slots() const { return allocator_.spill_slots(); }
   VectorShape shape() const { return shape_; }
   // A power of two (8 or 16 lanes, one or two groups): the loop rounds the count down with a mask.
   int vertices_per_iteration() const { return shape_.lanes * groups_; }
   // The lane table entries the code loads from and stores to (sorted lane indices), after Generate.
   std::vector<int> LoadedLanes() const { return LanesOf(Op::kInput); }
   std::vector<int> StoredLanes() const { return LanesOf(Op::kStore); }
-  int spilled_values() const { return spilled_values_; }
-  int spilled_masks() const { return spilled_masks_; }
+  int spilled_values() const { return allocator_.spilled_values(); }
+  int spilled_masks() const { return allocator_.spilled_masks(); }
   std::size_t hoisted() const { return hoisted_; }  // after Generate: at most the constants there are
   // Loads and stores in the loop body: what the number of hoisted constants is chosen by.
   int loop_memory_operations() const { return loop_memory_operations_; }
@@ -136,7 +133,7 @@ class Emitter : public Xbyak::CodeGenerator {
   std::vector<int> LanesOf(Op op) const {
     std::vector<int> lanes;
     for (std::size_t n = 0; n < nodes_.size(); ++n) {
-      if (live_[n] && nodes_[n].op == op) lanes.push_back(LaneIndex(LaneKey(nodes_[n])));
+      if (allocator_.live(static_cast<int>(n)) && nodes_[n].op == op) lanes.push_back(LaneIndex(LaneKey(nodes_[n])));
     }
     std::ranges::sort(lanes);
     lanes.erase(std::unique(lanes.begin(), lanes.end()), lanes.end());
@@ -148,8 +145,8 @@ class Emitter : public Xbyak::CodeGenerator {
     std::map<int, int> uses;
     for (std::size_t n = 0; n < nodes_.size(); ++n) {
       const Node& node = nodes_[n];
-      if (!live_[n] || (node.op != Op::kInput && node.op != Op::kStore)) continue;
-      uses[LaneKey(node)] += std::max<int>(1, static_cast<int>(uses_[n].size()));
+      if (!allocator_.live(static_cast<int>(n)) || (node.op != Op::kInput && node.op != Op::kStore)) continue;
+      uses[LaneKey(node)] += std::max<int>(1, static_cast<int>(allocator_.users(static_cast<int>(n)).size()));
     }
     std::vector<std::pair<int, int>> by_use;
     for (const auto& [key, count] : uses) by_use.emplace_back(count, key);
@@ -178,7 +175,9 @@ class Emitter : public Xbyak::CodeGenerator {
     std::vector<std::pair<int, int>> by_use;  // (uses, node)
     for (std::size_t n = 0; n < nodes_.size(); ++n) {
       const Op op = nodes_[n].op;
-      if (live_[n] && op != Op::kInput && Rematerializable(op)) by_use.emplace_back(uses_[n].size(), n);
+      if (allocator_.live(static_cast<int>(n)) && op != Op::kInput && Rematerializable(op)) {
+        by_use.emplace_back(allocator_.users(static_cast<int>(n)).size(), n);
+      }
     }
     std::stable_sort(by_use.begin(), by_use.end(), [](const auto& a, const auto& b) { return a.first > b.first; });
     hoisted_ = std::min(hoisted_, by_use.size());
@@ -186,7 +185,7 @@ class Emitter : public Xbyak::CodeGenerator {
     for (std::size_t k = 0; k < hoisted_; ++k) {
       const int value = by_use[k].second;
       Materialize(value, shape_.registers - 1 - static_cast<int>(k));
-      pinned_values_.push_back(value);
+      allocator_.Hoist(value);
     }
   }
   // AVX2 has no broadcast operands: before the loop, every constant not kept in a register is
@@ -196,81 +195,33 @@ class Emitter : public Xbyak::CodeGenerator {
     const Xbyak::Xmm scratch = V(0);  // holds no value yet; the hoisted constants sit at the top
     for (std::size_t n = 0; n < nodes_.size(); ++n) {
       const int value = static_cast<int>(n);
-      if (!live_[n] || nodes_[n].op != Op::kConstant || Hoisted(value)) continue;
-      spill_slot_[value] = spill_slots_++;
+      if (!allocator_.live(value) || nodes_[n].op != Op::kConstant || allocator_.Hoisted(value)) continue;
       vbroadcastss(scratch, ptr[regs_.constants + 4 * nodes_[n].immediate]);
-      vmovups(ptr[regs_.spill + shape_.bytes() * spill_slot_[value]], scratch);
+      vmovups(SpillSlot(allocator_.NewSpillSlot(value)), scratch);
     }
   }
-  bool Hoisted(int value) const {
-    return std::find(pinned_values_.begin(), pinned_values_.end(), value) != pinned_values_.end();
-  }
+  Xbyak::Address SpillSlot(int slot) const { return ptr[regs_.spill + shape_.bytes() * slot]; }
 
-  void FindUses() {
-    live_.assign(nodes_.size(), false);
-    uses_.assign(nodes_.size(), {});
-    for (std::size_t n = nodes_.size(); n-- > 0;) {
-      if (nodes_[n].op == Op::kStore) live_[n] = true;
-      if (!live_[n]) continue;
-      for (int arg : nodes_[n].args) {
-        if (arg != kNoArg) live_[static_cast<std::size_t>(arg)] = true;
-      }
-    }
-    for (std::size_t n = 0; n < nodes_.size(); ++n) {
-      if (!live_[n]) continue;
-      for (int arg : nodes_[n].args) {
-        if (arg != kNoArg) uses_[static_cast<std::size_t>(arg)].push_back(static_cast<int>(n));
-      }
-    }
-    register_value_.fill(kNoArg);
-    where_.assign(nodes_.size(), kNoArg);
-  }
-
-  // The position of the next use of `value` after `position`, or "never".
-  int NextUse(int value, int position) const {
-    const std::vector<int>& uses = uses_[static_cast<std::size_t>(value)];
-    const auto it = std::upper_bound(uses.begin(), uses.end(), position);
-    return it == uses.end() ? std::numeric_limits<int>::max() : *it;
-  }
-
-  // A free register for `value`, evicting the value used farthest in the future (not one of `pinned`):
-  // a vector register, or for an AVX-512 mask a mask register. A pinned value holds one register at
-  // most, and each kind has more registers than there are pinned values (kMinLoopRegisters and the
-  // static_assert beside the mask registers), so there is always one to evict.
+  // A free register for `value` (a vector register, or for an AVX-512 mask a mask register), storing
+  // the value the allocator evicts for it to its spill slot first.
   int TakeRegister(int value, int position, const PinnedValues& pinned) {
     const bool mask = InMaskRegister(value);
-    const int first = mask ? kFirstMaskRegister : 0;
-    const int end = mask ? kMaskRegisterEnd : available_registers_;
-    for (int reg = first; reg < end; ++reg) {
-      if (register_value_[reg] == kNoArg) return reg;
-    }
-    int victim = -1, farthest = -1;
-    for (int reg = first; reg < end; ++reg) {
-      const int held = register_value_[reg];
-      if (std::find(pinned.begin(), pinned.end(), held) != pinned.end()) continue;
-      const int next = NextUse(held, position);
-      if (next > farthest) farthest = next, victim = reg;
-    }
-    assert(victim >= 0 && "every register holds a pinned value");
-    const int held = register_value_[victim];
-    if (!Rematerializable(nodes_[static_cast<std::size_t>(held)].op) && spill_slot_[held] < 0) {
-      spill_slot_[held] = spill_slots_++;
-      ++spilled_values_;
-      spilled_masks_ += mask ? 1 : 0;
+    const RegisterAllocator::Taken taken =
+        allocator_.TakeRegister(mask ? kFirstMaskRegister : 0, mask ? kMaskRegisterEnd : available_registers_, position,
+                                pinned, mask);
+    if (taken.spill) {
       ++loop_memory_operations_;
-      const Xbyak::Address slot = ptr[regs_.spill + shape_.bytes() * spill_slot_[held]];
-      mask ? kmovw(slot, K(victim)) : vmovups(slot, V(victim));
+      const Xbyak::Address slot = SpillSlot(allocator_.spill_slot(*taken.spill));
+      mask ? kmovw(slot, K(taken.reg)) : vmovups(slot, V(taken.reg));
     }
-    where_[held] = kNoArg;
-    register_value_[victim] = kNoArg;
-    return victim;
+    return taken.reg;
   }
 
   // Loads a rematerializable or spilled value into `reg`.
   void Materialize(int value, int reg) {
     const Node& node = nodes_[static_cast<std::size_t>(value)];
     ++loop_memory_operations_;
-    const Xbyak::Address spilled = ptr[regs_.spill + shape_.bytes() * spill_slot_[value]];
+    const Xbyak::Address spilled = SpillSlot(allocator_.spill_slot(value));
     switch (node.op) {
       case Op::kInput: vmovups(V(reg), ptr[LaneAddress(node)]); break;
       case Op::kConstant: vbroadcastss(V(reg), ptr[regs_.constants + 4 * node.immediate]); break;
@@ -278,8 +229,7 @@ class Emitter : public Xbyak::CodeGenerator {
       case Op::kConstantCount: vpbroadcastd(V(reg), ptr[regs_.arguments + offsetof(RunArguments, constant_count)]); break;
       default: InMaskRegister(value) ? kmovw(K(reg), spilled) : vmovups(V(reg), spilled); break;
     }
-    where_[value] = reg;
-    register_value_[reg] = value;
+    allocator_.Assign(value, reg);
   }
 
   int LiteralIndex(std::uint32_t bits) {
@@ -304,7 +254,7 @@ class Emitter : public Xbyak::CodeGenerator {
     switch (op) {
       case Op::kAdd: case Op::kSub: case Op::kMul: case Op::kDiv:
       case Op::kLess: case Op::kGreater: case Op::kGreaterEqual: case Op::kEqual: case Op::kUnordered:
-      case Op::kIntGreater: case Op::kIntAdd: case Op::kIntSub: case Op::kAnd: case Op::kOr: case Op::kXor:
+      case Op::kIntGreater: case Op::kIntAdd: case Op::kIntSub: case Op::kIntAnd: case Op::kIntOr: case Op::kIntXor:
       case Op::kSelect: case Op::kSelectZero:
         return 1;
       case Op::kFloor: case Op::kSqrt: case Op::kShiftLeft: case Op::kShiftRight: case Op::kToInt: case Op::kToFloat:
@@ -325,7 +275,7 @@ class Emitter : public Xbyak::CodeGenerator {
     switch (node.op) {
       case Op::kInput: return std::nullopt;
       case Op::kConstant:
-        if (!wide_) return ptr[regs_.spill + shape_.bytes() * spill_slot_[value]];  // StoreConstantVectors
+        if (!wide_) return SpillSlot(allocator_.spill_slot(value));  // StoreConstantVectors
         if (user == Op::kSelectZero) return std::nullopt;
         return ptr_b[regs_.constants + 4 * node.immediate];
       case Op::kLiteral:
@@ -334,8 +284,8 @@ class Emitter : public Xbyak::CodeGenerator {
         return ptr_b[regs_.literals + 4 * LiteralIndex(node.immediate)];
       case Op::kConstantCount: return std::nullopt;
       default:
-        if (spill_slot_[value] < 0 || InMaskRegister(value)) return std::nullopt;
-        return ptr[regs_.spill + shape_.bytes() * spill_slot_[value]];
+        if (allocator_.spill_slot(value) < 0 || InMaskRegister(value)) return std::nullopt;
+        return SpillSlot(allocator_.spill_slot(value));
     }
   }
 
@@ -348,18 +298,18 @@ class Emitter : public Xbyak::CodeGenerator {
     for (int a = 0; a < 3; ++a) {
       const int arg = node.args[a];
       if (arg == kNoArg || a == memory_argument) continue;
-      if (where_[arg] == kNoArg) Materialize(arg, TakeRegister(arg, n, node.args));
-      in[a] = where_[arg];
+      if (allocator_.where(arg) == kNoArg) Materialize(arg, TakeRegister(arg, n, node.args));
+      in[a] = allocator_.where(arg);
     }
     std::optional<Xbyak::Address> memory;
     if (memory_argument != kNoArg) {
       const int arg = node.args[memory_argument];
-      if (where_[arg] == kNoArg) memory = MemoryOperand(arg, node.op);
+      if (allocator_.where(arg) == kNoArg) memory = MemoryOperand(arg, node.op);
       if (memory) {
         ++loop_memory_operations_;
       } else {
-        if (where_[arg] == kNoArg) Materialize(arg, TakeRegister(arg, n, node.args));
-        in[memory_argument] = where_[arg];
+        if (allocator_.where(arg) == kNoArg) Materialize(arg, TakeRegister(arg, n, node.args));
+        in[memory_argument] = allocator_.where(arg);
       }
     }
     if (node.op == Op::kGather) {
@@ -367,21 +317,15 @@ class Emitter : public Xbyak::CodeGenerator {
       return;
     }
     // Operands used for the last time give their registers up before the result takes one.
-    for (int arg : node.args) {
-      if (arg != kNoArg && where_[arg] != kNoArg && !Hoisted(arg) && NextUse(arg, n) == std::numeric_limits<int>::max()) {
-        register_value_[where_[arg]] = kNoArg;
-        where_[arg] = kNoArg;
-      }
-    }
+    for (int arg : node.args) allocator_.ReleaseAfterLastUse(arg, n);
     if (node.op == Op::kStore) {
       ++loop_memory_operations_;
       streaming_stores_ ? vmovntps(ptr[LaneAddress(node)], V(in[0])) : vmovups(ptr[LaneAddress(node)], V(in[0]));
       return;
     }
-    if (uses_[static_cast<std::size_t>(n)].empty()) return;
+    if (allocator_.users(n).empty()) return;
     const int reg = TakeRegister(n, n, {kNoArg, kNoArg, kNoArg});
-    where_[n] = reg;
-    register_value_[reg] = n;
+    allocator_.Assign(n, reg);
     EmitOperation(node, reg, in, memory_argument, memory);
   }
 
@@ -416,22 +360,24 @@ class Emitter : public Xbyak::CodeGenerator {
       case Op::kEqual: compare(0x00); break;         // EQ_OQ
       case Op::kUnordered: compare(0x03); break;     // UNORD_Q
       case Op::kIntGreater: wide_ ? vpcmpgtd(K(out), a_register, b) : vpcmpgtd(result, a_register, b); break;
-      case Op::kMaskAnd: wide_ ? kandw(K(out), K(in[0]), K(in[1])) : vpand(result, a_register, b_register); break;
       case Op::kSelect:  // mask ? yes : no
         wide_ ? vblendmps(result | K(in[0]), c, b) : vblendvps(result, c, b, a_register);
         break;
       case Op::kSelectZero: wide_ ? vmovdqa32(result | K(in[0]) | T_z, b) : vpand(result, a_register, b); break;
       case Op::kIntAdd: vpaddd(result, a_register, b); break;
       case Op::kIntSub: vpsubd(result, a_register, b); break;
-      case Op::kAnd: wide_ ? vpandd(result, a_register, b) : vpand(result, a_register, b); break;
-      case Op::kOr: wide_ ? vpord(result, a_register, b) : vpor(result, a_register, b); break;
-      case Op::kXor: wide_ ? vpxord(result, a_register, b) : vpxor(result, a_register, b); break;
+      case Op::kIntAnd: wide_ ? vpandd(result, a_register, b) : vpand(result, a_register, b); break;
+      case Op::kIntOr: wide_ ? vpord(result, a_register, b) : vpor(result, a_register, b); break;
+      case Op::kIntXor: wide_ ? vpxord(result, a_register, b) : vpxor(result, a_register, b); break;
       case Op::kShiftLeft: vpslld(result, a, static_cast<std::uint8_t>(node.immediate)); break;
       case Op::kShiftRight: vpsrad(result, a, static_cast<std::uint8_t>(node.immediate)); break;
       case Op::kToInt: vcvttps2dq(result, a); break;
       case Op::kToFloat: vcvtdq2ps(result, a); break;
       case Op::kInput: case Op::kConstant: case Op::kLiteral: case Op::kConstantCount: case Op::kGather:
       case Op::kStore: break;  // handled by Emit
+      // Not in the jit's graph: lowered away (ir::LowerToBitOperations) or not recorded by its bindings.
+      case Op::kAbs: case Op::kNegate: case Op::kBitsOf: case Op::kFloatFromBits: case Op::kRelativeRow:
+      case Op::kComponent: assert(false && "not lowered"); break;
     }
   }
 
@@ -445,8 +391,7 @@ class Emitter : public Xbyak::CodeGenerator {
     const Node& node = nodes_[static_cast<std::size_t>(n)];
     const int index_value = node.args[0];
     const int reg = TakeRegister(n, n, node.args);
-    where_[n] = reg;
-    register_value_[reg] = n;
+    allocator_.Assign(n, reg);
     const Xbyak::Xmm result = V(reg), first_lane = Xbyak::Xmm(index.getIdx());
     const Xbyak::Xmm mask = wide_ ? result : V(TakeRegister(n, n, {index_value, n, kNoArg}));
     const int component_bytes = 4 * static_cast<int>(node.immediate);
@@ -477,14 +422,8 @@ class Emitter : public Xbyak::CodeGenerator {
     }
     L(done);
     ++loop_memory_operations_;
-    if (!Hoisted(index_value) && NextUse(index_value, n) == std::numeric_limits<int>::max()) {
-      register_value_[where_[index_value]] = kNoArg;
-      where_[index_value] = kNoArg;
-    }
-    if (uses_[static_cast<std::size_t>(n)].empty()) {
-      register_value_[reg] = kNoArg;
-      where_[n] = kNoArg;
-    }
+    allocator_.ReleaseAfterLastUse(index_value, n);
+    if (allocator_.users(n).empty()) allocator_.Release(n);
   }
 
   // rdi: the RunArguments (System V's first argument); the others hold its fields, all scratch
@@ -504,7 +443,7 @@ class Emitter : public Xbyak::CodeGenerator {
                 "TakeRegister needs a mask register that holds no pinned value");
   static_assert(kMinLoopRegisters > std::tuple_size_v<PinnedValues>,
                 "TakeRegister needs a vector register that holds no pinned value");
-  bool InMaskRegister(int value) const { return wide_ && IsMask(nodes_[static_cast<std::size_t>(value)].op); }
+  bool InMaskRegister(int value) const { return wide_ && nodes_[static_cast<std::size_t>(value)].type == ir::Type::kMask; }
 
   const std::vector<Node>& nodes_;
   const VectorShape shape_;
@@ -512,20 +451,12 @@ class Emitter : public Xbyak::CodeGenerator {
   const int groups_;  // vertex groups (a vector each) per iteration
   bool streaming_stores_ = false;
   const Registers regs_{rdi, rsi, rdx, rcx, r8, r9, r10, r11, rax};
-  std::vector<bool> live_;
-  std::vector<std::vector<int>> uses_;
-  std::vector<int> where_;  // register of each value, kNoArg when not in one
-  std::array<int, kMaskRegisterEnd> register_value_{};  // value in each register, by number
-  std::vector<int> spill_slot_;
-  int spill_slots_ = 0;
-  int spilled_values_ = 0;
-  int spilled_masks_ = 0;
+  RegisterAllocator allocator_;
   std::vector<float> literals_;
   std::map<std::uint32_t, int> literal_index_;
   std::map<std::uint32_t, int> wide_literal_index_;
   std::size_t hoisted_;
   int available_registers_ = 0;  // the shape's registers less the hoisted constants
-  std::vector<int> pinned_values_;
   std::map<int, Xbyak::Reg64> lane_pointer_;  // by lane key
   int loop_memory_operations_ = 0;
 };
@@ -625,7 +556,7 @@ class AvxProgram final : public CompiledProgram {
   int vertices_per_iteration_;
 };
 
-// Bytes of code per traced node, generously: an operation is one or two instructions, a reload or
+// Bytes of code per recorded node, generously: an operation is one or two instructions, a reload or
 // spill adds one or two more (each at most 11 bytes).
 constexpr std::size_t kCodeBytesPerNode = 48;
 constexpr std::size_t kCodeBytesPerGather = 128;  // the uniformity test, two paths and their jumps
@@ -673,13 +604,13 @@ std::unique_ptr<CompiledProgram> Compile(const Program& program, std::string& wh
     return nullptr;
   }
   const VectorShape shape = isa == JitIsa::kAvx512 ? kAvx512Shape : kAvx2Shape;
-  Graph graph = TraceProgram(program, 1, uniform_inputs, rules);
+  ir::Graph graph = RecordLoopBody(program, 1, uniform_inputs, rules);
   int groups = 1;
   // Two groups, with AVX2 or AVX-512: four groups of 16 spilled more than they hid (measured on
   // all_instructions, 1.6 vs 2.8 ms per 65536 vertices), and one group of 16 was slower still.
-  if (LongestChain(graph) >= kLongChain) {
+  if (ir::LongestChain(graph) >= kLongChain) {
     groups = 2;
-    graph = TraceProgram(program, groups, uniform_inputs, rules);
+    graph = RecordLoopBody(program, groups, uniform_inputs, rules);
   }
   static_assert(batch::kVertexGranule % 64 == 0, "an iteration takes at most 64 vertices");
   try {
@@ -693,15 +624,15 @@ std::unique_ptr<CompiledProgram> Compile(const Program& program, std::string& wh
     std::vector<std::uint8_t> buffer(code_size);
     int best_hoisted = 0, fewest = std::numeric_limits<int>::max();
     for (int hoisted = 0; hoisted <= shape.registers - kMinLoopRegisters && hoisted <= best_hoisted + 2; ++hoisted) {
-      Emitter trial(graph.nodes(), shape, groups, hoisted, buffer);
+      Emitter trial(graph, shape, groups, hoisted, buffer);
       trial.Generate();
       if (trial.loop_memory_operations() < fewest) fewest = trial.loop_memory_operations(), best_hoisted = hoisted;
       if (trial.hoisted() < static_cast<std::size_t>(hoisted)) break;  // no constants left to keep
     }
     std::vector<std::uint8_t> streaming_buffer(code_size);
-    Emitter cached(graph.nodes(), shape, groups, best_hoisted, buffer);
+    Emitter cached(graph, shape, groups, best_hoisted, buffer);
     cached.Generate();
-    Emitter streaming(graph.nodes(), shape, groups, best_hoisted, streaming_buffer);
+    Emitter streaming(graph, shape, groups, best_hoisted, streaming_buffer);
     streaming.Generate(/*streaming_stores=*/true);
     return std::make_unique<AvxProgram>(cached, streaming);
   } catch (const Xbyak::Error& error) {

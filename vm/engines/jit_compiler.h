@@ -4,9 +4,10 @@
 // The batch engine's kernels store every instruction's result to memory and load it back in the
 // next step; this loop does not, which is what the batch engine loses to hand-written SIMD code.
 //
-// Bit exactness: the program is traced through the very templates of vm/core/semantics.h with a lane type
-// that records operations instead of computing them, so the machine code performs the reference
-// engine's IEEE operations in the reference engine's order (unfused, floor/sqrt/div exact).
+// Bit exactness: the program is recorded into the IR (vm/ir/) through the very templates of
+// vm/core/semantics.h, with a lane type that records operations instead of computing them, so the
+// machine code performs the reference engine's IEEE operations in the reference engine's order
+// (unfused, floor/sqrt/div exact).
 //
 // The compiled loop reads and writes the batch engine's lane table and constant table
 // (vm/engines/batch_plan.h), so it slots into the batch engine in place of its kernel steps.
@@ -87,7 +88,7 @@ struct UniformInput {
 };
 
 // Compiles `program` (well formed, as Decode accepts) for `isa` (kBest: the last of SupportedIsas),
-// its products under `rules` (traced in: the code of one rule holds no test for the other).
+// its products under `rules` (recorded in: the code of one rule holds no test for the other).
 // The code never reads the `uniform_inputs` lanes.
 // nullptr, with `why_not` set, when the CPU lacks that instruction set (or has no AVX2 at all) or,
 // should it ever happen, code generation fails.

@@ -46,12 +46,7 @@ void RunInstructions(const Program& program, const ConstantBank& constants, Vert
   for (std::size_t i = 0; i < program.instructions.size(); ++i) {
     const Instruction& instruction = program.instructions[i];
     if (observer != nullptr) observer->Before(static_cast<int>(i), state);
-    switch (instruction.opcode) {
-#define VS11_EXECUTE_CASE(name, ...) \
-  case Opcode::k##name: semantics::Execute<semantics::name##Semantics, kRules>(machine, instruction); break;
-      VS11_OPCODES(VS11_EXECUTE_CASE)
-#undef VS11_EXECUTE_CASE
-    }
+    semantics::ExecuteInstruction<kRules>(machine, instruction);
     if (observer != nullptr) observer->After(static_cast<int>(i), state);
   }
 }

@@ -1,4 +1,4 @@
-// The GLSL writer every target shares: the traced program (shader_graph.h) as one scalar statement
+// The GLSL writer every target shares: the recorded program (shader_graph.h) as one scalar statement
 // per operation, the interface around it, and the dialect's parts from the target's Profile.
 #include "vm/translate/translate.h"
 
@@ -58,8 +58,9 @@ constexpr std::string_view kIsNaNHelper =
 
 class Writer {
  public:
-  Writer(const Program& program, const ShaderGraph& graph, const Profile& profile, const TranslateOptions& options)
-      : program_(program), graph_(graph), profile_(profile), options_(options), live_(LiveNodes(graph)) {}
+  Writer(const Program& program, const ShaderGraph& shader, const Profile& profile, const TranslateOptions& options)
+      : program_(program), shader_(shader), graph_(shader.graph), profile_(profile), options_(options),
+        live_(LiveNodes(shader)) {}
 
   std::string Write() {
     std::string body = Body();
@@ -74,58 +75,60 @@ class Writer {
 
  private:
   std::string Ref(int id) const {
-    const Node& node = graph_.nodes[static_cast<std::size_t>(id)];
+    const ir::Node& node = graph_[id];
     switch (node.op) {
-      case NodeOp::kFloatLiteral: return FloatLiteralName(node.immediate);
-      case NodeOp::kIntLiteral: return IntLiteralText(node.immediate);
-      case NodeOp::kInput: return fmt::format("v{}.{}", node.immediate / 4, kLaneSuffix[node.immediate % 4]);
-      case NodeOp::kConstant: return fmt::format("c[{}].{}", node.immediate / 4, kLaneSuffix[node.immediate % 4]);
-      case NodeOp::kComponent: return fmt::format("{}.{}", Ref(node.args[0]), kLaneSuffix[node.immediate]);
+      case ir::Op::kLiteral:
+        return node.type == ir::Type::kFloat ? FloatLiteralName(node.immediate) : IntLiteralText(node.immediate);
+      case ir::Op::kInput: return fmt::format("v{}.{}", node.immediate / 4, kLaneSuffix[node.immediate % 4]);
+      case ir::Op::kConstant: return fmt::format("c[{}].{}", node.immediate / 4, kLaneSuffix[node.immediate % 4]);
+      case ir::Op::kComponent: return fmt::format("{}.{}", Ref(node.args[0]), kLaneSuffix[node.immediate]);
       default: return fmt::format("t{}", id);
     }
   }
 
-  std::string Expression(const Node& node) {
+  std::string Expression(const ir::Node& node) {
     auto arg = [&](int i) { return Ref(node.args[static_cast<std::size_t>(i)]); };
     switch (node.op) {
-      case NodeOp::kRelativeRow: return fmt::format("vs11_c_rel({})", arg(0));
-      case NodeOp::kAdd: case NodeOp::kIntAdd: return arg(0) + " + " + arg(1);
-      case NodeOp::kSub: case NodeOp::kIntSub: return arg(0) + " - " + arg(1);
-      case NodeOp::kMul: return arg(0) + " * " + arg(1);
-      case NodeOp::kDiv: return arg(0) + " / " + arg(1);
-      case NodeOp::kFloor: return fmt::format("floor({})", arg(0));
-      case NodeOp::kSqrt: return fmt::format("sqrt({})", arg(0));
-      case NodeOp::kAbs: uses_abs_ = true; return fmt::format("vs11_abs({})", arg(0));
-      case NodeOp::kNegate: uses_negate_ = true; return fmt::format("vs11_neg({})", arg(0));
-      case NodeOp::kIsNaN: uses_isnan_ = true; return fmt::format("vs11_isnan({})", arg(0));
-      case NodeOp::kLess: return arg(0) + " < " + arg(1);
-      case NodeOp::kGreater: case NodeOp::kIntGreater: return arg(0) + " > " + arg(1);
-      case NodeOp::kGreaterEqual: return arg(0) + " >= " + arg(1);
-      case NodeOp::kEqual: return arg(0) + " == " + arg(1);
-      case NodeOp::kSelect: return fmt::format("{} ? {} : {}", arg(0), SelectOperand(node, 1), SelectOperand(node, 2));
-      case NodeOp::kBitsOf: return fmt::format("floatBitsToInt({})", arg(0));
-      case NodeOp::kFloatFromBits: return fmt::format("intBitsToFloat({})", arg(0));
-      case NodeOp::kToInt: return fmt::format("int({})", arg(0));
-      case NodeOp::kToFloat: return fmt::format("float({})", arg(0));
-      case NodeOp::kIntAnd: return arg(0) + " & " + arg(1);
-      case NodeOp::kIntOr: return arg(0) + " | " + arg(1);
-      case NodeOp::kShiftLeft: return fmt::format("{} << {}", arg(0), node.immediate);
-      case NodeOp::kShiftRight: return fmt::format("{} >> {}", arg(0), node.immediate);
-      default: return Ref(static_cast<int>(&node - graph_.nodes.data()));
+      case ir::Op::kRelativeRow: return fmt::format("vs11_c_rel({})", arg(0));
+      case ir::Op::kAdd: case ir::Op::kIntAdd: return arg(0) + " + " + arg(1);
+      case ir::Op::kSub: case ir::Op::kIntSub: return arg(0) + " - " + arg(1);
+      case ir::Op::kMul: return arg(0) + " * " + arg(1);
+      case ir::Op::kDiv: return arg(0) + " / " + arg(1);
+      case ir::Op::kFloor: return fmt::format("floor({})", arg(0));
+      case ir::Op::kSqrt: return fmt::format("sqrt({})", arg(0));
+      case ir::Op::kAbs: uses_abs_ = true; return fmt::format("vs11_abs({})", arg(0));
+      case ir::Op::kNegate: uses_negate_ = true; return fmt::format("vs11_neg({})", arg(0));
+      case ir::Op::kUnordered:  // IsNaN(x) records x unordered with itself
+        uses_isnan_ = true;
+        if (node.args[0] == node.args[1]) return fmt::format("vs11_isnan({})", arg(0));
+        return fmt::format("vs11_isnan({}) || vs11_isnan({})", arg(0), arg(1));
+      case ir::Op::kLess: return arg(0) + " < " + arg(1);
+      case ir::Op::kGreater: case ir::Op::kIntGreater: return arg(0) + " > " + arg(1);
+      case ir::Op::kGreaterEqual: return arg(0) + " >= " + arg(1);
+      case ir::Op::kEqual: return arg(0) + " == " + arg(1);
+      case ir::Op::kSelect: return fmt::format("{} ? {} : {}", arg(0), SelectOperand(node, 1), SelectOperand(node, 2));
+      case ir::Op::kBitsOf: return fmt::format("floatBitsToInt({})", arg(0));
+      case ir::Op::kFloatFromBits: return fmt::format("intBitsToFloat({})", arg(0));
+      case ir::Op::kToInt: return fmt::format("int({})", arg(0));
+      case ir::Op::kToFloat: return fmt::format("float({})", arg(0));
+      case ir::Op::kIntAnd: return arg(0) + " & " + arg(1);
+      case ir::Op::kIntOr: return arg(0) + " | " + arg(1);
+      case ir::Op::kShiftLeft: return fmt::format("{} << {}", arg(0), node.immediate);
+      case ir::Op::kShiftRight: return fmt::format("{} >> {}", arg(0), node.immediate);
+      default: return Ref(static_cast<int>(&node - graph_.nodes().data()));
     }
   }
 
-  static bool IsInline(NodeOp op) {
-    return op == NodeOp::kFloatLiteral || op == NodeOp::kIntLiteral || op == NodeOp::kInput ||
-           op == NodeOp::kConstant || op == NodeOp::kComponent;
+  static bool IsInline(ir::Op op) {
+    return op == ir::Op::kLiteral || op == ir::Op::kInput || op == ir::Op::kConstant || op == ir::Op::kComponent;
   }
 
-  static std::string_view TypeName(ValueType type) {
+  static std::string_view TypeName(ir::Type type) {
     switch (type) {
-      case ValueType::kFloat: return "float";
-      case ValueType::kInt: return "int";
-      case ValueType::kBool: return "bool";
-      case ValueType::kVec4: return "vec4";
+      case ir::Type::kFloat: return "float";
+      case ir::Type::kInt: return "int";
+      case ir::Type::kMask: return "bool";
+      case ir::Type::kVec4: return "vec4";
     }
     return "float";
   }
@@ -133,9 +136,9 @@ class Writer {
   // main(): the float literals, then each instruction's statements under its text, then the outputs.
   std::string Body() {
     std::string text = "void main() {\n";
-    for (std::size_t n = 0; n < graph_.nodes.size(); ++n) {
-      const Node& node = graph_.nodes[n];
-      if (live_[n] && node.op == NodeOp::kFloatLiteral) {
+    for (std::size_t n = 0; n < graph_.size(); ++n) {
+      const ir::Node& node = graph_.nodes()[n];
+      if (live_[n] && node.op == ir::Op::kLiteral && node.type == ir::Type::kFloat) {
         text += fmt::format("  float {} = {};  // {}\n", FloatLiteralName(node.immediate), LiteralText(node.immediate),
                             FloatComment(node.immediate));
       }
@@ -146,16 +149,16 @@ class Writer {
       if (i >= 0 && program_.instructions[static_cast<std::size_t>(i)].info().is_executable()) {
         text += fmt::format("  // {}\n", FormatInstruction(program_.instructions[static_cast<std::size_t>(i)], syntax));
       }
-      for (; next < graph_.nodes.size() && graph_.nodes[next].instruction == i; ++next) {
-        const Node& node = graph_.nodes[next];
+      for (; next < graph_.size() && graph_.nodes()[next].instruction == i; ++next) {
+        const ir::Node& node = graph_.nodes()[next];
         if (!live_[next] || IsInline(node.op)) continue;
-        if (node.op == NodeOp::kRelativeRow) uses_relative_ = true;
+        if (node.op == ir::Op::kRelativeRow) uses_relative_ = true;
         text += fmt::format("  {} t{} = {};\n", TypeName(node.type), next, Expression(node));
       }
     }
     text += "  // outputs (unwritten lanes hold vs11's values)\n";
     for (const OutputDeclaration& output : OutputVariables()) {
-      const auto& lanes = graph_.outputs[static_cast<std::size_t>(output.slot)];
+      const auto& lanes = shader_.outputs[static_cast<std::size_t>(output.slot)];
       if (Scalar(output)) {
         text += fmt::format("  {} = {};\n", output.name, Ref(lanes[0]));
       } else {
@@ -164,7 +167,7 @@ class Writer {
       }
     }
     text += "  gl_Position = " + ClipConversion() + ";\n";
-    if (graph_.written[static_cast<int>(OutputSlot::kPointSize)].bits() != 0) {
+    if (shader_.written[static_cast<int>(OutputSlot::kPointSize)].bits() != 0) {
       text += options_.exact_on_driver ? "  gl_PointSize = oPts.x;\n" : "  gl_PointSize = oPts;\n";
     }
     text += "}\n";
@@ -190,11 +193,11 @@ class Writer {
   // A select's operand. Under exact_on_driver, a float the select's own comparison also reads passes
   // through the opaque uniform: Mesa turns `a < b ? a : b` into fmin(a, b), which may return either
   // zero for +0 and -0, where vs11's min returns b (and likewise for max).
-  std::string SelectOperand(const Node& node, int i) {
+  std::string SelectOperand(const ir::Node& node, int i) {
     const int id = node.args[static_cast<std::size_t>(i)];
     const std::string text = Ref(id);
-    if (!options_.exact_on_driver || node.type != ValueType::kFloat) return text;
-    const Node& condition = graph_.nodes[static_cast<std::size_t>(node.args[0])];
+    if (!options_.exact_on_driver || node.type != ir::Type::kFloat) return text;
+    const ir::Node& condition = graph_[node.args[0]];
     if (condition.args[0] != id && condition.args[1] != id) return text;
     return fmt::format("uintBitsToFloat(floatBitsToUint({}) ^ vs11_opaque_zero)", text);
   }
@@ -263,7 +266,7 @@ class Writer {
                       instruction.usage_index == 0 ? std::string() : std::to_string(instruction.usage_index));
     }
     for (int reg = 0; reg < kInputRegisterCount; ++reg) {
-      if (graph_.inputs_read[static_cast<std::size_t>(reg)] || !usages[static_cast<std::size_t>(reg)].empty()) {
+      if (shader_.inputs_read[static_cast<std::size_t>(reg)] || !usages[static_cast<std::size_t>(reg)].empty()) {
         text += fmt::format("layout(location = {}) in vec4 v{};{}\n", reg, reg, usages[static_cast<std::size_t>(reg)]);
       }
     }
@@ -289,7 +292,7 @@ class Writer {
           "// c[i] as vs11's engines read it: outside the bank (0, 0, 0, 0), a def constant over the bank.\n"
           "vec4 vs11_c_rel(int i) {{\n  if (i < 0 || i >= {}) return vec4(0.0);\n",
           options_.constant_count);
-      for (const auto& [reg, bits] : graph_.definitions) {
+      for (const auto& [reg, bits] : shader_.definitions) {
         text += fmt::format("  if (i == {}) return vec4({}, {}, {}, {});\n", reg, LiteralText(bits[0]), LiteralText(bits[1]),
                             LiteralText(bits[2]), LiteralText(bits[3]));
       }
@@ -299,7 +302,8 @@ class Writer {
   }
 
   const Program& program_;
-  const ShaderGraph& graph_;
+  const ShaderGraph& shader_;
+  const ir::Graph& graph_;
   const Profile& profile_;
   const TranslateOptions& options_;
   std::vector<bool> live_;
@@ -323,9 +327,9 @@ OutputVariable OutputVariableOf(int slot, bool exact_on_driver) {
 }
 
 std::string TranslateToGlsl(const Program& program, const TranslateOptions& options) {
-  const ShaderGraph graph = TraceShader(program, options.constant_count, options.float_rules);
+  const ShaderGraph shader = RecordShader(program, options.constant_count, options.float_rules);
   const std::unique_ptr<Profile> profile = MakeProfile(options.target);
-  return Writer(program, graph, *profile, options).Write();
+  return Writer(program, shader, *profile, options).Write();
 }
 
 Artifact Translate(const Program& program, const TranslateOptions& options) {

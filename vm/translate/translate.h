@@ -1,6 +1,6 @@
 // vs_1_1 to GLSL 3.30, GLSL ES 3.00 and SPIR-V (`vs11 translate`). The translation reproduces vs11's
-// engines: it traces the shared instruction semantics (vm/core/semantics.h, vm/core/operands.h) into
-// straight-line code (shader_graph.h), so every instruction, modifier and corner case (rcp of 0, NaN
+// engines: it records the shared instruction semantics (vm/core/semantics.h, vm/core/operands.h) into
+// the IR (vm/ir/, shader_graph.h), so every instruction, modifier and corner case (rcp of 0, NaN
 // in min/max/sge/slt, expp/logp/lit/frc, mov a0 flooring, out-of-range c[a0.x + n], unwritten outputs)
 // computes what the engines compute. The interface a user wires up is written at the top of every
 // output and in the README ("vs11 translate").

@@ -1,7 +1,7 @@
-// The jit's traced program (vm/engines/jit_graph.cc), apart from the machine code made from it: the
+// The jit's recorded program (vm/engines/jit_graph.cc), apart from the machine code made from it: the
 // graph, evaluated node by node with one C++ operation per node as the emitter's instruction performs
 // it, computes what the reference engine computes, bit for bit, on random programs, with two vertex
-// groups traced side by side; identical loads are one node, uniform inputs are literals, relative
+// groups recorded side by side; identical loads are one node, uniform inputs are literals, relative
 // reads gather only after a0 is written, and every output lane the program writes is stored once
 // per group, the groups' stores of a lane side by side.
 #include "vm/engines/jit_graph.h"
@@ -27,6 +27,10 @@
 
 namespace vs11::jit {
 namespace {
+
+using ir::Graph;
+using ir::Node;
+using ir::Op;
 
 using random_program::Bits;
 
@@ -75,12 +79,11 @@ Value EvaluateArithmetic(const Node& node, const std::vector<Value>& values) {
     case Op::kUnordered: return OfMask(std::isnan(F(a(0))) || std::isnan(F(a(1))));
     case Op::kSelect: return a(0).mask ? a(1) : a(2);
     case Op::kSelectZero: return a(0).mask ? a(1) : OfInt(0);
-    case Op::kMaskAnd: return OfMask(a(0).mask && a(1).mask);
     case Op::kIntAdd: return {a(0).bits + a(1).bits};
     case Op::kIntSub: return {a(0).bits - a(1).bits};
-    case Op::kAnd: return {a(0).bits & a(1).bits};
-    case Op::kOr: return {a(0).bits | a(1).bits};
-    case Op::kXor: return {a(0).bits ^ a(1).bits};
+    case Op::kIntAnd: return {a(0).bits & a(1).bits};
+    case Op::kIntOr: return {a(0).bits | a(1).bits};
+    case Op::kIntXor: return {a(0).bits ^ a(1).bits};
     case Op::kShiftLeft: return {a(0).bits << node.immediate};
     case Op::kShiftRight: return OfInt(I(a(0)) >> node.immediate);  // vpsrad: arithmetic
     case Op::kToInt: return OfInt(ConvertTruncating(F(a(0))));
@@ -145,7 +148,7 @@ TEST(JitGraph, EvaluatesToTheReferenceEngineOnRandomProgramsInTwoGroups) {
     const Program program = generator.MakeProgram();
     const ConstantBank bank = generator.Constants();
     const VertexArrays inputs = generator.Inputs(kVertices * kGroups);
-    // Every other program under the legacy rule, whose products the graph traces as selects.
+    // Every other program under the legacy rule, whose products the graph records as selects.
     const FloatRules rules = k % 2 == 0 ? FloatRules::kD3d9 : FloatRules::kLegacy;
     VertexArrays expected = MakeOutputArrays(kVertices * kGroups, program);
     MakeReferenceEngine(program, bank, rules)->Run(inputs, expected);
@@ -160,7 +163,7 @@ TEST(JitGraph, EvaluatesToTheReferenceEngineOnRandomProgramsInTwoGroups) {
         }
       }
     }
-    const Graph graph = TraceProgram(program, kGroups, uniform, rules);
+    const Graph graph = RecordLoopBody(program, kGroups, uniform, rules);
     const std::vector<float> constants = ConstantTable(program, bank);
     const std::array<WriteMask, kOutputSlotCount> written = WrittenOutputLanes(program);
     for (int vertex = 0; vertex < kVertices; ++vertex) {
@@ -210,12 +213,12 @@ std::vector<const Node*> NodesOf(const Graph& graph, Op op) {
 }
 
 TEST(JitGraph, ALaneReadByThreeInstructionsIsLoadedOnce) {
-  const Graph graph = TraceProgram(Assemble("dcl_position v0\n"
-                                            "dp4 r0.x, v0, c0\n"
-                                            "dp4 r0.y, v0, c1\n"
-                                            "dp4 r0.z, v0, c2\n"
-                                            "mov oPos, r0\n"),
-                                   1, {}, FloatRules::kD3d9);
+  const Graph graph = RecordLoopBody(Assemble("dcl_position v0\n"
+                                              "dp4 r0.x, v0, c0\n"
+                                              "dp4 r0.y, v0, c1\n"
+                                              "dp4 r0.z, v0, c2\n"
+                                              "mov oPos, r0\n"),
+                                     1, {}, FloatRules::kD3d9);
   EXPECT_EQ(NodesOf(graph, Op::kInput).size(), 4u);      // v0.xyzw
   EXPECT_EQ(NodesOf(graph, Op::kConstant).size(), 12u);  // c0..c2, four components each
   EXPECT_EQ(NodesOf(graph, Op::kStore).size(), 4u);
@@ -224,7 +227,7 @@ TEST(JitGraph, ALaneReadByThreeInstructionsIsLoadedOnce) {
 TEST(JitGraph, UniformInputsAreLiteralsNotLoads) {
   const Program program = Assemble("dcl_position v0\nmov oPos, v0\n");
   const std::vector<UniformInput> uniform = {{0, 1, 2.5f}};
-  const Graph graph = TraceProgram(program, 1, uniform, FloatRules::kD3d9);
+  const Graph graph = RecordLoopBody(program, 1, uniform, FloatRules::kD3d9);
   std::set<std::uint32_t> loaded;
   for (const Node* node : NodesOf(graph, Op::kInput)) loaded.insert(node->immediate & kLaneMask);
   EXPECT_EQ(loaded, (std::set<std::uint32_t>{static_cast<std::uint32_t>(batch::InputLane(0, 0)),
@@ -236,7 +239,7 @@ TEST(JitGraph, UniformInputsAreLiteralsNotLoads) {
 
 TEST(JitGraph, EachGroupLoadsAndStoresItsOwnLanes) {
   constexpr int kGroups = 3;
-  const Graph graph = TraceProgram(Assemble("dcl_position v0\nadd oPos, v0, c0\n"), kGroups, {}, FloatRules::kD3d9);
+  const Graph graph = RecordLoopBody(Assemble("dcl_position v0\nadd oPos, v0, c0\n"), kGroups, {}, FloatRules::kD3d9);
   std::map<std::uint32_t, int> loads_per_group, stores_per_group;
   for (const Node* node : NodesOf(graph, Op::kInput)) ++loads_per_group[node->immediate >> kGroupShift];
   for (const Node* node : NodesOf(graph, Op::kStore)) ++stores_per_group[node->immediate >> kGroupShift];
@@ -253,9 +256,9 @@ TEST(JitGraph, EachGroupLoadsAndStoresItsOwnLanes) {
 // at once (what a streaming store needs, vm/engines/jit_compiler.h kCacheLineBytes).
 TEST(JitGraph, TheGroupsStoresOfALaneAreAdjacent) {
   constexpr int kGroups = 2;
-  const Graph graph = TraceProgram(Assemble("dcl_position v0\ndcl_normal v1\nadd oPos, v0, c0\n"
-                                            "mul oD0, v1, c1\nmov oT0.xy, v1\n"),
-                                   kGroups, {}, FloatRules::kD3d9);
+  const Graph graph = RecordLoopBody(Assemble("dcl_position v0\ndcl_normal v1\nadd oPos, v0, c0\n"
+                                              "mul oD0, v1, c1\nmov oT0.xy, v1\n"),
+                                     kGroups, {}, FloatRules::kD3d9);
   const std::vector<const Node*> stores = NodesOf(graph, Op::kStore);
   ASSERT_EQ(stores.size(), 10u * kGroups);
   for (std::size_t k = 0; k < stores.size(); k += kGroups) {
@@ -267,45 +270,20 @@ TEST(JitGraph, TheGroupsStoresOfALaneAreAdjacent) {
 }
 
 TEST(JitGraph, RelativeReadsGatherOnlyAfterA0IsWritten) {
-  const Graph before = TraceProgram(Assemble("dcl_position v0\nmov oPos, c[a0.x + 5]\n"), 1, {}, FloatRules::kD3d9);
+  const Graph before = RecordLoopBody(Assemble("dcl_position v0\nmov oPos, c[a0.x + 5]\n"), 1, {}, FloatRules::kD3d9);
   EXPECT_TRUE(NodesOf(before, Op::kGather).empty());
   std::set<std::uint32_t> read;
   for (const Node* node : NodesOf(before, Op::kConstant)) read.insert(node->immediate);
   EXPECT_EQ(read, (std::set<std::uint32_t>{batch::ConstantIndex(5, 0), batch::ConstantIndex(5, 1),
                                            batch::ConstantIndex(5, 2), batch::ConstantIndex(5, 3)}));
 
-  const Graph after = TraceProgram(Assemble("dcl_position v0\nmov a0.x, v0.x\nmov oPos, c[a0.x + 5]\n"), 1, {}, FloatRules::kD3d9);
+  const Graph after = RecordLoopBody(Assemble("dcl_position v0\nmov a0.x, v0.x\nmov oPos, c[a0.x + 5]\n"), 1, {}, FloatRules::kD3d9);
   const std::vector<const Node*> gathers = NodesOf(after, Op::kGather);
   ASSERT_EQ(gathers.size(), 4u);
   std::set<std::uint32_t> components;
   for (const Node* node : gathers) components.insert(node->immediate);
   EXPECT_EQ(components, (std::set<std::uint32_t>{0, 1, 2, 3}));
   EXPECT_EQ(NodesOf(after, Op::kConstantCount).size(), 1u);
-}
-
-TEST(JitGraph, AddMakesIdenticalPureNodesOnceButEveryStore) {
-  Graph graph;
-  const int x = graph.Add(Op::kInput, {kNoArg, kNoArg, kNoArg}, 7);
-  EXPECT_EQ(graph.Add(Op::kInput, {kNoArg, kNoArg, kNoArg}, 7), x);
-  EXPECT_NE(graph.Add(Op::kInput, {kNoArg, kNoArg, kNoArg}, 8), x);
-  const int sum = graph.Add(Op::kAdd, {x, x, kNoArg});
-  EXPECT_EQ(graph.Add(Op::kAdd, {x, x, kNoArg}), sum);
-  EXPECT_NE(graph.Add(Op::kMul, {x, x, kNoArg}), sum);
-  const int store = graph.Add(Op::kStore, {sum, kNoArg, kNoArg}, 3);
-  EXPECT_NE(graph.Add(Op::kStore, {sum, kNoArg, kNoArg}, 3), store);
-  EXPECT_EQ(graph.nodes().size(), 6u);
-}
-
-TEST(JitGraph, LongestChainCountsTheDeepestPath) {
-  Graph graph;
-  const int a = graph.Add(Op::kInput, {kNoArg, kNoArg, kNoArg}, 0);
-  const int b = graph.Add(Op::kInput, {kNoArg, kNoArg, kNoArg}, 1);
-  EXPECT_EQ(LongestChain(graph), 0);
-  int chain = graph.Add(Op::kAdd, {a, b, kNoArg});
-  for (int k = 0; k < 4; ++k) chain = graph.Add(Op::kMul, {chain, a, kNoArg});
-  const int side = graph.Add(Op::kSub, {a, b, kNoArg});
-  graph.Add(Op::kSelect, {graph.Add(Op::kLess, {side, b, kNoArg}), chain, side});
-  EXPECT_EQ(LongestChain(graph), 6);  // add, four muls, select
 }
 
 }  // namespace

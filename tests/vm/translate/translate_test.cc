@@ -1,4 +1,4 @@
-// vs11 translate (vm/translate): the traced program computes what the reference engine computes, bit
+// vs11 translate (vm/translate): the recorded program computes what the reference engine computes, bit
 // for bit, on random programs (the engines' differential generator); every program of programs/ and
 // 300 generated ones translate to GLSL that glslang compiles and links for GLSL 3.30 and GLSL ES
 // 3.00, and to SPIR-V that SPIRV-Tools validates; literals keep their bits; under --float-rules
@@ -40,17 +40,19 @@ struct Value {
 
 std::int32_t Wrap(std::int64_t x) { return static_cast<std::int32_t>(static_cast<std::uint32_t>(x)); }
 
-Value EvaluateNode(const ShaderGraph& graph, const Node& node, const std::vector<Value>& values, const Vec4f* inputs,
+Value EvaluateNode(const ShaderGraph& graph, const ir::Node& node, const std::vector<Value>& values, const Vec4f* inputs,
                    const ConstantBank& bank) {
   auto f = [&](int k) { return values[static_cast<std::size_t>(node.args[static_cast<std::size_t>(k)])].f; };
   auto i = [&](int k) { return values[static_cast<std::size_t>(node.args[static_cast<std::size_t>(k)])].i; };
   Value out;
   switch (node.op) {
-    case NodeOp::kFloatLiteral: out.f = std::bit_cast<float>(node.immediate); break;
-    case NodeOp::kIntLiteral: out.i = static_cast<std::int32_t>(node.immediate); break;
-    case NodeOp::kInput: out.f = inputs[node.immediate / 4][node.immediate % 4]; break;
-    case NodeOp::kConstant: out.f = bank[static_cast<int>(node.immediate / 4)][node.immediate % 4]; break;
-    case NodeOp::kRelativeRow: {
+    case ir::Op::kLiteral:
+      out.f = std::bit_cast<float>(node.immediate);
+      out.i = static_cast<std::int32_t>(node.immediate);
+      break;
+    case ir::Op::kInput: out.f = inputs[node.immediate / 4][node.immediate % 4]; break;
+    case ir::Op::kConstant: out.f = bank[static_cast<int>(node.immediate / 4)][node.immediate % 4]; break;
+    case ir::Op::kRelativeRow: {
       const int row = i(0);
       const auto def = graph.definitions.find(row);
       if (row >= 0 && row < graph.constant_count) {
@@ -62,40 +64,41 @@ Value EvaluateNode(const ShaderGraph& graph, const Node& node, const std::vector
       }
       break;
     }
-    case NodeOp::kComponent: out.f = values[static_cast<std::size_t>(node.args[0])].v[node.immediate]; break;
-    case NodeOp::kAdd: out.f = f(0) + f(1); break;
-    case NodeOp::kSub: out.f = f(0) - f(1); break;
-    case NodeOp::kMul: out.f = f(0) * f(1); break;
-    case NodeOp::kDiv: out.f = f(0) / f(1); break;
-    case NodeOp::kFloor: out.f = std::floor(f(0)); break;
-    case NodeOp::kSqrt: out.f = std::sqrt(f(0)); break;
-    case NodeOp::kAbs: out.f = std::bit_cast<float>(Bits(f(0)) & 0x7FFFFFFFu); break;
-    case NodeOp::kNegate: out.f = std::bit_cast<float>(Bits(f(0)) ^ 0x80000000u); break;
-    case NodeOp::kIsNaN: out.b = (Bits(f(0)) & 0x7FFFFFFFu) > 0x7F800000u; break;
-    case NodeOp::kLess: out.b = f(0) < f(1); break;
-    case NodeOp::kGreater: out.b = f(0) > f(1); break;
-    case NodeOp::kGreaterEqual: out.b = f(0) >= f(1); break;
-    case NodeOp::kEqual: out.b = f(0) == f(1); break;
-    case NodeOp::kSelect: out.f = values[static_cast<std::size_t>(node.args[0])].b ? f(1) : f(2); break;
-    case NodeOp::kBitsOf: out.i = std::bit_cast<std::int32_t>(f(0)); break;
-    case NodeOp::kFloatFromBits: out.f = std::bit_cast<float>(i(0)); break;
-    case NodeOp::kToInt: out.i = static_cast<std::int32_t>(f(0)); break;
-    case NodeOp::kToFloat: out.f = static_cast<float>(i(0)); break;
-    case NodeOp::kIntAdd: out.i = Wrap(std::int64_t{i(0)} + i(1)); break;
-    case NodeOp::kIntSub: out.i = Wrap(std::int64_t{i(0)} - i(1)); break;
-    case NodeOp::kIntAnd: out.i = i(0) & i(1); break;
-    case NodeOp::kIntOr: out.i = i(0) | i(1); break;
-    case NodeOp::kIntGreater: out.b = i(0) > i(1); break;
-    case NodeOp::kShiftLeft: out.i = Wrap(static_cast<std::int64_t>(static_cast<std::uint32_t>(i(0)) << node.immediate)); break;
-    case NodeOp::kShiftRight: out.i = i(0) >> node.immediate; break;
+    case ir::Op::kComponent: out.f = values[static_cast<std::size_t>(node.args[0])].v[node.immediate]; break;
+    case ir::Op::kAdd: out.f = f(0) + f(1); break;
+    case ir::Op::kSub: out.f = f(0) - f(1); break;
+    case ir::Op::kMul: out.f = f(0) * f(1); break;
+    case ir::Op::kDiv: out.f = f(0) / f(1); break;
+    case ir::Op::kFloor: out.f = std::floor(f(0)); break;
+    case ir::Op::kSqrt: out.f = std::sqrt(f(0)); break;
+    case ir::Op::kAbs: out.f = std::bit_cast<float>(Bits(f(0)) & 0x7FFFFFFFu); break;
+    case ir::Op::kNegate: out.f = std::bit_cast<float>(Bits(f(0)) ^ 0x80000000u); break;
+    case ir::Op::kUnordered: out.b = (Bits(f(0)) & 0x7FFFFFFFu) > 0x7F800000u || (Bits(f(1)) & 0x7FFFFFFFu) > 0x7F800000u; break;
+    case ir::Op::kLess: out.b = f(0) < f(1); break;
+    case ir::Op::kGreater: out.b = f(0) > f(1); break;
+    case ir::Op::kGreaterEqual: out.b = f(0) >= f(1); break;
+    case ir::Op::kEqual: out.b = f(0) == f(1); break;
+    case ir::Op::kSelect: out.f = values[static_cast<std::size_t>(node.args[0])].b ? f(1) : f(2); break;
+    case ir::Op::kBitsOf: out.i = std::bit_cast<std::int32_t>(f(0)); break;
+    case ir::Op::kFloatFromBits: out.f = std::bit_cast<float>(i(0)); break;
+    case ir::Op::kToInt: out.i = static_cast<std::int32_t>(f(0)); break;
+    case ir::Op::kToFloat: out.f = static_cast<float>(i(0)); break;
+    case ir::Op::kIntAdd: out.i = Wrap(std::int64_t{i(0)} + i(1)); break;
+    case ir::Op::kIntSub: out.i = Wrap(std::int64_t{i(0)} - i(1)); break;
+    case ir::Op::kIntAnd: out.i = i(0) & i(1); break;
+    case ir::Op::kIntOr: out.i = i(0) | i(1); break;
+    case ir::Op::kIntGreater: out.b = i(0) > i(1); break;
+    case ir::Op::kShiftLeft: out.i = Wrap(static_cast<std::int64_t>(static_cast<std::uint32_t>(i(0)) << node.immediate)); break;
+    case ir::Op::kShiftRight: out.i = i(0) >> node.immediate; break;
+    default: ADD_FAILURE() << "the translator records no " << ir::OpName(node.op); break;
   }
   return out;
 }
 
 std::array<Vec4f, kOutputSlotCount> EvaluateGraph(const ShaderGraph& graph, const Vec4f* inputs, const ConstantBank& bank) {
   std::vector<Value> values;
-  values.reserve(graph.nodes.size());
-  for (const Node& node : graph.nodes) values.push_back(EvaluateNode(graph, node, values, inputs, bank));
+  values.reserve(graph.graph.size());
+  for (const ir::Node& node : graph.graph.nodes()) values.push_back(EvaluateNode(graph, node, values, inputs, bank));
   std::array<Vec4f, kOutputSlotCount> outputs{};
   for (int slot = 0; slot < kOutputSlotCount; ++slot) {
     for (int c = 0; c < 4; ++c) outputs[slot][c] = values[static_cast<std::size_t>(graph.outputs[slot][c])].f;
@@ -105,7 +108,7 @@ std::array<Vec4f, kOutputSlotCount> EvaluateGraph(const ShaderGraph& graph, cons
 
 bool SameFloat(float a, float b) { return Bits(a) == Bits(b) || (std::isnan(a) && std::isnan(b)); }
 
-// Under both float rules: each program is traced and run under d3d9 and under legacy.
+// Under both float rules: each program is recorded and run under d3d9 and under legacy.
 TEST(ShaderGraph, MatchesTheReferenceEngineOnRandomPrograms) {
   constexpr int kPrograms = 600, kVertices = 8;
   random_program::ProgramGenerator generator(20261125);
@@ -116,7 +119,7 @@ TEST(ShaderGraph, MatchesTheReferenceEngineOnRandomPrograms) {
     for (FloatRules rules : kAllFloatRules) {
       VertexArrays expected = MakeOutputArrays(kVertices, program);
       MakeReferenceEngine(program, bank, rules)->Run(inputs, expected);
-      const ShaderGraph graph = TraceShader(program, bank.size(), rules);
+      const ShaderGraph graph = RecordShader(program, bank.size(), rules);
       for (int vertex = 0; vertex < kVertices; ++vertex) {
         std::array<Vec4f, kInputRegisterCount> vertex_inputs;
         vertex_inputs.fill(kDefaultInput);
@@ -230,18 +233,18 @@ TEST(Translate, RelativeReadsSeeDefsAndTheBankEdge) {
 // other operand is 0, the form of semantics::Product under FloatRules::kLegacy.
 int CountLegacyProducts(const std::string& source) {
   const ShaderGraph graph =
-      TraceShader(Assemble("vs.1.1\n" + source), kDefaultConstantCount, FloatRules::kLegacy);
+      RecordShader(Assemble("vs.1.1\n" + source), kDefaultConstantCount, FloatRules::kLegacy);
   const std::vector<bool> live = LiveNodes(graph);
   auto is_zero_select = [&](int id) {
-    const Node& node = graph.nodes[static_cast<std::size_t>(id)];
-    if (node.op != NodeOp::kSelect) return false;
-    const Node& yes = graph.nodes[static_cast<std::size_t>(node.args[1])];
-    return yes.op == NodeOp::kFloatLiteral && yes.immediate == 0;
+    const ir::Node& node = graph.graph[id];
+    if (node.op != ir::Op::kSelect) return false;
+    const ir::Node& yes = graph.graph[node.args[1]];
+    return yes.op == ir::Op::kLiteral && yes.type == ir::Type::kFloat && yes.immediate == 0;
   };
   int products = 0;
-  for (std::size_t n = 0; n < graph.nodes.size(); ++n) {
-    const Node& node = graph.nodes[n];
-    products += live[n] && node.op == NodeOp::kMul && is_zero_select(node.args[0]) && is_zero_select(node.args[1]);
+  for (std::size_t n = 0; n < graph.graph.size(); ++n) {
+    const ir::Node& node = graph.graph.nodes()[n];
+    products += live[n] && node.op == ir::Op::kMul && is_zero_select(node.args[0]) && is_zero_select(node.args[1]);
   }
   return products;
 }

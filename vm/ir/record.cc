@@ -1,0 +1,80 @@
+#include "vm/ir/record.h"
+
+#include "vm/core/operands.h"
+
+namespace vs11::ir {
+namespace {
+
+thread_local Graph* recording = nullptr;
+
+// The machine interface of vm/core/operands.h over graph values: temporaries and a0 are kept here,
+// everything a back end lays out its own way is asked of its Bindings.
+class RecordingMachine {
+ public:
+  using Float = ir::Float;
+  using Vec4 = ir::Vec4;
+
+  explicit RecordingMachine(Bindings& bindings) : bindings_(bindings) {
+    for (auto& temp : temps_) temp = Zero();  // temporaries start at 0, as in the engines
+    for (int slot = 0; slot < kOutputSlotCount; ++slot) outputs_[slot] = bindings.InitialOutput(slot);
+  }
+
+  Vec4 ReadConstant(long index, bool relative) const {
+    if (relative && address_written_) return bindings_.ReadRelativeConstant(address_, index);
+    if (index < 0) return Zero();  // a0 is 0 until written
+    return bindings_.ReadConstant(index);
+  }
+  Vec4 ReadInput(long index) const { return bindings_.ReadInput(index); }
+  Vec4& Temp(long index) { return temps_[static_cast<std::size_t>(index)]; }
+  const Vec4& Temp(long index) const { return temps_[static_cast<std::size_t>(index)]; }
+  Vec4& Output(int slot) { return outputs_[static_cast<std::size_t>(slot)]; }
+  void WriteAddress(Float x) {
+    address_ = semantics::AddressFromFloat(x);
+    address_written_ = true;
+  }
+  static Vec4 Zero() {
+    const Float zero = Constant(Float{}, 0.0f);
+    return {zero, zero, zero, zero};
+  }
+
+  void Execute(const Instruction& instruction, FloatRules rules) {
+    if (rules == FloatRules::kLegacy) {
+      semantics::ExecuteInstruction<FloatRules::kLegacy>(*this, instruction);
+    } else {
+      semantics::ExecuteInstruction<FloatRules::kD3d9>(*this, instruction);
+    }
+  }
+  const std::array<Vec4, kOutputSlotCount>& outputs() const { return outputs_; }
+
+ private:
+  Bindings& bindings_;
+  std::array<Vec4, kTempRegisterCount> temps_{};
+  std::array<Vec4, kOutputSlotCount> outputs_{};
+  Int address_;
+  bool address_written_ = false;
+};
+
+}  // namespace
+
+Recording::Recording(Graph& graph) { recording = &graph; }
+Recording::~Recording() { recording = nullptr; }
+Graph& Recording::graph() { return *recording; }
+
+int Record(Op op, Type type, Operands args, std::uint32_t immediate) { return recording->Add(op, type, args, immediate); }
+
+std::vector<RecordedOutputs> RecordProgram(Graph& graph, const Program& program, std::span<Bindings* const> vertices,
+                                           FloatRules rules) {
+  const Recording recording_scope(graph);
+  std::vector<RecordingMachine> machines;
+  machines.reserve(vertices.size());
+  for (Bindings* bindings : vertices) machines.emplace_back(*bindings);
+  for (std::size_t i = 0; i < program.instructions.size(); ++i) {
+    graph.set_instruction(static_cast<int>(i));
+    for (RecordingMachine& machine : machines) machine.Execute(program.instructions[i], rules);
+  }
+  std::vector<RecordedOutputs> outputs;
+  for (const RecordingMachine& machine : machines) outputs.push_back({machine.outputs()});
+  return outputs;
+}
+
+}  // namespace vs11::ir
