@@ -97,13 +97,15 @@ TEST_F(Vs11Cli, RunPrintsCsvFromInputsAndConstants) {
   std::string source = Write("p.vsh", kProgram);
   std::string normals = Write("n.csv", "nx,ny,nz\n1,2,3\n4,5,6\n");
   std::string consts = Write("k.txt", "def c4, 10, 20, 30, 40\n");
-  CommandResult r = RunVs11("run " + source + " --input v1=" + normals + " --consts " + consts + " --engine ref");
+  CommandResult r =
+      RunVs11("run " + source + " --input v1=" + normals + " --consts " + consts + " --engine ref --missing zeros");
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_THAT(r.output, ::testing::EndsWith(
                             "\noPos.x,oPos.y,oPos.z,oPos.w,oD0.x,oD0.y,oD0.z\n0,0,0,1,11,22,33\n0,0,0,1,14,25,36\n"));
-  // v0 is read but not given: said, not silent.
+  // v0 is read but not given: allowed by --missing zeros, and said, not silent.
   EXPECT_THAT(r.output, ::testing::HasSubstr("p.vsh: warning: the program reads v0, which no --input"));
-  CommandResult batch = RunVs11("run " + source + " --input v1=" + normals + " --consts " + consts + " --const c4=1,1,1,1");
+  CommandResult batch = RunVs11("run " + source + " --input v1=" + normals + " --consts " + consts +
+                                " --const c4=1,1,1,1 --missing zeros");
   EXPECT_NE(batch.output.find("0,0,0,1,2,3,4\n"), std::string::npos) << batch.output;
 }
 
