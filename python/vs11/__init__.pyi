@@ -7,7 +7,9 @@ import numpy.typing as npt
 
 from . import irradiance as irradiance
 
-__all__ = ["AssemblyError", "Program", "assemble", "load", "irradiance"]
+__all__ = ["AssemblyError", "Program", "assemble", "load", "irradiance", "__version__"]
+
+__version__: str  # CMake's project version of the build
 
 Diagnostic = dict[str, Any]  # file, line, column, severity, message, word_offset, text
 FloatArray = npt.NDArray[Union[np.float32, np.float64]]

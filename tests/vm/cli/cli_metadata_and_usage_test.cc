@@ -120,7 +120,7 @@ TEST_F(Vs11MetadataAndUsage, RunRefusesConstantsAndInputsNobodySetsUnlessAskedTo
 TEST_F(Vs11MetadataAndUsage, RunReadsTheCsvItWritesBackByColumnName) {
   std::string program = Write("p.vsh", "vs_1_1\ndcl_position v0\ndcl_normal v1\nmov oPos, v0\nmov oD0.xyz, v1\n");
   std::string first = (dir_ / "first.csv").string();
-  ASSERT_EQ(RunVs11("run " + program + " --sphere 3 --out " + first).status, 0);
+  ASSERT_EQ(RunVs11("run " + program + " --sphere 3 --missing zeros --out " + first).status, 0);
   std::string second = (dir_ / "second.csv").string();
   CommandResult again = RunVs11("run " + program + " --input v0=" + first + ":oPos --input v1=" + first +
                                 ":oD0.x,oD0.y,oD0.z --out " + second);

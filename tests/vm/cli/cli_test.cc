@@ -112,7 +112,7 @@ TEST_F(Vs11Cli, RunPrintsCsvFromInputsAndConstants) {
 TEST_F(Vs11Cli, RunSphereUsesTheDeclaredNormalAndWritesAtomically) {
   std::string source = Write("p.vsh", kProgram);
   std::string out = (dir_ / "o.csv").string();
-  ASSERT_EQ(RunVs11("run " + source + " --sphere 5 --out " + out).status, 0);
+  ASSERT_EQ(RunVs11("run " + source + " --sphere 5 --missing zeros --out " + out).status, 0);
   std::ifstream in(out);
   std::string header;
   std::getline(in, header);
@@ -161,8 +161,8 @@ TEST_F(Vs11Cli, Dx8ReadOfUnwrittenLanesWarnsAndStrictRefuses) {
   EXPECT_THAT(strict.output, ::testing::HasSubstr("skin.vsh:3:1: error: mul: reads r4.w"));
   EXPECT_FALSE(fs::exists(output));
   EXPECT_EQ(RunVs11("validate --strict " + source).status, 1);
-  EXPECT_EQ(RunVs11("run --strict " + source + " --sphere 2 --sphere-reg v0").status, 1);
-  EXPECT_EQ(RunVs11("run " + source + " --sphere 2 --sphere-reg v0").status, 0);
+  EXPECT_EQ(RunVs11("run --strict " + source + " --sphere 2 --sphere-reg v0 --missing zeros").status, 1);
+  EXPECT_EQ(RunVs11("run " + source + " --sphere 2 --sphere-reg v0 --missing zeros").status, 0);
 }
 
 TEST_F(Vs11Cli, ValidateJsonCarriesDiagnosticCodes) {
