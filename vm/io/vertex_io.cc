@@ -420,6 +420,17 @@ std::optional<InputSpec> ParseInputSpec(std::string_view flag, std::string& erro
   return spec;
 }
 
+namespace {
+
+// "c0, c2, c3" of the registers {0, 2, 3} with letter 'c'.
+std::string RegisterNames(char letter, const std::vector<int>& registers) {
+  std::vector<std::string> out;
+  for (int r : registers) out.push_back(fmt::format("{}{}", letter, r));
+  return fmt::format("{}", fmt::join(out, ", "));
+}
+
+}  // namespace
+
 UnsetRegisters FindUnsetRegisters(const Program& program, const std::vector<int>& constants_given,
                                   const std::vector<int>& inputs_given) {
   std::set<int> defined, constants_read, inputs_read;
@@ -456,20 +467,15 @@ UnsetRegisters FindUnsetRegisters(const Program& program, const std::vector<int>
 std::optional<std::string> UnsetRegisterError(const UnsetRegisters& unset, const std::vector<int>& inputs_given,
                                               const RegisterSources& sources) {
   if (unset.constants.empty() && unset.inputs.empty()) return std::nullopt;
-  auto names = [](char letter, const std::vector<int>& list) {
-    std::vector<std::string> out;
-    for (int r : list) out.push_back(fmt::format("{}{}", letter, r));
-    return fmt::format("{}", fmt::join(out, ", "));
-  };
   std::vector<std::string> problems;
   if (!unset.constants.empty()) {
-    problems.push_back(fmt::format("the program reads {}, which neither {} sets", names('c', unset.constants),
+    problems.push_back(fmt::format("the program reads {}, which neither {} sets", RegisterNames('c', unset.constants),
                                    sources.constants));
-    if (!unset.unread.empty()) problems.back() += fmt::format(" (they set {}, which it never reads)", names('c', unset.unread));
+    if (!unset.unread.empty()) problems.back() += fmt::format(" (they set {}, which it never reads)", RegisterNames('c', unset.unread));
   }
   if (!unset.inputs.empty()) {
-    problems.push_back(fmt::format("the program reads {}, which no {} supplies", names('v', unset.inputs), sources.inputs));
-    if (!inputs_given.empty()) problems.back() += fmt::format(" (given: {})", names('v', inputs_given));
+    problems.push_back(fmt::format("the program reads {}, which no {} supplies", RegisterNames('v', unset.inputs), sources.inputs));
+    if (!inputs_given.empty()) problems.back() += fmt::format(" (given: {})", RegisterNames('v', inputs_given));
   }
   return fmt::format("{}; pass {} to run with them as 0 (inputs as 0, 0, 0, 1)", fmt::join(problems, "; "),
                      sources.allow);
@@ -481,24 +487,19 @@ std::vector<std::string> UnsetRegisterWarnings(const Program& program, const std
   const std::vector<int>& unset = registers.constants;
   const std::vector<int>& overridden = registers.overridden;
   const std::vector<int>& missing = registers.inputs;
-  auto names = [](char letter, const std::vector<int>& list) {
-    std::vector<std::string> out;
-    for (int r : list) out.push_back(fmt::format("{}{}", letter, r));
-    return fmt::format("{}", fmt::join(out, ", "));
-  };
   std::vector<std::string> warnings;
   if (!unset.empty()) {
     warnings.push_back(fmt::format("the program reads {}, which no def, --consts or --const sets: {} 0, 0, 0, 0",
-                                   names('c', unset), unset.size() == 1 ? "it reads" : "they read"));
+                                   RegisterNames('c', unset), unset.size() == 1 ? "it reads" : "they read"));
   }
   if (!overridden.empty()) {
     warnings.push_back(fmt::format("the program's def of {} overrides the value given by --consts or --const "
                                    "(def lines win)",
-                                   names('c', overridden)));
+                                   RegisterNames('c', overridden)));
   }
   if (!missing.empty()) {
     warnings.push_back(fmt::format("the program reads {}, which no --input or --sphere supplies: {} 0, 0, 0, 1",
-                                   names('v', missing), missing.size() == 1 ? "it reads" : "they read"));
+                                   RegisterNames('v', missing), missing.size() == 1 ? "it reads" : "they read"));
   }
   return warnings;
 }
