@@ -18,6 +18,7 @@
 #include <pybind11/stl.h>
 
 #include "irradiance/jobs/batch_job.h"
+#include "irradiance/jobs/batch_output.h"
 #include "python/bindings.h"
 
 namespace vs11::python {
@@ -105,6 +106,12 @@ class BatchStream {
     return finished_;
   }
 
+  // (input, reason) of every input that failed so far, in the order they failed.
+  std::vector<std::pair<std::string, std::string>> failures() const {
+    std::lock_guard lock(mutex_);
+    return failures_;
+  }
+
  private:
   struct Item {
     enum Kind { kRecord, kFailure, kEnd, kOutOfMemory, kCrashed } kind;  // the last three end the stream
@@ -122,6 +129,10 @@ class BatchStream {
       const std::optional<std::string> error = irradiance::RunBatch(
           options_, summary, {},
           [this](const irradiance::BatchFailure& failure) {
+            {
+              std::lock_guard lock(mutex_);
+              failures_.emplace_back(failure.input, failure.reason);
+            }
             Push({Item::kFailure, fmt::format("{}: {}", failure.input, failure.reason)});
           },
           [this](const std::string& line) { Push({Item::kRecord, line}); });
@@ -160,12 +171,14 @@ class BatchStream {
   std::condition_variable ready_;
   std::deque<Item> items_;
   std::size_t finished_ = 0;
+  std::vector<std::pair<std::string, std::string>> failures_;
   std::thread worker_;  // last: it starts after everything it uses
 };
 
 std::unique_ptr<BatchStream> StartBatch(const std::vector<std::string>& paths, int threads, const std::string& layout,
                                         int face_size, std::optional<int> level, double max_error,
-                                        const std::string& error_metric) {
+                                        const std::string& error_metric, const std::string& order,
+                                        const std::string& window, double window_width) {
   if (threads < 0) throw py::value_error(fmt::format("threads={} must be >= 0 (0: every core)", threads));
   irradiance::BatchOptions options;
   options.inputs = paths;
@@ -175,6 +188,9 @@ std::unique_ptr<BatchStream> StartBatch(const std::vector<std::string>& paths, i
   options.level = level;
   options.max_error = max_error;
   options.error_metric = error_metric;
+  options.order = order;
+  options.window = window;
+  options.window_width = window_width;
   options.naming = irradiance::OptionNaming::kPythonArgument;
   return std::make_unique<BatchStream>(std::move(options));
 }
@@ -187,13 +203,25 @@ void BindBatch(py::module_& module) {
                           "wraps it in a generator.")
       .def(py::init(&StartBatch), py::arg("paths"), py::arg("threads"), py::arg("layout"), py::arg("face_size"),
            py::arg("level"), py::arg("max_error"),
-           py::arg("error_metric") = std::string(irradiance::ErrorMetricName(irradiance::kDefaultErrorMetric)))
+           py::arg("error_metric"), py::arg("order"), py::arg("window"), py::arg("window_width"))
       .def("__iter__", [](py::object self) { return self; })
       .def("__next__", &BatchStream::Next)
       .def("close", &BatchStream::Close,
            "Stops the run: no input starts after it; returns when the running ones are done.")
       .def_property_readonly("finished", &BatchStream::finished,
-                             "Inputs whose record or failure has come back so far (for the tests).");
+                             "Inputs whose record or failure has come back so far (for the tests).")
+      .def_property_readonly("failures", &BatchStream::failures,
+                             "[(input, reason)] of the inputs that failed so far, in the order they failed.");
+  module.def(
+      "_expand_inputs",
+      [](const std::vector<std::string>& inputs) {
+        std::string error;
+        std::vector<std::string> expanded = irradiance::ExpandBatchInputs(inputs, {}, error);
+        if (!error.empty()) throw py::value_error(error);
+        return expanded;
+      },
+      py::arg("inputs"), "irrmap batch's expansion of paths and glob patterns: sorted, de-duplicated.");
+  module.def("_input_key", &irradiance::InputKey, py::arg("input"), "An input's record \"path\" (its canonical path).");
 }
 
 }  // namespace vs11::python

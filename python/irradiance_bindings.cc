@@ -36,6 +36,7 @@ struct Projection {
   py::dict program_constants;
   py::dict errors;
   std::vector<std::string> warnings;
+  py::dict metadata;  // OutputMetadata: schema_version, convention, provenance
 };
 
 // An (n, n, 3) slice of a float array at `base` with the array's strides into an image.
@@ -121,7 +122,7 @@ void SetEnvironmentArray(const py::array& array, irradiance::IrrmapOptions& opti
 
 irradiance::IrrmapOptions OptionsFor(const py::object& environment, const std::string& layout, int face_size,
                                      std::optional<int> level, double max_error, const std::string& error_metric,
-                                     const std::string& order, const std::string& window) {
+                                     const std::string& order, const std::string& window, double window_width) {
   irradiance::IrrmapOptions options;
   options.layout = layout;
   options.face_size = face_size;
@@ -130,6 +131,7 @@ irradiance::IrrmapOptions OptionsFor(const py::object& environment, const std::s
   options.error_metric = error_metric;
   options.order = order;
   options.window = window;
+  options.window_width = window_width;
   options.write_files = false;
   options.naming = irradiance::OptionNaming::kPythonArgument;
   options.coefficients_only = true;
@@ -159,9 +161,10 @@ irradiance::IrrmapReport RunJob(const irradiance::IrrmapOptions& options) {
 
 Projection Project(const py::object& environment, const std::string& layout, int face_size, std::optional<int> level,
                    double max_error, const std::string& order, const std::string& window,
-                   const std::string& error_metric) {
-  const irradiance::IrrmapReport report =
-      RunJob(OptionsFor(environment, layout, face_size, level, max_error, error_metric, order, window));
+                   const std::string& error_metric, double window_width) {
+  const irradiance::IrrmapOptions options =
+      OptionsFor(environment, layout, face_size, level, max_error, error_metric, order, window, window_width);
+  const irradiance::IrrmapReport report = RunJob(options);
   Projection result;
   result.coefficients = py::array_t<double>({irradiance::kSh9Coefficients, 3});
   for (int i = 0; i < irradiance::kSh9Coefficients; ++i) {
@@ -197,15 +200,16 @@ Projection Project(const py::object& environment, const std::string& layout, int
   result.errors["error_vs_full_order2"] = report.program_vs_full_order2;
   result.errors["levels"] = levels;
   result.warnings = report.warnings;
+  result.metadata = py::module_::import("json").attr("loads")(irradiance::OutputMetadata(report, options).dump());
   return result;
 }
 
 py::array_t<float> IrradianceMap(const py::object& environment, const std::string& layout, int face_size,
                                  std::optional<int> level, double max_error, const std::string& order,
                                  const std::string& window, int map_size, const std::string& engine,
-                                 const std::string& error_metric) {
+                                 const std::string& error_metric, double window_width) {
   irradiance::IrrmapOptions options =
-      OptionsFor(environment, layout, face_size, level, max_error, error_metric, order, window);
+      OptionsFor(environment, layout, face_size, level, max_error, error_metric, order, window, window_width);
   options.coefficients_only = false;
   options.no_ground_truth = true;
   options.map_size = map_size;
@@ -236,7 +240,7 @@ constexpr const char* kEnvironmentArguments =
     "error_metric: what max_error bounds: peak (max |E - E*| / max E*, the default), rms (RMS of\n"
     "  E - E* / mean E*) or relative (the worst |E - E*| / E* per normal), as irrmap --error-metric.\n"
     "order: auto, order0, order1, zh3 or order2 (the program); window: none, hanning, lanczos,\n"
-    "  dering or nonneg.\n";
+    "  dering or nonneg; window_width: bands, for hanning and lanczos.\n";
 
 }  // namespace
 
@@ -259,6 +263,13 @@ void BindIrradiance(py::module_& module) {
                     " 'error_vs_full_order2': its measured difference, 'levels': [{'level', 'size',\n"
                     " 'estimated_error'}]} (fractions).")
       .def_readonly("warnings", &Projection::warnings, "What irrmap would have warned about (also issued as warnings).")
+      .def_readonly("metadata", &Projection::metadata,
+                    "What the numbers are and where they came from, as in coeffs.json and every batch record:\n"
+                    "{'schema_version', 'convention': {'quantity', 'basis', 'coefficient_order', 'frame',\n"
+                    " 'source_kind', 'units', 'scale', 'window', ...}, 'provenance': {'vs11_version', 'input',\n"
+                    " 'input_kind', 'files': [{'path', 'size_bytes', 'sha256'}], 'options': {every argument\n"
+                    " that changes the numbers}}}; for an array, provenance['array'] holds its shape, dtype and\n"
+                    "the SHA-256 of its C-ordered bytes.")
       .def("__repr__", [](const Projection& self) {
         return fmt::format("<vs11.irradiance.Projection {} from level {} ({}x{})>", self.order, self.level,
                            self.level_size, self.level_size);
@@ -269,6 +280,7 @@ void BindIrradiance(py::module_& module) {
              py::arg("level") = py::none(), py::arg("max_error") = irradiance::kDefaultMaxLevelError,
              py::arg("order") = "auto", py::arg("window") = "none",
              py::arg("error_metric") = std::string(irradiance::ErrorMetricName(irradiance::kDefaultErrorMetric)),
+             py::arg("window_width") = irradiance::kDefaultWindowWidth,
              (std::string("Projects an environment onto nine SH coefficients per channel and packs the seven\n"
                           "constants, choosing the level and the program as `irrmap --coefficients-only` does;\n"
                           "returns a Projection. Raises ValueError for bad arguments or unusable files.\n\n") +
@@ -280,6 +292,7 @@ void BindIrradiance(py::module_& module) {
              py::arg("max_error") = irradiance::kDefaultMaxLevelError, py::arg("order") = "auto",
              py::arg("window") = "none", py::arg("map_size") = irradiance::kDefaultMapSize, py::arg("engine") = "jit",
              py::arg("error_metric") = std::string(irradiance::ErrorMetricName(irradiance::kDefaultErrorMetric)),
+             py::arg("window_width") = irradiance::kDefaultWindowWidth,
              (std::string("The irradiance cube map irrmap writes as irradiance.exr: the chosen program run on the\n"
                           "machine once per texel direction. Returns a (6, map_size, map_size, 3) float32 array\n"
                           "(faces in D3D order, rows top to bottom).\n\n") +

@@ -43,14 +43,31 @@ void WarnUnsetRegisters(const PyProgram& self, const std::vector<int>& constants
   }
 }
 
+// missing='error' (the default): a constant the program reads that nobody set, or an input it reads
+// that was not given (a misspelt register, say), is a ValueError naming it; missing='zeros': they
+// read 0 (inputs 0, 0, 0, 1) with a warning, as `vs11 run --missing zeros`.
+void CheckUnsetRegisters(const PyProgram& self, const std::vector<int>& constants_given,
+                         const std::vector<int>& inputs_given, const std::string& missing) {
+  if (missing != "error" && missing != "zeros") {
+    throw py::value_error(fmt::format("missing='{}': use 'error' (the default) or 'zeros'", missing));
+  }
+  if (missing == "error") {
+    const std::optional<std::string> error =
+        UnsetRegisterError(FindUnsetRegisters(self.program, constants_given, inputs_given), inputs_given,
+                           {"a def nor constants", "entry of inputs", "missing='zeros'"});
+    if (error) throw py::value_error(fmt::format("{}: {}", self.name, *error));
+  }
+  WarnUnsetRegisters(self, constants_given, inputs_given);
+}
+
 py::dict Run(const PyProgram& self, const py::dict& inputs, const py::object& constants, const std::string& engine,
-             const py::int_& threads, const std::string& float_rules) {
+             const py::int_& threads, const std::string& float_rules, const std::string& missing) {
   const EngineKind kind = CheckedEngine(engine, threads);
   const FloatRules rules = CheckedFloatRules(float_rules);
   std::vector<int> constants_given;
   const ConstantBank bank = ConstantsFromPython(constants, self.constant_count, constants_given);
   const RunInputs run_inputs = InputsFromPython(self.program, inputs);
-  WarnUnsetRegisters(self, constants_given, run_inputs.registers);
+  CheckUnsetRegisters(self, constants_given, run_inputs.registers, missing);
   auto outputs = std::make_unique<VertexArrays>(MakeOutputArrays(run_inputs.arrays.count(), self.program));
   {
     // Nothing below touches a Python object: other Python threads (and other engines) run meanwhile.
@@ -62,7 +79,7 @@ py::dict Run(const PyProgram& self, const py::dict& inputs, const py::object& co
 }
 
 py::object Trace(const PyProgram& self, const py::dict& inputs, const py::object& constants, const py::int_& vertex_number,
-                 const std::string& engine, const std::string& float_rules) {
+                 const std::string& engine, const std::string& float_rules, const std::string& missing) {
   const EngineKind kind = CheckedEngine(engine, py::int_(1));
   const long long vertex = SaturatedInt(vertex_number);
   const std::string vertex_text = py::str(py::handle(vertex_number));
@@ -75,7 +92,7 @@ py::object Trace(const PyProgram& self, const py::dict& inputs, const py::object
   if (vertex < 0 || static_cast<std::size_t>(vertex) >= count) {
     throw py::index_error(fmt::format("vertex {}: there are {} vertices (0 to {})", vertex_text, count, count - 1));
   }
-  WarnUnsetRegisters(self, constants_given, run_inputs.registers);
+  CheckUnsetRegisters(self, constants_given, run_inputs.registers, missing);
   VertexArrays outputs = MakeOutputArrays(run_inputs.arrays.count(), self.program);
   std::string json;
   {
@@ -94,35 +111,38 @@ py::object Trace(const PyProgram& self, const py::dict& inputs, const py::object
 void BindRun(py::class_<PyProgram>& program_class) {
   program_class.def(
       "run", &Run, py::arg("inputs"), py::arg("constants") = py::none(), py::arg("engine") = "jit",
-      py::arg("threads") = 1, py::arg("float_rules") = "d3d9",
+      py::arg("threads") = 1, py::arg("float_rules") = "d3d9", py::arg("missing") = "error",
       "Runs the program over n vertices and returns {output name: (n, 4) float32 array}.\n\n"
       "inputs: {'v0' or a dcl usage name ('position', 'normal', 'texcoord1'): array}, each array\n"
       "  (n, 4) or (n, 3) (w = 1, as D3D's FLOAT3), float32 or float64, any strides; every array\n"
       "  the same n. Inputs not given read (0, 0, 0, 1).\n"
-      "constants: {'c4' or 4: four numbers}, or a (k, 4) array holding c0..c(k-1); unset\n"
-      "  registers read 0. The program's def lines win.\n"
+      "constants: {'c4' or 4: four numbers}, or a (k, 4) array holding c0..c(k-1). The program's def\n"
+      "  lines win.\n"
       "engine: 'jit' (default), 'batch' or 'ref'; all three give the same bits.\n"
       "threads: threads for the batch and jit engines (1 to 256).\n"
       "float_rules: 'd3d9' (default: IEEE products, 0 * inf = NaN) or 'legacy' (every product of mul,\n"
       "  mad, dp3, dp4, m*x*, dst and lit's power is 0 when an operand is 0), as `vs11 run --float-rules`.\n"
+      "missing: 'error' (default): a constant the program reads that neither a def nor constants sets,\n"
+      "  or an input it reads that inputs does not give (a misspelt register), is a ValueError naming\n"
+      "  it; 'zeros': they read 0 (inputs 0, 0, 0, 1), each with a UserWarning, as `vs11 run --missing zeros`.\n"
             "No copy of a float32 input whose strides are whole floats (C-contiguous (n, 4) or (n, 3),\n"
       "slices, Fortran order): the engines read it in place, gathering 256 vertices at a time into a\n"
       "few KB of their own that stay in cache; it must not change while run() works. float64 and\n"
       "other strides are converted once into the engines' layout. The returned arrays are views of\n"
-      "the engine's output buffer (no copy). The GIL is released while the engine runs. Constants\n"
-      "the program reads that nobody set and inputs it reads that were not given are warned about\n"
-      "(UserWarning) exactly as `vs11 run` warns. Raises ValueError for bad arrays or names.\n\n"
+      "the engine's output buffer (no copy). The GIL is released while the engine runs. A def that\n"
+      "overrides a given constant is warned about (UserWarning) as `vs11 run` warns. Raises ValueError\n"
+      "for bad arrays or names.\n\n"
       "Example:\n"
       "  out = p.run({'v0': np.array([[0, 0, 1]], np.float32)}, {'c0': [1, 2, 3, 4]})\n"
       "  out['oD0']  # (1, 4) float32");
   program_class.def(
       "trace", &Trace, py::arg("inputs"), py::arg("constants") = py::none(), py::arg("vertex") = 0,
-      py::arg("engine") = "jit", py::arg("float_rules") = "d3d9",
+      py::arg("engine") = "jit", py::arg("float_rules") = "d3d9", py::arg("missing") = "error",
       "Runs one vertex instruction by instruction on the reference engine and returns the record\n"
       "`vs11 run --trace-json` writes for it: a dict with 'vertex', 'identical', 'inputs', 'steps'\n"
       "(one dict per executed instruction: 'index', 'instruction', 'reads', 'write', and 'file',\n"
       "'line', 'source' for assembled text) and 'outputs' (the reference's and `engine`'s values).\n"
-      "inputs, constants and float_rules as for run(); raises IndexError for a vertex out of range.\n\n"
+      "inputs, constants, float_rules and missing as for run(); raises IndexError for a vertex out of range.\n\n"
       "Example:\n"
       "  steps = p.trace({'v0': normals}, constants, vertex=2)['steps']");
 }

@@ -132,7 +132,7 @@ const std::map<std::string, std::function<void(const fs::path&)>>& Fixtures() {
       {"wuson_out/oPos.npy",  // as the example before it writes them with --out-npy wuson_out
        [](const fs::path& dir) {
          MakeWithTool(dir, "vs11 run programs/directional_light.vsh --mesh /usr/share/assimp/models/PLY/Wuson.ply "
-                           "--const c8=0,0,5,1 --out-npy wuson_out");
+                           "--const c8=0,0,5,1 --missing zeros --out-npy wuson_out");
        }},
   };
   return *fixtures;

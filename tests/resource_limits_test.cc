@@ -213,9 +213,9 @@ TEST_F(ResourceLimits, Vs11ToolsUnderAnAddressSpaceLimitExitCleanly) {
   for (const std::vector<std::string>& args : std::vector<std::vector<std::string>>{
            {"validate", Program("sh9_irradiance.vsh")},
            {"asm", Program("sh9_irradiance.vsh"), "-o", Path("sh9.vso")},
-           {"run", Program("sh9_irradiance.vsh"), "--fragment", "--sphere", "20000", "--sphere-reg", "v0", "--threads", "2"},
-           {"run", Program("sh9_irradiance.vsh"), "--fragment", "--sphere", "4000000", "--sphere-reg", "v0", "--out",
-            Path("x.csv")}}) {
+           {"run", Program("sh9_irradiance.vsh"), "--fragment", "--sphere", "20000", "--sphere-reg", "v0", "--threads", "2", "--missing", "zeros"},
+           {"run", Program("sh9_irradiance.vsh"), "--fragment", "--sphere", "4000000", "--sphere-reg", "v0", "--missing", "zeros",
+            "--out", Path("x.csv")}}) {
     const LimitedRun run = RunVs11Limited(args, limits);
     ASSERT_TRUE(run.exited) << args[0] << ": " << Describe(run);
     EXPECT_TRUE(run.status == 0 || (run.status == 1 && !run.output.empty())) << args[0] << ": " << Describe(run);
@@ -227,7 +227,7 @@ TEST_F(ResourceLimits, WorkersThatCannotStartFallBackToFewerWithAWarning) {
   // liblog4cplus, which OpenImageIO pulls into irrmap, starts a thread before main and aborts when it
   // cannot (the same ThreadPool serves both tools).
   const LimitedRun run = RunVs11Limited(
-      {"run", Program("sh9_irradiance.vsh"), "--fragment", "--sphere", "2000", "--sphere-reg", "v0", "--threads", "4"},
+      {"run", Program("sh9_irradiance.vsh"), "--fragment", "--sphere", "2000", "--sphere-reg", "v0", "--threads", "4", "--missing", "zeros"},
       {256 * kMiB, 1024 * kMiB});
   ASSERT_TRUE(run.exited) << Describe(run);
   EXPECT_EQ(run.status, 0) << Describe(run);

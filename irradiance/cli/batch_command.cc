@@ -98,16 +98,19 @@ void AddBatchCommand(CLI::App& app) {
       "Coefficients and constants of many environment files in one process, every core busy: one JSON\n"
       "line per file in -o FILE, written and flushed as each file finishes.");
   batch->footer(
-      "Each line: {\"input\", \"face_size\", \"layout\", \"level\", \"level_size\", \"estimated_error\",\n"
-      "\"coefficients\" (9 x [r, g, b]: L00, L1-1, L10, L11, L2-2, L2-1, L20, L21, L22), \"constants\"\n"
-      "(cAr cAg cAb cBr cBg cBb cC as [x, y, z, w])}. The level is picked as by irrmap --max-error\n"
-      "unless --level is given. A file that cannot be read or used is reported on stderr with the\n"
+      "Each line: {\"input\", \"path\", \"schema_version\", \"face_size\", \"layout\", \"level\",\n"
+      "\"level_size\", \"estimated_error\", \"error_metric\", \"order\", \"coefficients\" (9 x [r, g, b]:\n"
+      "L00, L1-1, L10, L11, L2-2, L2-1, L20, L21, L22), \"constants\" (cAr cAg cAb cBr cBg cBb cC as\n"
+      "[x, y, z, w]), \"convention\" (basis, frame, radiance, units), \"provenance\" (the files read with\n"
+      "their size and SHA-256, vs11's version, every option that changes the numbers)}. Each file is\n"
+      "irrmap --coefficients-only's job with these options; the level is picked as by irrmap --max-error\n"
+      "for --order (default order2) unless --level is given. A file that cannot be read or used is reported on stderr with the\n"
       "reason and skipped; the exit status is then 1 and the summary lists every such file.\n"
       "Inputs are expanded (globs), de-duplicated and sorted; --shard K/N keeps every N-th from the\n"
       "K-th (K from 0), so N machines given the same inputs split them with no coordinator.\n"
       "--resume keeps the lines already in -o FILE and skips their inputs, known by their canonical\n"
       "path (an interrupted run loses nothing; a half-written last line is dropped); a FILE that is not\n"
-      "wholly irrmap batch's records is refused and left as it is; without --resume an existing -o FILE\n"
+      "wholly irrmap batch's records of this vs11's schema version is refused and left as it is; without --resume an existing -o FILE\n"
       "is an error. -o FILE is locked for the run (FILE.lock says by whom), and --per-file DIR for the\n"
       "run's shard: a second run into them ends at once, naming the first; the lock of a run that died\n"
       "is free. Two inputs that --per-file would give one name (x/y.exr, x__y.exr) are refused.\n"
@@ -143,6 +146,14 @@ void AddBatchCommand(CLI::App& app) {
       ->excludes(level);
   batch->add_option("--error-metric", arguments->options.error_metric,
                     fmt::format("what --max-error measures, as irrmap's: {}", ErrorMetricNames()))
+      ->capture_default_str();
+  batch->add_option("--order", arguments->options.order,
+                    fmt::format("the program the level is chosen for, as irrmap's: auto, {}", ShOrderNames()))
+      ->capture_default_str();
+  batch->add_option("--window", arguments->options.window,
+                    "window applied to the coefficients, as irrmap's: none, hanning, lanczos, dering or nonneg")
+      ->capture_default_str();
+  batch->add_option("--window-width", arguments->options.window_width, "bands, for hanning and lanczos")
       ->capture_default_str();
   batch->callback([arguments] { RunBatchCommand(*arguments); });
 }

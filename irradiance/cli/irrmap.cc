@@ -20,6 +20,7 @@
 #include "irradiance/sh/engine_sh.h"
 #include "vm/cli/parse_command_line.h"
 #include "vm/core/atomic_file.h"
+#include "vm/core/version.h"
 #include "vm/gl/gl_context.h"
 #include "vm/gl/gl_engine.h"
 
@@ -230,7 +231,7 @@ void AddJobOptions(CLI::App& app, JobCommandLine& line) {
   app.add_flag("--no-ground-truth", options.no_ground_truth,
                "skip the brute-force ground truth (most of a default run's time): no error columns and no "
                "preview.png; coeffs.json, constants.vsh and irradiance.exr are written");
-  app.set_version_flag("--version", "irrmap 0.1.0");
+  app.set_version_flag("--version", fmt::format("irrmap {}", vs11::Vs11Version()));
   app.add_option("--mesh", mesh_file,
                  "also light this mesh (any format Assimp reads) as the paper's Fig. 3: mesh.ply (8-bit vertex "
                  "colours, tone mapped as mesh.png) and mesh.png (program | exact | relative error); vertices whose "

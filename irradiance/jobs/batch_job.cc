@@ -21,10 +21,10 @@
 
 #include "irradiance/io/environment_io.h"
 #include "irradiance/jobs/batch_output.h"
-#include "irradiance/jobs/float_range.h"
+#include "irradiance/jobs/irrmap_checks.h"
+#include "irradiance/jobs/irrmap_job.h"
+#include "irradiance/jobs/output_metadata.h"
 #include "irradiance/sh/constants_output.h"
-#include "irradiance/sh/ground_truth.h"
-#include "irradiance/sh/sh9.h"
 #include "irradiance/sh/sh_projection.h"
 #include "vm/asm/program_file.h"
 #include "vm/core/atomic_file.h"
@@ -78,100 +78,67 @@ class BasisCache {
   std::map<int, std::shared_ptr<const BasisPyramid>> pyramids_;
 };
 
-struct Job {
-  Job(const BatchOptions& batch_options, EnvironmentLayout file_layout, ErrorMetric error_metric)
-      : options(batch_options), layout(file_layout), metric(error_metric) {}
+// One input's job: irrmap's own (RunIrrmap with coefficients only), so that a record holds exactly
+// what `irrmap --coefficients-only` and the Python module's project() give for the same options.
+IrrmapOptions InputOptions(const BatchOptions& options, BasisCache& basis, const std::string& input) {
+  IrrmapOptions job;
+  job.environment = input;
+  job.layout = options.layout;
+  job.face_size = options.face_size;
+  job.level = options.level;
+  job.max_error = options.max_error;
+  job.error_metric = options.error_metric;
+  job.order = options.order;
+  job.window = options.window;
+  job.window_width = options.window_width;
+  job.threads = 1;  // the inputs run in parallel instead
+  job.coefficients_only = true;
+  job.write_files = false;
+  job.naming = options.naming;
+  job.shared_basis = [&basis](int face_size) { return basis.Get(face_size); };
+  return job;
+}
 
-  const BatchOptions& options;
-  EnvironmentLayout layout;
-  ErrorMetric metric;
-  BasisCache basis;
-  std::vector<glm::dvec3> error_normals = SphereNormals(kLevelErrorNormals);
-};
-
-// The record of one input, or the reason it has none. `face_size` is set to the input's once it is
-// loaded.
-std::optional<std::string> ProjectInput(Job& job, const std::string& input, nlohmann::ordered_json& record,
-                                        int& face_size) {
-  LoadOptions load;
-  load.layout = job.layout;
-  load.face_size = job.options.face_size;
-  LoadResult loaded = LoadEnvironment(input, load);
-  if (!loaded.ok()) return loaded.error;
-  face_size = loaded.environment->cube.face_size;
-  if (std::optional<std::string> error = CheckPyramidFaceSize("", face_size)) return error;
-  const std::string layout(LayoutName(loaded.environment->layout));
-  std::optional<CubeMipChain> mips = BuildEnvironmentMips(std::move(loaded.environment->cube));
-  std::shared_ptr<const BasisPyramid> basis = job.basis.Get(face_size);
-  if (!mips || !basis) return fmt::format("cannot build the mip pyramids of face size {}", face_size);
-  const int level_count = LevelCount(face_size);
-  if (job.options.level && *job.options.level >= level_count) {
-    return fmt::format("{} is out of range: face size {} has levels 0 to {}",
-                       OptionWithValue(OptionName(job.options.naming, "level"), *job.options.level), face_size,
-                       level_count - 1);
-  }
-  std::vector<Sh9Rgb> levels;
-  for (int level = 0; level < level_count; ++level) levels.push_back(ProjectLevel(*mips, *basis, level));
-  const std::vector<double> estimated = EstimateLevelErrors(levels, job.error_normals, job.metric);
-  const int level = job.options.level ? *job.options.level : CoarsestLevelWithin(estimated, job.options.max_error);
-  const SevenConstants constants = PackTable1(levels[level]);
-  const TexelRange range = RangeOfTexels(mips->levels[0]);
-  if (std::optional<std::string> error = CheckCoefficientsFitFloat(levels[level], constants.registers, range)) {
-    return error;
+// The record of one input, or the reason it has none (batch_job.h lists its fields).
+std::optional<std::string> ProcessInput(const BatchOptions& options, BasisCache& basis, const std::string& input,
+                                        nlohmann::ordered_json& record) {
+  const IrrmapOptions job = InputOptions(options, basis, input);
+  IrrmapReport report;
+  if (std::optional<std::string> error = RunIrrmap(job, report)) {
+    const std::string prefix = input + ": ";  // the failure report names the input already
+    return error->starts_with(prefix) ? error->substr(prefix.size()) : *error;
   }
   nlohmann::ordered_json coefficients = nlohmann::ordered_json::array();
-  for (const glm::dvec3& c : levels[level].coefficients) coefficients.push_back({c.r, c.g, c.b});
+  for (const glm::dvec3& c : report.coefficients.coefficients) coefficients.push_back({c.r, c.g, c.b});
+  nlohmann::ordered_json metadata = OutputMetadata(report, job);
   record = {{"input", input},
             {"path", InputKey(input)},
-            {"face_size", face_size},
-            {"layout", layout},
-            {"level", level},
-            {"level_size", face_size >> level},
-            {"estimated_error", estimated[level]},
-            {"error_metric", std::string(ErrorMetricName(job.metric))},
+            {"schema_version", metadata["schema_version"]},
+            {"face_size", report.face_size},
+            {"layout", report.layout},
+            {"level", report.level},
+            {"level_size", report.levels[report.level].size},
+            {"estimated_error", report.levels[report.level].estimated_error},
+            {"error_metric", std::string(ErrorMetricName(report.error_metric))},
+            {"order", std::string(Info(report.order).name)},
             {"coefficients", std::move(coefficients)},
-            {"constants", ConstantsJson(constants)}};
-  if (!AllNumbersFinite(record)) return BeyondFloatRangeMessage("a figure of the record is", range);
+            {"constants", ConstantsJson(report.constants)},
+            {"convention", std::move(metadata["convention"])},
+            {"provenance", std::move(metadata["provenance"])}};
   return std::nullopt;
 }
 
-// ProjectInput, with running out of memory as this input's failure: its memory is freed on the way
-// out, and the inputs after it still run (on --resume too, where an abort would stop at it again).
-std::optional<std::string> ProcessInput(Job& job, const std::string& input, nlohmann::ordered_json& record) {
-  int face_size = job.options.face_size;
-  try {
-    return ProjectInput(job, input, record, face_size);
-  } catch (const std::bad_alloc&) {
-    record = nullptr;
-    return fmt::format("out of memory while projecting it (face size {} needs about {} MB)", face_size,
-                       (ProjectionMemoryBytes(face_size) >> 20) + 1);
-  }
-}
-
-std::optional<std::string> CheckOptions(const BatchOptions& options, EnvironmentLayout& layout, ErrorMetric& metric) {
-  auto named = [&](std::string_view flag, const auto& value) {
-    return OptionWithValue(OptionName(options.naming, flag), value);
-  };
-  std::optional<EnvironmentLayout> parsed = ParseLayout(options.layout);
-  if (!parsed) {
-    return fmt::format("unknown layout '{}' (use auto, faces, hcross, vcross, hstrip, vstrip, latlong or angular)",
-                       options.layout);
-  }
-  layout = *parsed;
+// The options of every input's job (irrmap's own checks), then the batch's.
+std::optional<std::string> CheckOptions(const BatchOptions& options) {
+  BasisCache unused;
+  CheckedOptions checked;
+  if (std::optional<std::string> error = CheckOptionValues(InputOptions(options, unused, "each input"), checked)) return error;
   if (options.shard_count < 1 || options.shard_index < 0 || options.shard_index >= options.shard_count) {
     return fmt::format("--shard {}/{} is out of range: K/N with 0 <= K < N", options.shard_index, options.shard_count);
   }
-  if (std::optional<std::string> error = CheckFaceSizeOption(OptionName(options.naming, "face-size"), options.face_size)) return error;
-  if (!(options.max_error > 0.0 && options.max_error < 1.0)) {
-    return fmt::format("{} is out of range: a fraction above 0 and below 1", named("max-error", options.max_error));
+  if (options.threads < 0) {
+    return fmt::format("{} must be >= 0 (0: every core)", OptionWithValue(OptionName(options.naming, "threads"), options.threads));
   }
-  const std::optional<ErrorMetric> parsed_metric = ParseErrorMetric(options.error_metric);
-  if (!parsed_metric) return fmt::format("unknown error metric '{}' (use {})", options.error_metric, ErrorMetricNames());
-  metric = *parsed_metric;
-  if (options.level && *options.level < 0) {
-    return fmt::format("{} is out of range: levels start at 0", named("level", *options.level));
-  }
-  if (options.threads < 0) return fmt::format("{} must be >= 0 (0: every core)", named("threads", options.threads));
   if (options.output.empty()) return std::string("no output file given (-o FILE.jsonl)");
   if (options.inputs.empty() && options.list_files.empty()) return std::string("no input files given");
   return std::nullopt;
@@ -186,11 +153,7 @@ fs::path PerFileLock(const BatchOptions& options) {
 
 }  // namespace
 
-std::optional<std::string> CheckBatchOptions(const BatchOptions& options) {
-  EnvironmentLayout layout = EnvironmentLayout::kAuto;
-  ErrorMetric metric = kDefaultErrorMetric;
-  return CheckOptions(options, layout, metric);
-}
+std::optional<std::string> CheckBatchOptions(const BatchOptions& options) { return CheckOptions(options); }
 
 std::optional<std::pair<int, int>> ParseShard(const std::string& text) {
   int index = 0, count = 0;
@@ -255,9 +218,7 @@ std::optional<std::string> RunBatch(const BatchOptions& options, BatchSummary& s
                                     const BatchFailureReport& report, const BatchRecordReport& record) {
   const auto start = std::chrono::steady_clock::now();
   summary = BatchSummary{};
-  EnvironmentLayout layout = EnvironmentLayout::kAuto;
-  ErrorMetric metric = kDefaultErrorMetric;
-  if (std::optional<std::string> error = CheckOptions(options, layout, metric)) return error;
+  if (std::optional<std::string> error = CheckOptions(options)) return error;
   if (std::optional<std::string> error = BatchOutputOverwritesInput(options)) return error;
   std::string error;
   const std::vector<std::string> all = ExpandBatchInputs(options.inputs, options.list_files, error);
@@ -287,7 +248,7 @@ std::optional<std::string> RunBatch(const BatchOptions& options, BatchSummary& s
   }
   if (std::optional<std::string> problem = out.BeginWriting()) return problem;
 
-  Job job(options, layout, metric);
+  BasisCache basis;
   std::mutex mutex;  // guards `out`, `summary`, the callbacks and `failures`
   std::vector<std::pair<std::size_t, BatchFailure>> failures;
   std::atomic<std::size_t> next = 0;
@@ -297,7 +258,7 @@ std::optional<std::string> RunBatch(const BatchOptions& options, BatchSummary& s
     for (std::size_t i = next++; i < todo.size(); i = next++) {
       if (options.stop != nullptr && options.stop->load()) break;
       nlohmann::ordered_json json;
-      std::optional<std::string> reason = ProcessInput(job, todo[i], json);
+      std::optional<std::string> reason = ProcessInput(options, basis, todo[i], json);
       std::string line;
       if (!reason) {
         line = json.dump() + "\n";

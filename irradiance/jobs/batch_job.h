@@ -8,14 +8,20 @@
 //
 // Output: one line per finished input, appended and flushed as soon as it is done (an interrupted
 // run keeps every finished line):
-//   {"input": PATH as given, "path": its InputKey (batch_output.h), "face_size", "layout", "level",
-//    "level_size", "estimated_error", "error_metric" (what estimated_error and --max-error measure),
-//    "coefficients": 9 x [r, g, b] (L00, L1-1, ..., L22), "constants": {"cAr": [x, y, z, w], ...}}
+//   {"input": PATH as given, "path": its InputKey (batch_output.h), "schema_version", "face_size",
+//    "layout", "level", "level_size", "estimated_error", "error_metric" (what estimated_error and
+//    --max-error measure), "order" (the program the level was chosen for), "coefficients": 9 x
+//    [r, g, b] (L00, L1-1, ..., L22, windowed), "constants": {"cAr": [x, y, z, w], ...},
+//    "convention", "provenance" (irradiance/jobs/output_metadata.h: the basis, frame and units; the
+//    input's files with their SHA-256, vs11's version and every option that changes the numbers)}
+// Each input is irrmap's own job (RunIrrmap, coefficients only), so a record holds the numbers
+// `irrmap --coefficients-only` and vs11.irradiance.project() give with the options it lists.
 // and optionally, per input, DIR/<input with '/' as '__'>.json holding the same record, written
 // atomically; two inputs of one name there are refused before any work. A file that cannot be read
 // or used is reported (its path and why) and skipped; the others go on. --resume keeps the records
 // already in the output and skips their inputs, known by "path" (a last line cut off by an
-// interruption is dropped first; a file that is not wholly records is left untouched and refused).
+// interruption is dropped first; a file that is not wholly records of this schema version, or that
+// holds records of an older or newer one, is left untouched and refused).
 // The output is locked for the run (OutputLock, "OUTPUT.lock"), and DIR for the run's shard: a
 // second run into them ends at once, naming the first.
 #pragma once
@@ -29,6 +35,7 @@
 #include <vector>
 
 #include "irradiance/io/option_names.h"
+#include "irradiance/jobs/irrmap_job.h"
 #include "irradiance/sh/level_choice.h"
 #include "vm/core/thread_pool.h"
 
@@ -49,6 +56,11 @@ struct BatchOptions {
   std::optional<int> level;
   double max_error = kDefaultMaxLevelError;
   std::string error_metric{ErrorMetricName(kDefaultErrorMetric)};  // what max_error bounds, as irrmap's
+  // As irrmap's --order, --window and --window-width. The order defaults to order2: the nine
+  // coefficients are what a batch is for, and "auto" may pick a cheaper program at a coarser level.
+  std::string order = "order2";
+  std::string window = "none";
+  double window_width = kDefaultWindowWidth;
   // Set from another thread to stop early (the Python module's generator, closed): no input starts
   // after a worker sees it; the inputs already running finish and are written. Null: run them all.
   const std::atomic<bool>* stop = nullptr;

@@ -14,6 +14,8 @@
 
 #include <fmt/format.h>
 
+#include "irradiance/jobs/output_metadata.h"
+
 namespace vs11::irradiance {
 namespace {
 
@@ -128,8 +130,13 @@ std::optional<std::string> BatchOutput::ReadRecords(int fd, const fs::path& path
       if (newline == std::string_view::npos) break;
       rest.remove_prefix(newline + 1);
       if (!IsBlank(line)) {
-        const std::optional<std::string> key = RecordKey(nlohmann::json::parse(line, nullptr, false));
+        const nlohmann::json record = nlohmann::json::parse(line, nullptr, false);
+        const std::optional<std::string> key = RecordKey(record);
         if (!key) return Untouched(path, number, "not a record (a JSON object with \"input\", \"coefficients\" and \"constants\")");
+        if (std::optional<std::string> other = OtherSchemaVersion(record)) {
+          return fmt::format("{}:{}: {}: one output holds records of one schema, so it is not resumed and nothing "
+                             "in it was changed; write the rest into a new output", path.string(), number, *other);
+        }
         completed_.insert(*key);
       }
       complete += static_cast<off_t>(line.size() + 1);

@@ -191,6 +191,8 @@ void AddErrorFields(const ErrorStats& error, nlohmann::ordered_json& row, bool c
 nlohmann::ordered_json CoefficientsJson(const IrrmapReport& report, const IrrmapOptions& options,
                                         const CheckedOptions& checked) {
   nlohmann::ordered_json json;
+  nlohmann::ordered_json metadata = OutputMetadata(report, options);
+  json["schema_version"] = metadata["schema_version"];
   nlohmann::ordered_json rows = nlohmann::ordered_json::array();
   for (const glm::dvec3& c : report.coefficients.coefficients) rows.push_back({c.r, c.g, c.b});
   json["coefficients"] = std::move(rows);
@@ -252,6 +254,8 @@ nlohmann::ordered_json CoefficientsJson(const IrrmapReport& report, const Irrmap
     }
     json["mesh"] = std::move(row);
   }
+  json["convention"] = std::move(metadata["convention"]);
+  json["provenance"] = std::move(metadata["provenance"]);
   nlohmann::ordered_json timings = nlohmann::ordered_json::object();
   for (const Timing& timing : report.timings) timings[timing.name] = timing.ms;
   json["timings_ms"] = std::move(timings);
@@ -420,7 +424,7 @@ struct IrrmapRun {
   EngineOptions engine_options;
   int face_size = 0;                    // of the environment's cube (its texels live in mips)
   std::optional<CubeMipChain> mips;
-  std::optional<BasisPyramid> basis;
+  std::shared_ptr<const BasisPyramid> basis;
   std::optional<PaperProgram> program;  // the nine terms: the level table's and the preview's errors
   std::optional<PaperProgram> chosen_program;
   ConstantBank chosen_bank;
@@ -447,12 +451,28 @@ std::optional<std::string> LoadStage(IrrmapRun& run) {
       Timed(run.report, "load", [&] { return LoadCube(run.options, run.checked, run.report, cube); });
   if (error) return error;
   if (run.progress) run.progress("load", 1.0);
+  // Hashed after loading, so that a file the loader refused is reported as the loader says.
+  if (!run.options.cube && !run.checked.builtin) {
+    error = Timed(run.report, "hash", [&]() -> std::optional<std::string> {
+      for (const fs::path& file : EnvironmentFiles(run.options.environment)) {
+        if (std::optional<std::string> problem = DigestInputFile(file, run.report.input_files.emplace_back())) {
+          return problem;
+        }
+      }
+      return std::nullopt;
+    });
+    if (error) return error;
+  }
   run.face_size = run.report.face_size = cube.face_size;
   run.report.texel_range = RangeOfTexels(cube);
   // The pyramid takes the map as its level 0 rather than a second copy.
   run.mips = Timed(run.report, "env_mips", [&] { return BuildEnvironmentMips(std::move(cube)); });
-  run.basis = Timed(run.report, "basis_pyramid", [&] {
-    return BuildBasisPyramid(run.face_size, run.checked.threads, run.FractionsOf("basis pyramid"));
+  run.basis = Timed(run.report, "basis_pyramid", [&]() -> std::shared_ptr<const BasisPyramid> {
+    if (run.options.shared_basis) return run.options.shared_basis(run.face_size);
+    std::optional<BasisPyramid> built =
+        BuildBasisPyramid(run.face_size, run.checked.threads, run.FractionsOf("basis pyramid"));
+    if (!built) return nullptr;
+    return std::make_shared<const BasisPyramid>(std::move(*built));
   });
   if (!run.mips || !run.basis) return fmt::format("cannot build the mip pyramids of face size {}", run.face_size);
   return std::nullopt;

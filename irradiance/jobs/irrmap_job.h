@@ -9,7 +9,7 @@
 //   a dense set of normals, and a Fig. 3-like preview.
 //
 // Files written into IrrmapOptions::out_dir (created if needed):
-//   coeffs.json      {"coefficients": 9 x [r, g, b] (L00, L1-1, L10, L11, L2-2, L2-1, L20, L21,
+//   coeffs.json      {"schema_version" (irradiance/jobs/output_metadata.h), "coefficients": 9 x [r, g, b] (L00, L1-1, L10, L11, L2-2, L2-1, L20, L21,
 //                    L22, windowed), "level", "level_size", "level_choice" ("level" or
 //                    "max_error"), "max_error" (when picked by it), "error_metric" (what max_error,
 //                    every "estimated_error" and "error_vs_full_order2" measure), "window": {"name", "width",
@@ -18,7 +18,7 @@
 //                    "size", "update_ms", "max_relative_error", "mean_relative_error", "peak_error",
 //                    "rms_error", "peak_error_channels" and "rms_error_channels" ({"r", "g", "b",
 //                    "luminance"}; see ErrorStats), "estimated_error"}, ...],
-//                    "timings_ms": {"load", "env_mips", "basis_pyramid", "level_updates" (every
+//                    "timings_ms": {"load", "hash" (the input files' SHA-256), "env_mips", "basis_pyramid", "level_updates" (every
 //                    level, each repeated for timing), "projection" (the chosen level's update),
 //                    "constants", "program" (assembling it), "irradiance_map", "ground_truth",
 //                    "level_errors", "preview"}}; the final "write" is in IrrmapReport only
@@ -26,8 +26,10 @@
 //                    "error_vs_full_order2", "max_relative_error", "peak_error", "rms_error" (vs
 //                    the truth), "constants":
 //                    {"cE" | "cAr" ...: [x, y, z, w]}}, "program_estimates": [{"order", "level",
-//                    "estimated_error"}, ...], "files": the names of the files this run wrote (any
-//                    other file of irrmap's in out_dir is an earlier run's, and named in a warning)
+//                    "estimated_error"}, ...], "convention" and "provenance" (what the numbers are and
+//                    where they came from: output_metadata.h), "files": the names of the files this
+//                    run wrote (any other file of irrmap's in out_dir is an earlier run's, and named
+//                    in a warning)
 //   program.vsh      the chosen program (irradiance/sh/sh_order.h): sh_order0.vsh, sh_order1.vsh,
 //                    sh_zh3.vsh or the paper's sh9_irradiance.vsh
 //   constants.vsh    its registers as `def` lines at the registers the program reads
@@ -52,6 +54,7 @@
 #include <array>
 #include <filesystem>
 #include <functional>
+#include <memory>
 #include <optional>
 #include <span>
 #include <string>
@@ -64,12 +67,14 @@
 #include "irradiance/io/option_names.h"
 #include "irradiance/jobs/float_range.h"
 #include "irradiance/jobs/mesh_lighting.h"
+#include "irradiance/jobs/output_metadata.h"
 #include "irradiance/report/paper_program.h"
 #include "irradiance/sh/engine_sh.h"
 #include "irradiance/sh/ground_truth.h"
 #include "irradiance/sh/level_choice.h"
 #include "irradiance/sh/sh9.h"
 #include "irradiance/sh/sh_order.h"
+#include "irradiance/sh/sh_projection.h"
 #include "vm/core/machine.h"
 #include "vm/core/program.h"
 
@@ -144,6 +149,9 @@ struct IrrmapOptions {
   // --sh-export: also the nine coefficients in these engines' conventions and frames, one file each
   // (ShExportFormatName names and ShExportFileName files, irradiance/sh/engine_sh.h).
   std::vector<std::string> sh_exports;
+  // Where set, the basis pyramid of a face size comes from here instead of being built (irrmap
+  // batch shares one per face size between its inputs); null from it: cannot be built.
+  std::function<std::shared_ptr<const BasisPyramid>(int face_size)> shared_basis;
 };
 
 // The mesh's line in coeffs.json ("mesh": {...}).
@@ -200,6 +208,7 @@ struct IrrmapReport {
   // How engines see that input, which decides each --sh-export's frame (irradiance/sh/engine_sh.h).
   ShSourceKind sh_source = ShSourceKind::kCube;
   int face_size = 0;
+  std::vector<InputFileDigest> input_files;  // every file read (none for a built-in or an array)
   TexelRange texel_range;   // of the environment's cube map, named when a result is beyond float range
   int level = 0;            // the chosen level
   int threads = 0;          // worker threads used

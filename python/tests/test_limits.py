@@ -45,7 +45,7 @@ def test_batch_out_of_memory_warns_for_the_file_and_goes_on(tmp_path):
         """
         with warnings.catch_warnings(record=True) as caught:
             warnings.simplefilter("always")
-            records = list(vs11.irradiance.batch([%r, %r], face_size=4096, threads=1))
+            records = list(vs11.irradiance.iter_batch([%r, %r], face_size=4096, threads=1))
         print("records", len(records))
         print("warnings", [str(w.message) for w in caught])
         """
@@ -85,10 +85,9 @@ def test_batch_of_two_huge_neighbours_gives_finite_numbers(tmp_path):
     image[5, 10] = image[5, 11] = 3e38
     path = tmp_path / "two.pfm"
     write_pfm(path, image)
-    records = list(vs11.irradiance.batch([str(path)], face_size=32, threads=1))
-    assert len(records) == 1
-    assert np.all(np.isfinite(np.array(records[0]["coefficients"], dtype=float)))
-    assert all(np.all(np.isfinite(v)) for v in records[0]["constants"].values())
+    labels = vs11.irradiance.batch([str(path)], face_size=32, threads=1)
+    assert len(labels) == 1
+    assert np.all(np.isfinite(labels.coefficients)) and np.all(np.isfinite(labels.constants))
 
 
 def test_a_square_file_needs_its_layout(tmp_path):

@@ -202,13 +202,37 @@ def test_gil_is_released_so_python_runs_beside_an_engine(programs_dir):
     assert inside, "no Python ran during run() (%.3f s): the GIL was held" % (span["end"] - span["start"])
 
 
-def test_unset_constants_and_missing_inputs_warn_as_the_cli_does(programs_dir):
+def test_unset_constants_and_missing_inputs_are_errors_unless_asked_for_as_in_the_cli(programs_dir, vs11_tool,
+                                                                                      tmp_path):
     program = vs11.load(programs_dir / "sh9_irradiance.vsh")
-    with pytest.warns(UserWarning, match=r"sh9_irradiance.vsh: warning: .*c0"):
+    with pytest.raises(ValueError, match=r"sh9_irradiance.vsh: the program reads c0, c1, .*c6, which neither"):
         program.run({"v0": sphere_normals(4)})
+    constants = {"c%d" % i: [0.5, 0.5, 0.5, 0.5] for i in range(7)}
+    misspelt = dict(constants, c44=constants.pop("c4"))
+    with pytest.raises(ValueError, match=r"reads c4, which neither .* \(they set c44, which it never reads\)"):
+        program.run({"v0": sphere_normals(4)}, misspelt)
+    with pytest.raises(ValueError, match=r"reads c4.*missing='zeros'"):
+        program.trace({"v0": sphere_normals(4)}, misspelt)
     two_inputs = vs11.assemble("vs_1_1\ndcl_position v0\ndcl_normal v3\nmov oPos, v0\nmov oD0, v3\n")
-    with pytest.warns(UserWarning, match="v3"):
+    with pytest.raises(ValueError, match=r"reads v3, which no entry of inputs supplies \(given: v0\)"):
         two_inputs.run({"v0": np.zeros((2, 4))})
+    with pytest.raises(ValueError, match="missing='nothing': use 'error'"):
+        two_inputs.run({"v0": np.zeros((2, 4))}, missing="nothing")
+    # Asked for: the old behaviour, the warnings `vs11 run --missing zeros` prints.
+    with pytest.warns(UserWarning, match=r"sh9_irradiance.vsh: warning: .*c0"):
+        out = program.run({"v0": sphere_normals(4)}, missing="zeros")
+    assert np.all(out["oD0"][:, :3] == 0)
+    with pytest.warns(UserWarning, match="v3"):
+        out = two_inputs.run({"v0": np.zeros((2, 4))}, missing="zeros")
+    np.testing.assert_array_equal(out["oD0"], [[0, 0, 0, 1]] * 2)
+    # The CLI: the same case is an error (exit 2) naming the register, unless --missing zeros.
+    normals = tmp_path / "n.csv"
+    normals.write_text("0,0,1\n")
+    cli = [str(vs11_tool), "run", str(programs_dir / "sh9_irradiance.vsh"), "--input", "v0=%s" % normals]
+    refused = subprocess.run(cli, capture_output=True, text=True)
+    assert refused.returncode == 2 and "reads c0, c1, c2, c3, c4, c5, c6, which neither" in refused.stderr
+    allowed = subprocess.run(cli + ["--missing", "zeros"], capture_output=True, text=True)
+    assert allowed.returncode == 0 and "warning: the program reads c0" in allowed.stderr
 
 
 @pytest.mark.parametrize("inputs,message", [

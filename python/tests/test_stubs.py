@@ -22,14 +22,14 @@ def stub_functions(stub, owner):
             if any(isinstance(d, ast.Name) and d.id == "property" for d in function.decorator_list):
                 continue
             scope = getattr(owner, class_name) if class_name else owner
-            names = [a.arg for a in function.args.args if a.arg != "self"]
+            names = [a.arg for a in function.args.args if a.arg not in ("self", "cls")]
             yield "%s.%s" % (class_name or owner.__name__, function.name), getattr(scope, function.name), names
 
 
 def pybind_arguments(function):
     """The argument names of a pybind11 function, from the signature line its docstring starts with
     (or of a Python function, from its signature)."""
-    if inspect.isfunction(function):
+    if inspect.isfunction(function) or inspect.ismethod(function):
         return [name for name in inspect.signature(function).parameters if name != "self"]
     signature = function.__doc__.splitlines()[0]
     inside = signature[signature.index("(") + 1: signature.rindex(") ->")]
@@ -43,7 +43,8 @@ def test_stubs_match_the_module_and_every_call_is_documented(stub, owner):
     for name, function, stub_names in stub_functions(stub, owner):
         assert pybind_arguments(function) == stub_names, name
         # pybind11's docstrings start with the signature line; a Python function's with its summary.
-        description = function.__doc__ if inspect.isfunction(function) else function.__doc__.split("\n", 1)[1]
+        python = inspect.isfunction(function) or inspect.ismethod(function)
+        description = function.__doc__ if python else function.__doc__.split("\n", 1)[1]
         assert len(description.strip()) > 20, "%s has no docstring" % name
         checked += 1
     assert checked >= 4

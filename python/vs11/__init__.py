@@ -7,9 +7,10 @@
 
 assemble() and load() give a Program (tokens, disassemble(), validate(), count(), run(), trace());
 vs11.irradiance projects environments onto nine SH coefficients per channel (project,
-irradiance_map, batch). See help() of each.
+irradiance_map, batch for datasets, iter_batch to stream them). See help() of each.
+vs11.__version__ is the version of the vs11 build (CMake's project version).
 """
-from ._vs11 import AssemblyError, Program, assemble, load
+from ._vs11 import AssemblyError, Program, __version__, assemble, load
 from . import irradiance
 
-__all__ = ["AssemblyError", "Program", "assemble", "load", "irradiance"]
+__all__ = ["AssemblyError", "Program", "assemble", "load", "irradiance", "__version__"]

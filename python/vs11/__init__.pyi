@@ -7,7 +7,9 @@ import numpy.typing as npt
 
 from . import irradiance as irradiance
 
-__all__ = ["AssemblyError", "Program", "assemble", "load", "irradiance"]
+__all__ = ["AssemblyError", "Program", "assemble", "load", "irradiance", "__version__"]
+
+__version__: str  # CMake's project version of the build
 
 Diagnostic = dict[str, Any]  # file, line, column, severity, message, word_offset, text
 FloatArray = npt.NDArray[Union[np.float32, np.float64]]
@@ -47,6 +49,7 @@ class Program:
         engine: str = "jit",
         threads: int = 1,
         float_rules: str = "d3d9",
+        missing: str = "error",
     ) -> dict[str, npt.NDArray[np.float32]]:
         """Runs the program over n vertices.
 
@@ -54,8 +57,11 @@ class Program:
         constants: {'c4' or 4: four numbers} or a (k, 4) array of c0..c(k-1).
         engine: 'jit', 'batch' or 'ref' (the same bits); threads: 1 to 256.
         float_rules: 'd3d9' (IEEE products: 0 * inf = NaN) or 'legacy' (0 * anything = 0).
+        missing: 'error': a constant the program reads that nothing sets, or an input it reads that
+        inputs lacks (a misspelt register), raises ValueError naming it; 'zeros': they read 0 (inputs
+        0, 0, 0, 1) with a UserWarning each.
         Returns {output name: (n, 4) float32 view of the engine's output}; the GIL is released while
-        the engine runs; unset constants and missing inputs warn (UserWarning).
+        the engine runs.
         """
     def trace(
         self,
@@ -64,6 +70,7 @@ class Program:
         vertex: int = 0,
         engine: str = "jit",
         float_rules: str = "d3d9",
+        missing: str = "error",
     ) -> dict[str, Any]:
         """One vertex instruction by instruction: the record `vs11 run --trace-json` writes."""
 

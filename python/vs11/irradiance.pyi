@@ -21,6 +21,9 @@ class Projection:
     program_constants: dict[str, list[float]]  # its constants: {'c0': [x, y, z, w], ...}
     errors: dict[str, Any]  # error_metric, estimated_error, error_vs_full_order2, levels
     warnings: list[str]
+    metadata: dict[str, Any]  # schema_version, convention, provenance (as every batch record)
+
+CONSTANT_NAMES: tuple[str, ...]  # ('cAr', 'cAg', 'cAb', 'cBr', 'cBg', 'cBb', 'cC'): the rows of constants
 
 def builtin_environments() -> list[str]: ...
 def project(
@@ -32,11 +35,12 @@ def project(
     order: str = "auto",
     window: str = "none",
     error_metric: str = "peak",
+    window_width: float = 4.0,
 ) -> Projection:
     """Nine SH coefficients per channel and the seven constants, as `irrmap --coefficients-only`.
 
     environment: a file, a '{face}' pattern, a built-in name, or a float array: (6, N, N, 3) cube
-    faces (D3D order) or an (H, 2H, 3) lat-long map.
+    faces (D3D order) or an (H, 2H, 3) lat-long map. result.metadata: convention and provenance.
     """
 
 def irradiance_map(
@@ -50,19 +54,54 @@ def irradiance_map(
     map_size: int = 32,
     engine: str = "jit",
     error_metric: str = "peak",
+    window_width: float = 4.0,
 ) -> npt.NDArray[np.float32]:
     """The (6, map_size, map_size, 3) irradiance cube map irrmap writes as irradiance.exr."""
 
+class Dataset:
+    """A labelled dataset: row i of coefficients and constants belongs to metadata[i]."""
+
+    coefficients: npt.NDArray[np.float64]  # (N, 9, 3)
+    constants: npt.NDArray[np.float32]  # (N, 7, 4)
+    metadata: list[dict[str, Any]]  # the records without their numbers: input, path, level, provenance, ...
+    failures: list[dict[str, str]]  # {'input', 'reason'}
+    @classmethod
+    def from_records(cls, records: Iterable[dict[str, Any]], failures: Iterable[dict[str, str]] = ()) -> Dataset:
+        """Stacks records (iter_batch's, or irrmap batch's JSON lines); warns when level sizes differ."""
+
+BatchInput = Union[str, os.PathLike[str], npt.NDArray[Union[np.float32, np.float64]]]
+
 def batch(
-    paths: Iterable[str],
+    inputs: Iterable[BatchInput],
     threads: int = 0,
     layout: str = "auto",
     face_size: int = 256,
     level: Optional[int] = None,
     max_error: float = 0.005,
+    order: str = "order2",
+    window: str = "none",
     error_metric: str = "peak",
+    window_width: float = 4.0,
+) -> Dataset:
+    """Labels a dataset (paths, glob patterns, arrays) as project() labels one input: a Dataset.
+
+    Pass level=K (and face_size) for one resolution; by default the level is each input's own, and
+    a UserWarning says so when the level sizes differ. Unusable inputs warn and go to .failures.
+    """
+
+def iter_batch(
+    inputs: Iterable[BatchInput],
+    threads: int = 0,
+    layout: str = "auto",
+    face_size: int = 256,
+    level: Optional[int] = None,
+    max_error: float = 0.005,
+    order: str = "order2",
+    window: str = "none",
+    error_metric: str = "peak",
+    window_width: float = 4.0,
 ) -> Generator[dict[str, Any], None, None]:
-    """Yields `irrmap batch`'s records as the inputs finish (not in input order); unusable inputs warn.
+    """batch() as a stream of `irrmap batch`'s records (JSON-ready dicts) as the inputs finish.
 
     The work runs on threads of its own with the GIL released; closing the generator stops it.
     """

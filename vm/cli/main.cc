@@ -8,6 +8,7 @@
 #include "vm/cli/commands.h"
 #include "vm/cli/parse_command_line.h"
 #include "vm/core/atomic_file.h"
+#include "vm/core/version.h"
 #include "vm/gl/gl_engine.h"
 
 namespace {
@@ -26,7 +27,7 @@ int Main(int argc, char** argv) {
   vs11::gl::RegisterGlEngine();
   CLI::App app{"vs11: assemble, validate, run, verify, count and translate Direct3D vs_1_1 vertex shader programs"};
   app.require_subcommand(1);
-  app.set_version_flag("--version", "vs11 0.1.0");
+  app.set_version_flag("--version", fmt::format("vs11 {}", vs11::Vs11Version()));
   app.footer("Exit status: 0 success, 1 bad input or a failed check, 2 a usage error.\n\n"
              "Examples:\n"
              "  vs11 validate programs/sh9_irradiance.vsh\n"

@@ -59,6 +59,7 @@ ConstantBank LoadConstants(const std::vector<std::string>& files, const std::vec
 
 struct RunArgs {
   std::string program, out, sphere_register;
+  std::string missing = "error";  // --missing: "error" or "zeros"
   std::vector<std::string> consts_files, const_flags, input_flags;
   int sphere = 0;
   ProgramFlags flags;
@@ -167,6 +168,13 @@ void RunProgram(const RunArgs& args) {
   const std::size_t count = CommonVertexCount(supplied);
   std::vector<int> registers;
   for (const auto& entry : supplied) registers.push_back(entry.first);
+  if (args.missing == "error") {
+    const std::optional<std::string> error =
+        UnsetRegisterError(FindUnsetRegisters(program, constants_given, registers), registers,
+                           {"a def, --consts nor --const", "--input, --sphere, --mesh, --npy or --buffer",
+                            "--missing zeros"});
+    if (error) FailUsage(fmt::format("{}: {}", args.program, *error));
+  }
   for (const std::string& warning : UnsetRegisterWarnings(program, constants_given, registers)) {
     std::fprintf(stderr, "%s: warning: %s\n", args.program.c_str(), warning.c_str());
   }
@@ -190,14 +198,16 @@ void RunProgram(const RunArgs& args) {
 
 constexpr const char* kRunFooter =
     "Constants: def lines in the program win over --const flags, which win over --consts files (a\n"
-    "warning names every register a def overrides, and every one the program reads that nobody sets).\n"
+    "warning names every register a def overrides). A constant the program reads that nobody sets, or\n"
+    "an input register it reads that nothing supplies, is an error naming it (exit 2); --missing zeros\n"
+    "runs anyway with a warning, constants reading 0, 0, 0, 0 and inputs 0, 0, 0, 1.\n"
     "Inputs: --input v1=FILE.csv (a vertex a row, 1-4 numbers separated by ',' or blanks, or by ';';\n"
     "inf, -inf and nan are numbers; missing components read 0,0,0,1; a first row of names is a\n"
     "header), or columns by header name: --input v0=out.csv:oPos reads oPos.x..oPos.w into their\n"
     "lanes, --input v0=out.csv:oD0.x,oD0.y,oD0.z fills x, y, z in that order; so the CSV this\n"
     "command writes reads back. Or\n"
     "--sphere N: N unit normals spread evenly over the sphere, written into the register the program\n"
-    "declares with dcl_normal, or the one named by --sphere-reg. Registers not supplied read (0,0,0,1).\n"
+    "declares with dcl_normal, or the one named by --sphere-reg.\n"
     "Outputs: CSV with a header naming each written output lane (raw values: the clamping D3D applies\n"
     "to oD0/oD1/oFog after the shader is not applied).\n"
     "Debugging: --trace 0,5 prints vertices 0 and 5 instruction by instruction (source line, values\n"
@@ -217,7 +227,7 @@ constexpr const char* kRunFooter =
     "  vs11 run light.vsh --input v0=lit.csv:oPos --input v1=normals.csv --const c4=0,0,1,0\n"
     "  vs11 run programs/sh9_irradiance.vsh --fragment --consts out/constants.vsh --sphere 6 --sphere-reg v0 --engine gl\n"
     "  vs11 run programs/sh9_irradiance.vsh --gl-device list\n"
-    "  vs11 run programs/sh9_irradiance.vsh --input v0=infinite_normals.csv --float-rules legacy";
+    "  vs11 run programs/sh9_irradiance.vsh --input v0=infinite_normals.csv --missing zeros --float-rules legacy";
 
 }  // namespace
 
@@ -233,6 +243,11 @@ void AddRunCommand(CLI::App& app) {
   command->add_option("--sphere", args->sphere, "Run over N unit normals spread over the sphere")->check(CLI::Range(1, 100000000));
   command->add_option("--sphere-reg", args->sphere_register, "Input register for --sphere normals (default: dcl_normal)");
   command->add_option("--out", args->out, "Write the CSV here (atomically) instead of stdout");
+  command->add_option("--missing", args->missing,
+                      "error: a constant or input the program reads that nothing sets stops the run; zeros: they "
+                      "read 0 (inputs 0, 0, 0, 1), with a warning")
+      ->check(CLI::IsMember({"error", "zeros"}))
+      ->capture_default_str();
   args->flags.AddTo(*command);
   args->engine.AddTo(*command);
   args->trace.AddTo(*command);

@@ -229,8 +229,9 @@ void VertexSourceFlags::AddTo(CLI::App& command) {
       "\n  vs11 run programs/directional_light.vsh --mesh /usr/share/assimp/models/PLY/Wuson.ply "
       "--const c0=1,0,0,0 --const c1=0,1,0,0 --const c2=0,0,1,0 --const c3=0,0,0,1 --const c4=1,0,0,0 "
       "--const c5=0,1,0,0 --const c6=0,0,1,0 --const c7=0,0.6,0.8,0 --const c8=0,0,5,1 --const c9=1,0.8,0.6,1 "
-      "--const c12=0,0,0,16 --out-mesh wuson_lit.ply --out-npy wuson_out"
-      "\n  vs11 run programs/directional_light.vsh --npy v0=wuson_out/oPos.npy --npy v1=wuson_out/oD0.npy --out-npy again"
+      "--const c10=0,0,0,0 --const c11=0,0,0,0 --const c12=0,0,0,16 --out-mesh wuson_lit.ply --out-npy wuson_out"
+      "\n  vs11 run programs/directional_light.vsh --npy v0=wuson_out/oPos.npy --npy v1=wuson_out/oD0.npy --missing zeros "
+      "--out-npy again"
       "\n  vs11 run programs/skinning.vsh --mesh /usr/share/assimp/models/glTF2/simple_skin/simple_skin.gltf "
       "--compute-normals --blend-index-scale 3 --bone-palette c6 --const c0=1,0,0,0 --const c1=0,1,0,0 "
       "--const c2=0,0,1,0 --const c3=0,0,0,1 --const c4=0,0,1,0 --const c5=1,1,1,1";

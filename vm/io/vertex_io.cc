@@ -420,9 +420,21 @@ std::optional<InputSpec> ParseInputSpec(std::string_view flag, std::string& erro
   return spec;
 }
 
-std::vector<std::string> UnsetRegisterWarnings(const Program& program, const std::vector<int>& constants_given,
-                                               const std::vector<int>& inputs_given) {
+namespace {
+
+// "c0, c2, c3" of the registers {0, 2, 3} with letter 'c'.
+std::string RegisterNames(char letter, const std::vector<int>& registers) {
+  std::vector<std::string> out;
+  for (int r : registers) out.push_back(fmt::format("{}{}", letter, r));
+  return fmt::format("{}", fmt::join(out, ", "));
+}
+
+}  // namespace
+
+UnsetRegisters FindUnsetRegisters(const Program& program, const std::vector<int>& constants_given,
+                                  const std::vector<int>& inputs_given) {
   std::set<int> defined, constants_read, inputs_read;
+  bool relative = false;  // a0.x-relative reads: any constant may be read
   for (const Instruction& instruction : program.instructions) {
     const OpcodeInfo& info = instruction.info();
     if (instruction.opcode == Opcode::kDef) defined.insert(instruction.dest.reg.index);
@@ -430,6 +442,7 @@ std::vector<std::string> UnsetRegisterWarnings(const Program& program, const std
     for (int s = 0; s < info.source_count(); ++s) {
       const RegisterRef& reg = instruction.sources[s].reg;
       const int rows = info.registers_read(s);
+      relative = relative || (reg.file == RegisterFile::kConst && reg.relative);
       for (int row = 0; row < rows; ++row) {
         if (reg.file == RegisterFile::kConst && !reg.relative) constants_read.insert(reg.index + row);
         if (reg.file == RegisterFile::kInput) inputs_read.insert(reg.index + row);
@@ -437,34 +450,56 @@ std::vector<std::string> UnsetRegisterWarnings(const Program& program, const std
     }
   }
   const std::set<int> given(constants_given.begin(), constants_given.end());
-  auto names = [](char letter, const std::vector<int>& registers) {
-    std::vector<std::string> out;
-    for (int r : registers) out.push_back(fmt::format("{}{}", letter, r));
-    return fmt::format("{}", fmt::join(out, ", "));
-  };
-  std::vector<int> unset, overridden, missing;
+  UnsetRegisters out;
   for (int c : constants_read) {
-    if (!defined.contains(c) && !given.contains(c)) unset.push_back(c);
+    if (!defined.contains(c) && !given.contains(c)) out.constants.push_back(c);
   }
   for (int c : given) {
-    if (defined.contains(c)) overridden.push_back(c);
+    if (defined.contains(c)) out.overridden.push_back(c);
+    if (!relative && !constants_read.contains(c) && !defined.contains(c)) out.unread.push_back(c);
   }
   for (int v : inputs_read) {
-    if (std::find(inputs_given.begin(), inputs_given.end(), v) == inputs_given.end()) missing.push_back(v);
+    if (std::find(inputs_given.begin(), inputs_given.end(), v) == inputs_given.end()) out.inputs.push_back(v);
   }
+  return out;
+}
+
+std::optional<std::string> UnsetRegisterError(const UnsetRegisters& unset, const std::vector<int>& inputs_given,
+                                              const RegisterSources& sources) {
+  if (unset.constants.empty() && unset.inputs.empty()) return std::nullopt;
+  std::vector<std::string> problems;
+  if (!unset.constants.empty()) {
+    problems.push_back(fmt::format("the program reads {}, which neither {} sets", RegisterNames('c', unset.constants),
+                                   sources.constants));
+    if (!unset.unread.empty()) problems.back() += fmt::format(" (they set {}, which it never reads)", RegisterNames('c', unset.unread));
+  }
+  if (!unset.inputs.empty()) {
+    problems.push_back(fmt::format("the program reads {}, which no {} supplies", RegisterNames('v', unset.inputs), sources.inputs));
+    if (!inputs_given.empty()) problems.back() += fmt::format(" (given: {})", RegisterNames('v', inputs_given));
+  }
+  return fmt::format("{}; pass {} to run with them as 0 (inputs as 0, 0, 0, 1)", fmt::join(problems, "; "),
+                     sources.allow);
+}
+
+std::vector<std::string> UnsetRegisterWarnings(const Program& program, const std::vector<int>& constants_given,
+                                               const std::vector<int>& inputs_given) {
+  const UnsetRegisters registers = FindUnsetRegisters(program, constants_given, inputs_given);
+  const std::vector<int>& unset = registers.constants;
+  const std::vector<int>& overridden = registers.overridden;
+  const std::vector<int>& missing = registers.inputs;
   std::vector<std::string> warnings;
   if (!unset.empty()) {
     warnings.push_back(fmt::format("the program reads {}, which no def, --consts or --const sets: {} 0, 0, 0, 0",
-                                   names('c', unset), unset.size() == 1 ? "it reads" : "they read"));
+                                   RegisterNames('c', unset), unset.size() == 1 ? "it reads" : "they read"));
   }
   if (!overridden.empty()) {
     warnings.push_back(fmt::format("the program's def of {} overrides the value given by --consts or --const "
                                    "(def lines win)",
-                                   names('c', overridden)));
+                                   RegisterNames('c', overridden)));
   }
   if (!missing.empty()) {
     warnings.push_back(fmt::format("the program reads {}, which no --input or --sphere supplies: {} 0, 0, 0, 1",
-                                   names('v', missing), missing.size() == 1 ? "it reads" : "they read"));
+                                   RegisterNames('v', missing), missing.size() == 1 ? "it reads" : "they read"));
   }
   return warnings;
 }

@@ -30,6 +30,29 @@ std::optional<std::string> ParseConstantAssignment(std::string_view text, Consta
 std::vector<std::string> UnsetRegisterWarnings(const Program& program, const std::vector<int>& constants_given,
                                                const std::vector<int>& inputs_given);
 
+// The registers behind those warnings, each list ascending.
+struct UnsetRegisters {
+  std::vector<int> constants;   // read, set by neither a def nor constants_given
+  std::vector<int> overridden;  // in constants_given, and defined by a def (which wins)
+  std::vector<int> inputs;      // read, not in inputs_given
+  std::vector<int> unread;      // in constants_given but never read (relative addressing aside)
+};
+UnsetRegisters FindUnsetRegisters(const Program& program, const std::vector<int>& constants_given,
+                                  const std::vector<int>& inputs_given);
+
+// How a caller names what sets registers, for UnsetRegisterError: `vs11 run`'s flags or Python's
+// arguments.
+struct RegisterSources {
+  std::string_view constants;  // "a def, --consts or --const"
+  std::string_view inputs;     // "--input or --sphere"
+  std::string_view allow;      // how to run anyway: "--missing zeros"
+};
+// Why a run that refuses unset registers (the default: --missing error, missing='error') stops, or
+// nullopt when the program reads nothing unset: "the program reads c4, which neither a def, --consts
+// or --const sets (they set c44, which it never reads); ...; pass --missing zeros to ...".
+std::optional<std::string> UnsetRegisterError(const UnsetRegisters& unset, const std::vector<int>& inputs_given,
+                                              const RegisterSources& sources);
+
 // Vertex CSV: one vertex a row. Cells are separated by ',' (or by ';' when the first row holds
 // one; a ',' is then refused as a likely decimal comma), and by blanks or tabs in either. Numbers
 // include inf, -inf and nan. A first row of names only is a header; a first row of numbers is data.

@@ -97,11 +97,19 @@ TEST_F(Vs11MetadataAndUsage, UsageErrorsExitTwoAndNameTheCulprit) {
   EXPECT_EQ(RunVs11("run --help").status, 0);
 }
 
-TEST_F(Vs11MetadataAndUsage, RunWarnsAboutConstantsAndInputsNobodySets) {
+TEST_F(Vs11MetadataAndUsage, RunRefusesConstantsAndInputsNobodySetsUnlessAskedToReadZeros) {
   std::string program = Write("xform.vsh", "vs_1_1\ndef c4, 1, 1, 1, 1\ndcl_position v0\ndcl_normal v1\n"
                                            "m4x4 oPos, v0, c0\nmul oD0, v1, c4\n");
   std::string positions = Write("pos.csv", "1,2,3\n");
-  CommandResult r = RunVs11("run " + program + " --input v0=" + positions + " --const c4=0,0,0,0 --const c1=1,0,0,0");
+  const std::string command = "run " + program + " --input v0=" + positions + " --const c4=0,0,0,0 --const c1=1,0,0,0";
+  CommandResult refused = RunVs11(command + " --const c9=1,1,1,1");
+  EXPECT_EQ(refused.status, 2) << refused.output;
+  EXPECT_THAT(refused.output, HasSubstr("reads c0, c2, c3, which neither a def, --consts nor --const sets (they set "
+                                        "c9, which it never reads)"));
+  EXPECT_THAT(refused.output, HasSubstr("reads v1, which no --input, --sphere, --mesh, --npy or --buffer supplies "
+                                        "(given: v0); pass --missing zeros"));
+  EXPECT_THAT(refused.output, Not(HasSubstr("oPos.x")));
+  CommandResult r = RunVs11(command + " --missing zeros");
   EXPECT_EQ(r.status, 0) << r.output;
   EXPECT_THAT(r.output, HasSubstr("reads c0, c2, c3, which no def"));
   EXPECT_THAT(r.output, HasSubstr("def of c4 overrides"));
@@ -112,7 +120,7 @@ TEST_F(Vs11MetadataAndUsage, RunWarnsAboutConstantsAndInputsNobodySets) {
 TEST_F(Vs11MetadataAndUsage, RunReadsTheCsvItWritesBackByColumnName) {
   std::string program = Write("p.vsh", "vs_1_1\ndcl_position v0\ndcl_normal v1\nmov oPos, v0\nmov oD0.xyz, v1\n");
   std::string first = (dir_ / "first.csv").string();
-  ASSERT_EQ(RunVs11("run " + program + " --sphere 3 --out " + first).status, 0);
+  ASSERT_EQ(RunVs11("run " + program + " --sphere 3 --missing zeros --out " + first).status, 0);
   std::string second = (dir_ / "second.csv").string();
   CommandResult again = RunVs11("run " + program + " --input v0=" + first + ":oPos --input v1=" + first +
                                 ":oD0.x,oD0.y,oD0.z --out " + second);

@@ -97,20 +97,22 @@ TEST_F(Vs11Cli, RunPrintsCsvFromInputsAndConstants) {
   std::string source = Write("p.vsh", kProgram);
   std::string normals = Write("n.csv", "nx,ny,nz\n1,2,3\n4,5,6\n");
   std::string consts = Write("k.txt", "def c4, 10, 20, 30, 40\n");
-  CommandResult r = RunVs11("run " + source + " --input v1=" + normals + " --consts " + consts + " --engine ref");
+  CommandResult r =
+      RunVs11("run " + source + " --input v1=" + normals + " --consts " + consts + " --engine ref --missing zeros");
   ASSERT_EQ(r.status, 0) << r.output;
   EXPECT_THAT(r.output, ::testing::EndsWith(
                             "\noPos.x,oPos.y,oPos.z,oPos.w,oD0.x,oD0.y,oD0.z\n0,0,0,1,11,22,33\n0,0,0,1,14,25,36\n"));
-  // v0 is read but not given: said, not silent.
+  // v0 is read but not given: allowed by --missing zeros, and said, not silent.
   EXPECT_THAT(r.output, ::testing::HasSubstr("p.vsh: warning: the program reads v0, which no --input"));
-  CommandResult batch = RunVs11("run " + source + " --input v1=" + normals + " --consts " + consts + " --const c4=1,1,1,1");
+  CommandResult batch = RunVs11("run " + source + " --input v1=" + normals + " --consts " + consts +
+                                " --const c4=1,1,1,1 --missing zeros");
   EXPECT_NE(batch.output.find("0,0,0,1,2,3,4\n"), std::string::npos) << batch.output;
 }
 
 TEST_F(Vs11Cli, RunSphereUsesTheDeclaredNormalAndWritesAtomically) {
   std::string source = Write("p.vsh", kProgram);
   std::string out = (dir_ / "o.csv").string();
-  ASSERT_EQ(RunVs11("run " + source + " --sphere 5 --out " + out).status, 0);
+  ASSERT_EQ(RunVs11("run " + source + " --sphere 5 --missing zeros --out " + out).status, 0);
   std::ifstream in(out);
   std::string header;
   std::getline(in, header);
@@ -159,8 +161,8 @@ TEST_F(Vs11Cli, Dx8ReadOfUnwrittenLanesWarnsAndStrictRefuses) {
   EXPECT_THAT(strict.output, ::testing::HasSubstr("skin.vsh:3:1: error: mul: reads r4.w"));
   EXPECT_FALSE(fs::exists(output));
   EXPECT_EQ(RunVs11("validate --strict " + source).status, 1);
-  EXPECT_EQ(RunVs11("run --strict " + source + " --sphere 2 --sphere-reg v0").status, 1);
-  EXPECT_EQ(RunVs11("run " + source + " --sphere 2 --sphere-reg v0").status, 0);
+  EXPECT_EQ(RunVs11("run --strict " + source + " --sphere 2 --sphere-reg v0 --missing zeros").status, 1);
+  EXPECT_EQ(RunVs11("run " + source + " --sphere 2 --sphere-reg v0 --missing zeros").status, 0);
 }
 
 TEST_F(Vs11Cli, ValidateJsonCarriesDiagnosticCodes) {

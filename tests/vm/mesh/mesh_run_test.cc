@@ -175,7 +175,8 @@ TEST(MeshRun, Dx8ProgramTakesAnExplicitBinding) {
 }
 
 TEST(MeshRun, BrokenModelsGiveWarningsOrErrorsNeverACrash) {
-  const std::string program = kPrograms + "directional_light.vsh --out-npy " + TempDir("broken").string() + " --mesh ";
+  const std::string program =
+      kPrograms + "directional_light.vsh --missing zeros --out-npy " + TempDir("broken").string() + " --mesh ";
   auto infinite = Vs11Run(program + kAssimpModels + "/glTF2/BoxWithInfinites-glTF-Binary/BoxWithInfinites.glb");
   EXPECT_EQ(infinite.status, 0) << infinite.output;
   EXPECT_NE(infinite.output.find("warning: "), std::string::npos);
@@ -305,7 +306,8 @@ TEST(MeshRun, OutMeshPlyCarriesClampedColoursAndSaysSo) {
   auto result = Vs11Run(kPrograms + "directional_light.vsh --mesh " + wuson +
                         " --const c0=1,0,0,0 --const c1=0,1,0,0 --const c2=0,0,1,0 --const c3=0,0,0,1"
                         " --const c4=1,0,0,0 --const c5=0,1,0,0 --const c6=0,0,1,0 --const c7=0,0.6,0.8,0"
-                        " --const c8=0,0,5,1 --const c9=1.5,0.8,0.6,1 --const c11=-0.2,0,0,0 --out-mesh " +
+                        " --const c8=0,0,5,1 --const c9=1.5,0.8,0.6,1 --const c10=0,0,0,0 --const c11=-0.2,0,0,0"
+                        " --const c12=0,0,0,0 --out-mesh " +
                         (dir / "lit.ply").string() + " --out-npy " + (dir / "npy").string());
   ASSERT_EQ(result.status, 0) << result.output;
   const std::optional<std::string> bytes = ReadWholeFile(dir / "lit.ply");
