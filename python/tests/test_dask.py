@@ -1,4 +1,4 @@
-"""vs11.dask.label_dataset on a LocalCluster of two worker processes: the records are batch()'s, bit
+"""vs11.dask.label_dataset on a LocalCluster of two worker processes: the records are iter_batch()'s, bit
 for bit; a killed worker's tasks are done again with no record lost or written twice; resume.
 
 ctest runs this file as its own test (python.dask): `python3 test_dask.py` exits 77 (skipped) where
@@ -69,10 +69,10 @@ def dataset(tmp_path_factory):
 
 @pytest.fixture(scope="module")
 def expected(dataset):
-    """batch()'s records in this process, by input key."""
+    """iter_batch()'s records in this process, by input key."""
     paths, broken = dataset
     with pytest.warns(UserWarning, match="broken.pfm"):
-        records = list(vs11.irradiance.batch(paths + [broken], threads=1, face_size=FACE_SIZE))
+        records = list(vs11.irradiance.iter_batch(paths + [broken], threads=1, face_size=FACE_SIZE))
     assert len(records) == len(paths)
     return {record["path"]: record for record in records}
 
@@ -108,7 +108,7 @@ def test_a_labelled_dataset_holds_batch_records_bit_for_bit_and_resumes(client, 
     assert (summary.inputs, summary.written, summary.already_done) == (13, 12, 0)
     assert len(summary.parts) == 5
     assert [f["input"] for f in summary.failed] == [broken]
-    assert summary.failed[0]["error"].startswith(broken + ": cannot read")  # batch()'s reason
+    assert summary.failed[0]["error"].startswith(broken + ": cannot read")  # iter_batch()'s reason
     assert_every_record_once_bit_for_bit(tmp_path, expected)
     failed_files = sorted(tmp_path.glob("failed-*.jsonl"))
     assert [json.loads(line)["input"] for f in failed_files for line in f.read_text().splitlines()] == [broken]

@@ -1,4 +1,4 @@
-"""Labelling a dataset on a Dask `distributed` cluster: vs11.irradiance.batch() over chunks of files.
+"""Labelling a dataset on a Dask `distributed` cluster: vs11.irradiance.iter_batch() over chunks of files.
 
     from dask.distributed import Client, LocalCluster
     import vs11.dask
@@ -120,8 +120,8 @@ def label_dataset(
     progress: True shows dask.distributed.progress (a text bar, or a widget in a notebook); a
       callable is called as progress(done_tasks, total_tasks) as each task finishes; False: nothing.
     threads: inputs each task projects at once (1 suits one worker thread per core).
-    layout, face_size, level, max_error, error_metric: as for vs11.irradiance.batch(); the records
-      are the ones batch() yields, whichever worker made them.
+    layout, face_size, level, max_error, error_metric: as for vs11.irradiance.iter_batch(); the records
+      are the ones iter_batch() yields, whichever worker made them.
 
     An input that cannot be read or used is recorded with its error (failed-*.jsonl, summary.failed)
     and the others go on; so is every input of a task Dask gave up on (KilledWorker: its workers
@@ -213,7 +213,7 @@ def _label_chunk(paths: Iterable[str], number: int, output_dir: str, done: Optio
         return result
     with warnings.catch_warnings(record=True) as caught:
         warnings.simplefilter("always")
-        records = list(_irradiance.batch(todo, **options))
+        records = list(_irradiance.iter_batch(todo, **options))
     failed = _failures(todo, records, caught)
     # The name holds the chunk's inputs: a task run again (its worker died) writes the same names,
     # replacing the first attempt's part; a later run's part for other inputs gets a name of its own.
@@ -234,7 +234,7 @@ def _label_chunk(paths: Iterable[str], number: int, output_dir: str, done: Optio
 
 
 def _failures(todo: list[str], records: list[dict[str, Any]], caught: list[Any]) -> list[dict[str, str]]:
-    """Every input of `todo` without a record, with the reason batch() warned of."""
+    """Every input of `todo` without a record, with the reason iter_batch() warned of."""
     recorded = {record["input"] for record in records}
     reasons = {}
     for warning in caught:
