@@ -56,10 +56,38 @@ def test_constant_faces_project_to_l00_only():
     np.testing.assert_allclose(result.coefficients[1:], 0.0, atol=1e-5)
 
 
-def test_lat_long_array_is_resampled_and_projected():
+def test_lat_long_array_is_projected_where_it_lies():
     latlong = np.ones((16, 32, 3))
     result = vs11.irradiance.project(latlong, face_size=8, level=0)
     np.testing.assert_allclose(result.coefficients[0], [UNIT_L00] * 3, rtol=1e-5)
+
+
+def numpy_projection(image):
+    """Radiance x basis at pixel centres x each row's exact solid angle, in float64."""
+    h, w = image.shape[:2]
+    theta, phi = np.pi * (np.arange(h) + 0.5) / h, 2 * np.pi * ((np.arange(w) + 0.5) / w - 0.5)
+    edges = np.pi * np.arange(h + 1) / h
+    omega = (2 * np.pi / w) * (np.cos(edges[:-1]) - np.cos(edges[1:]))
+    st, ct = np.sin(theta)[:, None], np.cos(theta)[:, None]
+    x, y, z = np.sin(phi)[None, :] * st, np.broadcast_to(ct, (h, w)), np.cos(phi)[None, :] * st
+    n0, n1, n2 = 0.5 / np.sqrt(np.pi), 0.5 * np.sqrt(3 / np.pi), 0.5 * np.sqrt(15 / np.pi)
+    n3, n4 = 0.25 * np.sqrt(5 / np.pi), 0.25 * np.sqrt(15 / np.pi)
+    basis = [np.full((h, w), n0), n1 * y, n1 * z, n1 * x, n2 * x * y, n2 * y * z, n3 * (3 * z * z - 1),
+             n2 * x * z, n4 * (x * x - y * y)]
+    weighted = image.astype(np.float64) * omega[:, None, None]
+    return np.stack([np.einsum("hw,hwc->c", b, weighted) for b in basis])
+
+
+@pytest.mark.parametrize("layout", ["c", "strided", "float64"])
+def test_lat_long_array_level_0_is_its_exact_projection(layout):
+    rng = np.random.default_rng(7)
+    image = rng.uniform(0.0, 1.0, (64, 128, 3)).astype(np.float32)
+    image[20:23, 40:44] = 500.0
+    given = {"c": image, "strided": np.asfortranarray(image), "float64": image.astype(np.float64)}[layout]
+    result = vs11.irradiance.project(given, face_size=16, level=0)
+    expected = numpy_projection(image)
+    assert np.abs(result.coefficients - expected).max() <= 1e-6 * np.abs(expected).max()
+    assert [level["size"] for level in result.errors["levels"]] == [16, 8, 4, 2, 1]
 
 
 def test_irradiance_map_of_a_constant_environment_is_pi():
