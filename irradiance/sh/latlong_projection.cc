@@ -23,6 +23,8 @@ constexpr int kRowsPerTask = 8;
 // most pi, a float run adds 16 products, so 2^-8 keeps 16 x FLT_MAX x pi x 2^-8 below FLT_MAX.
 constexpr int kOverflowShift = 8;
 
+static_assert(sizeof(glm::vec3) == 3 * sizeof(float), "rows of pixels are read as interleaved floats");
+
 // cos a - cos b without the cancellation of subtracting two cosines near the poles.
 double CosineDifference(double a, double b) { return 2.0 * std::sin(0.5 * (a + b)) * std::sin(0.5 * (b - a)); }
 
