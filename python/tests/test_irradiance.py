@@ -1,4 +1,5 @@
 """vs11.irradiance: project and irradiance_map against irrmap's own outputs and physics (batch: test_batch.py)."""
+import importlib.util
 import json
 import math
 import subprocess
@@ -63,19 +64,13 @@ def test_lat_long_array_is_projected_where_it_lies():
 
 
 def numpy_projection(image):
-    """Radiance x basis at pixel centres x each row's exact solid angle, in float64."""
-    h, w = image.shape[:2]
-    theta, phi = np.pi * (np.arange(h) + 0.5) / h, 2 * np.pi * ((np.arange(w) + 0.5) / w - 0.5)
-    edges = np.pi * np.arange(h + 1) / h
-    omega = (2 * np.pi / w) * (np.cos(edges[:-1]) - np.cos(edges[1:]))
-    st, ct = np.sin(theta)[:, None], np.cos(theta)[:, None]
-    x, y, z = np.sin(phi)[None, :] * st, np.broadcast_to(ct, (h, w)), np.cos(phi)[None, :] * st
-    n0, n1, n2 = 0.5 / np.sqrt(np.pi), 0.5 * np.sqrt(3 / np.pi), 0.5 * np.sqrt(15 / np.pi)
-    n3, n4 = 0.25 * np.sqrt(5 / np.pi), 0.25 * np.sqrt(15 / np.pi)
-    basis = [np.full((h, w), n0), n1 * y, n1 * z, n1 * x, n2 * x * y, n2 * y * z, n3 * (3 * z * z - 1),
-             n2 * x * z, n4 * (x * x - y * y)]
-    weighted = image.astype(np.float64) * omega[:, None, None]
-    return np.stack([np.einsum("hw,hwc->c", b, weighted) for b in basis])
+    """The benchmark's 15-line float64 NumPy projection with per-row solid angles (one copy of it)."""
+    from conftest import SOURCE_DIR
+    spec = importlib.util.spec_from_file_location("panorama_vs_cmgen",
+                                                  SOURCE_DIR / "bench" / "irradiance" / "panorama_vs_cmgen.py")
+    bench = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(bench)
+    return bench.numpy_project(image)
 
 
 @pytest.mark.parametrize("layout", ["c", "strided", "float64"])
