@@ -345,6 +345,14 @@ Image Panorama() {
   return image;
 }
 
+// Writes Panorama() to a float EXR in `folder` and makes it the job's environment (no window).
+bool UsePanoramaFile(const fs::path& folder, IrrmapOptions& options) {
+  const fs::path file = folder / "pano.exr";
+  options.environment = file.string();
+  options.window = "none";
+  return !WriteImage(Panorama(), file);
+}
+
 bool HasTiming(const IrrmapReport& report, std::string_view name) {
   return std::any_of(report.timings.begin(), report.timings.end(),
                      [&](const Timing& timing) { return timing.name == name; });
@@ -362,10 +370,7 @@ double LargestDifference(const Sh9Rgb& a, const Sh9Rgb& b) {
 }
 
 TEST_F(IrrmapJob, LatLongCoefficientsOnlyProjectThePanoramaInPlaceAndBuildNoCube) {
-  const fs::path file = folder_ / "pano.exr";
-  ASSERT_EQ(WriteImage(Panorama(), file), std::nullopt);
-  options_.environment = file.string();
-  options_.window = "none";
+  ASSERT_TRUE(UsePanoramaFile(folder_, options_));
   options_.coefficients_only = true;
   options_.no_ground_truth = true;
   options_.level = 0;
@@ -383,10 +388,7 @@ TEST_F(IrrmapJob, LatLongCoefficientsOnlyProjectThePanoramaInPlaceAndBuildNoCube
 }
 
 TEST_F(IrrmapJob, LatLongTheIrradianceMapNeedsNoCubeButTheGroundTruthResamplesOnce) {
-  const fs::path file = folder_ / "pano.exr";
-  ASSERT_EQ(WriteImage(Panorama(), file), std::nullopt);
-  options_.environment = file.string();
-  options_.window = "none";
+  ASSERT_TRUE(UsePanoramaFile(folder_, options_));
   options_.no_ground_truth = true;
   ASSERT_EQ(RunIrrmap(options_, report_), std::nullopt);
   EXPECT_FALSE(HasTiming(report_, "resample_cube"));
@@ -402,10 +404,7 @@ TEST_F(IrrmapJob, LatLongTheIrradianceMapNeedsNoCubeButTheGroundTruthResamplesOn
 }
 
 TEST_F(IrrmapJob, LatLongAnArrayInMemoryGivesWhatItsFileGives) {
-  const fs::path file = folder_ / "pano.exr";
-  ASSERT_EQ(WriteImage(Panorama(), file), std::nullopt);
-  options_.environment = file.string();
-  options_.window = "none";
+  ASSERT_TRUE(UsePanoramaFile(folder_, options_));
   options_.coefficients_only = true;
   ASSERT_EQ(RunIrrmap(options_, report_), std::nullopt);
   const Sh9Rgb from_file = report_.coefficients;
