@@ -82,6 +82,9 @@ std::optional<std::string> LoadCube(const IrrmapOptions& options, const CheckedO
     report.layout = options.layout;
     report.layout_reason = "as given";
     report.sh_source = ShSourceKindOf(EnvironmentLayout::kLatLong);
+    if (options.level && *options.level >= LevelCount(options.face_size)) {
+      return fmt::format("{} is out of range: {}", LevelWithValue(options), LevelRange(options.face_size));
+    }
     return std::nullopt;
   }
   if (options.cube) {

@@ -96,7 +96,7 @@ int DefaultLevel(int face_size);
 struct IrrmapOptions {
   std::string environment = "sky";  // a file, a {face} pattern or a BuiltinEnvironmentNames() name
   std::string layout = "auto";      // ParseLayout names; files only
-  int face_size = 256;              // built-ins; resampled lat-long and angular maps
+  int face_size = 256;              // built-ins; resampled angular maps; the grids of a lat-long map's levels
   std::optional<int> level;         // when set, max_error is not used
   // Otherwise the level is the coarsest whose error against level 0, estimated from adjacent
   // levels, stays under this fraction (CoarsestLevelWithin, irradiance/sh/level_choice.h).

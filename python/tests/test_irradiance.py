@@ -83,6 +83,8 @@ def test_lat_long_array_level_0_is_its_exact_projection(layout):
     expected = numpy_projection(image)
     assert np.abs(result.coefficients - expected).max() <= 1e-6 * np.abs(expected).max()
     assert [level["size"] for level in result.errors["levels"]] == [16, 8, 4, 2, 1]
+    with pytest.raises(ValueError, match="level"):
+        vs11.irradiance.project(given, face_size=16, level=5)
 
 
 def test_irradiance_map_of_a_constant_environment_is_pi():
