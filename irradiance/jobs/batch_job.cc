@@ -25,6 +25,7 @@
 #include "irradiance/sh/constants_output.h"
 #include "irradiance/sh/ground_truth.h"
 #include "irradiance/sh/sh9.h"
+#include "irradiance/sh/latlong_projection.h"
 #include "irradiance/sh/sh_projection.h"
 #include "vm/asm/program_file.h"
 #include "vm/core/atomic_file.h"
@@ -96,14 +97,13 @@ std::optional<std::string> ProjectInput(Job& job, const std::string& input, nloh
   LoadOptions load;
   load.layout = job.layout;
   load.face_size = job.options.face_size;
+  load.keep_latlong = true;  // projected where it lies, as irrmap does (irradiance/jobs/irrmap_environment.h)
   LoadResult loaded = LoadEnvironment(input, load);
   if (!loaded.ok()) return loaded.error;
-  face_size = loaded.environment->cube.face_size;
+  std::optional<Image>& latlong = loaded.environment->latlong;
+  face_size = latlong ? job.options.face_size : loaded.environment->cube.face_size;
   if (std::optional<std::string> error = CheckPyramidFaceSize("", face_size)) return error;
   const std::string layout(LayoutName(loaded.environment->layout));
-  std::optional<CubeMipChain> mips = BuildEnvironmentMips(std::move(loaded.environment->cube));
-  std::shared_ptr<const BasisPyramid> basis = job.basis.Get(face_size);
-  if (!mips || !basis) return fmt::format("cannot build the mip pyramids of face size {}", face_size);
   const int level_count = LevelCount(face_size);
   if (job.options.level && *job.options.level >= level_count) {
     return fmt::format("{} is out of range: face size {} has levels 0 to {}",
@@ -111,11 +111,22 @@ std::optional<std::string> ProjectInput(Job& job, const std::string& input, nloh
                        level_count - 1);
   }
   std::vector<Sh9Rgb> levels;
-  for (int level = 0; level < level_count; ++level) levels.push_back(ProjectLevel(*mips, *basis, level));
+  TexelRange range;
+  if (latlong) {
+    // One thread per input: the batch's threads are its inputs.
+    range = RangeOfTexels(*latlong);
+    const LatLongPyramid pyramid = BuildLatLongPyramid(std::move(*latlong), face_size, 1);
+    for (int level = 0; level < level_count; ++level) levels.push_back(ProjectLatLongLevel(pyramid.level(level), 1));
+  } else {
+    std::optional<CubeMipChain> mips = BuildEnvironmentMips(std::move(loaded.environment->cube));
+    std::shared_ptr<const BasisPyramid> basis = job.basis.Get(face_size);
+    if (!mips || !basis) return fmt::format("cannot build the mip pyramids of face size {}", face_size);
+    range = RangeOfTexels(mips->levels[0]);
+    for (int level = 0; level < level_count; ++level) levels.push_back(ProjectLevel(*mips, *basis, level));
+  }
   const std::vector<double> estimated = EstimateLevelErrors(levels, job.error_normals, job.metric);
   const int level = job.options.level ? *job.options.level : CoarsestLevelWithin(estimated, job.options.max_error);
   const SevenConstants constants = PackTable1(levels[level]);
-  const TexelRange range = RangeOfTexels(mips->levels[0]);
   if (std::optional<std::string> error = CheckCoefficientsFitFloat(levels[level], constants.registers, range)) {
     return error;
   }
