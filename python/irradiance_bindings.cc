@@ -2,6 +2,8 @@
 // irradiance/jobs/), so their numbers are irrmap's: the same level and program choice, the same
 // coefficients and constants. batch is in batch_bindings.cc.
 #include <cmath>
+#include <cstring>
+#include <type_traits>
 #include <filesystem>
 #include <optional>
 #include <string>
@@ -43,6 +45,14 @@ struct Projection {
 template <class T>
 Image ImageFromStrided(const char* base, const py::ssize_t* strides, int height, int width) {
   Image image(width, height);
+  const bool packed = strides[2] == sizeof(T) && strides[1] == 3 * py::ssize_t{sizeof(T)} &&
+                      strides[0] == static_cast<py::ssize_t>(width) * strides[1];
+  if constexpr (std::is_same_v<T, float>) {
+    if (packed) {  // the layout of Image's pixels: one copy, not an element at a time
+      std::memcpy(image.pixels.data(), base, image.pixels.size() * sizeof(glm::vec3));
+      return image;
+    }
+  }
   for (int y = 0; y < height; ++y) {
     for (int x = 0; x < width; ++x) {
       for (int c = 0; c < 3; ++c) {
@@ -112,10 +122,8 @@ void SetEnvironmentArray(const py::array& array, irradiance::IrrmapOptions& opti
   if (std::optional<std::string> error = irradiance::CheckFaceSizeOption("face_size", options.face_size)) {
     throw py::value_error(*error);
   }
-  irradiance::LoadResult loaded =
-      irradiance::EnvironmentFromImage(std::move(image), irradiance::EnvironmentLayout::kLatLong, options.face_size);
-  if (!loaded.ok()) throw py::value_error("environment: " + loaded.error);
-  options.cube = std::move(loaded.environment->cube);
+  // Projected where it lies (irradiance/sh/latlong_projection.h), as irrmap projects a lat-long file.
+  options.latlong = std::move(image);
   options.layout = "latlong";
   options.environment = fmt::format("lat-long array {}x{}", 2 * height, height);
 }
@@ -230,11 +238,13 @@ py::array_t<float> IrradianceMap(const py::object& environment, const std::strin
 constexpr const char* kEnvironmentArguments =
     "environment: an image file (.hdr, .exr, .pfm, .dds, ...), a six-face pattern holding '{face}',\n"
     "  a built-in name (builtin_environments()), or a NumPy float array: (6, N, N, 3) cube faces in\n"
-    "  D3D order (+x -x +y -y +z -z, N a power of two) or an (H, 2H, 3) lat-long map (resampled to\n"
-    "  face_size); radiance finite and >= 0, else ValueError.\n"
+    "  D3D order (+x -x +y -y +z -z, N a power of two) or an (H, 2H, 3) lat-long map (projected as it\n"
+    "  lies; face_size gives its coarser levels the grids of cube faces); radiance finite and >= 0,\n"
+    "  else ValueError.\n"
     "layout: auto, faces, hcross, vcross, hstrip, vstrip, latlong or angular (files only; auto goes by\n"
     "  the aspect ratio, and a square image, an angular map or one cube face, must be named).\n"
-    "face_size: faces of built-ins and of resampled lat-long and angular maps (power of two).\n"
+    "face_size: faces of built-ins and of resampled angular maps; a lat-long map's level k >= 1 is\n"
+    "  the panorama averaged to 4 (face_size >> k) x 2 (face_size >> k) (power of two).\n"
     "level: the mip level the coefficients come from; None: the coarsest within max_error.\n"
     "max_error: the error budget of the level and program choice (0.005 = 0.5 %).\n"
     "error_metric: what max_error bounds: peak (max |E - E*| / max E*, the default), rms (RMS of\n"

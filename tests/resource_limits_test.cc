@@ -173,39 +173,39 @@ TEST_F(ResourceLimits, IrrmapOutOfMemoryIsAnErrorNamingTheStageAndWritesNothing)
 
 TEST_F(ResourceLimits, IrrmapOfALatLongFileOutOfMemoryIsAnError) {
   const std::string input = TinyLatLong(dir_ / "lat.pfm");
+  // Its coefficients need no cube (the panorama is projected where it lies); its ground truth needs
+  // the 4096 cube, 1.1 GB.
+  const LimitedRun fits = RunIrrmapLimited(
+      {input, "--face-size", "4096", "--coefficients-only", "--threads", "1", "--out", Path("fits")},
+      {Baseline() + 200 * kMiB});
+  ASSERT_TRUE(fits.exited) << Describe(fits);
+  EXPECT_EQ(fits.status, 0) << Describe(fits);
   const LimitedRun run = RunIrrmapLimited(
-      {input, "--face-size", "4096", "--coefficients-only", "--threads", "1", "--out", Path("out")},
+      {input, "--face-size", "4096", "--map-size", "4", "--threads", "1", "--out", Path("out")},
       {Baseline() + 200 * kMiB});
   ASSERT_TRUE(run.exited) << Describe(run);
   EXPECT_EQ(run.status, 1) << Describe(run);
-  EXPECT_THAT(run.output, HasSubstr("lat.pfm: out of memory while")) << Describe(run);
+  EXPECT_THAT(run.output, HasSubstr("lat.pfm: out of memory while computing the ground truth")) << Describe(run);
   EXPECT_TRUE(OutputFolderIsEmpty("out"));
 }
 
-TEST_F(ResourceLimits, BatchRecordsTheFileThatRanOutOfMemoryAndGoesOn) {
-  // A cross of 512-texel faces fits; at the batch's --face-size a lat-long file does not.
+// Before lat-long maps were projected in place, b_lat.pfm at --face-size 4096 ran out of memory in
+// its resample to a cube, which was how this test reached ProcessInput's out-of-memory record. Now it
+// fits; no other input small enough to write here runs out of memory in vs11's own code (a 150 MB
+// cross ran out inside OpenImageIO's reader and aborted: see the report of issue #31's panorama part).
+TEST_F(ResourceLimits, BatchProjectsALatLongFileAtAnyFaceSizeInLittleMemory) {
   irradiance::envtest::WritePfm(dir_ / "a_cross.pfm",
                                 irradiance::CubeMapToImage(irradiance::envtest::MakeTestCube(16),
                                                            irradiance::EnvironmentLayout::kHorizontalCross));
   TinyLatLong(dir_ / "b_lat.pfm");
-  irradiance::envtest::WritePfm(dir_ / "c_cross.pfm",
-                                irradiance::CubeMapToImage(irradiance::envtest::MakeTestCube(8),
-                                                           irradiance::EnvironmentLayout::kHorizontalCross));
-  const std::vector<std::string> args = {"batch", Path("a_cross.pfm"), Path("b_lat.pfm"), Path("c_cross.pfm"),
-                                         "-o", Path("out.jsonl"), "--face-size", "4096", "--threads", "1"};
-  const Limits limits{Baseline() + 200 * kMiB};
-  for (int attempt = 0; attempt < 2; ++attempt) {  // and again with --resume: the same file fails, no abort
-    std::vector<std::string> run_args = args;
-    if (attempt == 1) run_args.push_back("--resume");
-    const LimitedRun run = RunIrrmapLimited(run_args, limits);
-    ASSERT_TRUE(run.exited) << Describe(run);
-    EXPECT_EQ(run.status, 1) << Describe(run);
-    EXPECT_THAT(run.output, HasSubstr("b_lat.pfm: out of memory while building the cube map (faces of 4096 need about 1153 MB)")) << Describe(run);
-  }
+  const LimitedRun run = RunIrrmapLimited({"batch", Path("a_cross.pfm"), Path("b_lat.pfm"), "-o", Path("out.jsonl"),
+                                           "--face-size", "4096", "--threads", "1"},
+                                          {Baseline() + 200 * kMiB});
+  ASSERT_TRUE(run.exited) << Describe(run);
+  EXPECT_EQ(run.status, 0) << Describe(run);
   const std::string records = irradiance::envtest::ReadBytes(dir_ / "out.jsonl");
   EXPECT_THAT(records, HasSubstr("a_cross.pfm"));
-  EXPECT_THAT(records, HasSubstr("c_cross.pfm"));
-  EXPECT_THAT(records, ::testing::Not(HasSubstr("b_lat.pfm")));
+  EXPECT_THAT(records, HasSubstr("b_lat.pfm"));
 }
 
 TEST_F(ResourceLimits, Vs11ToolsUnderAnAddressSpaceLimitExitCleanly) {

@@ -136,7 +136,7 @@ void AddBatchCommand(CLI::App& app) {
   batch->add_option("--layout", arguments->options.layout, "layout of every file (as irrmap's --layout)")
       ->capture_default_str();
   batch->add_option("--face-size", arguments->options.face_size,
-                    "face size of cubes resampled from latlong/angular maps (a power of two)")
+                    "face size of cubes resampled from angular maps, and the cube whose grids a latlong map's levels take (it is projected where it lies); a power of two")
       ->capture_default_str();
   CLI::Option* level = batch->add_option("--level", arguments->level, "mip level of every file (default: by --max-error)")
                           ->check(CLI::NonNegativeNumber);

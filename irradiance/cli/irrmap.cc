@@ -174,8 +174,10 @@ void AddJobOptions(CLI::App& app, JobCommandLine& line) {
                  "vstrip, latlong, angular")
       ->capture_default_str();
   app.add_option("--face-size", options.face_size,
-                 "face size of a built-in environment, or of the cube a latlong/angular map is resampled to; "
-                 "a power of two (cube files keep theirs, which must be a power of two too)")
+                 "face size of a built-in environment, or of the cube an angular map is resampled to; a latlong "
+                 "map is projected where it lies, its level k >= 1 averaged to the grid of a face of N >> k "
+                 "(4 (N >> k) x 2 (N >> k)), and resampled to an N cube only for the ground truth, preview and "
+                 "--mesh; a power of two (cube files keep theirs, which must be a power of two too)")
       ->capture_default_str();
   CLI::Option* level_option = app.add_option("--level", level,
                  "mip level the coefficients are computed from: 0 = full face size, each level halves it, down to "

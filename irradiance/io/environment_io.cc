@@ -388,7 +388,7 @@ ImageReadResult ReadImage(const std::filesystem::path& path) {
   }
 }
 
-LoadResult EnvironmentFromImage(Image image, EnvironmentLayout layout, int face_size) {
+LoadResult EnvironmentFromImage(Image image, EnvironmentLayout layout, int face_size, bool keep_latlong) {
   try {
     if (image.width <= 0 || image.height <= 0 ||
         image.pixels.size() != static_cast<std::size_t>(image.width) * image.height) {
@@ -423,6 +423,8 @@ LoadResult EnvironmentFromImage(Image image, EnvironmentLayout layout, int face_
     }
     if (const CubeGrid* grid = FindCubeGrid(layout)) {
       environment.cube = ExtractFaces(image, *grid, image.width / grid->columns);
+    } else if (layout == Layout::kLatLong && keep_latlong) {
+      environment.latlong = std::move(image);
     } else {
       if (face_size < 1 || face_size > kMaxFaceSize) {
         return Failure(fmt::format("face size {} is outside [1, {}]", face_size, kMaxFaceSize));
@@ -460,7 +462,7 @@ LoadResult LoadEnvironment(const std::filesystem::path& path, const LoadOptions&
       }
       layout = Layout::kVerticalStrip;
     }
-    LoadResult result = EnvironmentFromImage(std::move(*read.image), layout, options.face_size);
+    LoadResult result = EnvironmentFromImage(std::move(*read.image), layout, options.face_size, options.keep_latlong);
     if (result.ok() && read.is_dds_cube_map) result.environment->layout_reason = "a DDS cube map";
     if (!result.ok()) {
       result.error = fmt::format("{}: {}", path.string(), result.error);

@@ -107,10 +107,14 @@ struct LoadOptions {
   // Face size of the cube built from a lat-long or angular map, in [1, kMaxFaceSize]. Cube layouts
   // keep their own face size.
   int face_size = 256;
+  // A lat-long map is kept as it is (LoadedEnvironment::latlong, sanitised) and no cube is built:
+  // for callers that project it in place (irradiance/sh/latlong_projection.h).
+  bool keep_latlong = false;
 };
 
 struct LoadedEnvironment {
-  CubeMap cube;
+  CubeMap cube;  // empty (face_size 0) where `latlong` is set
+  std::optional<Image> latlong;  // with LoadOptions::keep_latlong, a lat-long map as read
   EnvironmentLayout layout = EnvironmentLayout::kAuto;  // the layout read (never kAuto)
   // Why that layout: "as given", "detected from the 2:1 aspect ratio of the 512 x 256 image", "a DDS
   // cube map", "six files: the path holds "{face}"".
@@ -159,8 +163,9 @@ struct ImageReadResult {
 ImageReadResult ReadImage(const std::filesystem::path& path);
 
 // Builds the cube from an image already in memory, in `layout` (kAuto: by aspect ratio as above;
-// kFaces is an error). Sanitises the image first. `face_size` is used for kLatLong and kAngular.
-LoadResult EnvironmentFromImage(Image image, EnvironmentLayout layout, int face_size);
+// kFaces is an error). Sanitises the image first. `face_size` is used for kLatLong and kAngular;
+// `keep_latlong` as LoadOptions::keep_latlong.
+LoadResult EnvironmentFromImage(Image image, EnvironmentLayout layout, int face_size, bool keep_latlong = false);
 
 // Replaces NaN and infinite channels by 0 and clamps negative ones to 0; returns how many pixels
 // had at least one channel changed.

@@ -52,7 +52,7 @@ struct BatchOptions {
   int threads = 0;      // 0: every core; at most pool's threads run at once
   ThreadPool* pool = nullptr;  // the threads inputs run on; null: ThreadPool::Default()
   std::string layout = "auto";
-  int face_size = 256;  // lat-long and angular maps are resampled to this
+  int face_size = 256;  // angular maps are resampled to this; a lat-long map's levels take its grids
   std::optional<int> level;
   double max_error = kDefaultMaxLevelError;
   std::string error_metric{ErrorMetricName(kDefaultErrorMetric)};  // what max_error bounds, as irrmap's

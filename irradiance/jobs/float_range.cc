@@ -9,19 +9,26 @@
 
 namespace vs11::irradiance {
 
-TexelRange RangeOfTexels(const CubeMap& cube) {
+TexelRange RangeOfTexels(const Image& image) {
   TexelRange range{std::numeric_limits<float>::infinity(), -std::numeric_limits<float>::infinity()};
-  bool any = false;
-  for (const Image& face : cube.faces) {
-    for (const glm::vec3& texel : face.pixels) {
-      for (int c = 0; c < 3; ++c) {
-        range.min = std::min(range.min, texel[c]);
-        range.max = std::max(range.max, texel[c]);
-        any = true;
-      }
+  for (const glm::vec3& texel : image.pixels) {
+    for (int c = 0; c < 3; ++c) {
+      range.min = std::min(range.min, texel[c]);
+      range.max = std::max(range.max, texel[c]);
     }
   }
-  return any ? range : TexelRange{};
+  return image.pixels.empty() ? TexelRange{} : range;
+}
+
+TexelRange RangeOfTexels(const CubeMap& cube) {
+  TexelRange range{std::numeric_limits<float>::infinity(), -std::numeric_limits<float>::infinity()};
+  for (const Image& face : cube.faces) {
+    const TexelRange face_range = RangeOfTexels(face);
+    if (face.pixels.empty()) continue;
+    range.min = std::min(range.min, face_range.min);
+    range.max = std::max(range.max, face_range.max);
+  }
+  return range.min <= range.max ? range : TexelRange{};
 }
 
 std::string BeyondFloatRangeMessage(std::string_view what, const TexelRange& range) {

@@ -24,6 +24,7 @@ struct TexelRange {
   float max = 0.0f;
 };
 TexelRange RangeOfTexels(const CubeMap& cube);
+TexelRange RangeOfTexels(const Image& image);
 
 // "<what> is beyond float range (texels from MIN to MAX): scale the environment down", the message
 // of a job that fails for it.

@@ -111,7 +111,7 @@ std::optional<std::string> CheckOptions(const IrrmapOptions& options, CheckedOpt
     if (auto error = CheckOutputsAreNotInputs(options, options.mesh ? options.mesh->name : "")) return error;
   }
   std::error_code ec;
-  const bool exists = options.cube || fs::exists(options.environment, ec);
+  const bool exists = options.cube || options.latlong || fs::exists(options.environment, ec);
   checked.builtin = IsBuiltinName(options.environment) && !exists;
   if (!checked.builtin && !exists && options.environment.find(kFaceToken) == std::string::npos) {
     return fmt::format("environment '{}' is neither an existing file nor a built-in ({})", options.environment,

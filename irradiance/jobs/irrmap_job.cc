@@ -27,6 +27,7 @@
 #include "irradiance/io/environments.h"
 #include "irradiance/jobs/engine_exports.h"
 #include "irradiance/jobs/irrmap_checks.h"
+#include "irradiance/jobs/irrmap_environment.h"
 #include "irradiance/jobs/irrmap_outputs.h"
 #include "irradiance/render/preview.h"
 #include "irradiance/report/preview_errors.h"
@@ -74,8 +75,20 @@ auto Timed(IrrmapReport& report, std::string name, F&& stage) {
 }
 
 
+// Fills `cube`, or `latlong` for a lat-long map, which is projected where it lies.
 std::optional<std::string> LoadCube(const IrrmapOptions& options, const CheckedOptions& checked,
-                                    IrrmapReport& report, CubeMap& cube) {
+                                    IrrmapReport& report, CubeMap& cube, std::optional<Image>& latlong) {
+  if (options.latlong) {
+    latlong = *options.latlong;
+    report.environment = options.environment;
+    report.layout = options.layout;
+    report.layout_reason = "as given";
+    report.sh_source = ShSourceKindOf(EnvironmentLayout::kLatLong);
+    if (options.level && *options.level >= LevelCount(options.face_size)) {
+      return fmt::format("{} is out of range: {}", LevelWithValue(options), LevelRange(options.face_size));
+    }
+    return std::nullopt;
+  }
   if (options.cube) {
     cube = *options.cube;
     report.environment = options.environment;
@@ -104,11 +117,13 @@ std::optional<std::string> LoadCube(const IrrmapOptions& options, const CheckedO
   LoadOptions load;
   load.layout = checked.layout;
   load.face_size = options.face_size;
+  load.keep_latlong = true;
   LoadResult loaded = LoadEnvironment(options.environment, load);
   report.usage_error = loaded.needs_layout;
   if (!loaded.ok()) return loaded.error;
   for (std::string& warning : loaded.environment->warnings) report.warnings.push_back(std::move(warning));
   cube = std::move(loaded.environment->cube);
+  latlong = std::move(loaded.environment->latlong);
   report.environment = options.environment;
   report.layout = std::string(LayoutName(loaded.environment->layout));
   report.layout_reason = loaded.environment->layout_reason;
@@ -121,21 +136,21 @@ std::optional<std::string> LoadCube(const IrrmapOptions& options, const CheckedO
                                           OptionWithValue(OptionName(options.naming, "face-size"), options.face_size),
                                           options.environment, report.layout, cube.face_size, cube.face_size));
   }
-  if (std::optional<std::string> error = CheckPyramidFaceSize(options.environment, cube.face_size)) return error;
-  if (options.level && *options.level >= LevelCount(cube.face_size)) {
-    return fmt::format("{} is out of range: {}", LevelWithValue(options), LevelRange(cube.face_size));
+  const int face_size = latlong ? options.face_size : cube.face_size;
+  if (std::optional<std::string> error = CheckPyramidFaceSize(options.environment, face_size)) return error;
+  if (options.level && *options.level >= LevelCount(face_size)) {
+    return fmt::format("{} is out of range: {}", LevelWithValue(options), LevelRange(face_size));
   }
   return std::nullopt;
 }
 
-// Mean time of ProjectLevel at one level, in ms, repeated until `min_ms` have passed.
-double TimeProjection(const CubeMipChain& mips, const BasisPyramid& basis, int level, Sh9Rgb& coefficients,
-                      double min_ms) {
+// Mean time of one level's projection, in ms, repeated until `min_ms` have passed.
+double TimeProjection(const IrrmapEnvironment& environment, int level, Sh9Rgb& coefficients, double min_ms) {
   const Clock::time_point start = Clock::now();
   int runs = 0;
   double elapsed = 0.0;
   do {
-    coefficients = ProjectLevel(mips, basis, level);
+    coefficients = environment.Project(level);
     ++runs;
     elapsed = MillisecondsSince(start);
   } while (elapsed < min_ms && runs < kMaxTimingRuns);
@@ -422,9 +437,8 @@ struct IrrmapRun {
   const IrrmapProgress& progress;
   CheckedOptions checked;
   EngineOptions engine_options;
-  int face_size = 0;                    // of the environment's cube (its texels live in mips)
-  std::optional<CubeMipChain> mips;
-  std::shared_ptr<const BasisPyramid> basis;
+  int face_size = 0;                    // of the environment's cube (or the cube a panorama stands for)
+  IrrmapEnvironment environment;
   std::optional<PaperProgram> program;  // the nine terms: the level table's and the preview's errors
   std::optional<PaperProgram> chosen_program;
   ConstantBank chosen_bank;
@@ -445,10 +459,11 @@ struct IrrmapRun {
 
 std::optional<std::string> LoadStage(IrrmapRun& run) {
   CubeMap cube;
+  std::optional<Image> latlong;
   // Loading has no fraction to report: the bar shows the stage at 0 % and at its end.
   if (run.progress) run.progress("load", 0.0);
   std::optional<std::string> error =
-      Timed(run.report, "load", [&] { return LoadCube(run.options, run.checked, run.report, cube); });
+      Timed(run.report, "load", [&] { return LoadCube(run.options, run.checked, run.report, cube, latlong); });
   if (error) return error;
   if (run.progress) run.progress("load", 1.0);
   // Hashed after loading, so that a file the loader refused is reported as the loader says.
@@ -463,19 +478,39 @@ std::optional<std::string> LoadStage(IrrmapRun& run) {
     });
     if (error) return error;
   }
-  run.face_size = run.report.face_size = cube.face_size;
+  IrrmapEnvironment& environment = run.environment;
+  environment.threads = run.checked.threads;
+  if (latlong) {
+    run.face_size = run.report.face_size = environment.face_size = run.options.face_size;
+    run.report.texel_range = RangeOfTexels(*latlong);
+    // The pyramid takes the panorama as its level 0 rather than a second copy.
+    environment.panorama = Timed(run.report, "latlong_pyramid", [&] {
+      return BuildLatLongPyramid(std::move(*latlong), run.face_size, run.checked.threads);
+    });
+    return std::nullopt;
+  }
+  run.face_size = run.report.face_size = environment.face_size = cube.face_size;
   run.report.texel_range = RangeOfTexels(cube);
   // The pyramid takes the map as its level 0 rather than a second copy.
-  run.mips = Timed(run.report, "env_mips", [&] { return BuildEnvironmentMips(std::move(cube)); });
-  run.basis = Timed(run.report, "basis_pyramid", [&]() -> std::shared_ptr<const BasisPyramid> {
+  environment.mips = Timed(run.report, "env_mips", [&] { return BuildEnvironmentMips(std::move(cube)); });
+  environment.basis = Timed(run.report, "basis_pyramid", [&]() -> std::shared_ptr<const BasisPyramid> {
     if (run.options.shared_basis) return run.options.shared_basis(run.face_size);
     std::optional<BasisPyramid> built =
         BuildBasisPyramid(run.face_size, run.checked.threads, run.FractionsOf("basis pyramid"));
     if (!built) return nullptr;
     return std::make_shared<const BasisPyramid>(std::move(*built));
   });
-  if (!run.mips || !run.basis) return fmt::format("cannot build the mip pyramids of face size {}", run.face_size);
+  if (!environment.mips || !environment.basis) {
+    return fmt::format("cannot build the mip pyramids of face size {}", run.face_size);
+  }
   return std::nullopt;
+}
+
+// The environment as a cube, for the stages that read one: a panorama is resampled the first time,
+// timed as "resample_cube".
+const CubeMap& EnvironmentCube(IrrmapRun& run) {
+  if (run.environment.NeedsResample()) Timed(run.report, "resample_cube", [&] { run.environment.Cube(); });
+  return run.environment.Cube();
 }
 
 // Every level's coefficients (each update timed on its own), the level and window chosen, the
@@ -487,7 +522,7 @@ std::optional<std::string> CoefficientsStage(IrrmapRun& run) {
       LevelReport row;
       row.level = level;
       row.size = run.face_size >> level;
-      row.update_ms = TimeProjection(*run.mips, *run.basis, level, row.coefficients,
+      row.update_ms = TimeProjection(run.environment, level, row.coefficients,
                                      run.options.coefficients_only ? 0.0 : kMinTimingMs);
       report.levels.push_back(row);
     }
@@ -528,10 +563,11 @@ std::optional<std::string> CoefficientsStage(IrrmapRun& run) {
 
 std::optional<std::string> MeshStage(IrrmapRun& run) {
   const IrrmapOptions& options = run.options;
+  const CubeMap& cube = EnvironmentCube(run);
   run.lighting = Timed(run.report, "mesh", [&] {
     MeshLightingOptions mesh_options{run.checked.engine, run.engine_options, run.checked.threads,
                                      options.mesh_truth_vertex_limit, options.mesh_panel_size};
-    return LightMesh(*options.mesh, *run.program, run.report.constants, run.mips->levels[0], mesh_options);
+    return LightMesh(*options.mesh, *run.program, run.report.constants, cube, mesh_options);
   });
   const MeshLighting& lighting = run.lighting;
   for (const std::string& warning : lighting.warnings) run.report.warnings.push_back(warning);
@@ -599,8 +635,9 @@ std::optional<std::string> GroundTruthStage(IrrmapRun& run) {
   run.error_normals = SphereNormals(run.options.error_normals);
   std::vector<glm::dvec3> truth_normals = run.error_normals;
   truth_normals.insert(truth_normals.end(), run.grid.normals().begin(), run.grid.normals().end());
+  const CubeMap& cube = EnvironmentCube(run);
   std::vector<glm::dvec3> truth = Timed(report, "ground_truth", [&] {
-    return GroundTruthIrradiance(run.mips->levels[0], truth_normals, run.checked.threads,
+    return GroundTruthIrradiance(cube, truth_normals, run.checked.threads,
                                  run.FractionsOf("ground truth"));
   });
   const auto grid_start = truth.begin() + static_cast<std::ptrdiff_t>(run.error_normals.size());
@@ -625,6 +662,7 @@ std::optional<std::string> GroundTruthStage(IrrmapRun& run) {
 
 std::optional<std::string> PreviewStage(IrrmapRun& run) {
   const IrrmapReport& report = run.report;
+  const CubeMap& cube = EnvironmentCube(run);
   run.preview = Timed(run.report, "preview", [&] {
     PreviewOptions preview_options;
     preview_options.sphere_diameter = run.options.sphere_diameter;
@@ -656,7 +694,7 @@ std::optional<std::string> PreviewStage(IrrmapRun& run) {
     for (std::size_t p = 0; p < panels.size(); ++p) {
       run.report.preview_panels.push_back({panels[p].label, errors.captions[p]});
     }
-    return RenderPreview(sphere, truth_panel, panels, errors, run.mips->levels[0], preview_options);
+    return RenderPreview(sphere, truth_panel, panels, errors, cube, preview_options);
   });
   for (const std::string& warning : run.preview.warnings) run.report.warnings.push_back(warning);
   run.outputs.push_back({kPreviewFile, [&run](const fs::path& path) { return WriteImage(run.preview.image, path); }});

@@ -3,6 +3,7 @@
 //
 //   load ENV ─> environment mip pyramid ─┐
 //   basis pyramid (once per face size) ──┴─> ProjectLevel(K) = 9 RGB coefficients
+//   (a lat-long ENV: its own pyramid, projected in place: irradiance/jobs/irrmap_environment.h)
 //     ─> PackTable1 = the 7 constant registers ─> the paper's vertex program (sh9_irradiance.vsh) on
 //        the vs_1_1 machine, once per texel direction of the irradiance cube map
 //   plus: the coefficients of every level compared with brute-force integration (ground truth) over
@@ -18,7 +19,9 @@
 //                    "size", "update_ms", "max_relative_error", "mean_relative_error", "peak_error",
 //                    "rms_error", "peak_error_channels" and "rms_error_channels" ({"r", "g", "b",
 //                    "luminance"}; see ErrorStats), "estimated_error"}, ...],
-//                    "timings_ms": {"load", "hash" (the input files' SHA-256), "env_mips", "basis_pyramid", "level_updates" (every
+//                    "timings_ms": {"load", "hash" (the input files' SHA-256), "env_mips", "basis_pyramid" (a cube map) or
+//                    "latlong_pyramid" (a lat-long map, projected in place; "resample_cube" where
+//                    a later stage needs it as a cube), "level_updates" (every
 //                    level, each repeated for timing), "projection" (the chosen level's update),
 //                    "constants", "program" (assembling it), "irradiance_map", "ground_truth",
 //                    "level_errors", "preview"}}; the final "write" is in IrrmapReport only
@@ -99,7 +102,7 @@ int DefaultLevel(int face_size);
 struct IrrmapOptions {
   std::string environment = "sky";  // a file, a {face} pattern or a BuiltinEnvironmentNames() name
   std::string layout = "auto";      // ParseLayout names; files only
-  int face_size = 256;              // built-ins; resampled lat-long and angular maps
+  int face_size = 256;              // built-ins; resampled angular maps; the grids of a lat-long map's levels
   std::optional<int> level;         // when set, max_error is not used
   // Otherwise the level is the coarsest whose error against level 0, estimated from adjacent
   // levels, stays under this fraction (CoarsestLevelWithin, irradiance/sh/level_choice.h).
@@ -133,6 +136,8 @@ struct IrrmapOptions {
   // An environment already in memory (the Python module's arrays), used instead of loading
   // `environment`, which then only names it in the report; `layout` is what it was made from.
   std::optional<CubeMap> cube;
+  // Or a lat-long map in memory (sanitised, width == 2 height), projected in place as a loaded one is.
+  std::optional<Image> latlong;
   // False: no file is written and out_dir is not used; the results are in the report only.
   bool write_files = true;
   // How option errors and warnings name an option: "--max-error 2" (the tool) or "max_error=2" (Python).

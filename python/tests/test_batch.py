@@ -172,7 +172,9 @@ def test_closing_the_generator_stops_the_work(tmp_path, monkeypatch):
 
 
 def test_the_gil_is_released_while_the_generator_waits(tmp_path):
-    write_pfm(tmp_path / "big.pfm", np.ones((256, 512, 3), np.float32))
+    # A cross of 512-texel faces: its mip and basis pyramids take a while (a lat-long map would not:
+    # it is projected where it lies, in a few milliseconds).
+    write_pfm(tmp_path / "big.pfm", np.ones((3 * 512, 4 * 512, 3), np.float32))
     ticks = []
     stop = threading.Event()
 

@@ -1,4 +1,5 @@
 """vs11.irradiance: project and irradiance_map against irrmap's own outputs and physics (batch: test_batch.py)."""
+import importlib.util
 import json
 import math
 import subprocess
@@ -56,10 +57,34 @@ def test_constant_faces_project_to_l00_only():
     np.testing.assert_allclose(result.coefficients[1:], 0.0, atol=1e-5)
 
 
-def test_lat_long_array_is_resampled_and_projected():
+def test_lat_long_array_is_projected_where_it_lies():
     latlong = np.ones((16, 32, 3))
     result = vs11.irradiance.project(latlong, face_size=8, level=0)
     np.testing.assert_allclose(result.coefficients[0], [UNIT_L00] * 3, rtol=1e-5)
+
+
+def numpy_projection(image):
+    """The benchmark's 15-line float64 NumPy projection with per-row solid angles (one copy of it)."""
+    from conftest import SOURCE_DIR
+    spec = importlib.util.spec_from_file_location("panorama_vs_cmgen",
+                                                  SOURCE_DIR / "bench" / "irradiance" / "panorama_vs_cmgen.py")
+    bench = importlib.util.module_from_spec(spec)
+    spec.loader.exec_module(bench)
+    return bench.numpy_project(image)
+
+
+@pytest.mark.parametrize("layout", ["c", "strided", "float64"])
+def test_lat_long_array_level_0_is_its_exact_projection(layout):
+    rng = np.random.default_rng(7)
+    image = rng.uniform(0.0, 1.0, (64, 128, 3)).astype(np.float32)
+    image[20:23, 40:44] = 500.0
+    given = {"c": image, "strided": np.asfortranarray(image), "float64": image.astype(np.float64)}[layout]
+    result = vs11.irradiance.project(given, face_size=16, level=0)
+    expected = numpy_projection(image)
+    assert np.abs(result.coefficients - expected).max() <= 1e-6 * np.abs(expected).max()
+    assert [level["size"] for level in result.errors["levels"]] == [16, 8, 4, 2, 1]
+    with pytest.raises(ValueError, match="level"):
+        vs11.irradiance.project(given, face_size=16, level=5)
 
 
 def test_irradiance_map_of_a_constant_environment_is_pi():

@@ -244,6 +244,8 @@ std::optional<std::string> ReadAndDecode(OpenedImage& opened, int channels, OIIO
 // Reads the pixels as linear RGB. Integer data holds sRGB-encoded values unless the reader says it
 // is linear; 8- and 16-bit codes (every channel of one type) are read as they are and decoded by
 // table, other integer types as float through SrgbToLinear.
+static_assert(sizeof(glm::vec3) == 3 * sizeof(float), "rows of pixels are read as interleaved floats");
+
 std::optional<std::string> ReadLinearRgb(OpenedImage& opened, Image& image) {
   const OIIO::ImageSpec& spec = opened.spec;
   const int channels = std::min(spec.nchannels, 3);
@@ -251,6 +253,16 @@ std::optional<std::string> ReadLinearRgb(OpenedImage& opened, Image& image) {
       !IsFloatType(spec.format) &&
       AsciiLower(std::string(spec.get_string_attribute("oiio:ColorSpace"))) != "linear";
   const auto as_float = [](float value) { return value; };
+  if (!decode_srgb && channels == 3) {
+    // RGB floats are the layout of Image's pixels: read straight into them, without a second
+    // buffer of the whole image and a copy (150 MB for a cross of 1024 faces).
+    Image read(spec.width, spec.height);
+    if (std::optional<std::string> error = ReadPixels(opened, 3, OIIO::TypeDesc::FLOAT, read.pixels.data())) {
+      return error;
+    }
+    image = std::move(read);
+    return std::nullopt;
+  }
   if (!decode_srgb) {
     return ReadAndDecode<float>(opened, channels, OIIO::TypeDesc::FLOAT, as_float, image);
   }

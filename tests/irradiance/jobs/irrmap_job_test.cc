@@ -1,6 +1,7 @@
 #include "irradiance/jobs/irrmap_job.h"
 
 #include <algorithm>
+#include <string_view>
 #include <cmath>
 #include <filesystem>
 #include <fstream>
@@ -18,6 +19,7 @@
 #include "irradiance/io/environment_io.h"
 #include "irradiance/io/environments.h"
 #include "irradiance/report/program_references.h"
+#include "irradiance/sh/latlong_projection.h"
 #include "irradiance/sh/sh_projection.h"
 #include "vm/io/vertex_io.h"
 
@@ -327,6 +329,92 @@ TEST_F(IrrmapJob, AFolderInPlaceOfAnOutputFailsBeforeAnythingIsReplaced) {
   EXPECT_THAT(*error, HasSubstr("preview.png"));
   EXPECT_EQ(ReadText(options_.out_dir / "coeffs.json"), "old");
   EXPECT_EQ(std::distance(fs::directory_iterator(options_.out_dir), fs::directory_iterator()), 2);
+}
+
+// ---- lat-long maps: projected where they lie, resampled to a cube only for the stages that read one
+
+// A 256 x 128 panorama: a gradient and a small bright patch.
+Image Panorama() {
+  Image image(256, 128);
+  for (int y = 0; y < image.height; ++y) {
+    for (int x = 0; x < image.width; ++x) {
+      const bool patch = x >= 90 && x < 96 && y >= 30 && y < 34;
+      image.at(x, y) = glm::vec3(0.2f + 0.005f * static_cast<float>(y), 0.5f, patch ? 400.0f : 0.1f);
+    }
+  }
+  return image;
+}
+
+// Writes Panorama() to a float EXR in `folder` and makes it the job's environment (no window).
+bool UsePanoramaFile(const fs::path& folder, IrrmapOptions& options) {
+  const fs::path file = folder / "pano.exr";
+  options.environment = file.string();
+  options.window = "none";
+  return !WriteImage(Panorama(), file);
+}
+
+bool HasTiming(const IrrmapReport& report, std::string_view name) {
+  return std::any_of(report.timings.begin(), report.timings.end(),
+                     [&](const Timing& timing) { return timing.name == name; });
+}
+
+double LargestDifference(const Sh9Rgb& a, const Sh9Rgb& b) {
+  double worst = 0.0, largest = 0.0;
+  for (int i = 0; i < kSh9Coefficients; ++i) {
+    for (int c = 0; c < 3; ++c) {
+      worst = std::max(worst, std::abs(a.coefficients[i][c] - b.coefficients[i][c]));
+      largest = std::max(largest, std::abs(b.coefficients[i][c]));
+    }
+  }
+  return worst / largest;
+}
+
+TEST_F(IrrmapJob, LatLongCoefficientsOnlyProjectThePanoramaInPlaceAndBuildNoCube) {
+  ASSERT_TRUE(UsePanoramaFile(folder_, options_));
+  options_.coefficients_only = true;
+  options_.no_ground_truth = true;
+  options_.level = 0;
+  ASSERT_EQ(RunIrrmap(options_, report_), std::nullopt);
+  EXPECT_TRUE(HasTiming(report_, "latlong_pyramid"));
+  EXPECT_FALSE(HasTiming(report_, "resample_cube"));
+  EXPECT_FALSE(HasTiming(report_, "env_mips"));
+  EXPECT_EQ(report_.layout, "latlong");
+  EXPECT_EQ(report_.face_size, 32);
+  ASSERT_EQ(report_.levels.size(), 6u);
+  for (int k = 0; k < 6; ++k) EXPECT_EQ(report_.levels[static_cast<std::size_t>(k)].size, 32 >> k);
+  // Level 0 is the panorama's own exact projection, which the cube route approximates.
+  EXPECT_LT(LargestDifference(report_.coefficients, ProjectLatLong(Panorama())), 1e-12);
+  EXPECT_LT(LargestDifference(report_.coefficients, ProjectDirect(ResampleLatLong(Panorama(), 32))), 2e-3);
+}
+
+TEST_F(IrrmapJob, LatLongTheIrradianceMapNeedsNoCubeButTheGroundTruthResamplesOnce) {
+  ASSERT_TRUE(UsePanoramaFile(folder_, options_));
+  options_.no_ground_truth = true;
+  ASSERT_EQ(RunIrrmap(options_, report_), std::nullopt);
+  EXPECT_FALSE(HasTiming(report_, "resample_cube"));
+  EXPECT_EQ(report_.irradiance_map.face_size, 16);
+  options_.no_ground_truth = false;
+  ASSERT_EQ(RunIrrmap(options_, report_), std::nullopt);
+  EXPECT_EQ(std::count_if(report_.timings.begin(), report_.timings.end(),
+                          [](const Timing& timing) { return timing.name == "resample_cube"; }),
+            1);
+  EXPECT_TRUE(report_.errors_measured);
+  // The nine terms of a smooth panorama against the exact convolution of its cube.
+  EXPECT_LT(report_.levels[0].error.max_peak, 0.2);
+}
+
+TEST_F(IrrmapJob, LatLongAnArrayInMemoryGivesWhatItsFileGives) {
+  ASSERT_TRUE(UsePanoramaFile(folder_, options_));
+  options_.coefficients_only = true;
+  ASSERT_EQ(RunIrrmap(options_, report_), std::nullopt);
+  const Sh9Rgb from_file = report_.coefficients;
+  const int level = report_.level;
+  options_.latlong = Panorama();
+  options_.environment = "array";
+  options_.layout = "latlong";
+  ASSERT_EQ(RunIrrmap(options_, report_), std::nullopt);
+  EXPECT_EQ(report_.level, level);
+  EXPECT_EQ(LargestDifference(report_.coefficients, from_file), 0.0);
 }
 
 }  // namespace

@@ -1,0 +1,8 @@
+// The lat-long row sums compiled for Highway's AVX3 target (see irradiance/sh/latlong_kernels-inl.h).
+#include "hwy/detect_targets.h"
+
+#if HWY_TARGETS & HWY_AVX3
+#undef HWY_TARGET
+#define HWY_TARGET HWY_AVX3
+#include "irradiance/sh/latlong_kernels-inl.h"
+#endif
