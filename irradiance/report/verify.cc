@@ -15,6 +15,7 @@
 #include "vm/asm/assembler.h"
 #include "vm/asm/validator.h"
 #include "vm/core/input_file.h"
+#include "vm/core/register_names.h"
 #include "vm/engines/engine_factory.h"
 
 namespace vs11::irradiance {
@@ -185,17 +186,16 @@ std::string FormatVec(const glm::dvec4& v, WriteMask lanes) {
 // ---- metadata -------------------------------------------------------------------------------------
 
 std::optional<int> ParseInputRegister(std::string_view name) {
-  name = Trim(name);
-  if (name.size() < 2 || std::tolower(static_cast<unsigned char>(name[0])) != 'v') return std::nullopt;
-  std::optional<int> index = ParseIndex(name.substr(1));
+  std::optional<int> index = ParseNumberedRegister(Trim(name), RegisterFile::kInput);
   if (!index || *index >= kInputRegisterCount) return std::nullopt;
   return index;
 }
 
 std::optional<int> ParseConstantRegister(std::string_view name) {
   name = Trim(name);
-  if (name.size() < 2 || std::tolower(static_cast<unsigned char>(name[0])) != 'c') return std::nullopt;
-  std::string_view rest = name.substr(1);
+  const std::size_t prefix = NumberedRegisterPrefix(name, RegisterFile::kConst);
+  if (prefix == 0 || prefix == name.size()) return std::nullopt;
+  std::string_view rest = name.substr(prefix);
   if (rest.front() == '[') {
     if (rest.back() != ']') return std::nullopt;
     rest = Trim(rest.substr(1, rest.size() - 2));
