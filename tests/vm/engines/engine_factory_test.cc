@@ -39,7 +39,9 @@ TEST(EngineRegistry, ListsTheEnginesOfThisFolderFirstInOrder) {
   ASSERT_GE(names.size(), 3u);
   EXPECT_EQ(std::vector<std::string>(names.begin(), names.begin() + 3), (std::vector<std::string>{"ref", "batch", "jit"}));
   EXPECT_TRUE(EngineNameList().starts_with("ref, batch"));
-  EXPECT_TRUE(EngineDescriptions().starts_with("ref (scalar reference), batch (SIMD kernels), jit ("));
+  // "..., jit (...)" or "... or jit (...)": the gl engine may be registered by an earlier test.
+  EXPECT_TRUE(EngineDescriptions().starts_with("ref (scalar reference), batch (SIMD kernels)"));
+  EXPECT_NE(EngineDescriptions().find("jit (the program compiled to AVX-512 or AVX2 code"), std::string::npos);
 }
 
 TEST(EngineRegistry, FindsAnEngineByNameOrAliasOnly) {
@@ -79,7 +81,7 @@ TEST(EngineRegistry, AnUnknownNameGivesAnEngineThatSaysWhichThereAre) {
   const Program program = FogProgram();
   std::unique_ptr<Engine> engine = MakeEngine("warp", program, ConstantBank());
   ASSERT_NE(engine, nullptr);
-  EXPECT_NE(engine->error().find("the warp engine is not part of this program (it has ref, batch, jit"),
+  EXPECT_NE(engine->error().find("the warp engine is not part of this program (it has ref, batch"),
             std::string::npos)
       << engine->error();
   const VertexArrays inputs = MakeInputArrays(1, std::vector<int>{0});

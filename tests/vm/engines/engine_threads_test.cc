@@ -18,6 +18,7 @@
 #include "vm/core/machine.h"
 #include "vm/engines/batch_engine.h"
 #include "vm/engines/engine_factory.h"
+#include "vm/engines/jit_options.h"
 
 namespace vs11 {
 namespace {
