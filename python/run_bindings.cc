@@ -15,17 +15,18 @@ namespace {
 
 constexpr int kMaxThreads = 256;  // as the tools' --threads
 
-EngineKind CheckedEngine(const std::string& engine, const py::int_& threads) {
-  std::optional<EngineKind> kind = EngineKindFromName(engine);
-  if (!kind) throw py::value_error(fmt::format("engine='{}': use 'ref', 'batch' or 'jit'", engine));
-  if (*kind == EngineKind::kGl) {
+std::string CheckedEngine(const std::string& engine, const py::int_& threads) {
+  std::optional<EngineInfo> kind = FindEngine(engine);
+  // The module registers no engine of its own: vm/gl's would bring EGL into every Python process.
+  if (!kind && engine == "gl") {
     throw py::value_error("engine='gl': the gl engine runs in the vs11 and irrmap tools only (the module does not "
                           "link EGL)");
   }
+  if (!kind) throw py::value_error(fmt::format("engine='{}': use {}", engine, EngineNameList("'")));
   if (SaturatedInt(threads) < 1 || SaturatedInt(threads) > kMaxThreads) {
     throw py::value_error(fmt::format("threads={} is out of range: 1 to {}", std::string(py::str(py::handle(threads))), kMaxThreads));
   }
-  return *kind;
+  return std::string(kind->name);
 }
 
 FloatRules CheckedFloatRules(const std::string& name) {
@@ -62,7 +63,7 @@ void CheckUnsetRegisters(const PyProgram& self, const std::vector<int>& constant
 
 py::dict Run(const PyProgram& self, const py::dict& inputs, const py::object& constants, const std::string& engine,
              const py::int_& threads, const std::string& float_rules, const std::string& missing) {
-  const EngineKind kind = CheckedEngine(engine, threads);
+  const std::string kind = CheckedEngine(engine, threads);
   const FloatRules rules = CheckedFloatRules(float_rules);
   std::vector<int> constants_given;
   const ConstantBank bank = ConstantsFromPython(constants, self.constant_count, constants_given);
@@ -80,7 +81,7 @@ py::dict Run(const PyProgram& self, const py::dict& inputs, const py::object& co
 
 py::object Trace(const PyProgram& self, const py::dict& inputs, const py::object& constants, const py::int_& vertex_number,
                  const std::string& engine, const std::string& float_rules, const std::string& missing) {
-  const EngineKind kind = CheckedEngine(engine, py::int_(1));
+  const std::string kind = CheckedEngine(engine, py::int_(1));
   const long long vertex = SaturatedInt(vertex_number);
   const std::string vertex_text = py::str(py::handle(vertex_number));
   const FloatRules rules = CheckedFloatRules(float_rules);

@@ -268,7 +268,7 @@ std::optional<Case> BuildCase(const Workload& workload, std::size_t count, std::
     }
   }
   c.vs11_outputs = MakeOutputArrays(count, *c.program);
-  MakeEngine(EngineKind::kJit, *c.program, c.constants)->Run(c.inputs, c.vs11_outputs);
+  MakeEngine("jit", *c.program, c.constants)->Run(c.inputs, c.vs11_outputs);
   return c;
 }
 
@@ -393,14 +393,14 @@ json Measure(const std::vector<Case>& cases, std::optional<int> lp_threads, int 
       return [&drawn, &error, target = &run](int calls) { drawn = target->Draw(calls, error) && drawn; };
     };
     VertexArrays vs11_outputs = MakeOutputArrays(c.inputs.count(), *c.program);
-    const auto engine_run = [&](EngineKind kind) {
+    const auto engine_run = [&](std::string kind) {
       std::shared_ptr<Engine> engine = MakeEngine(kind, *c.program, c.constants);
       return [&, engine](int calls) {
         for (int k = 0; k < calls; ++k) engine->Run(c.inputs, vs11_outputs);
       };
     };
     std::vector<Timed> workloads = {{draw(*shaded), {}}, {draw(*passthrough), {}},
-                                    {engine_run(EngineKind::kJit), {}}, {engine_run(EngineKind::kBatch), {}}};
+                                    {engine_run("jit"), {}}, {engine_run("batch"), {}}};
     TimeInTurns(workloads, c.inputs.count(), repetitions, cpu_time);
     if (!drawn) return {{"error", fmt::format("{}: {}", c.workload->name, error)}};
     entry["llvmpipe"] = Median(workloads[0].samples);

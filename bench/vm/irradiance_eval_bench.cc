@@ -103,7 +103,7 @@ void EvalTable1Simd(const irradiance::SevenConstants& constants, const float* x,
 
 namespace {
 
-void RunEngine(benchmark::State& state, EngineKind kind, EngineOptions options = {}) {
+void RunEngine(benchmark::State& state, std::string kind, EngineOptions options = {}) {
   const std::size_t count = static_cast<std::size_t>(state.range(0));
   const irradiance::ProgramForVerify loaded = LoadBenchProgram(ProgramPath("sh9_irradiance.vsh"));
   const Program& program = *loaded.program;
@@ -120,11 +120,11 @@ void RunEngine(benchmark::State& state, EngineKind kind, EngineOptions options =
   state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()) * static_cast<std::int64_t>(count));
 }
 
-void BM_Irradiance_Reference(benchmark::State& state) { RunEngine(state, EngineKind::kReference); }
-void BM_Irradiance_Batch(benchmark::State& state) { RunEngine(state, EngineKind::kBatch); }
-void BM_Irradiance_Jit(benchmark::State& state) { RunEngine(state, EngineKind::kJit); }
+void BM_Irradiance_Reference(benchmark::State& state) { RunEngine(state, "ref"); }
+void BM_Irradiance_Batch(benchmark::State& state) { RunEngine(state, "batch"); }
+void BM_Irradiance_Jit(benchmark::State& state) { RunEngine(state, "jit"); }
 void BM_Irradiance_JitThreads(benchmark::State& state) {
-  RunEngine(state, EngineKind::kJit, {.threads = static_cast<int>(state.range(1))});
+  RunEngine(state, "jit", {.threads = static_cast<int>(state.range(1))});
 }
 
 template <auto kEval>
@@ -159,7 +159,7 @@ const bool kIsasRegistered = [] {
   for (JitIsa isa : jit::SupportedIsas()) {
     const std::string name = std::string("BM_Irradiance_Jit_").append(jit::IsaName(isa));
     benchmark::RegisterBenchmark(name.c_str(), [isa](benchmark::State& state) {
-      RunEngine(state, EngineKind::kJit, {.jit_isa = isa});
+      RunEngine(state, "jit", WithJitIsa({}, isa));
     })->Arg(1024)->Arg(65536)->Arg(1 << 20);
   }
   return true;

@@ -95,7 +95,7 @@ void ShareBones(VertexArrays& inputs) {
 }
 
 // `highway_target`: the Highway target the batch engine's kernels are taken from (0: the CPU's best).
-void RunProgram(benchmark::State& state, const std::filesystem::path& path, EngineKind kind, EngineOptions options,
+void RunProgram(benchmark::State& state, const std::filesystem::path& path, std::string kind, EngineOptions options,
                 int vertices, std::int64_t highway_target = 0, bool share_bones = false) {
   const irradiance::ProgramForVerify loaded = LoadBenchProgram(path);
   const Program& program = *loaded.program;
@@ -122,7 +122,7 @@ const bool kRegistered = [] {
   }
   std::sort(paths.begin(), paths.end());
   for (const auto& path : paths) {
-    const auto add = [&path](const std::string& label, EngineKind kind, EngineOptions options) {
+    const auto add = [&path](const std::string& label, std::string kind, EngineOptions options) {
       const std::string name = "BM_Program/" + path.stem().string() + "/" + label;
       benchmark::RegisterBenchmark(name.c_str(), [path, kind, options](benchmark::State& state) {
         RunProgram(state, path, kind, options, kProgramVertices);
@@ -134,36 +134,36 @@ const bool kRegistered = [] {
       if (threads > 2 && static_cast<unsigned>(threads) > std::thread::hardware_concurrency()) continue;
       const std::string name = "BM_Program/" + path.stem().string() + "/threads:" + std::to_string(threads);
       auto* bench = benchmark::RegisterBenchmark(name.c_str(), [path, threads](benchmark::State& state) {
-        RunProgram(state, path, EngineKind::kJit, {.threads = threads}, static_cast<int>(state.range(0)));
+        RunProgram(state, path, "jit", {.threads = threads}, static_cast<int>(state.range(0)));
       });
       for (const int vertices : kThreadVertexCounts) bench->Arg(vertices);
       bench->Unit(benchmark::kMicrosecond)->UseRealTime()->MeasureProcessCPUTime();
     }
-    for (EngineKind kind : {EngineKind::kReference, EngineKind::kBatch, EngineKind::kJit}) {
-      add(std::string(EngineName(kind)), kind, {});
+    for (std::string kind : {"ref", "batch", "jit"}) {
+      add(std::string(kind), kind, {});
     }
     // --float-rules legacy: what the compares and selects around every product cost.
-    for (EngineKind kind : {EngineKind::kBatch, EngineKind::kJit}) {
-      add(std::string(EngineName(kind)) + "_legacy", kind, {.float_rules = FloatRules::kLegacy});
+    for (std::string kind : {"batch", "jit"}) {
+      add(std::string(kind) + "_legacy", kind, {.float_rules = FloatRules::kLegacy});
     }
     // /jit is the CPU's best instruction set; the narrower ones it also runs are measured too.
     const std::vector<JitIsa> isas = jit::SupportedIsas();
     for (std::size_t k = 0; k + 1 < isas.size(); ++k) {
-      add(std::string("jit_").append(jit::IsaName(isas[k])), EngineKind::kJit, {.jit_isa = isas[k]});
+      add(std::string("jit_").append(jit::IsaName(isas[k])), "jit", WithJitIsa({}, isas[k]));
     }
     // The batch engine's AVX2 kernels beside jit_avx2: what an AVX2-only machine runs with either.
     if (isas.size() > 1 && (hwy::SupportedTargets() & HWY_AVX2) != 0) {
       const std::string name = "BM_Program/" + path.stem().string() + "/batch_avx2";
       benchmark::RegisterBenchmark(name.c_str(), [path](benchmark::State& state) {
-        RunProgram(state, path, EngineKind::kBatch, {}, kProgramVertices, HWY_AVX2);
+        RunProgram(state, path, "batch", {}, kProgramVertices, HWY_AVX2);
       })->Unit(benchmark::kMicrosecond);
     }
     // /<engine>/bones_shared_by_64: skinning as a mesh gives it bones (ShareBones).
     if (path.stem() == "skinning") {
       std::vector<std::pair<std::string, EngineOptions>> engines = {{"batch", {}}, {"jit", {}}};
-      if (isas.size() > 1) engines.emplace_back("jit_avx2", EngineOptions{.jit_isa = JitIsa::kAvx2});
+      if (isas.size() > 1) engines.emplace_back("jit_avx2", WithJitIsa({}, JitIsa::kAvx2));
       for (const auto& [label, options] : engines) {
-        const EngineKind kind = label == "batch" ? EngineKind::kBatch : EngineKind::kJit;
+        const std::string kind = label == "batch" ? "batch" : "jit";
         const std::string name = "BM_Program/skinning/" + label + "/bones_shared_by_64";
         benchmark::RegisterBenchmark(name.c_str(), [path, kind, options](benchmark::State& state) {
           RunProgram(state, path, kind, options, kProgramVertices, 0, /*share_bones=*/true);

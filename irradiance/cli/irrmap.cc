@@ -21,6 +21,7 @@
 #include "vm/cli/parse_command_line.h"
 #include "vm/core/atomic_file.h"
 #include "vm/core/version.h"
+#include "vm/engines/engine_factory.h"
 #include "vm/gl/gl_context.h"
 #include "vm/gl/gl_engine.h"
 
@@ -206,9 +207,7 @@ void AddJobOptions(CLI::App& app, JobCommandLine& line) {
       ->capture_default_str();
   app.add_option("--out", out_dir, "output directory")->capture_default_str();
   app.add_option("--engine", options.engine,
-                 "vertex machine engine: ref (reference, scalar), batch (SIMD kernels), jit (compiled to AVX-512 or "
-                 "AVX2 code; batch kernels without AVX2) or gl (the GLSL ES translation on Mesa's llvmpipe through "
-                 "EGL, or on --gl-device N)")
+                 "vertex machine engine: " + vs11::EngineDescriptions())
       ->capture_default_str();
   app.add_option("--gl-device", line.gl_device,
                  "EGL device for --engine gl: 'list' prints them; N picks one (default: Mesa's llvmpipe)")
@@ -285,8 +284,9 @@ int RunJob(const CLI::App& app, JobCommandLine& line) {
     if (devices.empty()) fmt::print(stderr, "irrmap: error: {}\n", error);
     return devices.empty() ? kJobError : 0;
   }
-  options.gl_device = vs11::gl::GlDeviceIndex(line.gl_device);
-  if (options.gl_device && options.engine != "gl") {
+  const std::optional<int> gl_device = vs11::gl::GlDeviceIndex(line.gl_device);
+  options.engine_settings.Set(vs11::gl::GlOptions{gl_device});
+  if (gl_device && options.engine != "gl") {
     fmt::print(stderr, "irrmap: warning: --gl-device applies to --engine gl only; --engine {} ignores it\n",
                options.engine);
   }

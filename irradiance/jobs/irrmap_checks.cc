@@ -59,9 +59,9 @@ std::optional<std::string> CheckOptionValues(const IrrmapOptions& options, Check
                        options.layout);
   }
   checked.layout = *layout;
-  std::optional<EngineKind> engine = EngineKindFromName(options.engine);
-  if (!engine) return fmt::format("unknown engine '{}' (use ref, batch, jit or gl)", options.engine);
-  checked.engine = *engine;
+  std::optional<EngineInfo> engine = FindEngine(options.engine);
+  if (!engine) return fmt::format("unknown engine '{}' (use {})", options.engine, EngineNameList());
+  checked.engine = engine->name;
   std::optional<ShWindow> window = ParseShWindow(options.window);
   if (!window) {
     return fmt::format("unknown window '{}' (use none, hanning, lanczos, dering or nonneg)", options.window);

@@ -14,7 +14,7 @@ namespace vs11::irradiance {
 // What the options say once checked.
 struct CheckedOptions {
   EnvironmentLayout layout = EnvironmentLayout::kAuto;
-  EngineKind engine = EngineKind::kBatch;
+  std::string engine = "batch";
   ShWindow window = ShWindow::kNone;
   std::optional<ShOrder> order;  // nullopt: chosen by max_error
   ErrorMetric metric = kDefaultErrorMetric;

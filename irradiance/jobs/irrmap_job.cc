@@ -223,7 +223,7 @@ nlohmann::ordered_json CoefficientsJson(const IrrmapReport& report, const Irrmap
   json["face_size"] = report.face_size;
   json["layout"] = report.layout;
   json["environment"] = report.environment;
-  json["engine"] = std::string(EngineName(checked.engine));
+  json["engine"] = std::string(checked.engine);
   json["map_size"] = options.map_size;
   json["constants"] = ConstantsJson(report.constants);
   const ShOrderInfo& order = Info(report.order);
@@ -727,16 +727,16 @@ std::string OutOfMemoryMessage(const IrrmapRun& run, std::string_view doing) {
                      face_size, (ProjectionMemoryBytes(face_size) >> 20) + 1);
 }
 
-// An engine that depends on a driver (the gl engine) is built once for the paper's program before any
-// work: where no device can be had, the job ends with its error instead of evaluating to NaN.
-std::optional<std::string> CheckEngine(EngineKind kind, const EngineOptions& engine_options) {
-  if (kind == EngineKind::kReference || kind == EngineKind::kBatch || kind == EngineKind::kJit) return std::nullopt;
+// The engine is built once for the paper's program before any work: where one that depends on a driver
+// (the gl engine) has no device, the job ends with its error instead of evaluating to NaN. (The CPU
+// engines never fail; building them costs microseconds.)
+std::optional<std::string> CheckEngine(const std::string& kind, const EngineOptions& engine_options) {
   std::string error;
   const std::optional<PaperProgram> paper = PaperProgram::LoadOrder(ShOrder::kOrder2, error);
   if (!paper) return error;
   const std::string engine_error = MakeEngine(kind, paper->program(), ConstantBank(), engine_options)->error();
   if (engine_error.empty()) return std::nullopt;
-  return fmt::format("--engine {}: {}", EngineName(kind), engine_error);
+  return fmt::format("--engine {}: {}", kind, engine_error);
 }
 
 }  // namespace
@@ -749,7 +749,7 @@ std::optional<std::string> RunIrrmap(const IrrmapOptions& options, IrrmapReport&
   if (!error) {
     report.threads = run.checked.threads;
     run.engine_options = EngineOptions{run.checked.threads};
-    run.engine_options.gl_device = options.gl_device;
+    run.engine_options.settings = options.engine_settings;
     error = CheckEngine(run.checked.engine, run.engine_options);
   }
   if (!error) {

@@ -118,8 +118,9 @@ struct IrrmapOptions {
   std::string window = "none";      // ShWindowName names, applied to every level's coefficients
   double window_width = kDefaultWindowWidth;  // bands, for hanning and lanczos
   std::filesystem::path out_dir = "out";
-  std::string engine = "jit";       // EngineKindFromName names; "gl" needs vm/gl's RegisterGlEngine
-  std::optional<int> gl_device;     // --engine gl: EngineOptions::gl_device
+  std::string engine = "jit";       // a registered engine (vm/engines/engine_factory.h); "gl" needs vm/gl's
+                                    // RegisterGlEngine
+  EngineSettings engine_settings{}; // the engine's own options (--engine gl --gl-device N: vm/gl's GlOptions)
   int threads = 0;                  // 0: std::thread::hardware_concurrency()
   int map_size = kDefaultMapSize;   // irradiance cube map face size, 1..kMaxMapSize
   int error_normals = kDefaultErrorNormals;

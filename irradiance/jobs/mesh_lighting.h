@@ -45,7 +45,7 @@ struct MeshGeometry {
 };
 
 struct MeshLightingOptions {
-  EngineKind engine = EngineKind::kBatch;
+  std::string engine = "batch";
   EngineOptions engine_options;
   int threads = 1;  // ground truth
   std::size_t truth_vertex_limit = kDefaultMeshTruthVertexLimit;  // 0: always compute it

@@ -76,13 +76,13 @@ ConstantBank PaperProgram::Constants(std::span<const NamedRegister> registers) c
 }
 
 std::vector<glm::dvec3> PaperProgram::Irradiance(const SevenConstants& constants,
-                                                 std::span<const glm::dvec3> normals, EngineKind engine,
+                                                 std::span<const glm::dvec3> normals, std::string engine,
                                                  const EngineOptions& engine_options) const {
   return Irradiance(Constants(constants), normals, engine, engine_options);
 }
 
 std::vector<glm::dvec3> PaperProgram::Irradiance(const ConstantBank& bank, std::span<const glm::dvec3> normals,
-                                                 EngineKind engine, const EngineOptions& engine_options) const {
+                                                 std::string engine, const EngineOptions& engine_options) const {
   const std::array<int, 1> input_registers = {normal_register_};
   VertexArrays inputs = MakeInputArrays(normals.size(), input_registers);
   for (int c = 0; c < 3; ++c) {

@@ -44,9 +44,9 @@ class PaperProgram {
   ConstantBank Constants(std::span<const NamedRegister> registers) const;
   // Runs the program once per normal (as (x, y, z, 1) in floats) and returns the output's rgb.
   std::vector<glm::dvec3> Irradiance(const SevenConstants& constants, std::span<const glm::dvec3> normals,
-                                     EngineKind engine, const EngineOptions& engine_options = {}) const;
+                                     std::string engine, const EngineOptions& engine_options = {}) const;
   std::vector<glm::dvec3> Irradiance(const ConstantBank& bank, std::span<const glm::dvec3> normals,
-                                     EngineKind engine, const EngineOptions& engine_options = {}) const;
+                                     std::string engine, const EngineOptions& engine_options = {}) const;
 
  private:
   Program program_;

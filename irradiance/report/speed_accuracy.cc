@@ -151,7 +151,7 @@ std::optional<std::string> RunSpeedAccuracySweep(const SpeedAccuracyOptions& opt
                                                                  : ProjectDirect(mips.levels[level]);
         });
         const std::vector<glm::dvec3> estimate =
-            program->Irradiance(PackTable1(coefficients), normals, EngineKind::kBatch, engine_options);
+            program->Irradiance(PackTable1(coefficients), normals, "batch", engine_options);
         point.error = CompareIrradiance(estimate, truth, normals);
         result.points.push_back(point);
         if (method != ProjectionMethod::kMipPyramid) continue;
@@ -161,7 +161,7 @@ std::optional<std::string> RunSpeedAccuracySweep(const SpeedAccuracyOptions& opt
           const PaperProgram& order_program = order_programs[o];
           reduced.error = CompareIrradiance(
               order_program.Irradiance(order_program.Constants(PackShOrder(coefficients, reduced.order)), normals,
-                                       EngineKind::kBatch, engine_options),
+                                       "batch", engine_options),
               truth, normals);
           result.points.push_back(reduced);
         }

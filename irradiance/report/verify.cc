@@ -15,6 +15,7 @@
 #include "vm/asm/assembler.h"
 #include "vm/asm/validator.h"
 #include "vm/core/input_file.h"
+#include "vm/core/register_names.h"
 #include "vm/engines/engine_factory.h"
 
 namespace vs11::irradiance {
@@ -185,17 +186,16 @@ std::string FormatVec(const glm::dvec4& v, WriteMask lanes) {
 // ---- metadata -------------------------------------------------------------------------------------
 
 std::optional<int> ParseInputRegister(std::string_view name) {
-  name = Trim(name);
-  if (name.size() < 2 || std::tolower(static_cast<unsigned char>(name[0])) != 'v') return std::nullopt;
-  std::optional<int> index = ParseIndex(name.substr(1));
+  std::optional<int> index = ParseNumberedRegister(Trim(name), RegisterFile::kInput);
   if (!index || *index >= kInputRegisterCount) return std::nullopt;
   return index;
 }
 
 std::optional<int> ParseConstantRegister(std::string_view name) {
   name = Trim(name);
-  if (name.size() < 2 || std::tolower(static_cast<unsigned char>(name[0])) != 'c') return std::nullopt;
-  std::string_view rest = name.substr(1);
+  const std::size_t prefix = NumberedRegisterPrefix(name, RegisterFile::kConst);
+  if (prefix == 0 || prefix == name.size()) return std::nullopt;
+  std::string_view rest = name.substr(prefix);
   if (rest.front() == '[') {
     if (rest.back() != ']') return std::nullopt;
     rest = Trim(rest.substr(1, rest.size() - 2));
@@ -392,7 +392,7 @@ VerifyReport Verify(const Program& program, const ProgramMetadata& metadata, con
 std::string FormatVerifyReport(const VerifyReport& report) {
   if (!report.error.empty()) return "error: " + report.error + "\n";
   std::string text = fmt::format("reference {}, engine {}, {} vertices, seed {}\n", report.description,
-                                 EngineName(report.engine), report.vertices, report.seed);
+                                 report.engine, report.vertices, report.seed);
   for (const OutputReport& out : report.outputs) {
     text += fmt::format("  {:<9} max abs {:.3e}  rms abs {:.3e}  max rel {:.3e}  rms rel {:.3e}  (scale {:.6g})  "
                         "tolerance {:.1e}  {}\n",
@@ -426,7 +426,7 @@ std::string VerifyReportJson(const VerifyReport& report) {
   }
   json["reference"] = report.reference;
   json["description"] = report.description;
-  json["engine"] = std::string(EngineName(report.engine));
+  json["engine"] = std::string(report.engine);
   json["vertices"] = report.vertices;
   json["seed"] = report.seed;
   json["pass"] = report.pass;
@@ -480,7 +480,7 @@ EngineComparison CompareOutputArrays(const VertexArrays& a, const VertexArrays& 
   return comparison;
 }
 
-EngineComparison CompareEngines(const Program& program, EngineKind a, EngineKind b, const ConstantBank& constants,
+EngineComparison CompareEngines(const Program& program, std::string a, std::string b, const ConstantBank& constants,
                                 const VertexArrays& inputs, const EngineOptions& engine_options) {
   const std::size_t count = inputs.count();
   VertexArrays out_a = MakeOutputArrays(count, program);
@@ -499,7 +499,7 @@ EngineComparison CompareEngines(const Program& program, EngineKind a, EngineKind
   return comparison;
 }
 
-EngineComparison VerifyEngines(const Program& program, const ProgramMetadata& metadata, EngineKind a, EngineKind b,
+EngineComparison VerifyEngines(const Program& program, const ProgramMetadata& metadata, std::string a, std::string b,
                                const VerifyOptions& options) {
   if (metadata.reference.empty()) {
     RandomCase rc = MakeRandomCase(program, options);
@@ -533,12 +533,12 @@ EngineComparison VerifyEngines(const Program& program, const ProgramMetadata& me
 std::string FormatEngineComparison(const EngineComparison& c) {
   if (!c.error.empty()) return "error: " + c.error + "\n";
   std::string text = fmt::format("engines {} and {}, {} vertices, {}\n  {} of {} output lanes differ\n",
-                                 EngineName(c.a), EngineName(c.b), c.vertices, c.inputs, c.differing_lanes,
+                                 c.a, c.b, c.vertices, c.inputs, c.differing_lanes,
                                  c.lanes_compared);
   if (c.first) {
     text += fmt::format("  first difference: vertex {}, {}.{}: {} {:.9g} (0x{:08X}), {} {:.9g} (0x{:08X})\n",
-                        c.first->vertex, OutputSlotName(c.first->slot), kLaneLetters[c.first->lane], EngineName(c.a),
-                        c.first->a, std::bit_cast<std::uint32_t>(c.first->a), EngineName(c.b), c.first->b,
+                        c.first->vertex, OutputSlotName(c.first->slot), kLaneLetters[c.first->lane], c.a,
+                        c.first->a, std::bit_cast<std::uint32_t>(c.first->a), c.b, c.first->b,
                         std::bit_cast<std::uint32_t>(c.first->b));
   }
   text += c.identical() ? "IDENTICAL\n" : "DIFFERENT\n";
@@ -552,8 +552,8 @@ std::string EngineComparisonJson(const EngineComparison& c) {
     json["identical"] = false;
     return json.dump(2);
   }
-  json["engine_a"] = std::string(EngineName(c.a));
-  json["engine_b"] = std::string(EngineName(c.b));
+  json["engine_a"] = std::string(c.a);
+  json["engine_b"] = std::string(c.b);
   json["inputs"] = c.inputs;
   json["vertices"] = c.vertices;
   json["lanes_compared"] = c.lanes_compared;

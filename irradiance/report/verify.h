@@ -69,7 +69,7 @@ inline constexpr double kDefaultVerifyTolerance = 1e-5;
 inline constexpr int kDefaultVerifySamples = 256;
 
 struct VerifyOptions {
-  EngineKind engine = EngineKind::kBatch;
+  std::string engine = "batch";
   EngineOptions engine_options;
   std::optional<Sh9Rgb> coefficients;  // sh9; default RandomCoefficients(seed)
   std::uint64_t seed = 1;
@@ -107,7 +107,7 @@ struct VerifyReport {
                                      // engine that could not be had or failed: the gl engine's error())
   std::string reference;
   std::string description;           // the reference's own account of registers and packing
-  EngineKind engine = EngineKind::kBatch;
+  std::string engine = "batch";
   std::size_t vertices = 0;
   std::uint64_t seed = 0;
   std::vector<OutputReport> outputs;  // the primary output first
@@ -132,7 +132,7 @@ struct EngineDifference {
 
 struct EngineComparison {
   std::string error;
-  EngineKind a = EngineKind::kReference, b = EngineKind::kBatch;
+  std::string a = "ref", b = "batch";
   std::string inputs;                // where the inputs came from: a reference or random values
   std::size_t vertices = 0;
   std::size_t lanes_compared = 0;    // vertices x every lane of every written output register
@@ -146,13 +146,13 @@ EngineComparison CompareOutputArrays(const VertexArrays& a, const VertexArrays& 
 
 // Runs the program on both engines with the same constants and inputs and compares every lane of
 // every output register it writes, bit for bit (NaNs equal only with equal bits).
-EngineComparison CompareEngines(const Program& program, EngineKind a, EngineKind b, const ConstantBank& constants,
+EngineComparison CompareEngines(const Program& program, std::string a, std::string b, const ConstantBank& constants,
                                 const VertexArrays& inputs, const EngineOptions& engine_options = {});
 
 // The same with the inputs of the metadata's reference when it names one, otherwise reproducible
 // random inputs in [-2, 2] for every input register the program reads and random constants in
 // [-2, 2] for every constant register (options.seed, options.samples vertices).
-EngineComparison VerifyEngines(const Program& program, const ProgramMetadata& metadata, EngineKind a, EngineKind b,
+EngineComparison VerifyEngines(const Program& program, const ProgramMetadata& metadata, std::string a, std::string b,
                                const VerifyOptions& options);
 
 std::string FormatEngineComparison(const EngineComparison& comparison);

@@ -11,6 +11,7 @@
 #include "vm/asm/preprocessor.h"
 #include "vm/core/diagnostic.h"
 #include "vm/core/program.h"
+#include "vm/core/register_names.h"
 
 namespace vs11 {
 
@@ -47,27 +48,6 @@ LexedLine Lex(const PreprocessedLine& line, Diagnostics& diagnostics);
 
 // The location of `token` on `line`.
 SourceLoc LocOf(const LexedLine& line, const Token& token);
-
-// How registers are spelled (§2.2, §1.6). A "numbered" spelling is followed by a decimal number
-// (r7, oT3); a fixed one names a single register (oPos). Names are matched case-insensitively and
-// printed as written here.
-struct RegisterSpelling {
-  std::string_view name;
-  RegisterFile file;
-  int fixed_index;  // kNumbered, or the register number the name stands for
-  static constexpr int kNumbered = -1;
-};
-inline constexpr std::array kRegisterSpellings = {
-    RegisterSpelling{"oPos", RegisterFile::kRasterOut, kRasterOutPosition},
-    RegisterSpelling{"oFog", RegisterFile::kRasterOut, kRasterOutFog},
-    RegisterSpelling{"oPts", RegisterFile::kRasterOut, kRasterOutPointSize},
-    RegisterSpelling{"oD", RegisterFile::kAttributeOut, RegisterSpelling::kNumbered},
-    RegisterSpelling{"oT", RegisterFile::kTexCoordOut, RegisterSpelling::kNumbered},
-    RegisterSpelling{"r", RegisterFile::kTemp, RegisterSpelling::kNumbered},
-    RegisterSpelling{"v", RegisterFile::kInput, RegisterSpelling::kNumbered},
-    RegisterSpelling{"c", RegisterFile::kConst, RegisterSpelling::kNumbered},
-    RegisterSpelling{"a", RegisterFile::kAddress, RegisterSpelling::kNumbered},
-};
 
 // Version statements (§2.1 item 4). The DX9 spellings come first: the disassembler prints the first
 // spelling of a version token.

@@ -14,6 +14,7 @@
 #include "vm/core/input_file.h"
 #include "vm/engines/engine_factory.h"
 #include "vm/gl/gl_context.h"
+#include "vm/gl/gl_engine.h"
 
 namespace vs11::cli {
 
@@ -71,11 +72,8 @@ Program LoadProgramOrFail(const std::string& path, const ProgramFlags& flags) {
 
 void EngineFlags::AddTo(CLI::App& command) {
   command.add_option("--engine", engine,
-                     "Execution engine: ref (scalar reference), batch (SIMD kernels), jit (the program compiled to "
-                     "AVX-512 or AVX2 code; the batch kernels on a CPU without AVX2), all three giving the same "
-                     "bits; or gl (the GLSL ES translation on an OpenGL ES 3.0 driver through EGL: Mesa's llvmpipe, "
-                     "or --gl-device N)")
-      ->check(CLI::IsMember({"ref", "reference", "batch", "jit", "gl"}))
+                     "Execution engine: " + EngineDescriptions() + "; the CPU engines give the same bits")
+      ->check(CLI::IsMember(EngineSpellings()))
       ->capture_default_str();
   command.add_option("--threads", threads, "Threads for the batch and jit engines")->check(CLI::Range(1, 256))->capture_default_str();
   command.add_option("--gl-device", gl_device,
@@ -86,17 +84,20 @@ void EngineFlags::AddTo(CLI::App& command) {
   float_rules.AddTo(command);
 }
 
-EngineKind EngineFlags::Kind() const { return EngineKindFromName(engine).value_or(EngineKind::kJit); }
+std::string EngineFlags::Name() const {
+  const std::optional<EngineInfo> info = FindEngine(engine);
+  return info ? std::string(info->name) : engine;
+}
 
 EngineOptions EngineFlags::Options() const {
   EngineOptions options{threads};
   options.float_rules = float_rules.Rules();
-  options.gl_device = gl::GlDeviceIndex(gl_device);
+  options.settings.Set(gl::GlOptions{gl::GlDeviceIndex(gl_device)});
   return options;
 }
 
 bool EngineFlags::ListGlDevicesIfAsked(const std::string& command_engines) const {
-  if (!gl_device.empty() && gl_device != "list" && Kind() != EngineKind::kGl &&
+  if (!gl_device.empty() && gl_device != "list" && Name() != "gl" &&
       command_engines.find("gl") == std::string::npos) {
     std::fprintf(stderr, "warning: --gl-device applies to the gl engine only; --engine %s ignores it\n", engine.c_str());
   }
@@ -108,9 +109,9 @@ bool EngineFlags::ListGlDevicesIfAsked(const std::string& command_engines) const
   return true;
 }
 
-std::unique_ptr<Engine> MakeEngineOrFail(EngineKind kind, const Program& program, const ConstantBank& constants,
+std::unique_ptr<Engine> MakeEngineOrFail(std::string_view name, const Program& program, const ConstantBank& constants,
                                          const EngineOptions& options) {
-  std::unique_ptr<Engine> engine = MakeEngine(kind, program, constants, options);
+  std::unique_ptr<Engine> engine = MakeEngine(name, program, constants, options);
   if (const std::string error = engine->error(); !error.empty()) Fail(error);
   return engine;
 }

@@ -45,7 +45,7 @@ struct FloatRulesFlag {
   FloatRules Rules() const;
 };
 
-// "--engine ref|batch|jit|gl" (jit by default: batch kernels where the CPU has no AVX2), "--threads N",
+// "--engine NAME" (a registered engine, vm/engines/engine_factory.h; jit by default), "--threads N",
 // "--gl-device list|N" and "--float-rules".
 struct EngineFlags {
   std::string engine = "jit";
@@ -53,7 +53,7 @@ struct EngineFlags {
   std::string gl_device;  // empty (llvmpipe), "list" or an EGL device's index
   FloatRulesFlag float_rules;
   void AddTo(CLI::App& command);
-  EngineKind Kind() const;
+  std::string Name() const;  // the registered name ("ref" for "reference")
   EngineOptions Options() const;
   // With --gl-device list: prints the EGL devices and returns true (the command is done: exit 0, or
   // CommandFailure{1} where EGL lists none). Warns when --gl-device is given to another engine.
@@ -62,7 +62,7 @@ struct EngineFlags {
 
 // MakeEngine (vm/engines/engine_factory.h), or the engine's error printed and CommandFailure{1} where
 // it cannot be had (the gl engine without a device).
-std::unique_ptr<Engine> MakeEngineOrFail(EngineKind kind, const Program& program, const ConstantBank& constants,
+std::unique_ptr<Engine> MakeEngineOrFail(std::string_view name, const Program& program, const ConstantBank& constants,
                                          const EngineOptions& options);
 
 // Runs `engine`; prints its error and throws CommandFailure{1} when the run failed (a driver's error).

@@ -33,7 +33,7 @@ std::vector<int> InputRegistersRead(const Program& program) {
   return registers;
 }
 
-double MeasureNsPerVertex(EngineKind kind, const Program& program, int threads) {
+double MeasureNsPerVertex(std::string_view engine_name, const Program& program, int threads) {
   ConstantBank constants;
   std::mt19937 random(12345);
   std::uniform_real_distribution<float> value(-1.0f, 1.0f);
@@ -47,7 +47,7 @@ double MeasureNsPerVertex(EngineKind kind, const Program& program, int threads) 
     }
   }
   VertexArrays outputs = MakeOutputArrays(kTimedVertices, program);
-  std::unique_ptr<Engine> engine = MakeEngine(kind, program, constants, {threads});
+  std::unique_ptr<Engine> engine = MakeEngine(engine_name, program, constants, {threads});
   double best = 1e300;
   for (int repeat = 0; repeat < kTimedRepeats; ++repeat) {
     auto start = std::chrono::steady_clock::now();
@@ -103,8 +103,9 @@ void AddCountCommand(CLI::App& app) {
                             {"dynamic_instructions_per_vertex", stats.instructions},
                             {"ns_per_vertex", nlohmann::json::object()}};
       if (!args->no_timing) {
-        for (EngineKind kind : {EngineKind::kReference, EngineKind::kBatch, EngineKind::kJit}) {
-          row["ns_per_vertex"][std::string(EngineName(kind))] = MeasureNsPerVertex(kind, program, args->threads);
+        // The table's columns: the CPU engines (the gl engine's time is the driver's, not the machine's).
+        for (const char* engine : {"ref", "batch", "jit"}) {
+          row["ns_per_vertex"][engine] = MeasureNsPerVertex(engine, program, args->threads);
         }
       }
       rows.push_back(std::move(row));

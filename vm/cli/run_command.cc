@@ -180,9 +180,9 @@ void RunProgram(const RunArgs& args) {
   }
   VertexArrays inputs = FillInputArrays(supplied, count, registers);
   VertexArrays outputs = MakeOutputArrays(count, program);
-  RunOrFail(*MakeEngineOrFail(args.engine.Kind(), program, constants, args.engine.Options()), inputs, outputs);
+  RunOrFail(*MakeEngineOrFail(args.engine.Name(), program, constants, args.engine.Options()), inputs, outputs);
   if (args.trace.active()) {
-    ReportTraces(args.trace, args.program, program, constants, inputs, outputs, EngineName(args.engine.Kind()),
+    ReportTraces(args.trace, args.program, program, constants, inputs, outputs, args.engine.Name(),
                  args.engine.float_rules.Rules());
   }
   WriteVertexOutputs(args.sources, sources, program, outputs);

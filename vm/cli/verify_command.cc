@@ -11,6 +11,7 @@
 #include "irradiance/report/verify.h"
 #include "vm/cli/cli_support.h"
 #include "vm/cli/commands.h"
+#include "vm/engines/engine_factory.h"
 
 namespace vs11::cli {
 namespace {
@@ -62,7 +63,7 @@ void RunVerify(const VerifyFlags& flags) {
   }
 
   irr::VerifyOptions options;
-  options.engine = flags.engine_flags.Kind();
+  options.engine = flags.engine_flags.Name();
   options.engine_options = flags.engine_flags.Options();
   options.seed = flags.seed;
   options.samples = flags.samples;
@@ -75,9 +76,10 @@ void RunVerify(const VerifyFlags& flags) {
   }
 
   if (!flags.against_engine.empty()) {
-    std::optional<EngineKind> other = EngineKindFromName(flags.against_engine);
-    if (!other) Fail(fmt::format("--against-engine {}: expected ref, batch, jit or gl", flags.against_engine));
-    irr::EngineComparison comparison = irr::VerifyEngines(*loaded.program, metadata, options.engine, *other, options);
+    std::optional<EngineInfo> other = FindEngine(flags.against_engine);
+    if (!other) Fail(fmt::format("--against-engine {}: expected {}", flags.against_engine, EngineNameList()));
+    irr::EngineComparison comparison =
+        irr::VerifyEngines(*loaded.program, metadata, options.engine, std::string(other->name), options);
     if (!comparison.error.empty()) Fail(fmt::format("{}: {}", flags.program, comparison.error));
     std::string text = flags.json
                            ? irr::EngineComparisonJson(comparison) + "\n"
@@ -151,8 +153,9 @@ void AddVerifyCommand(CLI::App& app) {
   command->add_option("--seed", flags->seed, "Seed of the random coefficients and inputs")->capture_default_str();
   command->add_flag("--json", flags->json, "Print the report as JSON");
   command->add_option("--against-engine", flags->against_engine,
-                      "Compare --engine with this engine (ref, batch, jit or gl) bit for bit instead of with a reference")
-      ->check(CLI::IsMember({"ref", "reference", "batch", "jit", "gl"}));
+                      "Compare --engine with this engine (" + EngineNameList() +
+                          ") bit for bit instead of with a reference")
+      ->check(CLI::IsMember(EngineSpellings()));
   flags->program_flags.AddTo(*command);
   flags->engine_flags.AddTo(*command);
   command->callback([flags] { RunVerify(*flags); });

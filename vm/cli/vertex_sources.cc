@@ -11,6 +11,7 @@
 #include "vm/cli/cli_support.h"
 #include "vm/cli/streamed_output.h"
 #include "vm/core/input_file.h"
+#include "vm/core/register_names.h"
 #include "vm/mesh/mesh_export.h"
 #include "vm/mesh/npy.h"
 #include "vm/mesh/vertex_buffer.h"
@@ -38,11 +39,7 @@ std::pair<int, std::string> SplitRegisterAssignment(const std::string& flag) {
 }
 
 int ConstantRegisterFromName(const std::string& name) {
-  int index = -1;
-  if (name.size() >= 2 && (name[0] == 'c' || name[0] == 'C')) {
-    auto [ptr, ec] = std::from_chars(name.data() + 1, name.data() + name.size(), index);
-    if (ec != std::errc() || ptr != name.data() + name.size()) index = -1;
-  }
+  const int index = ParseNumberedRegister(name, RegisterFile::kConst).value_or(-1);
   if (index < 0) FailUsage(fmt::format("--bone-palette '{}': expected a constant register such as c6", name));
   return index;
 }

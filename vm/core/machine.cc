@@ -138,22 +138,4 @@ VertexArrays MakeOutputArrays(std::size_t count, const Program& program) {
   return VertexArrays(count, slots, kOutputSlotCount);
 }
 
-std::optional<EngineKind> EngineKindFromName(std::string_view name) {
-  if (name == "ref" || name == "reference") return EngineKind::kReference;
-  if (name == "batch") return EngineKind::kBatch;
-  if (name == "jit") return EngineKind::kJit;
-  if (name == "gl") return EngineKind::kGl;
-  return std::nullopt;
-}
-
-std::string_view EngineName(EngineKind kind) {
-  switch (kind) {
-    case EngineKind::kReference: return "ref";
-    case EngineKind::kBatch: return "batch";
-    case EngineKind::kJit: return "jit";
-    case EngineKind::kGl: return "gl";
-  }
-  return "batch";
-}
-
 }  // namespace vs11

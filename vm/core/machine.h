@@ -2,14 +2,18 @@
 // the engine interface both execution engines implement.
 #pragma once
 
+#include <any>
 #include <array>
 #include <cassert>
 #include <cstddef>
+#include <map>
 #include <memory>
 #include <new>
 #include <optional>
 #include <span>
 #include <string>
+#include <typeindex>
+#include <typeinfo>
 #include <vector>
 
 #include "vm/core/float_rules.h"
@@ -145,15 +149,6 @@ class VertexArrays {
 VertexArrays MakeInputArrays(std::size_t count, std::span<const int> input_registers);
 VertexArrays MakeOutputArrays(std::size_t count, const Program& program);  // the slots the program writes
 
-// kJit: the batch engine running the program compiled to x86-64 code (vm/engines/jit_compiler.h), AVX-512
-// or AVX2, or its kernels on a CPU without AVX2. kGl: the program's GLSL ES translation run by an OpenGL
-// ES 3.0 driver through EGL and transform feedback (vm/gl/gl_engine.h), Mesa's llvmpipe by default; only
-// programs that register it (vm/gl's RegisterGlEngine: the vs11 and irrmap tools) can build it.
-enum class EngineKind { kReference, kBatch, kJit, kGl };
-// "ref" | "reference" | "batch" | "jit" | "gl"
-std::optional<EngineKind> EngineKindFromName(std::string_view name);
-std::string_view EngineName(EngineKind kind);
-
 // Runs one program with one constant bank over many vertices.
 //
 // Threads: one engine is not shareable. Run and SetConstants change the engine (the batch and jit
@@ -172,31 +167,45 @@ class Engine {
   // not write get UnwrittenOutputValue.
   virtual void Run(const VertexArrays& inputs, VertexArrays& outputs) = 0;
   virtual void SetConstants(const ConstantBank& api_constants) = 0;
-  // Empty while the engine works. An engine that depends on a driver (kGl) says here why it could not
+  // Empty while the engine works. An engine that depends on a driver (gl) says here why it could not
   // be built (no EGL device with OpenGL ES 3.0) or why its last Run failed; it then writes NaN to every
   // output lane, and callers report this text instead of the outputs. The CPU engines never fail.
   virtual std::string error() const { return {}; }
 };
 
-// The instruction set the jit engine compiles to: the best the CPU has, or one forced (for tests and
-// benchmarks). A forced set the CPU lacks leaves the program on the batch kernels.
-enum class JitIsa { kBest, kAvx2, kAvx512 };
-
 class ThreadPool;  // vm/core/thread_pool.h
+
+// Options an engine defines for itself (the jit's instruction set, the gl engine's device), one struct
+// per engine, set and read by its type: the core carries them without knowing any engine. Get<T>()
+// gives T{} (the engine's defaults) where nothing was set.
+class EngineSettings {
+ public:
+  template <class T>
+  EngineSettings& Set(T value) {
+    values_.insert_or_assign(std::type_index(typeid(T)), std::any(std::move(value)));
+    return *this;
+  }
+  template <class T>
+  T Get() const {
+    auto found = values_.find(std::type_index(typeid(T)));
+    return found == values_.end() ? T{} : std::any_cast<T>(found->second);
+  }
+
+ private:
+  std::map<std::type_index, std::any> values_;
+};
 
 struct EngineOptions {
   // Batch and jit engines: a call may run on up to this many threads of `pool`, where its size
   // pays for the split (vm/engines/batch_engine.cc); the results do not depend on it.
   int threads = 1;
-  JitIsa jit_isa = JitIsa::kBest;
   // The threads a split call runs on; null: ThreadPool::Default(), the process's one pool sized to
   // the cores. The pool must outlive the engine.
   ThreadPool* pool = nullptr;
-  // The gl engine: the EGL device (vm/gl/gl_context.h's ListGlDevices index, `--gl-device N`); nullopt:
-  // Mesa's llvmpipe. The CPU engines ignore it.
-  std::optional<int> gl_device = std::nullopt;
   // The rule every product follows (vm/core/float_rules.h); every engine gives the same bits under either.
   FloatRules float_rules = FloatRules::kD3d9;
+  // Each engine's own options (vm/engines/jit_options.h, vm/gl/gl_engine.h); the others ignore them.
+  EngineSettings settings{};
 };
 
 }  // namespace vs11

@@ -33,6 +33,7 @@ const KernelTable* GetKernelTable(FloatRules rules);  // defined by vm/batch_ker
 #include "vm/core/thread_pool.h"
 #include "vm/engines/batch_engine.h"
 #include "vm/engines/jit_compiler.h"
+#include "vm/engines/jit_options.h"
 
 namespace vs11 {
 namespace batch {
@@ -150,11 +151,11 @@ class BatchEngine final : public Engine {
         threads_(static_cast<std::size_t>(std::max(1, options.threads))),
         // The default pool's threads start only in a process whose engines may split a call.
         pool_(options.pool != nullptr ? options.pool : threads_ > 1 ? &ThreadPool::Default() : nullptr),
-        isa_(options.jit_isa),
+        isa_(options.settings.Get<JitOptions>().isa),
         rules_(options.float_rules) {
     if (compile_program) {
       std::string why_not;
-      variants_.emplace_back(std::vector<jit::UniformInput>{}, jit::Compile(program, why_not, options.jit_isa, {}, rules_));
+      variants_.emplace_back(std::vector<jit::UniformInput>{}, jit::Compile(program, why_not, isa_, {}, rules_));
       if (variants_.back().second) {
         compiled_ = variants_.back().second.get();
       } else {
@@ -354,8 +355,13 @@ std::size_t MinVerticesPerPiece(const Program& program) {
 }
 
 std::unique_ptr<Engine> MakeBatchEngine(const Program& program, const ConstantBank& api_constants,
-                                        const EngineOptions& options, bool compile_program) {
-  return std::make_unique<batch::BatchEngine>(program, api_constants, options, compile_program);
+                                        const EngineOptions& options) {
+  return std::make_unique<batch::BatchEngine>(program, api_constants, options, /*compile_program=*/false);
+}
+
+std::unique_ptr<Engine> MakeJitEngine(const Program& program, const ConstantBank& api_constants,
+                                      const EngineOptions& options) {
+  return std::make_unique<batch::BatchEngine>(program, api_constants, options, /*compile_program=*/true);
 }
 
 }  // namespace vs11

@@ -9,10 +9,14 @@
 
 namespace vs11 {
 
-// With `compile_program`, the program runs as machine code made by vm/engines/jit_compiler.h (the jit
-// engine) when it can be compiled, and on the kernels otherwise.
 std::unique_ptr<Engine> MakeBatchEngine(const Program& program, const ConstantBank& api_constants,
-                                        const EngineOptions& options, bool compile_program = false);
+                                        const EngineOptions& options);
+
+// The jit engine: the batch engine with the program run as machine code made by
+// vm/engines/jit_compiler.h (its instruction set from options.settings' JitOptions,
+// vm/engines/jit_options.h) when it can be compiled, and on the kernels otherwise.
+std::unique_ptr<Engine> MakeJitEngine(const Program& program, const ConstantBank& api_constants,
+                                      const EngineOptions& options);
 
 // The fewest vertices one piece of a split call gets (EngineOptions::threads > 1): a call of fewer
 // than twice this many runs on the calling thread alone. kNeverSplit for a program that threads

@@ -1,9 +1,8 @@
 #include "vm/engines/engine_factory.h"
 
 #include <algorithm>
-#include <array>
-#include <atomic>
 #include <limits>
+#include <mutex>
 
 #include <fmt/format.h>
 
@@ -13,11 +12,28 @@
 namespace vs11 {
 namespace {
 
-constexpr std::size_t kEngineKindCount = static_cast<std::size_t>(EngineKind::kGl) + 1;
+std::unique_ptr<Engine> MakeReference(const Program& program, const ConstantBank& api_constants,
+                                      const EngineOptions& options) {
+  return MakeReferenceEngine(program, api_constants, options.float_rules);
+}
 
-std::array<std::atomic<EngineMaker>, kEngineKindCount>& Makers() {
-  static std::array<std::atomic<EngineMaker>, kEngineKindCount> makers{};
-  return makers;
+// The engines of this folder, in the order --help lists them. An engine of this folder is added here;
+// one of a library above registers itself (RegisterEngine).
+constexpr EngineInfo kBuiltInEngines[] = {
+    {"ref", "reference", "scalar reference", &MakeReference},
+    {"batch", "", "SIMD kernels", &MakeBatchEngine},
+    {"jit", "", "the program compiled to AVX-512 or AVX2 code; the batch kernels on a CPU without AVX2",
+     &MakeJitEngine},
+};
+
+struct Registry {
+  std::mutex mutex;
+  std::vector<EngineInfo> engines{std::begin(kBuiltInEngines), std::end(kBuiltInEngines)};
+};
+
+Registry& TheRegistry() {
+  static Registry registry;
+  return registry;
 }
 
 class FailedEngine final : public Engine {
@@ -40,20 +56,78 @@ class FailedEngine final : public Engine {
 
 }  // namespace
 
-void RegisterEngineMaker(EngineKind kind, EngineMaker maker) { Makers()[static_cast<std::size_t>(kind)] = maker; }
+void RegisterEngine(const EngineInfo& info) {
+  Registry& registry = TheRegistry();
+  std::lock_guard lock(registry.mutex);
+  auto same_name = [&](const EngineInfo& engine) { return engine.name == info.name; };
+  if (auto found = std::find_if(registry.engines.begin(), registry.engines.end(), same_name);
+      found != registry.engines.end()) {
+    *found = info;
+  } else {
+    registry.engines.push_back(info);
+  }
+}
+
+void UnregisterEngine(std::string_view name) {
+  Registry& registry = TheRegistry();
+  std::lock_guard lock(registry.mutex);
+  std::erase_if(registry.engines, [&](const EngineInfo& engine) { return engine.name == name; });
+}
+
+std::vector<EngineInfo> RegisteredEngines() {
+  Registry& registry = TheRegistry();
+  std::lock_guard lock(registry.mutex);
+  return registry.engines;
+}
+
+std::optional<EngineInfo> FindEngine(std::string_view name) {
+  for (const EngineInfo& engine : RegisteredEngines()) {
+    if (!name.empty() && (engine.name == name || engine.alias == name)) return engine;
+  }
+  return std::nullopt;
+}
+
+std::vector<std::string> EngineSpellings() {
+  std::vector<std::string> spellings;
+  for (const EngineInfo& engine : RegisteredEngines()) {
+    spellings.emplace_back(engine.name);
+    if (!engine.alias.empty()) spellings.emplace_back(engine.alias);
+  }
+  return spellings;
+}
+
+namespace {
+
+// "a, b, c or d" of each registered engine's `describe`.
+template <class Describe>
+std::string JoinEngines(Describe describe) {
+  const std::vector<EngineInfo> engines = RegisteredEngines();
+  std::string list;
+  for (std::size_t i = 0; i < engines.size(); ++i) {
+    list += i == 0 ? "" : i + 1 == engines.size() ? " or " : ", ";
+    list += describe(engines[i]);
+  }
+  return list;
+}
+
+}  // namespace
+
+std::string EngineNameList(std::string_view quote) {
+  return JoinEngines([&](const EngineInfo& engine) { return fmt::format("{0}{1}{0}", quote, engine.name); });
+}
+
+std::string EngineDescriptions() {
+  return JoinEngines([](const EngineInfo& engine) { return fmt::format("{} ({})", engine.name, engine.summary); });
+}
 
 std::unique_ptr<Engine> MakeFailedEngine(std::string error) { return std::make_unique<FailedEngine>(std::move(error)); }
 
-std::unique_ptr<Engine> MakeEngine(EngineKind kind, const Program& program, const ConstantBank& api_constants,
+std::unique_ptr<Engine> MakeEngine(std::string_view name, const Program& program, const ConstantBank& api_constants,
                                    const EngineOptions& options) {
-  if (kind == EngineKind::kReference) return MakeReferenceEngine(program, api_constants, options.float_rules);
-  if (kind == EngineKind::kBatch || kind == EngineKind::kJit) {
-    return MakeBatchEngine(program, api_constants, options, kind == EngineKind::kJit);
-  }
-  if (EngineMaker maker = Makers()[static_cast<std::size_t>(kind)].load()) return maker(program, api_constants, options);
-  return MakeFailedEngine(fmt::format("the {} engine is not part of this program (only the vs11 and irrmap tools "
-                                      "link vm/gl and register it)",
-                                      EngineName(kind)));
+  if (std::optional<EngineInfo> engine = FindEngine(name)) return engine->make(program, api_constants, options);
+  return MakeFailedEngine(fmt::format("the {} engine is not part of this program (it has {}; the vs11 and irrmap "
+                                      "tools register vm/gl's gl engine)",
+                                      name, EngineNameList()));
 }
 
 }  // namespace vs11

@@ -1,27 +1,56 @@
-// The one place that knows every engine: builds the engine of a kind (core/machine.h declares the
-// interface; the engines below implement it). The gl engine lives above this layer (vm/gl runs
-// vm/translate's GLSL), so it registers its maker here instead of being included.
+// The engines by name: a registry of every engine the program can build (name, summary, maker), and
+// MakeEngine. The core (core/machine.h) declares the interface and knows no engine. The engines of
+// this folder (ref, batch, jit) are registered here, in engine_factory.cc's one list; an engine built
+// by a library above (vm/gl's gl engine) registers itself through RegisterEngine, which the tools call
+// explicitly (gl::RegisterGlEngine) before they parse their arguments. No registration happens in a
+// static initialiser: a linker drops the unreferenced object files of a static library, and with them
+// such registrations.
 #pragma once
 
 #include <memory>
+#include <optional>
 #include <string>
+#include <string_view>
+#include <vector>
 
 #include "vm/core/machine.h"
 
 namespace vs11 {
 
-// `program` must be well formed (Decode accepted it); validation is the caller's choice. Temporaries
-// read before they are written (possible only with validation skipped) read 0. Never null: an engine
-// that cannot be had (kGl without a registered maker or without a device) is an engine whose error()
-// says why and whose outputs are NaN.
-std::unique_ptr<Engine> MakeEngine(EngineKind kind, const Program& program, const ConstantBank& api_constants,
-                                   const EngineOptions& options = {});
-
-// An engine built by a library above vm/engines: vm/gl's RegisterGlEngine() registers kGl's. A maker
-// never returns null (MakeFailedEngine instead). Registering is thread-safe; the last maker wins.
+// Builds an engine. A maker never returns null (MakeFailedEngine instead).
 using EngineMaker = std::unique_ptr<Engine> (*)(const Program& program, const ConstantBank& api_constants,
                                                 const EngineOptions& options);
-void RegisterEngineMaker(EngineKind kind, EngineMaker maker);
+
+struct EngineInfo {
+  std::string_view name;     // what --engine takes and reports print: "ref", "batch"
+  std::string_view alias;    // another spelling accepted for it ("reference"), or empty
+  std::string_view summary;  // what it is, for --help: "SIMD kernels"
+  EngineMaker make = nullptr;
+};
+
+// Adds an engine (its strings must outlive the process: literals), or replaces the one of the same
+// name. Thread-safe.
+void RegisterEngine(const EngineInfo& info);
+// Removes the engine of this name, if any (tests: a program without the gl engine). Thread-safe.
+void UnregisterEngine(std::string_view name);
+
+// Every registered engine, this folder's first, then in the order of registration.
+std::vector<EngineInfo> RegisteredEngines();
+// The engine of this name or alias; nullopt when none is registered under it.
+std::optional<EngineInfo> FindEngine(std::string_view name);
+// Every name and alias ("ref", "reference", "batch", ...), for a command line's list of choices.
+std::vector<std::string> EngineSpellings();
+// "ref, batch, jit or gl" for messages: the registered names, `quote` around each.
+std::string EngineNameList(std::string_view quote = "");
+// "ref (scalar reference), batch (SIMD kernels), ... or gl (...)" for --help.
+std::string EngineDescriptions();
+
+// `program` must be well formed (Decode accepted it); validation is the caller's choice. Temporaries
+// read before they are written (possible only with validation skipped) read 0. Never null: an engine
+// that cannot be had (a name nobody registered, the gl engine without a device) is an engine whose
+// error() says why and whose outputs are NaN.
+std::unique_ptr<Engine> MakeEngine(std::string_view name, const Program& program, const ConstantBank& api_constants,
+                                   const EngineOptions& options = {});
 
 // An engine that runs nothing: every output lane of every Run is NaN, and error() is `error`.
 std::unique_ptr<Engine> MakeFailedEngine(std::string error);

@@ -25,6 +25,7 @@
 
 #include "vm/core/machine.h"
 #include "vm/core/program.h"
+#include "vm/engines/jit_options.h"
 
 namespace vs11::jit {
 

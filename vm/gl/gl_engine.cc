@@ -243,7 +243,7 @@ translate::TranslateOptions GlTranslateOptions(const EngineOptions& options, int
 std::unique_ptr<Engine> MakeGlEngine(const Program& program, const ConstantBank& api_constants,
                                      const EngineOptions& options) {
   std::string error;
-  std::unique_ptr<GlContext> context = GlContext::Create(options.gl_device, error);
+  std::unique_ptr<GlContext> context = GlContext::Create(options.settings.Get<GlOptions>().device, error);
   if (!context) return MakeFailedEngine("the gl engine has no OpenGL ES 3.0 device: " + error);
   const std::string renderer = context->renderer();
   auto engine = std::make_unique<GlEngine>(program, options, std::move(context));
@@ -257,6 +257,10 @@ std::unique_ptr<Engine> MakeGlEngine(const Program& program, const ConstantBank&
   return engine;
 }
 
-void RegisterGlEngine() { RegisterEngineMaker(EngineKind::kGl, &MakeGlEngine); }
+void RegisterGlEngine() {
+  RegisterEngine({"gl", "",
+                  "the GLSL ES translation on an OpenGL ES 3.0 driver through EGL: Mesa's llvmpipe, or --gl-device N",
+                  &MakeGlEngine});
+}
 
 }  // namespace vs11::gl

@@ -9,6 +9,7 @@
 #pragma once
 
 #include <memory>
+#include <optional>
 
 #include "vm/core/machine.h"
 #include "vm/translate/translate.h"
@@ -22,14 +23,21 @@ namespace vs11::gl {
 // translation here.
 translate::TranslateOptions GlTranslateOptions(const EngineOptions& options, int constant_count, bool es32);
 
+// The gl engine's own options (EngineOptions::settings).
+struct GlOptions {
+  // The EGL device (gl_context.h's ListGlDevices index, `--gl-device N`); nullopt: Mesa's llvmpipe.
+  std::optional<int> device;
+};
+
 // Never null: where the context or the program cannot be had, an engine whose error() says why
 // (MakeFailedEngine). EngineOptions::threads does not apply (the driver keeps its own threads:
-// llvmpipe's LP_NUM_THREADS); EngineOptions::gl_device picks the device.
+// llvmpipe's LP_NUM_THREADS); options.settings' GlOptions picks the device.
 std::unique_ptr<Engine> MakeGlEngine(const Program& program, const ConstantBank& api_constants,
                                      const EngineOptions& options);
 
-// Makes MakeEngine(EngineKind::kGl, ...) (vm/engines/engine_factory.h) build MakeGlEngine. The tools
-// call it once before they parse their arguments; vm/engines sits below vm/gl and cannot name it.
+// Registers the gl engine (vm/engines/engine_factory.h's RegisterEngine), so that MakeEngine("gl", ...)
+// builds MakeGlEngine. The tools call it once before they parse their arguments; vm/engines sits below
+// vm/gl and cannot name it.
 void RegisterGlEngine();
 
 }  // namespace vs11::gl

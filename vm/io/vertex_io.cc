@@ -10,6 +10,8 @@
 
 #include <fmt/format.h>
 
+#include "vm/core/register_names.h"
+
 namespace vs11 {
 namespace {
 
@@ -70,11 +72,12 @@ std::vector<std::string_view> SplitLines(std::string_view text) {
 // no register).
 std::optional<int> ConstantRegister(Cursor& cursor, std::string& error) {
   cursor.SkipSeparators();
-  if (cursor.pos >= cursor.line.size() || std::tolower(static_cast<unsigned char>(cursor.line[cursor.pos])) != 'c') {
+  const std::size_t prefix = NumberedRegisterPrefix(cursor.line.substr(cursor.pos), RegisterFile::kConst);
+  if (prefix == 0) {
     error = "expected a constant register such as c12";
     return std::nullopt;
   }
-  ++cursor.pos;
+  cursor.pos += prefix;
   int index = 0;
   auto [ptr, ec] = std::from_chars(cursor.line.data() + cursor.pos, cursor.line.data() + cursor.line.size(), index);
   if (ec == std::errc::result_out_of_range) {
@@ -400,11 +403,7 @@ std::optional<InputSpec> ParseInputSpec(std::string_view flag, std::string& erro
     return std::nullopt;
   }
   std::string_view name = flag.substr(0, equals);
-  int index = -1;
-  if (name.size() >= 2 && (name[0] == 'v' || name[0] == 'V')) {
-    auto [ptr, ec] = std::from_chars(name.data() + 1, name.data() + name.size(), index);
-    if (ec != std::errc() || ptr != name.data() + name.size()) index = -1;
-  }
+  const int index = ParseNumberedRegister(name, RegisterFile::kInput).value_or(-1);
   if (index < 0 || index >= kInputRegisterCount) {
     error = fmt::format("'{}' is not an input register v0-v15", name);
     return std::nullopt;

@@ -4,6 +4,8 @@
 
 #include <fmt/format.h>
 
+#include "vm/core/register_names.h"
+
 namespace vs11::mesh {
 namespace {
 
@@ -88,13 +90,8 @@ std::string AttributeName(const AttributeRef& attribute) {
 }
 
 std::optional<int> InputRegisterFromName(std::string_view name) {
-  name = Trim(name);
-  if (name.size() < 2 || (name[0] != 'v' && name[0] != 'V')) return std::nullopt;
-  int index = -1;
-  auto [ptr, ec] = std::from_chars(name.data() + 1, name.data() + name.size(), index);
-  if (ec != std::errc() || ptr != name.data() + name.size() || index < 0 || index >= kInputRegisterCount) {
-    return std::nullopt;
-  }
+  const std::optional<int> index = ParseNumberedRegister(Trim(name), RegisterFile::kInput);
+  if (!index || *index >= kInputRegisterCount) return std::nullopt;
   return index;
 }
 

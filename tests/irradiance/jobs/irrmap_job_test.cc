@@ -96,7 +96,7 @@ TEST(Irrmap, PaperProgramReadsItsRegistersFromTheMetadataAndMatchesEq6) {
   EXPECT_EQ(OutputSlotName(program->output_slot()), "oD0");
   const Sh9Rgb sh = RandomCoefficients(3);
   const std::vector<glm::dvec3> normals = SphereNormals(400);
-  for (EngineKind kind : {EngineKind::kReference, EngineKind::kBatch}) {
+  for (std::string kind : {"ref", "batch"}) {
     const std::vector<glm::dvec3> actual = program->Irradiance(PackTable1(sh), normals, kind);
     ASSERT_EQ(actual.size(), normals.size());
     double scale = 0.0;

@@ -96,7 +96,7 @@ TEST_P(EveryProgram, MatchesItsReferenceOnBothEngines) {
   ProgramForVerify loaded = Load(GetParam());
   ASSERT_TRUE(loaded.program) << loaded.diagnostics.ToString();
   const bool expect_pass = GetParam() != "sh9_irradiance_as_printed";
-  for (EngineKind engine : {EngineKind::kReference, EngineKind::kBatch}) {
+  for (std::string engine : {"ref", "batch"}) {
     VerifyOptions options;
     options.engine = engine;
     VerifyReport report = Verify(*loaded.program, loaded.metadata, options);
@@ -116,12 +116,12 @@ TEST_P(EveryProgram, BothEnginesAgreeBitForBit) {
   ASSERT_TRUE(loaded.program);
   VerifyOptions options;
   EngineComparison with_reference =
-      VerifyEngines(*loaded.program, loaded.metadata, EngineKind::kReference, EngineKind::kBatch, options);
+      VerifyEngines(*loaded.program, loaded.metadata, "ref", "batch", options);
   EXPECT_TRUE(with_reference.identical()) << FormatEngineComparison(with_reference);
   EXPECT_GT(with_reference.lanes_compared, 0u);
   // Random inputs and constants exercise the programs far outside their intended ranges too.
-  EngineComparison random = VerifyEngines(*loaded.program, ProgramMetadata{}, EngineKind::kReference,
-                                          EngineKind::kBatch, options);
+  EngineComparison random = VerifyEngines(*loaded.program, ProgramMetadata{}, "ref",
+                                          "batch", options);
   EXPECT_TRUE(random.identical()) << FormatEngineComparison(random);
 }
 
@@ -166,7 +166,7 @@ TEST(Programs, AllInstructionsUsesEveryOpcode) {
 TEST(Programs, AsPrintedListingFailsByMoreThanTenPercent) {
   ProgramForVerify loaded = Load("sh9_irradiance_as_printed");
   ASSERT_TRUE(loaded.program);
-  for (EngineKind engine : {EngineKind::kReference, EngineKind::kBatch}) {
+  for (std::string engine : {"ref", "batch"}) {
     VerifyOptions options;
     options.engine = engine;
     VerifyReport report = Verify(*loaded.program, loaded.metadata, options);
@@ -188,7 +188,7 @@ std::vector<glm::dvec3> RunOnNormals(const Program& program, const ConstantBank&
     for (int c = 0; c < 3; ++c) inputs.lane(0, c)[i] = static_cast<float>(normals[i][c]);
   }
   VertexArrays outputs = MakeOutputArrays(normals.size(), program);
-  MakeEngine(EngineKind::kBatch, program, constants)->Run(inputs, outputs);
+  MakeEngine("batch", program, constants)->Run(inputs, outputs);
   const int od0 = static_cast<int>(OutputSlot::kDiffuse);
   std::vector<glm::dvec3> result(normals.size());
   for (std::size_t i = 0; i < normals.size(); ++i) {

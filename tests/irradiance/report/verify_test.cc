@@ -235,7 +235,7 @@ TEST(VerifyPackings, BasisWeightsGiveEq6) {
 
 TEST(Verify, PaperProgramPassesOnBothEngines) {
   const Program program = Assemble(kPaperProgram);
-  for (EngineKind engine : {EngineKind::kReference, EngineKind::kBatch}) {
+  for (std::string engine : {"ref", "batch"}) {
     VerifyOptions options;
     options.engine = engine;
     VerifyReport report = Verify(program, Sh9Metadata(), options);
@@ -341,7 +341,7 @@ TEST(Verify, JsonReportCarriesTheNumbers) {
 
 TEST(VerifyEngines, ReferenceAndBatchAgreeBitForBit) {
   const Program program = Assemble(kPaperProgram);
-  EngineComparison c = VerifyEngines(program, Sh9Metadata(), EngineKind::kReference, EngineKind::kBatch, {});
+  EngineComparison c = VerifyEngines(program, Sh9Metadata(), "ref", "batch", {});
   EXPECT_TRUE(c.identical()) << FormatEngineComparison(c);
   // oD0 is the only output register: every vertex, four lanes.
   EXPECT_EQ(c.lanes_compared, c.vertices * 4);
@@ -353,7 +353,7 @@ TEST(VerifyEngines, RandomInputsWithoutAReference) {
   VerifyOptions options;
   options.samples = 33;
   EngineComparison c =
-      VerifyEngines(Assemble(kPaperProgram), ProgramMetadata{}, EngineKind::kReference, EngineKind::kBatch, options);
+      VerifyEngines(Assemble(kPaperProgram), ProgramMetadata{}, "ref", "batch", options);
   EXPECT_TRUE(c.identical()) << FormatEngineComparison(c);
   EXPECT_EQ(c.vertices, 33u);
   EXPECT_NE(c.inputs.find("random"), std::string::npos);
@@ -365,7 +365,7 @@ TEST(VerifyEngines, SameEngineTwiceIsIdentical) {
   for (int i = 0; i < 7; ++i) constants[i] = {0.5f, 0.25f, 0.125f, 1.0f};
   const int v0 = 0;
   VertexArrays inputs = MakeInputArrays(5, std::span<const int>(&v0, 1));
-  EngineComparison same = CompareEngines(program, EngineKind::kReference, EngineKind::kReference, constants, inputs);
+  EngineComparison same = CompareEngines(program, "ref", "ref", constants, inputs);
   EXPECT_TRUE(same.identical());
   EXPECT_EQ(same.lanes_compared, 20u);
   EXPECT_EQ(EngineComparisonJson(same).find("first_difference"), std::string::npos);
@@ -392,7 +392,7 @@ TEST(VerifyEngines, CountsDifferingBitPatternsAndLocatesTheFirst) {
 TEST(VerifyEngines, UnknownReferenceIsAnError) {
   ProgramMetadata metadata;
   metadata.reference = "nosuch";
-  EngineComparison c = VerifyEngines(Assemble(kPaperProgram), metadata, EngineKind::kReference, EngineKind::kBatch, {});
+  EngineComparison c = VerifyEngines(Assemble(kPaperProgram), metadata, "ref", "batch", {});
   EXPECT_FALSE(c.identical());
   EXPECT_NE(c.error.find("nosuch"), std::string::npos);
 }

@@ -146,14 +146,14 @@ TEST(UninitializedRead, UnwrittenLaneReadsZeroOnEveryEngine) {
     inputs.FillUniform(2, lane, 0.0f);                     // bone 0: c9..c11
   }
   const Vec4f expected = {(1 + 0.5f) * 2, 4 * 2, 9 * 2, 0};
-  for (EngineKind kind : {EngineKind::kReference, EngineKind::kBatch, EngineKind::kJit}) {
+  for (std::string kind : {"ref", "batch", "jit"}) {
     std::unique_ptr<Engine> engine = MakeEngine(kind, *result.program, constants);
     VertexArrays outputs = MakeOutputArrays(kCount, *result.program);
     engine->Run(inputs, outputs);
     for (int lane = 0; lane < 4; ++lane) {
       const float* values = outputs.lane(static_cast<int>(OutputSlot::kPosition), lane);
       for (std::size_t v = 0; v < kCount; ++v) {
-        ASSERT_EQ(Bits(values[v]), Bits(expected[lane])) << EngineName(kind) << " lane " << lane << " vertex " << v;
+        ASSERT_EQ(Bits(values[v]), Bits(expected[lane])) << kind << " lane " << lane << " vertex " << v;
       }
     }
   }

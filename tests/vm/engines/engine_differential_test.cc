@@ -58,7 +58,7 @@ bool IsNaN(float x) { return x != x; }
 // The engine compared with the reference: its kind and, for the jit, the instruction set forced;
 // both run under `rules`.
 struct EngineUnderTest {
-  EngineKind kind;
+  std::string kind;
   JitIsa jit_isa = JitIsa::kBest;
   FloatRules rules = FloatRules::kD3d9;
 };
@@ -70,7 +70,7 @@ Comparison CompareEngines(const Program& program, const ConstantBank& constants,
   VertexArrays expected = MakeOutputArrays(count, program);
   VertexArrays actual = MakeOutputArrays(count, program);
   MakeReferenceEngine(program, constants, engine.rules)->Run(inputs, expected);
-  MakeEngine(engine.kind, program, constants, {.jit_isa = engine.jit_isa, .float_rules = engine.rules})->Run(inputs, actual);
+  MakeEngine(engine.kind, program, constants, WithJitIsa({.float_rules = engine.rules}, engine.jit_isa))->Run(inputs, actual);
   Comparison result;
   for (int slot : expected.registers()) {
     for (int c = 0; c < 4; ++c) {
@@ -84,7 +84,7 @@ Comparison CompareEngines(const Program& program, const ConstantBank& constants,
         if (!result.difference.empty()) continue;
         std::ostringstream message;
         message << FloatRulesName(engine.rules) << ": " << OutputSlotName(slot) << "." << kLaneLetters[c] << " of vertex " << i << " of " << count
-                << ": " << EngineName(engine.kind) << " " << got << " (0x" << std::hex << Bits(got) << "), reference " << want << " (0x"
+                << ": " << engine.kind << " " << got << " (0x" << std::hex << Bits(got) << "), reference " << want << " (0x"
                 << Bits(want) << std::dec << ")\ninputs:";
         for (int reg : inputs.registers()) {
           message << " v" << reg << "=(";
@@ -181,7 +181,7 @@ void SweepEveryOpcode(EngineUnderTest engine, const char* label) {
 
 TEST_P(EngineDifferential, EveryOpcodeMaskSwizzleNegationAndSpecialValue) {
   for (FloatRules rules : kAllFloatRules) {
-    SweepEveryOpcode({EngineKind::kBatch, JitIsa::kBest, rules}, hwy::TargetName(GetParam()));
+    SweepEveryOpcode({"batch", JitIsa::kBest, rules}, hwy::TargetName(GetParam()));
   }
 }
 
@@ -227,7 +227,7 @@ void CheckLoneNaNOperands(EngineUnderTest engine, const char* label) {
 
 TEST_P(EngineDifferential, LoneNaNOperandKeepsItsBits) {
   for (FloatRules rules : kAllFloatRules) {
-    CheckLoneNaNOperands({EngineKind::kBatch, JitIsa::kBest, rules}, hwy::TargetName(GetParam()));
+    CheckLoneNaNOperands({"batch", JitIsa::kBest, rules}, hwy::TargetName(GetParam()));
   }
 }
 
@@ -266,7 +266,7 @@ JitCoverage CompareRandomPrograms(EngineUnderTest engine, const char* label) {
       if (!comparison.difference.empty()) return coverage;
       nan_bit_mismatches += comparison.nan_bit_mismatches;
     }
-    if (engine.kind != EngineKind::kJit) continue;
+    if (engine.kind != "jit") continue;
     std::string why_not;
     const auto compiled = jit::Compile(program, why_not, engine.jit_isa);
     if (compiled && jit::Compile(program, why_not, engine.jit_isa, {}, FloatRules::kLegacy)) {
@@ -280,7 +280,7 @@ JitCoverage CompareRandomPrograms(EngineUnderTest engine, const char* label) {
 }
 
 TEST_P(EngineDifferential, RandomProgramsMatchBitForBit) {
-  CompareRandomPrograms({EngineKind::kBatch}, hwy::TargetName(GetParam()));
+  CompareRandomPrograms({"batch"}, hwy::TargetName(GetParam()));
 }
 
 // ---- the jit engine -----------------------------------------------------------------------------------
@@ -288,7 +288,7 @@ TEST_P(EngineDifferential, RandomProgramsMatchBitForBit) {
 // One instance per instruction set the CPU runs, so none is left untested where it exists.
 class JitDifferential : public testing::TestWithParam<JitIsa> {
  protected:
-  EngineUnderTest Engine() const { return {EngineKind::kJit, GetParam()}; }
+  EngineUnderTest Engine() const { return {"jit", GetParam()}; }
   std::string Label() const { return std::string("jit ").append(jit::IsaName(GetParam())); }
 };
 INSTANTIATE_TEST_SUITE_P(SupportedIsas, JitDifferential, testing::ValuesIn(jit::SupportedIsas()),
@@ -312,11 +312,11 @@ TEST(JitIsas, TheTestsCoverEveryInstructionSetTheCpuHas) {
 }
 
 TEST_P(JitDifferential, EveryOpcodeMaskSwizzleNegationAndSpecialValue) {
-  for (FloatRules rules : kAllFloatRules) SweepEveryOpcode({EngineKind::kJit, GetParam(), rules}, Label().c_str());
+  for (FloatRules rules : kAllFloatRules) SweepEveryOpcode({"jit", GetParam(), rules}, Label().c_str());
 }
 
 TEST_P(JitDifferential, LoneNaNOperandKeepsItsBits) {
-  for (FloatRules rules : kAllFloatRules) CheckLoneNaNOperands({EngineKind::kJit, GetParam(), rules}, Label().c_str());
+  for (FloatRules rules : kAllFloatRules) CheckLoneNaNOperands({"jit", GetParam(), rules}, Label().c_str());
 }
 
 // A lane's uniform value is a promise that ends when the lane is written through lane(): the same
@@ -335,7 +335,7 @@ TEST_P(JitDifferential, UniformLanesFollowTheirPromise) {
   for (std::size_t i = 0; i < count; ++i) {
     for (int c = 0; c < 4; ++c) inputs.lane(1, c)[i] = static_cast<float>(i) * 0.5f - static_cast<float>(c);
   }
-  std::unique_ptr<vs11::Engine> engine = MakeEngine(EngineKind::kJit, program, constants, {.jit_isa = GetParam()});
+  std::unique_ptr<vs11::Engine> engine = MakeEngine("jit", program, constants, WithJitIsa({}, GetParam()));
   const auto check = [&](const char* when) {
     VertexArrays expected = MakeOutputArrays(count, program);
     MakeReferenceEngine(program, constants)->Run(inputs, expected);

@@ -18,6 +18,7 @@
 #include "vm/core/machine.h"
 #include "vm/engines/batch_engine.h"
 #include "vm/engines/engine_factory.h"
+#include "vm/engines/jit_options.h"
 
 namespace vs11 {
 namespace {
@@ -25,7 +26,7 @@ namespace {
 namespace fs = std::filesystem;
 using vs11::testing::RunOnThreads;
 
-constexpr EngineKind kAllKinds[] = {EngineKind::kReference, EngineKind::kBatch, EngineKind::kJit};
+constexpr std::string kAllKinds[] = {"ref", "batch", "jit"};
 
 struct NamedProgram {
   std::string name;
@@ -95,7 +96,7 @@ VertexArrays RunEngine(Engine& engine, const Program& program, const VertexArray
   return outputs;
 }
 
-VertexArrays RunOnce(EngineKind kind, const Program& program, const ConstantBank& constants,
+VertexArrays RunOnce(std::string kind, const Program& program, const ConstantBank& constants,
                      const VertexArrays& inputs, const EngineOptions& options = {}) {
   return RunEngine(*MakeEngine(kind, program, constants, options), program, inputs);
 }
@@ -126,13 +127,13 @@ TEST(EngineThreads, EnginesOnSeparateThreadsShareOneProgramConstantsAndInputs) {
   const Program& program = Find(programs, "sh9_irradiance.vsh").program;
   const ConstantBank constants = PatternConstants();
   const VertexArrays inputs = PatternInputs(3000);
-  for (EngineKind kind : kAllKinds) {
+  for (std::string kind : kAllKinds) {
     const VertexArrays alone = RunOnce(kind, program, constants, inputs);
     RunOnThreads(4, [&](int t) {
       std::unique_ptr<Engine> engine = MakeEngine(kind, program, constants);
       for (int round = 0; round < 2; ++round) {
         ExpectSameBits(RunEngine(*engine, program, inputs), alone,
-                       std::string(EngineName(kind)) + " thread " + std::to_string(t) + " round " + std::to_string(round));
+                       std::string(kind) + " thread " + std::to_string(t) + " round " + std::to_string(round));
       }
     });
   }
@@ -151,18 +152,18 @@ TEST(EngineThreads, JitCompilesAndRunsEveryProgramAtOnce) {
   uniform_inputs.FillUniform(1, 2, -0.5f);
   auto options_of = [](std::size_t index) {
     EngineOptions options;
-    options.jit_isa = index % 2 ? JitIsa::kAvx2 : JitIsa::kBest;
+    options = WithJitIsa(options, index % 2 ? JitIsa::kAvx2 : JitIsa::kBest);
     return options;
   };
   std::vector<VertexArrays> alone, alone_uniform;
   for (std::size_t p = 0; p < programs.size(); ++p) {
-    alone.push_back(RunOnce(EngineKind::kJit, programs[p].program, constants, inputs, options_of(p)));
-    alone_uniform.push_back(RunOnce(EngineKind::kJit, programs[p].program, constants, uniform_inputs, options_of(p)));
+    alone.push_back(RunOnce("jit", programs[p].program, constants, inputs, options_of(p)));
+    alone_uniform.push_back(RunOnce("jit", programs[p].program, constants, uniform_inputs, options_of(p)));
   }
   RunOnThreads(static_cast<int>(programs.size()), [&](int t) {
     const std::size_t p = static_cast<std::size_t>(t);
     const Program& program = programs[p].program;
-    std::unique_ptr<Engine> engine = MakeEngine(EngineKind::kJit, program, constants, options_of(p));
+    std::unique_ptr<Engine> engine = MakeEngine("jit", program, constants, options_of(p));
     ExpectSameBits(RunEngine(*engine, program, inputs), alone[p], programs[p].name);
     ExpectSameBits(RunEngine(*engine, program, uniform_inputs), alone_uniform[p], programs[p].name + ", uniform lanes");
     ExpectSameBits(RunEngine(*engine, program, inputs), alone[p], programs[p].name + ", again");
@@ -181,13 +182,13 @@ TEST(EngineThreads, ThreadSplitGivesTheBitsOfOneThreadForEveryProgram) {
     const std::size_t count = piece == kNeverSplit ? std::size_t{1} << 16 : 4 * piece + 37;
     split_programs += piece != kNeverSplit;
     const VertexArrays inputs = PatternInputs(count);
-    for (EngineKind kind : {EngineKind::kBatch, EngineKind::kJit}) {
+    for (std::string kind : {"batch", "jit"}) {
       const VertexArrays one = RunOnce(kind, named.program, constants, inputs);
       for (int threads : {2, 3, 4}) {
         EngineOptions options;
         options.threads = threads;
         ExpectSameBits(RunOnce(kind, named.program, constants, inputs, options), one,
-                       named.name + " " + std::string(EngineName(kind)) + " threads " + std::to_string(threads) +
+                       named.name + " " + std::string(kind) + " threads " + std::to_string(threads) +
                            ", " + std::to_string(count) + " vertices");
       }
     }
@@ -201,13 +202,13 @@ TEST(EngineThreads, SplittingEnginesRunSideBySide) {
   const Program& program = Find(programs, "sh9_irradiance.vsh").program;
   const ConstantBank constants = PatternConstants();
   const VertexArrays inputs = PatternInputs(std::size_t{1} << 17);
-  const VertexArrays one = RunOnce(EngineKind::kJit, program, constants, inputs);
+  const VertexArrays one = RunOnce("jit", program, constants, inputs);
   RunOnThreads(3, [&](int t) {
     EngineOptions options;
     options.threads = 2;
-    const EngineKind kind = t == 1 ? EngineKind::kBatch : EngineKind::kJit;
+    const std::string kind = t == 1 ? "batch" : "jit";
     ExpectSameBits(RunOnce(kind, program, constants, inputs, options), one,
-                   std::string(EngineName(kind)) + " on thread " + std::to_string(t));
+                   std::string(kind) + " on thread " + std::to_string(t));
   });
 }
 

@@ -66,8 +66,8 @@ Comparison CompareWithReference(const Program& program, const ConstantBank& bank
   VertexArrays expected = MakeOutputArrays(inputs.count(), program);
   VertexArrays actual = MakeOutputArrays(inputs.count(), program);
   const EngineOptions options{.float_rules = rules};
-  MakeEngine(EngineKind::kReference, program, bank, options)->Run(inputs, expected);
-  std::unique_ptr<Engine> gl = MakeEngine(EngineKind::kGl, program, bank, options);
+  MakeEngine("ref", program, bank, options)->Run(inputs, expected);
+  std::unique_ptr<Engine> gl = MakeEngine("gl", program, bank, options);
   gl->Run(inputs, actual);
   comparison.error = gl->error();
   if (!comparison.error.empty()) return comparison;
@@ -171,8 +171,8 @@ void CountKinds(const Program& program, const ConstantBank& bank, const VertexAr
                 std::map<std::string, int>& kinds, int& exact_programs) {
   VertexArrays expected = MakeOutputArrays(inputs.count(), program);
   VertexArrays actual = MakeOutputArrays(inputs.count(), program);
-  MakeEngine(EngineKind::kReference, program, bank)->Run(inputs, expected);
-  std::unique_ptr<Engine> gl = MakeEngine(EngineKind::kGl, program, bank);
+  MakeEngine("ref", program, bank)->Run(inputs, expected);
+  std::unique_ptr<Engine> gl = MakeEngine("gl", program, bank);
   gl->Run(inputs, actual);
   ASSERT_EQ(gl->error(), "");
   bool exact = true;
@@ -252,7 +252,7 @@ TEST_F(GlEngineTest, InfinityTimesZeroFollowsTheEnginesFloatRules) {
   const VertexArrays& inputs = test.inputs;
   for (FloatRules rules : kAllFloatRules) {
     VertexArrays outputs = MakeOutputArrays(1, program);
-    std::unique_ptr<Engine> gl = MakeEngine(EngineKind::kGl, program, bank, {.float_rules = rules});
+    std::unique_ptr<Engine> gl = MakeEngine("gl", program, bank, {.float_rules = rules});
     gl->Run(inputs, outputs);
     ASSERT_EQ(gl->error(), "");
     const float mul_x = outputs.lane(static_cast<int>(OutputSlot::kDiffuse), 0)[0];
@@ -282,7 +282,7 @@ TEST_F(GlEngineTest, SetConstantsBetweenRunsGivesEachBanksOutputs) {
   std::mt19937 rng(23);
   const Program program = ProgramFromFile("all_instructions.vsh");
   const VertexArrays inputs = OrdinaryInputs(64, rng);
-  std::unique_ptr<Engine> gl = MakeEngine(EngineKind::kGl, program, OrdinaryConstants(rng));
+  std::unique_ptr<Engine> gl = MakeEngine("gl", program, OrdinaryConstants(rng));
   for (int bank_size : {kDefaultConstantCount, kDefaultConstantCount, 192}) {
     ConstantBank bank(bank_size);
     for (int reg = 0; reg < bank.size(); ++reg) {
@@ -293,7 +293,7 @@ TEST_F(GlEngineTest, SetConstantsBetweenRunsGivesEachBanksOutputs) {
     VertexArrays expected = MakeOutputArrays(inputs.count(), program);
     gl->Run(inputs, actual);
     ASSERT_EQ(gl->error(), "");
-    MakeEngine(EngineKind::kReference, program, bank)->Run(inputs, expected);
+    MakeEngine("ref", program, bank)->Run(inputs, expected);
     for (int slot : expected.registers()) {
       for (int c = 0; c < translate::OutputVariableOf(slot, /*exact_on_driver=*/true).components; ++c) {
         for (std::size_t v = 0; v < inputs.count(); ++v) {
@@ -313,9 +313,9 @@ TEST_F(GlEngineTest, RunsWhereverItIsCalledAndLeavesTheCurrentContextAlone) {
   const ConstantBank bank = OrdinaryConstants(rng);
   const VertexArrays inputs = OrdinaryInputs(100, rng);
   VertexArrays expected = MakeOutputArrays(inputs.count(), program);
-  MakeEngine(EngineKind::kReference, program, bank)->Run(inputs, expected);
+  MakeEngine("ref", program, bank)->Run(inputs, expected);
   const void* current_before = eglGetCurrentContext();
-  std::unique_ptr<Engine> gl = MakeEngine(EngineKind::kGl, program, bank);
+  std::unique_ptr<Engine> gl = MakeEngine("gl", program, bank);
   EXPECT_EQ(eglGetCurrentContext(), current_before);
   for (int round = 0; round < 3; ++round) {
     VertexArrays actual = MakeOutputArrays(inputs.count(), program);
@@ -336,9 +336,9 @@ TEST_F(GlEngineTest, RunsWhereverItIsCalledAndLeavesTheCurrentContextAlone) {
 // Without a registered maker (a program that does not link vm/gl, such as the Python module) the
 // factory gives an engine that says so and writes NaN, never a null pointer.
 TEST_F(GlEngineTest, WithoutRegistrationTheFactoryGivesAnEngineThatSaysWhy) {
-  RegisterEngineMaker(EngineKind::kGl, nullptr);
+  UnregisterEngine("gl");
   const Program program = ProgramFromFile("fog.vsh");
-  std::unique_ptr<Engine> engine = MakeEngine(EngineKind::kGl, program, ConstantBank());
+  std::unique_ptr<Engine> engine = MakeEngine("gl", program, ConstantBank());
   gl::RegisterGlEngine();
   ASSERT_NE(engine, nullptr);
   EXPECT_NE(engine->error().find("the gl engine is not part of this program"), std::string::npos) << engine->error();

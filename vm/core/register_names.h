@@ -1,0 +1,43 @@
+// How registers are spelled (§2.2, §1.6): the one table the assembler's lexer, the disassembler and
+// every register name outside a program (command lines, metadata, CSV headers) read.
+#pragma once
+
+#include <array>
+#include <cstddef>
+#include <optional>
+#include <string_view>
+
+#include "vm/core/program.h"
+
+namespace vs11 {
+
+// A "numbered" spelling is followed by a decimal number (r7, oT3); a fixed one names a single register
+// (oPos). Names are matched case-insensitively and printed as written here.
+struct RegisterSpelling {
+  std::string_view name;
+  RegisterFile file;
+  int fixed_index;  // kNumbered, or the register number the name stands for
+  static constexpr int kNumbered = -1;
+};
+inline constexpr std::array kRegisterSpellings = {
+    RegisterSpelling{"oPos", RegisterFile::kRasterOut, kRasterOutPosition},
+    RegisterSpelling{"oFog", RegisterFile::kRasterOut, kRasterOutFog},
+    RegisterSpelling{"oPts", RegisterFile::kRasterOut, kRasterOutPointSize},
+    RegisterSpelling{"oD", RegisterFile::kAttributeOut, RegisterSpelling::kNumbered},
+    RegisterSpelling{"oT", RegisterFile::kTexCoordOut, RegisterSpelling::kNumbered},
+    RegisterSpelling{"r", RegisterFile::kTemp, RegisterSpelling::kNumbered},
+    RegisterSpelling{"v", RegisterFile::kInput, RegisterSpelling::kNumbered},
+    RegisterSpelling{"c", RegisterFile::kConst, RegisterSpelling::kNumbered},
+    RegisterSpelling{"a", RegisterFile::kAddress, RegisterSpelling::kNumbered},
+};
+
+// The length of `file`'s numbered spelling ("v", "c", "oT") when `text` begins with it in any case;
+// 0 otherwise.
+std::size_t NumberedRegisterPrefix(std::string_view text, RegisterFile file);
+
+// "v3" -> 3 for RegisterFile::kInput, "C12" -> 12 for kConst: the file's spelling in any case, then a
+// non-negative decimal number and nothing else (no sign, no spaces). No range check: each caller
+// states its own range in its message.
+std::optional<int> ParseNumberedRegister(std::string_view name, RegisterFile file);
+
+}  // namespace vs11
