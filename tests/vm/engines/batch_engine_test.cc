@@ -89,6 +89,12 @@ Vec4f RunOnce(const std::string& body, const Vec4f& v0, const ConstantBank& cons
 }
 
 class BatchEngine : public hwy::TestWithParamTarget {};
+
+// The jit engine (machine code where the program compiles) or the batch engine's kernels.
+std::unique_ptr<Engine> MakeBatchOrJit(bool compiled, const Program& program, const ConstantBank& constants,
+                                       const EngineOptions& options) {
+  return compiled ? MakeJitEngine(program, constants, options) : MakeBatchEngine(program, constants, options);
+}
 HWY_TARGET_INSTANTIATE_TEST_SUITE_P(BatchEngine);
 
 struct InstructionCase {
@@ -248,11 +254,11 @@ TEST_P(BatchEngine, ThreadsGiveTheSameBitsAsOneThread) {
     });
     for (const bool compiled : {false, true}) {
       VertexArrays one = MakeOutputArrays(count, program);
-      MakeBatchEngine(program, constants, {1}, compiled)->Run(inputs, one);
+      MakeBatchOrJit(compiled, program, constants, {1})->Run(inputs, one);
       for (int threads = 1; threads <= 4; ++threads) {
         SCOPED_TRACE(std::to_string(count) + " vertices, " + std::to_string(threads) + " threads" +
                      (compiled ? ", compiled" : ", kernels"));
-        std::unique_ptr<Engine> engine = MakeBatchEngine(program, constants, {.threads = threads, .pool = &pool}, compiled);
+        std::unique_ptr<Engine> engine = MakeBatchOrJit(compiled, program, constants, {.threads = threads, .pool = &pool});
         for (int call = 0; call < 2; ++call) {
           VertexArrays many = MakeOutputArrays(count, program);
           engine->Run(inputs, many);
@@ -279,7 +285,7 @@ TEST_P(BatchEngine, EnginesSharingOnePoolFromSeveralThreadsGiveOneThreadsBits) {
   std::vector<std::thread> callers;
   for (int c = 0; c < kCallers; ++c) {
     callers.emplace_back([&, c] {
-      std::unique_ptr<Engine> engine = MakeBatchEngine(program, constants, {.threads = 3, .pool = &pool}, c % 2 == 1);
+      std::unique_ptr<Engine> engine = MakeBatchOrJit(c % 2 == 1, program, constants, {.threads = 3, .pool = &pool});
       for (int call = 0; call < 3; ++call) engine->Run(inputs, results[static_cast<std::size_t>(c)]);
     });
   }
