@@ -467,7 +467,7 @@ std::optional<std::string> LoadStage(IrrmapRun& run) {
   if (error) return error;
   if (run.progress) run.progress("load", 1.0);
   // Hashed after loading, so that a file the loader refused is reported as the loader says.
-  if (!run.options.cube && !run.checked.builtin) {
+  if (!run.options.cube && !run.options.latlong && !run.checked.builtin) {
     error = Timed(run.report, "hash", [&]() -> std::optional<std::string> {
       for (const fs::path& file : EnvironmentFiles(run.options.environment)) {
         if (std::optional<std::string> problem = DigestInputFile(file, run.report.input_files.emplace_back())) {

@@ -18,19 +18,22 @@ from test_batch import write_pfm
 UNDER_ASAN = "asan" in os.environ.get("LD_PRELOAD", "")
 
 
-def run_limited(script, limit_mb):
+def run_limited(script, limit_mb, read_first=None):
     """`script` in a fresh interpreter whose address space is limited to `limit_mb` more than the
-    interpreter with the module imported needs."""
+    interpreter with the module imported needs (and, with `read_first`, that file projected: the
+    first file read maps OpenImageIO's module and its libraries, which `import vs11` does not)."""
     code = textwrap.dedent(
         """
         import resource, sys, warnings
         import vs11, vs11.irradiance
+        if %r is not None:
+            vs11.irradiance.project(%r, face_size=4)
         with open("/proc/self/statm") as f:
             used = int(f.read().split()[0]) * resource.getpagesize()
         limit = used + %d * 2**20
         resource.setrlimit(resource.RLIMIT_AS, (limit, limit))
         """
-        % limit_mb
+        % (read_first, read_first, limit_mb)
     ) + textwrap.dedent(script)
     return subprocess.run([sys.executable, "-c", code], capture_output=True, text=True, timeout=600)
 
@@ -53,6 +56,7 @@ def test_batch_projects_a_lat_long_file_at_any_face_size_in_little_memory(tmp_pa
         """
         % (str(small), str(lat)),
         200,
+        read_first=str(lat),
     )
     assert result.returncode == 0, result.stderr
     assert "records 2" in result.stdout

@@ -17,7 +17,7 @@ import sys
 
 # (folder, layer): a file may include from folders of a lower layer, or from its own folder.
 LAYERS = {
-    "vm/core": 0, "vm/asm": 1, "vm/io": 1, "vm/engines": 2, "vm/mesh": 3, "vm/translate": 3, "vm/gl": 4,
+    "vm/core": 0, "vm/ir": 1, "vm/asm": 1, "vm/io": 1, "vm/engines": 2, "vm/mesh": 3, "vm/translate": 3, "vm/gl": 4,
     "irradiance/io": 5, "irradiance/sh": 6, "irradiance/render": 7, "irradiance/report": 8,
     "irradiance/jobs": 9, "irradiance/mesh_input": 10, "vm/cli": 11, "irradiance/cli": 12,
     "python": 13,

@@ -56,7 +56,7 @@ TEST_P(AssimpModel, RunsOrIsRefusedClearly) {
   if (index % ToolRunStride() != 0) return;
   const fs::path out = fs::path(::testing::TempDir()) / ("vs11_assimp_model_" + std::to_string(index));
   fs::remove_all(out);
-  const auto result = vs11::testing::RunVs11("run " + std::string(VS11_SOURCE_DIR) + "/programs/directional_light.vsh --mesh '" +
+  const auto result = vs11::testing::RunVs11("run " + std::string(VS11_SOURCE_DIR) + "/programs/directional_light.vsh --missing zeros --mesh '" +
                                              file + "' --out-npy " + out.string());
   ASSERT_TRUE(result.status == 0 || result.status == 1) << "status " << result.status << "\n" << result.output;
   if (!loaded.ok()) {
