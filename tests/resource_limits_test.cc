@@ -10,11 +10,13 @@
 // of memory and exits rather than throwing, so under ASan these tests skip, saying so; the ordinary
 // build's ctest runs them.
 #include <fcntl.h>
+#include <poll.h>
 #include <sys/resource.h>
 #include <sys/wait.h>
 #include <unistd.h>
 
 #include <cerrno>
+#include <chrono>
 #include <csignal>
 #include <cstring>
 #include <filesystem>
@@ -49,6 +51,8 @@ constexpr rlim_t kMiB = rlim_t{1} << 20;
 struct Limits {
   rlim_t address_space = RLIM_INFINITY;
   rlim_t stack = 0;  // 0: unchanged
+  // A run still going after this long is killed (SIGKILL) and reported as such.
+  int timeout_seconds = 300;
 };
 
 struct LimitedRun {
@@ -90,9 +94,20 @@ LimitedRun RunLimited(const std::string& tool, const std::vector<std::string>& a
   }
   close(pipe_ends[1]);
   char buffer[4096];
-  for (ssize_t n; (n = read(pipe_ends[0], buffer, sizeof buffer)) != 0;) {
+  const auto deadline = std::chrono::steady_clock::now() + std::chrono::seconds(limits.timeout_seconds);
+  for (;;) {
+    const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - std::chrono::steady_clock::now());
+    pollfd readable{pipe_ends[0], POLLIN, 0};
+    const int ready = left.count() > 0 ? poll(&readable, 1, static_cast<int>(left.count())) : 0;
+    if (ready < 0 && errno == EINTR) continue;
+    if (ready == 0) {
+      kill(child, SIGKILL);
+      run.output += fmt::format("\n[killed after {} s]\n", limits.timeout_seconds);
+      break;
+    }
+    const ssize_t n = read(pipe_ends[0], buffer, sizeof buffer);
     if (n < 0 && errno == EINTR) continue;
-    if (n < 0) break;
+    if (n <= 0) break;
     run.output.append(buffer, static_cast<std::size_t>(n));
   }
   close(pipe_ends[0]);
@@ -144,11 +159,14 @@ std::string TinyLatLong(const fs::path& path) {
 
 // The smallest limit, in 16 MiB steps, under which `irrmap INPUT --face-size 16 --coefficients-only`
 // succeeds, plus a margin for the allocator's arenas.
-rlim_t SmallestLimitFor(const std::string& input) {
-  for (rlim_t limit = 128 * kMiB; limit < 4096 * kMiB; limit += 16 * kMiB) {
+// A run killed after 30 s counts as not fitting: under some limits log4cplus (which OpenImageIO's
+// libraries bring) waits forever in its initialisation for a worker thread it could not start.
+rlim_t SmallestLimitFor(const std::string& input, rlim_t from = 128 * kMiB) {
+  for (rlim_t limit = from; limit < 4096 * kMiB; limit += 16 * kMiB) {
     const fs::path out = fs::path(::testing::TempDir()) / "vs11_resource_baseline";
     const LimitedRun run = RunIrrmapLimited(
-        {input, "--face-size", "16", "--coefficients-only", "--threads", "1", "--out", out.string()}, {limit});
+        {input, "--face-size", "16", "--coefficients-only", "--threads", "1", "--out", out.string()},
+        {.address_space = limit, .timeout_seconds = 30});
     fs::remove_all(out);
     if (run.exited && run.status == 0) return limit + 64 * kMiB;
   }
@@ -163,7 +181,7 @@ rlim_t ResourceLimits::Baseline() {
 // Reading a file maps OpenImageIO's module and its libraries, which a run of `sky` never loads.
 rlim_t ResourceLimits::FileBaseline() {
   static const rlim_t baseline =
-      SmallestLimitFor(TinyLatLong(fs::path(::testing::TempDir()) / "vs11_resource_baseline.pfm"));
+      SmallestLimitFor(TinyLatLong(fs::path(::testing::TempDir()) / "vs11_resource_baseline.pfm"), Baseline());
   return baseline;
 }
 
