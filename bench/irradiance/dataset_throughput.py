@@ -3,7 +3,7 @@
 
   decode      vs11_decode_images --reader oiio: OpenImageIO alone, read as float RGB
   read        vs11_decode_images --reader vs11: vs11's reader (checks, OpenImageIO, RGB image)
-  batch       vs11.irradiance.batch(files, threads=1): read, resample to a 256 cube, mips, project
+  batch       vs11.irradiance.iter_batch(files, threads=1): read, the lat-long pyramid (projected in place), project
               every level, pick the level, the record (what a Dask task runs)
   cluster/1   vs11.dask.label_dataset on a LocalCluster of one worker process (one thread)
   cluster/2   the same on two worker processes
@@ -37,7 +37,7 @@ import json, resource, sys, time
 import vs11.irradiance
 files = sys.argv[1:]
 before, start = resource.getrusage(resource.RUSAGE_SELF), time.perf_counter()
-records = list(vs11.irradiance.batch(files, threads=1, face_size=256))
+records = list(vs11.irradiance.iter_batch(files, threads=1, face_size=256))
 wall, after = time.perf_counter() - start, resource.getrusage(resource.RUSAGE_SELF)
 assert len(records) == len(files), "only %d records" % len(records)
 cpu = (after.ru_utime - before.ru_utime) + (after.ru_stime - before.ru_stime)
