@@ -26,7 +26,7 @@ namespace {
 namespace fs = std::filesystem;
 using vs11::testing::RunOnThreads;
 
-constexpr std::string kAllKinds[] = {"ref", "batch", "jit"};
+const std::string kAllKinds[] = {"ref", "batch", "jit"};
 
 struct NamedProgram {
   std::string name;
