@@ -16,11 +16,11 @@
 #include <string_view>
 #include <vector>
 
-#include "irradiance/report/program_references.h"
-#include "irradiance/report/verify.h"
 #include "irradiance/sh/sh9.h"
 #include "vm/core/machine.h"
 #include "vm/core/program.h"
+#include "vm/reference/program_references.h"
+#include "vm/reference/verify.h"
 
 namespace vs11::bench {
 
@@ -62,8 +62,8 @@ inline const std::filesystem::path& ProgramsFolder() {
 inline std::filesystem::path ProgramPath(std::string_view file_name) { return ProgramsFolder() / file_name; }
 
 // Loads and validates a program (fragments such as sh9_irradiance.vsh included) with its metadata.
-inline irradiance::ProgramForVerify LoadBenchProgram(const std::filesystem::path& path) {
-  irradiance::ProgramForVerify loaded = irradiance::LoadProgramForVerify(path);
+inline vs11::ProgramForVerify LoadBenchProgram(const std::filesystem::path& path) {
+  vs11::ProgramForVerify loaded = vs11::LoadProgramForVerify(path);
   if (!loaded.program) {
     std::fprintf(stderr, "vs11_bench: cannot load %s\n", path.string().c_str());
     std::abort();
@@ -114,7 +114,7 @@ inline VertexArrays NormalInputs(const SoaNormals& normals, int reg = 0) {
 }
 
 // The seven Table 1 registers at c[first]..c[first + 6] of an otherwise zero bank.
-inline ConstantBank Table1Bank(const irradiance::SevenConstants& constants, int first = 0) {
+inline ConstantBank Table1Bank(const vs11::SevenConstants& constants, int first = 0) {
   ConstantBank bank;
   for (int i = 0; i < 7; ++i) {
     const glm::vec4& v = constants.registers[i];
@@ -124,7 +124,7 @@ inline ConstantBank Table1Bank(const irradiance::SevenConstants& constants, int 
 }
 
 // Fixed coefficients of a plausible environment for the evaluation benchmarks.
-inline irradiance::Sh9Rgb BenchCoefficients() { return irradiance::RandomCoefficients(kBenchSeed); }
+inline vs11::Sh9Rgb BenchCoefficients() { return vs11::RandomCoefficients(kBenchSeed); }
 
 // The Table 1 polynomial (eq. (7)) in plain C++, r[i], g[i], b[i] from x[i], y[i], z[i]:
 //   E_c = dp4((x, y, z, 1), cA_c) + dp4((xy, yz, zz, zx), cB_c) + cC_c (x^2 - y^2)
@@ -132,9 +132,9 @@ inline irradiance::Sh9Rgb BenchCoefficients() { return irradiance::RandomCoeffic
 // Scalar: compiled with tree vectorisation off. Simd: the same loop with __restrict pointers and
 // function multi-versioning (AVX-512 / AVX2 / SSE2, chosen at load time). Both are defined in
 // bench/vm/irradiance_eval_bench.cc and are not inlined.
-void EvalTable1Scalar(const irradiance::SevenConstants& constants, const float* x, const float* y,
+void EvalTable1Scalar(const vs11::SevenConstants& constants, const float* x, const float* y,
                       const float* z, float* r, float* g, float* b, std::size_t count);
-void EvalTable1Simd(const irradiance::SevenConstants& constants, const float* x, const float* y,
+void EvalTable1Simd(const vs11::SevenConstants& constants, const float* x, const float* y,
                     const float* z, float* r, float* g, float* b, std::size_t count);
 
 }  // namespace vs11::bench

@@ -7,7 +7,7 @@
 
 #include <fmt/format.h>
 
-#include "irradiance/report/verify.h"
+#include "vm/core/register_names.h"
 
 namespace vs11::python {
 namespace {
@@ -29,7 +29,7 @@ std::optional<int> RegisterOfUsage(const Program& program, const std::string& na
 }
 
 int InputRegister(const Program& program, const std::string& key) {
-  if (std::optional<int> reg = irradiance::ParseInputRegister(key)) return *reg;
+  if (std::optional<int> reg = ParseInputRegister(key)) return *reg;
   if (std::optional<int> reg = RegisterOfUsage(program, key)) return *reg;
   throw py::value_error(fmt::format(
       "inputs['{}']: not an input register (v0 to v{}) nor a dcl usage the program declares (such as 'position' "
@@ -168,7 +168,7 @@ ConstantBank ConstantsFromPython(const py::object& constants, int constant_count
         index = static_cast<int>(value);
       } else if (py::isinstance<py::str>(key)) {
         name = fmt::format("constants['{}']", key.cast<std::string>());
-        index = irradiance::ParseConstantRegister(key.cast<std::string>());
+        index = ParseConstantRegister(key.cast<std::string>());
         if (!index) throw py::value_error(name + ": not a constant register such as 'c4'");
       } else {
         throw py::value_error("constants: keys must be register names ('c4') or numbers (4)");

@@ -174,8 +174,8 @@ Projection Project(const py::object& environment, const std::string& layout, int
       OptionsFor(environment, layout, face_size, level, max_error, error_metric, order, window, window_width);
   const irradiance::IrrmapReport report = RunJob(options);
   Projection result;
-  result.coefficients = py::array_t<double>({irradiance::kSh9Coefficients, 3});
-  for (int i = 0; i < irradiance::kSh9Coefficients; ++i) {
+  result.coefficients = py::array_t<double>({vs11::kSh9Coefficients, 3});
+  for (int i = 0; i < vs11::kSh9Coefficients; ++i) {
     for (int c = 0; c < 3; ++c) result.coefficients.mutable_at(i, c) = report.coefficients.coefficients[i][c];
   }
   result.constants = py::array_t<float>({7, 4});
@@ -184,11 +184,11 @@ Projection Project(const py::object& environment, const std::string& layout, int
   }
   result.level = report.level;
   result.level_size = report.levels[report.level].size;
-  result.order = std::string(irradiance::Info(report.order).name);
+  result.order = std::string(vs11::Info(report.order).name);
   std::string error;
   std::optional<irradiance::PaperProgram> program = irradiance::PaperProgram::LoadOrder(report.order, error);
   if (!program) throw std::runtime_error(error);
-  result.program = PyProgram{program->program(), std::string(irradiance::Info(report.order).program_file),
+  result.program = PyProgram{program->program(), std::string(vs11::Info(report.order).program_file),
                              kDefaultConstantCount, true};
   for (std::size_t i = 0; i < report.program_constants.size(); ++i) {
     const glm::vec4& value = report.program_constants[i].value;

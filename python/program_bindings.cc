@@ -10,13 +10,13 @@
 #include <pybind11/stl.h>
 #include <pybind11/stl/filesystem.h>
 
-#include "irradiance/report/verify.h"
 #include "python/bindings.h"
 #include "vm/asm/assembler.h"
 #include "vm/asm/bytecode.h"
 #include "vm/asm/disassembler.h"
 #include "vm/asm/validator.h"
 #include "vm/core/machine.h"
+#include "vm/reference/verify.h"
 
 namespace vs11::python {
 namespace {
@@ -48,7 +48,7 @@ PyProgram Finish(std::optional<Program> program, const Diagnostics& diagnostics,
 PyProgram Assemble(const std::string& source, const std::string& name, std::optional<bool> fragment,
                    int max_constants) {
   CheckConstantCount(max_constants);
-  irradiance::MetadataResult metadata = irradiance::ParseProgramMetadata(source, name);
+  vs11::MetadataResult metadata = vs11::ParseProgramMetadata(source, name);
   AssembleOptions options;
   options.constant_count = max_constants;
   const bool is_fragment = fragment.value_or(metadata.metadata.fragment);
@@ -63,7 +63,7 @@ PyProgram Load(const std::filesystem::path& path, std::optional<bool> fragment, 
   CheckConstantCount(max_constants);
   LoadProgramOptions options;
   options.assemble.constant_count = max_constants;
-  irradiance::ProgramForVerify loaded = irradiance::LoadProgramForVerify(path, options, fragment);
+  vs11::ProgramForVerify loaded = vs11::LoadProgramForVerify(path, options, fragment);
   const bool is_fragment = fragment.value_or(loaded.metadata.fragment);
   return Finish(std::move(loaded.program), loaded.diagnostics, path.string(), max_constants, is_fragment);
 }

@@ -1,7 +1,7 @@
 // vs11 against Mesa's llvmpipe on the same vertex programs, inputs and constants, in one run.
 //
 // For each vertex count, every program of programs/ is built from its reference's inputs and
-// constants (irradiance/report/program_references.h) and run
+// constants (vm/reference/program_references.h) and run
 //  * by llvmpipe, as its GLSL ES 3.00 translation (vm/translate, `vs11 translate --to glsles300
 //    --clip d3d`), through transform feedback with the rasterizer discarded, once with
 //    LP_NUM_THREADS=1 and once with Mesa's default thread count;
@@ -45,17 +45,17 @@
 #include <nlohmann/json.hpp>
 
 #include "bench/bench_common.h"
-#include "vm/gl/gl_runner.h"
 #include "bench/compare_llvmpipe/shaders.h"
-#include "irradiance/report/program_references.h"
-#include "vm/translate/shader_graph.h"
-#include "vm/translate/translate.h"
-#include "irradiance/report/verify.h"
 #include "vm/asm/program_file.h"
 #include "vm/core/atomic_file.h"
 #include "vm/core/machine.h"
 #include "vm/engines/engine_factory.h"
 #include "vm/engines/jit_compiler.h"
+#include "vm/gl/gl_runner.h"
+#include "vm/reference/program_references.h"
+#include "vm/reference/verify.h"
+#include "vm/translate/shader_graph.h"
+#include "vm/translate/translate.h"
 
 namespace vs11::bench::llvmpipe {
 namespace {
@@ -221,17 +221,17 @@ void BindTranslation(Case& c, const VertexArrays& supplied, std::size_t count) {
 
 std::optional<Case> BuildCase(const Workload& workload, std::size_t count, std::string& error) {
   const std::filesystem::path path = ProgramPath(workload.file);
-  irradiance::ProgramForVerify loaded = irradiance::LoadProgramForVerify(path);
-  const irradiance::ReferenceInfo* info = irradiance::FindReference(loaded.metadata.reference);
+  vs11::ProgramForVerify loaded = vs11::LoadProgramForVerify(path);
+  const vs11::ReferenceInfo* info = vs11::FindReference(loaded.metadata.reference);
   if (!loaded.program || info == nullptr) {
     error = fmt::format("{}: cannot load the program or its reference", path.string());
     return std::nullopt;
   }
-  irradiance::ReferenceOptions options;
+  vs11::ReferenceOptions options;
   options.coefficients = BenchCoefficients();
   options.samples = static_cast<int>(count);
   options.seed = kBenchSeed;
-  std::optional<irradiance::ReferenceCase> reference = info->build(loaded.metadata, options, error);
+  std::optional<vs11::ReferenceCase> reference = info->build(loaded.metadata, options, error);
   if (!reference) return std::nullopt;
 
   Case c;

@@ -67,9 +67,9 @@ void BM_Coefficients_ScalarDouble(benchmark::State& state) {
 BENCHMARK(BM_Coefficients_ScalarDouble)->Arg(256)->Arg(1024)->UseRealTime()->Unit(benchmark::kMillisecond);
 
 // Largest difference between two projections, relative to the largest coefficient of `reference`.
-double RelativeDifference(const irradiance::Sh9Rgb& value, const irradiance::Sh9Rgb& reference) {
+double RelativeDifference(const vs11::Sh9Rgb& value, const vs11::Sh9Rgb& reference) {
   double largest = 0, difference = 0;
-  for (int i = 0; i < irradiance::kSh9Coefficients; ++i) {
+  for (int i = 0; i < vs11::kSh9Coefficients; ++i) {
     for (int c = 0; c < 3; ++c) {
       largest = std::max(largest, std::abs(reference.coefficients[i][c]));
       difference = std::max(difference, std::abs(value.coefficients[i][c] - reference.coefficients[i][c]));

@@ -70,7 +70,7 @@ const FrameFixture& GetFrameFixture() {
     }
     f.basis = SkyFixture(kFrameFaceSize).basis;
     f.program = *LoadBenchProgram(ProgramPath("sh9_irradiance.vsh")).program;
-    f.error_normals = irradiance::SphereNormals(kErrorNormals);
+    f.error_normals = vs11::SphereNormals(kErrorNormals);
     f.truth = irradiance::GroundTruthIrradiance(f.skies[0], f.error_normals, kGroundTruthThreads);
     return f;
   }();
@@ -90,7 +90,7 @@ int LevelOf(FrameCase c) {
 
 // The coefficient step of one frame for sky `index`; `mips` is the pyramid the mip cases refill
 // every frame.
-irradiance::Sh9Rgb FrameCoefficients(const FrameFixture& f, FrameCase c, int index, irradiance::CubeMipChain& mips) {
+vs11::Sh9Rgb FrameCoefficients(const FrameFixture& f, FrameCase c, int index, irradiance::CubeMipChain& mips) {
   const int level = LevelOf(c);
   if (c == FrameCase::kDirectCpu) return ProjectScalarDouble(f.skies[index]);
   if (c == FrameCase::kPlainCpu) return ProjectPlainLoop(f.skies[index], f.basis.finest);
@@ -115,7 +115,7 @@ class VertexStep {
     }
   }
 
-  void Run(const irradiance::SevenConstants& constants) {
+  void Run(const vs11::SevenConstants& constants) {
     if (vm_) {
       engine_->SetConstants(Table1Bank(constants));
       engine_->Run(inputs_, outputs_);
@@ -148,7 +148,7 @@ double MeanRelativeError(const FrameFixture& f, FrameCase c) {
   }
   VertexStep step(f, c, normals);
   irradiance::CubeMipChain mips;
-  step.Run(irradiance::PackTable1(FrameCoefficients(f, c, 0, mips)));
+  step.Run(vs11::PackTable1(FrameCoefficients(f, c, 0, mips)));
   std::vector<glm::dvec3> estimate(normals.size());
   for (std::size_t i = 0; i < estimate.size(); ++i) estimate[i] = step.Result(i);
   return irradiance::CompareIrradiance(estimate, f.truth).mean_relative;
@@ -162,7 +162,7 @@ void BM_Frame(benchmark::State& state, FrameCase c) {
   irradiance::CubeMipChain mips;  // shaped by the first frame, refilled by every later one
   int frame = 0;
   for (auto _ : state) {
-    step.Run(irradiance::PackTable1(FrameCoefficients(f, c, frame, mips)));
+    step.Run(vs11::PackTable1(FrameCoefficients(f, c, frame, mips)));
     frame = (frame + 1) % kSunPositions;
     benchmark::ClobberMemory();
   }

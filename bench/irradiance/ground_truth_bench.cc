@@ -15,7 +15,7 @@ namespace {
 void BM_GroundTruth(benchmark::State& state) {
   const int face = static_cast<int>(state.range(0)), normal_count = static_cast<int>(state.range(1));
   const irradiance::CubeMap env = irradiance::MakeSky(face);
-  const std::vector<glm::dvec3> normals = irradiance::SphereNormals(normal_count);
+  const std::vector<glm::dvec3> normals = vs11::SphereNormals(normal_count);
   for (auto _ : state) benchmark::DoNotOptimize(irradiance::GroundTruthIrradiance(env, normals, 1));
   state.counters["texel_normals"] = benchmark::Counter(6.0 * face * face * normal_count,
                                                        benchmark::Counter::kIsIterationInvariantRate);

@@ -50,17 +50,17 @@ inline const ProjectionFixture& SkyFixture(int face_size) {
 // texel's direction and nine basis values computed on the spot; `solid_angle(x, y, size)` gives the
 // texel's solid angle (the same on every face).
 template <class SolidAngle>
-irradiance::Sh9Rgb ProjectTexelByTexel(const irradiance::CubeMap& env, SolidAngle solid_angle) {
-  irradiance::Sh9Rgb sh;
+vs11::Sh9Rgb ProjectTexelByTexel(const irradiance::CubeMap& env, SolidAngle solid_angle) {
+  vs11::Sh9Rgb sh;
   const int size = env.face_size;
   for (irradiance::CubeFace face : irradiance::kAllCubeFaces) {
     const irradiance::Image& image = env.face(face);
     for (int y = 0; y < size; ++y) {
       for (int x = 0; x < size; ++x) {
         const glm::dvec3 direction = irradiance::TexelDirection(face, x, y, size);
-        const std::array<double, irradiance::kSh9Coefficients> basis = irradiance::ShBasis(direction);
+        const std::array<double, vs11::kSh9Coefficients> basis = vs11::ShBasis(direction);
         const glm::dvec3 weighted = glm::dvec3(image.at(x, y)) * solid_angle(x, y, size);
-        for (int i = 0; i < irradiance::kSh9Coefficients; ++i) sh.coefficients[i] += weighted * basis[i];
+        for (int i = 0; i < vs11::kSh9Coefficients; ++i) sh.coefficients[i] += weighted * basis[i];
       }
     }
   }
@@ -68,7 +68,7 @@ irradiance::Sh9Rgb ProjectTexelByTexel(const irradiance::CubeMap& env, SolidAngl
 }
 
 // The obvious baseline: every texel's exact solid angle (four atan2) is computed on the spot too.
-inline irradiance::Sh9Rgb ProjectScalarDouble(const irradiance::CubeMap& env) {
+inline vs11::Sh9Rgb ProjectScalarDouble(const irradiance::CubeMap& env) {
   return ProjectTexelByTexel(env, [](int x, int y, int size) { return irradiance::TexelSolidAngle(x, y, size); });
 }
 
@@ -78,7 +78,7 @@ inline irradiance::Sh9Rgb ProjectScalarDouble(const irradiance::CubeMap& env) {
 // polynomial, as level 0 evaluates them from texel coordinates). It leaves out what
 // ProjectScalarDouble recomputes every call (four atan2 per texel for the solid angle) and what
 // ProjectLevel adds (SIMD float moments per row). BM_BasisPyramidBuild times the one-off build.
-inline irradiance::Sh9Rgb ProjectPlainLoop(const irradiance::CubeMap& env, const irradiance::FinestWeights& finest) {
+inline vs11::Sh9Rgb ProjectPlainLoop(const irradiance::CubeMap& env, const irradiance::FinestWeights& finest) {
   assert(finest.q.size() == static_cast<std::size_t>(env.face_size) * env.face_size);
   return ProjectTexelByTexel(env, [&finest](int x, int y, int size) {
     return static_cast<double>(finest.q[static_cast<std::size_t>(y) * size + x]);

@@ -23,7 +23,7 @@ namespace {
 
 constexpr int kFaceSize = 64;
 
-irradiance::Sh9Rgb Coefficients(double radius) {
+vs11::Sh9Rgb Coefficients(double radius) {
   if (radius <= 0.0) return irradiance::ProjectDirect(irradiance::MakeSky(kFaceSize));
   irradiance::SpotParams params;
   params.angular_radius_degrees = radius;
@@ -31,14 +31,14 @@ irradiance::Sh9Rgb Coefficients(double radius) {
 }
 
 void BM_NonNegativeFit(benchmark::State& state) {
-  const irradiance::Sh9Rgb sh = Coefficients(static_cast<double>(state.range(0)));
+  const vs11::Sh9Rgb sh = Coefficients(static_cast<double>(state.range(0)));
   for (auto _ : state) benchmark::DoNotOptimize(irradiance::FitNonNegative(sh));
 }
 BENCHMARK(BM_NonNegativeFit)->Arg(0)->Arg(20)->Arg(3)->Arg(1)->UseRealTime()->Unit(benchmark::kMillisecond);
 
 void BM_Dering(benchmark::State& state) {
-  const irradiance::Sh9Rgb sh = Coefficients(static_cast<double>(state.range(0)));
-  const std::vector<glm::dvec3> normals = irradiance::SphereNormals(irradiance::kNonNegativeFitNormals);
+  const vs11::Sh9Rgb sh = Coefficients(static_cast<double>(state.range(0)));
+  const std::vector<glm::dvec3> normals = vs11::SphereNormals(irradiance::kNonNegativeFitNormals);
   for (auto _ : state) {
     benchmark::DoNotOptimize(
         irradiance::ApplyShWindow(sh, irradiance::LaplacianWindowFactors(irradiance::DeringLambda(sh, normals))));
@@ -49,9 +49,9 @@ BENCHMARK(BM_Dering)->Arg(0)->Arg(20)->Arg(3)->Arg(1)->UseRealTime()->Unit(bench
 void BM_ProgramChoice(benchmark::State& state) {
   const std::optional<irradiance::CubeMipChain> mips = irradiance::BuildEnvironmentMips(irradiance::MakeSky(256));
   const std::optional<irradiance::BasisPyramid> basis = irradiance::BuildBasisPyramid(256);
-  std::vector<irradiance::Sh9Rgb> levels;
+  std::vector<vs11::Sh9Rgb> levels;
   for (int k = 0; k < irradiance::LevelCount(256); ++k) levels.push_back(irradiance::ProjectLevel(*mips, *basis, k));
-  const std::vector<glm::dvec3> normals = irradiance::SphereNormals(irradiance::kLevelErrorNormals);
+  const std::vector<glm::dvec3> normals = vs11::SphereNormals(irradiance::kLevelErrorNormals);
   for (auto _ : state) {
     const std::vector<double> estimated = irradiance::EstimateLevelErrors(levels, normals, irradiance::kDefaultErrorMetric);
     const std::vector<irradiance::ProgramLevelEstimate> pairs =

@@ -134,9 +134,9 @@ void BM_MeshLoadAllModels(benchmark::State& state) {
 
 void BM_MeshRun(benchmark::State& state, const BenchModel& model, std::string kind) {
   const mesh::Mesh& mesh = CachedMesh(model);
-  const irradiance::ProgramForVerify loaded = LoadBenchProgram(ProgramPath("sh9_irradiance.vsh"));
+  const vs11::ProgramForVerify loaded = LoadBenchProgram(ProgramPath("sh9_irradiance.vsh"));
   const Program& program = *loaded.program;
-  const ConstantBank bank = Table1Bank(irradiance::PackTable1(BenchCoefficients()));
+  const ConstantBank bank = Table1Bank(vs11::PackTable1(BenchCoefficients()));
   const std::size_t count = mesh.vertex_count;
   const int v0[] = {0};
   VertexArrays inputs = MakeInputArrays(count, v0);

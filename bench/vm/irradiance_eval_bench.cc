@@ -35,14 +35,14 @@ struct Table1Floats {
   float c[3];
 };
 
-Table1Floats Flatten(const irradiance::SevenConstants& constants) {
+Table1Floats Flatten(const vs11::SevenConstants& constants) {
   Table1Floats k{};
   for (int ch = 0; ch < 3; ++ch) {
-    const glm::vec4& a = constants.registers[irradiance::SevenConstants::kA + ch];
-    const glm::vec4& b = constants.registers[irradiance::SevenConstants::kB + ch];
+    const glm::vec4& a = constants.registers[vs11::SevenConstants::kA + ch];
+    const glm::vec4& b = constants.registers[vs11::SevenConstants::kB + ch];
     k.a[ch] = {a.x, a.y, a.z, a.w};
     k.b[ch] = {b.x, b.y, b.z, b.w};
-    k.c[ch] = constants.registers[irradiance::SevenConstants::kC][ch];
+    k.c[ch] = constants.registers[vs11::SevenConstants::kC][ch];
   }
   return k;
 }
@@ -59,7 +59,7 @@ inline float Channel(const std::array<float, 4>& a, const std::array<float, 4>& 
 }  // namespace
 
 __attribute__((noinline, optimize("no-tree-vectorize"))) void EvalTable1Scalar(
-    const irradiance::SevenConstants& constants, const float* x, const float* y, const float* z, float* r,
+    const vs11::SevenConstants& constants, const float* x, const float* y, const float* z, float* r,
     float* g, float* b, std::size_t count) {
   const Table1Floats k = Flatten(constants);
   for (std::size_t i = 0; i < count; ++i) {
@@ -95,7 +95,7 @@ __attribute__((noinline, target_clones("arch=x86-64-v4", "arch=x86-64-v3", "defa
 
 }  // namespace
 
-void EvalTable1Simd(const irradiance::SevenConstants& constants, const float* x, const float* y, const float* z,
+void EvalTable1Simd(const vs11::SevenConstants& constants, const float* x, const float* y, const float* z,
                     float* r, float* g, float* b, std::size_t count) {
   const Table1Floats k = Flatten(constants);
   EvalTable1Loop(k, x, y, z, r, g, b, count);
@@ -105,9 +105,9 @@ namespace {
 
 void RunEngine(benchmark::State& state, std::string kind, EngineOptions options = {}) {
   const std::size_t count = static_cast<std::size_t>(state.range(0));
-  const irradiance::ProgramForVerify loaded = LoadBenchProgram(ProgramPath("sh9_irradiance.vsh"));
+  const vs11::ProgramForVerify loaded = LoadBenchProgram(ProgramPath("sh9_irradiance.vsh"));
   const Program& program = *loaded.program;
-  const ConstantBank bank = Table1Bank(irradiance::PackTable1(BenchCoefficients()));
+  const ConstantBank bank = Table1Bank(vs11::PackTable1(BenchCoefficients()));
   VertexArrays inputs = NormalInputs(RandomUnitNormals(count));
   inputs.FillUniform(0, 3, 1.0f);  // w is no data: a lane of 1s, as irrmap leaves it (NormalInputs writes it)
   VertexArrays outputs = MakeOutputArrays(count, program);
@@ -130,7 +130,7 @@ void BM_Irradiance_JitThreads(benchmark::State& state) {
 template <auto kEval>
 void RunNative(benchmark::State& state) {
   const std::size_t count = static_cast<std::size_t>(state.range(0));
-  const irradiance::SevenConstants constants = irradiance::PackTable1(BenchCoefficients());
+  const vs11::SevenConstants constants = vs11::PackTable1(BenchCoefficients());
   const SoaNormals normals = RandomUnitNormals(count);
   std::vector<float> r(count), g(count), b(count);
   for (auto _ : state) {

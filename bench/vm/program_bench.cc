@@ -11,7 +11,7 @@
 // hide the others); the CPU column is the whole process's, so T threads against one show what the
 // split costs in work, apart from the wall clock a loaded machine makes noisy.
 //
-// Inputs and constants come from the program's reference (irradiance/report/program_references.h, named by
+// Inputs and constants come from the program's reference (vm/reference/program_references.h, named by
 // its `; vs11: reference=` line). A program without a usable reference gets (x, y, z, 1) unit normals
 // in every input register v0..v15 and random constants in [-1, 1].
 
@@ -30,12 +30,12 @@
 #include <hwy/targets.h>
 
 #include "bench/bench_common.h"
-#include "irradiance/report/program_references.h"
-#include "irradiance/report/verify.h"
 #include "vm/core/machine.h"
 #include "vm/core/program.h"
 #include "vm/engines/engine_factory.h"
 #include "vm/engines/jit_compiler.h"
+#include "vm/reference/program_references.h"
+#include "vm/reference/verify.h"
 
 namespace vs11::bench {
 namespace {
@@ -69,15 +69,15 @@ ProgramCase FallbackCase(int vertices) {
   return c;
 }
 
-ProgramCase CaseFor(const irradiance::ProgramMetadata& metadata, int vertices) {
-  const irradiance::ReferenceInfo* info = irradiance::FindReference(metadata.reference);
+ProgramCase CaseFor(const vs11::ProgramMetadata& metadata, int vertices) {
+  const vs11::ReferenceInfo* info = vs11::FindReference(metadata.reference);
   if (info != nullptr) {
-    irradiance::ReferenceOptions options;
+    vs11::ReferenceOptions options;
     options.coefficients = BenchCoefficients();
     options.samples = vertices;
     options.seed = kBenchSeed;
     std::string error;
-    std::optional<irradiance::ReferenceCase> reference = info->build(metadata, options, error);
+    std::optional<vs11::ReferenceCase> reference = info->build(metadata, options, error);
     if (reference) return {std::move(reference->constants), std::move(reference->inputs)};
   }
   return FallbackCase(vertices);
@@ -97,7 +97,7 @@ void ShareBones(VertexArrays& inputs) {
 // `highway_target`: the Highway target the batch engine's kernels are taken from (0: the CPU's best).
 void RunProgram(benchmark::State& state, const std::filesystem::path& path, std::string kind, EngineOptions options,
                 int vertices, std::int64_t highway_target = 0, bool share_bones = false) {
-  const irradiance::ProgramForVerify loaded = LoadBenchProgram(path);
+  const vs11::ProgramForVerify loaded = LoadBenchProgram(path);
   const Program& program = *loaded.program;
   ProgramCase c = CaseFor(loaded.metadata, vertices);
   if (share_bones) ShareBones(c.inputs);

@@ -196,7 +196,7 @@ void AddJobOptions(CLI::App& app, JobCommandLine& line) {
       ->capture_default_str();
   app.add_option("--order", options.order,
                  fmt::format("program: auto (the cheapest within --max-error; order2 when --level is given) or "
-                             "one of {}", vs11::irradiance::ShOrderNames()))
+                             "one of {}", vs11::ShOrderNames()))
       ->capture_default_str();
   app.add_option("--window", options.window,
                  "window on the coefficients against ringing from small bright lights: none, hanning, lanczos "

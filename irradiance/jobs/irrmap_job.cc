@@ -31,7 +31,6 @@
 #include "irradiance/jobs/irrmap_outputs.h"
 #include "irradiance/render/preview.h"
 #include "irradiance/report/preview_errors.h"
-#include "irradiance/report/verify.h"
 #include "irradiance/sh/constants_output.h"
 #include "irradiance/sh/nonneg_fit.h"
 #include "irradiance/sh/sh_projection.h"
@@ -41,6 +40,7 @@
 #include "vm/core/atomic_file.h"
 #include "vm/core/input_file.h"
 #include "vm/engines/engine_factory.h"
+#include "vm/reference/verify.h"
 
 namespace vs11::irradiance {
 namespace {

@@ -7,10 +7,10 @@
 
 #include <fmt/format.h>
 
-#include "irradiance/report/verify.h"
 #include "programs/embedded_programs.h"
 #include "vm/asm/assembler.h"
 #include "vm/engines/engine_factory.h"
+#include "vm/reference/verify.h"
 
 namespace vs11::irradiance {
 

@@ -16,7 +16,6 @@ namespace vs11::irradiance {
 namespace {
 
 constexpr int kRegisterCount = static_cast<int>(SevenConstants::kNames.size());
-constexpr std::array<char, 3> kChannelLetters = {'R', 'G', 'B'};
 
 // "kCAr" for "cAr".
 std::string CppName(int index) {
@@ -61,17 +60,6 @@ std::string CppFloatLiteral(float value) {
 }
 
 }  // namespace
-
-std::string Table1Contents(int index) {
-  assert(index >= 0 && index < kRegisterCount);
-  if (index == SevenConstants::kC) return "(c4 R22, c4 G22, c4 B22, unused)";
-  if (index >= SevenConstants::kB) {
-    const char c = kChannelLetters[index - SevenConstants::kB];
-    return fmt::format("(c2 {0}2-2, c2 {0}2-1, 3 c3 {0}20, c2 {0}21)", c);
-  }
-  const char c = kChannelLetters[index - SevenConstants::kA];
-  return fmt::format("(c1 {0}11, c1 {0}1-1, c1 {0}10, c0 {0}00 - c3 {0}20)", c);
-}
 
 std::string RegisterDefText(std::span<const NamedRegister> registers, int base_register,
                             std::string_view header_comment) {

@@ -16,12 +16,9 @@
 #include <nlohmann/json.hpp>
 
 #include "irradiance/sh/sh9.h"
+#include "vm/reference/sh_orders.h"
 
 namespace vs11::irradiance {
-
-// What register i of SevenConstants holds, as in the table above: "(c1 R11, c1 R1-1, c1 R10,
-// c0 R00 - c3 R20)" for cAr. 0 <= index < 7 (asserted).
-std::string Table1Contents(int index);
 
 // One line per register,
 //   def c<base + i>, x, y, z, w  ; cAr = (c1 R11, c1 R1-1, c1 R10, c0 R00 - c3 R20)
@@ -33,12 +30,7 @@ std::string ConstantsDefText(const SevenConstants& constants, int base_register 
 
 // The same layout for any list of registers (the reduced orders' programs, irradiance/sh/sh_order.h):
 //   def c<base + i>, x, y, z, w  ; <name> = <contents>
-// ConstantsDefText is this with the seven Table 1 registers.
-struct NamedRegister {
-  std::string name;      // "cAr"
-  std::string contents;  // "(c1 R11, c1 R1-1, c1 R10, c0 R00)"
-  glm::vec4 value{0.0f};
-};
+// ConstantsDefText is this with the seven Table 1 registers (NamedRegister: vm/reference/sh_orders.h).
 std::string RegisterDefText(std::span<const NamedRegister> registers, int base_register = 0,
                             std::string_view header_comment = {});
 

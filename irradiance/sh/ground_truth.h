@@ -13,6 +13,7 @@
 
 #include "irradiance/io/cube_map.h"
 #include "vm/core/thread_pool.h"
+#include "vm/reference/sphere_normals.h"
 
 namespace vs11::irradiance {
 
@@ -96,10 +97,5 @@ ErrorStats CompareIrradiance(std::span<const glm::dvec3> estimate, std::span<con
 double SampleError(glm::dvec3 estimate, glm::dvec3 truth, glm::dvec3 scale, ErrorMetric metric);
 // The per-channel `scale` of SampleError for these truths (floor_fraction as CompareIrradiance's).
 glm::dvec3 SampleErrorScale(std::span<const glm::dvec3> truth, ErrorMetric metric, double floor_fraction = 0.01);
-
-// `count` unit normals spread evenly over the sphere by the Fibonacci (golden-angle) spiral: normal i
-// has y = 1 - (2 i + 1) / count (+y is up) and azimuth i x the golden angle. Deterministic; empty for
-// count <= 0.
-std::vector<glm::dvec3> SphereNormals(int count);
 
 }  // namespace vs11::irradiance

@@ -1,14 +1,14 @@
 #!/usr/bin/env python3
 """Includes point down only (README, Layout): a file includes its own folder or a lower layer.
 
-vm:          core <- asm, io <- engines <- mesh, translate <- gl (the gl engine runs the translation)
+vm:          core <- asm, io <- engines <- reference, mesh, translate <- gl (the gl engine runs the translation)
 irradiance:  io <- sh <- render <- report <- jobs <- mesh_input
 tools:       vm/cli (vs11) <- irradiance/cli (irrmap, which shares vs11's command-line parse)
 python:      the Python module, over the vm and irradiance libraries (not the tools, not vm/mesh)
-The irradiance library sits above vm's library folders (core, asm, io, engines); only irrmap's mesh
+The irradiance library sits above vm's library folders (core, asm, io, engines, reference); only irrmap's mesh
 reader (irradiance/mesh_input) reaches vm/mesh, only the tools reach vm/gl (they register the gl engine
 with vm/engines' factory, which cannot include it), and only the vs11 tool (vm/cli) reaches irradiance.
-Folders on the same layer (asm and io; mesh and translate) do not include each other.
+Folders on the same layer (asm and io; reference, mesh and translate) do not include each other.
 Usage: include_layers_test.py SOURCE_DIR. Prints each violation as file:line and exits 1 on any.
 """
 import pathlib
@@ -17,7 +17,7 @@ import sys
 
 # (folder, layer): a file may include from folders of a lower layer, or from its own folder.
 LAYERS = {
-    "vm/core": 0, "vm/ir": 1, "vm/asm": 1, "vm/io": 1, "vm/engines": 2, "vm/mesh": 3, "vm/translate": 3, "vm/gl": 4,
+    "vm/core": 0, "vm/ir": 1, "vm/asm": 1, "vm/io": 1, "vm/engines": 2, "vm/reference": 3, "vm/mesh": 3, "vm/translate": 3, "vm/gl": 4,
     "irradiance/io": 5, "irradiance/sh": 6, "irradiance/render": 7, "irradiance/report": 8,
     "irradiance/jobs": 9, "irradiance/mesh_input": 10, "vm/cli": 11, "irradiance/cli": 12,
     "python": 13,

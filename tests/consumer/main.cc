@@ -34,12 +34,12 @@ int main() {
   }
 
   // Nine RGB coefficients (L00, L1-1, L10, L11, L2-2, L2-1, L20, L21, L22): light mostly from +y.
-  vs11::irradiance::Sh9Rgb sh;
+  vs11::Sh9Rgb sh;
   sh.at(0, 0) = {1.0, 1.0, 1.2};
   sh.at(1, -1) = {0.6, 0.6, 0.7};
   sh.at(2, 0) = {0.1, 0.1, 0.05};
   sh.at(2, 2) = {0.05, 0.0, -0.05};
-  const vs11::irradiance::SevenConstants packed = vs11::irradiance::PackTable1(sh);
+  const vs11::SevenConstants packed = vs11::PackTable1(sh);
   vs11::ConstantBank constants;
   for (int i = 0; i < 7; ++i) {
     const glm::vec4& r = packed.registers[i];
@@ -60,7 +60,7 @@ int main() {
   const int diffuse = static_cast<int>(vs11::OutputSlot::kDiffuse);
   double worst = 0.0;
   for (std::size_t i = 0; i < normals.size(); ++i) {
-    const glm::dvec3 expected = vs11::irradiance::IrradianceEq7(sh, normals[i]);
+    const glm::dvec3 expected = vs11::IrradianceEq7(sh, normals[i]);
     std::printf("n = (%4.1f, %4.1f, %4.1f)  E =", normals[i].x, normals[i].y, normals[i].z);
     for (int c = 0; c < 3; ++c) {
       const float e = outputs.lane(diffuse, c)[i];

@@ -5,12 +5,12 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
-#include "irradiance/report/verify.h"
 #include "vm/asm/bytecode.h"
 #include "vm/asm/disassembler.h"
 #include "vm/cli/cli_support.h"
 #include "vm/cli/commands.h"
 #include "vm/core/atomic_file.h"
+#include "vm/reference/program_metadata.h"
 
 namespace vs11::cli {
 namespace {
@@ -30,7 +30,7 @@ nlohmann::json DiagnosticJson(const Diagnostic& diagnostic) {
 
 // {"file", "valid", "diagnostics": [...], and for a valid program "instructions" and "slots"} on stdout.
 void PrintValidationJson(const std::string& path, const ProgramFlags& flags) {
-  irradiance::ProgramForVerify loaded = irradiance::LoadProgramForVerify(path, flags.ToOptions(), flags.FragmentFlag());
+  ProgramForVerify loaded = LoadProgramForVerify(path, flags.ToOptions(), flags.FragmentFlag());
   nlohmann::json diagnostics = nlohmann::json::array();
   for (const Diagnostic& diagnostic : loaded.diagnostics.all()) diagnostics.push_back(DiagnosticJson(diagnostic));
   nlohmann::json report = {{"file", path}, {"valid", loaded.program.has_value()}, {"diagnostics", diagnostics}};

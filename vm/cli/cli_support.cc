@@ -8,13 +8,13 @@
 
 #include <fmt/format.h>
 
-#include "irradiance/report/verify.h"
 #include "vm/cli/commands.h"
 #include "vm/cli/parse_command_line.h"
 #include "vm/core/input_file.h"
 #include "vm/engines/engine_factory.h"
 #include "vm/gl/gl_context.h"
 #include "vm/gl/gl_engine.h"
+#include "vm/reference/program_metadata.h"
 
 namespace vs11::cli {
 
@@ -64,7 +64,7 @@ std::optional<bool> ProgramFlags::FragmentFlag() const {
 }
 
 Program LoadProgramOrFail(const std::string& path, const ProgramFlags& flags) {
-  irradiance::ProgramForVerify loaded = irradiance::LoadProgramForVerify(path, flags.ToOptions(), flags.FragmentFlag());
+  ProgramForVerify loaded = LoadProgramForVerify(path, flags.ToOptions(), flags.FragmentFlag());
   std::fputs(loaded.diagnostics.ToString().c_str(), stderr);
   if (!loaded.program) throw CommandFailure{1};
   return std::move(*loaded.program);

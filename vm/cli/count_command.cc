@@ -8,10 +8,10 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
-#include "irradiance/sh/ground_truth.h"
 #include "vm/cli/cli_support.h"
 #include "vm/cli/commands.h"
 #include "vm/engines/engine_factory.h"
+#include "vm/reference/sphere_normals.h"
 
 namespace vs11::cli {
 namespace {
@@ -40,7 +40,7 @@ double MeasureNsPerVertex(std::string_view engine_name, const Program& program, 
   for (int i = 0; i < constants.size(); ++i) constants[i] = {value(random), value(random), value(random), value(random)};
   std::vector<int> registers = InputRegistersRead(program);
   VertexArrays inputs = MakeInputArrays(kTimedVertices, registers);
-  std::vector<glm::dvec3> normals = irradiance::SphereNormals(static_cast<int>(kTimedVertices));
+  std::vector<glm::dvec3> normals = SphereNormals(static_cast<int>(kTimedVertices));
   for (int reg : registers) {
     for (std::size_t i = 0; i < kTimedVertices; ++i) {
       for (int c = 0; c < 3; ++c) inputs.lane(reg, c)[i] = static_cast<float>(normals[i][c]);

@@ -6,7 +6,6 @@
 
 #include <fmt/format.h>
 
-#include "irradiance/sh/ground_truth.h"
 #include "vm/cli/cli_support.h"
 #include "vm/cli/commands.h"
 #include "vm/cli/streamed_output.h"
@@ -16,6 +15,7 @@
 #include "vm/core/input_file.h"
 #include "vm/engines/engine_factory.h"
 #include "vm/io/vertex_io.h"
+#include "vm/reference/sphere_normals.h"
 
 namespace vs11::cli {
 namespace {
@@ -100,7 +100,7 @@ void AddSphereInput(const RunArgs& args, const Program& program, SuppliedInputs&
                                          : InputRegisterFromName(args.sphere_register);
   if (reg < 0) Fail("--sphere: the program declares no dcl_normal register; name one with --sphere-reg");
   std::vector<Vec4f> rows;
-  for (const glm::dvec3& n : irradiance::SphereNormals(args.sphere)) {
+  for (const glm::dvec3& n : SphereNormals(args.sphere)) {
     rows.push_back({static_cast<float>(n.x), static_cast<float>(n.y), static_cast<float>(n.z), 1.0f});
     prefix.values.insert(prefix.values.end(), rows.back().begin(), rows.back().begin() + 3);
   }

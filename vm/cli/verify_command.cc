@@ -1,5 +1,5 @@
 // `vs11 verify`: runs a program and compares it with its double-precision reference, or compares two
-// engines bit for bit. The work is in irradiance/report/verify.h; this file only maps flags onto it.
+// engines bit for bit. The work is in vm/reference/verify.h; this file only maps flags onto it.
 #include <cstdio>
 #include <memory>
 #include <optional>
@@ -7,23 +7,21 @@
 
 #include <fmt/format.h>
 
-#include "irradiance/report/program_references.h"
-#include "irradiance/report/verify.h"
 #include "vm/cli/cli_support.h"
 #include "vm/cli/commands.h"
 #include "vm/engines/engine_factory.h"
+#include "vm/reference/program_references.h"
+#include "vm/reference/verify.h"
 
 namespace vs11::cli {
 namespace {
-
-namespace irr = vs11::irradiance;
 
 struct VerifyFlags {
   std::string program;
   std::string reference;
   std::string output;
   std::string coeffs;
-  int samples = irr::kDefaultVerifySamples;
+  int samples = kDefaultVerifySamples;
   std::optional<double> tolerance;
   std::uint64_t seed = 1;
   bool json = false;
@@ -34,7 +32,7 @@ struct VerifyFlags {
 
 std::string ReferenceHelp() {
   std::string text;
-  for (const irr::ReferenceInfo& info : irr::References()) {
+  for (const ReferenceInfo& info : References()) {
     text += fmt::format("  {:<18} {}\n", info.name, info.summary);
   }
   return text;
@@ -43,15 +41,15 @@ std::string ReferenceHelp() {
 void RunVerify(const VerifyFlags& flags) {
   if (flags.engine_flags.ListGlDevicesIfAsked(flags.against_engine)) return;
   CheckInputsAndOutputs({flags.program, flags.coeffs}, {});
-  irr::ProgramForVerify loaded = irr::LoadProgramForVerify(flags.program, flags.program_flags.ToOptions(),
+  ProgramForVerify loaded = LoadProgramForVerify(flags.program, flags.program_flags.ToOptions(),
                                                                 flags.program_flags.FragmentFlag());
   std::fputs(loaded.diagnostics.ToString().c_str(), stderr);
   if (!loaded.program) throw CommandFailure{1};
 
-  irr::ProgramMetadata metadata = loaded.metadata;
+  ProgramMetadata metadata = loaded.metadata;
   if (!flags.reference.empty()) {
-    if (!irr::FindReference(flags.reference)) {
-      Fail(fmt::format("unknown reference '{}' (known: {})", flags.reference, irr::ReferenceNames()));
+    if (!FindReference(flags.reference)) {
+      Fail(fmt::format("unknown reference '{}' (known: {})", flags.reference, ReferenceNames()));
     }
     metadata.reference = flags.reference;
   }
@@ -62,7 +60,7 @@ void RunVerify(const VerifyFlags& flags) {
     }
   }
 
-  irr::VerifyOptions options;
+  VerifyOptions options;
   options.engine = flags.engine_flags.Name();
   options.engine_options = flags.engine_flags.Options();
   options.seed = flags.seed;
@@ -71,28 +69,28 @@ void RunVerify(const VerifyFlags& flags) {
   options.constant_count = flags.program_flags.constant_count;
   if (!flags.coeffs.empty()) {
     std::string error;
-    options.coefficients = irr::LoadCoefficientsJson(flags.coeffs, error);
+    options.coefficients = LoadCoefficientsJson(flags.coeffs, error);
     if (!options.coefficients) Fail(error);
   }
 
   if (!flags.against_engine.empty()) {
     std::optional<EngineInfo> other = FindEngine(flags.against_engine);
     if (!other) Fail(fmt::format("--against-engine {}: expected {}", flags.against_engine, EngineNameList()));
-    irr::EngineComparison comparison =
-        irr::VerifyEngines(*loaded.program, metadata, options.engine, std::string(other->name), options);
+    EngineComparison comparison =
+        VerifyEngines(*loaded.program, metadata, options.engine, std::string(other->name), options);
     if (!comparison.error.empty()) Fail(fmt::format("{}: {}", flags.program, comparison.error));
     std::string text = flags.json
-                           ? irr::EngineComparisonJson(comparison) + "\n"
-                           : fmt::format("program {}\n{}", flags.program, irr::FormatEngineComparison(comparison));
+                           ? EngineComparisonJson(comparison) + "\n"
+                           : fmt::format("program {}\n{}", flags.program, FormatEngineComparison(comparison));
     std::fputs(text.c_str(), stdout);
     if (!comparison.identical()) throw CommandFailure{1};
     return;
   }
 
-  irr::VerifyReport report = irr::Verify(*loaded.program, metadata, options);
+  VerifyReport report = Verify(*loaded.program, metadata, options);
   if (!report.error.empty()) Fail(fmt::format("{}: {}", flags.program, report.error));
-  std::string text = flags.json ? irr::VerifyReportJson(report) + "\n"
-                                : fmt::format("program {}\n{}", flags.program, irr::FormatVerifyReport(report));
+  std::string text = flags.json ? VerifyReportJson(report) + "\n"
+                                : fmt::format("program {}\n{}", flags.program, FormatVerifyReport(report));
   std::fputs(text.c_str(), stdout);
   if (!report.pass) throw CommandFailure{1};
 }
@@ -136,10 +134,10 @@ void AddVerifyCommand(CLI::App& app) {
       "  vs11 verify programs/skinning.vsh --engine gl --against-engine ref\n"
       "  vs11 verify programs/sh9_irradiance.vsh --engine gl\n"
       "  vs11 verify programs/skinning.vsh --against-engine ref --float-rules legacy\n",
-      ReferenceHelp(), irr::kDefaultVerifyTolerance));
+      ReferenceHelp(), kDefaultVerifyTolerance));
   command->add_option("program", flags->program, "Program file (.vsh source or .vso bytecode)")->required();
   command->add_option("--reference", flags->reference,
-                      "Reference to compare with: " + irr::ReferenceNames() + " (default: the program's metadata)");
+                      "Reference to compare with: " + ReferenceNames() + " (default: the program's metadata)");
   command->add_option("--output", flags->output, "Output register compared first, e.g. oD0 or oT0 (default: metadata)");
   command->add_option("--coeffs", flags->coeffs,
                       "JSON file with the 9 RGB SH coefficients (sh9), {\"coefficients\": [[r,g,b] x 9]}");
@@ -148,7 +146,7 @@ void AddVerifyCommand(CLI::App& app) {
       ->capture_default_str();
   command->add_option("--tolerance", flags->tolerance,
                       fmt::format("Largest allowed relative error (default {:g}, or the reference's own)",
-                                  irr::kDefaultVerifyTolerance))
+                                  kDefaultVerifyTolerance))
       ->check(CLI::NonNegativeNumber);
   command->add_option("--seed", flags->seed, "Seed of the random coefficients and inputs")->capture_default_str();
   command->add_flag("--json", flags->json, "Print the report as JSON");

@@ -103,7 +103,7 @@ enum class Severity { kError, kWarning, kNote };
   X(kCsvTooManyValues, "csv-too-many-values")                                                            \
   X(kCsvMissingCell, "csv-missing-cell")                                                                 \
   X(kCsvColumns, "csv-columns")                                                                          \
-  /* Metadata lines of verified programs (irradiance/report/verify.h). */                                \
+  /* Metadata lines of verified programs (vm/reference/program_metadata.h). */                           \
   X(kMetadataSyntax, "metadata-syntax")                                                                  \
   X(kMetadataDuplicateKey, "metadata-duplicate-key")                                                     \
   X(kMetadataUnknownKey, "metadata-unknown-key")                                                         \

@@ -40,4 +40,12 @@ std::size_t NumberedRegisterPrefix(std::string_view text, RegisterFile file);
 // states its own range in its message.
 std::optional<int> ParseNumberedRegister(std::string_view name, RegisterFile file);
 
+// A register named outside a program (a command line's v#=..., a metadata line, a dictionary key):
+// white space around it ignored, then ParseNumberedRegister's spelling. Every such name is read by
+// one of these two, so every entry point accepts the same spellings.
+// "v3" -> 3, v0..v15 only.
+std::optional<int> ParseInputRegister(std::string_view name);
+// "c7" or "c[7]" (spaces allowed inside the brackets) -> 7, c0..c[kMaxConstantIndex].
+std::optional<int> ParseConstantRegister(std::string_view name);
+
 }  // namespace vs11

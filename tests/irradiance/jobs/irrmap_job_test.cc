@@ -18,10 +18,10 @@
 
 #include "irradiance/io/environment_io.h"
 #include "irradiance/io/environments.h"
-#include "irradiance/report/program_references.h"
 #include "irradiance/sh/latlong_projection.h"
 #include "irradiance/sh/sh_projection.h"
 #include "vm/io/vertex_io.h"
+#include "vm/reference/program_references.h"
 
 namespace vs11::irradiance {
 namespace {

@@ -10,13 +10,13 @@
 
 #include <gtest/gtest.h>
 
-#include "irradiance/report/program_references.h"
-#include "irradiance/report/verify.h"
 #include "irradiance/sh/ground_truth.h"
 #include "irradiance/sh/sh9.h"
 #include "vm/asm/program_file.h"
 #include "vm/core/machine.h"
 #include "vm/engines/engine_factory.h"
+#include "vm/reference/program_references.h"
+#include "vm/reference/verify.h"
 
 namespace vs11::irradiance {
 namespace {

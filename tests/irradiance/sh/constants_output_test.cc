@@ -14,13 +14,13 @@
 #include <gtest/gtest.h>
 
 #include "irradiance/jobs/irrmap_job.h"
-#include "irradiance/report/program_references.h"
 #include "irradiance/sh/ground_truth.h"
 #include "irradiance/sh/sh9.h"
 #include "vm/asm/assembler.h"
 #include "vm/core/machine.h"
 #include "vm/engines/engine_factory.h"
 #include "vm/io/vertex_io.h"
+#include "vm/reference/program_references.h"
 
 namespace vs11::irradiance {
 namespace {

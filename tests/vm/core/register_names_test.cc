@@ -31,5 +31,17 @@ TEST(RegisterNames, PrefixIsTheSpellingsLength) {
   EXPECT_EQ(NumberedRegisterPrefix("x1", RegisterFile::kConst), 0u);
 }
 
+TEST(RegisterNames, InputAndConstantNamesOutsideAProgram) {
+  EXPECT_EQ(ParseInputRegister("v0"), 0);
+  EXPECT_EQ(ParseInputRegister("V15"), 15);
+  EXPECT_EQ(ParseInputRegister("v16"), std::nullopt);
+  EXPECT_EQ(ParseInputRegister("c1"), std::nullopt);
+  EXPECT_EQ(ParseInputRegister("v"), std::nullopt);
+  EXPECT_EQ(ParseConstantRegister("c7"), 7);
+  EXPECT_EQ(ParseConstantRegister("c[ 95 ]"), 95);
+  EXPECT_EQ(ParseConstantRegister("c-1"), std::nullopt);
+  EXPECT_EQ(ParseConstantRegister("c[3"), std::nullopt);
+}
+
 }  // namespace
 }  // namespace vs11

@@ -24,12 +24,12 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
-#include "irradiance/report/verify.h"
 #include "tests/vm/engines/random_program.h"
 #include "tests/vm/gl/gl_test_cases.h"
 #include "vm/asm/assembler.h"
 #include "vm/core/float_rules.h"
 #include "vm/engines/engine_factory.h"
+#include "vm/reference/verify.h"
 #include "vm/translate/translate.h"
 
 namespace vs11 {
@@ -99,7 +99,7 @@ TEST_F(GlEngineTest, EveryProgramOfProgramsGivesTheReferenceBitsOnOrdinaryInputs
   int programs = 0;
   for (const fs::directory_entry& entry : fs::directory_iterator(fs::path(VS11_SOURCE_DIR) / "programs")) {
     if (entry.path().extension() != ".vsh") continue;
-    const irradiance::ProgramForVerify loaded = irradiance::LoadProgramForVerify(entry.path());
+    const vs11::ProgramForVerify loaded = vs11::LoadProgramForVerify(entry.path());
     ASSERT_TRUE(loaded.program) << entry.path();
     const Comparison comparison =
         CompareWithReference(*loaded.program, OrdinaryConstants(rng), OrdinaryInputs(128, rng));
@@ -234,8 +234,8 @@ TEST_F(GlEngineTest, SpecialValuesDifferWhereLlvmpipeFlushesDenormals) {
 }
 
 Program ProgramFromFile(const char* name) {
-  irradiance::ProgramForVerify loaded =
-      irradiance::LoadProgramForVerify(fs::path(VS11_SOURCE_DIR) / "programs" / name);
+  vs11::ProgramForVerify loaded =
+      vs11::LoadProgramForVerify(fs::path(VS11_SOURCE_DIR) / "programs" / name);
   EXPECT_TRUE(loaded.program) << name;
   return loaded.program ? std::move(*loaded.program) : Program();
 }

@@ -16,12 +16,12 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
-#include "irradiance/report/verify.h"
 #include "tests/vm/engines/random_program.h"
 #include "tests/vm/gl/gl_test_cases.h"
 #include "vm/asm/assembler.h"
 #include "vm/engines/reference_engine.h"
 #include "vm/gl/gl_runner.h"
+#include "vm/reference/verify.h"
 #include "vm/translate/translate.h"
 
 namespace vs11 {
@@ -151,7 +151,7 @@ TEST(TranslationOnLlvmpipe, EveryProgramOfProgramsAgreesWithTheReferenceEngine) 
   int programs = 0, exact = 0;
   for (const fs::directory_entry& entry : fs::directory_iterator(fs::path(VS11_SOURCE_DIR) / "programs")) {
     if (entry.path().extension() != ".vsh") continue;
-    const irradiance::ProgramForVerify loaded = irradiance::LoadProgramForVerify(entry.path());
+    const vs11::ProgramForVerify loaded = vs11::LoadProgramForVerify(entry.path());
     ASSERT_TRUE(loaded.program) << entry.path();
     const std::string name = entry.path().filename().string();
     // Inputs first: the values GCC drew when both were arguments of one call (evaluated right to

@@ -14,11 +14,11 @@
 
 #include <gtest/gtest.h>
 
-#include "irradiance/report/verify.h"
 #include "tests/vm/engines/random_program.h"
 #include "vm/asm/assembler.h"
 #include "vm/asm/disassembler.h"
 #include "vm/engines/reference_engine.h"
+#include "vm/reference/verify.h"
 #include "vm/translate/glslang_compiler.h"
 #include "vm/translate/shader_graph.h"
 #include "vm/translate/translate.h"
@@ -162,7 +162,7 @@ TEST(Translate, EveryProgramOfProgramsCompilesForEveryTarget) {
   int checked = 0;
   for (const fs::directory_entry& entry : fs::directory_iterator(fs::path(VS11_SOURCE_DIR) / "programs")) {
     if (entry.path().extension() != ".vsh") continue;
-    const irradiance::ProgramForVerify loaded = irradiance::LoadProgramForVerify(entry.path());
+    const vs11::ProgramForVerify loaded = vs11::LoadProgramForVerify(entry.path());
     ASSERT_TRUE(loaded.program) << entry.path() << ": " << loaded.diagnostics.ToString();
     for (FloatRules rules : kAllFloatRules) {
       EXPECT_EQ(CheckTranslations(*loaded.program, entry.path().filename().string(), rules), "")

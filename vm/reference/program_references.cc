@@ -3,7 +3,7 @@
 // Every reference first writes the constants and inputs the machine will see (rounded to float),
 // then computes the expected outputs in double from those same float values read back, so the only
 // differences left are the machine's float arithmetic and approximations.
-#include "irradiance/report/program_references.h"
+#include "vm/reference/program_references.h"
 
 #include <algorithm>
 #include <cassert>
@@ -13,11 +13,11 @@
 #include <fmt/format.h>
 #include <nlohmann/json.hpp>
 
-#include "irradiance/sh/ground_truth.h"
-#include "irradiance/sh/sh_order.h"
 #include "vm/asm/program_file.h"
+#include "vm/reference/sh_orders.h"
+#include "vm/reference/sphere_normals.h"
 
-namespace vs11::irradiance {
+namespace vs11 {
 namespace {
 
 // Default pass limit of every reference: the error relative to the largest |expected| of the output.
@@ -717,4 +717,4 @@ std::vector<glm::dvec3> AxisAndDiagonalNormals() {
   return normals;
 }
 
-}  // namespace vs11::irradiance
+}  // namespace vs11

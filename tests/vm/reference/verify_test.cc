@@ -1,6 +1,6 @@
 // Verify, VerifyEngines, the metadata reader, the coefficient JSON reader, the sh9 packings of
 // program_references.h, and the `vs11 verify` command end to end.
-#include "irradiance/report/verify.h"
+#include "vm/reference/verify.h"
 
 #include <sys/wait.h>
 
@@ -13,13 +13,13 @@
 
 #include <gtest/gtest.h>
 
-#include "irradiance/report/program_references.h"
-#include "irradiance/sh/ground_truth.h"
-#include "irradiance/sh/sh9.h"
 #include "tests/run_tool.h"
 #include "vm/asm/assembler.h"
+#include "vm/reference/program_references.h"
+#include "vm/reference/sh9.h"
+#include "vm/reference/sphere_normals.h"
 
-namespace vs11::irradiance {
+namespace vs11 {
 namespace {
 
 // The paper's program, corrected, as a fragment (no oPos) reading v0 and writing oD0.
@@ -125,18 +125,6 @@ TEST(VerifyMetadata, RepeatedKeyWarnsAndTheLastWins) {
   EXPECT_EQ(r.diagnostics.all()[0].code, DiagnosticCode::kMetadataDuplicateKey);
   EXPECT_EQ(r.diagnostics.all()[0].loc.line, 2);
   EXPECT_EQ(r.metadata.output, static_cast<int>(OutputSlot::kSpecular));
-}
-
-TEST(VerifyMetadata, ParsesRegisterNames) {
-  EXPECT_EQ(ParseInputRegister("v0"), 0);
-  EXPECT_EQ(ParseInputRegister("V15"), 15);
-  EXPECT_EQ(ParseInputRegister("v16"), std::nullopt);
-  EXPECT_EQ(ParseInputRegister("c1"), std::nullopt);
-  EXPECT_EQ(ParseInputRegister("v"), std::nullopt);
-  EXPECT_EQ(ParseConstantRegister("c7"), 7);
-  EXPECT_EQ(ParseConstantRegister("c[ 95 ]"), 95);
-  EXPECT_EQ(ParseConstantRegister("c-1"), std::nullopt);
-  EXPECT_EQ(ParseConstantRegister("c[3"), std::nullopt);
 }
 
 // ---- coefficients ---------------------------------------------------------------------------------
@@ -485,4 +473,4 @@ TEST_F(VerifyCommand, HelpDescribesFlagsAndGivesAnExample) {
 }
 
 }  // namespace
-}  // namespace vs11::irradiance
+}  // namespace vs11

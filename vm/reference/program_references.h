@@ -3,23 +3,6 @@
 // bank, the vertex inputs and the outputs the program should produce, computed in double from the
 // same float constants and inputs the vertex machine receives, without running the machine.
 //
-// A program says which reference checks it through METADATA lines in its comment header, one per
-// line, read from the raw text (before preprocessing) by ParseProgramMetadata (irradiance/report/verify.h):
-//
-//   ; vs11: reference=sh9            which reference (see References())
-//   ; vs11: packing=table1           sh9: table1 | unit_sphere10 | matrix | basis | order0 | order1 | zh3
-//   ; vs11: normal=v0                input register of the normal (sh9: (x, y, z, 1))
-//   ; vs11: position=v0              input register of the position (x, y, z, 1)
-//   ; vs11: weights=v1               skinning: blend weights (x, y)
-//   ; vs11: indices=v2               skinning: 3 x bone index (x, y), as floats
-//   ; vs11: texcoord=v2              all_instructions: texture coordinates (u, v, s, t)
-//   ; vs11: output=oD0               the output register compared first (the "primary" output)
-//   ; vs11: constants=c0             first constant register of the reference's layout
-//   ; vs11: transform=c7             sh9: first of the 4 rows of WORLDVIEWPROJ; oPos is then checked
-//   ; vs11: fragment=yes             the program computes a value only and writes no oPos; it is
-//                                    validated with every rule except "oPos must be written"
-//   ; vs11: tolerance=1e-5           default pass/fail tolerance (relative to the output's scale)
-//
 // programs/README.md documents the convention and each program's layout.
 #pragma once
 
@@ -34,27 +17,11 @@
 
 #include <glm/glm.hpp>
 
-#include "irradiance/sh/sh9.h"
 #include "vm/core/machine.h"
+#include "vm/reference/program_metadata.h"
+#include "vm/reference/sh9.h"
 
-namespace vs11::irradiance {
-
-// What a program's METADATA lines (or the command line) say. Unset fields take the reference's
-// defaults (listed with each reference in References()).
-struct ProgramMetadata {
-  std::string reference;
-  std::string packing;
-  std::optional<int> normal;     // input register number
-  std::optional<int> position;   // input register number
-  std::optional<int> weights;    // input register number
-  std::optional<int> indices;    // input register number
-  std::optional<int> texcoord;   // input register number
-  std::optional<int> output;     // OutputSlot value
-  std::optional<int> constants;  // constant register number
-  std::optional<int> transform;  // constant register number
-  bool fragment = false;
-  std::optional<double> tolerance;
-};
+namespace vs11 {
 
 // The sh9 packings (`; vs11: packing=...`).
 enum class Sh9Packing {
@@ -62,7 +29,7 @@ enum class Sh9Packing {
   kUnitSphere10,  // PackUnitSphere10: 10 instructions, exact on unit normals only
   kMatrix,        // Ramamoorthi & Hanrahan's E(n) = n^T M n, three 4x4 matrices (PackMatrix)
   kBasis,         // the nine basis functions summed with weights A_l L_lm (PackBasis)
-  kOrder0,        // reduced orders (irradiance/sh/sh_order.h, PackShOrder): band 0 only, 1 register
+  kOrder0,        // reduced orders (sh_orders.h, PackShOrder): band 0 only, 1 register
   kOrder1,        // bands 0 and 1, 3 registers
   kZh3,           // bands 0 and 1 plus band 2's zonal part around the linear band's axis, 5 registers
 };
@@ -81,7 +48,7 @@ std::string Sh9PackingNames();  // "table1, unit_sphere10, ... or zh3", for mess
 //       | k2 L11    k2 L1-1   k2 L10   k4 L00 - k5 L20 |
 //
 // with their constants k1 = 0.429043 = c4, k2 = 0.511664 = c1 / 2, k3 = 0.743125 = 3 c3,
-// k4 = 0.886227 = c0, k5 = 0.247708 = c3 (the paper's c0..c4, irradiance/sh/sh9.h; exact here).
+// k4 = 0.886227 = c0, k5 = 0.247708 = c3 (the paper's c0..c4, sh9.h; exact here).
 // Registers 4 ch + row (ch = 0 red, 1 green, 2 blue) hold row `row` of the channel's M, for
 // `m4x4 r, v0, c[base + 4 ch]` followed by `dp4 out, r, v0`. Each entry is rounded to float once.
 std::array<glm::vec4, 12> PackMatrix(const Sh9Rgb& sh);
@@ -150,4 +117,4 @@ std::string ReferenceNames();
 // The 14 fixed sh9 sample normals: the 6 axes, then the 8 normalised diagonals (+-1, +-1, +-1).
 std::vector<glm::dvec3> AxisAndDiagonalNormals();
 
-}  // namespace vs11::irradiance
+}  // namespace vs11

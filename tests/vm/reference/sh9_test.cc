@@ -1,4 +1,4 @@
-#include "irradiance/sh/sh9.h"
+#include "vm/reference/sh9.h"
 
 #include <cmath>
 #include <numbers>
@@ -7,9 +7,9 @@
 
 #include <gtest/gtest.h>
 
-#include "irradiance/io/cube_map.h"
+#include "vm/reference/sphere_normals.h"
 
-namespace vs11::irradiance {
+namespace vs11 {
 namespace {
 
 // Ramamoorthi & Hanrahan 2001, eq. (13): their constants, printed to 6 decimals.
@@ -119,19 +119,15 @@ TEST(Sh9, BasisMatchesTheLegendreDefinitionOfEq4) {
 }
 
 TEST(Sh9, BasisIsOrthonormalOverTheSphere) {
-  // Quadrature over a 128 cube map with exact solid angles: the midpoint rule's error is O(h^2).
-  constexpr int kSize = 128;
+  // Equal-weight quadrature over a Fibonacci sphere of as many points as a 128 cube map has texels.
+  constexpr int kPoints = 6 * 128 * 128;
   constexpr double kQuadratureTolerance = 2e-4;
   double gram[kSh9Coefficients][kSh9Coefficients] = {};
-  for (CubeFace face : kAllCubeFaces) {
-    for (int y = 0; y < kSize; ++y) {
-      for (int x = 0; x < kSize; ++x) {
-        const auto b = ShBasis(TexelDirection(face, x, y, kSize));
-        const double w = TexelSolidAngle(x, y, kSize);
-        for (int i = 0; i < kSh9Coefficients; ++i) {
-          for (int j = 0; j < kSh9Coefficients; ++j) gram[i][j] += b[i] * b[j] * w;
-        }
-      }
+  const double weight = 4.0 * std::numbers::pi / kPoints;
+  for (const glm::dvec3& n : SphereNormals(kPoints)) {
+    const auto b = ShBasis(n);
+    for (int i = 0; i < kSh9Coefficients; ++i) {
+      for (int j = 0; j < kSh9Coefficients; ++j) gram[i][j] += b[i] * b[j] * weight;
     }
   }
   for (int i = 0; i < kSh9Coefficients; ++i) {
@@ -249,17 +245,5 @@ TEST(Sh9, PackTable1LaysOutRegistersAsTable1) {
   EXPECT_EQ(k.registers[SevenConstants::kC].w, 0.0f);
 }
 
-TEST(Sh9, BandNormIsTheRootSumOfSquaresOfOneBand) {
-  Sh9Rgb sh;
-  sh.at(0, 0) = glm::dvec3(-2.0, 0.0, 1.0);
-  sh.at(1, -1) = glm::dvec3(3.0, 0.0, 0.0);
-  sh.at(1, 1) = glm::dvec3(4.0, 0.0, 0.0);
-  sh.at(2, 2) = glm::dvec3(0.0, 0.0, 5.0);
-  EXPECT_DOUBLE_EQ(BandNorm(sh, 0, 0), 2.0);
-  EXPECT_DOUBLE_EQ(BandNorm(sh, 1, 0), 5.0);
-  EXPECT_DOUBLE_EQ(BandNorm(sh, 1, 1), 0.0);
-  EXPECT_DOUBLE_EQ(BandNorm(sh, 2, 2), 5.0);
-}
-
 }  // namespace
-}  // namespace vs11::irradiance
+}  // namespace vs11

@@ -1,5 +1,5 @@
 // Verification of vertex programs against their double-precision references
-// (irradiance/report/program_references.h), and bit-for-bit comparison of two execution engines.
+// (program_references.h), and bit-for-bit comparison of two execution engines.
 //
 //   vs11 verify programs/sh9_irradiance.vsh          -> LoadProgramForVerify + Verify
 //   vs11 verify PROGRAM --against-engine ref         -> LoadProgramForVerify + VerifyEngines
@@ -14,54 +14,16 @@
 
 #include <cstddef>
 #include <cstdint>
-#include <filesystem>
 #include <optional>
 #include <string>
-#include <string_view>
 #include <vector>
 
-#include "irradiance/report/program_references.h"
-#include "vm/asm/program_file.h"
-#include "vm/core/diagnostic.h"
 #include "vm/core/machine.h"
 #include "vm/core/program.h"
+#include "vm/reference/program_metadata.h"
+#include "vm/reference/program_references.h"
 
-namespace vs11::irradiance {
-
-// ---- metadata -------------------------------------------------------------------------------------
-
-struct MetadataResult {
-  ProgramMetadata metadata;
-  Diagnostics diagnostics;  // unknown keys, bad values (errors); repeated keys (warnings)
-};
-
-// Reads every `; vs11: key=value` (or `// vs11: key=value`) line of a program's raw text; see
-// program_references.h for the keys. Other comment lines are ignored.
-MetadataResult ParseProgramMetadata(std::string_view text, const std::string& file_name);
-
-// "v3" -> 3 (v0..v15); "c7" or "c[7]" -> 7 (any non-negative index); case-insensitive.
-std::optional<int> ParseInputRegister(std::string_view name);
-std::optional<int> ParseConstantRegister(std::string_view name);
-
-// ---- loading --------------------------------------------------------------------------------------
-
-struct ProgramForVerify {
-  std::optional<Program> program;  // set when loading (and validation, if asked) found no errors
-  ProgramMetadata metadata;        // empty for bytecode files
-  Diagnostics diagnostics;
-};
-
-// Loads a .vsh or bytecode file (vm/asm/program_file.h) and its metadata. With
-// options.assemble.validate, a program whose metadata says fragment=yes is validated with every rule
-// except "oPos must be written" (ValidatorOptions::require_position); any other program exactly as
-// LoadProgram does. `fragment`, when set (a command line's --fragment or --no-fragment), wins over
-// the metadata and over options.assemble.require_position.
-ProgramForVerify LoadProgramForVerify(const std::filesystem::path& path, const LoadProgramOptions& options = {},
-                                      std::optional<bool> fragment = std::nullopt);
-
-// Validates a program that is only part of a vertex shader (it computes a value and writes no
-// oPos): every vs_1_1 rule of the validator applies except the one demanding an oPos write.
-Diagnostics ValidateFragment(const Program& program, int constant_count, bool dx9_rules);
+namespace vs11 {
 
 // ---- verification against a reference ---------------------------------------------------------------
 
@@ -158,4 +120,4 @@ EngineComparison VerifyEngines(const Program& program, const ProgramMetadata& me
 std::string FormatEngineComparison(const EngineComparison& comparison);
 std::string EngineComparisonJson(const EngineComparison& comparison);
 
-}  // namespace vs11::irradiance
+}  // namespace vs11
