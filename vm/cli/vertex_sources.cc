@@ -33,13 +33,13 @@ void WarnNonFinite(const std::string& source, const std::vector<Vec4f>& rows) {
 std::pair<int, std::string> SplitRegisterAssignment(const std::string& flag) {
   const std::size_t equals = flag.find('=');
   if (equals == std::string::npos) FailUsage(fmt::format("--npy '{}': expected v#=FILE.npy", flag));
-  std::optional<int> reg = mesh::InputRegisterFromName(flag.substr(0, equals));
+  std::optional<int> reg = ParseInputRegister(flag.substr(0, equals));
   if (!reg) FailUsage(fmt::format("--npy '{}': '{}' is not an input register v0-v15", flag, flag.substr(0, equals)));
   return {*reg, flag.substr(equals + 1)};
 }
 
 int ConstantRegisterFromName(const std::string& name) {
-  const int index = ParseNumberedRegister(name, RegisterFile::kConst).value_or(-1);
+  const int index = ParseConstantRegister(name).value_or(-1);
   if (index < 0) FailUsage(fmt::format("--bone-palette '{}': expected a constant register such as c6", name));
   return index;
 }

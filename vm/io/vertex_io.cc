@@ -403,7 +403,7 @@ std::optional<InputSpec> ParseInputSpec(std::string_view flag, std::string& erro
     return std::nullopt;
   }
   std::string_view name = flag.substr(0, equals);
-  const int index = ParseNumberedRegister(name, RegisterFile::kInput).value_or(-1);
+  const int index = ParseInputRegister(name).value_or(-1);
   if (index < 0 || index >= kInputRegisterCount) {
     error = fmt::format("'{}' is not an input register v0-v15", name);
     return std::nullopt;

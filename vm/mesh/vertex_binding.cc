@@ -89,19 +89,13 @@ std::string AttributeName(const AttributeRef& attribute) {
   return "?";
 }
 
-std::optional<int> InputRegisterFromName(std::string_view name) {
-  const std::optional<int> index = ParseNumberedRegister(Trim(name), RegisterFile::kInput);
-  if (!index || *index >= kInputRegisterCount) return std::nullopt;
-  return index;
-}
-
 std::optional<std::string> ParseBindings(std::string_view text, std::vector<RegisterBinding>& bindings) {
   while (true) {
     const std::size_t comma = text.find(',');
     const std::string_view item = Trim(text.substr(0, comma));
     const std::size_t equals = item.find('=');
     if (equals == std::string_view::npos) return fmt::format("'{}': expected v#=ATTRIBUTE, e.g. v3=normal", item);
-    std::optional<int> reg = InputRegisterFromName(item.substr(0, equals));
+    std::optional<int> reg = ParseInputRegister(item.substr(0, equals));
     if (!reg) return fmt::format("'{}' is not an input register v0-v15", Trim(item.substr(0, equals)));
     std::optional<AttributeRef> attribute = AttributeFromName(item.substr(equals + 1));
     if (!attribute) {

@@ -34,9 +34,6 @@ struct RegisterBinding {
   std::string origin;  // "dcl_normal v3" or "--bind v3=normal", for messages
 };
 
-// "v1" -> 1; nullopt unless v0-v15.
-std::optional<int> InputRegisterFromName(std::string_view name);
-
 // Parses one --bind value into `bindings` (appended). Returns an error message on failure.
 std::optional<std::string> ParseBindings(std::string_view text, std::vector<RegisterBinding>& bindings);
 

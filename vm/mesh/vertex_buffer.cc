@@ -6,6 +6,7 @@
 #include <fmt/format.h>
 
 #include "vm/core/checked_arithmetic.h"
+#include "vm/core/register_names.h"
 
 namespace vs11::mesh {
 namespace {
@@ -24,7 +25,7 @@ std::optional<std::string> ParseBufferElement(std::string_view text, BufferEleme
   if (equals == std::string_view::npos || colon == std::string_view::npos) {
     return fmt::format("--element '{}': expected v#=OFFSET:COUNT, e.g. v3=12:3", text);
   }
-  std::optional<int> reg = InputRegisterFromName(text.substr(0, equals));
+  std::optional<int> reg = ParseInputRegister(text.substr(0, equals));
   if (!reg) return fmt::format("--element '{}': '{}' is not an input register v0-v15", text, text.substr(0, equals));
   element.reg = *reg;
   if (!ParseNumber(text.substr(equals + 1, colon - equals - 1), element.offset)) {

@@ -1,7 +1,16 @@
 // Register names outside a program's text are read with the assembler's spelling table.
 #include "vm/core/register_names.h"
 
+#include <optional>
+#include <string>
+#include <vector>
+
 #include <gtest/gtest.h>
+
+#include "vm/io/vertex_io.h"
+#include "vm/mesh/vertex_binding.h"
+#include "vm/mesh/vertex_buffer.h"
+#include "vm/reference/program_metadata.h"
 
 namespace vs11 {
 namespace {
@@ -41,6 +50,56 @@ TEST(RegisterNames, InputAndConstantNamesOutsideAProgram) {
   EXPECT_EQ(ParseConstantRegister("c[ 95 ]"), 95);
   EXPECT_EQ(ParseConstantRegister("c-1"), std::nullopt);
   EXPECT_EQ(ParseConstantRegister("c[3"), std::nullopt);
+}
+
+// Spellings of input and constant registers, with what each means (nullopt: rejected).
+struct Spelling {
+  std::string text;
+  std::optional<int> index;
+};
+const std::vector<Spelling> kInputSpellings = {
+    {"v0", 0},         {"V15", 15},      {" v3 ", 3},      {"v16", std::nullopt}, {"v", std::nullopt},
+    {"c1", std::nullopt}, {"v-1", std::nullopt}, {"v+1", std::nullopt}, {"v 1", std::nullopt},
+    {"v1x", std::nullopt}, {"v[1]", std::nullopt}, {"r0", std::nullopt},
+};
+const std::vector<Spelling> kConstantSpellings = {
+    {"c0", 0},           {"C12", 12},         {" c7 ", 7},         {"c[7]", 7},          {"c[ 95 ]", 95},
+    {"c2047", 2047},     {"c2048", std::nullopt}, {"c", std::nullopt}, {"c-1", std::nullopt},
+    {"c[3", std::nullopt}, {"c[]", std::nullopt}, {"c 1", std::nullopt}, {"v1", std::nullopt},
+    {"c99999999999", std::nullopt},
+};
+
+std::optional<int> FromMetadata(const std::string& key, const std::string& name) {
+  const MetadataResult parsed = ParseProgramMetadata("; vs11: " + key + "=" + name + "\n", "test.vsh");
+  if (parsed.diagnostics.HasErrors()) return std::nullopt;
+  return key == "normal" ? parsed.metadata.normal : parsed.metadata.constants;
+}
+
+// Every place a register is named outside a program's text (vs11 run --input, --bind, --element,
+// metadata lines) reads it through ParseInputRegister or ParseConstantRegister, so they agree.
+TEST(RegisterNames, EveryEntryPointAcceptsTheSameInputSpellings) {
+  for (const Spelling& spelling : kInputSpellings) {
+    SCOPED_TRACE(spelling.text);
+    EXPECT_EQ(ParseInputRegister(spelling.text), spelling.index);
+    std::string error;
+    const std::optional<InputSpec> spec = ParseInputSpec(spelling.text + "=inputs.csv", error);
+    EXPECT_EQ(spec ? std::optional<int>(spec->reg) : std::nullopt, spelling.index) << error;
+    std::vector<mesh::RegisterBinding> bindings;
+    const std::optional<std::string> bind_error = mesh::ParseBindings(spelling.text + "=normal", bindings);
+    EXPECT_EQ(bind_error ? std::nullopt : std::optional<int>(bindings.at(0).reg), spelling.index);
+    mesh::BufferElement element;
+    const std::optional<std::string> element_error = mesh::ParseBufferElement(spelling.text + "=0:3", element);
+    EXPECT_EQ(element_error ? std::nullopt : std::optional<int>(element.reg), spelling.index);
+    EXPECT_EQ(FromMetadata("normal", spelling.text), spelling.index);
+  }
+}
+
+TEST(RegisterNames, EveryEntryPointAcceptsTheSameConstantSpellings) {
+  for (const Spelling& spelling : kConstantSpellings) {
+    SCOPED_TRACE(spelling.text);
+    EXPECT_EQ(ParseConstantRegister(spelling.text), spelling.index);
+    EXPECT_EQ(FromMetadata("constants", spelling.text), spelling.index);
+  }
 }
 
 }  // namespace
