@@ -5,10 +5,7 @@
 #include <cstdio>
 #include <vector>
 
-#include <vs11/irradiance/sh/sh9.h>
-#include <vs11/vm/asm/assembler.h>
-#include <vs11/vm/core/machine.h>
-#include <vs11/vm/engines/engine_factory.h>
+#include <vs11/vs11.h>
 
 constexpr const char* kPaperProgram = R"(vs.1.1
 dp4 r1.r, v0, c0                  ; c0..c6: cAr cAg cAb cBr cBg cBb cC
