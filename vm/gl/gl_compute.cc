@@ -27,19 +27,9 @@ translate::TranslateOptions GlComputeTranslateOptions(const EngineOptions& optio
 
 std::unique_ptr<ComputeRun> ComputeRun::Create(const std::string& compute_source, std::string& error) {
   std::unique_ptr<ComputeRun> run(new ComputeRun());
-  const GLuint shader = glCreateShader(GL_COMPUTE_SHADER);
-  const char* text = compute_source.c_str();
-  glShaderSource(shader, 1, &text, nullptr);
-  glCompileShader(shader);
+  const GLuint shader = CompileShader(GL_COMPUTE_SHADER, compute_source, error);
+  if (shader == 0) return nullptr;
   GLint ok = GL_FALSE;
-  glGetShaderiv(shader, GL_COMPILE_STATUS, &ok);
-  if (ok != GL_TRUE) {
-    char log[2048] = {};
-    glGetShaderInfoLog(shader, sizeof log, nullptr, log);
-    error = fmt::format("compute shader does not compile: {}", log);
-    glDeleteShader(shader);
-    return nullptr;
-  }
   run->program_ = glCreateProgram();
   glAttachShader(run->program_, shader);
   glLinkProgram(run->program_);
