@@ -67,6 +67,9 @@ TEST_F(TranslateCommand, StageComputeWritesACompileableComputeShader) {
   EXPECT_EQ(refused.status, 2) << refused.output;
   EXPECT_NE(refused.output.find("glsles300 has no compute shaders"), std::string::npos) << refused.output;
   EXPECT_FALSE(fs::exists(dir_ / "x.comp"));
+  const testing::CommandResult clipped = RunVs11("translate " + input + " --to glsles320 --stage compute --clip gl");
+  EXPECT_EQ(clipped.status, 0) << clipped.output;
+  EXPECT_NE(clipped.output.find("warning: --clip applies to the vertex stage only"), std::string::npos) << clipped.output;
 }
 
 TEST_F(TranslateCommand, BadProgramGetsTheAssemblersDiagnosticsAndNoFile) {
