@@ -150,6 +150,7 @@ constexpr NotRun kNotRun[] = {
     {"cmake ", "configures or builds the project itself"},
     {"build/bench/vs11_bench", "a benchmark run: minutes"},
     {"build/bench/vs11_compare_llvmpipe --cpu-time", "the full llvmpipe comparison: minutes"},
+    {"build/bench/vs11_gl_paths_bench", "a benchmark run: minutes"},
     {"python3 bench/compare_cmgen.py", "needs Filament's cmgen and minutes"},
     {"python3 bench/irradiance/dataset_throughput.py", "a benchmark run: about a minute on two cores"},
     {"irrmap stability", "about a minute of work on two cores; tests/irradiance/report/stability_test.cc covers it"},

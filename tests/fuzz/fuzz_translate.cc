@@ -27,15 +27,20 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   const vs11::AssembleResult assembled =
       vs11::AssembleSource({reinterpret_cast<const char*>(data), size}, "input.vsh", options, NoFiles);
   if (!assembled.program) return 0;
+  using vs11::translate::Stage;
   using vs11::translate::Target;
-  for (Target target : {Target::kGlsl330, Target::kGlslEs300, Target::kGlslEs320, Target::kSpirv}) {
-    vs11::translate::TranslateOptions translate_options;
-    translate_options.target = target;
-    const std::string glsl = vs11::translate::TranslateToGlsl(*assembled.program, translate_options);
-    const vs11::translate::GlslangResult compiled = vs11::translate::CompileWithGlslang(glsl, target);
-    if (!compiled.ok) Report(vs11::translate::TargetName(target), compiled.log, glsl);
-    if (target != Target::kSpirv) continue;
-    if (std::optional<std::string> invalid = vs11::translate::ValidateSpirv(compiled.spirv)) Report("spirv-val", *invalid, glsl);
+  for (Stage stage : {Stage::kVertex, Stage::kCompute}) {
+    for (Target target : {Target::kGlsl330, Target::kGlslEs300, Target::kGlslEs310, Target::kGlslEs320, Target::kSpirv}) {
+      if (vs11::translate::StageProblem(target, stage)) continue;
+      vs11::translate::TranslateOptions translate_options;
+      translate_options.target = target;
+      translate_options.stage = stage;
+      const std::string glsl = vs11::translate::TranslateToGlsl(*assembled.program, translate_options);
+      const vs11::translate::GlslangResult compiled = vs11::translate::CompileWithGlslang(glsl, target, stage);
+      if (!compiled.ok) Report(vs11::translate::TargetName(target), compiled.log, glsl);
+      if (target != Target::kSpirv) continue;
+      if (std::optional<std::string> invalid = vs11::translate::ValidateSpirv(compiled.spirv)) Report("spirv-val", *invalid, glsl);
+    }
   }
   return 0;
 }

@@ -81,6 +81,11 @@ void EngineFlags::AddTo(CLI::App& command) {
       ->check([](const std::string& value) {
         return value == "list" || gl::GlDeviceIndex(value) ? std::string() : "expected 'list' or a device number";
       });
+  command.add_option("--gl-path", gl_path,
+                     "How --engine gl runs the program: compute (a compute shader, OpenGL ES 3.1), transform-feedback "
+                     "(a vertex shader, ES 3.0) or auto (compute where the context offers it)")
+      ->check(CLI::IsMember({"auto", "compute", "transform-feedback"}))
+      ->capture_default_str();
   float_rules.AddTo(command);
 }
 
@@ -92,7 +97,7 @@ std::string EngineFlags::Name() const {
 EngineOptions EngineFlags::Options() const {
   EngineOptions options{threads};
   options.float_rules = float_rules.Rules();
-  options.settings.Set(gl::GlOptions{gl::GlDeviceIndex(gl_device)});
+  options.settings.Set(gl::GlOptions{gl::GlDeviceIndex(gl_device), *gl::GlPathFromName(gl_path)});
   return options;
 }
 
@@ -100,6 +105,9 @@ bool EngineFlags::ListGlDevicesIfAsked(const std::string& command_engines) const
   if (!gl_device.empty() && gl_device != "list" && Name() != "gl" &&
       command_engines.find("gl") == std::string::npos) {
     std::fprintf(stderr, "warning: --gl-device applies to the gl engine only; --engine %s ignores it\n", engine.c_str());
+  }
+  if (gl_path != "auto" && Name() != "gl" && command_engines.find("gl") == std::string::npos) {
+    std::fprintf(stderr, "warning: --gl-path applies to the gl engine only; --engine %s ignores it\n", engine.c_str());
   }
   if (gl_device != "list") return false;
   std::string error;
@@ -114,6 +122,14 @@ std::unique_ptr<Engine> MakeEngineOrFail(std::string_view name, const Program& p
   std::unique_ptr<Engine> engine = MakeEngine(name, program, constants, options);
   if (const std::string error = engine->error(); !error.empty()) Fail(error);
   return engine;
+}
+
+void NoteGlPath(const Engine& engine) {
+  if (const std::optional<gl::GlPath> path = gl::GlPathOf(engine)) {
+    std::fprintf(stderr, "note: --engine gl runs the %s path%s\n", std::string(gl::GlPathName(*path)).c_str(),
+                 *path == gl::GlPath::kCompute ? " (a compute shader over storage buffers)"
+                                               : " (a vertex shader with transform feedback)");
+  }
 }
 
 void RunOrFail(Engine& engine, const VertexArrays& inputs, VertexArrays& outputs) {

@@ -46,11 +46,12 @@ struct FloatRulesFlag {
 };
 
 // "--engine NAME" (a registered engine, vm/engines/engine_factory.h; jit by default), "--threads N",
-// "--gl-device list|N" and "--float-rules".
+// "--gl-device list|N", "--gl-path auto|compute|transform-feedback" and "--float-rules".
 struct EngineFlags {
   std::string engine = "jit";
   int threads = 1;
   std::string gl_device;  // empty (llvmpipe), "list" or an EGL device's index
+  std::string gl_path = "auto";  // --gl-path auto|compute|transform-feedback (gl_engine.h's GlPath)
   FloatRulesFlag float_rules;
   void AddTo(CLI::App& command);
   std::string Name() const;  // the registered name ("ref" for "reference")
@@ -64,6 +65,10 @@ struct EngineFlags {
 // it cannot be had (the gl engine without a device).
 std::unique_ptr<Engine> MakeEngineOrFail(std::string_view name, const Program& program, const ConstantBank& constants,
                                          const EngineOptions& options);
+
+// For a gl engine, "note: --engine gl runs the compute path (...)" or the transform-feedback one, on
+// stderr; nothing for the other engines.
+void NoteGlPath(const Engine& engine);
 
 // Runs `engine`; prints its error and throws CommandFailure{1} when the run failed (a driver's error).
 void RunOrFail(Engine& engine, const VertexArrays& inputs, VertexArrays& outputs);

@@ -180,7 +180,9 @@ void RunProgram(const RunArgs& args) {
   }
   VertexArrays inputs = FillInputArrays(supplied, count, registers);
   VertexArrays outputs = MakeOutputArrays(count, program);
-  RunOrFail(*MakeEngineOrFail(args.engine.Name(), program, constants, args.engine.Options()), inputs, outputs);
+  const std::unique_ptr<Engine> engine = MakeEngineOrFail(args.engine.Name(), program, constants, args.engine.Options());
+  NoteGlPath(*engine);
+  RunOrFail(*engine, inputs, outputs);
   if (args.trace.active()) {
     ReportTraces(args.trace, args.program, program, constants, inputs, outputs, args.engine.Name(),
                  args.engine.float_rules.Rules());
@@ -213,9 +215,11 @@ constexpr const char* kRunFooter =
     "Debugging: --trace 0,5 prints vertices 0 and 5 instruction by instruction (source line, values\n"
     "read, lanes written) on the reference engine, beside the --engine's outputs, which must be identical\n"
     "(exit 1 if not); the CSV then goes only to --out. --trace-json FILE writes the same record as JSON.\n"
-    "--engine gl runs the program's GLSL ES 3.00 translation (vs11 translate) on an OpenGL ES 3.0 driver\n"
-    "through EGL with no display: Mesa's llvmpipe, or the EGL device --gl-device N names (--gl-device list\n"
-    "prints them). Where no EGL device gives OpenGL ES 3.0 it says why and exits 1. Its outputs equal the\n"
+    "--engine gl runs the program's GLSL ES translation (vs11 translate) on an OpenGL ES driver through\n"
+    "EGL with no display: Mesa's llvmpipe, or the EGL device --gl-device N names (--gl-device list\n"
+    "prints them); as a compute shader where the context offers OpenGL ES 3.1, else through transform\n"
+    "feedback (--gl-path compute|transform-feedback forces one; a note on stderr says which ran).\n"
+    "Where no EGL device gives OpenGL ES 3.0 it says why and exits 1. Its outputs equal the\n"
     "other engines' on ordinary inputs; a driver may flush denormals and lose -0 (README, \"The gl engine\").\n\n"
     "Float rules: --float-rules legacy makes every product of mul, mad, dp3, dp4, m*x*, dst and lit's\n"
     "power 0 when an operand is 0 (0 * inf = 0, as DX8-era hardware), on every engine and in --trace;\n"
@@ -226,6 +230,7 @@ constexpr const char* kRunFooter =
     "  vs11 run light.vsh --input v0=positions.csv --input v1=normals.csv --const c4=0,0,1,0 --out lit.csv\n"
     "  vs11 run light.vsh --input v0=lit.csv:oPos --input v1=normals.csv --const c4=0,0,1,0\n"
     "  vs11 run programs/sh9_irradiance.vsh --fragment --consts out/constants.vsh --sphere 6 --sphere-reg v0 --engine gl\n"
+    "  vs11 run programs/sh9_irradiance.vsh --fragment --consts out/constants.vsh --sphere 6 --sphere-reg v0 --engine gl --gl-path transform-feedback\n"
     "  vs11 run programs/sh9_irradiance.vsh --gl-device list\n"
     "  vs11 run programs/sh9_irradiance.vsh --input v0=infinite_normals.csv --missing zeros --float-rules legacy";
 

@@ -1,4 +1,4 @@
-// vs11 translate: a program to GLSL 3.30, GLSL ES 3.00 or SPIR-V (vm/translate/translate.h).
+// vs11 translate: a program to GLSL 3.30, GLSL ES 3.00-3.20 or SPIR-V, as a vertex or compute shader (vm/translate/translate.h).
 #include <cstdio>
 #include <memory>
 
@@ -14,13 +14,13 @@ namespace vs11::cli {
 
 void AddTranslateCommand(CLI::App& app) {
   struct Args {
-    std::string input, output = "-", target, clip;
+    std::string input, output = "-", target, clip, stage = "vertex";
     ProgramFlags flags;
     FloatRulesFlag float_rules;
   };
   auto args = std::make_shared<Args>();
   CLI::App* command = app.add_subcommand(
-      "translate", "Translate a .vsh or .vso program to GLSL 3.30, GLSL ES 3.00 or SPIR-V with vs11's semantics");
+      "translate", "Translate a .vsh or .vso program to GLSL 3.30, GLSL ES 3.00-3.20 or SPIR-V with vs11's semantics");
   command->footer(
       "The program is assembled and validated as by `vs11 asm` (same diagnostics, exit 1 on an error).\n"
       "The output begins with its interface: vN at location N, the constants as vec4 c[--max-constants],\n"
@@ -28,18 +28,30 @@ void AddTranslateCommand(CLI::App& app) {
       "those names; the README's \"vs11 translate\" section has the details. SPIR-V (Vulkan 1.0, compiled\n"
       "by glslang) is binary and is written to a file only. --float-rules legacy writes every product of\n"
       "mul, mad, dp3, dp4, m*x*, dst and lit's power as (b == 0 ? 0 : a) * (a == 0 ? 0 : b), as the engines\n"
-      "compute it under the same flag.\n\n"
+      "compute it under the same flag. --stage compute writes a compute shader instead (glsles310,\n"
+      "glsles320 or spirv): one invocation per vertex, the constants in uniform block Vs11Constants\n"
+      "(binding 0), where each input and output lies in block Vs11Layout (binding 1), inputs and outputs\n"
+      "in storage buffers (bindings 2 and 3) in any layout, structure of arrays or interleaved; the\n"
+      "interface comment and the README say how to fill them.\n\n"
       "Examples:\n"
       "  vs11 translate programs/sh9_irradiance.vsh --to glsl330\n"
       "  vs11 translate programs/skinning.vsh --to glsles300 --clip d3d -o skinning.vert\n"
       "  vs11 translate programs/sh9_irradiance.vsh --to glsles320 -o sh9.vert\n"
       "  vs11 translate programs/point_light.vsh --to spirv -o point_light.spv\n"
-      "  vs11 translate programs/skinning.vsh --to spirv --float-rules legacy -o skinning_legacy.spv");
+      "  vs11 translate programs/skinning.vsh --to spirv --float-rules legacy -o skinning_legacy.spv\n"
+      "  vs11 translate programs/sh9_irradiance.vsh --to glsles310 --stage compute -o sh9.comp\n"
+      "  vs11 translate programs/sh9_irradiance.vsh --to spirv --stage compute -o sh9_comp.spv");
   command->add_option("input", args->input, "Program (.vsh source or .vso bytecode; - reads standard input)")->required();
   command->add_option("--to", args->target,
-                      "Target: glsl330, glsles300, glsles320 (every output precise: no fused multiply-adds) or spirv")
+                      "Target: glsl330, glsles300, glsles310, glsles320 (every output precise: no fused multiply-adds) "
+                      "or spirv")
       ->required()
-      ->check(CLI::IsMember({"glsl330", "glsles300", "glsles320", "spirv"}));
+      ->check(CLI::IsMember({"glsl330", "glsles300", "glsles310", "glsles320", "spirv"}));
+  command->add_option("--stage", args->stage,
+                      "vertex (a vertex shader) or compute (a compute shader over storage buffers; glsles310, "
+                      "glsles320 or spirv)")
+      ->check(CLI::IsMember({"vertex", "compute"}))
+      ->capture_default_str();
   command->add_option("-o,--output", args->output, "File to write; - for stdout (GLSL only)")->capture_default_str();
   command->add_option("--clip", args->clip,
                       "gl_Position's clip space: d3d (as written), gl (z' = 2z - w) or vulkan (y' = -y); default: gl "
@@ -53,6 +65,15 @@ void AddTranslateCommand(CLI::App& app) {
     if (options.target == translate::Target::kSpirv && args->output == "-") {
       std::fputs("vs11: error: --to spirv writes a binary: name a file with -o\n", stderr);
       throw CommandFailure{kUsageErrorStatus};
+    }
+    options.stage = *translate::StageFromName(args->stage);
+    if (std::optional<std::string> problem = translate::StageProblem(options.target, options.stage)) {
+      std::fprintf(stderr, "vs11: error: --stage compute: %s\n", problem->c_str());
+      throw CommandFailure{kUsageErrorStatus};
+    }
+    if (options.stage == translate::Stage::kCompute && !args->clip.empty()) {
+      std::fputs("warning: --clip applies to the vertex stage only; a compute shader writes oPos as the program does\n",
+                 stderr);
     }
     CheckInputsAndOutputs({args->input}, {args->output});
     Program program = LoadProgramOrFail(args->input, args->flags);

@@ -11,6 +11,8 @@
 #include <fmt/format.h>
 
 #include "vm/engines/engine_factory.h"
+#include "vm/gl/gl_compute.h"
+#include "vm/gl/gl_compute_engine.h"
 #include "vm/gl/gl_context.h"
 #include "vm/gl/gl_runner.h"
 
@@ -37,7 +39,7 @@ void FillWithNaN(VertexArrays& outputs) {
   }
 }
 
-class GlEngine final : public Engine {
+class GlEngine final : public Engine, public GlPathOwner {
  public:
   GlEngine(const Program& program, const EngineOptions& options, std::unique_ptr<GlContext> context)
       : program_(program), options_(options), context_(std::move(context)) {}
@@ -48,6 +50,7 @@ class GlEngine final : public Engine {
   void Run(const VertexArrays& inputs, VertexArrays& outputs) override;
   void SetConstants(const ConstantBank& api_constants) override;
   std::string error() const override { return error_; }
+  GlPath path() const override { return GlPath::kTransformFeedback; }
 
  private:
   void DeleteObjects();
@@ -240,12 +243,45 @@ translate::TranslateOptions GlTranslateOptions(const EngineOptions& options, int
   return translation;
 }
 
+std::optional<GlPath> GlPathFromName(std::string_view name) {
+  for (GlPath path : {GlPath::kAuto, GlPath::kCompute, GlPath::kTransformFeedback}) {
+    if (GlPathName(path) == name) return path;
+  }
+  return std::nullopt;
+}
+
+std::string_view GlPathName(GlPath path) {
+  switch (path) {
+    case GlPath::kAuto: return "auto";
+    case GlPath::kCompute: return "compute";
+    case GlPath::kTransformFeedback: return "transform-feedback";
+  }
+  return "auto";
+}
+
+std::optional<GlPath> GlPathOf(const Engine& engine) {
+  const auto* owner = dynamic_cast<const GlPathOwner*>(&engine);
+  if (owner == nullptr || !engine.error().empty()) return std::nullopt;
+  return owner->path();
+}
+
 std::unique_ptr<Engine> MakeGlEngine(const Program& program, const ConstantBank& api_constants,
                                      const EngineOptions& options) {
   std::string error;
-  std::unique_ptr<GlContext> context = GlContext::Create(options.settings.Get<GlOptions>().device, error);
+  const GlOptions gl_options = options.settings.Get<GlOptions>();
+  std::unique_ptr<GlContext> context = GlContext::Create(gl_options.device, error);
   if (!context) return MakeFailedEngine("the gl engine has no OpenGL ES 3.0 device: " + error);
   const std::string renderer = context->renderer();
+  const bool compute = OffersCompute(*context);
+  if (gl_options.path == GlPath::kCompute && !compute) {
+    return MakeFailedEngine(fmt::format("the gl engine on '{}': --gl-path compute needs OpenGL ES 3.1, the context is '{}'",
+                                        renderer, context->version()));
+  }
+  if (compute && gl_options.path != GlPath::kTransformFeedback) {
+    std::unique_ptr<Engine> engine = MakeGlComputeEngine(program, api_constants, options, std::move(context), error);
+    if (!engine) return MakeFailedEngine(fmt::format("the gl engine on '{}' (compute path): {}", renderer, error));
+    return engine;
+  }
   auto engine = std::make_unique<GlEngine>(program, options, std::move(context));
   if (!engine->Build(api_constants.size(), error)) {
     return MakeFailedEngine(fmt::format("the gl engine on '{}': {}", renderer, error));
@@ -259,7 +295,8 @@ std::unique_ptr<Engine> MakeGlEngine(const Program& program, const ConstantBank&
 
 void RegisterGlEngine() {
   RegisterEngine({"gl", "",
-                  "the GLSL ES translation on an OpenGL ES 3.0 driver through EGL: Mesa's llvmpipe, or --gl-device N",
+                  "the GLSL ES translation on an OpenGL ES driver through EGL (a compute shader on ES 3.1, else transform "
+                  "feedback): Mesa's llvmpipe, or --gl-device N",
                   &MakeGlEngine});
 }
 

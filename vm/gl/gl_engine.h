@@ -1,6 +1,6 @@
-// The gl engine (`--engine gl`): the program's GLSL ES 3.00 translation (vm/translate) run by a real
-// OpenGL ES 3.0 driver, Mesa's llvmpipe by default or an EGL device's (gl_context.h), through transform
-// feedback. Inputs, constants and outputs are every engine's (vm/core/machine.h): the VertexArrays'
+// The gl engine (`--engine gl`): the program's GLSL ES translation (vm/translate) run by a real
+// OpenGL ES driver, Mesa's llvmpipe by default or an EGL device's (gl_context.h): as a compute shader
+// on ES 3.1 contexts (gl_compute_engine.h), else a vertex shader through transform feedback (GlPath). Inputs, constants and outputs are every engine's (vm/core/machine.h): the VertexArrays'
 // lanes go to vertex attributes vN, the API bank to `uniform vec4 c[N]` (the program's def constants
 // are in the translation), and every output register the program writes comes back from the capture.
 // Its bits are the reference engine's wherever the driver computes IEEE single precision as the
@@ -10,6 +10,7 @@
 
 #include <memory>
 #include <optional>
+#include <string_view>
 
 #include "vm/core/machine.h"
 #include "vm/translate/translate.h"
@@ -23,11 +24,31 @@ namespace vs11::gl {
 // translation here.
 translate::TranslateOptions GlTranslateOptions(const EngineOptions& options, int constant_count, bool es32);
 
+// How the gl engine runs the translation: a compute shader over storage buffers (gl_compute.h; needs
+// OpenGL ES 3.1, as llvmpipe and NVIDIA offer), or a vertex shader with transform feedback (ES 3.0,
+// at most 65536 vertices a draw). kAuto: compute where the context offers ES 3.1.
+enum class GlPath { kAuto, kCompute, kTransformFeedback };
+std::optional<GlPath> GlPathFromName(std::string_view name);  // "auto" | "compute" | "transform-feedback"
+std::string_view GlPathName(GlPath path);
+
 // The gl engine's own options (EngineOptions::settings).
 struct GlOptions {
   // The EGL device (gl_context.h's ListGlDevices index, `--gl-device N`); nullopt: Mesa's llvmpipe.
   std::optional<int> device;
+  // `--gl-path`: kCompute on a context without ES 3.1 is the engine's error, not a fallback.
+  GlPath path = GlPath::kAuto;
 };
+
+// What a gl engine says of itself: the path it runs (never kAuto).
+class GlPathOwner {
+ public:
+  virtual ~GlPathOwner() = default;
+  virtual GlPath path() const = 0;
+};
+
+// The path `engine` runs, where it is a working gl engine; nullopt for any other engine (another kind,
+// or a gl engine that could not be built).
+std::optional<GlPath> GlPathOf(const Engine& engine);
 
 // Never null: where the context or the program cannot be had, an engine whose error() says why
 // (MakeFailedEngine). EngineOptions::threads does not apply (the driver keeps its own threads:

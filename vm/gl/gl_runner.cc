@@ -12,7 +12,16 @@
 namespace vs11::gl {
 namespace {
 
-GLuint CompileShader(GLenum kind, const std::string& source, std::string& error) {
+// OpenGL ES needs a fragment shader to link a program, even when rasterisation is discarded. It takes
+// the vertex shader's first line, its #version, since the shaders of a program share one version.
+std::string FragmentSourceFor(const std::string& vertex_source) {
+  return vertex_source.substr(0, vertex_source.find('\n') + 1) +
+         "precision highp float;\nout vec4 colour;\nvoid main() { colour = vec4(0.0); }\n";
+}
+
+}  // namespace
+
+unsigned CompileShader(unsigned kind, const std::string& source, std::string& error) {
   const GLuint shader = glCreateShader(kind);
   const char* text = source.c_str();
   glShaderSource(shader, 1, &text, nullptr);
@@ -26,15 +35,6 @@ GLuint CompileShader(GLenum kind, const std::string& source, std::string& error)
   glDeleteShader(shader);
   return 0;
 }
-
-// OpenGL ES needs a fragment shader to link a program, even when rasterisation is discarded. It takes
-// the vertex shader's first line, its #version, since the shaders of a program share one version.
-std::string FragmentSourceFor(const std::string& vertex_source) {
-  return vertex_source.substr(0, vertex_source.find('\n') + 1) +
-         "precision highp float;\nout vec4 colour;\nvoid main() { colour = vec4(0.0); }\n";
-}
-
-}  // namespace
 
 bool GlOk(const char* what, std::string& error) {
   const GLenum code = glGetError();

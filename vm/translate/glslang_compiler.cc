@@ -20,8 +20,8 @@ void InitializeGlslangOnce() {
 constexpr int kDefaultGlslVersion = 100;  // used only by a text without #version, which we never write
 
 // Vulkan 1.0 and SPIR-V 1.0, for a shader in `source` (GLSL or HLSL).
-void SetVulkanEnvironment(glslang::TShader& shader, glslang::EShSource source) {
-  shader.setEnvInput(source, EShLangVertex, glslang::EShClientVulkan, 100);
+void SetVulkanEnvironment(glslang::TShader& shader, glslang::EShSource source, EShLanguage language = EShLangVertex) {
+  shader.setEnvInput(source, language, glslang::EShClientVulkan, 100);
   shader.setEnvClient(glslang::EShClientVulkan, glslang::EShTargetVulkan_1_0);
   shader.setEnvTarget(glslang::EShTargetSpv, glslang::EShTargetSpv_1_0);
 }
@@ -42,16 +42,17 @@ bool ParseAndLink(glslang::TShader& shader, EShMessages messages, glslang::TProg
 
 }  // namespace
 
-GlslangResult CompileWithGlslang(const std::string& glsl, Target target) {
+GlslangResult CompileWithGlslang(const std::string& glsl, Target target, Stage stage) {
   InitializeGlslangOnce();
   GlslangResult result;
-  glslang::TShader shader(EShLangVertex);
+  const EShLanguage language = stage == Stage::kCompute ? EShLangCompute : EShLangVertex;
+  glslang::TShader shader(language);
   const char* text = glsl.c_str();
   const char* name = "translation";
   shader.setStringsWithLengthsAndNames(&text, nullptr, &name, 1);
   auto messages = static_cast<EShMessages>(EShMsgDefault);
   if (target == Target::kSpirv) {
-    SetVulkanEnvironment(shader, glslang::EShSourceGlsl);
+    SetVulkanEnvironment(shader, glslang::EShSourceGlsl, language);
     // Debug info keeps the source (with its interface comment) and the variables' names in the binary.
     messages = static_cast<EShMessages>(EShMsgSpvRules | EShMsgVulkanRules | EShMsgDebugInfo);
   }
@@ -62,7 +63,7 @@ GlslangResult CompileWithGlslang(const std::string& glsl, Target target) {
     options.generateDebugInfo = true;
     options.validate = false;  // ValidateSpirv does it, with SPIRV-Tools' own messages
     spv::SpvBuildLogger logger;
-    glslang::GlslangToSpv(*program.getIntermediate(EShLangVertex), result.spirv, &logger, &options);
+    glslang::GlslangToSpv(*program.getIntermediate(language), result.spirv, &logger, &options);
     if (result.spirv.empty()) {
       result.log = logger.getAllMessages();
       return result;

@@ -18,9 +18,9 @@ struct GlslangResult {
   std::vector<std::uint32_t> spirv;  // for Target::kSpirv
 };
 
-// Compiles and links `glsl` as a vertex shader of `target`'s dialect (the #version line decides its
-// version). Thread-safe.
-GlslangResult CompileWithGlslang(const std::string& glsl, Target target);
+// Compiles and links `glsl` as a shader of `stage` (a vertex shader unless told) in `target`'s dialect
+// (the #version line decides its version). Thread-safe.
+GlslangResult CompileWithGlslang(const std::string& glsl, Target target, Stage stage = Stage::kVertex);
 
 // Compiles and links `hlsl` as an HLSL vertex shader whose entry point is `entry_point`, through
 // glslang's HLSL front end (as `glslangValidator -D`), for checks of HLSL that vs11 writes

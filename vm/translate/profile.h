@@ -1,5 +1,5 @@
 // The targets of `vs11 translate`, one file per dialect behind this interface (as MojoShader's
-// profiles): profile_glsl330.cc, profile_glsles.cc (ES 3.00 and 3.20), profile_spirv.cc. The shader
+// profiles): profile_glsl330.cc, profile_glsles.cc (ES 3.00, 3.10 and 3.20), profile_spirv.cc. The shader
 // body is the same GLSL for every target (glsl_writer.cc); a profile supplies only what its dialect
 // spells differently and what it makes of the finished text.
 #pragma once
@@ -13,10 +13,19 @@
 
 namespace vs11::translate {
 
-enum class Target { kGlsl330, kGlslEs300, kGlslEs320, kSpirv };
-// "glsl330" | "glsles300" | "glsles320" | "spirv"
+enum class Target { kGlsl330, kGlslEs300, kGlslEs310, kGlslEs320, kSpirv };
+// "glsl330" | "glsles300" | "glsles310" | "glsles320" | "spirv"
 std::optional<Target> TargetFromName(std::string_view name);
 std::string_view TargetName(Target target);
+
+// The shader the program becomes: a vertex shader (attributes in, outputs to the next stage) or a
+// compute shader over storage buffers (compute_interface.h), one invocation per vertex.
+enum class Stage { kVertex, kCompute };
+std::optional<Stage> StageFromName(std::string_view name);  // "vertex" | "compute"
+std::string_view StageName(Stage stage);
+// Why `target` cannot hold a shader of `stage` (GLSL 3.30 and GLSL ES 3.00 have no compute shaders);
+// nullopt where it can.
+std::optional<std::string> StageProblem(Target target, Stage stage);
 
 // What a profile makes of the GLSL: the text itself, or a binary compiled from it.
 struct Artifact {
@@ -37,14 +46,18 @@ class Profile {
   // matches outputs by location, and `precise` where the dialect has it, which reaches every
   // operation the output depends on (no fused multiply-add, no reordering).
   virtual std::string OutputQualifiers(int location) const = 0;
+  // Whether the dialect has `precise` (GLSL ES 3.20, Vulkan GLSL 4.50): the compute stage declares
+  // each output's local vec4 `precise`, as the vertex stage does its outputs.
+  virtual bool HasPrecise() const = 0;
   // Sentences for the interface comment: how outputs are matched; whether the driver may contract.
   virtual std::string_view OutputMatching() const = 0;
   virtual std::string_view Contraction() const = 0;
-  virtual Artifact Finish(const std::string& glsl) const = 0;
+  virtual Artifact Finish(const std::string& glsl, Stage stage) const = 0;
 };
 
 std::unique_ptr<Profile> MakeGlsl330Profile();
 std::unique_ptr<Profile> MakeGlslEs300Profile();
+std::unique_ptr<Profile> MakeGlslEs310Profile();
 std::unique_ptr<Profile> MakeGlslEs320Profile();
 std::unique_ptr<Profile> MakeSpirvProfile();
 std::unique_ptr<Profile> MakeProfile(Target target);

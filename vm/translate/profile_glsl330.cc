@@ -15,6 +15,7 @@ class Glsl330Profile final : public Profile {
   }
   std::string ConstantBank(int count) const override { return fmt::format("uniform vec4 c[{}];\n", count); }
   std::string OutputQualifiers(int) const override { return ""; }
+  bool HasPrecise() const override { return false; }
   std::string_view OutputMatching() const override {
     return "outputs match the next stage's inputs by name (GLSL 3.30 has no output locations)";
   }
@@ -23,7 +24,7 @@ class Glsl330Profile final : public Profile {
            "//   dp3, dp4 and the matrices into one fused multiply-add, which rounds once instead of twice.\n"
            "//   Where that matters, use the SPIR-V target, whose operations are all precise.";
   }
-  Artifact Finish(const std::string& glsl) const override { return TextArtifact(glsl); }
+  Artifact Finish(const std::string& glsl, Stage) const override { return TextArtifact(glsl); }
 };
 
 }  // namespace

@@ -20,6 +20,7 @@ class SpirvProfile final : public Profile {
   std::string OutputQualifiers(int location) const override {
     return fmt::format("layout(location = {}) precise ", location);
   }
+  bool HasPrecise() const override { return true; }
   std::string_view OutputMatching() const override {
     return "output locations: vs11_oPos 0, oD0 1, oD1 2, oT0..oT7 3..10, oFog 11, oPts 12; constants: uniform block "
            "Vs11Constants (std140) at set 0, binding 0";
@@ -28,10 +29,10 @@ class SpirvProfile final : public Profile {
     return "every output is `precise`, which glslang carries to each operation it depends on as NoContraction:\n"
            "//   no fused multiply-add, no reordering.";
   }
-  Artifact Finish(const std::string& glsl) const override {
+  Artifact Finish(const std::string& glsl, Stage stage) const override {
     Artifact artifact;
     artifact.binary = true;
-    GlslangResult compiled = CompileWithGlslang(glsl, Target::kSpirv);
+    GlslangResult compiled = CompileWithGlslang(glsl, Target::kSpirv, stage);
     if (!compiled.ok) {
       artifact.error = "glslang rejected the translation (a vs11 bug; please report it with the program):\n" + compiled.log;
       return artifact;

@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 
 #include "vm/asm/disassembler.h"
+#include "vm/translate/compute_stage.h"
 #include "vm/translate/shader_graph.h"
 
 namespace vs11::translate {
@@ -66,8 +67,14 @@ class Writer {
     std::string body = Body();
     // GLSL ES wants #version before anything else, comments included: the interface comes second.
     std::string text = profile_.Header();
-    text += InterfaceComment();
-    text += Declarations();
+    if (Compute()) {
+      text += ComputeInterfaceComment({options_.source_name, TargetName(profile_.target()), FloatRulesDescription(),
+                                       ComputeContraction(), options_.constant_count});
+      text += ComputeDeclarations(options_.constant_count);
+    } else {
+      text += InterfaceComment();
+      text += Declarations();
+    }
     text += Helpers();
     text += body;
     return text;
@@ -136,6 +143,7 @@ class Writer {
   // main(): the float literals, then each instruction's statements under its text, then the outputs.
   std::string Body() {
     std::string text = "void main() {\n";
+    if (Compute()) text += ComputePrologue(shader_.inputs_read, InputUsages());
     for (std::size_t n = 0; n < graph_.size(); ++n) {
       const ir::Node& node = graph_.nodes()[n];
       if (live_[n] && node.op == ir::Op::kLiteral && node.type == ir::Type::kFloat) {
@@ -157,6 +165,7 @@ class Writer {
       }
     }
     text += "  // outputs (unwritten lanes hold vs11's values)\n";
+    if (Compute()) return text + ComputeOutputs() + "}\n";
     for (const OutputDeclaration& output : OutputVariables()) {
       const auto& lanes = shader_.outputs[static_cast<std::size_t>(output.slot)];
       if (Scalar(output)) {
@@ -172,6 +181,31 @@ class Writer {
     }
     text += "}\n";
     return text;
+  }
+
+  bool Compute() const { return options_.stage == Stage::kCompute; }
+
+  // Each output register the program writes, all four lanes, into a local vec4 (`precise` where the
+  // dialect has it, which reaches every operation the value depends on, as the vertex stage's
+  // outputs) and then to the output buffer.
+  std::string ComputeOutputs() const {
+    std::string text;
+    for (const OutputDeclaration& output : OutputVariables()) {
+      if (shader_.written[static_cast<std::size_t>(output.slot)].bits() == 0) continue;
+      const auto& lanes = shader_.outputs[static_cast<std::size_t>(output.slot)];
+      text += fmt::format("  {}vec4 {} = vec4({}, {}, {}, {});\n", profile_.HasPrecise() ? "precise " : "", output.name,
+                          Ref(lanes[0]), Ref(lanes[1]), Ref(lanes[2]), Ref(lanes[3]));
+      text += ComputeStore(output.slot, output.name);
+    }
+    return text;
+  }
+
+  std::string_view ComputeContraction() const {
+    if (profile_.HasPrecise()) {
+      return "every output's value is a `precise` vec4, which reaches each operation it depends on: no\n"
+             "//   driver fuses a product and a sum into one rounding.";
+    }
+    return profile_.Contraction();
   }
 
   // oFog and oPts are floats, lane x, but for exact_on_driver (OutputVariableOf).
@@ -252,8 +286,8 @@ class Writer {
     return text;
   }
 
-  std::string Declarations() const {
-    std::string text;
+  // The dcl comment of each input register, or empty.
+  std::vector<std::string> InputUsages() const {
     std::vector<std::string> usages(kInputRegisterCount);
     for (const Instruction& instruction : program_.instructions) {
       if (instruction.opcode != Opcode::kDcl || instruction.dest.reg.index < 0 ||
@@ -265,6 +299,12 @@ class Writer {
           fmt::format("  // dcl_{}{}", kDeclUsageNames[static_cast<std::size_t>(instruction.usage)],
                       instruction.usage_index == 0 ? std::string() : std::to_string(instruction.usage_index));
     }
+    return usages;
+  }
+
+  std::string Declarations() const {
+    std::string text;
+    const std::vector<std::string> usages = InputUsages();
     for (int reg = 0; reg < kInputRegisterCount; ++reg) {
       if (shader_.inputs_read[static_cast<std::size_t>(reg)] || !usages[static_cast<std::size_t>(reg)].empty()) {
         text += fmt::format("layout(location = {}) in vec4 v{};{}\n", reg, reg, usages[static_cast<std::size_t>(reg)]);
@@ -333,7 +373,12 @@ std::string TranslateToGlsl(const Program& program, const TranslateOptions& opti
 }
 
 Artifact Translate(const Program& program, const TranslateOptions& options) {
-  return MakeProfile(options.target)->Finish(TranslateToGlsl(program, options));
+  if (std::optional<std::string> problem = StageProblem(options.target, options.stage)) {
+    Artifact refused;
+    refused.error = *problem;
+    return refused;
+  }
+  return MakeProfile(options.target)->Finish(TranslateToGlsl(program, options), options.stage);
 }
 
 }  // namespace vs11::translate

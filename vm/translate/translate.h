@@ -1,4 +1,4 @@
-// vs_1_1 to GLSL 3.30, GLSL ES 3.00 and SPIR-V (`vs11 translate`). The translation reproduces vs11's
+// vs_1_1 to GLSL 3.30, GLSL ES 3.00, 3.10, 3.20 and SPIR-V, vertex or compute shaders, (`vs11 translate`). The translation reproduces vs11's
 // engines: it records the shared instruction semantics (vm/core/semantics.h, vm/core/operands.h) into
 // the IR (vm/ir/, shader_graph.h), so every instruction, modifier and corner case (rcp of 0, NaN
 // in min/max/sge/slt, expp/logp/lit/frc, mov a0 flooring, out-of-range c[a0.x + n], unwritten outputs)
@@ -37,6 +37,10 @@ struct TranslateOptions {
   // The rule every product follows (--float-rules; vm/core/float_rules.h): under kLegacy each product
   // is written as the compares and selects of semantics::Product around its multiply.
   FloatRules float_rules = FloatRules::kD3d9;
+  // A vertex shader, or a compute shader over storage buffers (compute_interface.h; GLSL ES 3.10,
+  // 3.20 and SPIR-V only: StageProblem). The statements are the same; the compute form has no
+  // gl_Position (clip does not apply) and keeps all four lanes of oFog and oPts.
+  Stage stage = Stage::kVertex;
 };
 
 // The GLSL output that carries output slot `slot` (OutputSlot): "vs11_oPos" for oPos (the raw value;
@@ -54,7 +58,8 @@ OutputVariable OutputVariableOf(int slot, bool exact_on_driver = false);
 // fails: every program the engines run has a translation.
 std::string TranslateToGlsl(const Program& program, const TranslateOptions& options);
 
-// The target's output: GLSL text, or SPIR-V words (little-endian bytes) compiled by glslang.
+// The target's output: GLSL text, or SPIR-V words (little-endian bytes) compiled by glslang; an
+// Artifact with `error` for a stage the target cannot hold (StageProblem).
 Artifact Translate(const Program& program, const TranslateOptions& options);
 
 }  // namespace vs11::translate

@@ -51,6 +51,27 @@ TEST_F(TranslateCommand, WritesValidSpirvToAFileOnly) {
   EXPECT_EQ(translate::ValidateSpirv(words), std::nullopt);
 }
 
+TEST_F(TranslateCommand, StageComputeWritesACompileableComputeShader) {
+  const std::string input = Write("p.vsh", kProgram);
+  const testing::CommandResult glsl = RunVs11("translate " + input + " --to glsles310 --stage compute");
+  ASSERT_EQ(glsl.status, 0) << glsl.output;
+  EXPECT_EQ(glsl.output.rfind("#version 310 es\n", 0), 0u) << glsl.output;
+  EXPECT_NE(glsl.output.find("vec4 v1 = vs11_input(1, vs11_vertex);  // dcl_normal"), std::string::npos) << glsl.output;
+  EXPECT_TRUE(translate::CompileWithGlslang(glsl.output, translate::Target::kGlslEs310, translate::Stage::kCompute).ok);
+  const fs::path spirv = dir_ / "p_comp.spv";
+  const testing::CommandResult written = RunVs11("translate " + input + " --to spirv --stage compute -o " + spirv.string());
+  ASSERT_EQ(written.status, 0) << written.output;
+  EXPECT_TRUE(fs::exists(spirv));
+  const testing::CommandResult refused =
+      RunVs11("translate " + input + " --to glsles300 --stage compute -o " + (dir_ / "x.comp").string());
+  EXPECT_EQ(refused.status, 2) << refused.output;
+  EXPECT_NE(refused.output.find("glsles300 has no compute shaders"), std::string::npos) << refused.output;
+  EXPECT_FALSE(fs::exists(dir_ / "x.comp"));
+  const testing::CommandResult clipped = RunVs11("translate " + input + " --to glsles320 --stage compute --clip gl");
+  EXPECT_EQ(clipped.status, 0) << clipped.output;
+  EXPECT_NE(clipped.output.find("warning: --clip applies to the vertex stage only"), std::string::npos) << clipped.output;
+}
+
 TEST_F(TranslateCommand, BadProgramGetsTheAssemblersDiagnosticsAndNoFile) {
   const std::string input = Write("bad.vsh", "vs_1_1\nmov oPos, v0\nadd r0, c1, c2\nfrob r1, r0\n");
   const testing::CommandResult assembled = RunVs11("asm " + input + " -o " + (dir_ / "bad.vso").string());

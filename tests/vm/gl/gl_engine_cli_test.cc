@@ -80,6 +80,33 @@ TEST_F(GlEngineCliTest, RunWritesTheReferenceEnginesCsv) {
   EXPECT_EQ(csv, ReadFile(dir_ / "ref.csv"));
 }
 
+// Both paths write the reference's CSV and say which ran; ES 3.1 (llvmpipe's 3.2) picks compute, an
+// ES 3.0 context (Mesa's MESA_GLES_VERSION_OVERRIDE) transform feedback, and --gl-path compute there
+// is the engine's error, exit 1.
+TEST_F(GlEngineCliTest, GlPathSaysWhichRanAndForcesEither) {
+  const testing::CommandResult ref = RunVs11(Sh9Run("--engine ref --out " + (dir_ / "ref.csv").string()));
+  ASSERT_EQ(ref.status, 0) << ref.output;
+  for (const char* path : {"auto", "compute", "transform-feedback"}) {
+    const std::string csv = (dir_ / (std::string(path) + ".csv")).string();
+    const testing::CommandResult run = RunVs11(Sh9Run(std::string("--engine gl --gl-path ") + path + " --out " + csv));
+    ASSERT_EQ(run.status, 0) << run.output;
+    const std::string ran = std::string(path) == "auto" ? "compute" : path;
+    EXPECT_THAT(run.output, HasSubstr("note: --engine gl runs the " + ran + " path")) << path;
+    EXPECT_EQ(ReadFile(csv), ReadFile(dir_ / "ref.csv")) << path;
+  }
+  ScopedEnvironment es30("MESA_GLES_VERSION_OVERRIDE", "3.0");
+  const testing::CommandResult automatic = RunVs11(Sh9Run("--engine gl --out " + (dir_ / "es30.csv").string()));
+  ASSERT_EQ(automatic.status, 0) << automatic.output;
+  EXPECT_THAT(automatic.output, HasSubstr("note: --engine gl runs the transform-feedback path"));
+  EXPECT_EQ(ReadFile(dir_ / "es30.csv"), ReadFile(dir_ / "ref.csv"));
+  const testing::CommandResult forced = RunVs11(Sh9Run("--engine gl --gl-path compute --out " + (dir_ / "x.csv").string()));
+  EXPECT_EQ(forced.status, 1) << forced.output;
+  EXPECT_THAT(forced.output, HasSubstr("--gl-path compute needs OpenGL ES 3.1"));
+  EXPECT_FALSE(std::filesystem::exists(dir_ / "x.csv"));
+  const testing::CommandResult word = RunVs11(Sh9Run("--engine gl --gl-path vertex"));
+  EXPECT_EQ(word.status, 2) << word.output;
+}
+
 TEST_F(GlEngineCliTest, VerifyComparesItLikeTheOtherEngines) {
   const testing::CommandResult against = RunVs11("verify " + kSource + "/programs/skinning.vsh --engine gl --against-engine ref");
   EXPECT_EQ(against.status, 0) << against.output;

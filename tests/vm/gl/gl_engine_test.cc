@@ -1,4 +1,5 @@
-// The gl engine (vm/gl/gl_engine.h) on Mesa's llvmpipe against the reference engine: every program of
+// The gl engine (vm/gl/gl_engine.h) on Mesa's llvmpipe against the reference engine, on both of its
+// paths (the compute shader and transform feedback: every test runs once per GlPath): every program of
 // programs/ and generated programs of the differential tests' generator, on ordinary inputs (floats in
 // [-4, 4]), bit for bit; calls larger than one draw, constants changed between runs, and the factory's
 // registration. The tools' side (errors without EGL, --gl-device) is in gl_engine_cli_test.cc. These
@@ -38,10 +39,26 @@ namespace {
 namespace fs = std::filesystem;
 using random_program::Bits;
 
-class GlEngineTest : public ::testing::Test {
+class GlEngineTest : public ::testing::TestWithParam<gl::GlPath> {
  protected:
   void SetUp() override { gl::RegisterGlEngine(); }
 };
+
+// The gl engine's options on the path under test, and a check that the engine took it.
+EngineOptions OnPath(gl::GlPath path, FloatRules rules = FloatRules::kD3d9) {
+  EngineOptions options{.float_rules = rules};
+  gl::GlOptions gl_options;
+  gl_options.path = path;
+  options.settings.Set(gl_options);
+  return options;
+}
+
+std::unique_ptr<Engine> MakeGl(const Program& program, const ConstantBank& bank, const EngineOptions& options) {
+  std::unique_ptr<Engine> gl = MakeEngine("gl", program, bank, options);
+  const gl::GlPath wanted = options.settings.Get<gl::GlOptions>().path;
+  EXPECT_EQ(gl::GlPathOf(*gl), wanted) << gl->error();
+  return gl;
+}
 
 using gl_test::Opcodes;
 using gl_test::Ordinary;
@@ -60,14 +77,14 @@ struct Comparison {
 
 bool IsDenormal(float x) { return std::fpclassify(x) == FP_SUBNORMAL; }
 
-Comparison CompareWithReference(const Program& program, const ConstantBank& bank, const VertexArrays& inputs,
-                                FloatRules rules = FloatRules::kD3d9) {
+Comparison CompareWithReference(gl::GlPath path, const Program& program, const ConstantBank& bank,
+                                const VertexArrays& inputs, FloatRules rules = FloatRules::kD3d9) {
   Comparison comparison;
   VertexArrays expected = MakeOutputArrays(inputs.count(), program);
   VertexArrays actual = MakeOutputArrays(inputs.count(), program);
-  const EngineOptions options{.float_rules = rules};
+  const EngineOptions options = OnPath(path, rules);
   MakeEngine("ref", program, bank, options)->Run(inputs, expected);
-  std::unique_ptr<Engine> gl = MakeEngine("gl", program, bank, options);
+  std::unique_ptr<Engine> gl = MakeGl(program, bank, options);
   gl->Run(inputs, actual);
   comparison.error = gl->error();
   if (!comparison.error.empty()) return comparison;
@@ -94,7 +111,7 @@ Comparison CompareWithReference(const Program& program, const ConstantBank& bank
 
 // Ordinary inputs and constants can still make a denormal (fog's exp of a large negative number):
 // llvmpipe flushes it to zero, and such lanes are printed; every other lane holds the reference's bits.
-TEST_F(GlEngineTest, EveryProgramOfProgramsGivesTheReferenceBitsOnOrdinaryInputs) {
+TEST_P(GlEngineTest, EveryProgramOfProgramsGivesTheReferenceBitsOnOrdinaryInputs) {
   std::mt19937 rng(20);
   int programs = 0;
   for (const fs::directory_entry& entry : fs::directory_iterator(fs::path(VS11_SOURCE_DIR) / "programs")) {
@@ -102,7 +119,7 @@ TEST_F(GlEngineTest, EveryProgramOfProgramsGivesTheReferenceBitsOnOrdinaryInputs
     const vs11::ProgramForVerify loaded = vs11::LoadProgramForVerify(entry.path());
     ASSERT_TRUE(loaded.program) << entry.path();
     const Comparison comparison =
-        CompareWithReference(*loaded.program, OrdinaryConstants(rng), OrdinaryInputs(128, rng));
+        CompareWithReference(GetParam(), *loaded.program, OrdinaryConstants(rng), OrdinaryInputs(128, rng));
     ASSERT_EQ(comparison.error, "") << entry.path();
     EXPECT_EQ(comparison.differing, 0) << entry.path().filename() << " (" << Opcodes(*loaded.program)
                                        << "): " << comparison.first;
@@ -135,14 +152,14 @@ int GeneratedProgramCount() {
 // literals. Ordinary inputs can still make a denormal (expp of -130, a product of two small numbers),
 // which llvmpipe flushes to zero: such lanes are counted and printed, every other lane must hold the
 // reference's bits. About 12 s of CPU (llvmpipe compiling 300 shaders), 35-50 s of wall time at load 18.
-TEST_F(GlEngineTest, GeneratedProgramsGiveTheReferenceBitsOnOrdinaryInputs) {
+TEST_P(GlEngineTest, GeneratedProgramsGiveTheReferenceBitsOnOrdinaryInputs) {
   random_program::ProgramGenerator generator(2020);
   std::mt19937 rng(21);
   int exact = 0, flushed_lanes = 0;
   const int count = GeneratedProgramCount();
   for (int n = 0; n < count; ++n) {
     const Program program = OrdinaryGeneratedProgram(generator, rng);
-    const Comparison comparison = CompareWithReference(program, OrdinaryConstants(rng), OrdinaryInputs(16, rng));
+    const Comparison comparison = CompareWithReference(GetParam(), program, OrdinaryConstants(rng), OrdinaryInputs(16, rng));
     ASSERT_EQ(comparison.error, "") << "program " << n;
     EXPECT_EQ(comparison.differing, 0) << "program " << n << " (" << Opcodes(program) << "): " << comparison.first;
     exact += comparison.differing == 0 && comparison.flushed == 0;
@@ -167,12 +184,12 @@ std::string KindOf(float x) {
 float WithoutDenormal(float value) { return IsDenormal(value) ? std::copysign(0.0f, value) : value; }
 
 // Counts of differing lanes by (reference kind -> gl kind), over 16 vertices of special values.
-void CountKinds(const Program& program, const ConstantBank& bank, const VertexArrays& inputs,
+void CountKinds(gl::GlPath path, const Program& program, const ConstantBank& bank, const VertexArrays& inputs,
                 std::map<std::string, int>& kinds, int& exact_programs) {
   VertexArrays expected = MakeOutputArrays(inputs.count(), program);
   VertexArrays actual = MakeOutputArrays(inputs.count(), program);
   MakeEngine("ref", program, bank)->Run(inputs, expected);
-  std::unique_ptr<Engine> gl = MakeEngine("gl", program, bank);
+  std::unique_ptr<Engine> gl = MakeGl(program, bank, OnPath(path));
   gl->Run(inputs, actual);
   ASSERT_EQ(gl->error(), "");
   bool exact = true;
@@ -194,7 +211,7 @@ void CountKinds(const Program& program, const ConstantBank& bank, const VertexAr
 // constants and defs replaced by a zero: llvmpipe flushes denormals (README, "--engine gl"), and
 // without them in the inputs at least 45 of the 50 programs give the reference's bits. The differing
 // lanes are printed by kind. About 5 s of CPU with Mesa's shader cache cold.
-TEST_F(GlEngineTest, SpecialValuesDifferWhereLlvmpipeFlushesDenormals) {
+TEST_P(GlEngineTest, SpecialValuesDifferWhereLlvmpipeFlushesDenormals) {
   for (bool denormals : {true, false}) {
     random_program::ProgramGenerator generator(2020);
     random_program::ProgramGenerator values(99);
@@ -222,7 +239,7 @@ TEST_F(GlEngineTest, SpecialValuesDifferWhereLlvmpipeFlushesDenormals) {
           }
         }
       }
-      CountKinds(program, bank, inputs, kinds, exact);
+      CountKinds(GetParam(), program, bank, inputs, kinds, exact);
     }
     std::printf("[ gl ] special values%s: %d of %d generated programs bit-exact; differing lanes by kind "
                 "(reference -> gl):\n", denormals ? "" : " without denormals", exact, kPrograms);
@@ -244,7 +261,7 @@ Program ProgramFromFile(const char* name) {
 // --float-rules through the gl engine: an infinite constant times a zero lane in every instruction
 // that multiplies gives NaN under d3d9 and 0 under legacy, the reference engine's bits under each
 // (tests/vm/engines/float_rules_test.cc pins those bits on every CPU engine).
-TEST_F(GlEngineTest, InfinityTimesZeroFollowsTheEnginesFloatRules) {
+TEST_P(GlEngineTest, InfinityTimesZeroFollowsTheEnginesFloatRules) {
   const gl_test::InfinityTimesZero test = gl_test::MakeInfinityTimesZero();
   ASSERT_TRUE(test.assembled.program) << test.assembled.diagnostics.ToString();
   const Program& program = *test.assembled.program;
@@ -252,7 +269,7 @@ TEST_F(GlEngineTest, InfinityTimesZeroFollowsTheEnginesFloatRules) {
   const VertexArrays& inputs = test.inputs;
   for (FloatRules rules : kAllFloatRules) {
     VertexArrays outputs = MakeOutputArrays(1, program);
-    std::unique_ptr<Engine> gl = MakeEngine("gl", program, bank, {.float_rules = rules});
+    std::unique_ptr<Engine> gl = MakeGl(program, bank, OnPath(GetParam(), rules));
     gl->Run(inputs, outputs);
     ASSERT_EQ(gl->error(), "");
     const float mul_x = outputs.lane(static_cast<int>(OutputSlot::kDiffuse), 0)[0];
@@ -261,16 +278,16 @@ TEST_F(GlEngineTest, InfinityTimesZeroFollowsTheEnginesFloatRules) {
     } else {
       EXPECT_EQ(Bits(mul_x), 0u) << "legacy: inf * 0 gave " << mul_x;
     }
-    const Comparison comparison = CompareWithReference(program, bank, inputs, rules);
+    const Comparison comparison = CompareWithReference(GetParam(), program, bank, inputs, rules);
     EXPECT_EQ(comparison.differing, 0) << FloatRulesName(rules) << ": " << comparison.first;
     EXPECT_EQ(comparison.flushed, 0);
   }
 }
 
-TEST_F(GlEngineTest, ACallLargerThanOneDrawGivesEveryVertexItsOutputs) {
+TEST_P(GlEngineTest, ACallLargerThanOneDrawGivesEveryVertexItsOutputs) {
   std::mt19937 rng(22);
   const Comparison comparison =
-      CompareWithReference(ProgramFromFile("skinning.vsh"), OrdinaryConstants(rng), OrdinaryInputs(65536 + 4099, rng));
+      CompareWithReference(GetParam(), ProgramFromFile("skinning.vsh"), OrdinaryConstants(rng), OrdinaryInputs(65536 + 4099, rng));
   ASSERT_EQ(comparison.error, "");
   EXPECT_EQ(comparison.lanes, (65536 + 4099) * 8);  // oPos and oD0
   EXPECT_EQ(comparison.differing + comparison.flushed, 0) << comparison.first;
@@ -278,11 +295,11 @@ TEST_F(GlEngineTest, ACallLargerThanOneDrawGivesEveryVertexItsOutputs) {
 
 // One engine, runs with different banks in between, as irrmap's levels do; a bank of another size
 // rebuilds the translation (its c[N] and the relative-read range).
-TEST_F(GlEngineTest, SetConstantsBetweenRunsGivesEachBanksOutputs) {
+TEST_P(GlEngineTest, SetConstantsBetweenRunsGivesEachBanksOutputs) {
   std::mt19937 rng(23);
   const Program program = ProgramFromFile("all_instructions.vsh");
   const VertexArrays inputs = OrdinaryInputs(64, rng);
-  std::unique_ptr<Engine> gl = MakeEngine("gl", program, OrdinaryConstants(rng));
+  std::unique_ptr<Engine> gl = MakeGl(program, OrdinaryConstants(rng), OnPath(GetParam()));
   for (int bank_size : {kDefaultConstantCount, kDefaultConstantCount, 192}) {
     ConstantBank bank(bank_size);
     for (int reg = 0; reg < bank.size(); ++reg) {
@@ -307,7 +324,7 @@ TEST_F(GlEngineTest, SetConstantsBetweenRunsGivesEachBanksOutputs) {
 
 // An engine is made on one thread and runs on others (vm/core/machine.h allows it when the calls are
 // ordered); and it leaves the calling thread's current EGL context as it found it.
-TEST_F(GlEngineTest, RunsWhereverItIsCalledAndLeavesTheCurrentContextAlone) {
+TEST_P(GlEngineTest, RunsWhereverItIsCalledAndLeavesTheCurrentContextAlone) {
   std::mt19937 rng(24);
   const Program program = ProgramFromFile("point_light.vsh");
   const ConstantBank bank = OrdinaryConstants(rng);
@@ -315,7 +332,7 @@ TEST_F(GlEngineTest, RunsWhereverItIsCalledAndLeavesTheCurrentContextAlone) {
   VertexArrays expected = MakeOutputArrays(inputs.count(), program);
   MakeEngine("ref", program, bank)->Run(inputs, expected);
   const void* current_before = eglGetCurrentContext();
-  std::unique_ptr<Engine> gl = MakeEngine("gl", program, bank);
+  std::unique_ptr<Engine> gl = MakeGl(program, bank, OnPath(GetParam()));
   EXPECT_EQ(eglGetCurrentContext(), current_before);
   for (int round = 0; round < 3; ++round) {
     VertexArrays actual = MakeOutputArrays(inputs.count(), program);
@@ -335,7 +352,8 @@ TEST_F(GlEngineTest, RunsWhereverItIsCalledAndLeavesTheCurrentContextAlone) {
 
 // Without a registered maker (a program that does not link vm/gl, such as the Python module) the
 // factory gives an engine that says so and writes NaN, never a null pointer.
-TEST_F(GlEngineTest, WithoutRegistrationTheFactoryGivesAnEngineThatSaysWhy) {
+TEST(GlEngineFactoryTest, WithoutRegistrationTheFactoryGivesAnEngineThatSaysWhy) {
+  gl::RegisterGlEngine();
   UnregisterEngine("gl");
   const Program program = ProgramFromFile("fog.vsh");
   std::unique_ptr<Engine> engine = MakeEngine("gl", program, ConstantBank());
@@ -348,6 +366,12 @@ TEST_F(GlEngineTest, WithoutRegistrationTheFactoryGivesAnEngineThatSaysWhy) {
   engine->Run(inputs, outputs);
   for (int slot : outputs.registers()) EXPECT_TRUE(std::isnan(outputs.lane(slot, 0)[0])) << OutputSlotName(slot);
 }
+
+INSTANTIATE_TEST_SUITE_P(Paths, GlEngineTest, ::testing::Values(gl::GlPath::kCompute, gl::GlPath::kTransformFeedback),
+                         [](const ::testing::TestParamInfo<gl::GlPath>& info) {
+                           return info.param == gl::GlPath::kCompute ? std::string("Compute")
+                                                                     : std::string("TransformFeedback");
+                         });
 
 }  // namespace
 }  // namespace vs11

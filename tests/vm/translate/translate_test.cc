@@ -12,6 +12,7 @@
 #include <string>
 #include <vector>
 
+#include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include "tests/vm/engines/random_program.h"
@@ -143,17 +144,26 @@ TEST(ShaderGraph, MatchesTheReferenceEngineOnRandomPrograms) {
 
 // ---- the text: compiles for every target -----------------------------------------------------------
 
-constexpr Target kTargets[] = {Target::kGlsl330, Target::kGlslEs300, Target::kGlslEs320, Target::kSpirv};
+constexpr Target kTargets[] = {Target::kGlsl330, Target::kGlslEs300, Target::kGlslEs310, Target::kGlslEs320,
+                               Target::kSpirv};
 
-// Empty when `program` translates to text glslang compiles and links for every target, and for SPIR-V
+// Empty when `program` translates to text glslang compiles and links for every target and stage it
+// can hold (vertex shaders for all, compute shaders for GLSL ES 3.10, 3.20 and SPIR-V), and for SPIR-V
 // to words SPIRV-Tools validates; else what failed, with the text.
 std::string CheckTranslations(const Program& program, const std::string& name, FloatRules rules) {
-  for (Target target : kTargets) {
-    const std::string glsl = TranslateToGlsl(program, {.target = target, .source_name = name, .float_rules = rules});
-    const GlslangResult compiled = CompileWithGlslang(glsl, target);
-    if (!compiled.ok) return std::string(TargetName(target)) + ": " + compiled.log + "\n" + glsl;
-    if (target != Target::kSpirv) continue;
-    if (std::optional<std::string> invalid = ValidateSpirv(compiled.spirv)) return "spirv-val: " + *invalid + "\n" + glsl;
+  for (Stage stage : {Stage::kVertex, Stage::kCompute}) {
+    for (Target target : kTargets) {
+      if (StageProblem(target, stage)) continue;
+      const std::string glsl =
+          TranslateToGlsl(program, {.target = target, .source_name = name, .float_rules = rules, .stage = stage});
+      const GlslangResult compiled = CompileWithGlslang(glsl, target, stage);
+      const std::string what = fmt::format("{} {}", TargetName(target), StageName(stage));
+      if (!compiled.ok) return what + ": " + compiled.log + "\n" + glsl;
+      if (target != Target::kSpirv) continue;
+      if (std::optional<std::string> invalid = ValidateSpirv(compiled.spirv)) {
+        return what + ": spirv-val: " + *invalid + "\n" + glsl;
+      }
+    }
   }
   return "";
 }

@@ -1,0 +1,110 @@
+// The gl engine's two paths on Mesa's llvmpipe against the jit, per program of programs/*.vsh:
+// BM_GlPath/<program>/<compute|transform-feedback|jit>/<vertices>, each an Engine::Run as a caller
+// makes it (the gl paths: inputs uploaded, the shader run, outputs read back into VertexArrays), real
+// time (llvmpipe runs its own threads), items_per_second = vertices per second. Inputs: unit normals
+// in every register v0..v15, constants in [-1, 1]. The results are in bench/README.md ("The gl
+// engine's compute path").
+#include <algorithm>
+#include <filesystem>
+#include <memory>
+#include <optional>
+#include <random>
+#include <string>
+#include <vector>
+
+#include <benchmark/benchmark.h>
+
+#include "bench/bench_common.h"
+#include "irradiance/report/verify.h"
+#include "vm/engines/engine_factory.h"
+#include "vm/gl/gl_engine.h"
+
+namespace vs11::bench {
+namespace {
+
+struct Case {
+  Program program;
+  ConstantBank constants;
+  VertexArrays inputs;
+};
+
+Case MakeCase(const Program& program, std::size_t vertices) {
+  std::vector<int> registers(kInputRegisterCount);
+  for (int i = 0; i < kInputRegisterCount; ++i) registers[static_cast<std::size_t>(i)] = i;
+  const SoaNormals normals = RandomUnitNormals(vertices);
+  Case c{program, ConstantBank(), MakeInputArrays(vertices, registers)};
+  for (int reg : registers) {
+    std::copy(normals.x.begin(), normals.x.end(), c.inputs.lane(reg, 0));
+    std::copy(normals.y.begin(), normals.y.end(), c.inputs.lane(reg, 1));
+    std::copy(normals.z.begin(), normals.z.end(), c.inputs.lane(reg, 2));
+    std::fill_n(c.inputs.lane(reg, 3), vertices, 1.0f);
+  }
+  std::mt19937 rng(static_cast<std::mt19937::result_type>(kBenchSeed));
+  std::uniform_real_distribution<float> value(-1.0f, 1.0f);
+  for (int reg = 0; reg < c.constants.size(); ++reg) {
+    for (int k = 0; k < 4; ++k) c.constants[reg][k] = value(rng);
+  }
+  return c;
+}
+
+void RunEngine(benchmark::State& state, const Program& program, const std::string& engine_name,
+               std::optional<gl::GlPath> path) {
+  const auto vertices = static_cast<std::size_t>(state.range(0));
+  const Case c = MakeCase(program, vertices);
+  EngineOptions options;
+  if (path) {
+    gl::GlOptions gl_options;
+    gl_options.path = *path;
+    options.settings.Set(gl_options);
+  }
+  std::unique_ptr<Engine> engine = MakeEngine(engine_name, c.program, c.constants, options);
+  if (!engine->error().empty()) {
+    state.SkipWithError(engine->error().c_str());
+    return;
+  }
+  VertexArrays outputs = MakeOutputArrays(vertices, c.program);
+  engine->Run(c.inputs, outputs);  // warm: the driver compiles on first use
+  for (auto _ : state) {
+    engine->Run(c.inputs, outputs);
+    benchmark::DoNotOptimize(outputs.lane(outputs.registers().front(), 0));
+  }
+  if (!engine->error().empty()) state.SkipWithError(engine->error().c_str());
+  state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()) * static_cast<std::int64_t>(vertices));
+}
+
+[[maybe_unused]] const bool registered = [] {
+  gl::RegisterGlEngine();
+  namespace fs = std::filesystem;
+  std::vector<fs::path> files;
+  for (const fs::directory_entry& entry : fs::directory_iterator(fs::path(VS11_SOURCE_DIR) / "programs")) {
+    if (entry.path().extension() == ".vsh") files.push_back(entry.path());
+  }
+  std::sort(files.begin(), files.end());
+  for (const fs::path& file : files) {
+    irradiance::ProgramForVerify loaded = irradiance::LoadProgramForVerify(file);
+    if (!loaded.program) continue;
+    auto program = std::make_shared<Program>(std::move(*loaded.program));
+    const std::string name = file.stem().string();
+    struct Variant {
+      const char* label;
+      const char* engine;
+      std::optional<gl::GlPath> path;
+    };
+    for (const Variant& variant : {Variant{"compute", "gl", gl::GlPath::kCompute},
+                                   Variant{"transform-feedback", "gl", gl::GlPath::kTransformFeedback},
+                                   Variant{"jit", "jit", std::nullopt}}) {
+      benchmark::RegisterBenchmark(("BM_GlPath/" + name + "/" + variant.label).c_str(),
+                                   [program, variant](benchmark::State& state) {
+                                     RunEngine(state, *program, variant.engine, variant.path);
+                                   })
+          ->Arg(65536)
+          ->Arg(1 << 20)
+          ->UseRealTime()
+          ->Unit(benchmark::kMillisecond);
+    }
+  }
+  return true;
+}();
+
+}  // namespace
+}  // namespace vs11::bench

@@ -1,0 +1,190 @@
+#include "vm/gl/gl_compute_engine.h"
+
+#include <GLES3/gl31.h>
+
+#include <algorithm>
+#include <cstring>
+#include <limits>
+#include <vector>
+
+#include <fmt/format.h>
+
+#include "vm/gl/gl_compute.h"
+#include "vm/gl/gl_engine.h"
+#include "vm/gl/gl_runner.h"
+#include "vm/translate/shader_graph.h"
+
+namespace vs11::gl {
+namespace {
+
+// Vertices per dispatch: bounds the staging and storage buffers (16 input and 13 output registers of
+// 4 floats at most: 464 MB at 1M vertices is the worst case; a typical program is under 100 MB)
+// whatever the call's size. One dispatch covers any count (ComputeDispatchSize), so this is memory's
+// bound, not the API's.
+constexpr std::size_t kVerticesPerDispatch = std::size_t{1} << 20;
+
+class GlComputeEngine final : public Engine, public GlPathOwner {
+ public:
+  GlComputeEngine(const Program& program, const EngineOptions& options, std::unique_ptr<GlContext> context)
+      : program_(program), options_(options), context_(std::move(context)) {
+    const translate::ShaderGraph shader = translate::RecordShader(program_, kDefaultConstantCount, options_.float_rules);
+    for (int reg = 0; reg < kInputRegisterCount; ++reg) {
+      if (shader.inputs_read[static_cast<std::size_t>(reg)]) inputs_read_.push_back(reg);
+    }
+    const std::array<WriteMask, kOutputSlotCount> written = WrittenOutputLanes(program_);
+    for (int slot = 0; slot < kOutputSlotCount; ++slot) {
+      if (written[static_cast<std::size_t>(slot)].bits() != 0) written_.push_back(slot);
+    }
+  }
+  ~GlComputeEngine() override {
+    std::string ignored;
+    ScopedCurrent current(*context_, ignored);
+    if (current.ok()) DeleteObjects();
+  }
+
+  bool Build(int constant_count, std::string& error) {
+    ScopedCurrent current(*context_, error);
+    if (!current.ok()) return false;
+    DeleteObjects();
+    constant_count_ = constant_count;
+    run_ = ComputeRun::Create(program_, GlComputeTranslateOptions(options_, constant_count, context_->es32()), error);
+    if (!run_) {
+      GLint block_size = 0;
+      glGetIntegerv(GL_MAX_UNIFORM_BLOCK_SIZE, &block_size);
+      error += fmt::format(" (the constant bank is c[{}], --max-constants; '{}' allows uniform blocks of {} bytes)",
+                           constant_count, context_->renderer(), block_size);
+      return false;
+    }
+    glGenBuffers(1, &input_buffer_);
+    glGenBuffers(1, &output_buffer_);
+    return GlOk("creating the storage buffers", error);
+  }
+
+  GlPath path() const override { return GlPath::kCompute; }
+  std::string error() const override { return error_; }
+
+  void SetConstants(const ConstantBank& api_constants) override {
+    if (!error_.empty()) return;
+    if (api_constants.size() != constant_count_ && !Build(api_constants.size(), error_)) return;
+    ScopedCurrent current(*context_, error_);
+    if (!current.ok()) return;
+    std::vector<float> rows;
+    rows.reserve(static_cast<std::size_t>(api_constants.size()) * 4);
+    for (const Vec4f& row : api_constants.values()) rows.insert(rows.end(), row.begin(), row.end());
+    run_->SetConstants(rows, error_);
+  }
+
+  void Run(const VertexArrays& inputs, VertexArrays& outputs) override {
+    if (error_.empty() && inputs.count() > 0) {
+      ScopedCurrent current(*context_, error_);
+      for (std::size_t first = 0; current.ok() && first < inputs.count(); first += kVerticesPerDispatch) {
+        if (!RunDispatch(inputs, first, std::min(kVerticesPerDispatch, inputs.count() - first), outputs)) break;
+      }
+    }
+    if (!error_.empty()) {
+      for (int reg : outputs.registers()) {
+        for (int c = 0; c < 4; ++c) {
+          float* lane = outputs.lane(reg, c);
+          std::fill(lane, lane + outputs.count(), std::numeric_limits<float>::quiet_NaN());
+        }
+      }
+    }
+  }
+
+ private:
+  void DeleteObjects() {
+    run_.reset();
+    glDeleteBuffers(1, &input_buffer_);
+    glDeleteBuffers(1, &output_buffer_);
+    input_buffer_ = output_buffer_ = 0;
+  }
+
+  // The inputs the shader reads, lane after lane (structure of arrays), into the input buffer.
+  void UploadInputs(const VertexArrays& inputs, std::size_t first, std::size_t count,
+                    translate::ComputeLayoutBlock& layout) {
+    std::size_t supplied = 0;
+    for (int reg : inputs_read_) supplied += inputs.has(reg);
+    staging_.resize(std::max<std::size_t>(supplied * 4 * count, 1));
+    std::size_t offset = 0;
+    for (int reg : inputs_read_) {
+      if (!inputs.has(reg)) continue;  // reads (0, 0, 0, 1): the layout's stride[1] stays 0
+      translate::ComputeLayoutBlock::UVec4 base{};
+      for (int c = 0; c < 4; ++c) {
+        const StridedLane lane = inputs.view(reg, c);
+        float* to = staging_.data() + offset;
+        if (lane.contiguous()) {
+          std::memcpy(to, lane.base + first, count * sizeof(float));
+        } else {
+          for (std::size_t v = 0; v < count; ++v) to[v] = lane[first + v];
+        }
+        base[static_cast<std::size_t>(c)] = static_cast<std::uint32_t>(offset);
+        offset += count;
+      }
+      layout.SetInput(reg, base, 1);
+    }
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, input_buffer_);
+    glBufferData(GL_SHADER_STORAGE_BUFFER, static_cast<GLsizeiptr>(staging_.size() * sizeof(float)), staging_.data(),
+                 GL_STREAM_DRAW);
+  }
+
+  bool RunDispatch(const VertexArrays& inputs, std::size_t first, std::size_t count, VertexArrays& outputs) {
+    translate::ComputeLayoutBlock layout;
+    UploadInputs(inputs, first, count, layout);
+    std::vector<int> wanted;
+    for (int slot : written_) {
+      if (!outputs.has(slot)) continue;
+      const auto base = static_cast<std::uint32_t>(wanted.size() * 4 * count);
+      const auto n = static_cast<std::uint32_t>(count);
+      layout.SetOutput(slot, {base, base + n, base + 2 * n, base + 3 * n}, 1);
+      wanted.push_back(slot);
+    }
+    if (wanted.empty()) return true;
+    const std::size_t floats = wanted.size() * 4 * count;
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, output_buffer_);
+    glBufferData(GL_SHADER_STORAGE_BUFFER, static_cast<GLsizeiptr>(floats * sizeof(float)), nullptr, GL_STREAM_READ);
+    if (!run_->Dispatch(layout, input_buffer_, output_buffer_, count, error_)) return false;
+    glBindBuffer(GL_SHADER_STORAGE_BUFFER, output_buffer_);
+    const void* mapped =
+        glMapBufferRange(GL_SHADER_STORAGE_BUFFER, 0, static_cast<GLsizeiptr>(floats * sizeof(float)), GL_MAP_READ_BIT);
+    if (mapped == nullptr) {
+      if (GlOk("glMapBufferRange", error_)) error_ = "glMapBufferRange returned no pointer";
+      return false;
+    }
+    const auto* stored = static_cast<const float*>(mapped);
+    for (std::size_t k = 0; k < wanted.size(); ++k) {
+      for (int c = 0; c < 4; ++c) {
+        std::memcpy(outputs.lane(wanted[k], c) + first, stored + (k * 4 + static_cast<std::size_t>(c)) * count,
+                    count * sizeof(float));
+      }
+    }
+    glUnmapBuffer(GL_SHADER_STORAGE_BUFFER);
+    return GlOk("reading the output buffer", error_);
+  }
+
+  Program program_;
+  EngineOptions options_;
+  std::unique_ptr<GlContext> context_;
+  std::unique_ptr<ComputeRun> run_;
+  std::string error_;
+  int constant_count_ = 0;
+  std::vector<int> inputs_read_, written_;
+  GLuint input_buffer_ = 0, output_buffer_ = 0;
+  std::vector<float> staging_;
+};
+
+}  // namespace
+
+std::unique_ptr<Engine> MakeGlComputeEngine(const Program& program, const ConstantBank& api_constants,
+                                            const EngineOptions& options, std::unique_ptr<GlContext> context,
+                                            std::string& error) {
+  auto engine = std::make_unique<GlComputeEngine>(program, options, std::move(context));
+  if (!engine->Build(api_constants.size(), error)) return nullptr;
+  engine->SetConstants(api_constants);
+  if (!engine->error().empty()) {
+    error = engine->error();
+    return nullptr;
+  }
+  return engine;
+}
+
+}  // namespace vs11::gl

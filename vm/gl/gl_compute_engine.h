@@ -1,0 +1,18 @@
+// The gl engine's compute path (gl_engine.h, GlPath::kCompute): the program's compute translation
+// over storage buffers (gl_compute.h), on a context with OpenGL ES 3.1 or later.
+#pragma once
+
+#include <memory>
+#include <string>
+
+#include "vm/core/machine.h"
+#include "vm/gl/gl_context.h"
+
+namespace vs11::gl {
+
+// Null with `error` set where the program does not compile or link on the context, or GL fails.
+std::unique_ptr<Engine> MakeGlComputeEngine(const Program& program, const ConstantBank& api_constants,
+                                            const EngineOptions& options, std::unique_ptr<GlContext> context,
+                                            std::string& error);
+
+}  // namespace vs11::gl
