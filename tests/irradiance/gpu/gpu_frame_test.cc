@@ -8,6 +8,8 @@
 
 #include <algorithm>
 #include <cmath>
+#include <filesystem>
+#include <fstream>
 #include <memory>
 #include <optional>
 #include <string>
@@ -16,6 +18,7 @@
 
 #include <fmt/format.h>
 #include <gtest/gtest.h>
+#include <nlohmann/json.hpp>
 
 #include "irradiance/gpu/gpu_frame_job.h"
 #include "irradiance/gpu/program_stage.h"
@@ -24,6 +27,7 @@
 #include "irradiance/report/paper_program.h"
 #include "irradiance/sh/ground_truth.h"
 #include "irradiance/sh/sh_projection.h"
+#include "tests/run_tool.h"
 #include "vm/gl/gl_engine.h"
 
 namespace vs11::irradiance::gpu {
@@ -271,6 +275,22 @@ TEST(GpuFrameJob, SaysWhyAWindowedJobProjectsOnTheCpu) {
   EXPECT_NE(report.gpu->cpu_reason.find("window"), std::string::npos);
   EXPECT_TRUE(std::any_of(report.warnings.begin(), report.warnings.end(),
                           [](const std::string& w) { return w.find("--engine gl") != std::string::npos; }));
+}
+
+// The tool's side: --engine gl sets the hook, and coeffs.json names the stages that ran on the GPU.
+TEST(GpuFrameJob, IrrmapToolWritesTheGpuStagesIntoCoeffsJson) {
+  SKIP_WITHOUT_ES31();
+  const std::filesystem::path out = std::filesystem::path(::testing::TempDir()) / "gpu_frame_tool";
+  std::filesystem::remove_all(out);
+  const testing::CommandResult run =
+      testing::RunIrrmap("sky --face-size 32 --level 1 --engine gl --no-ground-truth --out " + out.string());
+  ASSERT_EQ(run.status, 0) << run.output;
+  std::ifstream in(out / "coeffs.json");
+  const nlohmann::json json = nlohmann::json::parse(in);
+  ASSERT_TRUE(json.contains("gpu")) << json.dump();
+  EXPECT_EQ(json["gpu"]["stages"],
+            nlohmann::json::array({"upload", "env_mips", "projection", "constants", "program"}));
+  EXPECT_LT(json["gpu"]["max_coefficient_difference"].get<double>(), 1e-5);
 }
 
 }  // namespace
