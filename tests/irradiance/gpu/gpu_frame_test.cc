@@ -78,6 +78,18 @@ std::unique_ptr<GpuFrame> MakeFrame(const BasisPyramid& basis, int level) {
   return frame;
 }
 
+// An environment's CPU pyramids and a GPU frame for one of its levels.
+struct Setup {
+  Cpu cpu;
+  std::unique_ptr<GpuFrame> frame;
+};
+
+Setup SetUpFrame(const CubeMap& environment, int level) {
+  Cpu cpu = CpuPyramids(environment);
+  std::unique_ptr<GpuFrame> frame = MakeFrame(cpu.basis, level);
+  return {std::move(cpu), std::move(frame)};
+}
+
 Sh9Rgb ProjectOnGpu(GpuFrame& frame, const CubeMap& environment) {
   std::string error;
   EXPECT_TRUE(frame.Upload(environment, error)) << error;
@@ -134,10 +146,9 @@ TEST_P(GpuFrameProjection, AgreesWithCpuProjectionWithinParallelSumBound) {
   const auto& [name, face_size, level] = GetParam();
   const std::optional<CubeMap> environment = MakeBuiltinEnvironment(name, face_size);
   ASSERT_TRUE(environment);
-  const Cpu cpu = CpuPyramids(*environment);
-  const Sh9Rgb cpu_sh = ProjectLevel(cpu.mips, cpu.basis, level);
-  const std::unique_ptr<GpuFrame> frame = MakeFrame(cpu.basis, level);
+  const auto [cpu, frame] = SetUpFrame(*environment, level);
   ASSERT_TRUE(frame);
+  const Sh9Rgb cpu_sh = ProjectLevel(cpu.mips, cpu.basis, level);
   const Sh9Rgb gpu_sh = ProjectOnGpu(*frame, *environment);
   const double used = ExpectWithinBound(gpu_sh, cpu_sh, cpu, level, name);
   // The bound is not vacuous: against the largest coefficient it is a few parts in a million.
@@ -156,8 +167,7 @@ INSTANTIATE_TEST_SUITE_P(PaperSize, GpuFrameProjection,
 TEST(GpuFrame, ConstantsAreTable1OfItsCoefficients) {
   SKIP_WITHOUT_ES31();
   const CubeMap environment = MakeStudio(32);
-  const Cpu cpu = CpuPyramids(environment);
-  const std::unique_ptr<GpuFrame> frame = MakeFrame(cpu.basis, 1);
+  const auto [cpu, frame] = SetUpFrame(environment, 1);
   ASSERT_TRUE(frame);
   const Sh9Rgb sh = ProjectOnGpu(*frame, environment);
   std::string error;
@@ -179,8 +189,7 @@ TEST(GpuFrame, ConstantsAreTable1OfItsCoefficients) {
 TEST(GpuFrame, ProgramMatchesTheJitWithTheSameConstants) {
   SKIP_WITHOUT_ES31();
   const CubeMap environment = MakeSky(16);
-  const Cpu cpu = CpuPyramids(environment);
-  const std::unique_ptr<GpuFrame> frame = MakeFrame(cpu.basis, 0);
+  const auto [cpu, frame] = SetUpFrame(environment, 0);
   ASSERT_TRUE(frame);
   const PaperProgram paper = Paper();
   const std::vector<glm::dvec3> normals = SphereNormals(1000);
@@ -207,8 +216,7 @@ TEST(GpuFrame, ProgramMatchesTheJitWithTheSameConstants) {
 TEST(GpuFrame, EachFrameProjectsTheEnvironmentUploadedForIt) {
   SKIP_WITHOUT_ES31();
   const CubeMap sky = MakeSky(32), spot = MakeSpot(32);
-  const Cpu cpu = CpuPyramids(spot);
-  const std::unique_ptr<GpuFrame> frame = MakeFrame(cpu.basis, 2);
+  const auto [cpu, frame] = SetUpFrame(spot, 2);
   ASSERT_TRUE(frame);
   const Sh9Rgb first = ProjectOnGpu(*frame, sky);
   const Sh9Rgb second = ProjectOnGpu(*frame, spot);
