@@ -12,6 +12,7 @@
 #include <fmt/format.h>
 
 #include "irradiance/cli/subcommands.h"
+#include "irradiance/gpu/gpu_frame_job.h"
 #include "irradiance/io/environments.h"
 #include "irradiance/io/map_file_formats.h"
 #include "irradiance/jobs/irrmap_job.h"
@@ -286,6 +287,8 @@ int RunJob(const CLI::App& app, JobCommandLine& line) {
   }
   const std::optional<int> gl_device = vs11::gl::GlDeviceIndex(line.gl_device);
   options.engine_settings.Set(vs11::gl::GlOptions{gl_device});
+  // On gl the chosen level's mips, projection and constants run on the GPU too (irradiance/gpu).
+  if (options.engine == "gl") options.gpu_frame = vs11::irradiance::gpu::MakeGpuFrameHook(gl_device);
   if (gl_device && options.engine != "gl") {
     fmt::print(stderr, "irrmap: warning: --gl-device applies to --engine gl only; --engine {} ignores it\n",
                options.engine);

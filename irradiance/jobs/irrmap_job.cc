@@ -269,6 +269,7 @@ nlohmann::ordered_json CoefficientsJson(const IrrmapReport& report, const Irrmap
     }
     json["mesh"] = std::move(row);
   }
+  if (report.gpu) json["gpu"] = GpuFrameJson(*report.gpu);
   json["convention"] = std::move(metadata["convention"]);
   json["provenance"] = std::move(metadata["provenance"]);
   nlohmann::ordered_json timings = nlohmann::ordered_json::object();
@@ -444,6 +445,7 @@ struct IrrmapRun {
   ConstantBank chosen_bank;
   MeshLighting lighting;
   CubeMap irradiance_map;
+  std::vector<glm::dvec3> gpu_irradiance;  // the irradiance map's texels, from GpuFrameStage
   std::vector<glm::dvec3> error_normals;
   std::vector<glm::dvec3> error_truth;  // the ground truth at error_normals
   HemisphereGrid grid;                  // the ground truth at the preview's directions
@@ -561,6 +563,42 @@ std::optional<std::string> CoefficientsStage(IrrmapRun& run) {
   return std::nullopt;
 }
 
+// --engine gl: the chosen level's frame on the GPU (IrrmapOptions::gpu_frame), whose coefficients,
+// constants and irradiance map then stand for the CPU's.
+std::optional<std::string> GpuFrameStage(IrrmapRun& run) {
+  IrrmapReport& report = run.report;
+  GpuFrameReport& gpu = report.gpu.emplace();
+  const IrrmapEnvironment& environment = run.environment;
+  if (std::optional<std::string> reason =
+          WhyNotOnGpu(environment.mips.has_value(), report.order, run.checked.window)) {
+    gpu.stages = {"program"};
+    gpu.cpu_reason = *reason;
+    report.warnings.push_back(fmt::format("--engine gl: {}; the projection ran on the CPU", *reason));
+    return std::nullopt;
+  }
+  std::vector<glm::dvec3> normals;
+  if (!run.options.coefficients_only) normals = CubeTexelDirections(run.options.map_size);
+  GpuFrameResult result;
+  const Clock::time_point start = Clock::now();
+  if (std::optional<std::string> error = run.options.gpu_frame(
+          {environment.mips->levels[0], *environment.basis, report.level, *run.chosen_program, normals}, result)) {
+    return fmt::format("--engine gl: {}", *error);
+  }
+  gpu.ms = MillisecondsSince(start);
+  report.timings.push_back({"gpu_frame", gpu.ms});
+  gpu.renderer = result.renderer;
+  gpu.stages = result.stages;
+  gpu.max_coefficient_difference = MaxCoefficientDifference(result.coefficients, report.coefficients);
+  report.coefficients = result.coefficients;
+  report.constants = result.constants;
+  for (std::size_t r = 0; r < report.program_constants.size(); ++r) {
+    report.program_constants[r].value = result.constants.registers[r];
+  }
+  run.chosen_bank = run.chosen_program->Constants(result.constants);
+  run.gpu_irradiance = std::move(result.irradiance);
+  return std::nullopt;
+}
+
 std::optional<std::string> MeshStage(IrrmapRun& run) {
   const IrrmapOptions& options = run.options;
   const CubeMap& cube = EnvironmentCube(run);
@@ -588,7 +626,9 @@ std::optional<std::string> IrradianceMapStage(IrrmapRun& run) {
   Timed(run.report, "irradiance_map", [&] {
     const std::vector<glm::dvec3> directions = CubeTexelDirections(run.options.map_size);
     const std::vector<glm::dvec3> values =
-        run.chosen_program->Irradiance(run.chosen_bank, directions, run.checked.engine, run.engine_options);
+        !run.gpu_irradiance.empty()
+            ? run.gpu_irradiance
+            : run.chosen_program->Irradiance(run.chosen_bank, directions, run.checked.engine, run.engine_options);
     std::size_t k = 0;
     for (Image& face : run.irradiance_map.faces) {
       for (glm::vec3& texel : face.pixels) texel = glm::vec3(values[k++]);
@@ -710,6 +750,7 @@ struct Stage {
 std::vector<Stage> StagesFor(const IrrmapOptions& options) {
   std::vector<Stage> stages = {{"loading the environment and building its pyramids", LoadStage},
                                {"projecting every level", CoefficientsStage}};
+  if (options.gpu_frame) stages.push_back({"running the frame on the GPU", GpuFrameStage});
   if (options.mesh) stages.push_back({"lighting the mesh", MeshStage});
   stages.push_back({"exporting the coefficients", ShExportStage});
   if (options.coefficients_only) return stages;

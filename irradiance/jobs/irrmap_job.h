@@ -24,7 +24,9 @@
 //                    a later stage needs it as a cube), "level_updates" (every
 //                    level, each repeated for timing), "projection" (the chosen level's update),
 //                    "constants", "program" (assembling it), "irradiance_map", "ground_truth",
-//                    "level_errors", "preview"}}; the final "write" is in IrrmapReport only
+//                    "level_errors", "preview", "gpu_frame"}}; the final "write" is in IrrmapReport only;
+//                    with IrrmapOptions::gpu_frame, "gpu": {"renderer", "stages" (those that ran on the
+//                    GPU), "cpu_reason" (why the projection did not), "max_coefficient_difference", "ms"}
 //                    "order", "program": {"name", "file", "slots", "estimated_error",
 //                    "error_vs_full_order2", "max_relative_error", "peak_error", "rms_error" (vs
 //                    the truth), "constants":
@@ -69,6 +71,7 @@
 #include "irradiance/io/cube_map.h"
 #include "irradiance/io/option_names.h"
 #include "irradiance/jobs/float_range.h"
+#include "irradiance/jobs/gpu_frame_hook.h"
 #include "irradiance/jobs/mesh_lighting.h"
 #include "irradiance/jobs/output_metadata.h"
 #include "irradiance/report/paper_program.h"
@@ -158,6 +161,10 @@ struct IrrmapOptions {
   // Where set, the basis pyramid of a face size comes from here instead of being built (irrmap
   // batch shares one per face size between its inputs); null from it: cannot be built.
   std::function<std::shared_ptr<const BasisPyramid>(int face_size)> shared_basis;
+  // Where set (irrmap --engine gl), the chosen level's frame runs here: the environment's mips, the
+  // projection, the constants and the irradiance map's program, on the GPU; coeffs.json's
+  // "coefficients" and "constants" are then the GPU's, and its "gpu" says which stages ran there.
+  GpuFrameHook gpu_frame;
 };
 
 // The mesh's line in coeffs.json ("mesh": {...}).
@@ -235,6 +242,7 @@ struct IrrmapReport {
   std::vector<std::filesystem::path> files;  // written, once everything succeeded
   std::vector<std::string> warnings;
   std::optional<MeshReport> mesh;
+  std::optional<GpuFrameReport> gpu;  // with IrrmapOptions::gpu_frame
   // The preview's estimate panels: the label above each sphere and the caption under its error
   // image, which states the level table's figures for that level (report/preview_errors.h).
   struct PreviewPanelText {

@@ -453,4 +453,20 @@ Sh9Rgb ProjectLevel(const CubeMipChain& env, const BasisPyramid& basis, int leve
   return sh;
 }
 
+BlockMomentCombination BlockMomentCombinationFactors() {
+  BlockMomentCombination combination{};
+  for (int f = 0; f < kCubeFaceCount; ++f) {
+    for (int j = 0; j < kernels::kBlockMoments; ++j) {
+      // The sums are linear in the moments: one unit moment sum (red channel) gives column j.
+      kernels::FaceMomentSums unit{};
+      const kernels::BlockMomentSlot slot = kernels::kBlockMomentSlots[j];
+      unit[slot.power_of_t][3 * slot.moment] = 1.0;
+      std::array<glm::dvec3, kSh9Coefficients> sums{};
+      AddFaceFromMoments(unit, LinearFormOf(kAllCubeFaces[f]), sums);
+      for (int lm = 0; lm < kSh9Coefficients; ++lm) combination[f][lm][j] = sums[lm].x;
+    }
+  }
+  return combination;
+}
+
 }  // namespace vs11::irradiance

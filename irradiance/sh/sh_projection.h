@@ -140,4 +140,13 @@ std::size_t ProjectionMemoryBytes(int face_size);
 // 0 <= level < env.levels.size() and level < basis.levels.size().
 Sh9Rgb ProjectLevel(const CubeMipChain& env, const BasisPyramid& basis, int level);
 
+// How ProjectLevel turns one face's sums of radiance x block moment (kernels::kBlockMomentSlots order,
+// one channel) into that face's share of the nine coefficients: coefficient lm of channel c gains
+// sum over slots j of combination[face][lm][j] x sum_texels(L_c x moment_j). The factors are the ones
+// ProjectLevel applies itself (they hold the basis constants kShN* and the face's direction table),
+// in double; a GPU or any other summation of the moments finishes with them.
+using BlockMomentCombination =
+    std::array<std::array<std::array<double, kernels::kBlockMoments>, kSh9Coefficients>, kCubeFaceCount>;
+BlockMomentCombination BlockMomentCombinationFactors();
+
 }  // namespace vs11::irradiance

@@ -2,12 +2,13 @@
 """Includes point down only (README, Layout): a file includes its own folder or a lower layer.
 
 vm:          core <- asm, io <- engines <- reference, mesh, translate <- gl (the gl engine runs the translation)
-irradiance:  io <- sh <- render <- report <- jobs <- mesh_input
+irradiance:  io <- sh <- render <- report <- jobs <- mesh_input, gpu (the GPU frame, over vm/gl)
 tools:       vm/cli (vs11) <- irradiance/cli (irrmap, which shares vs11's command-line parse)
 python:      the Python module, over the vm and irradiance libraries (not the tools, not vm/mesh)
 The irradiance library sits above vm's library folders (core, asm, io, engines, reference); only irrmap's mesh
-reader (irradiance/mesh_input) reaches vm/mesh, only the tools reach vm/gl (they register the gl engine
-with vm/engines' factory, which cannot include it), and only the vs11 tool (vm/cli) reaches irradiance.
+reader (irradiance/mesh_input) reaches vm/mesh, only the tools and irradiance/gpu reach vm/gl (they register the gl engine
+with vm/engines' factory, which cannot include it); the vs11 tool (vm/cli) includes no irradiance folder
+(its link line is checked by tests/ci/vs11_link_test.py).
 Folders on the same layer (asm and io; reference, mesh and translate) do not include each other.
 Usage: include_layers_test.py SOURCE_DIR. Prints each violation as file:line and exits 1 on any.
 """
@@ -19,16 +20,19 @@ import sys
 LAYERS = {
     "vm/core": 0, "vm/ir": 1, "vm/asm": 1, "vm/io": 1, "vm/engines": 2, "vm/reference": 3, "vm/mesh": 3, "vm/translate": 3, "vm/gl": 4,
     "irradiance/io": 5, "irradiance/sh": 6, "irradiance/render": 7, "irradiance/report": 8,
-    "irradiance/jobs": 9, "irradiance/mesh_input": 10, "vm/cli": 11, "irradiance/cli": 12,
+    "irradiance/jobs": 9, "irradiance/mesh_input": 10, "irradiance/gpu": 10, "vm/cli": 11, "irradiance/cli": 12,
     "python": 13,
 }
 # The Python module binds the libraries only: what the tools do is theirs.
-NOT_FROM = {"python": {"vm/cli", "irradiance/cli", "irradiance/mesh_input"}}
+NOT_FROM = {"python": {"vm/cli", "irradiance/cli", "irradiance/mesh_input"},
+            # The VM tool needs nothing of irradiance: what it verifies is vm/reference's.
+            "vm/cli": {folder for folder in LAYERS if folder.startswith("irradiance/")}}
 # Exceptions to "any lower layer": vm/mesh is below the irradiance library's layers but only
 # mesh_input and the tools may use it (vs11_irradiance is installed without Assimp).
 # vm/gl (EGL, GLES) likewise: the irradiance library and the Python module are built without it.
 ONLY_FROM = {"vm/mesh": {"vm/mesh", "irradiance/mesh_input", "irradiance/cli", "vm/cli"},
-             "vm/gl": {"vm/gl", "irradiance/cli", "vm/cli"}}
+             "vm/gl": {"vm/gl", "irradiance/gpu", "irradiance/cli", "vm/cli"},
+             "irradiance/gpu": {"irradiance/gpu", "irradiance/cli"}}
 INCLUDE = re.compile(r'^\s*#\s*include\s+"((?:vm|irradiance)/[^"]+)"')
 
 
