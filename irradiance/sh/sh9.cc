@@ -133,25 +133,6 @@ glm::dvec3 EvaluateUnitSphere10(const SevenConstants& k, glm::dvec3 n) {
   return e;
 }
 
-std::string_view ShWindowName(ShWindow window) {
-  switch (window) {
-    case ShWindow::kNone: return "none";
-    case ShWindow::kHanning: return "hanning";
-    case ShWindow::kLanczos: return "lanczos";
-    case ShWindow::kDering: return "dering";
-    case ShWindow::kNonNegative: return "nonneg";
-  }
-  return "none";
-}
-
-std::optional<ShWindow> ParseShWindow(std::string_view name) {
-  for (ShWindow window :
-       {ShWindow::kNone, ShWindow::kHanning, ShWindow::kLanczos, ShWindow::kDering, ShWindow::kNonNegative}) {
-    if (ShWindowName(window) == name) return window;
-  }
-  return std::nullopt;
-}
-
 std::array<double, kSh9Bands> ShWindowFactors(ShWindow window, double width) {
   assert(window != ShWindow::kDering && window != ShWindow::kNonNegative);
   std::array<double, kSh9Bands> factors = {1.0, 1.0, 1.0};
