@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include "vm/cli/choice_option.h"
 #include "vm/cli/cli_support.h"
 #include "vm/cli/commands.h"
 #include "vm/cli/parse_command_line.h"
@@ -14,7 +15,9 @@ namespace vs11::cli {
 
 void AddTranslateCommand(CLI::App& app) {
   struct Args {
-    std::string input, output = "-", target, clip;
+    std::string input, output = "-";
+    translate::Target target = translate::Target::kGlsl330;
+    std::optional<translate::ClipSpace> clip;  // nullopt: the target API's
     ProgramFlags flags;
     FloatRulesFlag float_rules;
   };
@@ -36,20 +39,18 @@ void AddTranslateCommand(CLI::App& app) {
       "  vs11 translate programs/point_light.vsh --to spirv -o point_light.spv\n"
       "  vs11 translate programs/skinning.vsh --to spirv --float-rules legacy -o skinning_legacy.spv");
   command->add_option("input", args->input, "Program (.vsh source or .vso bytecode; - reads standard input)")->required();
-  command->add_option("--to", args->target,
-                      "Target: glsl330, glsles300, glsles320 (every output precise: no fused multiply-adds) or spirv")
+  AddChoiceOption(*command, "--to", args->target, translate::kTargetNames, "Target: " + translate::kTargetNames.Help())
       ->required()
-      ->check(CLI::IsMember({"glsl330", "glsles300", "glsles320", "spirv"}));
+      ->default_str("");
   command->add_option("-o,--output", args->output, "File to write; - for stdout (GLSL only)")->capture_default_str();
-  command->add_option("--clip", args->clip,
-                      "gl_Position's clip space: d3d (as written), gl (z' = 2z - w) or vulkan (y' = -y); default: gl "
-                      "for the GLSL targets, vulkan for spirv")
-      ->check(CLI::IsMember({"d3d", "gl", "vulkan"}));
+  AddChoiceOption(*command, "--clip", args->clip, translate::kClipSpaceNames, "",
+                  "gl_Position's clip space: " + translate::kClipSpaceNames.Help() +
+                      "; default: gl for the GLSL targets, vulkan for spirv");
   args->flags.AddTo(*command);
   args->float_rules.AddTo(*command);
   command->callback([args] {
     translate::TranslateOptions options;
-    options.target = *translate::TargetFromName(args->target);
+    options.target = args->target;
     if (options.target == translate::Target::kSpirv && args->output == "-") {
       std::fputs("vs11: error: --to spirv writes a binary: name a file with -o\n", stderr);
       throw CommandFailure{kUsageErrorStatus};
@@ -57,7 +58,7 @@ void AddTranslateCommand(CLI::App& app) {
     CheckInputsAndOutputs({args->input}, {args->output});
     Program program = LoadProgramOrFail(args->input, args->flags);
     options.constant_count = args->flags.constant_count;
-    if (!args->clip.empty()) options.clip = *translate::ClipSpaceFromName(args->clip);
+    if (args->clip) options.clip = *args->clip;
     options.float_rules = args->float_rules.Rules();
     options.source_name = args->input;
     translate::Artifact artifact = translate::Translate(program, options);

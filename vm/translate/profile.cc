@@ -2,23 +2,6 @@
 
 namespace vs11::translate {
 
-std::optional<Target> TargetFromName(std::string_view name) {
-  for (Target target : {Target::kGlsl330, Target::kGlslEs300, Target::kGlslEs320, Target::kSpirv}) {
-    if (TargetName(target) == name) return target;
-  }
-  return std::nullopt;
-}
-
-std::string_view TargetName(Target target) {
-  switch (target) {
-    case Target::kGlsl330: return "glsl330";
-    case Target::kGlslEs300: return "glsles300";
-    case Target::kGlslEs320: return "glsles320";
-    case Target::kSpirv: return "spirv";
-  }
-  return "glsl330";
-}
-
 std::unique_ptr<Profile> MakeProfile(Target target) {
   switch (target) {
     case Target::kGlsl330: return MakeGlsl330Profile();

@@ -11,12 +11,16 @@
 #include <string_view>
 #include <vector>
 
+#include "vm/core/name_table.h"
+
 namespace vs11::translate {
 
 enum class Target { kGlsl330, kGlslEs300, kGlslEs320, kSpirv };
-// "glsl330" | "glsles300" | "glsles320" | "spirv"
-std::optional<Target> TargetFromName(std::string_view name);
-std::string_view TargetName(Target target);
+inline constexpr NameTable kTargetNames("target", {
+    Choice(Target::kGlsl330, "glsl330"), Choice(Target::kGlslEs300, "glsles300"),
+    Choice(Target::kGlslEs320, "glsles320", "every output precise: no fused multiply-adds"),
+    Choice(Target::kSpirv, "spirv")});
+inline std::string_view TargetName(Target target) { return kTargetNames.Name(target); }
 
 // What a profile makes of the GLSL: the text itself, or a binary compiled from it.
 struct Artifact {
