@@ -20,6 +20,7 @@
 #include "irradiance/jobs/batch_job.h"
 #include "irradiance/jobs/batch_output.h"
 #include "python/bindings.h"
+#include "python/choice_arguments.h"
 
 namespace vs11::python {
 namespace {
@@ -183,13 +184,13 @@ std::unique_ptr<BatchStream> StartBatch(const std::vector<std::string>& paths, i
   irradiance::BatchOptions options;
   options.inputs = paths;
   options.threads = threads;
-  options.layout = layout;
+  options.layout = ChoiceArgument(irradiance::kLayoutNames, "layout", layout);
   options.face_size = face_size;
   options.level = level;
   options.max_error = max_error;
-  options.error_metric = error_metric;
-  options.order = order;
-  options.window = window;
+  options.error_metric = ChoiceArgument(irradiance::kErrorMetricNames, "error_metric", error_metric);
+  options.order = ChoiceArgument(vs11::kShOrderNames, "order", order, irradiance::kAutoOrderName);
+  options.window = ChoiceArgument(irradiance::kShWindowNames, "window", window);
   options.window_width = window_width;
   options.naming = irradiance::OptionNaming::kPythonArgument;
   return std::make_unique<BatchStream>(std::move(options));

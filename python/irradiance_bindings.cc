@@ -15,10 +15,13 @@
 
 #include "irradiance/io/environment_io.h"
 #include "irradiance/io/environments.h"
+#include "irradiance/jobs/batch_job.h"
 #include "irradiance/jobs/irrmap_job.h"
 #include "irradiance/report/paper_program.h"
 #include "python/bindings.h"
+#include "python/choice_arguments.h"
 #include "vm/core/checked_arithmetic.h"
+#include "vm/engines/engine_factory.h"
 
 namespace vs11::python {
 namespace {
@@ -112,7 +115,7 @@ void SetEnvironmentArray(const py::array& array, irradiance::IrrmapOptions& opti
       CheckRadiance(cube.faces[f], fmt::format("environment face {}", f));
     }
     options.cube = std::move(cube);
-    options.layout = "faces";
+    options.layout = irradiance::EnvironmentLayout::kFaces;
     options.environment = fmt::format("array of 6 faces {}x{}", size, size);
     return;
   }
@@ -124,7 +127,7 @@ void SetEnvironmentArray(const py::array& array, irradiance::IrrmapOptions& opti
   }
   // Projected where it lies (irradiance/sh/latlong_projection.h), as irrmap projects a lat-long file.
   options.latlong = std::move(image);
-  options.layout = "latlong";
+  options.layout = irradiance::EnvironmentLayout::kLatLong;
   options.environment = fmt::format("lat-long array {}x{}", 2 * height, height);
 }
 
@@ -132,13 +135,13 @@ irradiance::IrrmapOptions OptionsFor(const py::object& environment, const std::s
                                      std::optional<int> level, double max_error, const std::string& error_metric,
                                      const std::string& order, const std::string& window, double window_width) {
   irradiance::IrrmapOptions options;
-  options.layout = layout;
+  options.layout = ChoiceArgument(irradiance::kLayoutNames, "layout", layout);
   options.face_size = face_size;
   options.level = level;
   options.max_error = max_error;
-  options.error_metric = error_metric;
-  options.order = order;
-  options.window = window;
+  options.error_metric = ChoiceArgument(irradiance::kErrorMetricNames, "error_metric", error_metric);
+  options.order = ChoiceArgument(vs11::kShOrderNames, "order", order, irradiance::kAutoOrderName);
+  options.window = ChoiceArgument(irradiance::kShWindowNames, "window", window);
   options.window_width = window_width;
   options.write_files = false;
   options.naming = irradiance::OptionNaming::kPythonArgument;
@@ -184,7 +187,7 @@ Projection Project(const py::object& environment, const std::string& layout, int
   }
   result.level = report.level;
   result.level_size = report.levels[report.level].size;
-  result.order = std::string(vs11::Info(report.order).name);
+  result.order = std::string(vs11::ShOrderName(report.order));
   std::string error;
   std::optional<irradiance::PaperProgram> program = irradiance::PaperProgram::LoadOrder(report.order, error);
   if (!program) throw std::runtime_error(error);
@@ -235,22 +238,25 @@ py::array_t<float> IrradianceMap(const py::object& environment, const std::strin
   return result;
 }
 
-constexpr const char* kEnvironmentArguments =
-    "environment: an image file (.hdr, .exr, .pfm, .dds, ...), a six-face pattern holding '{face}',\n"
-    "  a built-in name (builtin_environments()), or a NumPy float array: (6, N, N, 3) cube faces in\n"
-    "  D3D order (+x -x +y -y +z -z, N a power of two) or an (H, 2H, 3) lat-long map (projected as it\n"
-    "  lies; face_size gives its coarser levels the grids of cube faces); radiance finite and >= 0,\n"
-    "  else ValueError.\n"
-    "layout: auto, faces, hcross, vcross, hstrip, vstrip, latlong or angular (files only; auto goes by\n"
-    "  the aspect ratio, and a square image, an angular map or one cube face, must be named).\n"
-    "face_size: faces of built-ins and of resampled angular maps; a lat-long map's level k >= 1 is\n"
-    "  the panorama averaged to 4 (face_size >> k) x 2 (face_size >> k) (power of two).\n"
-    "level: the mip level the coefficients come from; None: the coarsest within max_error.\n"
-    "max_error: the error budget of the level and program choice (0.005 = 0.5 %).\n"
-    "error_metric: what max_error bounds: peak (max |E - E*| / max E*, the default), rms (RMS of\n"
-    "  E - E* / mean E*) or relative (the worst |E - E*| / E* per normal), as irrmap --error-metric.\n"
-    "order: auto, order0, order1, zh3 or order2 (the program); window: none, hanning, lanczos,\n"
-    "  dering or nonneg; window_width: bands, for hanning and lanczos.\n";
+std::string EnvironmentArguments() {
+  return fmt::format(
+      "environment: an image file (.hdr, .exr, .pfm, .dds, ...), a six-face pattern holding '{{face}}',\n"
+      "  a built-in name (builtin_environments()), or a NumPy float array: (6, N, N, 3) cube faces in\n"
+      "  D3D order (+x -x +y -y +z -z, N a power of two) or an (H, 2H, 3) lat-long map (projected as it\n"
+      "  lies; face_size gives its coarser levels the grids of cube faces); radiance finite and >= 0,\n"
+      "  else ValueError.\n"
+      "layout: {} (files only; auto goes by\n"
+      "  the aspect ratio, and a square image, an angular map or one cube face, must be named).\n"
+      "face_size: faces of built-ins and of resampled angular maps; a lat-long map's level k >= 1 is\n"
+      "  the panorama averaged to 4 (face_size >> k) x 2 (face_size >> k) (power of two).\n"
+      "level: the mip level the coefficients come from; None: the coarsest within max_error.\n"
+      "max_error: the error budget of the level and program choice ({} = {} %).\n"
+      "error_metric: what max_error bounds: {}, the default {}, as irrmap --error-metric.\n"
+      "order: {} (the program); window: {}; window_width: bands, for hanning and lanczos.\n",
+      irradiance::kLayoutNames.List(), irradiance::kDefaultMaxLevelError, 100 * irradiance::kDefaultMaxLevelError,
+      irradiance::kErrorMetricNames.Help(), irradiance::ErrorMetricName(irradiance::kDefaultErrorMetric),
+      vs11::kShOrderNames.List(irradiance::kAutoOrderName), irradiance::kShWindowNames.List());
+}
 
 }  // namespace
 
@@ -286,28 +292,49 @@ void BindIrradiance(py::module_& module) {
       });
 
   module.def("builtin_environments", &irradiance::BuiltinEnvironmentNames, "The built-in environments' names.");
-  module.def("project", &Project, py::arg("environment"), py::arg("layout") = "auto", py::arg("face_size") = 256,
-             py::arg("level") = py::none(), py::arg("max_error") = irradiance::kDefaultMaxLevelError,
-             py::arg("order") = "auto", py::arg("window") = "none",
-             py::arg("error_metric") = std::string(irradiance::ErrorMetricName(irradiance::kDefaultErrorMetric)),
-             py::arg("window_width") = irradiance::kDefaultWindowWidth,
+  // The choices and defaults irrmap's flags have, read by vs11/irradiance.py instead of repeated there.
+  const irradiance::IrrmapOptions defaults;
+  const std::string layout(irradiance::LayoutName(defaults.layout));
+  const std::string window(irradiance::ShWindowName(defaults.window));
+  const std::string error_metric(irradiance::ErrorMetricName(defaults.error_metric));
+  const std::string order(irradiance::kAutoOrderName);
+  module.attr("LAYOUTS") = ChoiceNames(irradiance::kLayoutNames);
+  module.attr("ORDERS") = ChoiceNames(vs11::kShOrderNames, irradiance::kAutoOrderName);
+  module.attr("WINDOWS") = ChoiceNames(irradiance::kShWindowNames);
+  module.attr("ERROR_METRICS") = ChoiceNames(irradiance::kErrorMetricNames);
+  py::dict defaults_dict;
+  defaults_dict["layout"] = layout;
+  defaults_dict["face_size"] = defaults.face_size;
+  defaults_dict["max_error"] = defaults.max_error;
+  defaults_dict["order"] = order;
+  defaults_dict["batch_order"] = std::string(vs11::ShOrderName(irradiance::kDefaultBatchOrder));
+  defaults_dict["window"] = window;
+  defaults_dict["error_metric"] = error_metric;
+  defaults_dict["window_width"] = defaults.window_width;
+  defaults_dict["map_size"] = defaults.map_size;
+  defaults_dict["engine"] = defaults.engine;
+  module.attr("DEFAULTS") = defaults_dict;
+  module.def("project", &Project, py::arg("environment"), py::arg("layout") = layout,
+             py::arg("face_size") = defaults.face_size, py::arg("level") = py::none(),
+             py::arg("max_error") = defaults.max_error, py::arg("order") = order, py::arg("window") = window,
+             py::arg("error_metric") = error_metric, py::arg("window_width") = defaults.window_width,
              (std::string("Projects an environment onto nine SH coefficients per channel and packs the seven\n"
                           "constants, choosing the level and the program as `irrmap --coefficients-only` does;\n"
                           "returns a Projection. Raises ValueError for bad arguments or unusable files.\n\n") +
-              kEnvironmentArguments +
+              EnvironmentArguments() +
               "\nExample:\n  p = vs11.irradiance.project('sky', face_size=64)\n  p.coefficients.shape  # (9, 3)")
                  .c_str());
-  module.def("irradiance_map", &IrradianceMap, py::arg("environment"), py::arg("layout") = "auto",
-             py::arg("face_size") = 256, py::arg("level") = py::none(),
-             py::arg("max_error") = irradiance::kDefaultMaxLevelError, py::arg("order") = "auto",
-             py::arg("window") = "none", py::arg("map_size") = irradiance::kDefaultMapSize, py::arg("engine") = "jit",
-             py::arg("error_metric") = std::string(irradiance::ErrorMetricName(irradiance::kDefaultErrorMetric)),
-             py::arg("window_width") = irradiance::kDefaultWindowWidth,
+  module.def("irradiance_map", &IrradianceMap, py::arg("environment"), py::arg("layout") = layout,
+             py::arg("face_size") = defaults.face_size, py::arg("level") = py::none(),
+             py::arg("max_error") = defaults.max_error, py::arg("order") = order, py::arg("window") = window,
+             py::arg("map_size") = defaults.map_size, py::arg("engine") = defaults.engine,
+             py::arg("error_metric") = error_metric, py::arg("window_width") = defaults.window_width,
              (std::string("The irradiance cube map irrmap writes as irradiance.exr: the chosen program run on the\n"
                           "machine once per texel direction. Returns a (6, map_size, map_size, 3) float32 array\n"
                           "(faces in D3D order, rows top to bottom).\n\n") +
-              kEnvironmentArguments +
-              "map_size: faces of the result (1 to 1024); engine: jit, batch or ref.\n"
+              EnvironmentArguments() +
+              fmt::format("map_size: faces of the result (1 to {}); engine: {}.\n", irradiance::kMaxMapSize,
+                          EngineNameList()) +
               "\nExample:\n  e = vs11.irradiance.irradiance_map('studio', face_size=64, map_size=16)")
                  .c_str());
   BindBatch(module);

@@ -6,6 +6,7 @@
 #include <pybind11/stl.h>
 
 #include "python/array_conversion.h"
+#include "vm/core/thread_pool.h"
 #include "vm/engines/engine_factory.h"
 #include "vm/engines/trace.h"
 #include "vm/io/vertex_io.h"
@@ -13,7 +14,6 @@
 namespace vs11::python {
 namespace {
 
-constexpr int kMaxThreads = 256;  // as the tools' --threads
 
 std::string CheckedEngine(const std::string& engine, const py::int_& threads) {
   std::optional<EngineInfo> kind = FindEngine(engine);
@@ -23,8 +23,8 @@ std::string CheckedEngine(const std::string& engine, const py::int_& threads) {
                           "link EGL)");
   }
   if (!kind) throw py::value_error(fmt::format("engine='{}': use {}", engine, EngineNameList("'")));
-  if (SaturatedInt(threads) < 1 || SaturatedInt(threads) > kMaxThreads) {
-    throw py::value_error(fmt::format("threads={} is out of range: 1 to {}", std::string(py::str(py::handle(threads))), kMaxThreads));
+  if (SaturatedInt(threads) < 1 || SaturatedInt(threads) > kMaxThreadsOption) {
+    throw py::value_error(fmt::format("threads={} is out of range: 1 to {}", std::string(py::str(py::handle(threads))), kMaxThreadsOption));
   }
   return std::string(kind->name);
 }
@@ -113,14 +113,14 @@ void BindRun(py::class_<PyProgram>& program_class) {
   program_class.def(
       "run", &Run, py::arg("inputs"), py::arg("constants") = py::none(), py::arg("engine") = "jit",
       py::arg("threads") = 1, py::arg("float_rules") = "d3d9", py::arg("missing") = "error",
-      "Runs the program over n vertices and returns {output name: (n, 4) float32 array}.\n\n"
+      (std::string("Runs the program over n vertices and returns {output name: (n, 4) float32 array}.\n\n"
       "inputs: {'v0' or a dcl usage name ('position', 'normal', 'texcoord1'): array}, each array\n"
       "  (n, 4) or (n, 3) (w = 1, as D3D's FLOAT3), float32 or float64, any strides; every array\n"
       "  the same n. Inputs not given read (0, 0, 0, 1).\n"
       "constants: {'c4' or 4: four numbers}, or a (k, 4) array holding c0..c(k-1). The program's def\n"
       "  lines win.\n"
       "engine: 'jit' (default), 'batch' or 'ref'; all three give the same bits.\n"
-      "threads: threads for the batch and jit engines (1 to 256).\n"
+      ) + fmt::format("threads: threads for the batch and jit engines (1 to {}).\n", kMaxThreadsOption) + std::string(
       "float_rules: 'd3d9' (default: IEEE products, 0 * inf = NaN) or 'legacy' (every product of mul,\n"
       "  mad, dp3, dp4, m*x*, dst and lit's power is 0 when an operand is 0), as `vs11 run --float-rules`.\n"
       "missing: 'error' (default): a constant the program reads that neither a def nor constants sets,\n"
@@ -135,7 +135,8 @@ void BindRun(py::class_<PyProgram>& program_class) {
       "for bad arrays or names.\n\n"
       "Example:\n"
       "  out = p.run({'v0': np.array([[0, 0, 1]], np.float32)}, {'c0': [1, 2, 3, 4]})\n"
-      "  out['oD0']  # (1, 4) float32");
+      "  out['oD0']  # (1, 4) float32"))
+          .c_str());
   program_class.def(
       "trace", &Trace, py::arg("inputs"), py::arg("constants") = py::none(), py::arg("vertex") = 0,
       py::arg("engine") = "jit", py::arg("float_rules") = "d3d9", py::arg("missing") = "error",

@@ -13,6 +13,7 @@
 
 #include "irradiance/cli/subcommands.h"
 #include "irradiance/jobs/batch_job.h"
+#include "vm/cli/choice_option.h"
 
 namespace vs11::irradiance::cli {
 namespace {
@@ -133,8 +134,8 @@ void AddBatchCommand(CLI::App& app) {
   batch->add_option("--shard", arguments->shard, "K/N: process the K-th of N slices (K from 0)")->capture_default_str();
   batch->add_option("--threads", arguments->options.threads, "files processed at once (0 = every core)")
       ->capture_default_str();
-  batch->add_option("--layout", arguments->options.layout, "layout of every file (as irrmap's --layout)")
-      ->capture_default_str();
+  vs11::cli::AddChoiceOption(*batch, "--layout", arguments->options.layout, kLayoutNames,
+                              "layout of every file (as irrmap's --layout)");
   batch->add_option("--face-size", arguments->options.face_size,
                     "face size of cubes resampled from angular maps, and the cube whose grids a latlong map's levels take (it is projected where it lies); a power of two")
       ->capture_default_str();
@@ -144,15 +145,13 @@ void AddBatchCommand(CLI::App& app) {
                     "pick the coarsest level whose estimated error stays under this fraction")
       ->capture_default_str()
       ->excludes(level);
-  batch->add_option("--error-metric", arguments->options.error_metric,
-                    fmt::format("what --max-error measures, as irrmap's: {}", ErrorMetricNames()))
-      ->capture_default_str();
-  batch->add_option("--order", arguments->options.order,
-                    fmt::format("the program the level is chosen for, as irrmap's: auto, {}", ShOrderNames()))
-      ->capture_default_str();
-  batch->add_option("--window", arguments->options.window,
-                    "window applied to the coefficients, as irrmap's: none, hanning, lanczos, dering or nonneg")
-      ->capture_default_str();
+  vs11::cli::AddChoiceOption(*batch, "--error-metric", arguments->options.error_metric, kErrorMetricNames,
+                              fmt::format("what --max-error measures, as irrmap's: {}", kErrorMetricNames.List()));
+  vs11::cli::AddChoiceOption(*batch, "--order", arguments->options.order, kShOrderNames, kAutoOrderName,
+                              fmt::format("the program the level is chosen for, as irrmap's: {}",
+                                          kShOrderNames.List(kAutoOrderName)));
+  vs11::cli::AddChoiceOption(*batch, "--window", arguments->options.window, kShWindowNames,
+                              fmt::format("window applied to the coefficients, as irrmap's: {}", kShWindowNames.List()));
   batch->add_option("--window-width", arguments->options.window_width, "bands, for hanning and lanczos")
       ->capture_default_str();
   batch->callback([arguments] { RunBatchCommand(*arguments); });

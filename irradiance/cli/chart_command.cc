@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 
 #include "irradiance/cli/subcommands.h"
+#include "vm/cli/choice_option.h"
 #include "irradiance/jobs/irrmap_job.h"
 #include "irradiance/report/speed_accuracy.h"
 
@@ -86,16 +87,16 @@ void AddChartCommand(CLI::App& app) {
   chart->add_option("ENV", arguments->options.environments,
                     "environments (files, {face} patterns or built-in names); default: every built-in");
   chart->add_option("--out", arguments->out_dir, "output directory")->capture_default_str();
-  chart->add_option("--layout", arguments->options.layout, "layout of files (as irrmap's --layout)")
-      ->capture_default_str();
+  vs11::cli::AddChoiceOption(*chart, "--layout", arguments->options.layout, kLayoutNames,
+                              "layout of files (as irrmap's --layout)");
   chart->add_option("--face-size", arguments->options.face_size,
                     "face size of built-ins and of cubes resampled from latlong/angular maps (a power of two)")
       ->capture_default_str();
   chart->add_option("--error-normals", arguments->options.error_normals, "normals the error is measured at")
       ->capture_default_str();
-  chart->add_option("--error-metric", arguments->options.error_metric,
-                    fmt::format("the error on the chart's axis: {} (relative: its mean)", ErrorMetricNames()))
-      ->capture_default_str();
+  vs11::cli::AddChoiceOption(*chart, "--error-metric", arguments->options.error_metric, kErrorMetricNames,
+                              fmt::format("the error on the chart's axis: {} (relative: its mean)",
+                                          kErrorMetricNames.List()));
   chart->add_option("--threads", arguments->options.threads,
                     "threads of the ground truth and the vertex program (0 = every core); the timed "
                     "projections run on one")

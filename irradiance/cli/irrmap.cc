@@ -19,6 +19,7 @@
 #include "irradiance/mesh_input/mesh_geometry_io.h"
 #include "irradiance/render/preview.h"
 #include "irradiance/sh/engine_sh.h"
+#include "vm/cli/choice_option.h"
 #include "vm/cli/parse_command_line.h"
 #include "vm/core/atomic_file.h"
 #include "vm/core/version.h"
@@ -95,7 +96,7 @@ std::string Footer() {
       "pyramid is shown when stderr is a terminal.\n"
       "\n"
       "Levels: 0 is the full face size, each level halves it, the last is 1x1. By default the coarsest\n"
-      "level whose error against level 0 stays under --max-error (0.5 %) in --error-metric's terms\n"
+      "level whose error against level 0 stays under --max-error ({1} %) in --error-metric's terms\n"
       "(default peak), estimated as 1.4 x its difference from the next finer level, every finer level\n"
       "passing too: the sky of 256x256 faces gets 16x16, the studio and the spot 32x32, a constant\n"
       "environment 1x1 (the paper fixes {0}x{0}: Fig. 3). With --error-metric relative the spot gets\n"
@@ -128,7 +129,7 @@ std::string Footer() {
       "  irrmap studio --face-size 64 --no-ground-truth --map-format ktx --sh-export filament --out filament\n"
       "  irrmap sky --face-size 64 --coefficients-only --sh-export unity,gltf,glsl,hlsl --out sh\n"
       "  irrmap sky --face-size 16 --mesh /usr/share/assimp/models/STL/Wuson.stl --out stl  # zero normals: computed\n",
-      vs11::irradiance::kRecommendedLevelSize);
+      vs11::irradiance::kRecommendedLevelSize, 100 * vs11::irradiance::kDefaultMaxLevelError);
 }
 
 // A progress bar on stderr, only when stderr is a terminal.
@@ -170,11 +171,8 @@ void AddJobOptions(CLI::App& app, JobCommandLine& line) {
                  fmt::format("environment: an image file (any layout below), a six-face pattern holding "
                              "{{face}}, or a built-in: {}", JoinNames()))
       ->capture_default_str();
-  app.add_option("--layout", options.layout,
-                 "layout of a file: auto (by aspect ratio: 4:3 hcross, 3:4 vcross, 6:1 hstrip, 1:6 vstrip, 2:1 latlong; "
-                 "a square image, an angular map or one cube face, must be named), faces, hcross, vcross, hstrip, "
-                 "vstrip, latlong, angular")
-      ->capture_default_str();
+  vs11::cli::AddChoiceOption(app, "--layout", options.layout, vs11::irradiance::kLayoutNames,
+                              "layout of a file: " + vs11::irradiance::kLayoutNames.Help());
   app.add_option("--face-size", options.face_size,
                  "face size of a built-in environment, or of the cube an angular map is resampled to; a latlong "
                  "map is projected where it lies, its level k >= 1 averaged to the grid of a face of N >> k "
@@ -185,25 +183,22 @@ void AddJobOptions(CLI::App& app, JobCommandLine& line) {
                  "mip level the coefficients are computed from: 0 = full face size, each level halves it, down to "
                  "1x1; default: picked by --max-error");
   app.add_option("--max-error", options.max_error,
-                 "unless --level is given, pick the coarsest level whose error against full resolution, estimated "
-                 "from adjacent levels, stays under this fraction (0.005 = 0.5 %) of --error-metric's figure")
+                 fmt::format("unless --level is given, pick the coarsest level whose error against full resolution, "
+                             "estimated from adjacent levels, stays under this fraction ({} = {} %) of --error-metric's figure",
+                             vs11::irradiance::kDefaultMaxLevelError, 100 * vs11::irradiance::kDefaultMaxLevelError))
       ->capture_default_str()
       ->excludes(level_option);
-  app.add_option("--error-metric", options.error_metric,
-                 fmt::format("what --max-error and the estimates measure: {} (peak: max |E - E*| / max E*; rms: "
-                             "RMS of E - E* / mean E*; relative: the worst |E - E*| / E* per normal, floor 1 % of "
-                             "the peak), each the worst of r, g, b",
-                             vs11::irradiance::ErrorMetricNames()))
-      ->capture_default_str();
-  app.add_option("--order", options.order,
-                 fmt::format("program: auto (the cheapest within --max-error; order2 when --level is given) or "
-                             "one of {}", vs11::ShOrderNames()))
-      ->capture_default_str();
-  app.add_option("--window", options.window,
-                 "window on the coefficients against ringing from small bright lights: none, hanning, lanczos "
-                 "(of --window-width bands), dering (the mildest window that makes the irradiance non-negative) or nonneg "
-                 "(not a window: the nearest nine terms whose irradiance is non-negative everywhere)")
-      ->capture_default_str();
+  vs11::cli::AddChoiceOption(app, "--error-metric", options.error_metric, vs11::irradiance::kErrorMetricNames,
+                              fmt::format("what --max-error and the estimates measure: {}, each the worst of r, g, b",
+                                          vs11::irradiance::kErrorMetricNames.Help()));
+  vs11::cli::AddChoiceOption(app, "--order", options.order, vs11::kShOrderNames,
+                              vs11::irradiance::kAutoOrderName,
+                              fmt::format("program: {} (the cheapest within --max-error; order2 when --level is given) "
+                                          "or one of {}",
+                                          vs11::irradiance::kAutoOrderName, vs11::kShOrderNames.List()));
+  vs11::cli::AddChoiceOption(app, "--window", options.window, vs11::irradiance::kShWindowNames,
+                              "window on the coefficients against ringing from small bright lights: " +
+                                  vs11::irradiance::kShWindowNames.Help());
   app.add_option("--window-width", options.window_width, "width of the hanning and lanczos windows, in bands")
       ->capture_default_str();
   app.add_option("--out", out_dir, "output directory")->capture_default_str();
@@ -252,20 +247,13 @@ void AddJobOptions(CLI::App& app, JobCommandLine& line) {
 
 // --map-format and --sh-export: outputs engines load as they are.
 void AddEngineExportOptions(CLI::App& app, vs11::irradiance::IrrmapOptions& options) {
-  app.add_option("--map-format", options.map_format,
-                 fmt::format("file of the irradiance cube map: {} (exr: irradiance.exr, a float cross; hdr-faces: "
-                             "six Radiance faces irradiance_px.hdr .. irradiance_nz.hdr, for three.js's "
-                             "HDRCubeTextureLoader; ktx: irradiance.ktx, KTX 1.1 RGBA16F mirrored as cmgen's, for "
-                             "Filament; dds, ktx2: irradiance.dds, irradiance.ktx2, RGBA16F cube map textures for "
-                             "Babylon.js and Direct3D, and Vulkan)",
-                             vs11::irradiance::kMapFileFormatNames))
-      ->capture_default_str();
-  app.add_option("--sh-export", options.sh_exports,
-                 fmt::format("also write the nine coefficients for these engines, each in its own convention and "
-                             "world frame, as that engine shows the input (a lat-long panorama or a cube map) "
-                             "(comma-separated or repeated): {}",
-                             vs11::irradiance::ShExportFormatNames()))
-      ->delimiter(',');
+  vs11::cli::AddChoiceOption(app, "--map-format", options.map_format, vs11::irradiance::kMapFileFormatNames,
+                              "file of the irradiance cube map: " + vs11::irradiance::kMapFileFormatNames.Help());
+  vs11::cli::AddChoiceListOption(app, "--sh-export", options.sh_exports, vs11::irradiance::kShExportFormatNames,
+                                  fmt::format("also write the nine coefficients for these engines, each in its own "
+                                              "convention and world frame, as that engine shows the input (a lat-long "
+                                              "panorama or a cube map) (comma-separated or repeated): {}",
+                                              vs11::irradiance::kShExportFormatNames.List()));
 }
 
 // Runs the job the command line asked for; the exit status.

@@ -9,6 +9,7 @@
 #include <fmt/format.h>
 
 #include "irradiance/cli/subcommands.h"
+#include "vm/cli/choice_option.h"
 #include "irradiance/jobs/irrmap_job.h"
 #include "irradiance/report/stability_report.h"
 
@@ -66,11 +67,11 @@ void AddStabilityCommand(CLI::App& app) {
       ->capture_default_str();
   command->add_option("--error-normals", options->error_normals, "normals (evenly spread) of every comparison")
       ->capture_default_str();
-  command->add_option("--max-error", options->max_error, "target of the level pick (a fraction: 0.005 = 0.5 %)")
+  command->add_option("--max-error", options->max_error, fmt::format("target of the level pick (a fraction: {} = {} %)",
+                                                                     kDefaultMaxLevelError, 100 * kDefaultMaxLevelError))
       ->capture_default_str();
-  command->add_option("--error-metric", options->error_metric,
-                      fmt::format("what --max-error bounds, as irrmap's: {}", ErrorMetricNames()))
-      ->capture_default_str();
+  vs11::cli::AddChoiceOption(*command, "--error-metric", options->error_metric, kErrorMetricNames,
+                              fmt::format("what --max-error bounds, as irrmap's: {}", kErrorMetricNames.List()));
   command->add_option("--threads", options->threads, "worker threads (0 = every core)")->capture_default_str();
   command->callback([options, out_dir] {
     options->out_dir = *out_dir;

@@ -27,24 +27,23 @@ namespace {
 namespace fs = std::filesystem;
 using Layout = EnvironmentLayout;
 
-// One row per layout: its name, what it is called in messages, and for single-image layouts the
+// One row per layout: what it is called in messages, and for single-image layouts the
 // aspect ratio columns:rows that kAuto detects it by (0:0 for layouts that are not one image).
 struct LayoutInfo {
   Layout layout;
-  std::string_view name;
   std::string_view description;
   int aspect_columns;
   int aspect_rows;
 };
 constexpr std::array<LayoutInfo, 8> kLayoutInfo = {{
-    {Layout::kAuto, "auto", "automatic", 0, 0},
-    {Layout::kFaces, "faces", "six face files", 0, 0},
-    {Layout::kHorizontalCross, "hcross", "horizontal cross", 4, 3},
-    {Layout::kVerticalCross, "vcross", "vertical cross", 3, 4},
-    {Layout::kHorizontalStrip, "hstrip", "horizontal strip", 6, 1},
-    {Layout::kVerticalStrip, "vstrip", "vertical strip", 1, 6},
-    {Layout::kLatLong, "latlong", "lat-long map", 2, 1},
-    {Layout::kAngular, "angular", "angular map", 1, 1},
+    {Layout::kAuto, "automatic", 0, 0},
+    {Layout::kFaces, "six face files", 0, 0},
+    {Layout::kHorizontalCross, "horizontal cross", 4, 3},
+    {Layout::kVerticalCross, "vertical cross", 3, 4},
+    {Layout::kHorizontalStrip, "horizontal strip", 6, 1},
+    {Layout::kVerticalStrip, "vertical strip", 1, 6},
+    {Layout::kLatLong, "lat-long map", 2, 1},
+    {Layout::kAngular, "angular map", 1, 1},
 }};
 
 const LayoutInfo& Info(Layout layout) {
@@ -314,15 +313,6 @@ std::optional<std::string> WriteAtomically(const Image& image, const fs::path& p
 }  // namespace
 
 // ---- Public ------------------------------------------------------------------------------------
-
-std::optional<EnvironmentLayout> ParseLayout(std::string_view name) {
-  for (const LayoutInfo& info : kLayoutInfo) {
-    if (info.name == name) return info.layout;
-  }
-  return std::nullopt;
-}
-
-std::string_view LayoutName(EnvironmentLayout layout) { return Info(layout).name; }
 
 std::size_t SanitizeRadiance(Image& image) {
   std::size_t changed = 0;

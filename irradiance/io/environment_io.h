@@ -62,6 +62,7 @@
 #include <glm/glm.hpp>
 
 #include "irradiance/io/cube_map.h"
+#include "vm/core/name_table.h"
 
 namespace vs11::irradiance {
 
@@ -76,10 +77,19 @@ enum class EnvironmentLayout {
   kAngular,
 };
 
-// "auto", "faces", "hcross", "vcross", "hstrip", "vstrip", "latlong", "angular"; nullopt otherwise.
-std::optional<EnvironmentLayout> ParseLayout(std::string_view name);
-// The name ParseLayout accepts.
-std::string_view LayoutName(EnvironmentLayout layout);
+// Default face size of a built-in environment and of the cube a lat-long or angular map is resampled to
+// (the tools' --face-size, the Python module's face_size).
+inline constexpr int kDefaultFaceSize = 256;
+
+inline constexpr NameTable kLayoutNames("layout", {
+    Choice(EnvironmentLayout::kAuto, "auto",
+           "by aspect ratio (a cross, a strip or a 2:1 latlong); a square image, an angular map or one cube "
+           "face, must be named"),
+    Choice(EnvironmentLayout::kFaces, "faces"), Choice(EnvironmentLayout::kHorizontalCross, "hcross"),
+    Choice(EnvironmentLayout::kVerticalCross, "vcross"), Choice(EnvironmentLayout::kHorizontalStrip, "hstrip"),
+    Choice(EnvironmentLayout::kVerticalStrip, "vstrip"), Choice(EnvironmentLayout::kLatLong, "latlong"),
+    Choice(EnvironmentLayout::kAngular, "angular")});
+inline std::string_view LayoutName(EnvironmentLayout layout) { return kLayoutNames.Name(layout); }
 
 // The placeholder in a six-face path, and what it is replaced by for each face (CubeFace order).
 inline constexpr std::string_view kFaceToken = "{face}";
@@ -106,7 +116,7 @@ struct LoadOptions {
   EnvironmentLayout layout = EnvironmentLayout::kAuto;
   // Face size of the cube built from a lat-long or angular map, in [1, kMaxFaceSize]. Cube layouts
   // keep their own face size.
-  int face_size = 256;
+  int face_size = kDefaultFaceSize;
   // A lat-long map is kept as it is (LoadedEnvironment::latlong, sanitised) and no cube is built:
   // for callers that project it in place (irradiance/sh/latlong_projection.h).
   bool keep_latlong = false;

@@ -25,15 +25,14 @@ constexpr std::array<std::string_view, kCubeFaceCount> kHdrFaceFiles = {
 
 struct FormatInfo {
   MapFileFormat format;
-  std::string_view name;
   std::span<const std::string_view> files;
 };
 constexpr std::array<FormatInfo, 5> kFormats = {{
-    {MapFileFormat::kExr, "exr", kExrFiles},
-    {MapFileFormat::kDds, "dds", kDdsFiles},
-    {MapFileFormat::kKtx2, "ktx2", kKtx2Files},
-    {MapFileFormat::kKtx, "ktx", kKtxFiles},
-    {MapFileFormat::kHdrFaces, "hdr-faces", kHdrFaceFiles},
+    {MapFileFormat::kExr, kExrFiles},
+    {MapFileFormat::kDds, kDdsFiles},
+    {MapFileFormat::kKtx2, kKtx2Files},
+    {MapFileFormat::kKtx, kKtxFiles},
+    {MapFileFormat::kHdrFaces, kHdrFaceFiles},
 }};
 
 const FormatInfo& Info(MapFileFormat format) { return kFormats[static_cast<int>(format)]; }
@@ -56,15 +55,6 @@ std::optional<std::string> WriteHdrFace(const CubeMap& cube, std::size_t face, c
 }
 
 }  // namespace
-
-std::string_view MapFileFormatName(MapFileFormat format) { return Info(format).name; }
-
-std::optional<MapFileFormat> ParseMapFileFormat(std::string_view name) {
-  for (const FormatInfo& info : kFormats) {
-    if (info.name == name) return info.format;
-  }
-  return std::nullopt;
-}
 
 std::span<const std::string_view> IrradianceMapFileNames(MapFileFormat format) { return Info(format).files; }
 

@@ -14,6 +14,7 @@
 #include <string_view>
 
 #include "irradiance/io/cube_map.h"
+#include "vm/core/name_table.h"
 
 namespace vs11::irradiance {
 
@@ -21,10 +22,15 @@ enum class MapFileFormat { kExr, kDds, kKtx2, kKtx, kHdrFaces };
 inline constexpr std::array<MapFileFormat, 5> kAllMapFileFormats = {
     MapFileFormat::kExr, MapFileFormat::kDds, MapFileFormat::kKtx2, MapFileFormat::kKtx, MapFileFormat::kHdrFaces};
 
-// "exr", "dds", "ktx2", "ktx", "hdr-faces" and back; nullopt for any other name.
-std::string_view MapFileFormatName(MapFileFormat format);
-std::optional<MapFileFormat> ParseMapFileFormat(std::string_view name);
-inline constexpr std::string_view kMapFileFormatNames = "exr, dds, ktx2, ktx or hdr-faces";
+// The names of --map-format, with what each writes and which engines load it.
+inline constexpr NameTable kMapFileFormatNames("map format", {
+    Choice(MapFileFormat::kExr, "exr", "irradiance.exr, a float cross"),
+    Choice(MapFileFormat::kDds, "dds", "irradiance.dds, an RGBA16F cube map texture for Babylon.js and Direct3D"),
+    Choice(MapFileFormat::kKtx2, "ktx2", "irradiance.ktx2, an RGBA16F cube map texture for Vulkan"),
+    Choice(MapFileFormat::kKtx, "ktx", "irradiance.ktx, KTX 1.1 RGBA16F mirrored as cmgen's, for Filament"),
+    Choice(MapFileFormat::kHdrFaces, "hdr-faces",
+           "six Radiance faces irradiance_px.hdr .. irradiance_nz.hdr, for three.js's HDRCubeTextureLoader")});
+inline std::string_view MapFileFormatName(MapFileFormat format) { return kMapFileFormatNames.Name(format); }
 
 // The files of the map: "irradiance.exr", "irradiance.dds", "irradiance.ktx2", "irradiance.ktx", or for
 // hdr-faces six,

@@ -120,7 +120,7 @@ std::optional<std::string> ProcessInput(const BatchOptions& options, BasisCache&
             {"level_size", report.levels[report.level].size},
             {"estimated_error", report.levels[report.level].estimated_error},
             {"error_metric", std::string(ErrorMetricName(report.error_metric))},
-            {"order", std::string(Info(report.order).name)},
+            {"order", std::string(ShOrderName(report.order))},
             {"coefficients", std::move(coefficients)},
             {"constants", ConstantsJson(report.constants)},
             {"convention", std::move(metadata["convention"])},

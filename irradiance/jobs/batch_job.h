@@ -41,6 +41,8 @@
 
 namespace vs11::irradiance {
 
+inline constexpr ShOrder kDefaultBatchOrder = ShOrder::kOrder2;
+
 struct BatchOptions {
   std::vector<std::string> inputs;  // paths or glob patterns
   std::vector<std::filesystem::path> list_files;
@@ -51,15 +53,15 @@ struct BatchOptions {
   int shard_count = 1;  // N
   int threads = 0;      // 0: every core; at most pool's threads run at once
   ThreadPool* pool = nullptr;  // the threads inputs run on; null: ThreadPool::Default()
-  std::string layout = "auto";
-  int face_size = 256;  // angular maps are resampled to this; a lat-long map's levels take its grids
+  EnvironmentLayout layout = EnvironmentLayout::kAuto;
+  int face_size = kDefaultFaceSize;  // angular maps are resampled to this; a lat-long map's levels take its grids
   std::optional<int> level;
   double max_error = kDefaultMaxLevelError;
-  std::string error_metric{ErrorMetricName(kDefaultErrorMetric)};  // what max_error bounds, as irrmap's
+  ErrorMetric error_metric = kDefaultErrorMetric;  // what max_error bounds, as irrmap's
   // As irrmap's --order, --window and --window-width. The order defaults to order2: the nine
-  // coefficients are what a batch is for, and "auto" may pick a cheaper program at a coarser level.
-  std::string order = "order2";
-  std::string window = "none";
+  // coefficients are what a batch is for, and "auto" (nullopt) may pick a cheaper program at a coarser level.
+  std::optional<ShOrder> order = kDefaultBatchOrder;
+  ShWindow window = ShWindow::kNone;
   double window_width = kDefaultWindowWidth;
   // Set from another thread to stop early (the Python module's generator, closed): no input starts
   // after a worker sees it; the inputs already running finish and are written. Null: run them all.

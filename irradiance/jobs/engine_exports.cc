@@ -6,20 +6,14 @@
 
 namespace vs11::irradiance {
 
-std::optional<std::string> CheckExportOptions(std::string_view map_format, std::span<const std::string> sh_exports,
-                                              CheckedExports& checked) {
-  std::optional<MapFileFormat> format = ParseMapFileFormat(map_format);
-  if (!format) return fmt::format("unknown map format '{}' (use {})", map_format, kMapFileFormatNames);
-  checked.map_format = *format;
-  checked.sh_exports.clear();
-  for (const std::string& name : sh_exports) {
-    std::optional<ShExportFormat> sh_format = ParseShExportFormat(name);
-    if (!sh_format) return fmt::format("unknown --sh-export format '{}' (use {})", name, ShExportFormatNames());
-    if (std::find(checked.sh_exports.begin(), checked.sh_exports.end(), *sh_format) == checked.sh_exports.end()) {
-      checked.sh_exports.push_back(*sh_format);
+CheckedExports CheckedExportsOf(MapFileFormat map_format, std::span<const ShExportFormat> sh_exports) {
+  CheckedExports checked{map_format, {}};
+  for (ShExportFormat format : sh_exports) {
+    if (std::find(checked.sh_exports.begin(), checked.sh_exports.end(), format) == checked.sh_exports.end()) {
+      checked.sh_exports.push_back(format);
     }
   }
-  return std::nullopt;
+  return checked;
 }
 
 ShSourceKind ShSourceKindOf(EnvironmentLayout layout) {

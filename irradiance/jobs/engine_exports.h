@@ -20,9 +20,8 @@ struct CheckedExports {
   std::vector<ShExportFormat> sh_exports;  // each once, in the order first named
 };
 
-// nullopt when every name is known ("unknown map format 'png' (use exr, dds or ktx2)" otherwise).
-std::optional<std::string> CheckExportOptions(std::string_view map_format, std::span<const std::string> sh_exports,
-                                              CheckedExports& checked);
+// The options with each --sh-export format once.
+CheckedExports CheckedExportsOf(MapFileFormat map_format, std::span<const ShExportFormat> sh_exports);
 
 // How engines see an input of `layout`: a lat-long map is a panorama they map themselves; every other
 // layout (faces, crosses, strips, DDS cubes, angular maps, which no engine shows as they are) reaches

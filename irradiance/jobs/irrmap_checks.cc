@@ -53,37 +53,19 @@ std::optional<std::string> CheckOptionValues(const IrrmapOptions& options, Check
   auto named = [&](std::string_view flag, const auto& value) {
     return OptionWithValue(OptionName(options.naming, flag), value);
   };
-  std::optional<EnvironmentLayout> layout = ParseLayout(options.layout);
-  if (!layout) {
-    return fmt::format("unknown layout '{}' (use auto, faces, hcross, vcross, hstrip, vstrip, latlong or angular)",
-                       options.layout);
-  }
-  checked.layout = *layout;
   std::optional<EngineInfo> engine = FindEngine(options.engine);
   if (!engine) return fmt::format("unknown engine '{}' (use {})", options.engine, EngineNameList());
   checked.engine = engine->name;
-  std::optional<ShWindow> window = ParseShWindow(options.window);
-  if (!window) {
-    return fmt::format("unknown window '{}' (use none, hanning, lanczos, dering or nonneg)", options.window);
-  }
-  checked.window = *window;
-  if (options.order != "auto") {
-    checked.order = ParseShOrder(options.order);
-    if (!checked.order) return fmt::format("unknown order '{}' (use auto, {})", options.order, ShOrderNames());
-  } else if (options.level) {
-    checked.order = ShOrder::kOrder2;
-  }
+  checked.order = options.order;
+  if (!checked.order && options.level) checked.order = ShOrder::kOrder2;
   if (!(options.window_width > 0.0) || options.window_width > kMaxWindowWidth) {
     return fmt::format("{} is out of range: above 0, at most {}", named("window-width", options.window_width),
                        kMaxWindowWidth);
   }
   if (!(options.max_error > 0.0 && options.max_error < 1.0)) {
-    return fmt::format("{} is out of range: a fraction above 0 and below 1 (0.005 = 0.5 %)",
-                       named("max-error", options.max_error));
+    return fmt::format("{} is out of range: a fraction above 0 and below 1 ({} = {} %)",
+                       named("max-error", options.max_error), kDefaultMaxLevelError, 100 * kDefaultMaxLevelError);
   }
-  std::optional<ErrorMetric> metric = ParseErrorMetric(options.error_metric);
-  if (!metric) return fmt::format("unknown error metric '{}' (use {})", options.error_metric, ErrorMetricNames());
-  checked.metric = *metric;
   if (std::optional<std::string> error = CheckFaceSizeOption(OptionName(options.naming, "face-size"), options.face_size)) return error;
   if (options.level && *options.level < 0) {
     return fmt::format("{} is out of range: levels start at 0 (full resolution)", named("level", *options.level));
@@ -101,7 +83,8 @@ std::optional<std::string> CheckOptionValues(const IrrmapOptions& options, Check
   }
   if (options.write_files && options.out_dir.empty()) return std::string("the output directory is empty");
   if (options.environment.empty()) return std::string("no environment given");
-  return CheckExportOptions(options.map_format, options.sh_exports, checked.exports);
+  checked.exports = CheckedExportsOf(options.map_format, options.sh_exports);
+  return std::nullopt;
 }
 
 std::optional<std::string> CheckOptions(const IrrmapOptions& options, CheckedOptions& checked) {
@@ -157,8 +140,7 @@ std::optional<std::string> CheckOutputsAreNotInputs(const IrrmapOptions& options
       }
     }
   }
-  CheckedExports exports;  // unknown names are CheckOptions' to report; then only the default map
-  CheckExportOptions(options.map_format, options.sh_exports, exports);
+  const CheckedExports exports = CheckedExportsOf(options.map_format, options.sh_exports);
   // The files StagesFor's stages write.
   std::vector<std::string_view> names = {kCoefficientsFile, kConstantsFile, kProgramFile};
   if (!mesh_file.empty()) names.insert(names.end(), {kMeshFile, kMeshPictureFile});

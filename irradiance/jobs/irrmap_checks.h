@@ -13,11 +13,8 @@ namespace vs11::irradiance {
 
 // What the options say once checked.
 struct CheckedOptions {
-  EnvironmentLayout layout = EnvironmentLayout::kAuto;
   std::string engine = "batch";
-  ShWindow window = ShWindow::kNone;
   std::optional<ShOrder> order;  // nullopt: chosen by max_error
-  ErrorMetric metric = kDefaultErrorMetric;
   bool builtin = false;
   int threads = 1;
   CheckedExports exports;  // --map-format, --sh-export

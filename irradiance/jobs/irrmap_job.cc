@@ -81,7 +81,7 @@ std::optional<std::string> LoadCube(const IrrmapOptions& options, const CheckedO
   if (options.latlong) {
     latlong = *options.latlong;
     report.environment = options.environment;
-    report.layout = options.layout;
+    report.layout = LayoutName(options.layout);
     report.layout_reason = "as given";
     report.sh_source = ShSourceKindOf(EnvironmentLayout::kLatLong);
     if (options.level && *options.level >= LevelCount(options.face_size)) {
@@ -92,9 +92,9 @@ std::optional<std::string> LoadCube(const IrrmapOptions& options, const CheckedO
   if (options.cube) {
     cube = *options.cube;
     report.environment = options.environment;
-    report.layout = options.layout;
+    report.layout = LayoutName(options.layout);
     report.layout_reason = "as given";
-    report.sh_source = ShSourceKindOf(checked.layout);
+    report.sh_source = ShSourceKindOf(options.layout);
     if (std::optional<std::string> error = CheckPyramidFaceSize(options.environment, cube.face_size)) return error;
     if (options.level && *options.level >= LevelCount(cube.face_size)) {
       return fmt::format("{} is out of range: {}", LevelWithValue(options), LevelRange(cube.face_size));
@@ -108,14 +108,14 @@ std::optional<std::string> LoadCube(const IrrmapOptions& options, const CheckedO
     report.environment = fmt::format("{} (built-in)", options.environment);
     report.layout = "builtin";
     report.layout_reason = "a built-in environment";
-    if (checked.layout != EnvironmentLayout::kAuto) {
+    if (options.layout != EnvironmentLayout::kAuto) {
       report.warnings.push_back(fmt::format("{} ignored for a built-in environment",
-                                            OptionWithValue(OptionName(options.naming, "layout"), options.layout)));
+                                            OptionWithValue(OptionName(options.naming, "layout"), LayoutName(options.layout))));
     }
     return std::nullopt;
   }
   LoadOptions load;
-  load.layout = checked.layout;
+  load.layout = options.layout;
   load.face_size = options.face_size;
   load.keep_latlong = true;
   LoadResult loaded = LoadEnvironment(options.environment, load);
@@ -217,7 +217,7 @@ nlohmann::ordered_json CoefficientsJson(const IrrmapReport& report, const Irrmap
   if (!options.level) json["max_error"] = options.max_error;
   json["error_metric"] = std::string(ErrorMetricName(report.error_metric));
   const std::array<double, kSh9Bands>& factors = report.levels[report.level].window_factors;
-  json["window"] = {{"name", std::string(ShWindowName(checked.window))},
+  json["window"] = {{"name", std::string(ShWindowName(options.window))},
                     {"width", options.window_width},
                     {"factors", {factors[0], factors[1], factors[2]}}};
   json["face_size"] = report.face_size;
@@ -227,8 +227,8 @@ nlohmann::ordered_json CoefficientsJson(const IrrmapReport& report, const Irrmap
   json["map_size"] = options.map_size;
   json["constants"] = ConstantsJson(report.constants);
   const ShOrderInfo& order = Info(report.order);
-  json["order"] = std::string(order.name);
-  nlohmann::ordered_json program = {{"name", std::string(order.name)},
+  json["order"] = std::string(ShOrderName(order.order));
+  nlohmann::ordered_json program = {{"name", std::string(ShOrderName(order.order))},
                                     {"file", std::string(order.program_file)},
                                     {"slots", order.slots},
                                     {"estimated_error", report.order_estimated_error},
@@ -243,7 +243,7 @@ nlohmann::ordered_json CoefficientsJson(const IrrmapReport& report, const Irrmap
   nlohmann::ordered_json estimates = nlohmann::ordered_json::array();
   for (const ProgramLevelEstimate& e : report.program_estimates) {
     estimates.push_back(
-        {{"order", std::string(Info(e.order).name)}, {"level", e.level}, {"estimated_error", e.estimated}});
+        {{"order", std::string(ShOrderName(e.order))}, {"level", e.level}, {"estimated_error", e.estimated}});
   }
   json["program_estimates"] = std::move(estimates);
   nlohmann::ordered_json levels = nlohmann::ordered_json::array();
@@ -322,7 +322,7 @@ std::string ConstantsFileComment(const IrrmapReport& report, const PaperProgram&
         "irrmap\nbeside it as program.vsh. Environment: {environment}, face size {face}, coefficients from level "
         "{level} ({size}x{size}).\nEstimated error against the nine terms at level 0: {estimate:.3g} %.\n"
         "Run with: vs11 run program.vsh --fragment --consts constants.vsh --sphere 6 --sphere-reg v{normal}",
-        fmt::arg("file", order.program_file), fmt::arg("name", order.name), fmt::arg("slots", order.slots),
+        fmt::arg("file", order.program_file), fmt::arg("name", ShOrderName(order.order)), fmt::arg("slots", order.slots),
         fmt::arg("environment", report.environment), fmt::arg("face", report.face_size),
         fmt::arg("level", report.level), fmt::arg("size", report.levels[report.level].size),
         fmt::arg("estimate", 100.0 * report.order_estimated_error), fmt::arg("normal", program.normal_register()));
@@ -380,9 +380,9 @@ void ChooseLevelAndWindow(const IrrmapOptions& options, const CheckedOptions& ch
   std::vector<Sh9Rgb> coefficients;
   for (const LevelReport& row : report.levels) coefficients.push_back(row.coefficients);
   const std::vector<glm::dvec3> normals = SphereNormals(kLevelErrorNormals);
-  report.error_metric = checked.metric;
-  const std::vector<double> estimated = EstimateLevelErrors(coefficients, normals, checked.metric);
-  report.program_estimates = EstimateProgramLevelErrors(coefficients, estimated, normals, checked.metric);
+  report.error_metric = options.error_metric;
+  const std::vector<double> estimated = EstimateLevelErrors(coefficients, normals, options.error_metric);
+  report.program_estimates = EstimateProgramLevelErrors(coefficients, estimated, normals, options.error_metric);
   std::vector<ShOrder> allowed;
   if (checked.order) allowed.push_back(*checked.order);
   const ProgramChoice choice = ChooseProgramAndLevel(report.program_estimates, estimated, options.max_error, allowed);
@@ -394,13 +394,13 @@ void ChooseLevelAndWindow(const IrrmapOptions& options, const CheckedOptions& ch
   for (LevelReport& row : report.levels) {
     row.chosen = row.level == report.level;
     row.estimated_error = estimated[row.level];
-    if (checked.window == ShWindow::kNonNegative) {
+    if (options.window == ShWindow::kNonNegative) {
       row.coefficients = FitNonNegative(row.coefficients);
       continue;
     }
-    row.window_factors = checked.window == ShWindow::kDering
+    row.window_factors = options.window == ShWindow::kDering
                              ? LaplacianWindowFactors(DeringLambda(row.coefficients, normals))
-                             : ShWindowFactors(checked.window, options.window_width);
+                             : ShWindowFactors(options.window, options.window_width);
     row.coefficients = ApplyShWindow(row.coefficients, row.window_factors);
   }
 }
@@ -539,7 +539,7 @@ std::optional<std::string> CoefficientsStage(IrrmapRun& run) {
   });
   report.program_vs_full_order2 =
       IrradianceDifference(ReduceToOrder(report.coefficients, report.order), report.levels[0].coefficients,
-                           SphereNormals(kLevelErrorNormals), run.checked.metric);
+                           SphereNormals(kLevelErrorNormals), run.options.error_metric);
   // Every level's constants feed the level table and the preview, not only the chosen one's.
   for (const LevelReport& row : report.levels) {
     const SevenConstants constants = PackTable1(row.coefficients);
@@ -656,9 +656,9 @@ std::optional<std::string> IrradianceMapStage(IrrmapRun& run) {
 std::optional<std::string> ShExportStage(IrrmapRun& run) {
   if (run.options.coefficients_only && run.checked.exports.map_format != MapFileFormat::kExr) {
     run.report.warnings.push_back(fmt::format("--map-format {} ignored: --coefficients-only makes no irradiance map",
-                                              run.options.map_format));
+                                              MapFileFormatName(run.options.map_format)));
   }
-  const std::string source = ExportSourceLine(run.report, ShWindowName(run.checked.window));
+  const std::string source = ExportSourceLine(run.report, ShWindowName(run.options.window));
   for (ShExportFormat format : run.checked.exports.sh_exports) {
     run.outputs.push_back({ShExportFileName(format), [&run, format, source](const fs::path& path) {
                              return WriteFileAtomically(
@@ -723,7 +723,7 @@ std::optional<std::string> PreviewStage(IrrmapRun& run) {
     }
     if (!order2) {  // the chosen program beside the nine terms it approximates
       const LevelReport& chosen = report.levels[report.level];
-      panels.push_back({fmt::format("{} from {}x{} *", Info(report.order).name, chosen.size, chosen.size),
+      panels.push_back({fmt::format("{} from {}x{} *", ShOrderName(report.order), chosen.size, chosen.size),
                         run.chosen_program->Irradiance(run.chosen_bank, sphere.normals, run.checked.engine,
                                                        run.engine_options)});
       table_errors.push_back(report.program_error);

@@ -69,6 +69,8 @@
 #include <glm/glm.hpp>
 
 #include "irradiance/io/cube_map.h"
+#include "irradiance/io/environment_io.h"
+#include "irradiance/io/map_file_formats.h"
 #include "irradiance/io/option_names.h"
 #include "irradiance/jobs/float_range.h"
 #include "irradiance/jobs/gpu_frame_hook.h"
@@ -96,6 +98,8 @@ inline constexpr int kMaxMapSize = 1024;
 // Default width of the hanning and lanczos windows (w1, w2 = 0.854, 0.5 and 0.900, 0.637): the width
 // whose far-side dip is smallest for a point light (irrmap stability).
 inline constexpr double kDefaultWindowWidth = 4.0;
+// --order's name for "the cheapest program within max_error" (IrrmapOptions::order unset).
+inline constexpr std::string_view kAutoOrderName = "auto";
 
 // The level whose faces are kRecommendedLevelSize when the face is larger than that, else 0 (the
 // paper's fixed choice; irrmap picks by IrrmapOptions::max_error instead unless --level is given).
@@ -104,21 +108,21 @@ int DefaultLevel(int face_size);
 
 struct IrrmapOptions {
   std::string environment = "sky";  // a file, a {face} pattern or a BuiltinEnvironmentNames() name
-  std::string layout = "auto";      // ParseLayout names; files only
-  int face_size = 256;              // built-ins; resampled angular maps; the grids of a lat-long map's levels
+  EnvironmentLayout layout = EnvironmentLayout::kAuto;  // files only
+  int face_size = kDefaultFaceSize;  // built-ins; resampled angular maps; the grids of a lat-long map's levels
   std::optional<int> level;         // when set, max_error is not used
   // Otherwise the level is the coarsest whose error against level 0, estimated from adjacent
   // levels, stays under this fraction (CoarsestLevelWithin, irradiance/sh/level_choice.h).
   double max_error = kDefaultMaxLevelError;
-  // What max_error bounds (ParseErrorMetric names): "peak" (kDefaultErrorMetric), "rms" or
-  // "relative" (irradiance/sh/ground_truth.h). The estimates, the level table's marks and the
-  // preview's error images follow it too.
-  std::string error_metric{ErrorMetricName(kDefaultErrorMetric)};
-  // The program (irradiance/sh/sh_order.h): "auto" picks the cheapest (program, level) pair within
-  // max_error (ChooseProgramAndLevel); a ShOrderInfo name fixes it (the level is then still picked
-  // by max_error unless `level` is set). With `level` set, "auto" means order2, the paper's program.
-  std::string order = "auto";
-  std::string window = "none";      // ShWindowName names, applied to every level's coefficients
+  // What max_error bounds (irradiance/sh/ground_truth.h). The estimates, the level table's marks and
+  // the preview's error images follow it too.
+  ErrorMetric error_metric = kDefaultErrorMetric;
+  // The program (irradiance/sh/sh_order.h): nullopt ("auto", kAutoOrderName) picks the cheapest
+  // (program, level) pair within max_error (ChooseProgramAndLevel); an order fixes it (the level is
+  // then still picked by max_error unless `level` is set). With `level` set, nullopt means order2,
+  // the paper's program.
+  std::optional<ShOrder> order;
+  ShWindow window = ShWindow::kNone;  // applied to every level's coefficients
   double window_width = kDefaultWindowWidth;  // bands, for hanning and lanczos
   std::filesystem::path out_dir = "out";
   std::string engine = "jit";       // a registered engine (vm/engines/engine_factory.h); "gl" needs vm/gl's
@@ -151,13 +155,11 @@ struct IrrmapOptions {
   std::optional<MeshGeometry> mesh;
   std::size_t mesh_truth_vertex_limit = kDefaultMeshTruthVertexLimit;
   int mesh_panel_size = kMeshPanelSize;  // pixels of each of mesh.png's three panels
-  // --map-format: the irradiance cube map's file, MapFileFormatName names (irradiance/io/map_file_formats.h):
-  // "exr" (irradiance.exr, a float cross), "dds" (irradiance.dds) or "ktx2" (irradiance.ktx2), both
-  // RGBA16F cube map textures, or "hdr-faces" (irradiance_px.hdr .. irradiance_nz.hdr, Radiance RGBE).
-  std::string map_format = "exr";
+  // --map-format: the irradiance cube map's file (kMapFileFormatNames, irradiance/io/map_file_formats.h).
+  MapFileFormat map_format = MapFileFormat::kExr;
   // --sh-export: also the nine coefficients in these engines' conventions and frames, one file each
-  // (ShExportFormatName names and ShExportFileName files, irradiance/sh/engine_sh.h).
-  std::vector<std::string> sh_exports;
+  // (ShExportFileName files, irradiance/sh/engine_sh.h); a format named twice is written once.
+  std::vector<ShExportFormat> sh_exports;
   // Where set, the basis pyramid of a face size comes from here instead of being built (irrmap
   // batch shares one per face size between its inputs); null from it: cannot be built.
   std::function<std::shared_ptr<const BasisPyramid>(int face_size)> shared_basis;

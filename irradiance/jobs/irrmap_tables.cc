@@ -13,7 +13,7 @@ std::string FormatLevelTable(const IrrmapReport& report) {
   std::string out = fmt::format("  {:>5}  {:>11}  {:>11}  {:>11}  {:>12}  {:>10}  {:>10}  {:>12}", "level", "size",
                                 "update ms", "max rel err", "mean rel err", "peak err", "rms err", "est vs lvl 0");
   for (ShOrder order : kAllShOrders) {
-    if (order != ShOrder::kOrder2) out += fmt::format("  {:>12}", fmt::format("est {}", Info(order).name));
+    if (order != ShOrder::kOrder2) out += fmt::format("  {:>12}", fmt::format("est {}", ShOrderName(order)));
   }
   out += "\n";
   for (const LevelReport& level : report.levels) {
@@ -43,7 +43,7 @@ std::string FormatLevelTable(const IrrmapReport& report) {
   out += fmt::format("  estimates (est) and --max-error: the {} metric\n", ErrorMetricName(report.error_metric));
   out += fmt::format("  program: {} ({}, {} slots per vertex) from level {}, estimated {:.3f} % against the nine "
                      "terms at level 0 (measured {:.3f} %)\n",
-                     order.name, order.program_file, order.slots, report.level, 100.0 * report.order_estimated_error,
+                     ShOrderName(order.order), order.program_file, order.slots, report.level, 100.0 * report.order_estimated_error,
                      100.0 * report.program_vs_full_order2);
   return out;
 }

@@ -106,15 +106,15 @@ nlohmann::ordered_json OutputMetadata(const IrrmapReport& report, const IrrmapOp
     files.push_back({{"path", file.path}, {"size_bytes", file.size_bytes}, {"sha256", file.sha256}});
   }
   // No null for an unset level: a null in vs11's JSON means a figure that was not finite.
-  nlohmann::ordered_json numbers = {{"layout", options.layout}, {"face_size", options.face_size}};
+  nlohmann::ordered_json numbers = {{"layout", std::string(LayoutName(options.layout))}, {"face_size", options.face_size}};
   if (options.level) numbers["level"] = *options.level;
   numbers.update({{"max_error", options.max_error},
-                  {"error_metric", options.error_metric},
-                  {"order", options.order},
-                  {"window", options.window},
+                  {"error_metric", std::string(ErrorMetricName(options.error_metric))},
+                  {"order", std::string(options.order ? ShOrderName(*options.order) : kAutoOrderName)},
+                  {"window", std::string(ShWindowName(options.window))},
                   {"window_width", options.window_width}});
   return {{"schema_version", kOutputSchemaVersion},
-          {"convention", ConventionJson(report.sh_source, options.window)},
+          {"convention", ConventionJson(report.sh_source, ShWindowName(options.window))},
           {"provenance",
            {{"vs11_version", std::string(Vs11Version())},
             {"input", report.environment},

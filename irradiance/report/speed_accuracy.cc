@@ -80,15 +80,11 @@ double MedianBatchMs(const SpeedAccuracyOptions& options, F&& update) {
 }  // namespace
 
 std::optional<std::string> CheckSpeedAccuracyOptions(const SpeedAccuracyOptions& options) {
-  if (!ParseLayout(options.layout)) return fmt::format("unknown layout '{}'", options.layout);
   if (std::optional<std::string> error = CheckFaceSizeOption("--face-size", options.face_size)) return error;
   if (options.error_normals < 1) return fmt::format("--error-normals {} must be >= 1", options.error_normals);
   if (options.threads < 0) return fmt::format("--threads {} must be >= 0 (0: every core)", options.threads);
   if (options.batches < 1) return fmt::format("--batches {} must be >= 1", options.batches);
   if (!(options.min_batch_ms >= 0.0)) return fmt::format("--min-batch-ms {} must be >= 0", options.min_batch_ms);
-  if (!ParseErrorMetric(options.error_metric)) {
-    return fmt::format("unknown error metric '{}' (use {})", options.error_metric, ErrorMetricNames());
-  }
   return std::nullopt;
 }
 
@@ -109,8 +105,8 @@ std::optional<std::string> RunSpeedAccuracySweep(const SpeedAccuracyOptions& opt
                                                  const SpeedAccuracyProgress& progress) {
   result = SpeedAccuracyResult{};
   if (std::optional<std::string> error = CheckSpeedAccuracyOptions(options)) return error;
-  result.metric = *ParseErrorMetric(options.error_metric);
-  const EnvironmentLayout layout = *ParseLayout(options.layout);
+  result.metric = options.error_metric;
+  const EnvironmentLayout layout = options.layout;
   const std::vector<std::string> names =
       options.environments.empty() ? BuiltinEnvironmentNames() : options.environments;
   const int threads =
@@ -184,7 +180,7 @@ std::string SpeedAccuracyCsv(const SpeedAccuracyResult& result) {
     std::replace(name.begin(), name.end(), ',', '_');  // keep the columns unambiguous
     csv += fmt::format("{},{},{},{},{:.6g},{:.6g},{:.6g},{:.6g},{},{},{:.6g},{:.6g}\n", name,
                        ProjectionMethodName(point.method), point.level, point.size, point.update_ms, mips_ms,
-                       point.error.mean_relative, point.error.max_relative, Info(point.order).name,
+                       point.error.mean_relative, point.error.max_relative, ShOrderName(point.order),
                        Info(point.order).slots, point.error.max_peak, point.error.max_rms);
   }
   return csv;
@@ -244,7 +240,7 @@ std::string OrderPanelPlots(const SpeedAccuracyResult& result, std::string& data
           if (point.environment == environment.name && point.method == ProjectionMethod::kMipPyramid &&
               point.size == size && point.order == order) {
             curve += fmt::format("{} {:.6g} {}\n", Info(order).slots,
-                                 100.0 * ChartErrorFigure(point.error, result.metric), Info(order).name);
+                                 100.0 * ChartErrorFigure(point.error, result.metric), ShOrderName(order));
             any = true;
           }
         }

@@ -24,6 +24,7 @@
 #include <string_view>
 #include <vector>
 
+#include "irradiance/io/environment_io.h"
 #include "irradiance/render/gnuplot.h"
 #include "irradiance/sh/ground_truth.h"
 #include "irradiance/report/paper_program.h"
@@ -39,16 +40,16 @@ std::string_view ProjectionMethodName(ProjectionMethod method);
 struct SpeedAccuracyOptions {
   // Files, {face} patterns or built-in names, as irrmap's ENV; empty: every built-in.
   std::vector<std::string> environments;
-  std::string layout = "auto";  // ParseLayout names; files only
-  int face_size = 256;          // built-ins, and cubes resampled from lat-long/angular maps
+  EnvironmentLayout layout = EnvironmentLayout::kAuto;  // files only
+  int face_size = kDefaultFaceSize;         // built-ins, and cubes resampled from lat-long/angular maps
   int error_normals = kDefaultErrorNormals;
   int threads = 0;              // ground truth and the vertex program; 0: every core
   // Timing: an update is repeated until min_batch_ms have passed (a batch), `batches` times; the
   // median of the batch means is reported, which shrugs off a batch slowed by another process.
   double min_batch_ms = 20.0;
   int batches = 3;
-  // The error on the chart's axis (ParseErrorMetric names; ChartErrorFigure): peak, rms or relative.
-  std::string error_metric{ErrorMetricName(kDefaultErrorMetric)};
+  // The error on the chart's axis (ChartErrorFigure).
+  ErrorMetric error_metric = kDefaultErrorMetric;
 };
 
 struct SpeedAccuracyPoint {

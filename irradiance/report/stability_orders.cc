@@ -154,7 +154,7 @@ std::string OrderChoiceSection(const StabilityReport& r) {
   for (const LevelStudy& s : r.levels) {
     const int size = s.rows[static_cast<std::size_t>(s.program.level)].size;
     out += fmt::format("| {} | {} from {}x{} | {} | {} | {} | {} | {}x{} | {} | {} |\n", s.environment,
-                       Info(s.program.order).name, size, size, Info(s.program.order).slots,
+                       ShOrderName(s.program.order), size, size, Info(s.program.order).slots,
                        ReportPercent(s.program.estimated), ReportPercent(s.program_error),
                        s.program_meets ? "yes" : "**no**", s.rows[s.picked].size, s.rows[s.picked].size,
                        ReportPercent(s.program_vs_truth.max_relative), ReportPercent(s.rows[0].max_vs_truth));
@@ -171,7 +171,7 @@ std::string OrderChoiceSection(const StabilityReport& r) {
     for (double target : kTargets) {
       const ProgramPick pick = PickProgram(s, target);
       const int size = s.rows[static_cast<std::size_t>(pick.choice.level)].size;
-      out += fmt::format(" {} {}x{}{} |", Info(pick.choice.order).name, size, size,
+      out += fmt::format(" {} {}x{}{} |", ShOrderName(pick.choice.order), size, size,
                          pick.error <= target ? "" : " **miss**");
     }
     out += "\n";

@@ -113,7 +113,7 @@ void RunLevels(StabilityReport& report, std::span<const glm::dvec3> normals, con
     if (progress) progress("mip levels", i / steps);
     report.levels.push_back(
         MeasureLevels(environments[i].first, environments[i].second, *basis, normals, o.max_error, report.threads,
-                      *ParseErrorMetric(o.error_metric)));
+                      o.error_metric));
   }
   if (progress) progress("mip levels", environments.size() / steps);
   report.placement = MeasureSpotPlacement(report.placement_radius_degrees, *basis, normals);
@@ -256,7 +256,7 @@ std::string LevelsSection(const StabilityReport& r) {
       "between the level and the next finer one; no level 0, no ground truth) stays under E, every finer level "
       "included.\n\n| environment |",
       r.options.face_size, r.options.error_normals, kLevelErrorEstimateFactor,
-      ErrorMetricDescription(*ParseErrorMetric(r.options.error_metric)), r.options.error_metric);
+      ErrorMetricDescription(r.options.error_metric), ErrorMetricName(r.options.error_metric));
   std::string rule = "|---|";
   for (const LevelRow& row : r.levels.front().rows) {
     out += fmt::format(" {0}x{0} |", row.size);
@@ -441,7 +441,7 @@ GnuplotChart LevelsChart(const StabilityReport& r) {
   chart.script =
       "set logscale x 2\nset logscale y 10\nset xrange [*:*] reverse\nset grid\nset key outside right\n"
       "set format y '%g'\nset xlabel 'face size of the level'\nset ylabel " +
-      GnuplotQuote(fmt::format("{} error against level 0 (%)", r.options.error_metric)) + "\n"
+      GnuplotQuote(fmt::format("{} error against level 0 (%)", ErrorMetricName(r.options.error_metric))) + "\n"
       "set title 'Error added by coarse mip levels (dotted: 1 %, dashed: 0.5 %)'\nplot " + plots +
       ", 1 with lines dt 3 lc 'black' notitle, 0.5 with lines dt 2 lc 'black' notitle\n";
   return chart;
@@ -464,9 +464,6 @@ std::optional<std::string> CheckStabilityOptions(const StabilityOptions& options
   }
   if (options.error_normals < 16) return fmt::format("--error-normals {} is too few (>= 16)", options.error_normals);
   if (!(options.max_error > 0.0)) return fmt::format("--max-error {} must be > 0", options.max_error);
-  if (!ParseErrorMetric(options.error_metric)) {
-    return fmt::format("unknown error metric '{}' (use {})", options.error_metric, ErrorMetricNames());
-  }
   if (options.radii.empty() || !std::is_sorted(options.radii.rbegin(), options.radii.rend()) ||
       options.radii.back() <= 0.0 || options.radii.front() > 90.0) {
     return std::string("the radii must lie in (0, 90] degrees, largest first");
@@ -503,7 +500,7 @@ std::string FormatStabilityMarkdown(const StabilityReport& r) {
       "--max-error {:g} --error-metric {}` ({} threads). Every number below is recomputed by that command; the "
       "regression tests (tests/irradiance/report/stability_test.cc) check each finding at smaller sizes.\n\n",
       r.options.face_size, r.options.precision_face_size, r.options.error_normals, r.options.max_error,
-      r.options.error_metric, r.threads);
+      ErrorMetricName(r.options.error_metric), r.threads);
   out += SweepSection(r) + NonNegativeSection(r) + LevelsSection(r) + OrderChoiceSection(r) + PrecisionSection(r);
   out += "Time per section:";
   for (const auto& [name, seconds] : r.seconds) out += fmt::format(" {} {:.1f} s;", name, seconds);

@@ -12,17 +12,18 @@
 #include <string_view>
 #include <vector>
 
+#include "irradiance/io/environment_io.h"
 #include "irradiance/report/stability.h"
 #include "irradiance/sh/level_choice.h"
 
 namespace vs11::irradiance {
 
 struct StabilityOptions {
-  int face_size = 256;            // the sweep's and the level study's cube maps (a power of two)
+  int face_size = kDefaultFaceSize;  // the sweep's and the level study's cube maps (a power of two)
   int precision_face_size = 2048;  // float against double accumulation (a power of two)
   int error_normals = 1000;       // SphereNormals for every comparison
   double max_error = kDefaultMaxLevelError;  // the level pick's target
-  std::string error_metric{ErrorMetricName(kDefaultErrorMetric)};  // what max_error bounds (irrmap's --error-metric)
+  ErrorMetric error_metric = kDefaultErrorMetric;  // what max_error bounds (irrmap's --error-metric)
   // Light radii of the sweep, largest first; the spot's power stays that of SpotParams.
   std::vector<double> radii = {90, 80, 70, 60, 45, 30, 20, 15, 10, 7, 5, 3, 2, 1.5, 1, 0.5, 0.25};
   int threads = 0;  // 0: every core

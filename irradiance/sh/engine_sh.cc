@@ -13,7 +13,6 @@ namespace {
 
 struct FormatInfo {
   ShExportFormat format;
-  std::string_view name;
   std::string_view file_name;
   // The engine's world, for the convention text.
   std::string_view world;
@@ -82,17 +81,17 @@ constexpr EngineView kShaderCube = {
     kUnchanged};
 
 constexpr std::array<FormatInfo, 6> kFormats = {{
-    {ShExportFormat::kThree, "three", "sh_three.json", "three.js's world, right-handed, +Y up",
+    {ShExportFormat::kThree, "sh_three.json", "three.js's world, right-handed, +Y up",
      {&kThreeCubeTexture, &kThreeEquirect}, {&kThreeCubeRenderTarget, &kThreeCubeTexture}},
-    {ShExportFormat::kFilament, "filament", "sh_filament.txt", "Filament's world, right-handed, +Y up",
+    {ShExportFormat::kFilament, "sh_filament.txt", "Filament's world, right-handed, +Y up",
      {&kFilamentCmgen, &kFilamentCmgen}, {&kFilamentNoMirror, &kFilamentNoMirror}},
-    {ShExportFormat::kUnity, "unity", "sh_unity.json", "Unity's world, left-handed, +Y up",
+    {ShExportFormat::kUnity, "sh_unity.json", "Unity's world, left-handed, +Y up",
      {&kUnityCubemap, &kUnityPanoramic}, {nullptr, &kUnityCubemap}},
-    {ShExportFormat::kGltf, "gltf", "sh_gltf.json", "glTF's world, +Y up", {&kGltfCube, &kGltfCube},
+    {ShExportFormat::kGltf, "sh_gltf.json", "glTF's world, +Y up", {&kGltfCube, &kGltfCube},
      {nullptr, nullptr}},
-    {ShExportFormat::kGlsl, "glsl", "sh_irradiance.glsl", "the cube map's own, +Y up", {&kShaderCube, &kShaderCube},
+    {ShExportFormat::kGlsl, "sh_irradiance.glsl", "the cube map's own, +Y up", {&kShaderCube, &kShaderCube},
      {nullptr, nullptr}},
-    {ShExportFormat::kHlsl, "hlsl", "sh_irradiance.hlsl", "the cube map's own, +Y up", {&kShaderCube, &kShaderCube},
+    {ShExportFormat::kHlsl, "sh_irradiance.hlsl", "the cube map's own, +Y up", {&kShaderCube, &kShaderCube},
      {nullptr, nullptr}},
 }};
 
@@ -273,21 +272,6 @@ std::string ShaderText(ShExportFormat format, ShSourceKind kind, const Sh9Rgb& s
 }
 
 }  // namespace
-
-std::string_view ShExportFormatName(ShExportFormat format) { return Info(format).name; }
-
-std::optional<ShExportFormat> ParseShExportFormat(std::string_view name) {
-  for (const FormatInfo& info : kFormats) {
-    if (info.name == name) return info.format;
-  }
-  return std::nullopt;
-}
-
-std::string ShExportFormatNames() {
-  std::string out;
-  for (const FormatInfo& info : kFormats) out += fmt::format("{}{}", out.empty() ? "" : ", ", info.name);
-  return out;
-}
 
 std::string_view ShExportFileName(ShExportFormat format) { return Info(format).file_name; }
 

@@ -37,6 +37,7 @@
 #include <glm/glm.hpp>
 
 #include "irradiance/sh/sh9.h"
+#include "vm/core/name_table.h"
 
 namespace vs11::irradiance {
 
@@ -45,10 +46,12 @@ inline constexpr std::array<ShExportFormat, 6> kAllShExportFormats = {
     ShExportFormat::kThree, ShExportFormat::kFilament, ShExportFormat::kUnity,
     ShExportFormat::kGltf,  ShExportFormat::kGlsl,     ShExportFormat::kHlsl};
 
-// "three", "filament", "unity", "gltf", "glsl", "hlsl" and back (nullopt for another name).
-std::string_view ShExportFormatName(ShExportFormat format);
-std::optional<ShExportFormat> ParseShExportFormat(std::string_view name);
-std::string ShExportFormatNames();  // "three, filament, unity, gltf, glsl, hlsl"
+// The names of --sh-export.
+inline constexpr NameTable kShExportFormatNames("--sh-export format", {
+    Choice(ShExportFormat::kThree, "three"), Choice(ShExportFormat::kFilament, "filament"),
+    Choice(ShExportFormat::kUnity, "unity"), Choice(ShExportFormat::kGltf, "gltf"),
+    Choice(ShExportFormat::kGlsl, "glsl"), Choice(ShExportFormat::kHlsl, "hlsl")});
+inline std::string_view ShExportFormatName(ShExportFormat format) { return kShExportFormatNames.Name(format); }
 // sh_three.json, sh_filament.txt, sh_unity.json, sh_gltf.json, sh_irradiance.glsl, sh_irradiance.hlsl
 std::string_view ShExportFileName(ShExportFormat format);
 

@@ -212,31 +212,6 @@ ErrorStats CompareIrradiance(std::span<const glm::dvec3> estimate, std::span<con
   return stats;
 }
 
-std::string_view ErrorMetricName(ErrorMetric metric) {
-  switch (metric) {
-    case ErrorMetric::kRelative: return "relative";
-    case ErrorMetric::kPeak: return "peak";
-    case ErrorMetric::kRms: return "rms";
-  }
-  return "?";
-}
-
-std::optional<ErrorMetric> ParseErrorMetric(std::string_view name) {
-  for (ErrorMetric metric : kAllErrorMetrics) {
-    if (ErrorMetricName(metric) == name) return metric;
-  }
-  return std::nullopt;
-}
-
-std::string ErrorMetricNames() {
-  std::string names;
-  for (ErrorMetric metric : kAllErrorMetrics) {
-    if (!names.empty()) names += '|';
-    names += ErrorMetricName(metric);
-  }
-  return names;
-}
-
 double ErrorFigure(const ErrorStats& stats, ErrorMetric metric) {
   switch (metric) {
     case ErrorMetric::kRelative: return stats.max_relative;

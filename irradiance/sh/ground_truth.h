@@ -12,6 +12,7 @@
 #include <glm/glm.hpp>
 
 #include "irradiance/io/cube_map.h"
+#include "vm/core/name_table.h"
 #include "vm/core/thread_pool.h"
 #include "vm/reference/sphere_normals.h"
 
@@ -69,10 +70,11 @@ inline constexpr ErrorMetric kAllErrorMetrics[] = {ErrorMetric::kRelative, Error
 // black (the relative error is not: behind a single light it measures the darkest normals), and
 // unlike RMS it bounds every normal, so a small light's lobe cannot hide in an average.
 inline constexpr ErrorMetric kDefaultErrorMetric = ErrorMetric::kPeak;
-std::string_view ErrorMetricName(ErrorMetric metric);  // "relative", "peak", "rms"
-std::optional<ErrorMetric> ParseErrorMetric(std::string_view name);
-// "relative|peak|rms"
-std::string ErrorMetricNames();
+inline constexpr NameTable kErrorMetricNames("error metric", {
+    Choice(ErrorMetric::kRelative, "relative", "the worst |E - E*| / E* per normal, floor 1 % of the peak"),
+    Choice(ErrorMetric::kPeak, "peak", "max |E - E*| / max E*"),
+    Choice(ErrorMetric::kRms, "rms", "RMS of E - E* / mean E*")});
+inline std::string_view ErrorMetricName(ErrorMetric metric) { return kErrorMetricNames.Name(metric); }
 double ErrorFigure(const ErrorStats& stats, ErrorMetric metric);
 // What the figure is, for labels: "max relative error", "peak error (max |E - E*| / max E*)", ...
 std::string_view ErrorMetricDescription(ErrorMetric metric);

@@ -17,23 +17,6 @@ double BandNorm(const Sh9Rgb& sh, int band, int channel) {
   return std::sqrt(sum);
 }
 
-std::string_view ShWindowName(ShWindow window) {
-  switch (window) {
-    case ShWindow::kNone: return "none";
-    case ShWindow::kHanning: return "hanning";
-    case ShWindow::kLanczos: return "lanczos";
-    case ShWindow::kDering: return "dering";
-    case ShWindow::kNonNegative: return "nonneg";
-  }
-  return "none";
-}
-
-std::optional<ShWindow> ParseShWindow(std::string_view name) {
-  for (ShWindow window :
-       {ShWindow::kNone, ShWindow::kHanning, ShWindow::kLanczos, ShWindow::kDering, ShWindow::kNonNegative}) {
-    if (ShWindowName(window) == name) return window;
-  }
-  return std::nullopt;
 }
 
 std::array<double, kSh9Bands> ShWindowFactors(ShWindow window, double width) {

@@ -9,6 +9,7 @@
 
 #include <glm/glm.hpp>
 
+#include "vm/core/name_table.h"
 #include "vm/reference/sh9.h"
 
 namespace vs11::irradiance {
@@ -33,9 +34,13 @@ enum class ShWindow {
                  // irradiance that is non-negative everywhere (FitNonNegative, irradiance/sh/nonneg_fit.h)
 };
 
-// "none", "hanning", "lanczos", "dering", "nonneg".
-std::string_view ShWindowName(ShWindow window);
-std::optional<ShWindow> ParseShWindow(std::string_view name);
+inline constexpr NameTable kShWindowNames("window", {
+    Choice(ShWindow::kNone, "none"), Choice(ShWindow::kHanning, "hanning"),
+    Choice(ShWindow::kLanczos, "lanczos", "of --window-width bands"),
+    Choice(ShWindow::kDering, "dering", "the mildest window that makes the irradiance non-negative"),
+    Choice(ShWindow::kNonNegative, "nonneg",
+           "not a window: the nearest nine terms whose irradiance is non-negative everywhere")});
+inline std::string_view ShWindowName(ShWindow window) { return kShWindowNames.Name(window); }
 
 // w_0, w_1, w_2 of kHanning or kLanczos for a width > 0 (asserted) in bands; 1, 1, 1 for kNone.
 // A width of 3 (l_max + 1) is the narrowest that keeps band 2; larger widths attenuate less.

@@ -1,7 +1,9 @@
 """vs11.irradiance: project and irradiance_map against irrmap's own outputs and physics (batch: test_batch.py)."""
 import importlib.util
 import json
+import inspect
 import math
+import re
 import subprocess
 
 import numpy as np
@@ -143,3 +145,24 @@ def test_bad_options_and_files_are_value_errors(tmp_path):
         vs11.irradiance.project(str(tmp_path / "missing.hdr"))
     with pytest.raises(ValueError, match="unknown order"):
         vs11.irradiance.project("sky", face_size=8, order="order9")
+
+
+@pytest.mark.parametrize("argument,names", [
+    ("layout", vs11.irradiance.LAYOUTS), ("order", vs11.irradiance.ORDERS),
+    ("window", vs11.irradiance.WINDOWS), ("error_metric", vs11.irradiance.ERROR_METRICS)])
+def test_an_unknown_choice_lists_the_names_irrmap_accepts(argument, names):
+    listed = ", ".join(names[:-1]) + " or " + names[-1]
+    for call in (lambda: vs11.irradiance.project("sky", face_size=8, **{argument: "bogus"}),
+                 lambda: vs11.irradiance.irradiance_map("sky", face_size=8, map_size=2, **{argument: "bogus"}),
+                 lambda: vs11.irradiance.batch(["sky.exr"], **{argument: "bogus"})):
+        with pytest.raises(ValueError, match=re.escape("%s='bogus': unknown " % argument) + ".*" +
+                           re.escape("'bogus' (use %s)" % listed)):
+            call()
+
+
+def test_defaults_come_from_the_module():
+    defaults = vs11.irradiance.DEFAULTS
+    assert defaults["order"] == "auto" and defaults["order"] in vs11.irradiance.ORDERS
+    assert defaults["batch_order"] in vs11.irradiance.ORDERS and defaults["window"] in vs11.irradiance.WINDOWS
+    assert inspect.signature(vs11.irradiance.project).parameters["max_error"].default == defaults["max_error"]
+    assert inspect.signature(vs11.irradiance.batch).parameters["order"].default == defaults["batch_order"]

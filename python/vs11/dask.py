@@ -32,6 +32,8 @@ from dask import distributed as _distributed
 
 from . import irradiance as _irradiance
 
+_DEFAULTS = _irradiance.DEFAULTS
+
 PART_PATTERN = re.compile(r"^part-(\d+)-[0-9a-f]+\.jsonl$")
 FAILED_PATTERN = re.compile(r"^failed-(\d+)-(?:[0-9a-f]+|task)\.jsonl$")
 
@@ -103,11 +105,11 @@ def label_dataset(
     resume: bool = True,
     progress: Union[bool, Callable[[int, int], None]] = True,
     threads: int = 1,
-    layout: str = "auto",
-    face_size: int = 256,
+    layout: str = _DEFAULTS["layout"],
+    face_size: int = _DEFAULTS["face_size"],
     level: Optional[int] = None,
-    max_error: float = 0.005,
-    error_metric: str = "peak",
+    max_error: float = _DEFAULTS["max_error"],
+    error_metric: str = _DEFAULTS["error_metric"],
 ) -> LabelSummary:
     """Labels every input on the cluster `client` is connected to, one part file per task, and
     returns a LabelSummary once every task is done.

@@ -29,11 +29,11 @@ def label_dataset(
     resume: bool = True,
     progress: Union[bool, Callable[[int, int], None]] = True,
     threads: int = 1,
-    layout: str = "auto",
-    face_size: int = 256,
+    layout: str = ...,
+    face_size: int = ...,
     level: Optional[int] = None,
-    max_error: float = 0.005,
-    error_metric: str = "peak",
+    max_error: float = ...,
+    error_metric: str = ...,
 ) -> LabelSummary:
     """Labels every input (paths, patterns or a dask Bag) on a distributed cluster: one atomically
     written part-*.jsonl per task, failed inputs recorded in failed-*.jsonl, resumable."""

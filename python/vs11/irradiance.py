@@ -19,6 +19,14 @@ from ._vs11 import irradiance as _irradiance
 Projection = _irradiance.Projection
 irradiance_map = _irradiance.irradiance_map
 builtin_environments = _irradiance.builtin_environments
+# The names irrmap's --layout, --order, --window and --error-metric accept, and its defaults: the
+# module's own, read from its tables instead of repeated here.
+LAYOUTS = _irradiance.LAYOUTS
+ORDERS = _irradiance.ORDERS
+WINDOWS = _irradiance.WINDOWS
+ERROR_METRICS = _irradiance.ERROR_METRICS
+DEFAULTS = _irradiance.DEFAULTS
+_DEFAULTS = DEFAULTS
 
 CONSTANT_NAMES = ("cAr", "cAg", "cAb", "cBr", "cBg", "cBb", "cC")
 _ARRAY_FIELDS = ("coefficients", "constants")
@@ -26,14 +34,14 @@ _ARRAY_FIELDS = ("coefficients", "constants")
 
 def project(
     environment: Any,
-    layout: str = "auto",
-    face_size: int = 256,
+    layout: str = _DEFAULTS["layout"],
+    face_size: int = _DEFAULTS["face_size"],
     level: Optional[int] = None,
-    max_error: float = 0.005,
-    order: str = "auto",
-    window: str = "none",
-    error_metric: str = "peak",
-    window_width: float = 4.0,
+    max_error: float = _DEFAULTS["max_error"],
+    order: str = _DEFAULTS["order"],
+    window: str = _DEFAULTS["window"],
+    error_metric: str = _DEFAULTS["error_metric"],
+    window_width: float = _DEFAULTS["window_width"],
 ) -> Projection:
     result = _irradiance.project(environment, layout, face_size, level, max_error, order, window, error_metric,
                                  window_width)
@@ -87,14 +95,14 @@ class Dataset:
 def batch(
     inputs: Iterable[Any],
     threads: int = 0,
-    layout: str = "auto",
-    face_size: int = 256,
+    layout: str = _DEFAULTS["layout"],
+    face_size: int = _DEFAULTS["face_size"],
     level: Optional[int] = None,
-    max_error: float = 0.005,
-    order: str = "order2",
-    window: str = "none",
-    error_metric: str = "peak",
-    window_width: float = 4.0,
+    max_error: float = _DEFAULTS["max_error"],
+    order: str = _DEFAULTS["batch_order"],
+    window: str = _DEFAULTS["window"],
+    error_metric: str = _DEFAULTS["error_metric"],
+    window_width: float = _DEFAULTS["window_width"],
 ) -> Dataset:
     """Labels a dataset: every input projected as project() does, on `threads` threads; a Dataset.
 
@@ -130,14 +138,14 @@ def batch(
 def iter_batch(
     inputs: Iterable[Any],
     threads: int = 0,
-    layout: str = "auto",
-    face_size: int = 256,
+    layout: str = _DEFAULTS["layout"],
+    face_size: int = _DEFAULTS["face_size"],
     level: Optional[int] = None,
-    max_error: float = 0.005,
-    order: str = "order2",
-    window: str = "none",
-    error_metric: str = "peak",
-    window_width: float = 4.0,
+    max_error: float = _DEFAULTS["max_error"],
+    order: str = _DEFAULTS["batch_order"],
+    window: str = _DEFAULTS["window"],
+    error_metric: str = _DEFAULTS["error_metric"],
+    window_width: float = _DEFAULTS["window_width"],
 ) -> Generator[dict[str, Any], None, None]:
     """batch() as a stream: yields each input's record as it finishes (files first, in the order they
     finish, then arrays), holding nothing but the records not yet taken. Arguments as batch().

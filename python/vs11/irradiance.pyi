@@ -25,17 +25,23 @@ class Projection:
 
 CONSTANT_NAMES: tuple[str, ...]  # ('cAr', 'cAg', 'cAb', 'cBr', 'cBg', 'cBb', 'cC'): the rows of constants
 
+LAYOUTS: tuple[str, ...]  # irrmap's --layout names
+ORDERS: tuple[str, ...]  # 'auto' and the programs' names
+WINDOWS: tuple[str, ...]
+ERROR_METRICS: tuple[str, ...]
+DEFAULTS: dict[str, Any]  # every argument's default: layout, face_size, max_error, order, batch_order, ...
+
 def builtin_environments() -> list[str]: ...
 def project(
     environment: Environment,
-    layout: str = "auto",
-    face_size: int = 256,
+    layout: str = ...,
+    face_size: int = ...,
     level: Optional[int] = None,
-    max_error: float = 0.005,
-    order: str = "auto",
-    window: str = "none",
-    error_metric: str = "peak",
-    window_width: float = 4.0,
+    max_error: float = ...,
+    order: str = ...,
+    window: str = ...,
+    error_metric: str = ...,
+    window_width: float = ...,
 ) -> Projection:
     """Nine SH coefficients per channel and the seven constants, as `irrmap --coefficients-only`.
 
@@ -45,16 +51,16 @@ def project(
 
 def irradiance_map(
     environment: Environment,
-    layout: str = "auto",
-    face_size: int = 256,
+    layout: str = ...,
+    face_size: int = ...,
     level: Optional[int] = None,
-    max_error: float = 0.005,
-    order: str = "auto",
-    window: str = "none",
-    map_size: int = 32,
-    engine: str = "jit",
-    error_metric: str = "peak",
-    window_width: float = 4.0,
+    max_error: float = ...,
+    order: str = ...,
+    window: str = ...,
+    map_size: int = ...,
+    engine: str = ...,
+    error_metric: str = ...,
+    window_width: float = ...,
 ) -> npt.NDArray[np.float32]:
     """The (6, map_size, map_size, 3) irradiance cube map irrmap writes as irradiance.exr."""
 
@@ -74,14 +80,14 @@ BatchInput = Union[str, os.PathLike[str], npt.NDArray[Union[np.float32, np.float
 def batch(
     inputs: Iterable[BatchInput],
     threads: int = 0,
-    layout: str = "auto",
-    face_size: int = 256,
+    layout: str = ...,
+    face_size: int = ...,
     level: Optional[int] = None,
-    max_error: float = 0.005,
-    order: str = "order2",
-    window: str = "none",
-    error_metric: str = "peak",
-    window_width: float = 4.0,
+    max_error: float = ...,
+    order: str = ...,
+    window: str = ...,
+    error_metric: str = ...,
+    window_width: float = ...,
 ) -> Dataset:
     """Labels a dataset (paths, glob patterns, arrays) as project() labels one input: a Dataset.
 
@@ -92,14 +98,14 @@ def batch(
 def iter_batch(
     inputs: Iterable[BatchInput],
     threads: int = 0,
-    layout: str = "auto",
-    face_size: int = 256,
+    layout: str = ...,
+    face_size: int = ...,
     level: Optional[int] = None,
-    max_error: float = 0.005,
-    order: str = "order2",
-    window: str = "none",
-    error_metric: str = "peak",
-    window_width: float = 4.0,
+    max_error: float = ...,
+    order: str = ...,
+    window: str = ...,
+    error_metric: str = ...,
+    window_width: float = ...,
 ) -> Generator[dict[str, Any], None, None]:
     """batch() as a stream of `irrmap batch`'s records (JSON-ready dicts) as the inputs finish.
 

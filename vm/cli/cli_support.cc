@@ -11,6 +11,7 @@
 #include "vm/cli/commands.h"
 #include "vm/cli/parse_command_line.h"
 #include "vm/core/input_file.h"
+#include "vm/core/thread_pool.h"
 #include "vm/engines/engine_factory.h"
 #include "vm/gl/gl_context.h"
 #include "vm/gl/gl_engine.h"
@@ -75,7 +76,7 @@ void EngineFlags::AddTo(CLI::App& command) {
                      "Execution engine: " + EngineDescriptions() + "; the CPU engines give the same bits")
       ->check(CLI::IsMember(EngineSpellings()))
       ->capture_default_str();
-  command.add_option("--threads", threads, "Threads for the batch and jit engines")->check(CLI::Range(1, 256))->capture_default_str();
+  command.add_option("--threads", threads, "Threads for the batch and jit engines")->check(CLI::Range(1, kMaxThreadsOption))->capture_default_str();
   command.add_option("--gl-device", gl_device,
                      "EGL device for --engine gl: 'list' prints them; N picks one (default: Mesa's llvmpipe)")
       ->check([](const std::string& value) {

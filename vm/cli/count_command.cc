@@ -10,6 +10,7 @@
 
 #include "vm/cli/cli_support.h"
 #include "vm/cli/commands.h"
+#include "vm/core/thread_pool.h"
 #include "vm/engines/engine_factory.h"
 #include "vm/reference/sphere_normals.h"
 
@@ -80,7 +81,7 @@ void AddCountCommand(CLI::App& app) {
   command->add_option("programs", args->programs, "Programs (.vsh or .vso; - reads standard input)")->required();
   command->add_flag("--json", args->json, "Print a JSON array of objects instead of a table");
   command->add_flag("--no-timing", args->no_timing, "Skip the timed runs");
-  command->add_option("--threads", args->threads, "Threads for the batch and jit engines")->check(CLI::Range(1, 256));
+  command->add_option("--threads", args->threads, "Threads for the batch and jit engines")->check(CLI::Range(1, kMaxThreadsOption));
   args->flags.AddTo(*command);
   command->callback([args] {
     nlohmann::json rows = nlohmann::json::array();

@@ -4,6 +4,7 @@
 
 #include <fmt/format.h>
 
+#include "vm/cli/choice_option.h"
 #include "vm/cli/cli_support.h"
 #include "vm/cli/commands.h"
 #include "vm/cli/parse_command_line.h"
@@ -14,7 +15,10 @@ namespace vs11::cli {
 
 void AddTranslateCommand(CLI::App& app) {
   struct Args {
-    std::string input, output = "-", target, clip, stage = "vertex";
+    std::string input, output = "-";
+    translate::Target target = translate::Target::kGlsl330;
+    std::optional<translate::ClipSpace> clip;  // nullopt: the target API's
+    translate::Stage stage = translate::Stage::kVertex;
     ProgramFlags flags;
     FloatRulesFlag float_rules;
   };
@@ -42,43 +46,37 @@ void AddTranslateCommand(CLI::App& app) {
       "  vs11 translate programs/sh9_irradiance.vsh --to glsles310 --stage compute -o sh9.comp\n"
       "  vs11 translate programs/sh9_irradiance.vsh --to spirv --stage compute -o sh9_comp.spv");
   command->add_option("input", args->input, "Program (.vsh source or .vso bytecode; - reads standard input)")->required();
-  command->add_option("--to", args->target,
-                      "Target: glsl330, glsles300, glsles310, glsles320 (every output precise: no fused multiply-adds) "
-                      "or spirv")
+  AddChoiceOption(*command, "--to", args->target, translate::kTargetNames, "Target: " + translate::kTargetNames.Help())
       ->required()
-      ->check(CLI::IsMember({"glsl330", "glsles300", "glsles310", "glsles320", "spirv"}));
-  command->add_option("--stage", args->stage,
-                      "vertex (a vertex shader) or compute (a compute shader over storage buffers; glsles310, "
-                      "glsles320 or spirv)")
-      ->check(CLI::IsMember({"vertex", "compute"}))
+      ->default_str("");
+  AddChoiceOption(*command, "--stage", args->stage, translate::kStageNames, "Stage: " + translate::kStageNames.Help())
       ->capture_default_str();
   command->add_option("-o,--output", args->output, "File to write; - for stdout (GLSL only)")->capture_default_str();
-  command->add_option("--clip", args->clip,
-                      "gl_Position's clip space: d3d (as written), gl (z' = 2z - w) or vulkan (y' = -y); default: gl "
-                      "for the GLSL targets, vulkan for spirv")
-      ->check(CLI::IsMember({"d3d", "gl", "vulkan"}));
+  AddChoiceOption(*command, "--clip", args->clip, translate::kClipSpaceNames, "",
+                  "gl_Position's clip space: " + translate::kClipSpaceNames.Help() +
+                      "; default: gl for the GLSL targets, vulkan for spirv");
   args->flags.AddTo(*command);
   args->float_rules.AddTo(*command);
   command->callback([args] {
     translate::TranslateOptions options;
-    options.target = *translate::TargetFromName(args->target);
+    options.target = args->target;
     if (options.target == translate::Target::kSpirv && args->output == "-") {
       std::fputs("vs11: error: --to spirv writes a binary: name a file with -o\n", stderr);
       throw CommandFailure{kUsageErrorStatus};
     }
-    options.stage = *translate::StageFromName(args->stage);
+    options.stage = args->stage;
     if (std::optional<std::string> problem = translate::StageProblem(options.target, options.stage)) {
       std::fprintf(stderr, "vs11: error: --stage compute: %s\n", problem->c_str());
       throw CommandFailure{kUsageErrorStatus};
     }
-    if (options.stage == translate::Stage::kCompute && !args->clip.empty()) {
+    if (options.stage == translate::Stage::kCompute && args->clip) {
       std::fputs("warning: --clip applies to the vertex stage only; a compute shader writes oPos as the program does\n",
                  stderr);
     }
     CheckInputsAndOutputs({args->input}, {args->output});
     Program program = LoadProgramOrFail(args->input, args->flags);
     options.constant_count = args->flags.constant_count;
-    if (!args->clip.empty()) options.clip = *translate::ClipSpaceFromName(args->clip);
+    if (args->clip) options.clip = *args->clip;
     options.float_rules = args->float_rules.Rules();
     options.source_name = args->input;
     translate::Artifact artifact = translate::Translate(program, options);

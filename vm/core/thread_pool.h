@@ -20,6 +20,9 @@
 
 namespace vs11 {
 
+// The most threads a caller may ask the engines for (the tools' --threads, the Python module's threads=).
+inline constexpr int kMaxThreadsOption = 256;
+
 class ThreadPool {
  public:
   // A pool whose calls run on up to `threads` threads: the caller and `threads - 1` workers

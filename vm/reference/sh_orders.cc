@@ -14,10 +14,10 @@ namespace vs11 {
 namespace {
 
 constexpr std::array<ShOrderInfo, 4> kInfos = {{
-    {ShOrder::kOrder0, "order0", "sh_order0.vsh", 1, 1, 0.0},
-    {ShOrder::kOrder1, "order1", "sh_order1.vsh", 3, 3, 1.0},
-    {ShOrder::kZh3, "zh3", "sh_zh3.vsh", 6, 5, 1.5},
-    {ShOrder::kOrder2, "order2", "sh9_irradiance.vsh", 11, 7, 2.0},
+    {ShOrder::kOrder0, "sh_order0.vsh", 1, 1, 0.0},
+    {ShOrder::kOrder1, "sh_order1.vsh", 3, 3, 1.0},
+    {ShOrder::kZh3, "sh_zh3.vsh", 6, 5, 1.5},
+    {ShOrder::kOrder2, "sh9_irradiance.vsh", 11, 7, 2.0},
 }};
 // Rec. 709 luminance weights, as ZH3's shared axis uses.
 constexpr glm::dvec3 kLuminance{0.2126, 0.7152, 0.0722};
@@ -57,19 +57,6 @@ const ShOrderInfo& Info(ShOrder order) {
   }
   assert(false);
   return kInfos.back();
-}
-
-std::optional<ShOrder> ParseShOrder(std::string_view name) {
-  for (const ShOrderInfo& info : kInfos) {
-    if (info.name == name) return info.order;
-  }
-  return std::nullopt;
-}
-
-std::string ShOrderNames() {
-  std::string out;
-  for (const ShOrderInfo& info : kInfos) out += (out.empty() ? "" : ", ") + std::string(info.name);
-  return out;
 }
 
 glm::dvec3 Zh3Axis(const Sh9Rgb& sh) {

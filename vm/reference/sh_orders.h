@@ -25,6 +25,7 @@
 
 #include <glm/glm.hpp>
 
+#include "vm/core/name_table.h"
 #include "vm/reference/sh9.h"
 
 namespace vs11 {
@@ -43,18 +44,21 @@ enum class ShOrder { kOrder0, kOrder1, kZh3, kOrder2 };
 inline constexpr std::array<ShOrder, 4> kAllShOrders = {ShOrder::kOrder0, ShOrder::kOrder1, ShOrder::kZh3,
                                                         ShOrder::kOrder2};
 
+// The names of --order and coeffs.json.
+inline constexpr NameTable kShOrderNames("order", {
+    Choice(ShOrder::kOrder0, "order0", "1 slot, constant"), Choice(ShOrder::kOrder1, "order1", "3 slots, bands 0-1"),
+    Choice(ShOrder::kZh3, "zh3", "6 slots, bands 0-1 plus one zonal band-2 term"),
+    Choice(ShOrder::kOrder2, "order2", "the paper's 11 slots")});
+inline std::string_view ShOrderName(ShOrder order) { return kShOrderNames.Name(order); }
+
 struct ShOrderInfo {
   ShOrder order;
-  std::string_view name;          // "order0", "order1", "zh3", "order2" (--order, coeffs.json)
   std::string_view program_file;  // in programs/
   int slots = 0;                  // instruction slots per vertex (ComputeStats; a test checks them)
   int constant_registers = 0;     // c0.. that the program reads
   double sh_order = 0;            // highest band used: 0, 1, 1.5 (ZH3: one band-2 term), 2
 };
 const ShOrderInfo& Info(ShOrder order);
-std::optional<ShOrder> ParseShOrder(std::string_view name);
-// "order0, order1, zh3, order2".
-std::string ShOrderNames();
 
 // The ZH3 axis: the unit direction (x, y, z) of the luminance (Rec. 709 weights) of the linear
 // band, (L11, L1-1, L10); +z when that is zero (the zonal term is then along an arbitrary axis,

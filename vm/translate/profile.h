@@ -11,18 +11,25 @@
 #include <string_view>
 #include <vector>
 
+#include "vm/core/name_table.h"
+
 namespace vs11::translate {
 
 enum class Target { kGlsl330, kGlslEs300, kGlslEs310, kGlslEs320, kSpirv };
-// "glsl330" | "glsles300" | "glsles310" | "glsles320" | "spirv"
-std::optional<Target> TargetFromName(std::string_view name);
-std::string_view TargetName(Target target);
+inline constexpr NameTable kTargetNames("target", {
+    Choice(Target::kGlsl330, "glsl330"), Choice(Target::kGlslEs300, "glsles300"),
+    Choice(Target::kGlslEs310, "glsles310", "compute shaders; no precise"),
+    Choice(Target::kGlslEs320, "glsles320", "every output precise: no fused multiply-adds"),
+    Choice(Target::kSpirv, "spirv")});
+inline std::string_view TargetName(Target target) { return kTargetNames.Name(target); }
 
 // The shader the program becomes: a vertex shader (attributes in, outputs to the next stage) or a
 // compute shader over storage buffers (compute_interface.h), one invocation per vertex.
 enum class Stage { kVertex, kCompute };
-std::optional<Stage> StageFromName(std::string_view name);  // "vertex" | "compute"
-std::string_view StageName(Stage stage);
+inline constexpr NameTable kStageNames("stage", {
+    Choice(Stage::kVertex, "vertex", "a vertex shader"),
+    Choice(Stage::kCompute, "compute", "a compute shader over storage buffers; glsles310, glsles320 or spirv")});
+inline std::string_view StageName(Stage stage) { return kStageNames.Name(stage); }
 // Why `target` cannot hold a shader of `stage` (GLSL 3.30 and GLSL ES 3.00 have no compute shaders);
 // nullopt where it can.
 std::optional<std::string> StageProblem(Target target, Stage stage);

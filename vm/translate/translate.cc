@@ -352,13 +352,6 @@ class Writer {
 
 }  // namespace
 
-std::optional<ClipSpace> ClipSpaceFromName(std::string_view name) {
-  if (name == "d3d") return ClipSpace::kD3d;
-  if (name == "gl") return ClipSpace::kGl;
-  if (name == "vulkan") return ClipSpace::kVulkan;
-  return std::nullopt;
-}
-
 OutputVariable OutputVariableOf(int slot, bool exact_on_driver) {
   for (const OutputDeclaration& output : OutputVariables()) {
     if (output.slot == slot) return {output.name, output.scalar && !exact_on_driver ? 1 : 4};

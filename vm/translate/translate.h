@@ -8,6 +8,7 @@
 
 #include <string>
 
+#include "vm/core/name_table.h"
 #include "vm/core/float_rules.h"
 #include "vm/core/isa.h"
 #include "vm/core/program.h"
@@ -19,7 +20,10 @@ namespace vs11::translate {
 // target API's (GL: z from [0, w] to [-w, w]; Vulkan: y negated). kTargetApi is GL's for the GLSL
 // targets and Vulkan's for SPIR-V.
 enum class ClipSpace { kTargetApi, kD3d, kGl, kVulkan };
-std::optional<ClipSpace> ClipSpaceFromName(std::string_view name);  // "d3d" | "gl" | "vulkan"
+// The names of --clip (kTargetApi, the default, has none).
+inline constexpr NameTable kClipSpaceNames("clip space", {
+    Choice(ClipSpace::kD3d, "d3d", "as written"), Choice(ClipSpace::kGl, "gl", "z' = 2z - w"),
+    Choice(ClipSpace::kVulkan, "vulkan", "y' = -y")});
 
 struct TranslateOptions {
   Target target = Target::kGlsl330;

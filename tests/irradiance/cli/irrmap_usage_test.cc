@@ -65,6 +65,32 @@ TEST_F(IrrmapUsage, EveryBadOptionValueOfEverySubcommandExitsTwo) {
   }
 }
 
+// Every choice flag of every subcommand parses with its name table: an unknown name is a usage error
+// that lists the valid names.
+TEST_F(IrrmapUsage, AnUnknownChoiceListsTheValidNames) {
+  const std::string out = fmt::format("--out '{}' ", Path("out").string());
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"--layout bogus", "unknown layout 'bogus' (use auto, faces, hcross, vcross, hstrip, vstrip, latlong or angular)"},
+      {"--error-metric x", "unknown error metric 'x' (use relative, peak or rms)"},
+      {"--order x", "unknown order 'x' (use auto, order0, order1, zh3 or order2)"},
+      {"--window x", "unknown window 'x' (use none, hanning, lanczos, dering or nonneg)"},
+      {"--map-format png", "unknown map format 'png' (use exr, dds, ktx2, ktx or hdr-faces)"},
+      {"--sh-export three,foo", "unknown --sh-export format 'foo' (use three, filament, unity, gltf, glsl or hlsl)"},
+      {"batch x -o y --layout bogus", "unknown layout 'bogus' (use auto, "},
+      {"batch x -o y --order x", "unknown order 'x' (use auto, order0, "},
+      {"batch x -o y --window x", "unknown window 'x' (use none, "},
+      {"batch x -o y --error-metric x", "unknown error metric 'x' (use relative, "},
+      {"chart sky --layout bogus", "unknown layout 'bogus' (use auto, "},
+      {"chart sky --error-metric x", "unknown error metric 'x' (use relative, "},
+      {"stability --error-metric x", "unknown error metric 'x' (use relative, "}};
+  for (const auto& [command, message] : cases) {
+    const CommandResult run = RunIrrmap(command.starts_with("batch") ? command : command + " " + out);
+    EXPECT_EQ(run.status, 2) << command << "\n" << run.output;
+    EXPECT_THAT(run.output, HasSubstr(message)) << command;
+  }
+  EXPECT_FALSE(fs::exists(Path("out")));
+}
+
 TEST_F(IrrmapUsage, AnOutputPathThatIsAFileFailsBeforeAnyWork) {
   WriteBytes(Path("afile"), "not a folder");
   for (const std::string& command :

@@ -296,14 +296,14 @@ TEST_F(CubeTextureWriters, Ktx2OfOddAndSingleTexelFacesStaysValid) {
 }
 
 TEST(MapFileFormats, NamesFilesAndRefusesOthers) {
-  EXPECT_EQ(ParseMapFileFormat("exr"), MapFileFormat::kExr);
-  EXPECT_EQ(ParseMapFileFormat("dds"), MapFileFormat::kDds);
-  EXPECT_EQ(ParseMapFileFormat("ktx2"), MapFileFormat::kKtx2);
-  EXPECT_EQ(ParseMapFileFormat("ktx1"), std::nullopt);
-  EXPECT_EQ(ParseMapFileFormat("DDS"), std::nullopt);
-  EXPECT_EQ(ParseMapFileFormat("hdr-faces"), MapFileFormat::kHdrFaces);
-  EXPECT_EQ(ParseMapFileFormat("hdr"), std::nullopt);
-  EXPECT_EQ(ParseMapFileFormat("ktx"), MapFileFormat::kKtx);
+  EXPECT_EQ(kMapFileFormatNames.Find("exr"), MapFileFormat::kExr);
+  EXPECT_EQ(kMapFileFormatNames.Find("dds"), MapFileFormat::kDds);
+  EXPECT_EQ(kMapFileFormatNames.Find("ktx2"), MapFileFormat::kKtx2);
+  EXPECT_EQ(kMapFileFormatNames.Find("ktx1"), std::nullopt);
+  EXPECT_EQ(kMapFileFormatNames.Find("DDS"), std::nullopt);
+  EXPECT_EQ(kMapFileFormatNames.Find("hdr-faces"), MapFileFormat::kHdrFaces);
+  EXPECT_EQ(kMapFileFormatNames.Find("hdr"), std::nullopt);
+  EXPECT_EQ(kMapFileFormatNames.Find("ktx"), MapFileFormat::kKtx);
   for (MapFileFormat format : {MapFileFormat::kExr, MapFileFormat::kDds, MapFileFormat::kKtx2, MapFileFormat::kKtx}) {
     EXPECT_THAT(IrradianceMapFileNames(format),
                 testing::ElementsAre("irradiance." + std::string(MapFileFormatName(format))));

@@ -76,16 +76,16 @@ TEST(EnvironmentIoLayout, NamesParseBackToTheSameLayout) {
         EnvironmentLayout::kVerticalCross, EnvironmentLayout::kHorizontalStrip,
         EnvironmentLayout::kVerticalStrip, EnvironmentLayout::kLatLong,
         EnvironmentLayout::kAngular}) {
-    EXPECT_EQ(ParseLayout(LayoutName(layout)), layout) << LayoutName(layout);
+    EXPECT_EQ(kLayoutNames.Find(LayoutName(layout)), layout) << LayoutName(layout);
   }
-  EXPECT_EQ(ParseLayout("hcross"), EnvironmentLayout::kHorizontalCross);
-  EXPECT_EQ(ParseLayout("latlong"), EnvironmentLayout::kLatLong);
+  EXPECT_EQ(kLayoutNames.Find("hcross"), EnvironmentLayout::kHorizontalCross);
+  EXPECT_EQ(kLayoutNames.Find("latlong"), EnvironmentLayout::kLatLong);
 }
 
 TEST(EnvironmentIoLayout, ParseRejectsUnknownNames) {
-  EXPECT_FALSE(ParseLayout("cross").has_value());
-  EXPECT_FALSE(ParseLayout("").has_value());
-  EXPECT_FALSE(ParseLayout("HCROSS").has_value());
+  EXPECT_FALSE(kLayoutNames.Find("cross").has_value());
+  EXPECT_FALSE(kLayoutNames.Find("").has_value());
+  EXPECT_FALSE(kLayoutNames.Find("HCROSS").has_value());
 }
 
 TEST(EnvironmentIoSrgb, DecodesCodeValue128ToKnownLinearValue) {

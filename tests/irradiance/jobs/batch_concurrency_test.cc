@@ -125,7 +125,7 @@ class BatchConcurrency : public TempFolderTest {
     IrrmapOptions options;
     options.environment = input;
     options.face_size = kLatLongFaceSize;
-    options.order = "order2";
+    options.order = ShOrder::kOrder2;
     options.coefficients_only = true;
     options.threads = 1;
     options.out_dir = Path("single");

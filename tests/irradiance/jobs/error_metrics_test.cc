@@ -214,7 +214,7 @@ TEST(ErrorMetrics, ConstantEnvironmentHasNoErrorInAnyMetric) {
   // The estimates, in each metric (no ground truth needed): every level the same irradiance.
   options.coefficients_only = true;
   for (ErrorMetric metric : kAllErrorMetrics) {
-    options.error_metric = std::string(ErrorMetricName(metric));
+    options.error_metric = metric;
     ASSERT_EQ(RunIrrmap(options, report), std::nullopt);
     for (const LevelReport& level : report.levels) {
       EXPECT_LT(level.estimated_error, 1e-6) << ErrorMetricName(metric) << " level " << level.level;
@@ -249,9 +249,9 @@ TEST(ErrorMetrics, PeakAndRmsFollowTheirDefinitionsPerChannelAndForLuminance) {
 }
 
 TEST(ErrorMetrics, NamesParseBack) {
-  for (ErrorMetric metric : kAllErrorMetrics) EXPECT_EQ(ParseErrorMetric(ErrorMetricName(metric)), metric);
-  EXPECT_EQ(ParseErrorMetric("max"), std::nullopt);
-  EXPECT_EQ(ErrorMetricNames(), "relative|peak|rms");
+  for (ErrorMetric metric : kAllErrorMetrics) EXPECT_EQ(kErrorMetricNames.Find(ErrorMetricName(metric)), metric);
+  EXPECT_EQ(kErrorMetricNames.Find("max"), std::nullopt);
+  EXPECT_EQ(kErrorMetricNames.List(), "relative, peak or rms");
   EXPECT_EQ(kDefaultErrorMetric, ErrorMetric::kPeak);
 }
 

@@ -122,7 +122,7 @@ TEST_F(OutputMetadata, ABatchRecordIsMadeAgainFromItsOwnMetadata) {
   batch.inputs = {cross, WriteLatLong("pano.pfm")};
   batch.output = Path("out.jsonl");
   batch.face_size = 8;
-  batch.window = "lanczos";
+  batch.window = ShWindow::kLanczos;
   batch.window_width = 3.0;
   batch.max_error = 0.02;
   BatchSummary summary;
@@ -142,13 +142,13 @@ TEST_F(OutputMetadata, ABatchRecordIsMadeAgainFromItsOwnMetadata) {
     EXPECT_EQ(record["convention"]["source_kind"], record["layout"] == "latlong" ? "latlong" : "cube");
     IrrmapOptions again;
     again.environment = provenance["input"];
-    again.layout = listed["layout"];
+    again.layout = kLayoutNames.Parse(listed["layout"].get<std::string>());
     again.face_size = listed["face_size"];
     if (listed.contains("level")) again.level = listed["level"].get<int>();
     again.max_error = listed["max_error"];
-    again.error_metric = listed["error_metric"];
-    again.order = listed["order"];
-    again.window = listed["window"];
+    again.error_metric = kErrorMetricNames.Parse(listed["error_metric"].get<std::string>());
+    again.order = kShOrderNames.Find(listed["order"].get<std::string>());  // "auto": nullopt
+    again.window = kShWindowNames.Parse(listed["window"].get<std::string>());
     again.window_width = listed["window_width"];
     again.coefficients_only = true;
     again.write_files = false;

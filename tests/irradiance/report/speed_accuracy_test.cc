@@ -181,7 +181,7 @@ TEST(SpeedAccuracy, CurvesAreNamedByTheFilesBaseNameAsWritten) {
 TEST(SpeedAccuracy, AxisFollowsTheErrorMetricAndTheCsvAddsPeakAndRms) {
   SpeedAccuracyOptions options = FastOptions({"spot"});
   for (ErrorMetric metric : kAllErrorMetrics) {
-    options.error_metric = std::string(ErrorMetricName(metric));
+    options.error_metric = metric;
     SpeedAccuracyResult result;
     ASSERT_EQ(RunSpeedAccuracySweep(options, result), std::nullopt);
     EXPECT_EQ(result.metric, metric);
@@ -190,9 +190,6 @@ TEST(SpeedAccuracy, AxisFollowsTheErrorMetricAndTheCsvAddsPeakAndRms) {
     EXPECT_THAT(chart.data, HasSubstr(fmt::format("{:.6g} {:.6g} 1\n", point.update_ms,
                                                   100.0 * ChartErrorFigure(point.error, metric))));
   }
-  options.error_metric = "worst";
-  SpeedAccuracyResult result;
-  EXPECT_THAT(RunSpeedAccuracySweep(options, result).value_or(""), HasSubstr("unknown error metric 'worst'"));
 }
 
 }  // namespace

@@ -517,11 +517,11 @@ TEST(EngineExportShaders, HlslFunctionCompilesInGlslangsHlslFrontEnd) {
 
 TEST(EngineExportFormats, ParsesTheirNamesAndRefusesOthers) {
   for (ShExportFormat format : kAllShExportFormats) {
-    EXPECT_EQ(ParseShExportFormat(ShExportFormatName(format)), format);
+    EXPECT_EQ(kShExportFormatNames.Find(ShExportFormatName(format)), format);
   }
-  EXPECT_EQ(ParseShExportFormat("babylon"), std::nullopt);
-  EXPECT_EQ(ParseShExportFormat("Unity"), std::nullopt);
-  EXPECT_EQ(ShExportFormatNames(), "three, filament, unity, gltf, glsl, hlsl");
+  EXPECT_EQ(kShExportFormatNames.Find("babylon"), std::nullopt);
+  EXPECT_EQ(kShExportFormatNames.Find("Unity"), std::nullopt);
+  EXPECT_EQ(kShExportFormatNames.List(), "three, filament, unity, gltf, glsl or hlsl");
 }
 
 }  // namespace

@@ -32,6 +32,22 @@ TEST_F(TranslateCommand, WritesGlslToStdoutWithItsInterface) {
   EXPECT_TRUE(translate::CompileWithGlslang(glsl.output, translate::Target::kGlslEs300).ok);
 }
 
+// --to and --clip parse with their name tables: an unknown name is a usage error
+// listing the valid ones.
+TEST_F(TranslateCommand, AnUnknownChoiceListsTheValidNames) {
+  const std::string input = Write("p.vsh", kProgram);
+  const std::vector<std::pair<std::string, std::string>> cases = {
+      {"--to hlsl", "unknown target 'hlsl' (use glsl330, glsles300, glsles320 or spirv)"},
+      {"--to glsl330 --clip dx", "unknown clip space 'dx' (use d3d, gl or vulkan)"}};
+  for (const auto& [flags, message] : cases) {
+    const testing::CommandResult run = RunVs11("translate " + input + " " + flags);
+    EXPECT_EQ(run.status, 2) << flags << "\n" << run.output;
+    EXPECT_NE(run.output.find(message), std::string::npos) << flags << "\n" << run.output;
+  }
+  const testing::CommandResult clip = RunVs11("translate " + input + " --to glsl330 --clip vulkan");
+  EXPECT_EQ(clip.status, 0) << clip.output;
+}
+
 TEST_F(TranslateCommand, WritesValidSpirvToAFileOnly) {
   const std::string input = Write("p.vsh", kProgram);
   const testing::CommandResult to_stdout = RunVs11("translate " + input + " --to spirv");

@@ -60,8 +60,8 @@ TEST(ComputeTranslation, TargetsWithoutComputeShadersAreRefused) {
   }
   EXPECT_FALSE(StageProblem(Target::kGlslEs310, Stage::kCompute));
   EXPECT_FALSE(StageProblem(Target::kGlsl330, Stage::kVertex));
-  EXPECT_EQ(StageFromName("compute"), Stage::kCompute);
-  EXPECT_EQ(StageFromName("fragment"), std::nullopt);
+  EXPECT_EQ(kStageNames.Find("compute"), Stage::kCompute);
+  EXPECT_EQ(kStageNames.Find("fragment"), std::nullopt);
 }
 
 TEST(ComputeTranslation, DispatchCoversEveryVertexInTwoDimensionsPastTheLimit) {
