@@ -17,8 +17,6 @@ double BandNorm(const Sh9Rgb& sh, int band, int channel) {
   return std::sqrt(sum);
 }
 
-}
-
 std::array<double, kSh9Bands> ShWindowFactors(ShWindow window, double width) {
   assert(window != ShWindow::kDering && window != ShWindow::kNonNegative);
   std::array<double, kSh9Bands> factors = {1.0, 1.0, 1.0};
