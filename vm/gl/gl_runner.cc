@@ -43,6 +43,21 @@ bool GlOk(const char* what, std::string& error) {
   return false;
 }
 
+std::optional<std::vector<float>> ReadBufferFloats(unsigned buffer, std::size_t count, std::string& error) {
+  glBindBuffer(GL_COPY_READ_BUFFER, buffer);
+  const void* mapped =
+      glMapBufferRange(GL_COPY_READ_BUFFER, 0, static_cast<GLsizeiptr>(count * sizeof(float)), GL_MAP_READ_BIT);
+  if (mapped == nullptr) {
+    if (GlOk("glMapBufferRange", error)) error = "glMapBufferRange returned no pointer";
+    return std::nullopt;
+  }
+  std::vector<float> values(count);
+  std::memcpy(values.data(), mapped, count * sizeof(float));
+  glUnmapBuffer(GL_COPY_READ_BUFFER);
+  if (!GlOk("reading a buffer", error)) return std::nullopt;
+  return values;
+}
+
 std::optional<std::string> CreateLlvmpipeContext(std::optional<int> lp_threads, std::string& error) {
   if (lp_threads) {
     setenv("LP_NUM_THREADS", std::to_string(*lp_threads).c_str(), 1);
@@ -161,20 +176,7 @@ std::optional<std::vector<float>> TransformFeedbackRun::DrawAndRead(std::string&
     error = fmt::format("transform feedback wrote {} of {} vertices", written, vertex_count_);
     return std::nullopt;
   }
-  const std::size_t floats = vertex_count_ * static_cast<std::size_t>(output_floats_);
-  glBindBuffer(GL_TRANSFORM_FEEDBACK_BUFFER, output_buffer_);
-  const void* mapped = glMapBufferRange(GL_TRANSFORM_FEEDBACK_BUFFER, 0,
-                                        static_cast<GLsizeiptr>(floats * sizeof(float)), GL_MAP_READ_BIT);
-  if (mapped == nullptr) {
-    GlOk("glMapBufferRange", error);
-    if (error.empty()) error = "glMapBufferRange returned no pointer";
-    return std::nullopt;
-  }
-  std::vector<float> outputs(floats);
-  std::memcpy(outputs.data(), mapped, floats * sizeof(float));
-  glUnmapBuffer(GL_TRANSFORM_FEEDBACK_BUFFER);
-  if (!GlOk("reading the transform-feedback buffer", error)) return std::nullopt;
-  return outputs;
+  return ReadBufferFloats(output_buffer_, vertex_count_ * static_cast<std::size_t>(output_floats_), error);
 }
 
 }  // namespace vs11::gl

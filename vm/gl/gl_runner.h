@@ -29,6 +29,11 @@ unsigned CompileShader(unsigned kind, const std::string& source, std::string& er
 // glGetError as text: true when there is none, else false with `error` = "WHAT: GL error 0x....".
 bool GlOk(const char* what, std::string& error);
 
+// The first `count` floats of GL buffer `buffer`, mapped for reading (through GL_COPY_READ_BUFFER, so
+// no other binding changes); waits for the commands that write it. A compute pass's stores need a
+// glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT) first. nullopt with `error` set where GL fails.
+std::optional<std::vector<float>> ReadBufferFloats(unsigned buffer, std::size_t count, std::string& error);
+
 // One vertex attribute: `components` floats per vertex, vertex after vertex, at `location`.
 struct GlAttribute {
   int location = 0;
