@@ -30,16 +30,8 @@ unsigned LinkComputeProgram(const std::string& source, std::string& error) {
   if (shader == 0) return 0;
   const GLuint program = glCreateProgram();
   glAttachShader(program, shader);
-  glLinkProgram(program);
   glDeleteShader(shader);
-  GLint ok = GL_FALSE;
-  glGetProgramiv(program, GL_LINK_STATUS, &ok);
-  if (ok == GL_TRUE) return program;
-  char log[2048] = {};
-  glGetProgramInfoLog(program, sizeof log, nullptr, log);
-  error = fmt::format("compute program does not link: {}", log);
-  glDeleteProgram(program);
-  return 0;
+  return LinkAttachedProgram(program, "compute program", error);
 }
 
 std::unique_ptr<ComputeRun> ComputeRun::Create(const std::string& compute_source, std::string& error) {

@@ -36,6 +36,18 @@ unsigned CompileShader(unsigned kind, const std::string& source, std::string& er
   return 0;
 }
 
+unsigned LinkAttachedProgram(unsigned program, const char* what, std::string& error) {
+  glLinkProgram(program);
+  GLint ok = GL_FALSE;
+  glGetProgramiv(program, GL_LINK_STATUS, &ok);
+  if (ok == GL_TRUE) return program;
+  char log[2048] = {};
+  glGetProgramInfoLog(program, sizeof log, nullptr, log);
+  error = fmt::format("{} does not link: {}", what, log);
+  glDeleteProgram(program);
+  return 0;
+}
+
 bool GlOk(const char* what, std::string& error) {
   const GLenum code = glGetError();
   if (code == GL_NO_ERROR) return true;
@@ -87,17 +99,9 @@ unsigned LinkTransformFeedbackProgram(const std::string& vertex_source, const st
   std::vector<const char*> names;
   for (const std::string& v : varyings) names.push_back(v.c_str());
   glTransformFeedbackVaryings(program, static_cast<GLsizei>(names.size()), names.data(), GL_INTERLEAVED_ATTRIBS);
-  glLinkProgram(program);
   glDeleteShader(vertex);
   glDeleteShader(fragment);
-  GLint ok = GL_FALSE;
-  glGetProgramiv(program, GL_LINK_STATUS, &ok);
-  if (ok == GL_TRUE) return program;
-  char log[2048] = {};
-  glGetProgramInfoLog(program, sizeof log, nullptr, log);
-  error = fmt::format("program does not link: {}", log);
-  glDeleteProgram(program);
-  return 0;
+  return LinkAttachedProgram(program, "program", error);
 }
 
 std::unique_ptr<TransformFeedbackRun> TransformFeedbackRun::Create(const std::string& vertex_source,

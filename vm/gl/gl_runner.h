@@ -22,6 +22,10 @@ std::optional<std::string> CreateLlvmpipeContext(std::optional<int> lp_threads, 
 unsigned LinkTransformFeedbackProgram(const std::string& vertex_source, const std::vector<std::string>& varyings,
                                       std::string& error);
 
+// Links `program` (its shaders attached, then deleted): the program, or 0 with `error` = "WHAT does
+// not link: LOG" and the program deleted.
+unsigned LinkAttachedProgram(unsigned program, const char* what, std::string& error);
+
 // Compiles `source` as a shader of `kind` (GL_VERTEX_SHADER, GL_COMPUTE_SHADER, ...): the shader
 // object, or 0 with `error` holding the info log.
 unsigned CompileShader(unsigned kind, const std::string& source, std::string& error);
