@@ -78,7 +78,7 @@ std::optional<Result> Measure(std::optional<int> device, const BasisPyramid& bas
                               const std::vector<glm::vec3>& normals, int frames, int warmup, std::string& renderer,
                               std::string& error) {
   std::unique_ptr<gpu::GpuFrame> frame = gpu::GpuFrame::Create(
-      device, basis, level.level, paper.Constants(SevenConstants{}).size(), paper.constant_base(), error);
+      device, basis, level.level, paper.Constants(vs11::SevenConstants{}).size(), paper.constant_base(), error);
   if (!frame) return std::nullopt;
   renderer = frame->context().renderer() + " (" + frame->context().version() + ")";
   std::unique_ptr<gpu::ProgramStage> program = gpu::ProgramStage::Create(*frame, paper, normals, error);

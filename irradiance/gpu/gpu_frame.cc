@@ -6,20 +6,19 @@
 #include <bit>
 #include <cassert>
 #include <cmath>
-#include <cstdio>
-#include <cstring>
 
 #include <fmt/format.h>
 
-#include "irradiance/gpu/compute_program.h"
 #include "irradiance/gpu/frame_shaders.h"
 #include "irradiance/sh/projection_kernels.h"
+#include "vm/gl/gl_compute.h"
 #include "vm/gl/gl_runner.h"
 
 namespace vs11::irradiance::gpu {
 namespace {
 
 using vs11::gl::GlOk;
+using vs11::gl::LinkComputeProgram;
 using vs11::gl::ScopedCurrent;
 
 // Texels a thread of the projection sums on its own, about: longer runs cost accuracy
@@ -83,30 +82,13 @@ GLuint StorageBuffer(std::size_t bytes, const void* data) {
   return buffer;
 }
 
-// `count` floats of a storage buffer.
+// `count` floats of a storage buffer a compute pass wrote.
 std::optional<std::vector<float>> ReadFloats(GLuint buffer, std::size_t count, std::string& error) {
   glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-  glBindBuffer(GL_SHADER_STORAGE_BUFFER, buffer);
-  const void* mapped = glMapBufferRange(GL_SHADER_STORAGE_BUFFER, 0, static_cast<GLsizeiptr>(count * sizeof(float)),
-                                        GL_MAP_READ_BIT);
-  if (mapped == nullptr) {
-    if (GlOk("glMapBufferRange", error)) error = "glMapBufferRange returned no pointer";
-    return std::nullopt;
-  }
-  std::vector<float> values(count);
-  std::memcpy(values.data(), mapped, count * sizeof(float));
-  glUnmapBuffer(GL_SHADER_STORAGE_BUFFER);
-  if (!GlOk("reading a storage buffer", error)) return std::nullopt;
-  return values;
+  return vs11::gl::ReadBufferFloats(buffer, count, error);
 }
 
 }  // namespace
-
-bool HasEs31(const vs11::gl::GlContext& context) {
-  int major = 0, minor = 0;
-  return std::sscanf(context.version().c_str(), "OpenGL ES %d.%d", &major, &minor) == 2 &&
-         (major > 3 || (major == 3 && minor >= 1));
-}
 
 int ProjectionGroupsPerFace(int size) {
   const long texels = static_cast<long>(size) * size;
@@ -135,7 +117,7 @@ std::unique_ptr<GpuFrame> GpuFrame::Create(std::optional<int> device, const Basi
   std::unique_ptr<GpuFrame> frame(new GpuFrame());
   frame->context_ = vs11::gl::GlContext::Create(device, error);
   if (!frame->context_) return nullptr;
-  if (!HasEs31(*frame->context_)) {
+  if (!vs11::gl::OffersCompute(*frame->context_)) {
     error = fmt::format("'{}' offers '{}', not OpenGL ES 3.1 (compute shaders)", frame->context_->renderer(),
                         frame->context_->version());
     return nullptr;
@@ -242,7 +224,7 @@ bool GpuFrame::Project(std::string& error) {
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 3, coefficients_);
   glBindBufferBase(GL_SHADER_STORAGE_BUFFER, 4, bank_);
   glDispatchCompute(1, 1, 1);
-  // The program stage reads the bank as a uniform buffer, a later read-back as a mapped buffer.
+  // The program stage reads the bank as its uniform block, a later read-back as a mapped buffer.
   glMemoryBarrier(GL_UNIFORM_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
   return GlOk("projecting on the GPU", error);
 }

@@ -7,8 +7,8 @@
 //                   nine moments of the chosen level, irradiance/sh/sh_projection.h, uploaded once)
 //     ─coefficients─> one workgroup: the faces' sums, the nine RGB coefficients and the seven
 //                     constants of Table 1, written into a constant bank buffer
-//     ─program─> the vs_1_1 program over the vertices, reading that buffer as its constants
-//                (program_stage.h)
+//     ─program─> the vs_1_1 program's compute translation over the vertices, reading that buffer
+//                as its constants (program_stage.h)
 //
 // Coefficients, constants and the program's outputs can be read back once a frame is done (for
 // tests and irrmap); a frame benchmark reads nothing back.
@@ -29,9 +29,6 @@
 #include "vm/gl/gl_context.h"
 
 namespace vs11::irradiance::gpu {
-
-// "OpenGL ES 3.1" or later in GL_VERSION: what the compute stages need.
-bool HasEs31(const vs11::gl::GlContext& context);
 
 // The frame's GL objects for one face size and one level; the context is current on the calling
 // thread during every call (each makes it so, as vm/gl's engine does).

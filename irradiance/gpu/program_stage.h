@@ -1,9 +1,8 @@
 // Stage 5 of the GPU frame (gpu_frame.h): the vs_1_1 program over the vertices, its constants read
 // from the frame's bank buffer where the coefficients stage wrote them, so they never pass through
-// the CPU. The program runs as the gl engine's translation (vm/translate, GlTranslateOptions) through
-// transform feedback, with its `uniform vec4 c[N]` declared as a std140 uniform block instead, bound
-// to that buffer. (The compute-shader translation of issue 34 section 1 takes its place once it
-// binds a constant buffer already on the GPU.)
+// the CPU. The program runs as the gl engine's compute translation (vm/gl/gl_compute.h, the options
+// of GlComputeTranslateOptions) over storage buffers, with the bank bound as it lies on the GPU
+// (ComputeRun::BindConstantBuffer).
 #pragma once
 
 #include <memory>
@@ -16,6 +15,7 @@
 
 #include "irradiance/gpu/gpu_frame.h"
 #include "irradiance/report/paper_program.h"
+#include "vm/gl/gl_compute.h"
 
 namespace vs11::irradiance::gpu {
 
@@ -38,13 +38,10 @@ class ProgramStage {
  private:
   explicit ProgramStage(GpuFrame& frame) : frame_(frame) {}
   GpuFrame& frame_;
-  unsigned program_ = 0, vertex_array_ = 0, input_ = 0, output_ = 0;
-  int output_components_ = 4;
+  std::unique_ptr<vs11::gl::ComputeRun> run_;
+  translate::ComputeLayoutBlock layout_;
+  unsigned input_ = 0, output_ = 0;
   std::size_t vertex_count_ = 0;
 };
-
-// `translation` (a GLSL ES translation of vm/translate) with its constant bank `uniform vec4 c[N];`
-// as `layout(std140) uniform Vs11Constants { vec4 c[N]; };`; nullopt when it declares no bank.
-std::optional<std::string> WithUniformBlockBank(const std::string& translation);
 
 }  // namespace vs11::irradiance::gpu

@@ -28,6 +28,7 @@
 #include "irradiance/jobs/engine_exports.h"
 #include "irradiance/jobs/irrmap_checks.h"
 #include "irradiance/jobs/irrmap_environment.h"
+#include "irradiance/jobs/irrmap_gpu_frame.h"
 #include "irradiance/jobs/irrmap_outputs.h"
 #include "irradiance/render/preview.h"
 #include "irradiance/report/preview_errors.h"
@@ -563,40 +564,16 @@ std::optional<std::string> CoefficientsStage(IrrmapRun& run) {
   return std::nullopt;
 }
 
-// --engine gl: the chosen level's frame on the GPU (IrrmapOptions::gpu_frame), whose coefficients,
-// constants and irradiance map then stand for the CPU's.
+// --engine gl: the chosen level's frame on the GPU (irrmap_gpu_frame.h); the bank follows the
+// constants it leaves in the report.
 std::optional<std::string> GpuFrameStage(IrrmapRun& run) {
-  IrrmapReport& report = run.report;
-  GpuFrameReport& gpu = report.gpu.emplace();
-  const IrrmapEnvironment& environment = run.environment;
-  if (std::optional<std::string> reason =
-          WhyNotOnGpu(environment.mips.has_value(), report.order, run.checked.window)) {
-    gpu.stages = {"program"};
-    gpu.cpu_reason = *reason;
-    report.warnings.push_back(fmt::format("--engine gl: {}; the projection ran on the CPU", *reason));
-    return std::nullopt;
-  }
-  std::vector<glm::dvec3> normals;
-  if (!run.options.coefficients_only) normals = CubeTexelDirections(run.options.map_size);
-  GpuFrameResult result;
-  const Clock::time_point start = Clock::now();
-  if (std::optional<std::string> error = run.options.gpu_frame(
-          {environment.mips->levels[0], *environment.basis, report.level, *run.chosen_program, normals}, result)) {
-    return fmt::format("--engine gl: {}", *error);
-  }
-  gpu.ms = MillisecondsSince(start);
-  report.timings.push_back({"gpu_frame", gpu.ms});
-  gpu.renderer = result.renderer;
-  gpu.stages = result.stages;
-  gpu.max_coefficient_difference = MaxCoefficientDifference(result.coefficients, report.coefficients);
-  report.coefficients = result.coefficients;
-  report.constants = result.constants;
-  for (std::size_t r = 0; r < report.program_constants.size(); ++r) {
-    report.program_constants[r].value = result.constants.registers[r];
-  }
-  run.chosen_bank = run.chosen_program->Constants(result.constants);
-  run.gpu_irradiance = std::move(result.irradiance);
-  return std::nullopt;
+  const std::vector<glm::dvec3> normals =
+      run.options.coefficients_only ? std::vector<glm::dvec3>{} : CubeTexelDirections(run.options.map_size);
+  std::optional<std::string> error = RunIrrmapGpuFrame(
+      {run.options.gpu_frame, run.environment, run.checked.window, *run.chosen_program, normals}, run.report,
+      run.gpu_irradiance);
+  run.chosen_bank = run.chosen_program->Constants(run.report.program_constants);
+  return error;
 }
 
 std::optional<std::string> MeshStage(IrrmapRun& run) {

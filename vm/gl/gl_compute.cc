@@ -25,22 +25,19 @@ translate::TranslateOptions GlComputeTranslateOptions(const EngineOptions& optio
   return translation;
 }
 
+unsigned LinkComputeProgram(const std::string& source, std::string& error) {
+  const GLuint shader = CompileShader(GL_COMPUTE_SHADER, source, error);
+  if (shader == 0) return 0;
+  const GLuint program = glCreateProgram();
+  glAttachShader(program, shader);
+  glDeleteShader(shader);
+  return LinkAttachedProgram(program, "compute program", error);
+}
+
 std::unique_ptr<ComputeRun> ComputeRun::Create(const std::string& compute_source, std::string& error) {
   std::unique_ptr<ComputeRun> run(new ComputeRun());
-  const GLuint shader = CompileShader(GL_COMPUTE_SHADER, compute_source, error);
-  if (shader == 0) return nullptr;
-  GLint ok = GL_FALSE;
-  run->program_ = glCreateProgram();
-  glAttachShader(run->program_, shader);
-  glLinkProgram(run->program_);
-  glDeleteShader(shader);
-  glGetProgramiv(run->program_, GL_LINK_STATUS, &ok);
-  if (ok != GL_TRUE) {
-    char log[2048] = {};
-    glGetProgramInfoLog(run->program_, sizeof log, nullptr, log);
-    error = fmt::format("compute program does not link: {}", log);
-    return nullptr;
-  }
+  run->program_ = LinkComputeProgram(compute_source, error);
+  if (run->program_ == 0) return nullptr;
   GLint max_groups = 0;
   glGetIntegeri_v(GL_MAX_COMPUTE_WORK_GROUP_COUNT, 0, &max_groups);
   if (max_groups > 0) run->max_groups_x_ = static_cast<std::uint32_t>(max_groups);

@@ -27,6 +27,10 @@ bool OffersCompute(const GlContext& context);
 // outputs), else GLSL ES 3.10.
 translate::TranslateOptions GlComputeTranslateOptions(const EngineOptions& options, int constant_count, bool es32);
 
+// Compiles and links the compute shader `source` (GLSL ES 3.10 or later, its #version first): the
+// program object, or 0 with `error` holding the compiler's or linker's log.
+unsigned LinkComputeProgram(const std::string& source, std::string& error);
+
 class ComputeRun {
  public:
   // Compiles and links `compute_source` (a compute translation, its #version first). Null with `error`

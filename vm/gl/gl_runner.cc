@@ -36,11 +36,38 @@ unsigned CompileShader(unsigned kind, const std::string& source, std::string& er
   return 0;
 }
 
+unsigned LinkAttachedProgram(unsigned program, const char* what, std::string& error) {
+  glLinkProgram(program);
+  GLint ok = GL_FALSE;
+  glGetProgramiv(program, GL_LINK_STATUS, &ok);
+  if (ok == GL_TRUE) return program;
+  char log[2048] = {};
+  glGetProgramInfoLog(program, sizeof log, nullptr, log);
+  error = fmt::format("{} does not link: {}", what, log);
+  glDeleteProgram(program);
+  return 0;
+}
+
 bool GlOk(const char* what, std::string& error) {
   const GLenum code = glGetError();
   if (code == GL_NO_ERROR) return true;
   error = fmt::format("{}: GL error 0x{:04X}", what, code);
   return false;
+}
+
+std::optional<std::vector<float>> ReadBufferFloats(unsigned buffer, std::size_t count, std::string& error) {
+  glBindBuffer(GL_COPY_READ_BUFFER, buffer);
+  const void* mapped =
+      glMapBufferRange(GL_COPY_READ_BUFFER, 0, static_cast<GLsizeiptr>(count * sizeof(float)), GL_MAP_READ_BIT);
+  if (mapped == nullptr) {
+    if (GlOk("glMapBufferRange", error)) error = "glMapBufferRange returned no pointer";
+    return std::nullopt;
+  }
+  std::vector<float> values(count);
+  std::memcpy(values.data(), mapped, count * sizeof(float));
+  glUnmapBuffer(GL_COPY_READ_BUFFER);
+  if (!GlOk("reading a buffer", error)) return std::nullopt;
+  return values;
 }
 
 std::optional<std::string> CreateLlvmpipeContext(std::optional<int> lp_threads, std::string& error) {
@@ -72,17 +99,9 @@ unsigned LinkTransformFeedbackProgram(const std::string& vertex_source, const st
   std::vector<const char*> names;
   for (const std::string& v : varyings) names.push_back(v.c_str());
   glTransformFeedbackVaryings(program, static_cast<GLsizei>(names.size()), names.data(), GL_INTERLEAVED_ATTRIBS);
-  glLinkProgram(program);
   glDeleteShader(vertex);
   glDeleteShader(fragment);
-  GLint ok = GL_FALSE;
-  glGetProgramiv(program, GL_LINK_STATUS, &ok);
-  if (ok == GL_TRUE) return program;
-  char log[2048] = {};
-  glGetProgramInfoLog(program, sizeof log, nullptr, log);
-  error = fmt::format("program does not link: {}", log);
-  glDeleteProgram(program);
-  return 0;
+  return LinkAttachedProgram(program, "program", error);
 }
 
 std::unique_ptr<TransformFeedbackRun> TransformFeedbackRun::Create(const std::string& vertex_source,
@@ -161,20 +180,7 @@ std::optional<std::vector<float>> TransformFeedbackRun::DrawAndRead(std::string&
     error = fmt::format("transform feedback wrote {} of {} vertices", written, vertex_count_);
     return std::nullopt;
   }
-  const std::size_t floats = vertex_count_ * static_cast<std::size_t>(output_floats_);
-  glBindBuffer(GL_TRANSFORM_FEEDBACK_BUFFER, output_buffer_);
-  const void* mapped = glMapBufferRange(GL_TRANSFORM_FEEDBACK_BUFFER, 0,
-                                        static_cast<GLsizeiptr>(floats * sizeof(float)), GL_MAP_READ_BIT);
-  if (mapped == nullptr) {
-    GlOk("glMapBufferRange", error);
-    if (error.empty()) error = "glMapBufferRange returned no pointer";
-    return std::nullopt;
-  }
-  std::vector<float> outputs(floats);
-  std::memcpy(outputs.data(), mapped, floats * sizeof(float));
-  glUnmapBuffer(GL_TRANSFORM_FEEDBACK_BUFFER);
-  if (!GlOk("reading the transform-feedback buffer", error)) return std::nullopt;
-  return outputs;
+  return ReadBufferFloats(output_buffer_, vertex_count_ * static_cast<std::size_t>(output_floats_), error);
 }
 
 }  // namespace vs11::gl

@@ -22,12 +22,21 @@ std::optional<std::string> CreateLlvmpipeContext(std::optional<int> lp_threads, 
 unsigned LinkTransformFeedbackProgram(const std::string& vertex_source, const std::vector<std::string>& varyings,
                                       std::string& error);
 
+// Links `program` (its shaders attached, then deleted): the program, or 0 with `error` = "WHAT does
+// not link: LOG" and the program deleted.
+unsigned LinkAttachedProgram(unsigned program, const char* what, std::string& error);
+
 // Compiles `source` as a shader of `kind` (GL_VERTEX_SHADER, GL_COMPUTE_SHADER, ...): the shader
 // object, or 0 with `error` holding the info log.
 unsigned CompileShader(unsigned kind, const std::string& source, std::string& error);
 
 // glGetError as text: true when there is none, else false with `error` = "WHAT: GL error 0x....".
 bool GlOk(const char* what, std::string& error);
+
+// The first `count` floats of GL buffer `buffer`, mapped for reading (through GL_COPY_READ_BUFFER, so
+// no other binding changes); waits for the commands that write it. A compute pass's stores need a
+// glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT) first. nullopt with `error` set where GL fails.
+std::optional<std::vector<float>> ReadBufferFloats(unsigned buffer, std::size_t count, std::string& error);
 
 // One vertex attribute: `components` floats per vertex, vertex after vertex, at `location`.
 struct GlAttribute {

@@ -7,8 +7,9 @@
 
 #include <GLES3/gl31.h>
 
-#include <cstring>
+#include <optional>
 #include <random>
+#include <string>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -68,14 +69,10 @@ class GlComputeTest : public ::testing::Test {
   }
 
   std::vector<float> Read(unsigned buffer, std::size_t floats) {
-    glBindBuffer(GL_SHADER_STORAGE_BUFFER, buffer);
-    const void* mapped =
-        glMapBufferRange(GL_SHADER_STORAGE_BUFFER, 0, static_cast<GLsizeiptr>(floats * sizeof(float)), GL_MAP_READ_BIT);
-    EXPECT_NE(mapped, nullptr);
-    std::vector<float> data(floats);
-    if (mapped != nullptr) std::memcpy(data.data(), mapped, floats * sizeof(float));
-    glUnmapBuffer(GL_SHADER_STORAGE_BUFFER);
-    return data;
+    std::string error;
+    std::optional<std::vector<float>> data = ReadBufferFloats(buffer, floats, error);
+    EXPECT_TRUE(data) << error;
+    return data.value_or(std::vector<float>(floats));
   }
 
   std::unique_ptr<GlContext> context_;
