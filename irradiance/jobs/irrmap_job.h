@@ -9,51 +9,8 @@
 //   plus: the coefficients of every level compared with brute-force integration (ground truth) over
 //   a dense set of normals, and a Fig. 3-like preview.
 //
-// Files written into IrrmapOptions::out_dir (created if needed):
-//   coeffs.json      {"schema_version" (irradiance/jobs/output_metadata.h), "coefficients": 9 x [r, g, b] (L00, L1-1, L10, L11, L2-2, L2-1, L20, L21,
-//                    L22, windowed), "level", "level_size", "level_choice" ("level" or
-//                    "max_error"), "max_error" (when picked by it), "error_metric" (what max_error,
-//                    every "estimated_error" and "error_vs_full_order2" measure), "window": {"name", "width",
-//                    "factors": [w0, w1, w2]}, "face_size", "layout", "environment", "engine",
-//                    "map_size", "constants": {"cAr": [x, y, z, w], ...}, "levels": [{"level",
-//                    "size", "update_ms", "max_relative_error", "mean_relative_error", "peak_error",
-//                    "rms_error", "peak_error_channels" and "rms_error_channels" ({"r", "g", "b",
-//                    "luminance"}; see ErrorStats), "estimated_error"}, ...],
-//                    "timings_ms": {"load", "hash" (the input files' SHA-256), "env_mips", "basis_pyramid" (a cube map) or
-//                    "latlong_pyramid" (a lat-long map, projected in place; "resample_cube" where
-//                    a later stage needs it as a cube), "level_updates" (every
-//                    level, each repeated for timing), "projection" (the chosen level's update),
-//                    "constants", "program" (assembling it), "irradiance_map", "ground_truth",
-//                    "level_errors", "preview", "gpu_frame"}}; the final "write" is in IrrmapReport only;
-//                    with IrrmapOptions::gpu_frame, "gpu": {"renderer", "stages" (those that ran on the
-//                    GPU), "cpu_reason" (why the projection did not), "max_coefficient_difference", "ms"}
-//                    "order", "program": {"name", "file", "slots", "estimated_error",
-//                    "error_vs_full_order2", "max_relative_error", "peak_error", "rms_error" (vs
-//                    the truth), "constants":
-//                    {"cE" | "cAr" ...: [x, y, z, w]}}, "program_estimates": [{"order", "level",
-//                    "estimated_error"}, ...], "convention" and "provenance" (what the numbers are and
-//                    where they came from: output_metadata.h), "files": the names of the files this
-//                    run wrote (any other file of irrmap's in out_dir is an earlier run's, and named
-//                    in a warning)
-//   program.vsh      the chosen program (irradiance/sh/sh_order.h): sh_order0.vsh, sh_order1.vsh,
-//                    sh_zh3.vsh or the paper's sh9_irradiance.vsh
-//   constants.vsh    its registers as `def` lines at the registers the program reads
-//                    (`vs11 run --consts constants.vsh`, or paste into a program)
-//   irradiance.exr   the chosen program's irradiance cube map, horizontal cross, 32-bit float, map_size per face
-//                    (irradiance.dds, irradiance.ktx2 or irradiance_px.hdr .. irradiance_nz.hdr instead
-//                    with IrrmapOptions::map_format)
-//   sh_*.json/.txt/.glsl/.hlsl  with IrrmapOptions::sh_exports: coeffs.json's nine coefficients in each
-//                    engine's convention (irradiance/sh/engine_sh.h), also with coefficients_only
-//   preview.png      see irradiance/render/preview.h
-//   with a mesh (IrrmapOptions::mesh), also:
-//   mesh.ply         the mesh with 8-bit vertex colours: the program's irradiance after the preview's
-//                    tone mapping (brightest vertex at kSphereWhite, then sRGB)
-//   mesh.png         the mesh lit by the program | by the exact irradiance | the relative error
-//                    (irradiance/jobs/mesh_lighting.h); coeffs.json gains "mesh": {"file", "vertex_count",
-//                    "triangle_count", "unusable_normals", "ms_per_evaluation", "ns_per_vertex", "exact" and, with it,
-//                    "max_relative_error", "mean_relative_error", "peak_error", "rms_error", "error_scale"}
-// All of them are first written to hidden temporaries in out_dir and renamed into place only when all
-// of them were written, so a failure leaves no partial output.
+// The files it writes into IrrmapOptions::out_dir, all or none, and coeffs.json's fields: README.md,
+// "What irrmap writes".
 #pragma once
 
 #include <array>

@@ -54,11 +54,12 @@ class Decoder {
       result.diagnostics = std::move(diagnostics_);
       return result;
     }
-    if (words_[0] != kVersionVs11 && words_[0] != kVersionVs10) {
+    if (!VersionEnabled(words_[0])) {
       Fail(0, DiagnosticCode::kVersionToken,
            fmt::format("version token 0x{:08X} is not vs_1_1 (0xFFFE0101) or vs_1_0 (0xFFFE0100)", words_[0]));
     }
     program.version = words_[0];
+    model_ = program.model();
     std::size_t p = 1;
     bool ended = false;
     while (p < words_.size() && !diagnostics_.HasErrors()) {
@@ -95,9 +96,9 @@ class Decoder {
         break;
       }
       std::optional<Opcode> opcode = OpcodeFromToken(opcode_bits);
-      if (!opcode) {
-        Fail(p, DiagnosticCode::kBytecodeUnknownOpcode,
-             fmt::format("opcode {} (0x{:04X}) is not a vs_1_1 instruction", opcode_bits, opcode_bits));
+      if (!opcode || !OpcodeAllowed(Info(*opcode), model_)) {
+        Fail(p, DiagnosticCode::kBytecodeUnknownOpcode, fmt::format("opcode {} (0x{:04X}) is not a {} instruction",
+                                                                    opcode_bits, opcode_bits, ShaderModelName(model_)));
         break;
       }
       const OpcodeInfo& info = Info(*opcode);
@@ -144,8 +145,9 @@ class Decoder {
       return false;
     }
     std::uint32_t type = DecodeRegisterType(token);
-    if (type > static_cast<std::uint32_t>(RegisterFile::kTexCoordOut)) {
-      Fail(at, DiagnosticCode::kBytecodeRegisterType, fmt::format("register type {} is not used by vs_1_1", type));
+    if (!RegisterFileOfType(type, model_)) {
+      Fail(at, DiagnosticCode::kBytecodeRegisterType,
+           fmt::format("register type {} is not used by {}", type, ShaderModelName(model_)));
       return false;
     }
     // Every register Decode accepts has a name, so that every decoded program can be disassembled.
@@ -227,6 +229,7 @@ class Decoder {
     }
   }
 
+  ShaderModel model_ = ShaderModel::kVs11;
   std::span<const std::uint32_t> words_;
   Diagnostics diagnostics_;
 };

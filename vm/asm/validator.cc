@@ -101,24 +101,35 @@ bool ReadsScalarSource(const OpcodeInfo& info) {
 // ---------------------------------------------------------------------------------------------
 // Register files (§1.1, §1.6, §6.2.1-2).
 
-constexpr int kUseConstantCount = -1;  // count = ValidatorOptions::constant_count
-
+// How many registers each file has is the program's model's (vm/core/shader_model.h), but for the
+// constants, whose count the device gives (ValidatorOptions::constant_count).
 struct RegisterFileRule {
   RegisterFile file;
-  int count;      // registers 0 .. count-1 exist
   bool readable;  // may be a source
   bool writable;  // may be an instruction destination
   std::string_view role;
 };
 constexpr std::array kRegisterFileRules = {
-    RegisterFileRule{RegisterFile::kTemp, kTempRegisterCount, true, true, "temporary"},
-    RegisterFileRule{RegisterFile::kInput, kInputRegisterCount, true, false, "input"},
-    RegisterFileRule{RegisterFile::kConst, kUseConstantCount, true, false, "constant"},
-    RegisterFileRule{RegisterFile::kAddress, 1, false, true, "address"},
-    RegisterFileRule{RegisterFile::kRasterOut, kRasterOutPointSize + 1, false, true, "output"},
-    RegisterFileRule{RegisterFile::kAttributeOut, kColorOutputCount, false, true, "output"},
-    RegisterFileRule{RegisterFile::kTexCoordOut, kTexCoordOutputCount, false, true, "output"},
+    RegisterFileRule{RegisterFile::kTemp, true, true, "temporary"},
+    RegisterFileRule{RegisterFile::kInput, true, false, "input"},
+    RegisterFileRule{RegisterFile::kConst, true, false, "constant"},
+    RegisterFileRule{RegisterFile::kAddress, false, true, "address"},
+    RegisterFileRule{RegisterFile::kRasterOut, false, true, "output"},
+    RegisterFileRule{RegisterFile::kAttributeOut, false, true, "output"},
+    RegisterFileRule{RegisterFile::kTexCoordOut, false, true, "output"},
+    RegisterFileRule{RegisterFile::kConstInt, true, false, "integer constant"},
+    RegisterFileRule{RegisterFile::kConstBool, true, false, "boolean constant"},
+    RegisterFileRule{RegisterFile::kLoop, true, false, "loop counter"},
+    RegisterFileRule{RegisterFile::kPredicate, true, true, "predicate"},
 };
+
+// The first model that has registers of `file`.
+std::string_view FirstModelWith(RegisterFile file) {
+  for (const ShaderModelInfo& model : kShaderModels) {
+    if (RegisterCount(file, model.model) > 0) return model.name;
+  }
+  return "no vertex shader model";
+}
 
 const RegisterFileRule* FindRegisterFileRule(RegisterFile file) {
   for (const RegisterFileRule& rule : kRegisterFileRules) {
@@ -238,7 +249,7 @@ class Validator {
   // --- structure (§6.1) ------------------------------------------------------------------------
 
   void CheckVersion() {
-    if (program_.version == kVersionVs11 || program_.version == kVersionVs10) return;
+    if (VersionEnabled(program_.version)) return;
     diagnostics_.Error(ProgramLoc(), DiagnosticCode::kVersionToken,
                        fmt::format("version token 0x{:08X} is not vs_1_1 (0x{:08X}) or vs_1_0 "
                                                  "(0x{:08X}); start the program with vs_1_1",
@@ -269,6 +280,12 @@ class Validator {
 
   void CheckInstruction(int index) {
     const Instruction& instruction = At(index);
+    if (!OpcodeAllowed(instruction.info(), program_.model())) {  // the opcode table's model column
+      Error(index, DiagnosticCode::kUnknownInstruction,
+            fmt::format("{} is not a {} instruction (it exists from {} on)", instruction.info().mnemonic,
+                        ShaderModelName(program_.model()), ShaderModelName(instruction.info().since)));
+      return;
+    }
     CheckPlacementAndSlots(index);
     if (instruction.opcode == Opcode::kDcl) {
       CheckDeclaration(index);
@@ -297,11 +314,19 @@ class Validator {
     const RegisterFileRule* rule = FindRegisterFileRule(reg.file);
     if (rule == nullptr) {
       Error(index, DiagnosticCode::kNoSuchRegister,
-            fmt::format("{} has register type {}, which vs_1_1 does not have", what, static_cast<int>(reg.file)));
+            fmt::format("{} has register type {}, which {} does not have", what, static_cast<int>(reg.file),
+                        ShaderModelName(program_.model())));
       return false;
     }
-    const int count = rule->count == kUseConstantCount ? options_.constant_count : rule->count;
+    const ShaderModel model = program_.model();
+    const int count = reg.file == RegisterFile::kConst ? options_.constant_count : RegisterCount(reg.file, model);
     if (reg.index >= 0 && reg.index < count) return true;
+    if (count == 0) {
+      Error(index, DiagnosticCode::kNoSuchRegister,
+            fmt::format("{} names {}, which {} does not have ({} registers exist from {} on)", what,
+                        RegisterName(reg), ShaderModelName(model), rule->role, FirstModelWith(reg.file)));
+      return false;
+    }
     // Real vs_1_1 shaders use c100 and beyond on devices with 256 constants.
     const std::string more_constants =
         fmt::format("; for a device with more, give its count with --max-constants (e.g. --max-constants {})",
@@ -320,7 +345,8 @@ class Validator {
       std::string range = count == 1 ? RegisterName(last)
                                      : fmt::format("{}-{}", RegisterName({reg.file, 0, false}), RegisterName(last));
       Error(index, DiagnosticCode::kNoSuchRegister,
-            fmt::format("{} names {}, which does not exist; vs_1_1 has {}", what, RegisterName(reg), range));
+            fmt::format("{} names {}, which does not exist; {} has {}", what, RegisterName(reg),
+                        ShaderModelName(program_.model()), range));
     }
     return false;
   }
@@ -329,7 +355,7 @@ class Validator {
     const Instruction& instruction = At(index);
     const RegisterRef& reg = instruction.dest.reg;
     const RegisterFileRule* rule = FindRegisterFileRule(reg.file);
-    if (rule != nullptr && !rule->writable) {
+    if (rule != nullptr && !rule->writable && RegisterCount(reg.file, program_.model()) > 0) {
       Error(index, DiagnosticCode::kReadOnlyDestination,
             fmt::format("cannot write {}: {} registers are read-only; write a temporary (r#) or an "
                                "output instead",

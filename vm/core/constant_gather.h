@@ -15,13 +15,19 @@ namespace vs11::semantics {
 
 inline std::int32_t IfThenElseZero(bool condition, std::int32_t value) { return condition ? value : 0; }
 
-// The offset in floats of component 0 of the row that c[a0.x + base] reads, `address` holding a0.x
-// and `count` the bank's size per lane; `literal(n)` makes an I holding n in every lane.
+// The offset in floats of component 0 of the row that c[index] reads, `count` holding the bank's
+// size per lane; `literal(n)` makes an I holding n in every lane. This is the IR's kRelativeRow
+// (vm/ir/graph.h) as the jit lowers it.
 template <class I, class Literal>
-I RelativeConstantOffset(I address, std::int32_t base, I count, std::int32_t first_row, Literal literal) {
-  const I index = address + literal(base);
+I ConstantRowOffset(I index, I count, std::int32_t first_row, Literal literal) {
   const I row_if_below_count = IfThenElseZero(count > index, index + literal(first_row));
   return ShiftLeft<2>(IfThenElseZero(index > literal(-1), row_if_below_count));
+}
+
+// The same for c[a0.x + base], `address` holding a0.x.
+template <class I, class Literal>
+I RelativeConstantOffset(I address, std::int32_t base, I count, std::int32_t first_row, Literal literal) {
+  return ConstantRowOffset(address + literal(base), count, first_row, literal);
 }
 
 }  // namespace vs11::semantics

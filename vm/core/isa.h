@@ -8,6 +8,8 @@
 #include <optional>
 #include <string_view>
 
+#include "vm/core/shader_model.h"
+
 namespace vs11 {
 
 // How an instruction's operands are laid out in source and in the token stream.
@@ -46,38 +48,39 @@ inline constexpr std::uint8_t kLanesXyz = 0x7;
 inline constexpr std::uint8_t kLanesXyzw = 0xF;
 
 // name, mnemonic, opcode token, operand shape, result kind, slots, mask rule, default mask, dot width,
-// matrix rows. The default mask is what the assembler writes when the destination has none: the lanes
-// a matrix macro writes (m3x3 r0, v0, c0 is emitted as .xyz, as Microsoft's assembler does and
+// matrix rows, first shader model (vm/core/shader_model.h: the model that introduced the opcode; every
+// later one keeps it). The default mask is what the assembler writes when the destination has none:
+// the lanes a matrix macro writes (m3x3 r0, v0, c0 is emitted as .xyz, as Microsoft's assembler does and
 // MojoShader's opcode table records), .xyzw for everything else (frc included: it is then invalid).
-#define VS11_OPCODES(X)                                                           \
-  X(Nop, "nop", 0x00, kNone, kNoResult, 1, kAny, kLanesXyzw, 0, 0)                \
-  X(Mov, "mov", 0x01, kDest1, kComponentwise, 1, kAny, kLanesXyzw, 0, 0)          \
-  X(Add, "add", 0x02, kDest2, kComponentwise, 1, kAny, kLanesXyzw, 0, 0)          \
-  X(Sub, "sub", 0x03, kDest2, kComponentwise, 1, kAny, kLanesXyzw, 0, 0)          \
-  X(Mad, "mad", 0x04, kDest3, kComponentwise, 1, kAny, kLanesXyzw, 0, 0)          \
-  X(Mul, "mul", 0x05, kDest2, kComponentwise, 1, kAny, kLanesXyzw, 0, 0)          \
-  X(Rcp, "rcp", 0x06, kDest1, kScalar, 1, kAny, kLanesXyzw, 0, 0)                 \
-  X(Rsq, "rsq", 0x07, kDest1, kScalar, 1, kAny, kLanesXyzw, 0, 0)                 \
-  X(Dp3, "dp3", 0x08, kDest2, kDotProduct, 1, kAny, kLanesXyzw, 3, 0)             \
-  X(Dp4, "dp4", 0x09, kDest2, kDotProduct, 1, kAny, kLanesXyzw, 4, 0)             \
-  X(Min, "min", 0x0A, kDest2, kComponentwise, 1, kAny, kLanesXyzw, 0, 0)          \
-  X(Max, "max", 0x0B, kDest2, kComponentwise, 1, kAny, kLanesXyzw, 0, 0)          \
-  X(Slt, "slt", 0x0C, kDest2, kComponentwise, 1, kAny, kLanesXyzw, 0, 0)          \
-  X(Sge, "sge", 0x0D, kDest2, kComponentwise, 1, kAny, kLanesXyzw, 0, 0)          \
-  X(Exp, "exp", 0x0E, kDest1, kScalar, 10, kAny, kLanesXyzw, 0, 0)                \
-  X(Log, "log", 0x0F, kDest1, kScalar, 10, kAny, kLanesXyzw, 0, 0)                \
-  X(Lit, "lit", 0x10, kDest1, kVector, 1, kAny, kLanesXyzw, 0, 0)                 \
-  X(Dst, "dst", 0x11, kDest2, kVector, 1, kAny, kLanesXyzw, 0, 0)                 \
-  X(Frc, "frc", 0x13, kDest1, kComponentwise, 3, kYOrXy, kLanesXyzw, 0, 0)        \
-  X(M4x4, "m4x4", 0x14, kDest2, kMatrix, 4, kXyzw, kLanesXyzw, 4, 4)              \
-  X(M4x3, "m4x3", 0x15, kDest2, kMatrix, 3, kXyz, kLanesXyz, 4, 3)                \
-  X(M3x4, "m3x4", 0x16, kDest2, kMatrix, 4, kXyzw, kLanesXyzw, 3, 4)              \
-  X(M3x3, "m3x3", 0x17, kDest2, kMatrix, 3, kXyz, kLanesXyz, 3, 3)                \
-  X(M3x2, "m3x2", 0x18, kDest2, kMatrix, 2, kXy, kLanesXy, 3, 2)                  \
-  X(Dcl, "dcl", 0x1F, kDeclaration, kNoResult, 0, kFull, kLanesXyzw, 0, 0)        \
-  X(Expp, "expp", 0x4E, kDest1, kVector, 1, kAny, kLanesXyzw, 0, 0)               \
-  X(Logp, "logp", 0x4F, kDest1, kVector, 1, kAny, kLanesXyzw, 0, 0)               \
-  X(Def, "def", 0x51, kDefinition, kNoResult, 0, kFull, kLanesXyzw, 0, 0)
+#define VS11_OPCODES(X)                                                                 \
+  X(Nop, "nop", 0x00, kNone, kNoResult, 1, kAny, kLanesXyzw, 0, 0, kVs11)               \
+  X(Mov, "mov", 0x01, kDest1, kComponentwise, 1, kAny, kLanesXyzw, 0, 0, kVs11)         \
+  X(Add, "add", 0x02, kDest2, kComponentwise, 1, kAny, kLanesXyzw, 0, 0, kVs11)         \
+  X(Sub, "sub", 0x03, kDest2, kComponentwise, 1, kAny, kLanesXyzw, 0, 0, kVs11)         \
+  X(Mad, "mad", 0x04, kDest3, kComponentwise, 1, kAny, kLanesXyzw, 0, 0, kVs11)         \
+  X(Mul, "mul", 0x05, kDest2, kComponentwise, 1, kAny, kLanesXyzw, 0, 0, kVs11)         \
+  X(Rcp, "rcp", 0x06, kDest1, kScalar, 1, kAny, kLanesXyzw, 0, 0, kVs11)                \
+  X(Rsq, "rsq", 0x07, kDest1, kScalar, 1, kAny, kLanesXyzw, 0, 0, kVs11)                \
+  X(Dp3, "dp3", 0x08, kDest2, kDotProduct, 1, kAny, kLanesXyzw, 3, 0, kVs11)            \
+  X(Dp4, "dp4", 0x09, kDest2, kDotProduct, 1, kAny, kLanesXyzw, 4, 0, kVs11)            \
+  X(Min, "min", 0x0A, kDest2, kComponentwise, 1, kAny, kLanesXyzw, 0, 0, kVs11)         \
+  X(Max, "max", 0x0B, kDest2, kComponentwise, 1, kAny, kLanesXyzw, 0, 0, kVs11)         \
+  X(Slt, "slt", 0x0C, kDest2, kComponentwise, 1, kAny, kLanesXyzw, 0, 0, kVs11)         \
+  X(Sge, "sge", 0x0D, kDest2, kComponentwise, 1, kAny, kLanesXyzw, 0, 0, kVs11)         \
+  X(Exp, "exp", 0x0E, kDest1, kScalar, 10, kAny, kLanesXyzw, 0, 0, kVs11)               \
+  X(Log, "log", 0x0F, kDest1, kScalar, 10, kAny, kLanesXyzw, 0, 0, kVs11)               \
+  X(Lit, "lit", 0x10, kDest1, kVector, 1, kAny, kLanesXyzw, 0, 0, kVs11)                \
+  X(Dst, "dst", 0x11, kDest2, kVector, 1, kAny, kLanesXyzw, 0, 0, kVs11)                \
+  X(Frc, "frc", 0x13, kDest1, kComponentwise, 3, kYOrXy, kLanesXyzw, 0, 0, kVs11)       \
+  X(M4x4, "m4x4", 0x14, kDest2, kMatrix, 4, kXyzw, kLanesXyzw, 4, 4, kVs11)             \
+  X(M4x3, "m4x3", 0x15, kDest2, kMatrix, 3, kXyz, kLanesXyz, 4, 3, kVs11)               \
+  X(M3x4, "m3x4", 0x16, kDest2, kMatrix, 4, kXyzw, kLanesXyzw, 3, 4, kVs11)             \
+  X(M3x3, "m3x3", 0x17, kDest2, kMatrix, 3, kXyz, kLanesXyz, 3, 3, kVs11)               \
+  X(M3x2, "m3x2", 0x18, kDest2, kMatrix, 2, kXy, kLanesXy, 3, 2, kVs11)                 \
+  X(Dcl, "dcl", 0x1F, kDeclaration, kNoResult, 0, kFull, kLanesXyzw, 0, 0, kVs11)       \
+  X(Expp, "expp", 0x4E, kDest1, kVector, 1, kAny, kLanesXyzw, 0, 0, kVs11)              \
+  X(Logp, "logp", 0x4F, kDest1, kVector, 1, kAny, kLanesXyzw, 0, 0, kVs11)              \
+  X(Def, "def", 0x51, kDefinition, kNoResult, 0, kFull, kLanesXyzw, 0, 0, kVs11)
 
 enum class Opcode : std::uint8_t {
 #define VS11_OPCODE_ENUM(name, ...) k##name,
@@ -96,6 +99,7 @@ struct OpcodeInfo {
   std::uint8_t default_mask;  // WriteMask bits written when the source gives no mask
   int dot_width;        // lanes summed by dp3/dp4 and each matrix row
   int matrix_rows;      // rows (and registers of s1) read by m*x*
+  ShaderModel since;    // the first model that has it
 
   // The source of m*x* that names the matrix's first row (m4x4 r0, v0, c4: c4..c7).
   static constexpr int kMatrixSource = 1;
@@ -134,9 +138,9 @@ struct OpcodeInfo {
 };
 
 inline constexpr std::array kOpcodeTable = {
-#define VS11_OPCODE_ROW(name, mnemonic, token, shape, kind, slots, mask, default_mask, dot, rows) \
-  OpcodeInfo{Opcode::k##name, mnemonic, token, OperandShape::shape, ResultKind::kind, slots,        \
-             MaskRule::mask, default_mask, dot, rows},
+#define VS11_OPCODE_ROW(name, mnemonic, token, shape, kind, slots, mask, default_mask, dot, rows, since) \
+  OpcodeInfo{Opcode::k##name, mnemonic, token, OperandShape::shape, ResultKind::kind, slots,               \
+             MaskRule::mask, default_mask, dot, rows, ShaderModel::since},
     VS11_OPCODES(VS11_OPCODE_ROW)
 #undef VS11_OPCODE_ROW
 };
@@ -166,6 +170,8 @@ static_assert([] {
 }());
 
 constexpr const OpcodeInfo& Info(Opcode opcode) { return kOpcodeTable[static_cast<int>(opcode)]; }
+// Whether programs of `model` may use the opcode.
+constexpr bool OpcodeAllowed(const OpcodeInfo& info, ShaderModel model) { return model >= info.since; }
 std::optional<Opcode> OpcodeFromToken(std::uint16_t token);
 std::optional<Opcode> OpcodeFromMnemonic(std::string_view mnemonic);  // case-insensitive
 
@@ -179,15 +185,16 @@ std::optional<int> DeclUsageFromName(std::string_view name);  // case-insensitiv
 
 // Machine limits (§1.1, §2.7).
 inline constexpr int kMaxInstructionSlots = 128;
-inline constexpr int kTempRegisterCount = 12;
-inline constexpr int kInputRegisterCount = 16;
-inline constexpr int kDefaultConstantCount = 96;  // D3DCAPS9.MaxVertexShaderConst minimum for vs_1_1
+inline constexpr int kTempRegisterCount = RegisterCount(RegisterFile::kTemp, ShaderModel::kVs11);
+inline constexpr int kInputRegisterCount = RegisterCount(RegisterFile::kInput, ShaderModel::kVs11);
+// D3DCAPS9.MaxVertexShaderConst minimum for vs_1_1.
+inline constexpr int kDefaultConstantCount = RegisterCount(RegisterFile::kConst, ShaderModel::kVs11);
 inline constexpr int kMaxConstantIndex = 2047;    // what the 11-bit register number can hold
-inline constexpr int kTexCoordOutputCount = 8;
-inline constexpr int kColorOutputCount = 2;
+inline constexpr int kTexCoordOutputCount = RegisterCount(RegisterFile::kTexCoordOut, ShaderModel::kVs11);
+inline constexpr int kColorOutputCount = RegisterCount(RegisterFile::kAttributeOut, ShaderModel::kVs11);
 
 // Version tokens (§4.2).
-inline constexpr std::uint32_t kVersionVs11 = 0xFFFE0101;
+inline constexpr std::uint32_t kVersionVs11 = Info(ShaderModel::kVs11).version_token;
 inline constexpr std::uint32_t kVersionVs10 = 0xFFFE0100;
 
 }  // namespace vs11

@@ -14,16 +14,7 @@
 
 namespace vs11 {
 
-// D3DSHADER_PARAM_REGISTER_TYPE values used by vs_1_1 (§4.6).
-enum class RegisterFile : std::uint8_t {
-  kTemp = 0,           // r#
-  kInput = 1,          // v#
-  kConst = 2,          // c#
-  kAddress = 3,        // a0
-  kRasterOut = 4,      // oPos (0), oFog (1), oPts (2)
-  kAttributeOut = 5,   // oD0, oD1
-  kTexCoordOut = 6,    // oT0-oT7
-};
+// RegisterFile, the register types, is in vm/core/shader_model.h with each model's register counts.
 inline constexpr int kRasterOutPosition = 0;
 inline constexpr int kRasterOutFog = 1;
 inline constexpr int kRasterOutPointSize = 2;
@@ -121,9 +112,25 @@ struct CommentBlock {
   friend bool operator==(const CommentBlock&, const CommentBlock&) = default;
 };
 
+// Structured control flow, for the shader models after vs_1_1 (loop/endloop, rep/endrep, if/else/endif,
+// call and label, predicated blocks): the instruction list stays flat, as the token stream is, and
+// each construct is a region over a span of it, listed parent first, so that the regions of vm/ir's
+// graph (vm/ir/graph.h) map one to one. A new construct is a new kind and the instructions that open
+// and close it, not a new program model. vs_1_1 has none: the whole list is the body.
+enum class ControlKind : std::uint8_t { kBody };  // later: loop, rep, if, else, subroutine, predicated
+struct ControlRegion {
+  ControlKind kind = ControlKind::kBody;
+  int first = 0;    // the instruction that opens it (index into Program::instructions)
+  int end = 0;      // one past the instruction that closes it
+  int parent = -1;  // index into Program::regions; -1 for the body
+  int label = -1;   // a subroutine's label number; -1 for other kinds
+  friend bool operator==(const ControlRegion&, const ControlRegion&) = default;
+};
+
 struct Program {
   std::uint32_t version = kVersionVs11;
   std::vector<Instruction> instructions;  // dcl and def included, in stream order
+  std::vector<ControlRegion> regions;     // empty: straight-line code (vs_1_1)
   std::vector<CommentBlock> comments;
   // Where each instruction came from, when assembled from text (same length as instructions), or empty.
   std::vector<SourceLoc> source_locs;
@@ -131,6 +138,8 @@ struct Program {
   // instructions), or empty.
   std::vector<long> word_offsets;
 
+  // The model the version token names; vs_1_1's for a token of none (the validator reports it).
+  ShaderModel model() const { return ShaderModelOfVersion(version).value_or(ShaderModel::kVs11); }
   SourceLoc LocOf(int instruction_index) const {
     return instruction_index >= 0 && instruction_index < static_cast<int>(source_locs.size())
                ? source_locs[instruction_index]

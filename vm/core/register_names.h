@@ -29,6 +29,11 @@ inline constexpr std::array kRegisterSpellings = {
     RegisterSpelling{"v", RegisterFile::kInput, RegisterSpelling::kNumbered},
     RegisterSpelling{"c", RegisterFile::kConst, RegisterSpelling::kNumbered},
     RegisterSpelling{"a", RegisterFile::kAddress, RegisterSpelling::kNumbered},
+    // vs_2_0 on (vm/core/shader_model.h): spelled so that a vs_1_1 program naming them is told so.
+    RegisterSpelling{"i", RegisterFile::kConstInt, RegisterSpelling::kNumbered},
+    RegisterSpelling{"b", RegisterFile::kConstBool, RegisterSpelling::kNumbered},
+    RegisterSpelling{"aL", RegisterFile::kLoop, 0},
+    RegisterSpelling{"p", RegisterFile::kPredicate, RegisterSpelling::kNumbered},
 };
 
 // The length of `file`'s numbered spelling ("v", "c", "oT") when `text` begins with it in any case;

@@ -1,6 +1,6 @@
 // The batch engine: the program is compiled once into a plan of kernel steps (vm/engines/batch_plan.h), and
 // Run applies each step to a batch of kBatchSize vertices at a time, structure of arrays. The
-// kernels are compiled for every Highway target, each in its own vm/batch_kernels_<target>.cc (see
+// kernels are compiled for every Highway target, each in its own vm/engines/batch_kernels_<target>.cc (see
 // vm/engines/batch_kernels-inl.h for why), and the best one the CPU supports is chosen when the engine is
 // made (HWY_DYNAMIC_DISPATCH).
 
@@ -14,7 +14,7 @@
 
 namespace vs11::batch {
 namespace HWY_NAMESPACE {
-const KernelTable* GetKernelTable(FloatRules rules);  // defined by vm/batch_kernels_<target>.cc
+const KernelTable* GetKernelTable(FloatRules rules);  // defined by vm/engines/batch_kernels_<target>.cc
 }  // namespace HWY_NAMESPACE
 }  // namespace vs11::batch
 
@@ -38,9 +38,9 @@ const KernelTable* GetKernelTable(FloatRules rules);  // defined by vm/batch_ker
 namespace vs11 {
 namespace batch {
 
-// Every target Highway compiles for needs its vm/batch_kernels_<target>.cc.
+// Every target Highway compiles for needs its vm/engines/batch_kernels_<target>.cc.
 static_assert((HWY_TARGETS & ~(HWY_SCALAR | HWY_EMU128 | HWY_SSSE3 | HWY_SSE4 | HWY_AVX2 | HWY_AVX3)) == 0,
-              "add a vm/batch_kernels_<target>.cc for the new Highway target");
+              "add a vm/engines/batch_kernels_<target>.cc for the new Highway target");
 HWY_EXPORT(GetKernelTable);
 
 namespace {

@@ -1,6 +1,6 @@
 // The batch engine's kernels for one Highway target (the one HWY_TARGET names), included by exactly
-// one vm/batch_kernels_<target>.cc. Each kernel runs one Step (vm/engines/batch_plan.h) over every vertex of
-// a batch, with the arithmetic of vm/core/semantics.h instantiated for the target's float vector, and the
+// one vm/engines/batch_kernels_<target>.cc. Each kernel runs one Step (vm/engines/batch_plan.h) over
+// every vertex of a batch, with the arithmetic of vm/core/semantics.h instantiated for the target's float vector, and the
 // target's KernelTable is returned by GetKernelTable().
 //
 // Bit exactness: the kernels add nothing to the shared arithmetic. Negation is Highway's Neg (a sign
@@ -14,7 +14,7 @@
 // the target in force where the template is *defined*, and the semantics kernels call Highway's
 // always-inline, target-specific ops. vm/core/semantics.h must therefore be defined under this target's
 // `#pragma GCC target`, which with its `#pragma once` means a translation unit of its own. Each
-// vm/batch_kernels_<target>.cc sets HWY_TARGET and includes this file; vm/engines/batch_engine.cc
+// vm/engines/batch_kernels_<target>.cc sets HWY_TARGET and includes this file; vm/engines/batch_engine.cc
 // dispatches to them with HWY_EXPORT / HWY_DYNAMIC_DISPATCH. The Standard Library and the engine's
 // own headers are included first, outside the target pragma, so that only vm/core/semantics.h and the
 // kernels below are compiled for the target (and its float overloads, which would be ODR-shared

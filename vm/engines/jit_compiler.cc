@@ -375,7 +375,7 @@ class Emitter : public Xbyak::CodeGenerator {
       case Op::kToFloat: vcvtdq2ps(result, a); break;
       case Op::kInput: case Op::kConstant: case Op::kLiteral: case Op::kConstantCount: case Op::kGather:
       case Op::kStore: break;  // handled by Emit
-      // Not in the jit's graph: lowered away (ir::LowerToBitOperations) or not recorded by its bindings.
+      // Not in the jit's graph: lowered away (ir::LowerToBitOperations; relative rows to gathers, jit_graph.cc).
       case Op::kAbs: case Op::kNegate: case Op::kBitsOf: case Op::kFloatFromBits: case Op::kRelativeRow:
       case Op::kComponent: assert(false && "not lowered"); break;
     }

@@ -42,12 +42,11 @@ struct RunArguments {
 
 // A call whose outputs (vertices x stored lanes x 4 bytes) reach this size, with every output lane
 // aligned to a vector, stores them around the caches (vmovntps): they would not stay there, and a
-// cached store first reads the line it overwrites (all_instructions, 65536 vertices, 33 output lanes:
-// 6.6 ns per vertex with cached stores, 4.9 with streaming ones).
+// cached store first reads the line it overwrites.
 // Only a loop that writes whole cache lines of each output lane per iteration streams (AVX-512, or two
 // AVX2 vertex groups, whose stores of a lane are adjacent: vm/engines/jit_graph.cc): a streaming
 // store of half a line leaves a partial line to the write-combining buffers, which write it out
-// slowly (sh9_vertex_od0 with one AVX2 group: 169 us per 65536 vertices streaming, 86 caching).
+// slowly. bench/README.md ("The jit's streaming stores") has the measurements.
 inline constexpr std::size_t kStreamingOutputBytes = std::size_t{1} << 20;
 inline constexpr std::size_t kCacheLineBytes = 64;
 

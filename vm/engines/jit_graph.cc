@@ -27,17 +27,6 @@ class LoopBindings final : public ir::Bindings {
     return value;
   }
 
-  // c[a0.x + index] of every vertex, component by component, by the rule the batch engine's
-  // GatherKernel reads too (vm/core/constant_gather.h).
-  ir::Vec4 ReadRelativeConstant(ir::Int address, long index) override {
-    const ir::Int count = ir::RecordInt(ir::Op::kConstantCount);
-    const ir::Int offset = semantics::RelativeConstantOffset(address, static_cast<std::int32_t>(index), count,
-                                                             batch::kFirstConstantRow, ir::LiteralInt);
-    ir::Vec4 value;
-    for (int c = 0; c < 4; ++c) value[c] = ir::RecordFloat(ir::Op::kGather, {offset.id}, static_cast<std::uint32_t>(c));
-    return value;
-  }
-
   ir::Vec4 ReadInput(long index) override {
     ir::Vec4 value;
     for (int c = 0; c < 4; ++c) {
@@ -58,6 +47,32 @@ class LoopBindings final : public ir::Bindings {
   std::uint32_t group_;
   std::span<const UniformInput> uniform_inputs_;
 };
+
+// The IR's relative reads as the batch engine's GatherKernel makes them too (vm/core/constant_gather.h):
+// a kRelativeRow becomes the float offset of its row in the constant table, each kComponent of it a
+// kGather of one float at that offset. Every other node is copied as it is, in order.
+ir::Graph LowerRelativeRows(const ir::Graph& graph) {
+  ir::Graph lowered;
+  const ir::Recording recording(lowered);  // the offset's operations record into `lowered`
+  std::vector<int> lowered_id(graph.size(), ir::kNoNode);
+  for (std::size_t n = 0; n < graph.size(); ++n) {
+    const ir::Node& node = graph.nodes()[n];
+    ir::Args args = node.args;
+    for (int& arg : args) {
+      if (arg != ir::kNoNode) arg = lowered_id[static_cast<std::size_t>(arg)];
+    }
+    lowered.set_instruction(node.instruction);
+    if (node.op == ir::Op::kRelativeRow) {
+      const ir::Int count = ir::RecordInt(ir::Op::kConstantCount);
+      lowered_id[n] = semantics::ConstantRowOffset(ir::Int{args[0]}, count, batch::kFirstConstantRow, ir::LiteralInt).id;
+    } else if (node.op == ir::Op::kComponent) {
+      lowered_id[n] = lowered.Add(ir::Op::kGather, {args[0]}, node.immediate);
+    } else {
+      lowered_id[n] = lowered.Add(node.op, node.type, {args[0], args[1], args[2]}, node.immediate);
+    }
+  }
+  return lowered;
+}
 
 }  // namespace
 
@@ -86,7 +101,7 @@ ir::Graph RecordLoopBody(const Program& program, int groups, std::span<const Uni
       }
     }
   }
-  return ir::LowerToBitOperations(graph);
+  return ir::LowerToBitOperations(LowerRelativeRows(graph));
 }
 
 }  // namespace vs11::jit

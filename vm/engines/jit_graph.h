@@ -1,5 +1,6 @@
 // The jit's graph: the program recorded into the IR (vm/ir/record.h) with the batch engine's tables
-// as its registers, lowered to bit operations (vm/ir/lower_bits.h), as the emitter
+// as its registers, its relative reads lowered to gathers from that table, and lowered to bit
+// operations (vm/ir/lower_bits.h), as the emitter
 // (vm/engines/jit_compiler.cc) turns it into machine code.
 #pragma once
 

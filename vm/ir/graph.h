@@ -5,7 +5,9 @@
 // takes.
 //
 // A node is one operation on one lane of one vertex (a float, an int32, a mask) or, for a constant row
-// read at a computed index, a whole vec4. Nodes are numbered in the order the semantics performed
+// read at a computed register number (c[a0.x + n]), a whole vec4, whose lanes kComponent reads: each back
+// end lowers that pair its own way (the jit: a gather per lane at a float offset; GLSL: a row of the
+// uniform array). Nodes are numbered in the order the semantics performed
 // them, every argument before its users; identical pure nodes are made once (v0.x read by three dp4s
 // is one node), which is all the common-subexpression elimination there is.
 //
@@ -40,11 +42,11 @@ enum class Type : std::uint8_t {
   X(Literal, kFloat)        /* immediate: the bits; type kFloat or kInt as recorded */                  \
   X(Input, kFloat)          /* immediate: an input lane as the back end numbers it */                   \
   X(Constant, kFloat)       /* immediate: a constant lane as the back end numbers it */                 \
-  X(ConstantCount, kInt)    /* the constant bank's size, known when the program runs */                 \
-  /* relative constant reads, c[a0.x + n]: */                                                           \
-  X(RelativeRow, kVec4)     /* arg: the register number; the vec4 as the engines read it */             \
+  X(ConstantCount, kInt)    /* jit lowering only: the bank's size, known when the program runs */      \
+  /* relative constant reads, c[a0.x + n]: a row by register number, then its lanes */                 \
+  X(RelativeRow, kVec4)     /* arg: the register number (int); zeros outside the bank */                \
   X(Component, kFloat)      /* arg: a kVec4; immediate: the lane */                                     \
-  X(Gather, kFloat)         /* arg: a float offset into the constant table; immediate: the lane */      \
+  X(Gather, kFloat)         /* jit lowering only: arg: a float offset into its table; immediate: lane */ \
   /* float arithmetic, IEEE single precision, unfused */                                                \
   X(Add, kFloat) X(Sub, kFloat) X(Mul, kFloat) X(Div, kFloat) X(Floor, kFloat) X(Sqrt, kFloat)          \
   X(Abs, kFloat)            /* the sign bit cleared, NaNs included */                                   \

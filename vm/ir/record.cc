@@ -20,9 +20,15 @@ class RecordingMachine {
   }
 
   Vec4 ReadConstant(long index, bool relative) const {
-    if (relative && address_written_) return bindings_.ReadRelativeConstant(address_, index);
+    if (relative && address_written_) return ReadRelativeRow(address_ + LiteralInt(static_cast<std::int32_t>(index)));
     if (index < 0) return Zero();  // a0 is 0 until written
     return bindings_.ReadConstant(index);
+  }
+  static Vec4 ReadRelativeRow(Int register_number) {
+    const int row = Record(Op::kRelativeRow, Type::kVec4, {register_number.id});
+    Vec4 value;
+    for (int c = 0; c < 4; ++c) value[c] = RecordFloat(Op::kComponent, {row}, static_cast<std::uint32_t>(c));
+    return value;
   }
   Vec4 ReadInput(long index) const { return bindings_.ReadInput(index); }
   Vec4& Temp(long index) { return temps_[static_cast<std::size_t>(index)]; }

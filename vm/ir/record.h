@@ -4,8 +4,10 @@
 // engine's IEEE operations in the reference engine's order, for every back end alike.
 //
 // What differs between back ends is only where a register's value comes from: a back end supplies
-// that as Bindings (the jit: its lane and constant tables, uniform inputs compiled in, gathers; the
-// translator: GLSL inputs, the constant bank with defs as literals, a relative-row read).
+// that as Bindings (the jit: its lane and constant tables, uniform inputs compiled in; the translator:
+// GLSL inputs, the constant bank with defs as literals). A relative read, c[a0.x + n], is the same
+// for all: one kRelativeRow of the register number a0.x + n, then a kComponent per lane, which each
+// back end lowers its own way.
 #pragma once
 
 #include <array>
@@ -23,8 +25,6 @@ class Bindings {
   virtual ~Bindings() = default;
   // c[index] for 0 <= index (a negative index, or a relative one before a0 is written, reads 0).
   virtual Vec4 ReadConstant(long index) = 0;
-  // c[a0.x + index], `address` holding a0.x (semantics::AddressFromFloat's value).
-  virtual Vec4 ReadRelativeConstant(Int address, long index) = 0;
   // v[index], index < kInputRegisterCount.
   virtual Vec4 ReadInput(long index) = 0;
   // What output slot `slot` holds before the program writes it (handles with no node: nothing).

@@ -1,6 +1,6 @@
 // The targets of `vs11 translate`, one file per dialect behind this interface (as MojoShader's
 // profiles): profile_glsl330.cc, profile_glsles.cc (ES 3.00, 3.10 and 3.20), profile_spirv.cc. The shader
-// body is the same GLSL for every target (glsl_writer.cc); a profile supplies only what its dialect
+// body is the same GLSL for every target (translate.cc); a profile supplies only what its dialect
 // spells differently and what it makes of the finished text.
 #pragma once
 

@@ -26,13 +26,6 @@ class ShaderBindings final : public ir::Bindings {
     for (int c = 0; c < 4; ++c) value[c] = ir::RecordFloat(ir::Op::kConstant, {}, static_cast<std::uint32_t>(index * 4 + c));
     return value;
   }
-  ir::Vec4 ReadRelativeConstant(ir::Int address, long index) override {
-    const ir::Int row = address + ir::LiteralInt(static_cast<std::int32_t>(index));
-    const int vector = ir::Record(ir::Op::kRelativeRow, ir::Type::kVec4, {row.id});
-    ir::Vec4 value;
-    for (int c = 0; c < 4; ++c) value[c] = ir::RecordFloat(ir::Op::kComponent, {vector}, static_cast<std::uint32_t>(c));
-    return value;
-  }
   ir::Vec4 ReadInput(long index) override {
     shader_.inputs_read[static_cast<std::size_t>(index)] = true;
     ir::Vec4 value;

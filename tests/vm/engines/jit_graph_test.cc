@@ -284,6 +284,9 @@ TEST(JitGraph, RelativeReadsGatherOnlyAfterA0IsWritten) {
   for (const Node* node : gathers) components.insert(node->immediate);
   EXPECT_EQ(components, (std::set<std::uint32_t>{0, 1, 2, 3}));
   EXPECT_EQ(NodesOf(after, Op::kConstantCount).size(), 1u);
+  // The IR's one relative read (a row, then its lanes) is lowered away.
+  EXPECT_TRUE(NodesOf(after, Op::kRelativeRow).empty());
+  EXPECT_TRUE(NodesOf(after, Op::kComponent).empty());
 }
 
 }  // namespace

@@ -18,18 +18,11 @@ using random_program::MakeInstruction;
 using random_program::Output;
 using random_program::Src;
 
-// Inputs and constants as register * 4 + lane (inputs plus the vertex's tag); a relative read as one
-// RelativeRow.
+// Inputs and constants as register * 4 + lane (inputs plus the vertex's tag).
 class TestBindings final : public Bindings {
  public:
   explicit TestBindings(std::uint32_t tag = 0) : tag_(tag) {}
   Vec4 ReadConstant(long index) override { return Lanes(Op::kConstant, index, 0); }
-  Vec4 ReadRelativeConstant(Int address, long index) override {
-    const int row = Record(Op::kRelativeRow, Type::kVec4, {(address + LiteralInt(static_cast<std::int32_t>(index))).id});
-    Vec4 value;
-    for (int c = 0; c < 4; ++c) value[c] = RecordFloat(Op::kComponent, {row}, static_cast<std::uint32_t>(c));
-    return value;
-  }
   Vec4 ReadInput(long index) override { return Lanes(Op::kInput, index, tag_); }
 
  private:
@@ -88,7 +81,9 @@ TEST(IrRecord, EveryOpcodeReachesItsSemanticsThroughTheDispatch) {
   }
 }
 
-TEST(IrRecord, RelativeReadsUseTheBindingsOnlyOnceA0IsWritten) {
+// c[a0.x + 3] is one kRelativeRow of the register number a0.x + 3, whatever the bindings (the back
+// ends lower it), read lane by lane; before a0 is written it is the static c3.
+TEST(IrRecord, RelativeReadsAreOneRowByRegisterNumberOnceA0IsWritten) {
   Program program;
   const int slot = static_cast<int>(OutputSlot::kDiffuse);
   program.instructions.push_back(MakeInstruction(Opcode::kMov, {Output(slot), WriteMask(0x1)}, {Src(Const(3, true))}));
@@ -101,8 +96,17 @@ TEST(IrRecord, RelativeReadsUseTheBindingsOnlyOnceA0IsWritten) {
   const RecordedOutputs outputs = RecordProgram(graph, program, vertices, FloatRules::kD3d9).at(0);
   EXPECT_EQ(graph[outputs.outputs[slot][0].id].op, Op::kConstant);  // a0 is 0 before the mov
   EXPECT_EQ(graph[outputs.outputs[slot][0].id].immediate, 12u);
-  EXPECT_EQ(graph[outputs.outputs[slot][1].id].op, Op::kComponent);
-  EXPECT_TRUE(DependsOn(graph, outputs.outputs[slot][1].id, Op::kInput));
+  const Node& lane = graph[outputs.outputs[slot][1].id];
+  EXPECT_EQ(lane.op, Op::kComponent);
+  EXPECT_EQ(lane.immediate, 1u);
+  const Node& row = graph[lane.args[0]];
+  ASSERT_EQ(row.op, Op::kRelativeRow);
+  EXPECT_EQ(row.type, Type::kVec4);
+  const Node& register_number = graph[row.args[0]];
+  ASSERT_EQ(register_number.op, Op::kIntAdd);
+  EXPECT_EQ(graph[register_number.args[1]].op, Op::kLiteral);
+  EXPECT_EQ(graph[register_number.args[1]].immediate, 3u);
+  EXPECT_TRUE(DependsOn(graph, register_number.args[0], Op::kInput));
 }
 
 TEST(IrRecord, VerticesInterleaveInstructionByInstructionAndShareWhatTheyShare) {
