@@ -15,7 +15,7 @@
 #include <benchmark/benchmark.h>
 
 #include "bench/bench_common.h"
-#include "irradiance/report/verify.h"
+#include "vm/reference/verify.h"
 #include "vm/engines/engine_factory.h"
 #include "vm/gl/gl_engine.h"
 
@@ -81,7 +81,7 @@ void RunEngine(benchmark::State& state, const Program& program, const std::strin
   }
   std::sort(files.begin(), files.end());
   for (const fs::path& file : files) {
-    irradiance::ProgramForVerify loaded = irradiance::LoadProgramForVerify(file);
+    ProgramForVerify loaded = LoadProgramForVerify(file);
     if (!loaded.program) continue;
     auto program = std::make_shared<Program>(std::move(*loaded.program));
     const std::string name = file.stem().string();

@@ -570,7 +570,7 @@ std::optional<std::string> GpuFrameStage(IrrmapRun& run) {
   const std::vector<glm::dvec3> normals =
       run.options.coefficients_only ? std::vector<glm::dvec3>{} : CubeTexelDirections(run.options.map_size);
   std::optional<std::string> error = RunIrrmapGpuFrame(
-      {run.options.gpu_frame, run.environment, run.checked.window, *run.chosen_program, normals}, run.report,
+      {run.options.gpu_frame, run.environment, run.options.window, *run.chosen_program, normals}, run.report,
       run.gpu_irradiance);
   run.chosen_bank = run.chosen_program->Constants(run.report.program_constants);
   return error;

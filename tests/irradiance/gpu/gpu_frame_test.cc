@@ -263,7 +263,7 @@ IrrmapOptions GlJobOptions() {
   IrrmapOptions options;
   options.environment = "studio";
   options.face_size = 32;
-  options.order = "order2";
+  options.order = ShOrder::kOrder2;
   options.level = 1;
   options.engine = "gl";
   options.no_ground_truth = true;
@@ -303,7 +303,7 @@ TEST(GpuFrameJob, SaysWhyAWindowedJobProjectsOnTheCpu) {
   SKIP_WITHOUT_ES31();
   vs11::gl::RegisterGlEngine();
   IrrmapOptions options = GlJobOptions();
-  options.window = "hanning";
+  options.window = ShWindow::kHanning;
   IrrmapReport report;
   ASSERT_EQ(RunIrrmap(options, report), std::nullopt);
   ASSERT_TRUE(report.gpu);
