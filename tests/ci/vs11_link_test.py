@@ -21,7 +21,7 @@ def ninja_link_line(build_dir: pathlib.Path):
         return None
     lines = ninja.read_text().splitlines()
     for index, line in enumerate(lines):
-        # "build vm/vs11: CXX_EXECUTABLE_LINKER__vs11_Release <objects> | <implicit deps> || <order-only>"
+        # "build <build>/vm/vs11: CXX_EXECUTABLE_LINKER__vs11_Release <objects> | <implicit deps> || <order-only>"
         if re.match(r"^build vm/vs11: CXX_EXECUTABLE_LINKER__vs11_", line):
             block = [line]
             for following in lines[index + 1:]:
@@ -43,7 +43,7 @@ def main() -> int:
     if text is None:
         print(f"no link command for vs11 in {build_dir} (neither build.ninja nor vm/CMakeFiles/vs11.dir/link.txt)")
         return 77
-    # Ninja's build statement names the libraries as inputs ("| irradiance/libvs11_irradiance.a") and the
+    # Ninja's build statement names the libraries as inputs ("| <build>/irradiance/libvs11_irradiance.a") and the
     # LINK_LIBRARIES variable names them on the command line; both count.
     found = sorted({name for name in FORBIDDEN if name in text})
     if found:

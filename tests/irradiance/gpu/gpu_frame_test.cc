@@ -144,7 +144,7 @@ using Case = std::tuple<std::string, int, int>;  // environment, face size, leve
 
 class GpuFrameProjection : public ::testing::TestWithParam<Case> {};
 
-TEST_P(GpuFrameProjection, AgreesWithCpuProjectionWithinParallelSumBound) {
+TEST_P(GpuFrameProjection, AgreesWithCpuProjectionWithinTheFloatSumBound) {
   SKIP_WITHOUT_ES31();
   const auto& [name, face_size, level] = GetParam();
   const std::optional<CubeMap> environment = MakeBuiltinEnvironment(name, face_size);

@@ -37,7 +37,8 @@ TEST_F(TranslateCommand, WritesGlslToStdoutWithItsInterface) {
 TEST_F(TranslateCommand, AnUnknownChoiceListsTheValidNames) {
   const std::string input = Write("p.vsh", kProgram);
   const std::vector<std::pair<std::string, std::string>> cases = {
-      {"--to hlsl", "unknown target 'hlsl' (use glsl330, glsles300, glsles320 or spirv)"},
+      {"--to hlsl", "unknown target 'hlsl' (use glsl330, glsles300, glsles310, glsles320 or spirv)"},
+      {"--to glsles310 --stage fragment", "unknown stage 'fragment' (use vertex or compute)"},
       {"--to glsl330 --clip dx", "unknown clip space 'dx' (use d3d, gl or vulkan)"}};
   for (const auto& [flags, message] : cases) {
     const testing::CommandResult run = RunVs11("translate " + input + " " + flags);
