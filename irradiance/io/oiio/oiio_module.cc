@@ -56,6 +56,12 @@ constexpr ImageIoApi kApi = {ReadWithOiio, WriteWithOiio, TextSize, RenderText};
 }  // namespace
 }  // namespace vs11::irradiance
 
+// The loader calls this once, before any thread reads an image. OpenImageIO catalogues its plugins on
+// the first ImageInput::create, mutating its search-path string under its own lock while another
+// thread's first create reads that string without it (ThreadSanitizer saw it in `irrmap batch`):
+// asking for "extension_list" here catalogues them on this one thread first.
 extern "C" __attribute__((visibility("default"))) const vs11::irradiance::ImageIoApi* vs11_image_io_api_v1() {
+  static const bool catalogued = !OIIO::get_string_attribute("extension_list").empty();
+  (void)catalogued;
   return &vs11::irradiance::kApi;
 }
