@@ -56,6 +56,17 @@ glm::dvec3 TexelDirection(CubeFace face, int x, int y, int size) {
   return glm::normalize(FaceDirection(face, s, t));
 }
 
+std::vector<glm::dvec3> CubeTexelDirections(int size) {
+  std::vector<glm::dvec3> directions;
+  directions.reserve(static_cast<std::size_t>(kCubeFaceCount) * size * size);
+  for (CubeFace face : kAllCubeFaces) {
+    for (int y = 0; y < size; ++y) {
+      for (int x = 0; x < size; ++x) directions.push_back(TexelDirection(face, x, y, size));
+    }
+  }
+  return directions;
+}
+
 double TexelCornerArea(int i, int j, int size) {
   assert(size > 0 && i >= 0 && i <= size && j >= 0 && j <= size);
   return CornerArea(FaceCoordinate(i, size), FaceCoordinate(j, size));

@@ -69,6 +69,8 @@ struct TexelCoord {
 glm::dvec3 FaceDirection(CubeFace face, double s, double t);
 // Unit direction through the centre of texel (x, y) of a face of `size` texels.
 glm::dvec3 TexelDirection(CubeFace face, int x, int y, int size);
+// TexelDirection of every texel of a size^3 cube map, in CubeFace, row, column order.
+std::vector<glm::dvec3> CubeTexelDirections(int size);
 // Exact solid angle of texel (x, y) (the same for every face), closed form
 //   A(u, v) = atan2(u v, sqrt(u^2 + v^2 + 1)) summed over the texel's corners; the six faces add to 4 pi.
 double TexelSolidAngle(int x, int y, int size);

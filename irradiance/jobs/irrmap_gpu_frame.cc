@@ -5,6 +5,8 @@
 
 #include <fmt/format.h>
 
+#include "irradiance/io/cube_map.h"
+
 namespace vs11::irradiance {
 
 std::optional<std::string> RunIrrmapGpuFrame(const IrrmapGpuFrame& frame, IrrmapReport& report,
@@ -17,10 +19,13 @@ std::optional<std::string> RunIrrmapGpuFrame(const IrrmapGpuFrame& frame, Irrmap
     report.warnings.push_back(fmt::format("--engine gl: {}; the projection ran on the CPU", *reason));
     return std::nullopt;
   }
+  // Only now: a frame that stays on the CPU needs no directions here.
+  const std::vector<glm::dvec3> normals = frame.map_size > 0 ? CubeTexelDirections(frame.map_size)
+                                                             : std::vector<glm::dvec3>{};
   GpuFrameResult result;
   const auto start = std::chrono::steady_clock::now();
   if (std::optional<std::string> error =
-          frame.hook({environment.mips->levels[0], *environment.basis, report.level, frame.program, frame.normals},
+          frame.hook({environment.mips->levels[0], *environment.basis, report.level, frame.program, normals},
                      result)) {
     return fmt::format("--engine gl: {}", *error);
   }

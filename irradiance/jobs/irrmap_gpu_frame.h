@@ -4,7 +4,6 @@
 #pragma once
 
 #include <optional>
-#include <span>
 #include <string>
 #include <vector>
 
@@ -17,20 +16,20 @@
 namespace vs11::irradiance {
 
 // What the frame runs on: the job's environment (a cube's mips and basis pyramid; a panorama's
-// projection stays on the CPU), its window, the chosen order's program and the irradiance map's texel
-// directions (none with coefficients_only).
+// projection stays on the CPU), its window, the chosen order's program and the irradiance map's face
+// size (0 with coefficients_only: no map).
 struct IrrmapGpuFrame {
   const GpuFrameHook& hook;
   const IrrmapEnvironment& environment;
   ShWindow window = ShWindow::kNone;
   const PaperProgram& program;
-  std::span<const glm::dvec3> normals;
+  int map_size = 0;
 };
 
 // Fills report.gpu. Where WhyNotOnGpu gives a reason, only that (and a warning): the projection stays
 // on the CPU and `irradiance` empty. Otherwise runs the frame and replaces report.coefficients,
 // constants and program_constants with the GPU's, with the "gpu_frame" timing, and `irradiance` with
-// the program's outputs per normal. The hook's error, prefixed "--engine gl: ", where it fails.
+// the program's outputs per texel of the map (CubeTexelDirections(map_size)). The hook's error, prefixed "--engine gl: ", where it fails.
 std::optional<std::string> RunIrrmapGpuFrame(const IrrmapGpuFrame& frame, IrrmapReport& report,
                                              std::vector<glm::dvec3>& irradiance);
 

@@ -158,18 +158,6 @@ double TimeProjection(const IrrmapEnvironment& environment, int level, Sh9Rgb& c
   return elapsed / runs;
 }
 
-// Unit directions of every texel of a size^3 cube map, in CubeFace, row, column order.
-std::vector<glm::dvec3> CubeTexelDirections(int size) {
-  std::vector<glm::dvec3> directions;
-  directions.reserve(static_cast<std::size_t>(kCubeFaceCount) * size * size);
-  for (CubeFace face : kAllCubeFaces) {
-    for (int y = 0; y < size; ++y) {
-      for (int x = 0; x < size; ++x) directions.push_back(TexelDirection(face, x, y, size));
-    }
-  }
-  return directions;
-}
-
 // "SH9 from 64x64 (level 2)"; `chosen` adds " *".
 std::string PreviewLabel(const LevelReport& level, bool chosen) {
   const std::string name = level.level == 0 ? fmt::format("SH9 from {0}x{0}", level.size)
@@ -567,11 +555,10 @@ std::optional<std::string> CoefficientsStage(IrrmapRun& run) {
 // --engine gl: the chosen level's frame on the GPU (irrmap_gpu_frame.h); the bank follows the
 // constants it leaves in the report.
 std::optional<std::string> GpuFrameStage(IrrmapRun& run) {
-  const std::vector<glm::dvec3> normals =
-      run.options.coefficients_only ? std::vector<glm::dvec3>{} : CubeTexelDirections(run.options.map_size);
-  std::optional<std::string> error = RunIrrmapGpuFrame(
-      {run.options.gpu_frame, run.environment, run.options.window, *run.chosen_program, normals}, run.report,
-      run.gpu_irradiance);
+  std::optional<std::string> error =
+      RunIrrmapGpuFrame({run.options.gpu_frame, run.environment, run.options.window, *run.chosen_program,
+                         run.options.coefficients_only ? 0 : run.options.map_size},
+                        run.report, run.gpu_irradiance);
   run.chosen_bank = run.chosen_program->Constants(run.report.program_constants);
   return error;
 }
@@ -601,11 +588,12 @@ std::optional<std::string> MeshStage(IrrmapRun& run) {
 std::optional<std::string> IrradianceMapStage(IrrmapRun& run) {
   run.irradiance_map = CubeMap(run.options.map_size);
   Timed(run.report, "irradiance_map", [&] {
-    const std::vector<glm::dvec3> directions = CubeTexelDirections(run.options.map_size);
-    const std::vector<glm::dvec3> values =
-        !run.gpu_irradiance.empty()
-            ? run.gpu_irradiance
-            : run.chosen_program->Irradiance(run.chosen_bank, directions, run.checked.engine, run.engine_options);
+    std::vector<glm::dvec3> evaluated;  // stays empty where the GPU frame evaluated the map (--engine gl)
+    if (run.gpu_irradiance.empty()) {
+      evaluated = run.chosen_program->Irradiance(run.chosen_bank, CubeTexelDirections(run.options.map_size),
+                                                 run.checked.engine, run.engine_options);
+    }
+    const std::vector<glm::dvec3>& values = run.gpu_irradiance.empty() ? evaluated : run.gpu_irradiance;
     std::size_t k = 0;
     for (Image& face : run.irradiance_map.faces) {
       for (glm::vec3& texel : face.pixels) texel = glm::vec3(values[k++]);
