@@ -111,7 +111,7 @@ void RunEngine(benchmark::State& state, std::string kind, EngineOptions options 
   VertexArrays inputs = NormalInputs(RandomUnitNormals(count));
   inputs.FillUniform(0, 3, 1.0f);  // w is no data: a lane of 1s, as irrmap leaves it (NormalInputs writes it)
   VertexArrays outputs = MakeOutputArrays(count, program);
-  std::unique_ptr<Engine> engine = MakeEngine(kind, program, bank, options);
+  std::unique_ptr<Engine> engine = MakeEngine(kind, program, bank, options).value();
   for (auto _ : state) {
     engine->Run(inputs, outputs);
     benchmark::DoNotOptimize(outputs.lane(static_cast<int>(OutputSlot::kDiffuse), 0));

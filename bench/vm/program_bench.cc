@@ -104,7 +104,7 @@ void RunProgram(benchmark::State& state, const std::filesystem::path& path, std:
   const std::size_t count = c.inputs.count();
   VertexArrays outputs = MakeOutputArrays(count, program);
   if (highway_target != 0) hwy::SetSupportedTargetsForTest(highway_target);
-  std::unique_ptr<Engine> engine = MakeEngine(kind, program, c.constants, options);
+  std::unique_ptr<Engine> engine = MakeEngine(kind, program, c.constants, options).value();
   if (highway_target != 0) hwy::SetSupportedTargetsForTest(0);
   for (auto _ : state) {
     engine->Run(c.inputs, outputs);

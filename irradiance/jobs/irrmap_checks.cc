@@ -84,7 +84,9 @@ std::optional<std::string> CheckOptionValues(const IrrmapOptions& options, Check
   std::optional<ErrorMetric> metric = ParseErrorMetric(options.error_metric);
   if (!metric) return fmt::format("unknown error metric '{}' (use {})", options.error_metric, ErrorMetricNames());
   checked.metric = *metric;
-  if (std::optional<std::string> error = CheckFaceSizeOption(OptionName(options.naming, "face-size"), options.face_size)) return error;
+  if (const Status size = CheckFaceSizeOption(OptionName(options.naming, "face-size"), options.face_size); !size) {
+    return size.message();
+  }
   if (options.level && *options.level < 0) {
     return fmt::format("{} is out of range: levels start at 0 (full resolution)", named("level", *options.level));
   }

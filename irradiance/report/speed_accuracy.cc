@@ -54,7 +54,7 @@ std::optional<std::string> LoadSweepEnvironment(const std::string& name, const S
   if (!loaded.ok()) return loaded.error;
   for (std::string& warning : loaded.environment->warnings) warnings.push_back(name + ": " + warning);
   cube = std::move(loaded.environment->cube);
-  if (std::optional<std::string> error = CheckPyramidFaceSize(name, cube.face_size)) return error;
+  if (const Status size = CheckPyramidFaceSize(name, cube.face_size); !size) return size.message();
   return std::nullopt;
 }
 
@@ -81,7 +81,7 @@ double MedianBatchMs(const SpeedAccuracyOptions& options, F&& update) {
 
 std::optional<std::string> CheckSpeedAccuracyOptions(const SpeedAccuracyOptions& options) {
   if (!ParseLayout(options.layout)) return fmt::format("unknown layout '{}'", options.layout);
-  if (std::optional<std::string> error = CheckFaceSizeOption("--face-size", options.face_size)) return error;
+  if (const Status size = CheckFaceSizeOption("--face-size", options.face_size); !size) return size.message();
   if (options.error_normals < 1) return fmt::format("--error-normals {} must be >= 1", options.error_normals);
   if (options.threads < 0) return fmt::format("--threads {} must be >= 0 (0: every core)", options.threads);
   if (options.batches < 1) return fmt::format("--batches {} must be >= 1", options.batches);
@@ -116,14 +116,13 @@ std::optional<std::string> RunSpeedAccuracySweep(const SpeedAccuracyOptions& opt
   const int threads =
       options.threads > 0 ? options.threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   const EngineOptions engine_options{threads};
-  std::string program_error;
-  const std::optional<PaperProgram> program = PaperProgram::Load(program_error);
-  if (!program) return program_error;
+  const Result<PaperProgram> program = PaperProgram::Load();
+  if (!program) return program.message();
   std::vector<PaperProgram> order_programs;  // the reduced orders, kAllShOrders order
   for (std::size_t o = 0; o + 1 < kAllShOrders.size(); ++o) {
-    std::optional<PaperProgram> loaded = PaperProgram::LoadOrder(kAllShOrders[o], program_error);
-    if (!loaded) return program_error;
-    order_programs.push_back(std::move(*loaded));
+    Result<PaperProgram> loaded = PaperProgram::LoadOrder(kAllShOrders[o]);
+    if (!loaded) return loaded.message();
+    order_programs.push_back(std::move(loaded).value());
   }
   const std::vector<glm::dvec3> normals = SphereNormals(options.error_normals);
 
@@ -327,10 +326,10 @@ std::optional<std::string> WriteSpeedAccuracy(const SpeedAccuracyResult& result,
   for (const fs::path& path : {csv, images[0], images[1]}) {
     if (fs::is_directory(path, ec)) return fmt::format("cannot write {}: it is a directory", path.string());
   }
-  if (std::optional<std::string> error = RenderGnuplotChart(SpeedAccuracyChart(result), images)) return error;
-  if (std::optional<std::string> error = WriteFileAtomically(csv, SpeedAccuracyCsv(result))) {
+  if (const Status chart = RenderGnuplotChart(SpeedAccuracyChart(result), images); !chart) return chart.message();
+  if (const Status written = WriteFileAtomically(csv, SpeedAccuracyCsv(result)); !written) {
     for (const fs::path& image : images) fs::remove(image, ec);
-    return fmt::format("cannot write {}: {}", csv.string(), *error);
+    return fmt::format("cannot write {}: {}", csv.string(), written.message());
   }
   written = {csv, images[0], images[1]};
   return std::nullopt;

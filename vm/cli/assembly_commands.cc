@@ -66,7 +66,7 @@ void AddAsmCommand(CLI::App& app) {
     CheckInputsAndOutputs({args->input}, {args->output});
     Program program = LoadProgramOrFail(args->input, args->flags);
     std::vector<std::uint8_t> bytes = BytesFromWords(Encode(program));
-    if (std::optional<std::string> error = WriteFileAtomically(args->output, bytes)) Fail(*error);
+    if (const Status written = WriteFileAtomically(args->output, bytes); !written) Fail(written.message());
   });
 }
 
@@ -93,8 +93,8 @@ void AddDisasmCommand(CLI::App& app) {
     std::string text = Disassemble(*loaded.program);
     if (args->output.empty()) {
       std::fputs(text.c_str(), stdout);
-    } else if (std::optional<std::string> error = WriteFileAtomically(args->output, text)) {
-      Fail(*error);
+    } else if (const Status written = WriteFileAtomically(args->output, text); !written) {
+      Fail(written.message());
     }
   });
 }

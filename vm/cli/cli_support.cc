@@ -102,18 +102,17 @@ bool EngineFlags::ListGlDevicesIfAsked(const std::string& command_engines) const
     std::fprintf(stderr, "warning: --gl-device applies to the gl engine only; --engine %s ignores it\n", engine.c_str());
   }
   if (gl_device != "list") return false;
-  std::string error;
-  const std::vector<gl::GlDeviceInfo> devices = gl::ListGlDevices(error);
-  std::fputs(gl::FormatGlDeviceList(devices).c_str(), stdout);
-  if (devices.empty()) Fail(error);
+  const Result<std::vector<gl::GlDeviceInfo>> devices = gl::ListGlDevices();
+  if (!devices) Fail(devices.message());
+  std::fputs(gl::FormatGlDeviceList(*devices).c_str(), stdout);
   return true;
 }
 
 std::unique_ptr<Engine> MakeEngineOrFail(std::string_view name, const Program& program, const ConstantBank& constants,
                                          const EngineOptions& options) {
-  std::unique_ptr<Engine> engine = MakeEngine(name, program, constants, options);
-  if (const std::string error = engine->error(); !error.empty()) Fail(error);
-  return engine;
+  Result<std::unique_ptr<Engine>> engine = MakeEngine(name, program, constants, options);
+  if (!engine) Fail(engine.message());
+  return std::move(engine).value();
 }
 
 void RunOrFail(Engine& engine, const VertexArrays& inputs, VertexArrays& outputs) {

@@ -51,7 +51,9 @@ void ReportTraces(const TraceFlags& flags, const std::string& program_path, cons
   document["vertices"] = vertices;
   document["identical"] = different.empty();
   if (!flags.json_file.empty()) {
-    if (std::optional<std::string> error = WriteFileAtomically(flags.json_file, document.dump(2) + "\n")) Fail(*error);
+    if (const Status written = WriteFileAtomically(flags.json_file, document.dump(2) + "\n"); !written) {
+      Fail(written.message());
+    }
   }
   if (!different.empty()) {
     std::fflush(stdout);

@@ -4,14 +4,15 @@
 // lanes go to vertex attributes vN, the API bank to `uniform vec4 c[N]` (the program's def constants
 // are in the translation), and every output register the program writes comes back from the capture.
 // Its bits are the reference engine's wherever the driver computes IEEE single precision as the
-// translation asks (README, "vs11 translate" and "The gl engine"); where no device can be had the
-// engine's error() says why.
+// translation asks (README, "vs11 translate" and "The gl engine"); where no device can be had,
+// MakeGlEngine returns the error, and a Run that fails leaves NaN outputs and says why in error().
 #pragma once
 
 #include <memory>
 #include <optional>
 
 #include "vm/core/machine.h"
+#include "vm/core/result.h"
 #include "vm/translate/translate.h"
 
 namespace vs11::gl {
@@ -29,11 +30,11 @@ struct GlOptions {
   std::optional<int> device;
 };
 
-// Never null: where the context or the program cannot be had, an engine whose error() says why
-// (MakeFailedEngine). EngineOptions::threads does not apply (the driver keeps its own threads:
-// llvmpipe's LP_NUM_THREADS); options.settings' GlOptions picks the device.
-std::unique_ptr<Engine> MakeGlEngine(const Program& program, const ConstantBank& api_constants,
-                                     const EngineOptions& options);
+// An error where the context (kGlUnavailable) or the program (kGlCompile, kGlError) cannot be had.
+// EngineOptions::threads does not apply (the driver keeps its own threads: llvmpipe's LP_NUM_THREADS);
+// options.settings' GlOptions picks the device.
+Result<std::unique_ptr<Engine>> MakeGlEngine(const Program& program, const ConstantBank& api_constants,
+                                             const EngineOptions& options);
 
 // Registers the gl engine (vm/engines/engine_factory.h's RegisterEngine), so that MakeEngine("gl", ...)
 // builds MakeGlEngine. The tools call it once before they parse their arguments; vm/engines sits below

@@ -12,7 +12,7 @@
 namespace vs11::gl {
 namespace {
 
-GLuint CompileShader(GLenum kind, const std::string& source, std::string& error) {
+Result<GLuint> CompileShader(GLenum kind, const std::string& source) {
   const GLuint shader = glCreateShader(kind);
   const char* text = source.c_str();
   glShaderSource(shader, 1, &text, nullptr);
@@ -22,9 +22,8 @@ GLuint CompileShader(GLenum kind, const std::string& source, std::string& error)
   if (ok == GL_TRUE) return shader;
   char log[2048] = {};
   glGetShaderInfoLog(shader, sizeof log, nullptr, log);
-  error = fmt::format("shader does not compile: {}", log);
   glDeleteShader(shader);
-  return 0;
+  return Failure(DiagnosticCode::kGlCompile, fmt::format("shader does not compile: {}", log));
 }
 
 // OpenGL ES needs a fragment shader to link a program, even when rasterisation is discarded. It takes
@@ -36,14 +35,13 @@ std::string FragmentSourceFor(const std::string& vertex_source) {
 
 }  // namespace
 
-bool GlOk(const char* what, std::string& error) {
+Status GlOk(const char* what) {
   const GLenum code = glGetError();
-  if (code == GL_NO_ERROR) return true;
-  error = fmt::format("{}: GL error 0x{:04X}", what, code);
-  return false;
+  if (code == GL_NO_ERROR) return {};
+  return Failure(DiagnosticCode::kGlError, fmt::format("{}: GL error 0x{:04X}", what, code));
 }
 
-std::optional<std::string> CreateLlvmpipeContext(std::optional<int> lp_threads, std::string& error) {
+Result<std::string> CreateLlvmpipeContext(std::optional<int> lp_threads) {
   if (lp_threads) {
     setenv("LP_NUM_THREADS", std::to_string(*lp_threads).c_str(), 1);
   } else {
@@ -52,20 +50,24 @@ std::optional<std::string> CreateLlvmpipeContext(std::optional<int> lp_threads, 
   // Current on this thread until the process ends, as the callers (a test's fixture, the bench's
   // child process) expect.
   static std::unique_ptr<GlContext> context;
-  context = GlContext::Create(std::nullopt, error);
-  if (!context || !context->MakeCurrent(error)) return std::nullopt;
+  Result<std::unique_ptr<GlContext>> created = GlContext::Create(std::nullopt);
+  if (!created) return created.error();
+  context = std::move(created).value();
+  if (Status current = context->MakeCurrent(); !current) return current.error();
   return context->renderer();
 }
 
-unsigned LinkTransformFeedbackProgram(const std::string& vertex_source, const std::vector<std::string>& varyings,
-                                      std::string& error) {
-  const GLuint vertex = CompileShader(GL_VERTEX_SHADER, vertex_source, error);
-  if (vertex == 0) return 0;
-  const GLuint fragment = CompileShader(GL_FRAGMENT_SHADER, FragmentSourceFor(vertex_source), error);
-  if (fragment == 0) {
+Result<unsigned> LinkTransformFeedbackProgram(const std::string& vertex_source,
+                                              const std::vector<std::string>& varyings) {
+  const Result<GLuint> vertex_shader = CompileShader(GL_VERTEX_SHADER, vertex_source);
+  if (!vertex_shader) return vertex_shader.error();
+  const GLuint vertex = *vertex_shader;
+  const Result<GLuint> fragment_shader = CompileShader(GL_FRAGMENT_SHADER, FragmentSourceFor(vertex_source));
+  if (!fragment_shader) {
     glDeleteShader(vertex);
-    return 0;
+    return fragment_shader.error();
   }
+  const GLuint fragment = *fragment_shader;
   const GLuint program = glCreateProgram();
   glAttachShader(program, vertex);
   glAttachShader(program, fragment);
@@ -80,27 +82,21 @@ unsigned LinkTransformFeedbackProgram(const std::string& vertex_source, const st
   if (ok == GL_TRUE) return program;
   char log[2048] = {};
   glGetProgramInfoLog(program, sizeof log, nullptr, log);
-  error = fmt::format("program does not link: {}", log);
   glDeleteProgram(program);
-  return 0;
+  return Failure(DiagnosticCode::kGlCompile, fmt::format("program does not link: {}", log));
 }
 
-std::unique_ptr<TransformFeedbackRun> TransformFeedbackRun::Create(const std::string& vertex_source,
-                                                                   const std::vector<std::string>& varyings,
-                                                                   int output_floats,
-                                                                   const std::vector<GlAttribute>& attributes,
-                                                                   const std::vector<float>& constants,
-                                                                   std::string& error, std::size_t vertex_count) {
+Result<std::unique_ptr<TransformFeedbackRun>> TransformFeedbackRun::Create(
+    const std::string& vertex_source, const std::vector<std::string>& varyings, int output_floats,
+    const std::vector<GlAttribute>& attributes, const std::vector<float>& constants, std::size_t vertex_count) {
   std::unique_ptr<TransformFeedbackRun> run(new TransformFeedbackRun());
-  run->program_ = LinkTransformFeedbackProgram(vertex_source, varyings, error);
-  if (run->program_ == 0) return nullptr;
+  const Result<unsigned> program = LinkTransformFeedbackProgram(vertex_source, varyings);
+  if (!program) return program.error();
+  run->program_ = *program;
   glUseProgram(run->program_);
   if (!constants.empty()) {
     const GLint location = glGetUniformLocation(run->program_, "c");
-    if (location < 0) {
-      error = "the shader has no uniform vec4 c[]";
-      return nullptr;
-    }
+    if (location < 0) return Failure(DiagnosticCode::kGlCompile, "the shader has no uniform vec4 c[]");
     glUniform4fv(location, static_cast<GLsizei>(constants.size() / 4), constants.data());
   }
 
@@ -126,7 +122,7 @@ std::unique_ptr<TransformFeedbackRun> TransformFeedbackRun::Create(const std::st
                static_cast<GLsizeiptr>(run->vertex_count_ * static_cast<std::size_t>(output_floats) * sizeof(float)),
                nullptr, GL_STREAM_READ);
   glGenQueries(1, &run->query_);
-  if (!GlOk("creating the buffers", error)) return nullptr;
+  if (Status created = GlOk("creating the buffers"); !created) return created.error();
   return run;
 }
 
@@ -138,7 +134,7 @@ TransformFeedbackRun::~TransformFeedbackRun() {
   glDeleteProgram(program_);
 }
 
-bool TransformFeedbackRun::Draw(int draws, std::string& error) {
+Status TransformFeedbackRun::Draw(int draws) {
   glUseProgram(program_);
   glBindVertexArray(vertex_array_);
   glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, output_buffer_);
@@ -148,32 +144,31 @@ bool TransformFeedbackRun::Draw(int draws, std::string& error) {
     glEndTransformFeedback();
   }
   glFinish();
-  return GlOk("drawing with transform feedback", error);
+  return GlOk("drawing with transform feedback");
 }
 
-std::optional<std::vector<float>> TransformFeedbackRun::DrawAndRead(std::string& error) {
+Result<std::vector<float>> TransformFeedbackRun::DrawAndRead() {
   glBeginQuery(GL_TRANSFORM_FEEDBACK_PRIMITIVES_WRITTEN, query_);
-  if (!Draw(1, error)) return std::nullopt;
+  if (Status drawn = Draw(1); !drawn) return drawn.error();
   glEndQuery(GL_TRANSFORM_FEEDBACK_PRIMITIVES_WRITTEN);
   GLuint written = 0;
   glGetQueryObjectuiv(query_, GL_QUERY_RESULT, &written);
   if (written != vertex_count_) {
-    error = fmt::format("transform feedback wrote {} of {} vertices", written, vertex_count_);
-    return std::nullopt;
+    return Failure(DiagnosticCode::kGlError,
+                   fmt::format("transform feedback wrote {} of {} vertices", written, vertex_count_));
   }
   const std::size_t floats = vertex_count_ * static_cast<std::size_t>(output_floats_);
   glBindBuffer(GL_TRANSFORM_FEEDBACK_BUFFER, output_buffer_);
   const void* mapped = glMapBufferRange(GL_TRANSFORM_FEEDBACK_BUFFER, 0,
                                         static_cast<GLsizeiptr>(floats * sizeof(float)), GL_MAP_READ_BIT);
   if (mapped == nullptr) {
-    GlOk("glMapBufferRange", error);
-    if (error.empty()) error = "glMapBufferRange returned no pointer";
-    return std::nullopt;
+    if (Status mapping = GlOk("glMapBufferRange"); !mapping) return mapping.error();
+    return Failure(DiagnosticCode::kGlError, "glMapBufferRange returned no pointer");
   }
   std::vector<float> outputs(floats);
   std::memcpy(outputs.data(), mapped, floats * sizeof(float));
   glUnmapBuffer(GL_TRANSFORM_FEEDBACK_BUFFER);
-  if (!GlOk("reading the transform-feedback buffer", error)) return std::nullopt;
+  if (Status read = GlOk("reading the transform-feedback buffer"); !read) return read.error();
   return outputs;
 }
 

@@ -70,7 +70,9 @@ Comparison CompareEngines(const Program& program, const ConstantBank& constants,
   VertexArrays expected = MakeOutputArrays(count, program);
   VertexArrays actual = MakeOutputArrays(count, program);
   MakeReferenceEngine(program, constants, engine.rules)->Run(inputs, expected);
-  MakeEngine(engine.kind, program, constants, WithJitIsa({.float_rules = engine.rules}, engine.jit_isa))->Run(inputs, actual);
+  MakeEngine(engine.kind, program, constants, WithJitIsa({.float_rules = engine.rules}, engine.jit_isa))
+      .value()
+      ->Run(inputs, actual);
   Comparison result;
   for (int slot : expected.registers()) {
     for (int c = 0; c < 4; ++c) {
@@ -335,7 +337,7 @@ TEST_P(JitDifferential, UniformLanesFollowTheirPromise) {
   for (std::size_t i = 0; i < count; ++i) {
     for (int c = 0; c < 4; ++c) inputs.lane(1, c)[i] = static_cast<float>(i) * 0.5f - static_cast<float>(c);
   }
-  std::unique_ptr<vs11::Engine> engine = MakeEngine("jit", program, constants, WithJitIsa({}, GetParam()));
+  std::unique_ptr<vs11::Engine> engine = MakeEngine("jit", program, constants, WithJitIsa({}, GetParam())).value();
   const auto check = [&](const char* when) {
     VertexArrays expected = MakeOutputArrays(count, program);
     MakeReferenceEngine(program, constants)->Run(inputs, expected);

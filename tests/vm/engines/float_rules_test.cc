@@ -124,7 +124,9 @@ struct EngineUnderTest {
 VertexArrays Run(const EngineUnderTest& engine, const Program& program, const ConstantBank& bank,
                  const VertexArrays& inputs, FloatRules rules) {
   VertexArrays outputs = MakeOutputArrays(inputs.count(), program);
-  MakeEngine(engine.kind, program, bank, WithJitIsa({.float_rules = rules}, engine.jit_isa))->Run(inputs, outputs);
+  MakeEngine(engine.kind, program, bank, WithJitIsa({.float_rules = rules}, engine.jit_isa))
+      .value()
+      ->Run(inputs, outputs);
   return outputs;
 }
 

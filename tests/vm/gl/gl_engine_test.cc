@@ -48,6 +48,13 @@ using gl_test::Ordinary;
 using gl_test::OrdinaryConstants;
 using gl_test::OrdinaryInputs;
 
+// The gl engine, or null after a test failure that says why it could not be built.
+std::unique_ptr<Engine> GlEngine(const Program& program, const ConstantBank& bank, const EngineOptions& options = {}) {
+  Result<std::unique_ptr<Engine>> made = MakeEngine("gl", program, bank, options);
+  EXPECT_TRUE(made.ok()) << made.error().message;
+  return made.ok() ? std::move(made).value() : nullptr;
+}
+
 // How the gl engine's outputs compare with the reference engine's, over every lane the translation's
 // interface carries of every output register the program writes (all four lanes, oFog's and oPts' too).
 struct Comparison {
@@ -66,8 +73,13 @@ Comparison CompareWithReference(const Program& program, const ConstantBank& bank
   VertexArrays expected = MakeOutputArrays(inputs.count(), program);
   VertexArrays actual = MakeOutputArrays(inputs.count(), program);
   const EngineOptions options{.float_rules = rules};
-  MakeEngine("ref", program, bank, options)->Run(inputs, expected);
-  std::unique_ptr<Engine> gl = MakeEngine("gl", program, bank, options);
+  MakeEngine("ref", program, bank, options).value()->Run(inputs, expected);
+  Result<std::unique_ptr<Engine>> made = MakeEngine("gl", program, bank, options);
+  if (!made) {
+    comparison.error = made.message();
+    return comparison;
+  }
+  std::unique_ptr<Engine> gl = std::move(made).value();
   gl->Run(inputs, actual);
   comparison.error = gl->error();
   if (!comparison.error.empty()) return comparison;
@@ -171,8 +183,9 @@ void CountKinds(const Program& program, const ConstantBank& bank, const VertexAr
                 std::map<std::string, int>& kinds, int& exact_programs) {
   VertexArrays expected = MakeOutputArrays(inputs.count(), program);
   VertexArrays actual = MakeOutputArrays(inputs.count(), program);
-  MakeEngine("ref", program, bank)->Run(inputs, expected);
-  std::unique_ptr<Engine> gl = MakeEngine("gl", program, bank);
+  MakeEngine("ref", program, bank).value()->Run(inputs, expected);
+  std::unique_ptr<Engine> gl = GlEngine(program, bank);
+  ASSERT_NE(gl, nullptr);
   gl->Run(inputs, actual);
   ASSERT_EQ(gl->error(), "");
   bool exact = true;
@@ -252,7 +265,8 @@ TEST_F(GlEngineTest, InfinityTimesZeroFollowsTheEnginesFloatRules) {
   const VertexArrays& inputs = test.inputs;
   for (FloatRules rules : kAllFloatRules) {
     VertexArrays outputs = MakeOutputArrays(1, program);
-    std::unique_ptr<Engine> gl = MakeEngine("gl", program, bank, {.float_rules = rules});
+    std::unique_ptr<Engine> gl = GlEngine(program, bank, {.float_rules = rules});
+    ASSERT_NE(gl, nullptr);
     gl->Run(inputs, outputs);
     ASSERT_EQ(gl->error(), "");
     const float mul_x = outputs.lane(static_cast<int>(OutputSlot::kDiffuse), 0)[0];
@@ -282,7 +296,8 @@ TEST_F(GlEngineTest, SetConstantsBetweenRunsGivesEachBanksOutputs) {
   std::mt19937 rng(23);
   const Program program = ProgramFromFile("all_instructions.vsh");
   const VertexArrays inputs = OrdinaryInputs(64, rng);
-  std::unique_ptr<Engine> gl = MakeEngine("gl", program, OrdinaryConstants(rng));
+  std::unique_ptr<Engine> gl = GlEngine(program, OrdinaryConstants(rng));
+  ASSERT_NE(gl, nullptr);
   for (int bank_size : {kDefaultConstantCount, kDefaultConstantCount, 192}) {
     ConstantBank bank(bank_size);
     for (int reg = 0; reg < bank.size(); ++reg) {
@@ -293,7 +308,7 @@ TEST_F(GlEngineTest, SetConstantsBetweenRunsGivesEachBanksOutputs) {
     VertexArrays expected = MakeOutputArrays(inputs.count(), program);
     gl->Run(inputs, actual);
     ASSERT_EQ(gl->error(), "");
-    MakeEngine("ref", program, bank)->Run(inputs, expected);
+    MakeEngine("ref", program, bank).value()->Run(inputs, expected);
     for (int slot : expected.registers()) {
       for (int c = 0; c < translate::OutputVariableOf(slot, /*exact_on_driver=*/true).components; ++c) {
         for (std::size_t v = 0; v < inputs.count(); ++v) {
@@ -313,9 +328,10 @@ TEST_F(GlEngineTest, RunsWhereverItIsCalledAndLeavesTheCurrentContextAlone) {
   const ConstantBank bank = OrdinaryConstants(rng);
   const VertexArrays inputs = OrdinaryInputs(100, rng);
   VertexArrays expected = MakeOutputArrays(inputs.count(), program);
-  MakeEngine("ref", program, bank)->Run(inputs, expected);
+  MakeEngine("ref", program, bank).value()->Run(inputs, expected);
   const void* current_before = eglGetCurrentContext();
-  std::unique_ptr<Engine> gl = MakeEngine("gl", program, bank);
+  std::unique_ptr<Engine> gl = GlEngine(program, bank);
+  ASSERT_NE(gl, nullptr);
   EXPECT_EQ(eglGetCurrentContext(), current_before);
   for (int round = 0; round < 3; ++round) {
     VertexArrays actual = MakeOutputArrays(inputs.count(), program);
@@ -334,19 +350,15 @@ TEST_F(GlEngineTest, RunsWhereverItIsCalledAndLeavesTheCurrentContextAlone) {
 }
 
 // Without a registered maker (a program that does not link vm/gl, such as the Python module) the
-// factory gives an engine that says so and writes NaN, never a null pointer.
-TEST_F(GlEngineTest, WithoutRegistrationTheFactoryGivesAnEngineThatSaysWhy) {
+// factory says so, with its code.
+TEST_F(GlEngineTest, WithoutRegistrationTheFactoryGivesAnErrorThatSaysWhy) {
   UnregisterEngine("gl");
   const Program program = ProgramFromFile("fog.vsh");
-  std::unique_ptr<Engine> engine = MakeEngine("gl", program, ConstantBank());
+  const Result<std::unique_ptr<Engine>> engine = MakeEngine("gl", program, ConstantBank());
   gl::RegisterGlEngine();
-  ASSERT_NE(engine, nullptr);
-  EXPECT_NE(engine->error().find("the gl engine is not part of this program"), std::string::npos) << engine->error();
-  std::mt19937 rng(25);
-  const VertexArrays inputs = OrdinaryInputs(4, rng);
-  VertexArrays outputs = MakeOutputArrays(inputs.count(), program);
-  engine->Run(inputs, outputs);
-  for (int slot : outputs.registers()) EXPECT_TRUE(std::isnan(outputs.lane(slot, 0)[0])) << OutputSlotName(slot);
+  ASSERT_FALSE(engine.ok());
+  EXPECT_EQ(engine.error().code, DiagnosticCode::kEngineUnavailable);
+  EXPECT_NE(engine.message().find("the gl engine is not part of this program"), std::string::npos) << engine.message();
 }
 
 }  // namespace
