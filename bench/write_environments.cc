@@ -106,23 +106,23 @@ int main(int argc, char** argv) {
       return 1;
     }
     const fs::path base = fs::path(out_dir) / name;
-    std::optional<std::string> error =
+    vs11::Status written =
         vs11::irradiance::WriteCubeMap(*cube, base.string() + "_hcross.exr", EnvironmentLayout::kHorizontalCross);
-    if (!error) {
-      error =
+    if (written) {
+      written =
           vs11::irradiance::WriteCubeMap(*cube, base.string() + "_hcross.hdr", EnvironmentLayout::kHorizontalCross);
     }
-    if (!error) {
-      error = vs11::irradiance::WriteImage(vs11::irradiance::CubeMapToImage(*cube, EnvironmentLayout::kLatLong),
-                                           base.string() + "_latlong.exr");
+    if (written) {
+      written = vs11::irradiance::WriteImage(vs11::irradiance::CubeMapToImage(*cube, EnvironmentLayout::kLatLong),
+                                             base.string() + "_latlong.exr");
     }
-    if (!error) error = vs11::WriteFileAtomically(base.string() + "_cube.dds", DdsCube(*cube));
-    if (!error) {
-      error = vs11::irradiance::WriteImage(vs11::irradiance::CubeMapToImage(*cube, EnvironmentLayout::kHorizontalCross),
-                                           base.string() + "_ldr.png");
+    if (written) written = vs11::WriteFileAtomically(base.string() + "_cube.dds", DdsCube(*cube));
+    if (written) {
+      written = vs11::irradiance::WriteImage(
+          vs11::irradiance::CubeMapToImage(*cube, EnvironmentLayout::kHorizontalCross), base.string() + "_ldr.png");
     }
-    if (error) {
-      fmt::print(stderr, "vs11_write_environments: error: {}\n", *error);
+    if (!written) {
+      fmt::print(stderr, "vs11_write_environments: error: {}\n", written.message());
       return 1;
     }
   }

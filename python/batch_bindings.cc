@@ -216,10 +216,9 @@ void BindBatch(py::module_& module) {
   module.def(
       "_expand_inputs",
       [](const std::vector<std::string>& inputs) {
-        std::string error;
-        std::vector<std::string> expanded = irradiance::ExpandBatchInputs(inputs, {}, error);
-        if (!error.empty()) throw py::value_error(error);
-        return expanded;
+        Result<std::vector<std::string>> expanded = irradiance::ExpandBatchInputs(inputs, {});
+        if (!expanded) throw py::value_error(expanded.message());
+        return std::move(expanded).value();
       },
       py::arg("inputs"), "irrmap batch's expansion of paths and glob patterns: sorted, de-duplicated.");
   module.def("_input_key", &irradiance::InputKey, py::arg("input"), "An input's record \"path\" (its canonical path).");

@@ -122,8 +122,8 @@ void SetEnvironmentArray(const py::array& array, irradiance::IrrmapOptions& opti
   const int height = static_cast<int>(array.shape(0));
   Image image = ImageAt(array, base, array.strides(), height, 2 * height);
   CheckRadiance(image, "environment");
-  if (std::optional<std::string> error = irradiance::CheckFaceSizeOption("face_size", options.face_size)) {
-    throw py::value_error(*error);
+  if (const Status size = irradiance::CheckFaceSizeOption("face_size", options.face_size); !size) {
+    throw py::value_error(size.message());
   }
   // Projected where it lies (irradiance/sh/latlong_projection.h), as irrmap projects a lat-long file.
   options.latlong = std::move(image);
@@ -188,9 +188,8 @@ Projection Project(const py::object& environment, const std::string& layout, int
   result.level = report.level;
   result.level_size = report.levels[report.level].size;
   result.order = std::string(vs11::ShOrderName(report.order));
-  std::string error;
-  std::optional<irradiance::PaperProgram> program = irradiance::PaperProgram::LoadOrder(report.order, error);
-  if (!program) throw std::runtime_error(error);
+  const Result<irradiance::PaperProgram> program = irradiance::PaperProgram::LoadOrder(report.order);
+  if (!program) throw std::runtime_error(program.message());
   result.program = PyProgram{program->program(), std::string(vs11::Info(report.order).program_file),
                              kDefaultConstantCount, true};
   for (std::size_t i = 0; i < report.program_constants.size(); ++i) {

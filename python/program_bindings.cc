@@ -21,15 +21,6 @@
 namespace vs11::python {
 namespace {
 
-const char* SeverityName(Severity severity) {
-  switch (severity) {
-    case Severity::kError: return "error";
-    case Severity::kWarning: return "warning";
-    case Severity::kNote: return "note";
-  }
-  return "error";
-}
-
 void CheckConstantCount(int max_constants) {
   if (max_constants < kDefaultConstantCount || max_constants > kMaxConstantIndex + 1) {
     throw py::value_error(fmt::format("max_constants={} is out of range: {} to {} (MaxVertexShaderConst)",
@@ -131,7 +122,7 @@ py::list DiagnosticsToPython(const Diagnostics& diagnostics) {
     item["file"] = diagnostic.loc.file;
     item["line"] = diagnostic.loc.line;
     item["column"] = diagnostic.loc.column;
-    item["severity"] = SeverityName(diagnostic.severity);
+    item["severity"] = std::string(kSeverityNames.Name(diagnostic.severity));
     item["message"] = diagnostic.message;
     item["word_offset"] = diagnostic.word_offset;
     item["text"] = FormatDiagnostic(diagnostic);

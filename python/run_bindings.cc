@@ -1,6 +1,7 @@
 // Program.run and Program.trace: the machine over NumPy arrays, through the same library calls as
 // `vs11 run` (vm/cli/run_command.cc): MakeEngine, the unset-register warnings, TraceVertex.
 #include <memory>
+#include <stdexcept>
 
 #include <fmt/format.h>
 #include <pybind11/stl.h>
@@ -29,9 +30,18 @@ std::string CheckedEngine(const std::string& engine, const py::int_& threads) {
   return std::string(kind->name);
 }
 
+// The engine `kind` for a run; RuntimeError where it cannot be built (the module's engines, the CPU
+// ones, never fail). Touches no Python object, so it may run without the GIL.
+std::unique_ptr<Engine> BuiltEngine(const std::string& kind, const Program& program, const ConstantBank& bank,
+                                    const EngineOptions& options) {
+  Result<std::unique_ptr<Engine>> engine = MakeEngine(kind, program, bank, options);
+  if (!engine) throw std::runtime_error(engine.message());
+  return std::move(engine).value();
+}
+
 FloatRules CheckedFloatRules(const std::string& name) {
-  std::optional<FloatRules> rules = FloatRulesFromName(name);
-  if (!rules) throw py::value_error(fmt::format("float_rules='{}': use 'd3d9' or 'legacy'", name));
+  std::optional<FloatRules> rules = kFloatRulesNames.Find(name);
+  if (!rules) throw py::value_error(fmt::format("float_rules='{}': use {}", name, kFloatRulesNames.List()));
   return *rules;
 }
 
@@ -53,10 +63,10 @@ void CheckUnsetRegisters(const PyProgram& self, const std::vector<int>& constant
     throw py::value_error(fmt::format("missing='{}': use 'error' (the default) or 'zeros'", missing));
   }
   if (missing == "error") {
-    const std::optional<std::string> error =
-        UnsetRegisterError(FindUnsetRegisters(self.program, constants_given, inputs_given), inputs_given,
-                           {"a def nor constants", "entry of inputs", "missing='zeros'"});
-    if (error) throw py::value_error(fmt::format("{}: {}", self.name, *error));
+    const Status set =
+        CheckNoUnsetRegisters(FindUnsetRegisters(self.program, constants_given, inputs_given), inputs_given,
+                              {"a def nor constants", "entry of inputs", "missing='zeros'"});
+    if (!set) throw py::value_error(fmt::format("{}: {}", self.name, set.message()));
   }
   WarnUnsetRegisters(self, constants_given, inputs_given);
 }
@@ -73,7 +83,8 @@ py::dict Run(const PyProgram& self, const py::dict& inputs, const py::object& co
   {
     // Nothing below touches a Python object: other Python threads (and other engines) run meanwhile.
     py::gil_scoped_release release;
-    MakeEngine(kind, self.program, bank, EngineOptions{.threads = static_cast<int>(SaturatedInt(threads)), .float_rules = rules})
+    BuiltEngine(kind, self.program, bank,
+                EngineOptions{.threads = static_cast<int>(SaturatedInt(threads)), .float_rules = rules})
         ->Run(run_inputs.arrays, *outputs);
   }
   return OutputsToPython(std::move(outputs));
@@ -98,7 +109,8 @@ py::object Trace(const PyProgram& self, const py::dict& inputs, const py::object
   std::string json;
   {
     py::gil_scoped_release release;
-    MakeEngine(kind, self.program, bank, EngineOptions{.threads = 1, .float_rules = rules})->Run(run_inputs.arrays, outputs);
+    BuiltEngine(kind, self.program, bank, EngineOptions{.threads = 1, .float_rules = rules})
+        ->Run(run_inputs.arrays, outputs);
     VertexTrace trace = TraceVertex(self.program, bank, run_inputs.arrays, static_cast<std::size_t>(vertex), rules);
     CompareOutputs(outputs, trace);
     SourceLines sources;

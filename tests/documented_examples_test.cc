@@ -54,7 +54,7 @@ CommandResult RunShell(const fs::path& dir, const std::string& command) {
 
 void WriteEnvironment(const fs::path& path, vs11::irradiance::EnvironmentLayout layout) {
   const vs11::irradiance::CubeMap sky = vs11::irradiance::MakeSky(16);
-  ASSERT_EQ(vs11::irradiance::WriteCubeMap(sky, path, layout), std::nullopt) << path;
+  ASSERT_EQ(vs11::irradiance::WriteCubeMap(sky, path, layout).message(), "") << path;
 }
 
 // Four crosses and all.txt, the list of them the Slurm and merge examples read.

@@ -268,7 +268,7 @@ std::optional<Case> BuildCase(const Workload& workload, std::size_t count, std::
     }
   }
   c.vs11_outputs = MakeOutputArrays(count, *c.program);
-  MakeEngine("jit", *c.program, c.constants)->Run(c.inputs, c.vs11_outputs);
+  MakeEngine("jit", *c.program, c.constants).value()->Run(c.inputs, c.vs11_outputs);
   return c;
 }
 
@@ -362,9 +362,8 @@ void TimeInTurns(std::vector<Timed>& workloads, std::size_t count, int repetitio
 // In the child: for every case, llvmpipe's agreement with vs11, then llvmpipe's shader, its
 // passthrough, vs11's jit and vs11's batch engine timed in turns. {"error": ...} when anything fails.
 json Measure(const std::vector<Case>& cases, std::optional<int> lp_threads, int repetitions, bool cpu_time) {
-  std::string error;
-  const std::optional<std::string> renderer = CreateLlvmpipeContext(lp_threads, error);
-  if (!renderer) return {{"error", "cannot create the llvmpipe context: " + error}};
+  const Result<std::string> renderer = CreateLlvmpipeContext(lp_threads);
+  if (!renderer) return {{"error", "cannot create the llvmpipe context: " + renderer.message()}};
   if (renderer->find("llvmpipe") == std::string::npos) {
     return {{"error", fmt::format("GL_RENDERER is '{}', not llvmpipe", *renderer)}, {"renderer", *renderer}};
   }
@@ -378,31 +377,37 @@ json Measure(const std::vector<Case>& cases, std::optional<int> lp_threads, int 
     for (const OutputBinding& output : c.outputs) varyings.push_back(output.varying);
     const int output_floats = OutputFloats(c);
     const std::size_t vertices = c.inputs.count();  // sh_order0 reads no attribute
-    auto shaded =
-        TransformFeedbackRun::Create(c.glsl, varyings, output_floats, attributes, ConstantFloats(c), error, vertices);
-    auto passthrough = shaded ? TransformFeedbackRun::Create(PassthroughSource(c.bindings, c.outputs, !c.workload->hand_written), varyings,
-                                                             output_floats, attributes, {}, error, vertices)
-                              : nullptr;
-    std::optional<std::vector<float>> outputs;
-    if (passthrough) outputs = shaded->DrawAndRead(error);
-    if (!outputs) return {{"error", fmt::format("{}: {}", c.workload->name, error)}};
+    const auto failed = [&](const Diagnostic& error) -> json {
+      return {{"error", fmt::format("{}: {}", c.workload->name, error.message)}};
+    };
+    Result<std::unique_ptr<TransformFeedbackRun>> shaded =
+        TransformFeedbackRun::Create(c.glsl, varyings, output_floats, attributes, ConstantFloats(c), vertices);
+    if (!shaded) return failed(shaded.error());
+    Result<std::unique_ptr<TransformFeedbackRun>> passthrough =
+        TransformFeedbackRun::Create(PassthroughSource(c.bindings, c.outputs, !c.workload->hand_written), varyings,
+                                     output_floats, attributes, {}, vertices);
+    if (!passthrough) return failed(passthrough.error());
+    const Result<std::vector<float>> outputs = (*shaded)->DrawAndRead();
+    if (!outputs) return failed(outputs.error());
     json entry = Agreement(c, *outputs);
 
-    bool drawn = true;
+    Status drawn;  // the first failed draw's error
     const auto draw = [&](TransformFeedbackRun& run) {
-      return [&drawn, &error, target = &run](int calls) { drawn = target->Draw(calls, error) && drawn; };
+      return [&drawn, target = &run](int calls) {
+        if (Status status = target->Draw(calls); drawn.ok()) drawn = std::move(status);
+      };
     };
     VertexArrays vs11_outputs = MakeOutputArrays(c.inputs.count(), *c.program);
     const auto engine_run = [&](std::string kind) {
-      std::shared_ptr<Engine> engine = MakeEngine(kind, *c.program, c.constants);
+      std::shared_ptr<Engine> engine = MakeEngine(kind, *c.program, c.constants).value();
       return [&, engine](int calls) {
         for (int k = 0; k < calls; ++k) engine->Run(c.inputs, vs11_outputs);
       };
     };
-    std::vector<Timed> workloads = {{draw(*shaded), {}}, {draw(*passthrough), {}},
-                                    {engine_run("jit"), {}}, {engine_run("batch"), {}}};
+    std::vector<Timed> workloads = {
+        {draw(**shaded), {}}, {draw(**passthrough), {}}, {engine_run("jit"), {}}, {engine_run("batch"), {}}};
     TimeInTurns(workloads, c.inputs.count(), repetitions, cpu_time);
-    if (!drawn) return {{"error", fmt::format("{}: {}", c.workload->name, error)}};
+    if (!drawn) return failed(drawn.error());
     entry["llvmpipe"] = Median(workloads[0].samples);
     entry["passthrough"] = Median(workloads[1].samples);
     entry["jit"] = Median(workloads[2].samples);
@@ -511,7 +516,7 @@ bool PrintReport(const json& report) {
 
 int Run(const Options& options) {
   const std::vector<JitIsa> isas = jit::SupportedIsas();
-  json report = {{"isa", isas.empty() ? std::string("none (batch kernels)") : std::string(jit::IsaName(isas.back()))},
+  json report = {{"isa", isas.empty() ? std::string("none (batch kernels)") : std::string(kJitIsaNames.Name(isas.back()))},
                  {"load", LoadAverage()},
                  {"repetitions", options.repetitions},
                  {"clock", options.cpu_time ? "process CPU time" : "wall"},
@@ -562,8 +567,8 @@ int Run(const Options& options) {
   }
   const bool ok = PrintReport(report);
   if (!options.json_path.empty()) {
-    if (std::optional<std::string> error = WriteFileAtomically(options.json_path, report.dump(2) + "\n")) {
-      fmt::print(stderr, "compare_llvmpipe: {}\n", *error);
+    if (const Status written = WriteFileAtomically(options.json_path, report.dump(2) + "\n"); !written) {
+      fmt::print(stderr, "compare_llvmpipe: {}\n", written.message());
       return 1;
     }
   }

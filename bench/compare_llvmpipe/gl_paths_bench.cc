@@ -57,11 +57,12 @@ void RunEngine(benchmark::State& state, const Program& program, const std::strin
     gl_options.path = *path;
     options.settings.Set(gl_options);
   }
-  std::unique_ptr<Engine> engine = MakeEngine(engine_name, c.program, c.constants, options);
-  if (!engine->error().empty()) {
-    state.SkipWithError(engine->error().c_str());
+  Result<std::unique_ptr<Engine>> made = MakeEngine(engine_name, c.program, c.constants, options);
+  if (!made) {
+    state.SkipWithError(made.message().c_str());
     return;
   }
+  const std::unique_ptr<Engine> engine = std::move(made).value();
   VertexArrays outputs = MakeOutputArrays(vertices, c.program);
   engine->Run(c.inputs, outputs);  // warm: the driver compiles on first use
   for (auto _ : state) {

@@ -77,12 +77,25 @@ std::optional<Result> Measure(std::optional<int> device, const BasisPyramid& bas
                               const std::vector<CubeMap>& skies, const LevelCase& level,
                               const std::vector<glm::vec3>& normals, int frames, int warmup, std::string& renderer,
                               std::string& error) {
-  std::unique_ptr<gpu::GpuFrame> frame = gpu::GpuFrame::Create(
-      device, basis, level.level, paper.Constants(vs11::SevenConstants{}).size(), paper.constant_base(), error);
-  if (!frame) return std::nullopt;
+  // Whether `status` succeeded; its message as `error` where not.
+  const auto ok = [&error](const vs11::Status& status) {
+    if (!status) error = status.message();
+    return status.ok();
+  };
+  vs11::Result<std::unique_ptr<gpu::GpuFrame>> made_frame = gpu::GpuFrame::Create(
+      device, basis, level.level, paper.Constants(vs11::SevenConstants{}).size(), paper.constant_base());
+  if (!made_frame) {
+    error = made_frame.message();
+    return std::nullopt;
+  }
+  const std::unique_ptr<gpu::GpuFrame> frame = std::move(made_frame).value();
   renderer = frame->context().renderer() + " (" + frame->context().version() + ")";
-  std::unique_ptr<gpu::ProgramStage> program = gpu::ProgramStage::Create(*frame, paper, normals, error);
-  if (!program) return std::nullopt;
+  vs11::Result<std::unique_ptr<gpu::ProgramStage>> made_program = gpu::ProgramStage::Create(*frame, paper, normals);
+  if (!made_program) {
+    error = made_program.message();
+    return std::nullopt;
+  }
+  const std::unique_ptr<gpu::ProgramStage> program = std::move(made_program).value();
   std::vector<double> times;
   std::array<std::vector<double>, 3> stage_times;  // upload, mips + projection + constants, program
   for (int i = 0; i < warmup + frames; ++i) {
@@ -93,17 +106,17 @@ std::optional<Result> Measure(std::optional<int> device, const BasisPyramid& bas
       if (i >= warmup) into.push_back(std::chrono::duration<double, std::milli>(now - start).count());
       start = now;
     };
-    if (!frame->Upload(sky, error) || !frame->Finish(error)) return std::nullopt;
+    if (!ok(frame->Upload(sky)) || !ok(frame->Finish())) return std::nullopt;
     lap(stage_times[0]);
-    if (!frame->Project(error) || !frame->Finish(error)) return std::nullopt;
+    if (!ok(frame->Project()) || !ok(frame->Finish())) return std::nullopt;
     lap(stage_times[1]);
-    if (!program->Run(error) || !frame->Finish(error)) return std::nullopt;
+    if (!ok(program->Run()) || !ok(frame->Finish())) return std::nullopt;
     lap(stage_times[2]);
   }
   for (int i = 0; i < warmup + frames; ++i) {
     const Clock::time_point start = Clock::now();
     const CubeMap& sky = skies[static_cast<std::size_t>(i % kSunPositions)];
-    if (!frame->Upload(sky, error) || !frame->Project(error) || !program->Run(error) || !frame->Finish(error)) {
+    if (!ok(frame->Upload(sky)) || !ok(frame->Project()) || !ok(program->Run()) || !ok(frame->Finish())) {
       return std::nullopt;
     }
     if (i >= warmup) times.push_back(std::chrono::duration<double, std::milli>(Clock::now() - start).count());
@@ -144,10 +157,13 @@ int main(int argc, char** argv) {
   CLI11_PARSE(app, argc, argv);
 
   if (device_text == "list") {
-    std::string error;
-    const std::vector<vs11::gl::GlDeviceInfo> devices = vs11::gl::ListGlDevices(error);
-    fmt::print("{}", vs11::gl::FormatGlDeviceList(devices));
-    return devices.empty() ? 1 : 0;
+    const vs11::Result<std::vector<vs11::gl::GlDeviceInfo>> devices = vs11::gl::ListGlDevices();
+    if (!devices) {
+      fmt::print(stderr, "vs11_gpu_frame_bench: error: {}\n", devices.message());
+      return 1;
+    }
+    fmt::print("{}", vs11::gl::FormatGlDeviceList(*devices));
+    return devices->empty() ? 1 : 0;
   }
   std::optional<int> device;
   if (!device_text.empty()) {
@@ -158,10 +174,10 @@ int main(int argc, char** argv) {
     }
   }
   std::string error;
-  const std::optional<PaperProgram> paper = PaperProgram::Load(error);
+  const vs11::Result<PaperProgram> paper = PaperProgram::Load();
   const std::optional<BasisPyramid> basis = BuildBasisPyramid(kFaceSize, 2);
   if (!paper || !basis) {
-    fmt::print(stderr, "vs11_gpu_frame_bench: error: {}\n", paper ? "cannot build the basis pyramid" : error);
+    fmt::print(stderr, "vs11_gpu_frame_bench: error: {}\n", paper ? "cannot build the basis pyramid" : paper.message());
     return 1;
   }
   std::vector<CubeMap> skies;

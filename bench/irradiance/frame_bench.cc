@@ -107,7 +107,7 @@ class VertexStep {
     if (vm_) {
       inputs_ = NormalInputs(normals);
       outputs_ = MakeOutputArrays(normals.size(), f.program);
-      engine_ = MakeEngine("batch", f.program, ConstantBank(), EngineOptions{.threads = 1});
+      engine_ = MakeEngine("batch", f.program, ConstantBank(), EngineOptions{.threads = 1}).value();
     } else {
       r_.resize(normals.size());
       g_.resize(normals.size());

@@ -145,7 +145,7 @@ void BM_MeshRun(benchmark::State& state, const BenchModel& model, std::string ki
     for (std::size_t i = 0; i < count; ++i) lane[i] = mesh.normals[i][c];
   }
   VertexArrays outputs = MakeOutputArrays(count, program);
-  std::unique_ptr<Engine> engine = MakeEngine(kind, program, bank, EngineOptions{.threads = 1});
+  std::unique_ptr<Engine> engine = MakeEngine(kind, program, bank, EngineOptions{.threads = 1}).value();
   for (auto _ : state) {
     engine->Run(inputs, outputs);
     benchmark::DoNotOptimize(outputs.lane(static_cast<int>(OutputSlot::kDiffuse), 0));

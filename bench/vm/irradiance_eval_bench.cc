@@ -111,7 +111,7 @@ void RunEngine(benchmark::State& state, std::string kind, EngineOptions options 
   VertexArrays inputs = NormalInputs(RandomUnitNormals(count));
   inputs.FillUniform(0, 3, 1.0f);  // w is no data: a lane of 1s, as irrmap leaves it (NormalInputs writes it)
   VertexArrays outputs = MakeOutputArrays(count, program);
-  std::unique_ptr<Engine> engine = MakeEngine(kind, program, bank, options);
+  std::unique_ptr<Engine> engine = MakeEngine(kind, program, bank, options).value();
   for (auto _ : state) {
     engine->Run(inputs, outputs);
     benchmark::DoNotOptimize(outputs.lane(static_cast<int>(OutputSlot::kDiffuse), 0));
@@ -157,7 +157,7 @@ BENCHMARK(BM_Irradiance_NativeSimd)->VS11_IRRADIANCE_SIZES;
 // Each instruction set the CPU runs, forced, so that one run on an AVX-512 machine measures both.
 const bool kIsasRegistered = [] {
   for (JitIsa isa : jit::SupportedIsas()) {
-    const std::string name = std::string("BM_Irradiance_Jit_").append(jit::IsaName(isa));
+    const std::string name = std::string("BM_Irradiance_Jit_").append(kJitIsaNames.Name(isa));
     benchmark::RegisterBenchmark(name.c_str(), [isa](benchmark::State& state) {
       RunEngine(state, "jit", WithJitIsa({}, isa));
     })->Arg(1024)->Arg(65536)->Arg(1 << 20);

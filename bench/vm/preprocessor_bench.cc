@@ -41,7 +41,7 @@ void BM_ReferenceEngineDefinitions(benchmark::State& state) {
   const std::vector<int> registers = {0};
   const VertexArrays inputs = MakeInputArrays(kVertices, registers);
   VertexArrays outputs = MakeOutputArrays(kVertices, *assembled.program);
-  const auto engine = MakeEngine("ref", *assembled.program, ConstantBank());
+  const auto engine = MakeEngine("ref", *assembled.program, ConstantBank()).value();
   for (auto _ : state) engine->Run(inputs, outputs);
   state.SetItemsProcessed(state.iterations() * kVertices);
 }

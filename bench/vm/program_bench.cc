@@ -104,7 +104,7 @@ void RunProgram(benchmark::State& state, const std::filesystem::path& path, std:
   const std::size_t count = c.inputs.count();
   VertexArrays outputs = MakeOutputArrays(count, program);
   if (highway_target != 0) hwy::SetSupportedTargetsForTest(highway_target);
-  std::unique_ptr<Engine> engine = MakeEngine(kind, program, c.constants, options);
+  std::unique_ptr<Engine> engine = MakeEngine(kind, program, c.constants, options).value();
   if (highway_target != 0) hwy::SetSupportedTargetsForTest(0);
   for (auto _ : state) {
     engine->Run(c.inputs, outputs);
@@ -149,7 +149,7 @@ const bool kRegistered = [] {
     // /jit is the CPU's best instruction set; the narrower ones it also runs are measured too.
     const std::vector<JitIsa> isas = jit::SupportedIsas();
     for (std::size_t k = 0; k + 1 < isas.size(); ++k) {
-      add(std::string("jit_").append(jit::IsaName(isas[k])), "jit", WithJitIsa({}, isas[k]));
+      add(std::string("jit_").append(kJitIsaNames.Name(isas[k])), "jit", WithJitIsa({}, isas[k]));
     }
     // The batch engine's AVX2 kernels beside jit_avx2: what an AVX2-only machine runs with either.
     if (isas.size() > 1 && (hwy::SupportedTargets() & HWY_AVX2) != 0) {

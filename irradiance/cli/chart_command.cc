@@ -46,7 +46,7 @@ void RunChart(const ChartArguments& arguments) {
       if (environment.name == point.environment) mips_ms = environment.mips_ms;
     }
     fmt::print("{:<12} {:<6} {:>5} {:>9} {:>11.4f} {:>9.3f} {:>11.3f} % {:>10.3f} % {:>8.3f} % {:>8.3f} %\n",
-               point.environment, ProjectionMethodName(point.method), point.level,
+               point.environment, kProjectionMethodNames.Name(point.method), point.level,
                fmt::format("{0}x{0}", point.size), point.update_ms, mips_ms, 100.0 * point.error.mean_relative,
                100.0 * point.error.max_relative, 100.0 * point.error.max_peak, 100.0 * point.error.max_rms);
   }

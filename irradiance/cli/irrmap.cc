@@ -267,11 +267,13 @@ int RunJob(const CLI::App& app, JobCommandLine& line) {
     return vs11::cli::kUsageErrorStatus;
   }
   if (line.gl_device == "list") {
-    std::string error;
-    const std::vector<vs11::gl::GlDeviceInfo> devices = vs11::gl::ListGlDevices(error);
-    fmt::print("{}", vs11::gl::FormatGlDeviceList(devices));
-    if (devices.empty()) fmt::print(stderr, "irrmap: error: {}\n", error);
-    return devices.empty() ? kJobError : 0;
+    const vs11::Result<std::vector<vs11::gl::GlDeviceInfo>> devices = vs11::gl::ListGlDevices();
+    if (!devices) {
+      fmt::print(stderr, "irrmap: error: {}\n", devices.message());
+      return kJobError;
+    }
+    fmt::print("{}", vs11::gl::FormatGlDeviceList(*devices));
+    return 0;
   }
   const std::optional<int> gl_device = vs11::gl::GlDeviceIndex(line.gl_device);
   options.engine_settings.Set(vs11::gl::GlOptions{gl_device});

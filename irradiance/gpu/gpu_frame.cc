@@ -83,9 +83,9 @@ GLuint StorageBuffer(std::size_t bytes, const void* data) {
 }
 
 // `count` floats of a storage buffer a compute pass wrote.
-std::optional<std::vector<float>> ReadFloats(GLuint buffer, std::size_t count, std::string& error) {
+Result<std::vector<float>> ReadFloats(GLuint buffer, std::size_t count) {
   glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT);
-  return vs11::gl::ReadBufferFloats(buffer, count, error);
+  return vs11::gl::ReadBufferFloats(buffer, count);
 }
 
 }  // namespace
@@ -110,34 +110,37 @@ double GpuProjectionErrorFactor(int face_size, int level) {
   return gamma(gpu) + gamma(cpu);
 }
 
-std::unique_ptr<GpuFrame> GpuFrame::Create(std::optional<int> device, const BasisPyramid& basis, int level,
-                                           int constant_count, int constant_base, std::string& error) {
+Result<std::unique_ptr<GpuFrame>> GpuFrame::Create(std::optional<int> device, const BasisPyramid& basis, int level,
+                                                   int constant_count, int constant_base) {
   assert(level >= 0 && level < static_cast<int>(basis.levels.size()));
   assert(constant_base >= 0 && constant_base + 7 <= constant_count);
   std::unique_ptr<GpuFrame> frame(new GpuFrame());
-  frame->context_ = vs11::gl::GlContext::Create(device, error);
-  if (!frame->context_) return nullptr;
+  Result<std::unique_ptr<vs11::gl::GlContext>> context = vs11::gl::GlContext::Create(device);
+  if (!context) return context.error();
+  frame->context_ = std::move(context).value();
   if (!vs11::gl::OffersCompute(*frame->context_)) {
-    error = fmt::format("'{}' offers '{}', not OpenGL ES 3.1 (compute shaders)", frame->context_->renderer(),
-                        frame->context_->version());
-    return nullptr;
+    return Failure(DiagnosticCode::kGlUnavailable,
+                   fmt::format("'{}' offers '{}', not OpenGL ES 3.1 (compute shaders)", frame->context_->renderer(),
+                               frame->context_->version()));
   }
   frame->face_size_ = basis.face_size;
   frame->level_ = level;
   frame->constant_count_ = constant_count;
   frame->constant_base_ = constant_base;
-  ScopedCurrent current(*frame->context_, error);
-  if (!current.ok() || !frame->Build(basis, error)) return nullptr;
+  ScopedCurrent current(*frame->context_);
+  if (!current.ok()) return current.status().error();
+  if (Status built = frame->Build(basis); !built) return built.error();
   return frame;
 }
 
-bool GpuFrame::Build(const BasisPyramid& basis, std::string& error) {
-  mip_program_ = LinkComputeProgram(MipShaderSource(), error);
-  if (mip_program_ == 0) return false;
-  projection_program_ = LinkComputeProgram(ProjectionShaderSource(), error);
-  if (projection_program_ == 0) return false;
-  coefficients_program_ = LinkComputeProgram(CoefficientsShaderSource(), error);
-  if (coefficients_program_ == 0) return false;
+Status GpuFrame::Build(const BasisPyramid& basis) {
+  for (auto [program, source] : {std::pair{&mip_program_, MipShaderSource()},
+                                 std::pair{&projection_program_, ProjectionShaderSource()},
+                                 std::pair{&coefficients_program_, CoefficientsShaderSource()}}) {
+    const Result<unsigned> linked = LinkComputeProgram(source);
+    if (!linked) return linked.error();
+    *program = *linked;
+  }
 
   glGenTextures(1, &texture_);
   glBindTexture(GL_TEXTURE_CUBE_MAP, texture_);
@@ -163,13 +166,12 @@ bool GpuFrame::Build(const BasisPyramid& basis, std::string& error) {
   glUniform1i(glGetUniformLocation(coefficients_program_, "constant_base"), constant_base_);
   glUseProgram(projection_program_);
   glUniform1i(glGetUniformLocation(projection_program_, "size"), size);
-  return GlOk("creating the frame's texture and buffers", error);
+  return GlOk("creating the frame's texture and buffers");
 }
 
 GpuFrame::~GpuFrame() {
   if (!context_) return;
-  std::string ignored;
-  ScopedCurrent current(*context_, ignored);
+  ScopedCurrent current(*context_);
   if (!current.ok()) return;
   const GLuint buffers[] = {moments_, partials_, combination_, coefficients_, bank_};
   glDeleteBuffers(5, buffers);
@@ -179,10 +181,10 @@ GpuFrame::~GpuFrame() {
   glDeleteProgram(coefficients_program_);
 }
 
-bool GpuFrame::Upload(const CubeMap& environment, std::string& error) {
+Status GpuFrame::Upload(const CubeMap& environment) {
   assert(environment.face_size == face_size_);
-  ScopedCurrent current(*context_, error);
-  if (!current.ok()) return false;
+  ScopedCurrent current(*context_);
+  if (!current.ok()) return current.status();
   glBindTexture(GL_TEXTURE_CUBE_MAP, texture_);
   staging_.resize(static_cast<std::size_t>(face_size_) * face_size_ * 4);
   for (int f = 0; f < kCubeFaceCount; ++f) {
@@ -196,12 +198,12 @@ bool GpuFrame::Upload(const CubeMap& environment, std::string& error) {
     glTexSubImage2D(static_cast<GLenum>(GL_TEXTURE_CUBE_MAP_POSITIVE_X + f), 0, 0, 0, face_size_, face_size_, GL_RGBA,
                     GL_FLOAT, staging_.data());
   }
-  return GlOk("uploading the environment", error);
+  return GlOk("uploading the environment");
 }
 
-bool GpuFrame::Project(std::string& error) {
-  ScopedCurrent current(*context_, error);
-  if (!current.ok()) return false;
+Status GpuFrame::Project() {
+  ScopedCurrent current(*context_);
+  if (!current.ok()) return current.status();
   glUseProgram(mip_program_);
   const GLint coarse_size = glGetUniformLocation(mip_program_, "coarse_size");
   for (int k = 1; k <= level_; ++k) {
@@ -226,21 +228,21 @@ bool GpuFrame::Project(std::string& error) {
   glDispatchCompute(1, 1, 1);
   // The program stage reads the bank as its uniform block, a later read-back as a mapped buffer.
   glMemoryBarrier(GL_UNIFORM_BARRIER_BIT | GL_BUFFER_UPDATE_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT);
-  return GlOk("projecting on the GPU", error);
+  return GlOk("projecting on the GPU");
 }
 
-bool GpuFrame::Finish(std::string& error) {
-  ScopedCurrent current(*context_, error);
-  if (!current.ok()) return false;
+Status GpuFrame::Finish() {
+  ScopedCurrent current(*context_);
+  if (!current.ok()) return current.status();
   glFinish();
-  return GlOk("finishing the frame", error);
+  return GlOk("finishing the frame");
 }
 
-std::optional<Sh9Rgb> GpuFrame::ReadCoefficients(std::string& error) {
-  ScopedCurrent current(*context_, error);
-  if (!current.ok()) return std::nullopt;
-  const std::optional<std::vector<float>> floats = ReadFloats(coefficients_, kSh9Coefficients * 3, error);
-  if (!floats) return std::nullopt;
+Result<Sh9Rgb> GpuFrame::ReadCoefficients() {
+  ScopedCurrent current(*context_);
+  if (!current.ok()) return current.status().error();
+  const Result<std::vector<float>> floats = ReadFloats(coefficients_, kSh9Coefficients * 3);
+  if (!floats) return floats.error();
   Sh9Rgb sh;
   for (int lm = 0; lm < kSh9Coefficients; ++lm) {
     for (int c = 0; c < 3; ++c) sh.coefficients[lm][c] = (*floats)[static_cast<std::size_t>(lm * 3 + c)];
@@ -248,12 +250,11 @@ std::optional<Sh9Rgb> GpuFrame::ReadCoefficients(std::string& error) {
   return sh;
 }
 
-std::optional<SevenConstants> GpuFrame::ReadConstants(std::string& error) {
-  ScopedCurrent current(*context_, error);
-  if (!current.ok()) return std::nullopt;
-  const std::optional<std::vector<float>> floats =
-      ReadFloats(bank_, static_cast<std::size_t>(constant_count_) * 4, error);
-  if (!floats) return std::nullopt;
+Result<SevenConstants> GpuFrame::ReadConstants() {
+  ScopedCurrent current(*context_);
+  if (!current.ok()) return current.status().error();
+  const Result<std::vector<float>> floats = ReadFloats(bank_, static_cast<std::size_t>(constant_count_) * 4);
+  if (!floats) return floats.error();
   SevenConstants constants;
   for (int r = 0; r < 7; ++r) {
     for (int c = 0; c < 4; ++c) {

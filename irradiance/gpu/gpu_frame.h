@@ -26,6 +26,7 @@
 #include "irradiance/io/cube_map.h"
 #include "irradiance/sh/sh9.h"
 #include "irradiance/sh/sh_projection.h"
+#include "vm/core/result.h"
 #include "vm/gl/gl_context.h"
 
 namespace vs11::irradiance::gpu {
@@ -37,24 +38,24 @@ class GpuFrame {
   // A context on `device` (vm/gl's ListGlDevices index; nullopt: Mesa's llvmpipe), the shaders, the
   // cube texture of `basis.face_size` with every mip level, and `level`'s nine block moments from
   // `basis` (level 0's formed here in double) uploaded once. `constant_count`: the vec4s of the bank
-  // buffer, `constant_base`: where Table 1's seven registers go in it. Null with `error` set where no
-  // OpenGL ES 3.1 context can be had or a shader does not build. 0 <= level < basis.levels.size().
-  static std::unique_ptr<GpuFrame> Create(std::optional<int> device, const BasisPyramid& basis, int level,
-                                          int constant_count, int constant_base, std::string& error);
+  // buffer, `constant_base`: where Table 1's seven registers go in it. An error where no OpenGL ES
+  // 3.1 context can be had (kGlUnavailable) or a shader does not build (kGlCompile). 0 <= level < basis.levels.size().
+  static Result<std::unique_ptr<GpuFrame>> Create(std::optional<int> device, const BasisPyramid& basis, int level,
+                                                  int constant_count, int constant_base);
   ~GpuFrame();
   GpuFrame(const GpuFrame&) = delete;
   GpuFrame& operator=(const GpuFrame&) = delete;
 
   // Stage 1: level 0 of the cube texture from `environment` (face size basis.face_size, asserted).
-  bool Upload(const CubeMap& environment, std::string& error);
+  Status Upload(const CubeMap& environment);
   // Stages 2-4: the mips down to the level, the projection and the constants; queued, not waited for.
-  bool Project(std::string& error);
+  Status Project();
   // Waits for everything queued (glFinish): a frame's end in the benchmark.
-  bool Finish(std::string& error);
+  Status Finish();
 
   // Read-backs, after Project: the nine coefficients (float, as the GPU summed them) and Table 1.
-  std::optional<Sh9Rgb> ReadCoefficients(std::string& error);
-  std::optional<SevenConstants> ReadConstants(std::string& error);
+  Result<Sh9Rgb> ReadCoefficients();
+  Result<SevenConstants> ReadConstants();
 
   vs11::gl::GlContext& context() { return *context_; }
   unsigned constant_buffer() const { return bank_; }  // the bank, std140/std430 vec4 per register
@@ -65,7 +66,7 @@ class GpuFrame {
 
  private:
   GpuFrame() = default;
-  bool Build(const BasisPyramid& basis, std::string& error);
+  Status Build(const BasisPyramid& basis);
 
   std::unique_ptr<vs11::gl::GlContext> context_;
   int face_size_ = 0, level_ = 0, groups_ = 1, constant_count_ = 0, constant_base_ = 0;

@@ -16,15 +16,16 @@ constexpr std::uint32_t kOutputStride = 4;
 
 }  // namespace
 
-std::unique_ptr<ProgramStage> ProgramStage::Create(GpuFrame& frame, const PaperProgram& program,
-                                                   std::span<const glm::vec3> normals, std::string& error) {
+Result<std::unique_ptr<ProgramStage>> ProgramStage::Create(GpuFrame& frame, const PaperProgram& program,
+                                                           std::span<const glm::vec3> normals) {
   std::unique_ptr<ProgramStage> stage(new ProgramStage(frame));
-  ScopedCurrent current(frame.context(), error);
-  if (!current.ok()) return nullptr;
-  stage->run_ = vs11::gl::ComputeRun::Create(
+  ScopedCurrent current(frame.context());
+  if (!current.ok()) return current.status().error();
+  Result<std::unique_ptr<vs11::gl::ComputeRun>> run = vs11::gl::ComputeRun::Create(
       program.program(),
-      vs11::gl::GlComputeTranslateOptions(EngineOptions{}, frame.constant_count(), frame.context().es32()), error);
-  if (!stage->run_) return nullptr;
+      vs11::gl::GlComputeTranslateOptions(EngineOptions{}, frame.constant_count(), frame.context().es32()));
+  if (!run) return run.error();
+  stage->run_ = std::move(run).value();
   stage->run_->BindConstantBuffer(frame.constant_buffer(), 0, frame.constant_count());
 
   stage->vertex_count_ = normals.size();
@@ -41,31 +42,29 @@ std::unique_ptr<ProgramStage> ProgramStage::Create(GpuFrame& frame, const PaperP
   glBindBuffer(GL_SHADER_STORAGE_BUFFER, stage->output_);
   glBufferData(GL_SHADER_STORAGE_BUFFER, static_cast<GLsizeiptr>(normals.size() * kOutputStride * sizeof(float)),
                nullptr, GL_DYNAMIC_READ);
-  if (!GlOk("creating the program stage's buffers", error)) return nullptr;
+  if (Status created = GlOk("creating the program stage's buffers"); !created) return created.error();
   return stage;
 }
 
 ProgramStage::~ProgramStage() {
-  std::string ignored;
-  ScopedCurrent current(frame_.context(), ignored);
+  ScopedCurrent current(frame_.context());
   if (!current.ok()) return;
   run_.reset();
   glDeleteBuffers(1, &input_);
   glDeleteBuffers(1, &output_);
 }
 
-bool ProgramStage::Run(std::string& error) {
-  ScopedCurrent current(frame_.context(), error);
-  if (!current.ok()) return false;
-  return run_->Dispatch(layout_, input_, output_, vertex_count_, error);
+Status ProgramStage::Run() {
+  ScopedCurrent current(frame_.context());
+  if (!current.ok()) return current.status();
+  return run_->Dispatch(layout_, input_, output_, vertex_count_);
 }
 
-std::optional<std::vector<glm::vec3>> ProgramStage::Read(std::string& error) {
-  ScopedCurrent current(frame_.context(), error);
-  if (!current.ok()) return std::nullopt;
-  const std::optional<std::vector<float>> stored =
-      vs11::gl::ReadBufferFloats(output_, vertex_count_ * kOutputStride, error);
-  if (!stored) return std::nullopt;
+Result<std::vector<glm::vec3>> ProgramStage::Read() {
+  ScopedCurrent current(frame_.context());
+  if (!current.ok()) return current.status().error();
+  const Result<std::vector<float>> stored = vs11::gl::ReadBufferFloats(output_, vertex_count_ * kOutputStride);
+  if (!stored) return stored.error();
   std::vector<glm::vec3> values(vertex_count_);
   for (std::size_t v = 0; v < vertex_count_; ++v) {
     const float* out = stored->data() + v * kOutputStride;

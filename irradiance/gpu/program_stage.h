@@ -22,17 +22,17 @@ namespace vs11::irradiance::gpu {
 class ProgramStage {
  public:
   // Links `program` for `frame`'s context and bank, with `normals` as (x, y, z, 1) in its normal
-  // register, uploaded once. Null with `error` set when the translation does not link.
-  static std::unique_ptr<ProgramStage> Create(GpuFrame& frame, const PaperProgram& program,
-                                              std::span<const glm::vec3> normals, std::string& error);
+  // register, uploaded once. An error (kGlCompile) when the translation does not link.
+  static Result<std::unique_ptr<ProgramStage>> Create(GpuFrame& frame, const PaperProgram& program,
+                                                      std::span<const glm::vec3> normals);
   ~ProgramStage();
   ProgramStage(const ProgramStage&) = delete;
   ProgramStage& operator=(const ProgramStage&) = delete;
 
   // Runs the program over every vertex with the bank as it is now; queued, not waited for.
-  bool Run(std::string& error);
+  Status Run();
   // The output register's rgb per vertex, after Run.
-  std::optional<std::vector<glm::vec3>> Read(std::string& error);
+  Result<std::vector<glm::vec3>> Read();
   std::size_t vertex_count() const { return vertex_count_; }
 
  private:

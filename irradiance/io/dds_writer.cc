@@ -70,8 +70,10 @@ std::vector<std::uint8_t> EncodeDdsCubeRgba16f(const CubeMap& cube) {
   return file;
 }
 
-std::optional<std::string> WriteDdsCube(const CubeMap& cube, const std::filesystem::path& path) {
-  if (cube.face_size <= 0) return fmt::format("{}: cannot write an empty cube map", path.string());
+Status WriteDdsCube(const CubeMap& cube, const std::filesystem::path& path) {
+  if (cube.face_size <= 0) {
+    return Failure(DiagnosticCode::kCannotWriteFile, fmt::format("{}: cannot write an empty cube map", path.string()));
+  }
   return WriteFileAtomically(path, EncodeDdsCubeRgba16f(cube));
 }
 

@@ -20,13 +20,14 @@
 #include <vector>
 
 #include "irradiance/io/cube_map.h"
+#include "vm/core/result.h"
 
 namespace vs11::irradiance {
 
 // The whole file. Precondition (asserted): cube.face_size > 0.
 std::vector<std::uint8_t> EncodeDdsCubeRgba16f(const CubeMap& cube);
 
-// Writes it atomically (vm/core/atomic_file.h): nullopt, or what failed.
-std::optional<std::string> WriteDdsCube(const CubeMap& cube, const std::filesystem::path& path);
+// Writes it atomically (vm/core/atomic_file.h): success, or the error saying what failed.
+Status WriteDdsCube(const CubeMap& cube, const std::filesystem::path& path);
 
 }  // namespace vs11::irradiance

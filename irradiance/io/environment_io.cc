@@ -260,12 +260,12 @@ std::optional<fs::path> WriteTemporary(const Image& image, const fs::path& path,
     return std::nullopt;
   }
   const bool as_float = format == "openexr" || (format.empty() && HasFloatExtension(path));
-  std::string module_error;
-  const ImageIoApi* image_io = ImageIo(module_error);
-  if (!image_io) {
-    error = fmt::format("{}: {}", path.string(), module_error);
+  const Result<const ImageIoApi*> module = ImageIo();
+  if (!module) {
+    error = fmt::format("{}: {}", path.string(), module.message());
     return std::nullopt;
   }
+  const ImageIoApi* image_io = *module;
 
   std::vector<float> floats;
   std::vector<std::uint8_t> bytes;
@@ -297,16 +297,15 @@ std::optional<fs::path> WriteTemporary(const Image& image, const fs::path& path,
   return temporary;
 }
 
-std::optional<std::string> WriteAtomically(const Image& image, const fs::path& path,
-                                           std::string_view format) {
+Status WriteAtomically(const Image& image, const fs::path& path, std::string_view format) {
   try {
     std::string error;
     const std::optional<fs::path> temporary = WriteTemporary(image, path, format, error);
-    if (!temporary) return error;
+    if (!temporary) return vs11::Failure(DiagnosticCode::kCannotWriteFile, error);
     const PendingRename rename[] = {{*temporary, path}};
     return CommitRenames(rename);
   } catch (const std::exception& e) {
-    return fmt::format("{}: {}", path.string(), e.what());
+    return vs11::Failure(DiagnosticCode::kCannotWriteFile, fmt::format("{}: {}", path.string(), e.what()));
   }
 }
 
@@ -469,24 +468,28 @@ LoadResult LoadEnvironment(const std::filesystem::path& path, const LoadOptions&
   }
 }
 
-std::optional<std::string> WriteImage(const Image& image, const std::filesystem::path& path) {
-  return WriteAtomically(image, path, "");
-}
+Status WriteImage(const Image& image, const std::filesystem::path& path) { return WriteAtomically(image, path, ""); }
 
-std::optional<std::string> WriteCrossExr(const CubeMap& cube, const std::filesystem::path& path) {
-  if (cube.face_size <= 0) return fmt::format("{}: cannot write an empty cube map", path.string());
+Status WriteCrossExr(const CubeMap& cube, const std::filesystem::path& path) {
+  if (cube.face_size <= 0) {
+    return vs11::Failure(DiagnosticCode::kCannotWriteFile,
+                         fmt::format("{}: cannot write an empty cube map", path.string()));
+  }
   return WriteAtomically(CubeMapToImage(cube, Layout::kHorizontalCross), path, "openexr");
 }
 
-std::optional<std::string> WriteCubeMap(const CubeMap& cube, const std::filesystem::path& path,
-                                        EnvironmentLayout layout) {
-  if (cube.face_size <= 0) return fmt::format("{}: cannot write an empty cube map", path.string());
+Status WriteCubeMap(const CubeMap& cube, const std::filesystem::path& path, EnvironmentLayout layout) {
+  if (cube.face_size <= 0) {
+    return vs11::Failure(DiagnosticCode::kCannotWriteFile,
+                         fmt::format("{}: cannot write an empty cube map", path.string()));
+  }
   const std::string pattern = path.string();
   const bool face_pattern = pattern.find(kFaceToken) != std::string::npos;
   if (layout == Layout::kAuto) layout = face_pattern ? Layout::kFaces : Layout::kHorizontalCross;
   if (layout != Layout::kFaces) return WriteAtomically(CubeMapToImage(cube, layout), path, "");
   if (!face_pattern) {
-    return fmt::format("{}: writing six faces needs a path containing \"{}\"", pattern, kFaceToken);
+    return vs11::Failure(DiagnosticCode::kCannotWriteFile,
+                         fmt::format("{}: writing six faces needs a path containing \"{}\"", pattern, kFaceToken));
   }
   try {
     std::vector<PendingRename> renames;
@@ -496,27 +499,30 @@ std::optional<std::string> WriteCubeMap(const CubeMap& cube, const std::filesyst
       const std::optional<fs::path> temporary = WriteTemporary(cube.face(face), target, "", error);
       if (!temporary) {
         for (const PendingRename& written : renames) RemoveQuietly(written.temporary);
-        return error;
+        return vs11::Failure(DiagnosticCode::kCannotWriteFile, error);
       }
       renames.push_back({*temporary, target});
     }
     return CommitRenames(renames);
   } catch (const std::exception& e) {
-    return fmt::format("{}: {}", pattern, e.what());
+    return vs11::Failure(DiagnosticCode::kCannotWriteFile, fmt::format("{}: {}", pattern, e.what()));
   }
 }
 
-std::optional<std::string> CheckFaceSizeOption(std::string_view option, int face_size, int max_size) {
-  if (IsPowerOfTwo(face_size) && face_size <= max_size) return std::nullopt;
-  return fmt::format("{} must be a power of two from 1 to {} (the mip pyramid halves it down to 1x1)",
-                     OptionWithValue(option, face_size), max_size);
+Status CheckFaceSizeOption(std::string_view option, int face_size, int max_size) {
+  if (IsPowerOfTwo(face_size) && face_size <= max_size) return {};
+  return vs11::Failure(DiagnosticCode::kFaceSize,
+                       fmt::format("{} must be a power of two from 1 to {} (the mip pyramid halves it down to 1x1)",
+                                   OptionWithValue(option, face_size), max_size));
 }
 
-std::optional<std::string> CheckPyramidFaceSize(std::string_view source, int face_size) {
-  if (IsPowerOfTwo(face_size)) return std::nullopt;
-  return fmt::format("{}face size {} is not a power of two; the mip pyramid needs exact 2x2 parents down to 1x1 "
-                     "(resample the map, or give a lat-long map with --face-size)",
-                     source.empty() ? std::string() : std::string(source) + ": ", face_size);
+Status CheckPyramidFaceSize(std::string_view source, int face_size) {
+  if (IsPowerOfTwo(face_size)) return {};
+  return vs11::Failure(
+      DiagnosticCode::kFaceSize,
+      fmt::format("{}face size {} is not a power of two; the mip pyramid needs exact 2x2 parents down to 1x1 "
+                  "(resample the map, or give a lat-long map with --face-size)",
+                  source.empty() ? std::string() : std::string(source) + ": ", face_size));
 }
 
 }  // namespace vs11::irradiance

@@ -63,6 +63,7 @@
 
 #include "irradiance/io/cube_map.h"
 #include "vm/core/name_table.h"
+#include "vm/core/result.h"
 
 namespace vs11::irradiance {
 
@@ -101,12 +102,12 @@ inline constexpr std::array<std::string_view, kCubeFaceCount> kSignedFaceFileNam
 // Largest face size the lat-long and angular resamplers build (16384^2 x 6 texels is 19 GB).
 inline constexpr int kMaxFaceSize = 16384;
 // The face-size rules, each stated once (IsPowerOfTwo is in cube_map.h). An option naming a face
-// size (`option`: "--face-size" or "face_size", irradiance/io/option_names.h) must be a power of two from 1 to `max_size`: nullopt if it is,
-// else the message. A loaded cube's face must be a power of two for the mip pyramid (exact 2x2
-// parents down to 1x1): nullopt if it is, else the message, prefixed with "SOURCE: " when `source`
-// is not empty.
-std::optional<std::string> CheckFaceSizeOption(std::string_view option, int face_size, int max_size = kMaxFaceSize);
-std::optional<std::string> CheckPyramidFaceSize(std::string_view source, int face_size);
+// size (`option`: "--face-size" or "face_size", irradiance/io/option_names.h) must be a power of two from 1 to
+// `max_size`: success if it is, else the error (kFaceSize). A loaded cube's face must be a power of two for the mip
+// pyramid (exact 2x2 parents down to 1x1): success if it is, else the error, its message prefixed with "SOURCE: " when
+// `source` is not empty.
+Status CheckFaceSizeOption(std::string_view option, int face_size, int max_size = kMaxFaceSize);
+Status CheckPyramidFaceSize(std::string_view source, int face_size);
 
 // Largest image read, in pixels (2^28: a 16384 x 16384 image, 3 GB as float RGB); larger headers
 // are rejected as corrupt rather than allocated.
@@ -230,20 +231,19 @@ glm::vec3 SampleCubeMap(const CubeMap& cube, glm::dvec3 direction);
 // none of kAuto and kFaces, cube.face_size > 0.
 Image CubeMapToImage(const CubeMap& cube, EnvironmentLayout layout);
 
-// Writers. Each returns nullopt on success, otherwise the error message. Every file is written
+// Writers. Each returns success or the error (kCannotWriteFile) naming the file. Every file is written
 // atomically: to a temporary file in the same folder, renamed over `path` once complete; on failure
 // no temporary or partial file is left behind and an existing `path` is untouched.
 //
 // The format follows the extension. .exr (32-bit float, zip), .hdr (RGBE) and .tif/.tiff (32-bit
 // float) keep linear floats; any other format OpenImageIO writes (.png, .jpg, ...) gets 8-bit sRGB,
 // values clamped to [0, 1] and tagged sRGB. OpenImageIO 2.4 cannot write .pfm or .dds.
-std::optional<std::string> WriteImage(const Image& image, const std::filesystem::path& path);
+Status WriteImage(const Image& image, const std::filesystem::path& path);
 // A horizontal cross of 32-bit floats in OpenEXR, whatever the extension; unused cells black.
-std::optional<std::string> WriteCrossExr(const CubeMap& cube, const std::filesystem::path& path);
+Status WriteCrossExr(const CubeMap& cube, const std::filesystem::path& path);
 // The cube in `layout`. kFaces writes six files: `path` must hold "{face}", replaced by
 // kFaceFileNames (px nx ...); all six are written to temporaries first and renamed only if all
 // succeed. kAuto means kFaces if `path` holds "{face}", else kHorizontalCross.
-std::optional<std::string> WriteCubeMap(const CubeMap& cube, const std::filesystem::path& path,
-                                        EnvironmentLayout layout);
+Status WriteCubeMap(const CubeMap& cube, const std::filesystem::path& path, EnvironmentLayout layout);
 
 }  // namespace vs11::irradiance

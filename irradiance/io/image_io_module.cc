@@ -3,7 +3,6 @@
 #include <dlfcn.h>
 #include <link.h>
 
-#include <mutex>
 #include <system_error>
 
 #include <fmt/format.h>
@@ -63,7 +62,7 @@ std::vector<fs::path> ImageIoModuleCandidates() {
   return candidates;
 }
 
-const ImageIoApi* LoadImageIoModule(const std::vector<fs::path>& candidates, std::string& error) {
+Result<const ImageIoApi*> LoadImageIoModule(const std::vector<fs::path>& candidates) {
   for (const fs::path& candidate : candidates) {
     std::error_code ec;
     if (!fs::is_regular_file(candidate, ec)) continue;
@@ -72,32 +71,27 @@ const ImageIoApi* LoadImageIoModule(const std::vector<fs::path>& candidates, std
     void* handle = dlopen(candidate.c_str(), RTLD_LAZY | RTLD_LOCAL);
     if (!handle) {
       const char* reason = dlerror();
-      error = fmt::format("cannot load the OpenImageIO module {} ({})", candidate.string(),
-                          reason ? reason : "no reason given");
-      return nullptr;
+      return Failure(DiagnosticCode::kImageIoModule,
+                     fmt::format("cannot load the OpenImageIO module {} ({})", candidate.string(),
+                                 reason ? reason : "no reason given"));
     }
     const auto entry = reinterpret_cast<EntryPoint>(dlsym(handle, kImageIoEntryPoint));
     if (!entry) {
-      error = fmt::format("the OpenImageIO module {} has no {}: it is from another vs11 version",
-                          candidate.string(), kImageIoEntryPoint);
-      return nullptr;
+      return Failure(DiagnosticCode::kImageIoModule,
+                     fmt::format("the OpenImageIO module {} has no {}: it is from another vs11 version",
+                                 candidate.string(), kImageIoEntryPoint));
     }
     return entry();
   }
-  error = fmt::format(
-      "OpenImageIO is needed for this file, but vs11's OpenImageIO module {} is missing (looked for {}); "
-      "reinstall vs11 or rebuild it (cmake --build build)",
-      kImageIoModuleFileName, JoinPaths(candidates));
-  return nullptr;
+  return Failure(DiagnosticCode::kImageIoModule,
+                 fmt::format("OpenImageIO is needed for this file, but vs11's OpenImageIO module {} is missing "
+                             "(looked for {}); reinstall vs11 or rebuild it (cmake --build build)",
+                             kImageIoModuleFileName, JoinPaths(candidates)));
 }
 
-const ImageIoApi* ImageIo(std::string& error) {
-  static std::once_flag once;
-  static const ImageIoApi* api = nullptr;
-  static std::string load_error;
-  std::call_once(once, [] { api = LoadImageIoModule(ImageIoModuleCandidates(), load_error); });
-  if (!api) error = load_error;
-  return api;
+Result<const ImageIoApi*> ImageIo() {
+  static const Result<const ImageIoApi*> loaded = LoadImageIoModule(ImageIoModuleCandidates());
+  return loaded;
 }
 
 }  // namespace vs11::irradiance

@@ -20,6 +20,7 @@
 #include <vector>
 
 #include "irradiance/io/cube_map.h"
+#include "vm/core/result.h"
 
 namespace vs11::irradiance {
 
@@ -79,15 +80,15 @@ struct ImageIoApi {
                                             const std::string& font, float value, bool centred);
 };
 
-// The module, loaded on the first call from any thread (later calls return the same); nullptr with
-// the reason in `error` when it cannot be loaded (a message naming the files looked for).
-const ImageIoApi* ImageIo(std::string& error);
+// The module, loaded on the first call from any thread (later calls return the same); an error
+// (kImageIoModule) when it cannot be loaded (a message naming the files looked for).
+Result<const ImageIoApi*> ImageIo();
 
 // Where ImageIo looks, in order (see the top of this file).
 std::vector<std::filesystem::path> ImageIoModuleCandidates();
 
 // Loads the first of `candidates` that exists (dlopen; never unloaded). Used by ImageIo; public so
 // that tests can give other folders.
-const ImageIoApi* LoadImageIoModule(const std::vector<std::filesystem::path>& candidates, std::string& error);
+Result<const ImageIoApi*> LoadImageIoModule(const std::vector<std::filesystem::path>& candidates);
 
 }  // namespace vs11::irradiance

@@ -110,9 +110,9 @@ ImageReadResult ReadImageFile(const fs::path& path, const ImageSizeCheck& check_
     return result;
   }
   // Every other image is OpenImageIO's, loaded here on first use (image_io_module.h).
-  std::string module_error;
-  const ImageIoApi* image_io = ImageIo(module_error);
-  if (!image_io) return failure(module_error);
+  const Result<const ImageIoApi*> module = ImageIo();
+  if (!module) return failure(module.message());
+  const ImageIoApi* image_io = *module;
   OiioReadRequest request{file.path, file.size, &dds.stacked_faces, dds.is_cube_map, check_size};
   OiioReadResult read = image_io->read(request);
   if (!read.image) return failure(read.error);

@@ -40,8 +40,10 @@ std::vector<std::uint8_t> EncodeKtx1CubeRgba16f(const CubeMap& cube) {
   return file;
 }
 
-std::optional<std::string> WriteKtx1Cube(const CubeMap& cube, const std::filesystem::path& path) {
-  if (cube.face_size <= 0) return fmt::format("{}: cannot write an empty cube map", path.string());
+Status WriteKtx1Cube(const CubeMap& cube, const std::filesystem::path& path) {
+  if (cube.face_size <= 0) {
+    return Failure(DiagnosticCode::kCannotWriteFile, fmt::format("{}: cannot write an empty cube map", path.string()));
+  }
   return WriteFileAtomically(path, EncodeKtx1CubeRgba16f(cube));
 }
 

@@ -19,14 +19,15 @@
 #include <vector>
 
 #include "irradiance/io/cube_map.h"
+#include "vm/core/result.h"
 
 namespace vs11::irradiance {
 
 // The whole file, `cube` as it is. Precondition (asserted): cube.face_size > 0.
 std::vector<std::uint8_t> EncodeKtx1CubeRgba16f(const CubeMap& cube);
 
-// Writes it atomically (vm/core/atomic_file.h): nullopt, or what failed.
-std::optional<std::string> WriteKtx1Cube(const CubeMap& cube, const std::filesystem::path& path);
+// Writes it atomically (vm/core/atomic_file.h): success, or the error saying what failed.
+Status WriteKtx1Cube(const CubeMap& cube, const std::filesystem::path& path);
 
 // `cube` mirrored in x, L'(x, y, z) = L(-x, y, z): faces +x and -x swapped and every face flipped left
 // to right, what cmgen does to every cube it writes unless given --no-mirror.

@@ -103,8 +103,10 @@ std::vector<std::uint8_t> EncodeKtx2CubeRgba16f(const CubeMap& cube) {
   return file;
 }
 
-std::optional<std::string> WriteKtx2Cube(const CubeMap& cube, const std::filesystem::path& path) {
-  if (cube.face_size <= 0) return fmt::format("{}: cannot write an empty cube map", path.string());
+Status WriteKtx2Cube(const CubeMap& cube, const std::filesystem::path& path) {
+  if (cube.face_size <= 0) {
+    return Failure(DiagnosticCode::kCannotWriteFile, fmt::format("{}: cannot write an empty cube map", path.string()));
+  }
   return WriteFileAtomically(path, EncodeKtx2CubeRgba16f(cube));
 }
 

@@ -30,6 +30,7 @@
 #include <vector>
 
 #include "irradiance/io/cube_map.h"
+#include "vm/core/result.h"
 
 namespace vs11::irradiance {
 
@@ -38,7 +39,7 @@ inline constexpr std::string_view kKtx2WriterName = "vs11 irrmap";
 // The whole file. Precondition (asserted): cube.face_size > 0.
 std::vector<std::uint8_t> EncodeKtx2CubeRgba16f(const CubeMap& cube);
 
-// Writes it atomically (vm/core/atomic_file.h): nullopt, or what failed.
-std::optional<std::string> WriteKtx2Cube(const CubeMap& cube, const std::filesystem::path& path);
+// Writes it atomically (vm/core/atomic_file.h): success, or the error saying what failed.
+Status WriteKtx2Cube(const CubeMap& cube, const std::filesystem::path& path);
 
 }  // namespace vs11::irradiance

@@ -48,7 +48,7 @@ std::size_t CountNegative(const CubeMap& cube) {
 }
 
 // One face, negative values as 0: what RGBE stores of them (OpenImageIO would wrap them to garbage).
-std::optional<std::string> WriteHdrFace(const CubeMap& cube, std::size_t face, const std::filesystem::path& path) {
+Status WriteHdrFace(const CubeMap& cube, std::size_t face, const std::filesystem::path& path) {
   Image image = cube.faces[face];
   for (glm::vec3& texel : image.pixels) texel = glm::max(texel, glm::vec3(0.0f));
   return WriteImage(image, path);
@@ -58,8 +58,7 @@ std::optional<std::string> WriteHdrFace(const CubeMap& cube, std::size_t face, c
 
 std::span<const std::string_view> IrradianceMapFileNames(MapFileFormat format) { return Info(format).files; }
 
-std::optional<std::string> WriteMapFile(const CubeMap& cube, MapFileFormat format, std::size_t file,
-                                        const std::filesystem::path& path) {
+Status WriteMapFile(const CubeMap& cube, MapFileFormat format, std::size_t file, const std::filesystem::path& path) {
   assert(file < IrradianceMapFileNames(format).size());
   switch (format) {
     case MapFileFormat::kExr: return WriteCrossExr(cube, path);
@@ -68,10 +67,13 @@ std::optional<std::string> WriteMapFile(const CubeMap& cube, MapFileFormat forma
     // Mirrored as cmgen mirrors: Filament then shows it in the frame sh_filament.txt assumes.
     case MapFileFormat::kKtx: return WriteKtx1Cube(MirroredInX(cube), path);
     case MapFileFormat::kHdrFaces:
-      if (cube.face_size <= 0) return fmt::format("{}: cannot write an empty cube map", path.string());
+      if (cube.face_size <= 0) {
+        return Failure(DiagnosticCode::kCannotWriteFile,
+                       fmt::format("{}: cannot write an empty cube map", path.string()));
+      }
       return WriteHdrFace(cube, file, path);
   }
-  return std::string("unknown map format");
+  return Failure(DiagnosticCode::kCannotWriteFile, "unknown map format");
 }
 
 std::optional<std::string> MapRangeWarning(const CubeMap& cube, MapFileFormat format, std::string_view file) {

@@ -15,6 +15,7 @@
 
 #include "irradiance/io/cube_map.h"
 #include "vm/core/name_table.h"
+#include "vm/core/result.h"
 
 namespace vs11::irradiance {
 
@@ -38,9 +39,9 @@ inline std::string_view MapFileFormatName(MapFileFormat format) { return kMapFil
 std::span<const std::string_view> IrradianceMapFileNames(MapFileFormat format);
 
 // Writes file `file` (an index into IrradianceMapFileNames(format)) of `cube` in `format` to `path`,
-// atomically; nullopt, or what failed. Precondition (asserted): file < IrradianceMapFileNames(format).size().
-std::optional<std::string> WriteMapFile(const CubeMap& cube, MapFileFormat format, std::size_t file,
-                                        const std::filesystem::path& path);
+// atomically; success, or the error saying what failed. Precondition (asserted): file <
+// IrradianceMapFileNames(format).size().
+Status WriteMapFile(const CubeMap& cube, MapFileFormat format, std::size_t file, const std::filesystem::path& path);
 
 // What `format` cannot hold of `cube`, as a warning naming `file`; nullopt when it holds all of it.
 // The half-float formats clamp values beyond the largest half (65504); Radiance RGBE holds no

@@ -165,40 +165,38 @@ std::optional<std::pair<int, int>> ParseShard(const std::string& text) {
 }
 
 std::optional<std::string> BatchOutputOverwritesInput(const BatchOptions& options) {
-  std::string ignored;  // a list that cannot be read is reported by RunBatch
   std::vector<fs::path> inputs(options.list_files.begin(), options.list_files.end());
-  for (const std::string& input : ExpandBatchInputs(options.inputs, options.list_files, ignored)) inputs.push_back(input);
+  // A list that cannot be read is reported by RunBatch.
+  if (Result<std::vector<std::string>> expanded = ExpandBatchInputs(options.inputs, options.list_files)) {
+    inputs.insert(inputs.end(), expanded->begin(), expanded->end());
+  }
   return OutputOverwritesInput(options.output, inputs);
 }
 
-std::vector<std::string> ExpandBatchInputs(const std::vector<std::string>& inputs,
-                                           const std::vector<fs::path>& list_files, std::string& error) {
+Result<std::vector<std::string>> ExpandBatchInputs(const std::vector<std::string>& inputs,
+                                                   const std::vector<fs::path>& list_files) {
   std::vector<std::string> out;
   for (const std::string& input : inputs) {
     if (std::optional<std::string> problem = AddExpanded(input, out)) {
-      error = *problem;
-      return {};
+      return Failure(DiagnosticCode::kNoSuchInput, *problem);
     }
   }
   for (const fs::path& list : list_files) {
+    const auto unreadable = [&list] {
+      return Failure(DiagnosticCode::kCannotReadFile, fmt::format("cannot read the list file {}", list.string()));
+    };
     std::ifstream in(list);
-    if (!in) {
-      error = fmt::format("cannot read the list file {}", list.string());
-      return {};
-    }
+    if (!in) return unreadable();
     std::string line;
     for (int number = 1; std::getline(in, line); ++number) {
       const std::string entry = Trimmed(line);
       if (entry.empty() || entry.starts_with('#')) continue;
       if (std::optional<std::string> problem = AddExpanded(entry, out)) {
-        error = fmt::format("{}:{}: {}", list.string(), number, *problem);
-        return {};
+        return Failure(DiagnosticCode::kNoSuchInput, fmt::format("{}:{}: {}", list.string(), number, *problem),
+                       {list.string(), number});
       }
     }
-    if (in.bad()) {
-      error = fmt::format("cannot read the list file {}", list.string());
-      return {};
-    }
+    if (in.bad()) return unreadable();
   }
   std::sort(out.begin(), out.end());
   std::set<std::string> keys;
@@ -220,9 +218,9 @@ std::optional<std::string> RunBatch(const BatchOptions& options, BatchSummary& s
   summary = BatchSummary{};
   if (std::optional<std::string> error = CheckOptions(options)) return error;
   if (std::optional<std::string> error = BatchOutputOverwritesInput(options)) return error;
-  std::string error;
-  const std::vector<std::string> all = ExpandBatchInputs(options.inputs, options.list_files, error);
-  if (!error.empty()) return error;
+  const Result<std::vector<std::string>> expanded = ExpandBatchInputs(options.inputs, options.list_files);
+  if (!expanded) return expanded.message();
+  const std::vector<std::string>& all = *expanded;
   if (all.empty()) return std::string("no input files given");
   const std::vector<std::string> shard = ShardOf(all, options.shard_index, options.shard_count);
   summary.selected = shard.size();
@@ -242,8 +240,9 @@ std::optional<std::string> RunBatch(const BatchOptions& options, BatchSummary& s
     std::error_code ec;
     fs::create_directories(options.per_file_dir, ec);
     if (ec) return fmt::format("cannot create {} ({})", options.per_file_dir.string(), ec.message());
-    per_file_lock = OutputLock::Take(PerFileLock(options), options.per_file_dir.string(), error);
-    if (!per_file_lock) return error;
+    Result<OutputLock> lock = OutputLock::Take(PerFileLock(options), options.per_file_dir.string());
+    if (!lock) return lock.message();
+    per_file_lock = std::move(lock).value();
     if (std::optional<std::string> overwrite = CheckPerFileNames(options.per_file_dir, {}, todo)) return overwrite;
   }
   if (std::optional<std::string> problem = out.BeginWriting()) return problem;
@@ -264,8 +263,8 @@ std::optional<std::string> RunBatch(const BatchOptions& options, BatchSummary& s
         line = json.dump() + "\n";
         if (per_file) {
           const fs::path path = options.per_file_dir / PerFileName(todo[i]);
-          if (std::optional<std::string> problem = WriteFileAtomically(path, json.dump(2) + "\n")) {
-            reason = fmt::format("cannot write {}: {}", path.string(), *problem);
+          if (const Status written = WriteFileAtomically(path, json.dump(2) + "\n"); !written) {
+            reason = fmt::format("cannot write {}: {}", path.string(), written.message());
           }
         }
       }

@@ -37,6 +37,7 @@
 #include "irradiance/io/option_names.h"
 #include "irradiance/jobs/irrmap_job.h"
 #include "irradiance/sh/level_choice.h"
+#include "vm/core/result.h"
 #include "vm/core/thread_pool.h"
 
 namespace vs11::irradiance {
@@ -94,10 +95,11 @@ using BatchRecordReport = std::function<void(const std::string& line)>;
 // Parses "K/N" (0 <= K < N); nullopt when it is not that.
 std::optional<std::pair<int, int>> ParseShard(const std::string& text);
 
-// Inputs and list files expanded, de-duplicated and sorted; `error` set (and the result empty) when
-// a list file cannot be read or a pattern or path matches nothing.
-std::vector<std::string> ExpandBatchInputs(const std::vector<std::string>& inputs,
-                                           const std::vector<std::filesystem::path>& list_files, std::string& error);
+// Inputs and list files expanded, de-duplicated and sorted; an error when a list file cannot be
+// read (kCannotReadFile) or a pattern or path matches nothing (kNoSuchInput; in a list file, its
+// place is the list's file and line).
+Result<std::vector<std::string>> ExpandBatchInputs(const std::vector<std::string>& inputs,
+                                                   const std::vector<std::filesystem::path>& list_files);
 
 // "OUT is the input IN: refusing to overwrite it" when -o is one of the inputs or list files (the
 // same file, however spelled), checked before anything is read or written; else nullopt.

@@ -88,7 +88,8 @@ std::optional<std::string> WriteMerged(const std::vector<std::string>& parts, co
     }
   }
   const PendingRename rename{temporary, output};
-  return CommitRenames({&rename, 1});
+  if (const Status renamed = CommitRenames({&rename, 1}); !renamed) return renamed.message();
+  return std::nullopt;
 }
 
 }  // namespace
@@ -97,11 +98,12 @@ std::optional<std::string> MergeBatchOutputs(const MergeOptions& options, MergeR
   report = MergeReport{};
   if (options.parts.empty()) return std::string("no parts given (--parts FILE.jsonl...)");
   if (options.inputs.empty() && options.list_files.empty()) return std::string("no inputs given");
-  std::string error;
-  const std::vector<std::string> inputs = ExpandBatchInputs(options.inputs, options.list_files, error);
-  if (!error.empty()) return error;
-  const std::vector<std::string> parts = ExpandBatchInputs(options.parts, {}, error);
-  if (!error.empty()) return fmt::format("--parts: {}", error);
+  const Result<std::vector<std::string>> expanded_inputs = ExpandBatchInputs(options.inputs, options.list_files);
+  if (!expanded_inputs) return expanded_inputs.message();
+  const std::vector<std::string>& inputs = *expanded_inputs;
+  const Result<std::vector<std::string>> expanded_parts = ExpandBatchInputs(options.parts, {});
+  if (!expanded_parts) return fmt::format("--parts: {}", expanded_parts.message());
+  const std::vector<std::string>& parts = *expanded_parts;
   if (!options.output.empty()) {
     std::vector<fs::path> read(options.list_files);
     read.insert(read.end(), parts.begin(), parts.end());

@@ -78,9 +78,9 @@ std::optional<std::string> BatchOutput::Open(const fs::path& path, bool resume) 
   const fs::file_status status = fs::status(path, ec);
   if (fs::exists(status) && !fs::is_regular_file(status)) return NotARegularFile(path, status);
   if (path.has_parent_path()) fs::create_directories(path.parent_path(), ec);  // a failure shows in the lock's error
-  std::string error;
-  lock_ = OutputLock::Take(fs::path(path) += ".lock", path.string(), error);
-  if (!lock_) return error;
+  Result<OutputLock> lock = OutputLock::Take(fs::path(path) += ".lock", path.string());
+  if (!lock) return lock.message();
+  lock_ = std::move(lock).value();
   path_ = path;
   const int fd = open(path.c_str(), O_RDWR | O_CLOEXEC | O_NONBLOCK);
   if (fd < 0 && errno == ENOENT) return std::nullopt;  // BeginWriting creates it

@@ -17,6 +17,7 @@
 #include "irradiance/sh/sh9.h"
 #include "irradiance/sh/sh_order.h"
 #include "irradiance/sh/sh_projection.h"
+#include "vm/core/result.h"
 
 namespace vs11::irradiance {
 
@@ -40,7 +41,7 @@ struct GpuFrameResult {
 };
 
 // Fills `result`, or returns why the frame could not run.
-using GpuFrameHook = std::function<std::optional<std::string>(const GpuFrameRequest&, GpuFrameResult&)>;
+using GpuFrameHook = std::function<Status(const GpuFrameRequest&, GpuFrameResult&)>;
 
 // coeffs.json's "gpu": what ran where, and how far the GPU's coefficients are from the CPU's.
 struct GpuFrameReport {

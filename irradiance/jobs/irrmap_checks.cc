@@ -66,7 +66,9 @@ std::optional<std::string> CheckOptionValues(const IrrmapOptions& options, Check
     return fmt::format("{} is out of range: a fraction above 0 and below 1 ({} = {} %)",
                        named("max-error", options.max_error), kDefaultMaxLevelError, 100 * kDefaultMaxLevelError);
   }
-  if (std::optional<std::string> error = CheckFaceSizeOption(OptionName(options.naming, "face-size"), options.face_size)) return error;
+  if (const Status size = CheckFaceSizeOption(OptionName(options.naming, "face-size"), options.face_size); !size) {
+    return size.message();
+  }
   if (options.level && *options.level < 0) {
     return fmt::format("{} is out of range: levels start at 0 (full resolution)", named("level", *options.level));
   }

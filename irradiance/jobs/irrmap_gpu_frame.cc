@@ -24,10 +24,10 @@ std::optional<std::string> RunIrrmapGpuFrame(const IrrmapGpuFrame& frame, Irrmap
                                                              : std::vector<glm::dvec3>{};
   GpuFrameResult result;
   const auto start = std::chrono::steady_clock::now();
-  if (std::optional<std::string> error =
-          frame.hook({environment.mips->levels[0], *environment.basis, report.level, frame.program, normals},
-                     result)) {
-    return fmt::format("--engine gl: {}", *error);
+  if (const Status ran =
+          frame.hook({environment.mips->levels[0], *environment.basis, report.level, frame.program, normals}, result);
+      !ran) {
+    return fmt::format("--engine gl: {}", ran.message());
   }
   gpu.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   report.timings.push_back({"gpu_frame", gpu.ms});

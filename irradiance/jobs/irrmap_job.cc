@@ -96,7 +96,7 @@ std::optional<std::string> LoadCube(const IrrmapOptions& options, const CheckedO
     report.layout = LayoutName(options.layout);
     report.layout_reason = "as given";
     report.sh_source = ShSourceKindOf(options.layout);
-    if (std::optional<std::string> error = CheckPyramidFaceSize(options.environment, cube.face_size)) return error;
+    if (const Status size = CheckPyramidFaceSize(options.environment, cube.face_size); !size) return size.message();
     if (options.level && *options.level >= LevelCount(cube.face_size)) {
       return fmt::format("{} is out of range: {}", LevelWithValue(options), LevelRange(cube.face_size));
     }
@@ -138,7 +138,7 @@ std::optional<std::string> LoadCube(const IrrmapOptions& options, const CheckedO
                                           options.environment, report.layout, cube.face_size, cube.face_size));
   }
   const int face_size = latlong ? options.face_size : cube.face_size;
-  if (std::optional<std::string> error = CheckPyramidFaceSize(options.environment, face_size)) return error;
+  if (const Status size = CheckPyramidFaceSize(options.environment, face_size); !size) return size.message();
   if (options.level && *options.level >= LevelCount(face_size)) {
     return fmt::format("{} is out of range: {}", LevelWithValue(options), LevelRange(face_size));
   }
@@ -270,33 +270,39 @@ nlohmann::ordered_json CoefficientsJson(const IrrmapReport& report, const Irrmap
 // One output: written by `write` to a temporary path with the same extension, then renamed.
 struct PendingOutput {
   std::string_view name;
-  std::function<std::optional<std::string>(const fs::path&)> write;
+  std::function<Status(const fs::path&)> write;
 };
 
-std::optional<std::string> WriteOutputs(const fs::path& out_dir, const std::vector<PendingOutput>& outputs,
-                                        std::vector<fs::path>& written) {
+Status WriteOutputs(const fs::path& out_dir, const std::vector<PendingOutput>& outputs,
+                    std::vector<fs::path>& written) {
   std::error_code ec;
   fs::create_directories(out_dir, ec);
-  if (ec) return fmt::format("cannot create the output directory {} ({})", out_dir.string(), ec.message());
+  if (ec) {
+    return Failure(DiagnosticCode::kCannotWriteFile,
+                   fmt::format("cannot create the output directory {} ({})", out_dir.string(), ec.message()));
+  }
   for (const PendingOutput& output : outputs) {  // a folder in the way would fail the last renames
     if (fs::is_directory(out_dir / output.name, ec)) {
-      return fmt::format("cannot write {}: it is a directory", (out_dir / output.name).string());
+      return Failure(DiagnosticCode::kCannotWriteFile,
+                     fmt::format("cannot write {}: it is a directory", (out_dir / output.name).string()));
     }
   }
   std::vector<PendingRename> renames;
   for (const PendingOutput& output : outputs) {
     const fs::path target = out_dir / output.name;
     const fs::path temporary = TemporaryPathBeside(target);
-    std::optional<std::string> error;
+    Status status;
     try {
-      error = output.write(temporary);
+      status = output.write(temporary);
     } catch (const std::bad_alloc&) {
-      error = "out of memory";
+      status = Failure(DiagnosticCode::kCannotWriteFile, "out of memory");
     }
-    if (error) {
+    if (!status) {
       RemoveQuietly(temporary);
       for (const PendingRename& finished : renames) RemoveQuietly(finished.temporary);
-      return fmt::format("cannot write {}: {}", target.string(), *error);
+      Diagnostic error = status.error();
+      error.message = fmt::format("cannot write {}: {}", target.string(), error.message);
+      return error;
     }
     renames.push_back({temporary, target});
   }
@@ -353,9 +359,8 @@ std::optional<std::string> WriteJobOutputs(const IrrmapOptions& options, const C
   for (const PendingOutput& output : outputs) coefficients["files"].push_back(std::string(output.name));
   coefficients_text = coefficients.dump(2) + "\n";
   std::vector<fs::path> written;
-  std::optional<std::string> write_error =
-      Timed(report, "write", [&] { return WriteOutputs(options.out_dir, outputs, written); });
-  if (write_error) return write_error;
+  const Status write_status = Timed(report, "write", [&] { return WriteOutputs(options.out_dir, outputs, written); });
+  if (!write_status) return write_status.message();
   const std::vector<std::string> leftovers = LeftoverOutputWarnings(options.out_dir, written);
   report.warnings.insert(report.warnings.end(), leftovers.begin(), leftovers.end());
   report.files = std::move(written);
@@ -543,11 +548,12 @@ std::optional<std::string> CoefficientsStage(IrrmapRun& run) {
           CheckCoefficientsFitFloat(report.coefficients, program_registers, report.texel_range)) {
     return fmt::format("{}: {}", report.environment, *error);
   }
-  std::string error;
-  run.program = Timed(report, "program", [&] { return PaperProgram::Load(error); });
-  if (!run.program) return error;
-  run.chosen_program = PaperProgram::LoadOrder(report.order, error);
-  if (!run.chosen_program) return error;
+  Result<PaperProgram> program = Timed(report, "program", [] { return PaperProgram::Load(); });
+  if (!program) return program.message();
+  run.program = std::move(program).value();
+  Result<PaperProgram> chosen_program = PaperProgram::LoadOrder(report.order);
+  if (!chosen_program) return chosen_program.message();
+  run.chosen_program = std::move(chosen_program).value();
   run.chosen_bank = run.chosen_program->Constants(report.program_constants);
   return std::nullopt;
 }
@@ -577,8 +583,9 @@ std::optional<std::string> MeshStage(IrrmapRun& run) {
                                lighting.ms_per_evaluation, lighting.unusable_normals, !lighting.truth.empty(),
                                lighting.error, lighting.exposure, lighting.error_scale};
   run.outputs.push_back({kMeshFile, [&run](const fs::path& path) {
-                           return run.options.mesh->write ? run.options.mesh->write(path, run.lighting.display_colors)
-                                                          : std::optional<std::string>("no mesh writer");
+                           return run.options.mesh->write
+                                      ? run.options.mesh->write(path, run.lighting.display_colors)
+                                      : Status(Failure(DiagnosticCode::kCannotWriteFile, "no mesh writer"));
                          }});
   run.outputs.push_back({kMeshPictureFile, [&run](const fs::path& path) { return WriteImage(run.lighting.picture, path); }});
   return std::nullopt;
@@ -734,15 +741,15 @@ std::string OutOfMemoryMessage(const IrrmapRun& run, std::string_view doing) {
 }
 
 // The engine is built once for the paper's program before any work: where one that depends on a driver
-// (the gl engine) has no device, the job ends with its error instead of evaluating to NaN. (The CPU
-// engines never fail; building them costs microseconds.)
+// (the gl engine) cannot be built, the job ends with MakeEngine's error, and later stages may build
+// it again without checking (PaperProgram::Irradiance, LightMesh). (The CPU engines never fail;
+// building them costs microseconds.)
 std::optional<std::string> CheckEngine(const std::string& kind, const EngineOptions& engine_options) {
-  std::string error;
-  const std::optional<PaperProgram> paper = PaperProgram::LoadOrder(ShOrder::kOrder2, error);
-  if (!paper) return error;
-  const std::string engine_error = MakeEngine(kind, paper->program(), ConstantBank(), engine_options)->error();
-  if (engine_error.empty()) return std::nullopt;
-  return fmt::format("--engine {}: {}", kind, engine_error);
+  const Result<PaperProgram> paper = PaperProgram::LoadOrder(ShOrder::kOrder2);
+  if (!paper) return paper.message();
+  const Result<std::unique_ptr<Engine>> engine = MakeEngine(kind, paper->program(), ConstantBank(), engine_options);
+  if (engine) return std::nullopt;
+  return fmt::format("--engine {}: {}", kind, engine.message());
 }
 
 }  // namespace

@@ -45,8 +45,9 @@ std::vector<glm::dvec3> EvaluateProgram(const MeshGeometry& mesh, const PaperPro
     for (int c = 0; c < 3; ++c) inputs.lane(program.normal_register(), c)[i] = static_cast<float>(unit[c]);
   }
   VertexArrays outputs = MakeOutputArrays(n, program.program());
+  // The job checked the engine before any work (irrmap_job.cc's CheckEngine); the CPU engines never fail.
   std::unique_ptr<Engine> engine =
-      MakeEngine(options.engine, program.program(), program.Constants(constants), options.engine_options);
+      MakeEngine(options.engine, program.program(), program.Constants(constants), options.engine_options).value();
   std::vector<double> times;
   const Clock::time_point start = Clock::now();
   while (static_cast<int>(times.size()) < kMaxTimedRuns &&

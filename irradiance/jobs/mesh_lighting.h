@@ -23,6 +23,7 @@
 #include "irradiance/sh/ground_truth.h"
 #include "irradiance/sh/sh9.h"
 #include "vm/core/machine.h"
+#include "vm/core/result.h"
 
 namespace vs11::irradiance {
 
@@ -41,7 +42,7 @@ struct MeshGeometry {
   std::vector<std::uint32_t> indices;
   // Writes the mesh with the given per-vertex colours (8-bit RGBA in [0, 1]) to `path` (mesh.ply).
   // The caller supplies it: the writer is Assimp's, which the irradiance library does not link.
-  std::function<std::optional<std::string>(const std::filesystem::path&, std::span<const Vec4f>)> write;
+  std::function<Status(const std::filesystem::path&, std::span<const Vec4f>)> write;
 };
 
 struct MeshLightingOptions {

@@ -51,27 +51,26 @@ bool IsStillAt(int fd, const std::filesystem::path& path) {
 
 }  // namespace
 
-std::optional<OutputLock> OutputLock::Take(const std::filesystem::path& lock_file, const std::string& output,
-                                           std::string& error) {
+Result<OutputLock> OutputLock::Take(const std::filesystem::path& lock_file, const std::string& output) {
   for (int attempt = 0; attempt < kLockAttempts; ++attempt) {
     const int fd = open(lock_file.c_str(), O_RDWR | O_CREAT | O_CLOEXEC | O_NOFOLLOW | O_NONBLOCK, 0644);
     if (fd < 0) {
-      error = fmt::format("cannot create the lock file {} ({})", lock_file.string(), std::strerror(errno));
-      return std::nullopt;
+      return Failure(DiagnosticCode::kCannotWriteFile,
+                     fmt::format("cannot create the lock file {} ({})", lock_file.string(), std::strerror(errno)));
     }
     if (flock(fd, LOCK_EX | LOCK_NB) != 0) {
       const int code = errno;
       const std::string holder = ReadHolder(fd);
       close(fd);
       if (code != EWOULDBLOCK) {
-        error = fmt::format("cannot lock {} ({})", lock_file.string(), std::strerror(code));
-      } else {
-        error = fmt::format(
-            "{} is in use by another irrmap batch: {} (lock file {}); wait for it to end or stop it (the lock "
-            "of a process that has ended is free)",
-            output, holder.empty() ? "a process that has not yet written its pid" : holder, lock_file.string());
+        return Failure(DiagnosticCode::kCannotWriteFile,
+                       fmt::format("cannot lock {} ({})", lock_file.string(), std::strerror(code)));
       }
-      return std::nullopt;
+      return Failure(DiagnosticCode::kOutputInUse,
+                     fmt::format("{} is in use by another irrmap batch: {} (lock file {}); wait for it to end or stop "
+                                 "it (the lock of a process that has ended is free)",
+                                 output, holder.empty() ? "a process that has not yet written its pid" : holder,
+                                 lock_file.string()));
     }
     if (!IsStillAt(fd, lock_file)) {
       close(fd);
@@ -79,15 +78,16 @@ std::optional<OutputLock> OutputLock::Take(const std::filesystem::path& lock_fil
     }
     const std::string holder = Holder() + "\n";
     if (ftruncate(fd, 0) != 0 || pwrite(fd, holder.data(), holder.size(), 0) != static_cast<ssize_t>(holder.size())) {
-      error = fmt::format("cannot write the lock file {} ({})", lock_file.string(), std::strerror(errno));
+      const int code = errno;
       unlink(lock_file.c_str());
       close(fd);
-      return std::nullopt;
+      return Failure(DiagnosticCode::kCannotWriteFile,
+                     fmt::format("cannot write the lock file {} ({})", lock_file.string(), std::strerror(code)));
     }
     return OutputLock(fd, lock_file);
   }
-  error = fmt::format("cannot lock {}: the lock file keeps being replaced", lock_file.string());
-  return std::nullopt;
+  return Failure(DiagnosticCode::kCannotWriteFile,
+                 fmt::format("cannot lock {}: the lock file keeps being replaced", lock_file.string()));
 }
 
 OutputLock::OutputLock(OutputLock&& other) noexcept

@@ -10,15 +10,17 @@
 #include <optional>
 #include <string>
 
+#include "vm/core/result.h"
+
 namespace vs11::irradiance {
 
 class OutputLock {
  public:
-  // Takes the lock at `lock_file` (created if needed) without waiting. On failure returns nullopt
-  // and sets `error`: "OUTPUT is in use by pid P on HOST since TIME (LOCK_FILE) ..." when another
-  // process holds it, else why the lock file cannot be made. `output` names what is locked.
-  static std::optional<OutputLock> Take(const std::filesystem::path& lock_file, const std::string& output,
-                                        std::string& error);
+  // Takes the lock at `lock_file` (created if needed) without waiting. On failure an error:
+  // "OUTPUT is in use by pid P on HOST since TIME (LOCK_FILE) ..." (kOutputInUse) when another
+  // process holds it, else why the lock file cannot be made (kCannotWriteFile). `output` names what
+  // is locked.
+  static Result<OutputLock> Take(const std::filesystem::path& lock_file, const std::string& output);
 
   OutputLock(OutputLock&& other) noexcept;
   OutputLock& operator=(OutputLock&& other) noexcept;

@@ -97,20 +97,23 @@ std::string GnuplotLiteral(const std::string& text) {
   return GnuplotQuote(escaped);
 }
 
-std::optional<std::string> RenderGnuplotChart(const GnuplotChart& chart, const std::vector<fs::path>& outputs) {
-  if (outputs.empty()) return std::nullopt;
+Status RenderGnuplotChart(const GnuplotChart& chart, const std::vector<fs::path>& outputs) {
+  if (outputs.empty()) return {};
   TemporaryFiles temporaries;
   const fs::path& first = outputs.front();
   const fs::path data = TemporaryBeside(first.parent_path() / "chart.dat", temporaries);
   const fs::path script = TemporaryBeside(first.parent_path() / "chart.gp", temporaries);
   const fs::path log = TemporaryBeside(first.parent_path() / "gnuplot.log", temporaries);
-  if (auto error = WriteFileAtomically(data, chart.data)) return error;
+  if (Status written = WriteFileAtomically(data, chart.data); !written) return written;
 
   std::ostringstream commands;
   std::vector<fs::path> images;
   for (const fs::path& output : outputs) {
     const std::optional<std::string> terminal = TerminalFor(output, chart);
-    if (!terminal) return fmt::format("cannot plot {}: the chart's file must end in .svg or .png", output.string());
+    if (!terminal) {
+      return Failure(DiagnosticCode::kGnuplot,
+                     fmt::format("cannot plot {}: the chart's file must end in .svg or .png", output.string()));
+    }
     images.push_back(TemporaryBeside(output, temporaries));
     commands << "reset session\n" << *terminal << "\nset output " << GnuplotQuote(images.back().string()) << "\n"
              << "datafile = " << GnuplotQuote(data.string()) << "\n"
@@ -119,21 +122,21 @@ std::optional<std::string> RenderGnuplotChart(const GnuplotChart& chart, const s
              << "set format x '%g'\nset format y '%g'\n"
              << chart.script << "\nunset output\n";
   }
-  if (auto error = WriteFileAtomically(script, commands.str())) return error;
+  if (Status written = WriteFileAtomically(script, commands.str()); !written) return written;
 
   const int status = RunGnuplot(script, log);
   if (status != 0) {
     std::ifstream log_stream(log);
     std::string message((std::istreambuf_iterator<char>(log_stream)), std::istreambuf_iterator<char>());
     if (status == 127 || status < 0) {
-      return "cannot run gnuplot (install Debian's gnuplot-nox, as .ci/setup does)";
+      return Failure(DiagnosticCode::kGnuplot, "cannot run gnuplot (install Debian's gnuplot-nox, as .ci/setup does)");
     }
-    return fmt::format("gnuplot failed (exit status {}): {}", status, message);
+    return Failure(DiagnosticCode::kGnuplot, fmt::format("gnuplot failed (exit status {}): {}", status, message));
   }
   for (std::size_t i = 0; i < images.size(); ++i) {
     std::error_code ec;
     if (!fs::exists(images[i], ec) || fs::file_size(images[i], ec) == 0) {
-      return fmt::format("gnuplot wrote no image for {}", outputs[i].string());
+      return Failure(DiagnosticCode::kGnuplot, fmt::format("gnuplot wrote no image for {}", outputs[i].string()));
     }
   }
   std::vector<PendingRename> renames;

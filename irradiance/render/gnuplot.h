@@ -7,6 +7,8 @@
 #include <string>
 #include <vector>
 
+#include "vm/core/result.h"
+
 namespace vs11::irradiance {
 
 struct GnuplotChart {
@@ -22,10 +24,9 @@ struct GnuplotChart {
 
 // Renders the chart once per output; the terminal is chosen by the extension (.svg or .png, the
 // latter with cairo). Each image is written to a temporary beside it and renamed into place when
-// gnuplot succeeded, so a failure leaves none of them. nullopt on success, otherwise what went wrong
-// (gnuplot missing, or its own error message).
-std::optional<std::string> RenderGnuplotChart(const GnuplotChart& chart,
-                                              const std::vector<std::filesystem::path>& outputs);
+// gnuplot succeeded, so a failure leaves none of them. An error (kGnuplot: gnuplot missing, or its
+// own error message; kCannotWriteFile) says what went wrong.
+Status RenderGnuplotChart(const GnuplotChart& chart, const std::vector<std::filesystem::path>& outputs);
 
 // `text` quoted as a gnuplot single-quoted string (for titles and labels).
 std::string GnuplotQuote(const std::string& text);

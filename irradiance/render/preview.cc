@@ -104,9 +104,9 @@ std::optional<std::string> DrawLabels(Image& image, const std::vector<Label>& la
     return fmt::format("preview: font {} not found, labels left out (install fonts-dejavu-core)",
                        options.font.string());
   }
-  std::string module_error;
-  const ImageIoApi* image_io = ImageIo(module_error);
-  if (!image_io) return fmt::format("preview: {}; labels left out", module_error);
+  const Result<const ImageIoApi*> module = ImageIo();
+  if (!module) return fmt::format("preview: {}; labels left out", module.message());
+  const ImageIoApi* image_io = *module;
   const std::string font = options.font.string();
   Image canvas = image;  // a failed label leaves the image without any
   for (const Label& label : labels) {

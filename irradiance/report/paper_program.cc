@@ -14,11 +14,11 @@
 
 namespace vs11::irradiance {
 
-std::optional<PaperProgram> PaperProgram::Load(std::string& error) { return LoadOrder(ShOrder::kOrder2, error); }
+Result<PaperProgram> PaperProgram::Load() { return LoadOrder(ShOrder::kOrder2); }
 
-std::optional<PaperProgram> PaperProgram::LoadOrder(ShOrder order, std::string& error) {
+Result<PaperProgram> PaperProgram::LoadOrder(ShOrder order) {
   const std::string_view file = Info(order).program_file;
-  return LoadEmbedded(file, EmbeddedText(file), error);
+  return LoadEmbedded(file, EmbeddedText(file));
 }
 
 std::string_view PaperProgram::EmbeddedText(std::string_view file_name) {
@@ -28,8 +28,7 @@ std::string_view PaperProgram::EmbeddedText(std::string_view file_name) {
   return {};
 }
 
-std::optional<PaperProgram> PaperProgram::LoadEmbedded(std::string_view name, std::string_view text,
-                                                       std::string& error) {
+Result<PaperProgram> PaperProgram::LoadEmbedded(std::string_view name, std::string_view text) {
   const std::string file_name(name);
   MetadataResult metadata = ParseProgramMetadata(text, file_name);
   AssembleOptions assemble;
@@ -41,13 +40,13 @@ std::optional<PaperProgram> PaperProgram::LoadEmbedded(std::string_view name, st
     diagnostics.Append(ValidateFragment(*assembled.program, assemble.constant_count, assembled.dx9_syntax));
   }
   if (!assembled.program || diagnostics.HasErrors()) {
-    error = "the embedded program " + file_name + " does not assemble:\n" + diagnostics.ToString();
-    return std::nullopt;
+    return Failure(DiagnosticCode::kEmbeddedProgram,
+                   "the embedded program " + file_name + " does not assemble:\n" + diagnostics.ToString(), {file_name});
   }
   const ProgramMetadata& m = metadata.metadata;
   if (!m.normal || !m.output || !m.constants) {
-    error = fmt::format("{} lacks its normal=, output= or constants= metadata line", file_name);
-    return std::nullopt;
+    return Failure(DiagnosticCode::kEmbeddedProgram,
+                   fmt::format("{} lacks its normal=, output= or constants= metadata line", file_name), {file_name});
   }
   PaperProgram program;
   program.program_ = std::move(*assembled.program);
@@ -90,7 +89,7 @@ std::vector<glm::dvec3> PaperProgram::Irradiance(const ConstantBank& bank, std::
     for (std::size_t i = 0; i < normals.size(); ++i) lane[i] = static_cast<float>(normals[i][c]);
   }
   VertexArrays outputs = MakeOutputArrays(normals.size(), program_);
-  std::unique_ptr<Engine> machine = MakeEngine(engine, program_, bank, engine_options);
+  std::unique_ptr<Engine> machine = MakeEngine(engine, program_, bank, engine_options).value();
   machine->Run(inputs, outputs);
   std::vector<glm::dvec3> irradiance(normals.size());
   for (int c = 0; c < 3; ++c) {

@@ -15,6 +15,7 @@
 #include "irradiance/sh/sh_order.h"
 #include "vm/core/machine.h"
 #include "vm/core/program.h"
+#include "vm/core/result.h"
 
 namespace vs11::irradiance {
 
@@ -22,15 +23,14 @@ namespace vs11::irradiance {
 // registers come from the program's own metadata comments (normal=v0, output=oD0, constants=c0).
 class PaperProgram {
  public:
-  // Assembles and validates (as a fragment: it writes no oPos) the embedded text; nullopt with
-  // `error` set if that fails (a build problem, not a user one).
-  static std::optional<PaperProgram> Load(std::string& error);
+  // Assembles and validates (as a fragment: it writes no oPos) the embedded text; an error
+  // (kEmbeddedProgram) if that fails (a build problem, not a user one).
+  static Result<PaperProgram> Load();
   // The same for another embedded irradiance program with the same metadata lines (such as
   // programs/sh9_irradiance_unit10.vsh, which takes PackUnitSphere10 constants).
-  static std::optional<PaperProgram> LoadEmbedded(std::string_view file_name, std::string_view text,
-                                                  std::string& error);
+  static Result<PaperProgram> LoadEmbedded(std::string_view file_name, std::string_view text);
   // The program of an order (Info(order).program_file, embedded).
-  static std::optional<PaperProgram> LoadOrder(ShOrder order, std::string& error);
+  static Result<PaperProgram> LoadOrder(ShOrder order);
   // The text of an embedded program by file name ("sh_order1.vsh"); empty when there is none.
   static std::string_view EmbeddedText(std::string_view file_name);
 
@@ -42,7 +42,8 @@ class PaperProgram {
   // The constant bank with the seven registers (or any list of them) from constant_base() on.
   ConstantBank Constants(const SevenConstants& constants) const;
   ConstantBank Constants(std::span<const NamedRegister> registers) const;
-  // Runs the program once per normal (as (x, y, z, 1) in floats) and returns the output's rgb.
+  // Runs the program once per normal (as (x, y, z, 1) in floats) and returns the output's rgb. The
+  // engine must build: the CPU engines always do, and irrmap checks the gl engine before any work.
   std::vector<glm::dvec3> Irradiance(const SevenConstants& constants, std::span<const glm::dvec3> normals,
                                      std::string engine, const EngineOptions& engine_options = {}) const;
   std::vector<glm::dvec3> Irradiance(const ConstantBank& bank, std::span<const glm::dvec3> normals,

@@ -54,7 +54,7 @@ std::optional<std::string> LoadSweepEnvironment(const std::string& name, const S
   if (!loaded.ok()) return loaded.error;
   for (std::string& warning : loaded.environment->warnings) warnings.push_back(name + ": " + warning);
   cube = std::move(loaded.environment->cube);
-  if (std::optional<std::string> error = CheckPyramidFaceSize(name, cube.face_size)) return error;
+  if (const Status size = CheckPyramidFaceSize(name, cube.face_size); !size) return size.message();
   return std::nullopt;
 }
 
@@ -80,7 +80,7 @@ double MedianBatchMs(const SpeedAccuracyOptions& options, F&& update) {
 }  // namespace
 
 std::optional<std::string> CheckSpeedAccuracyOptions(const SpeedAccuracyOptions& options) {
-  if (std::optional<std::string> error = CheckFaceSizeOption("--face-size", options.face_size)) return error;
+  if (const Status size = CheckFaceSizeOption("--face-size", options.face_size); !size) return size.message();
   if (options.error_normals < 1) return fmt::format("--error-normals {} must be >= 1", options.error_normals);
   if (options.threads < 0) return fmt::format("--threads {} must be >= 0 (0: every core)", options.threads);
   if (options.batches < 1) return fmt::format("--batches {} must be >= 1", options.batches);
@@ -97,10 +97,6 @@ std::string ChartEnvironmentName(const std::string& environment) {
   return base.empty() ? environment : base;
 }
 
-std::string_view ProjectionMethodName(ProjectionMethod method) {
-  return method == ProjectionMethod::kMipPyramid ? "mip" : "direct";
-}
-
 std::optional<std::string> RunSpeedAccuracySweep(const SpeedAccuracyOptions& options, SpeedAccuracyResult& result,
                                                  const SpeedAccuracyProgress& progress) {
   result = SpeedAccuracyResult{};
@@ -112,14 +108,13 @@ std::optional<std::string> RunSpeedAccuracySweep(const SpeedAccuracyOptions& opt
   const int threads =
       options.threads > 0 ? options.threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   const EngineOptions engine_options{threads};
-  std::string program_error;
-  const std::optional<PaperProgram> program = PaperProgram::Load(program_error);
-  if (!program) return program_error;
+  const Result<PaperProgram> program = PaperProgram::Load();
+  if (!program) return program.message();
   std::vector<PaperProgram> order_programs;  // the reduced orders, kAllShOrders order
   for (std::size_t o = 0; o + 1 < kAllShOrders.size(); ++o) {
-    std::optional<PaperProgram> loaded = PaperProgram::LoadOrder(kAllShOrders[o], program_error);
-    if (!loaded) return program_error;
-    order_programs.push_back(std::move(*loaded));
+    Result<PaperProgram> loaded = PaperProgram::LoadOrder(kAllShOrders[o]);
+    if (!loaded) return loaded.message();
+    order_programs.push_back(std::move(loaded).value());
   }
   const std::vector<glm::dvec3> normals = SphereNormals(options.error_normals);
 
@@ -179,7 +174,7 @@ std::string SpeedAccuracyCsv(const SpeedAccuracyResult& result) {
     std::string name = point.environment;
     std::replace(name.begin(), name.end(), ',', '_');  // keep the columns unambiguous
     csv += fmt::format("{},{},{},{},{:.6g},{:.6g},{:.6g},{:.6g},{},{},{:.6g},{:.6g}\n", name,
-                       ProjectionMethodName(point.method), point.level, point.size, point.update_ms, mips_ms,
+                       kProjectionMethodNames.Name(point.method), point.level, point.size, point.update_ms, mips_ms,
                        point.error.mean_relative, point.error.max_relative, ShOrderName(point.order),
                        Info(point.order).slots, point.error.max_peak, point.error.max_rms);
   }
@@ -197,7 +192,7 @@ std::string SpeedPanelPlots(const SpeedAccuracyResult& result, std::string& data
     const std::string colour = GnuplotQuote(kColours[e % kColours.size()]);
     for (ProjectionMethod method : kAllProjectionMethods) {
       data += fmt::format("# {} {}: update_ms {}_error_percent level\n", ChartEnvironmentName(environment.name),
-                          ProjectionMethodName(method), ErrorMetricName(result.metric));
+                          kProjectionMethodNames.Name(method), ErrorMetricName(result.metric));
       for (const SpeedAccuracyPoint& point : result.points) {
         if (point.environment != environment.name || point.method != method || point.order != ShOrder::kOrder2) {
           continue;
@@ -323,10 +318,10 @@ std::optional<std::string> WriteSpeedAccuracy(const SpeedAccuracyResult& result,
   for (const fs::path& path : {csv, images[0], images[1]}) {
     if (fs::is_directory(path, ec)) return fmt::format("cannot write {}: it is a directory", path.string());
   }
-  if (std::optional<std::string> error = RenderGnuplotChart(SpeedAccuracyChart(result), images)) return error;
-  if (std::optional<std::string> error = WriteFileAtomically(csv, SpeedAccuracyCsv(result))) {
+  if (const Status chart = RenderGnuplotChart(SpeedAccuracyChart(result), images); !chart) return chart.message();
+  if (const Status written = WriteFileAtomically(csv, SpeedAccuracyCsv(result)); !written) {
     for (const fs::path& image : images) fs::remove(image, ec);
-    return fmt::format("cannot write {}: {}", csv.string(), *error);
+    return fmt::format("cannot write {}: {}", csv.string(), written.message());
   }
   written = {csv, images[0], images[1]};
   return std::nullopt;

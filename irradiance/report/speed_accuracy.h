@@ -28,14 +28,17 @@
 #include "irradiance/render/gnuplot.h"
 #include "irradiance/sh/ground_truth.h"
 #include "irradiance/report/paper_program.h"
+#include "vm/core/name_table.h"
 
 namespace vs11::irradiance {
 
 enum class ProjectionMethod { kMipPyramid, kDirectOnLevel };
 inline constexpr ProjectionMethod kAllProjectionMethods[] = {ProjectionMethod::kMipPyramid,
                                                              ProjectionMethod::kDirectOnLevel};
-// "mip" and "direct" (the CSV's method column).
-std::string_view ProjectionMethodName(ProjectionMethod method);
+// The CSV's method column.
+inline constexpr NameTable kProjectionMethodNames("projection method", {
+    Choice(ProjectionMethod::kMipPyramid, "mip", "the mip pyramid's level"),
+    Choice(ProjectionMethod::kDirectOnLevel, "direct", "projected at the level's size directly")});
 
 struct SpeedAccuracyOptions {
   // Files, {face} patterns or built-in names, as irrmap's ENV; empty: every built-in.

@@ -63,8 +63,8 @@ Sh9Rgb Scaled(const Sh9Rgb& sh, double scale) {
   return scaled;
 }
 
-std::optional<PaperProgram> LoadUnit10(std::string& error) {
-  return PaperProgram::LoadEmbedded("sh9_irradiance_unit10.vsh", programs::kProgramSh9IrradianceUnit10, error);
+Result<PaperProgram> LoadUnit10() {
+  return PaperProgram::LoadEmbedded("sh9_irradiance_unit10.vsh", programs::kProgramSh9IrradianceUnit10);
 }
 
 std::vector<Sh9Rgb> AllLevels(const CubeMap& env, const BasisPyramid& basis) {
@@ -274,13 +274,13 @@ AccumulationPrecision MeasureFloatAccumulation(const CubeMap& env, std::span<con
   return result;
 }
 
-ProgramPrecision MeasureNormalLengths(const Sh9Rgb& sh, std::span<const glm::dvec3> unit_normals,
-                                      std::span<const double> lengths, std::string& error) {
+Result<ProgramPrecision> MeasureNormalLengths(const Sh9Rgb& sh, std::span<const glm::dvec3> unit_normals,
+                                              std::span<const double> lengths) {
   ProgramPrecision result;
-  std::optional<PaperProgram> paper = PaperProgram::Load(error);
-  if (!paper) return result;
-  std::optional<PaperProgram> unit10 = LoadUnit10(error);
-  if (!unit10) return result;
+  const Result<PaperProgram> paper = PaperProgram::Load();
+  if (!paper) return paper.error();
+  const Result<PaperProgram> unit10 = LoadUnit10();
+  if (!unit10) return unit10.error();
   const SevenConstants table1 = PackTable1(sh);
   const SevenConstants sphere10 = PackUnitSphere10(sh);
   const std::vector<glm::dvec3> truth = Eq7At(sh, unit_normals);
@@ -303,11 +303,11 @@ ProgramPrecision MeasureNormalLengths(const Sh9Rgb& sh, std::span<const glm::dve
   return result;
 }
 
-std::vector<ScaledRun> MeasureScaledRuns(const Sh9Rgb& sh, std::span<const glm::dvec3> normals,
-                                         std::span<const double> scales, std::string& error) {
+Result<std::vector<ScaledRun>> MeasureScaledRuns(const Sh9Rgb& sh, std::span<const glm::dvec3> normals,
+                                                 std::span<const double> scales) {
   std::vector<ScaledRun> runs;
-  std::optional<PaperProgram> paper = PaperProgram::Load(error);
-  if (!paper) return runs;
+  const Result<PaperProgram> paper = PaperProgram::Load();
+  if (!paper) return paper.error();
   for (double scale : scales) {
     const Sh9Rgb scaled = Scaled(sh, scale);
     const SevenConstants constants = PackTable1(scaled);
@@ -335,12 +335,11 @@ CubeMap MakeHdrSky(int face_size, double sun_radiance) {
   return MakeSky(face_size, params);
 }
 
-HdrResult MeasureHdrSky(int face_size, double sun_radiance, std::span<const glm::dvec3> normals, int threads,
-                        std::string& error) {
+Result<HdrResult> MeasureHdrSky(int face_size, double sun_radiance, std::span<const glm::dvec3> normals, int threads) {
   HdrResult result;
   result.sun_radiance = sun_radiance;
-  std::optional<PaperProgram> paper = PaperProgram::Load(error);
-  if (!paper) return result;
+  const Result<PaperProgram> paper = PaperProgram::Load();
+  if (!paper) return paper.error();
   const CubeMap env = MakeHdrSky(face_size, sun_radiance);
   const Sh9Rgb sh = ProjectDirect(env);
   const std::vector<glm::dvec3> truth = GroundTruthIrradiance(env, normals, threads);
@@ -352,10 +351,10 @@ HdrResult MeasureHdrSky(int face_size, double sun_radiance, std::span<const glm:
   return result;
 }
 
-ZeroEnvironmentResult MeasureZeroEnvironment(int face_size, std::span<const glm::dvec3> normals, std::string& error) {
+Result<ZeroEnvironmentResult> MeasureZeroEnvironment(int face_size, std::span<const glm::dvec3> normals) {
   ZeroEnvironmentResult result;
-  std::optional<PaperProgram> paper = PaperProgram::Load(error);
-  if (!paper) return result;
+  const Result<PaperProgram> paper = PaperProgram::Load();
+  if (!paper) return paper.error();
   const CubeMap black = MakeConstant(face_size, glm::vec3(0.0f));
   const Sh9Rgb sh = ProjectDirect(black);
   result.coefficients_zero = std::all_of(sh.coefficients.begin(), sh.coefficients.end(),

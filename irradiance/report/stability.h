@@ -22,6 +22,7 @@
 #include "irradiance/sh/sh_order.h"
 #include "irradiance/sh/sh_projection.h"
 #include "vm/core/machine.h"
+#include "vm/core/result.h"
 
 namespace vs11::irradiance {
 
@@ -172,9 +173,9 @@ struct ProgramPrecision {
   std::vector<NormalLengthRow> lengths;
   ZeroNormalResult zero_normal;
 };
-// `lengths` > 0. Returns an empty result with `error` set when a program fails to load.
-ProgramPrecision MeasureNormalLengths(const Sh9Rgb& sh, std::span<const glm::dvec3> unit_normals,
-                                      std::span<const double> lengths, std::string& error);
+// `lengths` > 0. An error (kEmbeddedProgram) when a program fails to load.
+Result<ProgramPrecision> MeasureNormalLengths(const Sh9Rgb& sh, std::span<const glm::dvec3> unit_normals,
+                                              std::span<const double> lengths);
 
 // The coefficients scaled by `scale` and run through the paper's program on both engines, against
 // the scaled double polynomial (eq. 7). Tiny scales make the seven constants denormal floats.
@@ -185,8 +186,8 @@ struct ScaledRun {
   double batch_error = 0.0;         // the same, batch engine
   bool engines_identical = false;   // bit for bit
 };
-std::vector<ScaledRun> MeasureScaledRuns(const Sh9Rgb& sh, std::span<const glm::dvec3> normals,
-                                         std::span<const double> scales, std::string& error);
+Result<std::vector<ScaledRun>> MeasureScaledRuns(const Sh9Rgb& sh, std::span<const glm::dvec3> normals,
+                                                 std::span<const double> scales);
 
 // The sky with its sun given radiance `sun_radiance` (1e6: an HDR capture of the real sun): the
 // program on the machine against double eq. 7, and SH9 against the ground truth.
@@ -199,8 +200,7 @@ struct HdrResult {
 // The default sky with a sun of angular radius kHdrSunRadiusDegrees and radiance `sun_radiance`.
 inline constexpr double kHdrSunRadiusDegrees = 0.5;
 CubeMap MakeHdrSky(int face_size, double sun_radiance);
-HdrResult MeasureHdrSky(int face_size, double sun_radiance, std::span<const glm::dvec3> normals, int threads,
-                        std::string& error);
+Result<HdrResult> MeasureHdrSky(int face_size, double sun_radiance, std::span<const glm::dvec3> normals, int threads);
 
 // A black environment and the zero vector: every stage stays finite and exactly zero.
 struct ZeroEnvironmentResult {
@@ -210,6 +210,6 @@ struct ZeroEnvironmentResult {
   double dering_lambda = -1.0;
   int picked_level = -1;
 };
-ZeroEnvironmentResult MeasureZeroEnvironment(int face_size, std::span<const glm::dvec3> normals, std::string& error);
+Result<ZeroEnvironmentResult> MeasureZeroEnvironment(int face_size, std::span<const glm::dvec3> normals);
 
 }  // namespace vs11::irradiance

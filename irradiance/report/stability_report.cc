@@ -131,17 +131,20 @@ std::optional<std::string> RunPrecision(StabilityReport& report, std::span<const
   report.accumulation.push_back(MeasureFloatAccumulation(MakeHdrSky(o.precision_face_size, 1e6), normals));
   if (progress) progress("precision", 0.7);
   const Sh9Rgb sky = ProjectDirect(MakeSky(o.face_size));
-  std::string error;
-  report.programs = MeasureNormalLengths(sky, normals, kNormalLengths, error);
-  if (!error.empty()) return error;
-  report.scaled = MeasureScaledRuns(sky, normals, kScales, error);
-  if (!error.empty()) return error;
+  Result<ProgramPrecision> programs = MeasureNormalLengths(sky, normals, kNormalLengths);
+  if (!programs) return programs.message();
+  report.programs = std::move(programs).value();
+  Result<std::vector<ScaledRun>> scaled = MeasureScaledRuns(sky, normals, kScales);
+  if (!scaled) return scaled.message();
+  report.scaled = std::move(scaled).value();
   for (double radiance : kHdrSunRadiances) {
-    report.hdr.push_back(MeasureHdrSky(o.face_size, radiance, normals, report.threads, error));
-    if (!error.empty()) return error;
+    const Result<HdrResult> hdr = MeasureHdrSky(o.face_size, radiance, normals, report.threads);
+    if (!hdr) return hdr.message();
+    report.hdr.push_back(*hdr);
   }
-  report.zero = MeasureZeroEnvironment(std::min(o.face_size, 64), normals, error);
-  if (!error.empty()) return error;
+  const Result<ZeroEnvironmentResult> zero = MeasureZeroEnvironment(std::min(o.face_size, 64), normals);
+  if (!zero) return zero.message();
+  report.zero = *zero;
   if (progress) progress("precision", 1.0);
   return std::nullopt;
 }
@@ -458,9 +461,13 @@ std::string ReportPercent(double fraction) {
 }
 
 std::optional<std::string> CheckStabilityOptions(const StabilityOptions& options) {
-  if (auto error = CheckFaceSizeOption("--face-size", options.face_size, kMaxStabilityFaceSize)) return error;
-  if (auto error = CheckFaceSizeOption("--precision-face-size", options.precision_face_size, kMaxStabilityFaceSize)) {
-    return error;
+  if (const Status size = CheckFaceSizeOption("--face-size", options.face_size, kMaxStabilityFaceSize); !size) {
+    return size.message();
+  }
+  if (const Status size =
+          CheckFaceSizeOption("--precision-face-size", options.precision_face_size, kMaxStabilityFaceSize);
+      !size) {
+    return size.message();
   }
   if (options.error_normals < 16) return fmt::format("--error-normals {} is too few (>= 16)", options.error_normals);
   if (!(options.max_error > 0.0)) return fmt::format("--max-error {} must be > 0", options.max_error);
@@ -523,11 +530,11 @@ std::optional<std::string> WriteStabilityReport(const StabilityReport& report, s
       {kLevelsChart, LevelsChart(report)},
   }};
   for (const auto& [name, chart] : charts) {
-    if (std::optional<std::string> error = RenderGnuplotChart(chart, {dir / name})) return fail(*error);
+    if (const Status rendered = RenderGnuplotChart(chart, {dir / name}); !rendered) return fail(rendered.message());
     written.push_back(dir / name);
   }
-  if (std::optional<std::string> error = WriteFileAtomically(dir / kMarkdownFile, FormatStabilityMarkdown(report))) {
-    return fail(*error);
+  if (const Status written = WriteFileAtomically(dir / kMarkdownFile, FormatStabilityMarkdown(report)); !written) {
+    return fail(written.message());
   }
   written.push_back(dir / kMarkdownFile);
   return std::nullopt;

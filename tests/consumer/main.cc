@@ -52,7 +52,7 @@ int main() {
     inputs.lane(0, 3)[i] = 1.0f;
   }
   vs11::VertexArrays outputs = vs11::MakeOutputArrays(normals.size(), *assembled.program);
-  vs11::MakeEngine("batch", *assembled.program, constants)->Run(inputs, outputs);
+  vs11::MakeEngine("batch", *assembled.program, constants).value()->Run(inputs, outputs);
 
   const int diffuse = static_cast<int>(vs11::OutputSlot::kDiffuse);
   double worst = 0.0;

@@ -44,11 +44,11 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
     const std::string_view text = line.substr(0, std::min(line.find(' '), line.size()));
     line.remove_prefix(text.size());
     vs11::mesh::BufferElement element;
-    if (vs11::mesh::ParseBufferElement(text, element)) return 0;
+    if (!vs11::mesh::ParseBufferElement(text, element).ok()) return 0;
     elements.push_back(element);
   }
   vs11::mesh::RegisterData registers;
-  if (vs11::mesh::ReadInterleaved(bytes, stride, elements, "fuzz.bin", registers)) return 0;
+  if (!vs11::mesh::ReadInterleaved(bytes, stride, elements, "fuzz.bin", registers).ok()) return 0;
   if (registers.size() != elements.size()) __builtin_trap();
   for (std::size_t i = 0; i < elements.size(); ++i) {
     const vs11::mesh::BufferElement& e = elements[i];

@@ -23,8 +23,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   }
   // Encoding the decoded mesh gives the same record back.
   const std::string record = vs11::mesh::EncodeReplyRecord(reply.result);
-  std::string error;
-  if (!vs11::mesh::DecodeMesh({reinterpret_cast<const std::uint8_t*>(record.data()) + 9, record.size() - 9}, error)) {
+  if (!vs11::mesh::DecodeMesh({reinterpret_cast<const std::uint8_t*>(record.data()) + 9, record.size() - 9}).ok()) {
     __builtin_trap();
   }
   return 0;

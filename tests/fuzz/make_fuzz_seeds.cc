@@ -30,8 +30,8 @@ namespace fs = std::filesystem;
 namespace irr = vs11::irradiance;
 
 bool WriteOrComplain(const fs::path& path, std::span<const std::uint8_t> bytes) {
-  if (std::optional<std::string> error = vs11::WriteFileAtomically(path, bytes)) {
-    std::fprintf(stderr, "make_fuzz_seeds: %s\n", error->c_str());
+  if (const vs11::Status written = vs11::WriteFileAtomically(path, bytes); !written) {
+    std::fprintf(stderr, "make_fuzz_seeds: %s\n", written.message().c_str());
     return false;
   }
   return true;
@@ -77,8 +77,8 @@ bool WriteImageSeeds(const fs::path& dir) {
   };
   bool ok = true;
   for (const Seed& seed : seeds) {
-    if (std::optional<std::string> error = irr::WriteImage(Gradient(seed.width, seed.height), dir / seed.name)) {
-      std::fprintf(stderr, "make_fuzz_seeds: %s\n", error->c_str());
+    if (const vs11::Status written = irr::WriteImage(Gradient(seed.width, seed.height), dir / seed.name); !written) {
+      std::fprintf(stderr, "make_fuzz_seeds: %s\n", written.message().c_str());
       ok = false;
     }
   }

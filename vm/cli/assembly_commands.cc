@@ -17,8 +17,7 @@ namespace {
 
 // One diagnostic for `vs11 validate --json`: the parts that are known, and its code's stable name.
 nlohmann::json DiagnosticJson(const Diagnostic& diagnostic) {
-  constexpr const char* kSeverityNames[] = {"error", "warning", "note"};
-  nlohmann::json entry = {{"severity", kSeverityNames[static_cast<int>(diagnostic.severity)]},
+  nlohmann::json entry = {{"severity", std::string(kSeverityNames.Name(diagnostic.severity))},
                           {"code", DiagnosticCodeName(diagnostic.code)},
                           {"message", diagnostic.message}};
   if (!diagnostic.loc.file.empty()) entry["file"] = diagnostic.loc.file;
@@ -66,7 +65,7 @@ void AddAsmCommand(CLI::App& app) {
     CheckInputsAndOutputs({args->input}, {args->output});
     Program program = LoadProgramOrFail(args->input, args->flags);
     std::vector<std::uint8_t> bytes = BytesFromWords(Encode(program));
-    if (std::optional<std::string> error = WriteFileAtomically(args->output, bytes)) Fail(*error);
+    if (const Status written = WriteFileAtomically(args->output, bytes); !written) Fail(written.message());
   });
 }
 
@@ -93,8 +92,8 @@ void AddDisasmCommand(CLI::App& app) {
     std::string text = Disassemble(*loaded.program);
     if (args->output.empty()) {
       std::fputs(text.c_str(), stdout);
-    } else if (std::optional<std::string> error = WriteFileAtomically(args->output, text)) {
-      Fail(*error);
+    } else if (const Status written = WriteFileAtomically(args->output, text); !written) {
+      Fail(written.message());
     }
   });
 }

@@ -8,6 +8,7 @@
 
 #include <fmt/format.h>
 
+#include "vm/cli/choice_option.h"
 #include "vm/cli/commands.h"
 #include "vm/cli/parse_command_line.h"
 #include "vm/core/input_file.h"
@@ -82,11 +83,8 @@ void EngineFlags::AddTo(CLI::App& command) {
       ->check([](const std::string& value) {
         return value == "list" || gl::GlDeviceIndex(value) ? std::string() : "expected 'list' or a device number";
       });
-  command.add_option("--gl-path", gl_path,
-                     "How --engine gl runs the program: compute (a compute shader, OpenGL ES 3.1), transform-feedback "
-                     "(a vertex shader, ES 3.0) or auto (compute where the context offers it)")
-      ->check(CLI::IsMember({"auto", "compute", "transform-feedback"}))
-      ->capture_default_str();
+  AddChoiceOption(command, "--gl-path", gl_path, gl::kGlPathNames,
+                  "How --engine gl runs the program: " + gl::kGlPathNames.Help());
   float_rules.AddTo(command);
 }
 
@@ -98,7 +96,7 @@ std::string EngineFlags::Name() const {
 EngineOptions EngineFlags::Options() const {
   EngineOptions options{threads};
   options.float_rules = float_rules.Rules();
-  options.settings.Set(gl::GlOptions{gl::GlDeviceIndex(gl_device), *gl::GlPathFromName(gl_path)});
+  options.settings.Set(gl::GlOptions{gl::GlDeviceIndex(gl_device), gl_path});
   return options;
 }
 
@@ -107,27 +105,26 @@ bool EngineFlags::ListGlDevicesIfAsked(const std::string& command_engines) const
       command_engines.find("gl") == std::string::npos) {
     std::fprintf(stderr, "warning: --gl-device applies to the gl engine only; --engine %s ignores it\n", engine.c_str());
   }
-  if (gl_path != "auto" && Name() != "gl" && command_engines.find("gl") == std::string::npos) {
+  if (gl_path != gl::GlPath::kAuto && Name() != "gl" && command_engines.find("gl") == std::string::npos) {
     std::fprintf(stderr, "warning: --gl-path applies to the gl engine only; --engine %s ignores it\n", engine.c_str());
   }
   if (gl_device != "list") return false;
-  std::string error;
-  const std::vector<gl::GlDeviceInfo> devices = gl::ListGlDevices(error);
-  std::fputs(gl::FormatGlDeviceList(devices).c_str(), stdout);
-  if (devices.empty()) Fail(error);
+  const Result<std::vector<gl::GlDeviceInfo>> devices = gl::ListGlDevices();
+  if (!devices) Fail(devices.message());
+  std::fputs(gl::FormatGlDeviceList(*devices).c_str(), stdout);
   return true;
 }
 
 std::unique_ptr<Engine> MakeEngineOrFail(std::string_view name, const Program& program, const ConstantBank& constants,
                                          const EngineOptions& options) {
-  std::unique_ptr<Engine> engine = MakeEngine(name, program, constants, options);
-  if (const std::string error = engine->error(); !error.empty()) Fail(error);
-  return engine;
+  Result<std::unique_ptr<Engine>> engine = MakeEngine(name, program, constants, options);
+  if (!engine) Fail(engine.message());
+  return std::move(engine).value();
 }
 
 void NoteGlPath(const Engine& engine) {
   if (const std::optional<gl::GlPath> path = gl::GlPathOf(engine)) {
-    std::fprintf(stderr, "note: --engine gl runs the %s path%s\n", std::string(gl::GlPathName(*path)).c_str(),
+    std::fprintf(stderr, "note: --engine gl runs the %s path%s\n", std::string(gl::kGlPathNames.Name(*path)).c_str(),
                  *path == gl::GlPath::kCompute ? " (a compute shader over storage buffers)"
                                                : " (a vertex shader with transform feedback)");
   }
@@ -139,14 +136,11 @@ void RunOrFail(Engine& engine, const VertexArrays& inputs, VertexArrays& outputs
 }
 
 void FloatRulesFlag::AddTo(CLI::App& command) {
-  command.add_option("--float-rules", name,
-                     "Products of mul, mad, dp3, dp4, m*x*, dst and lit's power: d3d9 (IEEE: 0 * inf = NaN) or "
-                     "legacy (0 * anything = 0, as DX8-era hardware and DXVK's strict mode)")
-      ->check(CLI::IsMember({"d3d9", "legacy"}))
-      ->capture_default_str();
+  AddChoiceOption(command, "--float-rules", rules, kFloatRulesNames,
+                  "Products of mul, mad, dp3, dp4, m*x*, dst and lit's power: " + kFloatRulesNames.Help());
 }
 
-FloatRules FloatRulesFlag::Rules() const { return FloatRulesFromName(name).value_or(FloatRules::kD3d9); }
+FloatRules FloatRulesFlag::Rules() const { return rules; }
 
 CLI::Validator SizeNumber() {
   return CLI::Validator(

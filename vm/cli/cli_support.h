@@ -11,7 +11,9 @@
 #include <CLI/CLI.hpp>
 
 #include "vm/asm/program_file.h"
+#include "vm/core/float_rules.h"
 #include "vm/core/machine.h"
+#include "vm/gl/gl_engine.h"
 
 namespace vs11::cli {
 
@@ -40,7 +42,7 @@ Program LoadProgramOrFail(const std::string& path, const ProgramFlags& flags);
 
 // "--float-rules d3d9|legacy" (vm/core/float_rules.h): for the engines and the translation.
 struct FloatRulesFlag {
-  std::string name = "d3d9";
+  FloatRules rules = FloatRules::kD3d9;
   void AddTo(CLI::App& command);
   FloatRules Rules() const;
 };
@@ -51,7 +53,7 @@ struct EngineFlags {
   std::string engine = "jit";
   int threads = 1;
   std::string gl_device;  // empty (llvmpipe), "list" or an EGL device's index
-  std::string gl_path = "auto";  // --gl-path auto|compute|transform-feedback (gl_engine.h's GlPath)
+  gl::GlPath gl_path = gl::GlPath::kAuto;
   FloatRulesFlag float_rules;
   void AddTo(CLI::App& command);
   std::string Name() const;  // the registered name ("ref" for "reference")

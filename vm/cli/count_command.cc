@@ -48,7 +48,7 @@ double MeasureNsPerVertex(std::string_view engine_name, const Program& program, 
     }
   }
   VertexArrays outputs = MakeOutputArrays(kTimedVertices, program);
-  std::unique_ptr<Engine> engine = MakeEngine(engine_name, program, constants, {threads});
+  std::unique_ptr<Engine> engine = MakeEngineOrFail(engine_name, program, constants, {threads});
   double best = 1e300;
   for (int repeat = 0; repeat < kTimedRepeats; ++repeat) {
     auto start = std::chrono::steady_clock::now();

@@ -22,9 +22,8 @@ namespace {
 
 // "v1" -> 1
 int InputRegisterFromName(const std::string& name) {
-  std::string error;
-  std::optional<InputSpec> spec = ParseInputSpec(name + "=", error);
-  if (!spec) FailUsage("--sphere-reg " + error);
+  const Result<InputSpec> spec = ParseInputSpec(name + "=");
+  if (!spec) FailUsage("--sphere-reg " + spec.message());
   return spec->reg;
 }
 
@@ -48,8 +47,8 @@ ConstantBank LoadConstants(const std::vector<std::string>& files, const std::vec
   std::vector<int> flagged, once;
   for (const std::string& assignment : assignments) {
     const std::size_t before = flagged.size();
-    if (std::optional<std::string> error = ParseConstantAssignment(assignment, bank, &flagged)) {
-      FailUsage("--const: " + *error);
+    if (const Status parsed = ParseConstantAssignment(assignment, bank, &flagged); !parsed) {
+      FailUsage("--const: " + parsed.message());
     }
     for (std::size_t i = before; i < flagged.size(); ++i) NoteRegisterOnce("--const", 'c', flagged[i], once);
   }
@@ -75,20 +74,18 @@ SuppliedInputs ReadCsvInputs(const std::vector<std::string>& input_flags) {
   SuppliedInputs supplied;
   std::vector<int> given;
   for (const std::string& flag : input_flags) {
-    std::string error;
-    std::optional<InputSpec> spec = ParseInputSpec(flag, error);
-    if (!spec) FailUsage("--input " + error);
+    const Result<InputSpec> spec = ParseInputSpec(flag);
+    if (!spec) FailUsage("--input " + spec.message());
     NoteRegisterOnce("--input", 'v', spec->reg, given);
   }
   for (const std::string& flag : input_flags) {
-    std::string error;
-    std::optional<InputSpec> spec = ParseInputSpec(flag, error);
-    const std::string text = ReadInputOrFail(spec->file, kMaxVertexCsvBytes);
+    const InputSpec spec = ParseInputSpec(flag).value();  // checked in the loop above
+    const std::string text = ReadInputOrFail(spec.file, kMaxVertexCsvBytes);
     Diagnostics diagnostics;
-    std::vector<Vec4f> rows = ParseVertexCsv(text, InputDisplayName(spec->file), diagnostics, spec->columns);
+    std::vector<Vec4f> rows = ParseVertexCsv(text, InputDisplayName(spec.file), diagnostics, spec.columns);
     std::fputs(diagnostics.ToString().c_str(), stderr);
     if (diagnostics.HasErrors()) throw CommandFailure{1};
-    supplied.emplace_back(spec->reg, std::move(rows));
+    supplied.emplace_back(spec.reg, std::move(rows));
   }
   return supplied;
 }
@@ -136,8 +133,7 @@ std::vector<std::string> RunInputFiles(const RunArgs& args) {
   std::vector<std::string> files = {args.program, args.sources.mesh, args.sources.buffer};
   files.insert(files.end(), args.consts_files.begin(), args.consts_files.end());
   for (const std::string& flag : args.input_flags) {
-    std::string error;
-    if (std::optional<InputSpec> spec = ParseInputSpec(flag, error)) files.push_back(spec->file);
+    if (const Result<InputSpec> spec = ParseInputSpec(flag)) files.push_back(spec->file);
   }
   for (const std::string& flag : args.sources.npy_inputs) files.push_back(flag.substr(flag.find('=') + 1));
   std::erase(files, std::string());
@@ -169,11 +165,10 @@ void RunProgram(const RunArgs& args) {
   std::vector<int> registers;
   for (const auto& entry : supplied) registers.push_back(entry.first);
   if (args.missing == "error") {
-    const std::optional<std::string> error =
-        UnsetRegisterError(FindUnsetRegisters(program, constants_given, registers), registers,
-                           {"a def, --consts nor --const", "--input, --sphere, --mesh, --npy or --buffer",
-                            "--missing zeros"});
-    if (error) FailUsage(fmt::format("{}: {}", args.program, *error));
+    const Status set = CheckNoUnsetRegisters(
+        FindUnsetRegisters(program, constants_given, registers), registers,
+        {"a def, --consts nor --const", "--input, --sphere, --mesh, --npy or --buffer", "--missing zeros"});
+    if (!set) FailUsage(fmt::format("{}: {}", args.program, set.message()));
   }
   for (const std::string& warning : UnsetRegisterWarnings(program, constants_given, registers)) {
     std::fprintf(stderr, "%s: warning: %s\n", args.program.c_str(), warning.c_str());
@@ -193,8 +188,8 @@ void RunProgram(const RunArgs& args) {
   if (args.out.empty()) {
     write_csv(StdoutSink());
     if (std::fflush(stdout) != 0) Fail("cannot write to standard output");
-  } else if (std::optional<std::string> error = WriteStreamedAtomically(args.out, write_csv)) {
-    Fail(*error);
+  } else if (const Status written = WriteStreamedAtomically(args.out, write_csv); !written) {
+    Fail(written.message());
   }
 }
 

@@ -19,12 +19,13 @@ constexpr std::size_t kVerticesPerPiece = 4096;
 
 // Streams one file into a fresh temporary beside its target. On failure removes the temporary and
 // returns the message; an exception from `produce` removes it and passes on.
-std::optional<std::string> WriteTemporary(const StreamedFile& file, fs::path& temporary) {
+Status WriteTemporary(const StreamedFile& file, fs::path& temporary) {
   temporary = TemporaryPathBeside(file.path);
   std::FILE* stream = std::fopen(temporary.c_str(), "wb");
   if (stream == nullptr) {
     const fs::path folder = file.path.parent_path().empty() ? fs::path(".") : file.path.parent_path();
-    return fmt::format("{}: cannot create a file in {}", file.path.string(), folder.string());
+    return Failure(DiagnosticCode::kCannotWriteFile,
+                   fmt::format("{}: cannot create a file in {}", file.path.string(), folder.string()));
   }
   bool written = true;
   try {
@@ -39,38 +40,37 @@ std::optional<std::string> WriteTemporary(const StreamedFile& file, fs::path& te
   written = std::fclose(stream) == 0 && written;
   if (!written) {
     RemoveQuietly(temporary);
-    return fmt::format("{}: write failed", file.path.string());
+    return Failure(DiagnosticCode::kCannotWriteFile, fmt::format("{}: write failed", file.path.string()));
   }
-  return std::nullopt;
+  return {};
 }
 
 }  // namespace
 
-std::optional<std::string> WriteStreamedFilesAtomically(std::span<const StreamedFile> files) {
+Status WriteStreamedFilesAtomically(std::span<const StreamedFile> files) {
   std::vector<PendingRename> renames;
   auto remove_written = [&] {
     for (const PendingRename& rename : renames) RemoveQuietly(rename.temporary);
   };
   for (const StreamedFile& file : files) {
     fs::path temporary;
-    std::optional<std::string> message;
+    Status written;
     try {
-      message = WriteTemporary(file, temporary);
+      written = WriteTemporary(file, temporary);
     } catch (...) {
       remove_written();
       throw;
     }
-    if (message) {
+    if (!written) {
       remove_written();
-      return message;
+      return written;
     }
     renames.push_back({temporary, file.path});
   }
   return CommitRenames(renames);
 }
 
-std::optional<std::string> WriteStreamedAtomically(const fs::path& path,
-                                                   const std::function<void(const ByteSink&)>& produce) {
+Status WriteStreamedAtomically(const fs::path& path, const std::function<void(const ByteSink&)>& produce) {
   const StreamedFile file[] = {{path, produce}};
   return WriteStreamedFilesAtomically(file);
 }

@@ -13,6 +13,7 @@
 #include <vector>
 
 #include "vm/core/machine.h"
+#include "vm/core/result.h"
 
 namespace vs11::cli {
 
@@ -27,15 +28,14 @@ struct StreamedFile {
 
 // Writes several files, all or none: each is streamed into its temporary, and only when every one is
 // written are they renamed into place (CommitRenames in vm/core/atomic_file.h). On a failed write no
-// target is touched and no temporary is left: returns the message. An exception from a `produce`
-// removes the temporaries and passes on.
-std::optional<std::string> WriteStreamedFilesAtomically(std::span<const StreamedFile> files);
+// target is touched and no temporary is left: returns the error (kCannotWriteFile). An exception
+// from a `produce` removes the temporaries and passes on.
+Status WriteStreamedFilesAtomically(std::span<const StreamedFile> files);
 
 // Runs `produce` with a sink into a temporary beside `path`, then renames it over `path`. On a
-// failed write nothing is left and `path` is untouched: returns the message. An exception from
+// failed write nothing is left and `path` is untouched: returns the error. An exception from
 // `produce` (std::bad_alloc) removes the temporary and passes on.
-std::optional<std::string> WriteStreamedAtomically(const std::filesystem::path& path,
-                                                   const std::function<void(const ByteSink&)>& produce);
+Status WriteStreamedAtomically(const std::filesystem::path& path, const std::function<void(const ByteSink&)>& produce);
 
 // A sink that writes to stdout; a failed write ends the command (error, exit 1).
 ByteSink StdoutSink();

@@ -38,7 +38,7 @@ void ReportTraces(const TraceFlags& flags, const std::string& program_path, cons
     }
   }
   SourceLines sources;
-  json document = {{"program", program_path}, {"engine", engine_name}, {"float_rules", FloatRulesName(rules)}};
+  json document = {{"program", program_path}, {"engine", engine_name}, {"float_rules", kFloatRulesNames.Name(rules)}};
   json vertices = json::array();
   std::vector<std::size_t> different;
   for (std::size_t vertex : flags.vertices) {
@@ -51,7 +51,9 @@ void ReportTraces(const TraceFlags& flags, const std::string& program_path, cons
   document["vertices"] = vertices;
   document["identical"] = different.empty();
   if (!flags.json_file.empty()) {
-    if (std::optional<std::string> error = WriteFileAtomically(flags.json_file, document.dump(2) + "\n")) Fail(*error);
+    if (const Status written = WriteFileAtomically(flags.json_file, document.dump(2) + "\n"); !written) {
+      Fail(written.message());
+    }
   }
   if (!different.empty()) {
     std::fflush(stdout);

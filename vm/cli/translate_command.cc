@@ -83,8 +83,8 @@ void AddTranslateCommand(CLI::App& app) {
     if (!artifact.error.empty()) Fail(artifact.error);
     if (args->output == "-") {
       std::fwrite(artifact.bytes.data(), 1, artifact.bytes.size(), stdout);
-    } else if (std::optional<std::string> error = WriteFileAtomically(args->output, artifact.bytes)) {
-      Fail(*error);
+    } else if (const Status written = WriteFileAtomically(args->output, artifact.bytes); !written) {
+      Fail(written.message());
     }
   });
 }

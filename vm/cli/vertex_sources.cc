@@ -60,9 +60,9 @@ std::optional<mesh::Mesh> LoadBoundMesh(const VertexSourceFlags& flags, const Pr
 
   std::vector<mesh::RegisterBinding> overrides, bindings;
   for (const std::string& bind : flags.binds) {
-    if (std::optional<std::string> error = mesh::ParseBindings(bind, overrides)) FailUsage("--bind " + *error);
+    if (const Status parsed = mesh::ParseBindings(bind, overrides); !parsed) FailUsage("--bind " + parsed.message());
   }
-  if (std::optional<std::string> error = mesh::ResolveBindings(program, overrides, bindings)) Fail(*error);
+  if (const Status resolved = mesh::ResolveBindings(program, overrides, bindings); !resolved) Fail(resolved.message());
   if (bindings.empty()) {
     Fail("the program declares no inputs (a DX8 program has no dcl): bind them, e.g. "
          "--bind v0=position,v3=normal,v7=texcoord0");
@@ -70,11 +70,13 @@ std::optional<mesh::Mesh> LoadBoundMesh(const VertexSourceFlags& flags, const Pr
   mesh::BindOptions bind_options;
   bind_options.blend_index_scale = flags.blend_index_scale;
   bind_options.mesh_name = flags.mesh;
-  if (std::optional<std::string> error = mesh::BindMesh(*loaded.mesh, bindings, bind_options, supplied)) Fail(*error);
+  if (const Status bound = mesh::BindMesh(*loaded.mesh, bindings, bind_options, supplied); !bound) {
+    Fail(bound.message());
+  }
   if (!flags.bone_palette.empty()) {
     const int base = ConstantRegisterFromName(flags.bone_palette);
-    if (std::optional<std::string> error = mesh::WriteBonePalette(*loaded.mesh, base, constants)) {
-      Fail(fmt::format("--bone-palette {}: {}", flags.bone_palette, *error));
+    if (const Status written = mesh::WriteBonePalette(*loaded.mesh, base, constants); !written) {
+      Fail(fmt::format("--bone-palette {}: {}", flags.bone_palette, written.message()));
     }
   }
   return std::move(loaded.mesh);
@@ -105,10 +107,10 @@ void ReadBufferInput(const VertexSourceFlags& flags, mesh::RegisterData& supplie
   std::vector<mesh::BufferElement> elements;
   for (const std::string& text : flags.elements) {
     mesh::BufferElement element;
-    if (std::optional<std::string> error = mesh::ParseBufferElement(text, element)) FailUsage(*error);
+    if (const Status parsed = mesh::ParseBufferElement(text, element); !parsed) FailUsage(parsed.message());
     elements.push_back(element);
   }
-  if (std::optional<std::string> error = mesh::CheckBufferLayout(flags.stride, elements)) FailUsage(*error);
+  if (const Status layout = mesh::CheckBufferLayout(flags.stride, elements); !layout) FailUsage(layout.message());
   if (std::optional<std::string> why = InputFileProblem(flags.buffer, /*pipes_allowed=*/false)) Fail(fmt::format("{}: {}", flags.buffer, *why));
   std::error_code error;
   const std::uintmax_t size = std::filesystem::file_size(flags.buffer, error);
@@ -118,10 +120,10 @@ void ReadBufferInput(const VertexSourceFlags& flags, mesh::RegisterData& supplie
   }
   std::optional<std::string> bytes = ReadWholeFile(flags.buffer);
   if (!bytes) Fail(fmt::format("{}: cannot read the buffer file", flags.buffer));
-  if (std::optional<std::string> message = mesh::ReadInterleaved(
-          {reinterpret_cast<const std::uint8_t*>(bytes->data()), bytes->size()}, flags.stride, elements, flags.buffer,
-          supplied)) {
-    Fail(*message);
+  if (const Status read = mesh::ReadInterleaved({reinterpret_cast<const std::uint8_t*>(bytes->data()), bytes->size()},
+                                                flags.stride, elements, flags.buffer, supplied);
+      !read) {
+    Fail(read.message());
   }
   for (const mesh::BufferElement& element : elements) {
     for (const auto& [reg, rows] : supplied) {
@@ -205,7 +207,7 @@ void WriteMeshOutput(const std::string& file, const mesh::Mesh& mesh, const std:
   }
   attributes.note = "positions and normals are the input mesh's (root space), not oPos (clip space);" + carried;
   if (carried.empty()) Warn(fmt::format("{}: the program writes neither oD0 nor oT#: the mesh carries no output", file));
-  if (std::optional<std::string> message = mesh::ExportMesh(mesh, attributes, file)) Fail(*message);
+  if (const Status exported = mesh::ExportMesh(mesh, attributes, file); !exported) Fail(exported.message());
 }
 
 }  // namespace
@@ -272,7 +274,7 @@ void WriteVertexOutputs(const VertexSourceFlags& flags, const VertexSources& sou
   std::vector<StreamedFile> files;  // all or none: a full disk leaves no subset of them
   if (!flags.out_npy_dir.empty()) AddNpyOutputs(flags.out_npy_dir, columns, outputs, files);
   const std::string layout = flags.out_buffer.empty() ? "" : AddBufferOutput(flags.out_buffer, columns, outputs, files);
-  if (std::optional<std::string> message = WriteStreamedFilesAtomically(files)) Fail(*message);
+  if (const Status written = WriteStreamedFilesAtomically(files); !written) Fail(written.message());
   std::fputs(layout.c_str(), stderr);
   if (!flags.out_mesh.empty()) WriteMeshOutput(flags.out_mesh, *sources.mesh, columns, outputs);
 }

@@ -142,65 +142,66 @@ void RemoveStaleTemporaries(const fs::path& folder) {
   }
 }
 
-std::optional<std::string> CommitRenames(std::span<const PendingRename> renames, std::vector<fs::path>* renamed) {
+Status CommitRenames(std::span<const PendingRename> renames, std::vector<fs::path>* renamed) {
   for (std::size_t i = 0; i < renames.size(); ++i) {
     std::error_code error;
     fs::rename(renames[i].temporary, renames[i].target, error);
     if (!error) ForgetTemporary(renames[i].temporary);
     if (error) {
       for (std::size_t j = i; j < renames.size(); ++j) RemoveQuietly(renames[j].temporary);
-      return fmt::format("cannot rename the finished file into {} ({})", renames[i].target.string(),
-                         error.message());
+      return Failure(DiagnosticCode::kCannotWriteFile, fmt::format("cannot rename the finished file into {} ({})",
+                                                                   renames[i].target.string(), error.message()));
     }
     if (renamed != nullptr) renamed->push_back(renames[i].target);
   }
-  return std::nullopt;
+  return {};
 }
 
 namespace {
 
 // Writes `bytes` to a new temporary beside `path`: the temporary, or the error (and none is left).
-std::optional<std::string> WriteTemporary(const fs::path& path, std::string_view bytes, fs::path& temporary) {
+Status WriteTemporary(const fs::path& path, std::string_view bytes, fs::path& temporary) {
   temporary = TemporaryPathBeside(path);
   {
     std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
     if (!out) {
       const fs::path folder = path.parent_path().empty() ? fs::path(".") : path.parent_path();
       RemoveQuietly(temporary);  // not there, but registered
-      return fmt::format("{}: cannot create a file in {}", path.string(), folder.string());
+      return Failure(DiagnosticCode::kCannotWriteFile,
+                     fmt::format("{}: cannot create a file in {}", path.string(), folder.string()));
     }
     out.write(bytes.data(), static_cast<std::streamsize>(bytes.size()));
     out.flush();
     if (!out) {
       out.close();
       RemoveQuietly(temporary);
-      return fmt::format("{}: write failed", path.string());
+      return Failure(DiagnosticCode::kCannotWriteFile, fmt::format("{}: write failed", path.string()));
     }
   }
-  return std::nullopt;
+  return {};
 }
 
 }  // namespace
 
-std::optional<std::string> WriteFilesAtomically(std::span<const FileToWrite> files) {
+Status WriteFilesAtomically(std::span<const FileToWrite> files) {
   std::vector<PendingRename> renames;
   for (const FileToWrite& file : files) {
     fs::path temporary;
-    if (std::optional<std::string> error = WriteTemporary(file.path, file.bytes, temporary)) {
-      for (const PendingRename& written : renames) RemoveQuietly(written.temporary);
-      return error;
+    if (Status written = WriteTemporary(file.path, file.bytes, temporary); !written) {
+      for (const PendingRename& pending : renames) RemoveQuietly(pending.temporary);
+      return written;
     }
     renames.push_back({temporary, file.path});
   }
   return CommitRenames(renames);
 }
 
-std::optional<std::string> WriteFileAtomically(const fs::path& path, std::string_view bytes) {
+Status WriteFileAtomically(const fs::path& path, std::string_view bytes) {
   const FileToWrite file[] = {{path, bytes}};
   return WriteFilesAtomically(file);
 }
 
-std::optional<std::string> WriteFileAtomically(const fs::path& path, std::span<const std::uint8_t> bytes) {
+Status WriteFileAtomically(const fs::path& path, std::span<const std::uint8_t> bytes) {
   return WriteFileAtomically(path, std::string_view(reinterpret_cast<const char*>(bytes.data()), bytes.size()));
 }
 

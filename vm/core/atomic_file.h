@@ -12,6 +12,8 @@
 #include <string_view>
 #include <vector>
 
+#include "vm/core/result.h"
+
 namespace vs11 {
 
 // A fresh hidden name beside `target`: ".NAME.tmp-PID-SEED-N.EXT". Unique within the process (N
@@ -45,10 +47,10 @@ struct PendingRename {
 };
 
 // Renames each finished temporary over its target, in order. On the first failure, removes every
-// temporary not yet renamed and returns "cannot rename the finished file into TARGET (why)"; targets
-// renamed before it stay. `renamed`, when given, receives each target renamed.
-std::optional<std::string> CommitRenames(std::span<const PendingRename> renames,
-                                         std::vector<std::filesystem::path>* renamed = nullptr);
+// temporary not yet renamed and returns the error "cannot rename the finished file into TARGET
+// (why)" (kCannotWriteFile); targets renamed before it stay. `renamed`, when given, receives each
+// target renamed.
+Status CommitRenames(std::span<const PendingRename> renames, std::vector<std::filesystem::path>* renamed = nullptr);
 
 // Writes several files, all or none: every one is written to its temporary first, and only when all
 // are written are they renamed into place (CommitRenames). On a failure to write (a full disk, a
@@ -57,11 +59,11 @@ struct FileToWrite {
   std::filesystem::path path;
   std::string_view bytes;
 };
-std::optional<std::string> WriteFilesAtomically(std::span<const FileToWrite> files);
+Status WriteFilesAtomically(std::span<const FileToWrite> files);
 
 // Writes `bytes` to `path` through a temporary: on failure `path` is untouched and no temporary is
-// left. Returns nullopt on success, else a message that names `path` and what failed.
-std::optional<std::string> WriteFileAtomically(const std::filesystem::path& path, std::string_view bytes);
-std::optional<std::string> WriteFileAtomically(const std::filesystem::path& path, std::span<const std::uint8_t> bytes);
+// left. The error (kCannotWriteFile) names `path` and what failed.
+Status WriteFileAtomically(const std::filesystem::path& path, std::string_view bytes);
+Status WriteFileAtomically(const std::filesystem::path& path, std::span<const std::uint8_t> bytes);
 
 }  // namespace vs11

@@ -24,9 +24,7 @@ std::string FormatDiagnostic(const Diagnostic& diagnostic) {
   if (diagnostic.word_offset >= 0) {
     where += fmt::format("{}word {}", where.empty() ? "" : ": ", diagnostic.word_offset);
   }
-  const char* kind = diagnostic.severity == Severity::kError     ? "error"
-                     : diagnostic.severity == Severity::kWarning ? "warning"
-                                                                 : "note";
+  const std::string_view kind = kSeverityNames.Name(diagnostic.severity);
   const std::string code = diagnostic.code == DiagnosticCode::kUnclassified
                                ? std::string()
                                : fmt::format(" [{}]", DiagnosticCodeName(diagnostic.code));

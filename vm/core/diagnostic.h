@@ -6,6 +6,8 @@
 #include <string_view>
 #include <vector>
 
+#include "vm/core/name_table.h"
+
 namespace vs11 {
 
 struct SourceLoc {
@@ -16,98 +18,125 @@ struct SourceLoc {
 };
 
 enum class Severity { kError, kWarning, kNote };
+inline constexpr NameTable kSeverityNames("severity", {
+    Choice(Severity::kError, "error"), Choice(Severity::kWarning, "warning"), Choice(Severity::kNote, "note")});
 
 // What kind of problem a diagnostic reports, one code per kind, so that tests and tools can tell
 // problems apart without matching message wording. The printed name (second column) is stable: it
 // is part of the output format ("FILE:LINE:COL: error: MESSAGE [name]") and of `--json`; add new
 // codes, never rename or reuse one.
-#define VS11_DIAGNOSTIC_CODES(X)                                                                         \
-  /* The default of a Diagnostic made field by field; every report names a code of its own. */          \
-  X(kUnclassified, "unclassified")                                                                       \
-  X(kCannotReadFile, "cannot-read-file")                                                                 \
-  /* Lexer (vm/asm/lexer.h). */                                                                          \
-  X(kUnexpectedCharacter, "unexpected-character")                                                        \
-  X(kMalformedNumber, "malformed-number")                                                                \
-  /* Preprocessor (vm/asm/preprocessor.h). */                                                            \
-  X(kUnknownDirective, "unknown-directive")                                                              \
-  X(kMalformedDirective, "malformed-directive")                                                          \
-  X(kUnbalancedConditional, "unbalanced-conditional")                                                    \
-  X(kConditionExpression, "condition-expression")                                                        \
-  X(kUnterminatedComment, "unterminated-comment")                                                        \
-  X(kMacroDefinition, "macro-definition")                                                                \
-  X(kMacroInvocation, "macro-invocation")                                                                \
-  X(kIncludeNotFound, "include-not-found")                                                               \
-  X(kIncludeTooDeep, "include-too-deep")                                                                 \
-  X(kExpansionLimit, "expansion-limit")                                                                  \
-  X(kTooManyMacros, "too-many-macros")                                                                   \
-  X(kErrorDirective, "error-directive")                                                                  \
-  X(kWarningDirective, "warning-directive")                                                              \
-  X(kPreprocessorFailure, "preprocessor-failure")                                                        \
-  /* Assembler syntax (vm/asm/assembler.h). */                                                           \
-  X(kVersionStatement, "version-statement")                                                              \
-  X(kUnknownInstruction, "unknown-instruction")                                                          \
-  X(kNotInVs11, "not-in-vs_1_1")                                                                         \
-  X(kOperandCount, "operand-count")                                                                      \
-  X(kUnexpectedToken, "unexpected-token")                                                                \
-  X(kDeclarationUsage, "dcl-usage")                                                                      \
-  X(kDestinationSyntax, "destination-syntax")                                                            \
-  X(kSourceModifier, "source-modifier")                                                                  \
-  X(kExpectedRegister, "expected-register")                                                              \
-  X(kUnknownRegister, "unknown-register")                                                                \
-  X(kRegisterNumberTooLarge, "register-number-too-large")                                                \
-  X(kConstantIndexSyntax, "constant-index-syntax")                                                       \
-  X(kWriteMaskSyntax, "write-mask-syntax")                                                               \
-  X(kSwizzleSyntax, "swizzle-syntax")                                                                    \
-  X(kExpectedNumber, "expected-number")                                                                  \
-  X(kNumberOutOfRange, "number-out-of-range")                                                            \
-  X(kNumberUnderflow, "number-underflow")                                                                \
-  /* Validator (vm/asm/validator.h, spec §6). */                                                         \
-  X(kVersionToken, "version-token")                                                                      \
-  X(kMisplacedDeclaration, "misplaced-declaration")                                                      \
-  X(kTooManySlots, "too-many-slots")                                                                     \
-  X(kNoSuchRegister, "no-such-register")                                                                 \
-  X(kReadOnlyDestination, "read-only-destination")                                                       \
-  X(kWriteOnlySource, "write-only-source")                                                               \
-  X(kRelativeAddressing, "relative-addressing")                                                          \
-  X(kAddressNotWritten, "address-not-written")                                                           \
-  X(kAddressWrite, "address-write")                                                                      \
-  X(kWriteMask, "write-mask")                                                                            \
-  X(kScalarOutputMask, "scalar-output-mask")                                                             \
-  X(kReadPorts, "read-ports")                                                                            \
-  X(kMatrixOperand, "matrix-operand")                                                                    \
-  X(kScalarSwizzle, "scalar-swizzle")                                                                    \
-  X(kUninitializedRegister, "uninitialized-register")                                                    \
-  X(kUninitializedLanes, "uninitialized-lanes")                                                          \
-  X(kUndeclaredInput, "undeclared-input")                                                                \
-  X(kPositionNotWritten, "position-not-written")                                                         \
-  X(kPositionPartlyWritten, "position-partly-written")                                                   \
-  X(kBadDeclaration, "bad-declaration")                                                                  \
-  X(kDuplicateDeclaration, "duplicate-declaration")                                                      \
-  X(kBadDefinition, "bad-definition")                                                                    \
-  X(kDuplicateDefinition, "duplicate-definition")                                                        \
-  X(kTooManyDefinitions, "too-many-definitions")                                                          \
-  /* Bytecode decoder (vm/asm/bytecode.h, spec §4). */                                                   \
-  X(kBytecodeTruncated, "bytecode-truncated")                                                            \
-  X(kBytecodeTrailingWords, "bytecode-trailing-words")                                                   \
-  X(kBytecodeMalformedToken, "bytecode-malformed-token")                                                 \
-  X(kBytecodeUnknownOpcode, "bytecode-unknown-opcode")                                                   \
-  X(kBytecodeRegisterType, "bytecode-register-type")                                                     \
-  X(kBytecodeDeclarationUsage, "bytecode-dcl-usage")                                                     \
-  /* Constant files and --const (vm/io/vertex_io.h). */                                                  \
-  X(kConstantLine, "constant-line")                                                                      \
-  X(kConstantValue, "constant-value")                                                                    \
-  X(kConstantRegisterRange, "constant-register-range")                                                   \
-  /* Vertex CSV files (vm/io/vertex_io.h). */                                                            \
-  X(kCsvSeparator, "csv-separator")                                                                      \
-  X(kCsvNumber, "csv-number")                                                                            \
-  X(kCsvTooManyValues, "csv-too-many-values")                                                            \
-  X(kCsvMissingCell, "csv-missing-cell")                                                                 \
-  X(kCsvColumns, "csv-columns")                                                                          \
-  /* Metadata lines of verified programs (vm/reference/program_metadata.h). */                           \
-  X(kMetadataSyntax, "metadata-syntax")                                                                  \
-  X(kMetadataDuplicateKey, "metadata-duplicate-key")                                                     \
-  X(kMetadataUnknownKey, "metadata-unknown-key")                                                         \
-  X(kMetadataValue, "metadata-value")
+#define VS11_DIAGNOSTIC_CODES(X)                                                                  \
+  /* The default of a Diagnostic made field by field; every report names a code of its own. */    \
+  X(kUnclassified, "unclassified")                                                                \
+  X(kCannotReadFile, "cannot-read-file")                                                          \
+  X(kCannotWriteFile, "cannot-write-file")                                                        \
+  /* Jobs and their files (irradiance/jobs/, irradiance/io/). */                                  \
+  X(kOutputInUse, "output-in-use")                                                                \
+  X(kNoSuchInput, "no-such-input")                                                                \
+  X(kImageIoModule, "image-io-module")                                                            \
+  X(kFaceSize, "face-size")                                                                       \
+  X(kGnuplot, "gnuplot")                                                                          \
+  /* A program compiled into the binary that does not assemble: a build problem, not a user's. */ \
+  X(kEmbeddedProgram, "embedded-program")                                                         \
+  /* Lexer (vm/asm/lexer.h). */                                                                   \
+  X(kUnexpectedCharacter, "unexpected-character")                                                 \
+  X(kMalformedNumber, "malformed-number")                                                         \
+  /* Preprocessor (vm/asm/preprocessor.h). */                                                     \
+  X(kUnknownDirective, "unknown-directive")                                                       \
+  X(kMalformedDirective, "malformed-directive")                                                   \
+  X(kUnbalancedConditional, "unbalanced-conditional")                                             \
+  X(kConditionExpression, "condition-expression")                                                 \
+  X(kUnterminatedComment, "unterminated-comment")                                                 \
+  X(kMacroDefinition, "macro-definition")                                                         \
+  X(kMacroInvocation, "macro-invocation")                                                         \
+  X(kIncludeNotFound, "include-not-found")                                                        \
+  X(kIncludeTooDeep, "include-too-deep")                                                          \
+  X(kExpansionLimit, "expansion-limit")                                                           \
+  X(kTooManyMacros, "too-many-macros")                                                            \
+  X(kErrorDirective, "error-directive")                                                           \
+  X(kWarningDirective, "warning-directive")                                                       \
+  X(kPreprocessorFailure, "preprocessor-failure")                                                 \
+  /* Assembler syntax (vm/asm/assembler.h). */                                                    \
+  X(kVersionStatement, "version-statement")                                                       \
+  X(kUnknownInstruction, "unknown-instruction")                                                   \
+  X(kNotInVs11, "not-in-vs_1_1")                                                                  \
+  X(kOperandCount, "operand-count")                                                               \
+  X(kUnexpectedToken, "unexpected-token")                                                         \
+  X(kDeclarationUsage, "dcl-usage")                                                               \
+  X(kDestinationSyntax, "destination-syntax")                                                     \
+  X(kSourceModifier, "source-modifier")                                                           \
+  X(kExpectedRegister, "expected-register")                                                       \
+  X(kUnknownRegister, "unknown-register")                                                         \
+  X(kRegisterNumberTooLarge, "register-number-too-large")                                         \
+  X(kConstantIndexSyntax, "constant-index-syntax")                                                \
+  X(kWriteMaskSyntax, "write-mask-syntax")                                                        \
+  X(kSwizzleSyntax, "swizzle-syntax")                                                             \
+  X(kExpectedNumber, "expected-number")                                                           \
+  X(kNumberOutOfRange, "number-out-of-range")                                                     \
+  X(kNumberUnderflow, "number-underflow")                                                         \
+  /* Validator (vm/asm/validator.h, spec §6). */                                                 \
+  X(kVersionToken, "version-token")                                                               \
+  X(kMisplacedDeclaration, "misplaced-declaration")                                               \
+  X(kTooManySlots, "too-many-slots")                                                              \
+  X(kNoSuchRegister, "no-such-register")                                                          \
+  X(kReadOnlyDestination, "read-only-destination")                                                \
+  X(kWriteOnlySource, "write-only-source")                                                        \
+  X(kRelativeAddressing, "relative-addressing")                                                   \
+  X(kAddressNotWritten, "address-not-written")                                                    \
+  X(kAddressWrite, "address-write")                                                               \
+  X(kWriteMask, "write-mask")                                                                     \
+  X(kScalarOutputMask, "scalar-output-mask")                                                      \
+  X(kReadPorts, "read-ports")                                                                     \
+  X(kMatrixOperand, "matrix-operand")                                                             \
+  X(kScalarSwizzle, "scalar-swizzle")                                                             \
+  X(kUninitializedRegister, "uninitialized-register")                                             \
+  X(kUninitializedLanes, "uninitialized-lanes")                                                   \
+  X(kUndeclaredInput, "undeclared-input")                                                         \
+  X(kPositionNotWritten, "position-not-written")                                                  \
+  X(kPositionPartlyWritten, "position-partly-written")                                            \
+  X(kBadDeclaration, "bad-declaration")                                                           \
+  X(kDuplicateDeclaration, "duplicate-declaration")                                               \
+  X(kBadDefinition, "bad-definition")                                                             \
+  X(kDuplicateDefinition, "duplicate-definition")                                                 \
+  X(kTooManyDefinitions, "too-many-definitions")                                                  \
+  /* Bytecode decoder (vm/asm/bytecode.h, spec §4). */                                           \
+  X(kBytecodeTruncated, "bytecode-truncated")                                                     \
+  X(kBytecodeTrailingWords, "bytecode-trailing-words")                                            \
+  X(kBytecodeMalformedToken, "bytecode-malformed-token")                                          \
+  X(kBytecodeUnknownOpcode, "bytecode-unknown-opcode")                                            \
+  X(kBytecodeRegisterType, "bytecode-register-type")                                              \
+  X(kBytecodeDeclarationUsage, "bytecode-dcl-usage")                                              \
+  /* Constant files and --const (vm/io/vertex_io.h). */                                           \
+  X(kConstantLine, "constant-line")                                                               \
+  X(kConstantValue, "constant-value")                                                             \
+  X(kConstantRegisterRange, "constant-register-range")                                            \
+  /* Vertex CSV files (vm/io/vertex_io.h). */                                                     \
+  X(kCsvSeparator, "csv-separator")                                                               \
+  X(kCsvNumber, "csv-number")                                                                     \
+  X(kCsvTooManyValues, "csv-too-many-values")                                                     \
+  X(kCsvMissingCell, "csv-missing-cell")                                                          \
+  X(kCsvColumns, "csv-columns")                                                                   \
+  /* A run's --input flag and the registers nobody sets (vm/io/vertex_io.h). */                   \
+  X(kInputFlag, "input-flag")                                                                     \
+  X(kUnsetRegister, "unset-register")                                                             \
+  /* Meshes and vertex buffers (vm/mesh/). */                                                     \
+  X(kMeshWire, "mesh-wire")                                                                       \
+  X(kBufferElement, "buffer-element")                                                             \
+  X(kBufferLayout, "buffer-layout")                                                               \
+  X(kBufferSize, "buffer-size")                                                                   \
+  X(kBinding, "binding")                                                                          \
+  X(kMeshAttributeMissing, "mesh-attribute-missing")                                              \
+  X(kBonePalette, "bone-palette")                                                                 \
+  /* Metadata lines of verified programs (vm/reference/program_metadata.h). */                   \
+  X(kMetadataSyntax, "metadata-syntax")                                                           \
+  X(kMetadataDuplicateKey, "metadata-duplicate-key")                                              \
+  X(kMetadataUnknownKey, "metadata-unknown-key")                                                  \
+  X(kMetadataValue, "metadata-value")                                                             \
+  /* Engines (vm/engines/engine_factory.h) and OpenGL ES (vm/gl/). */                             \
+  X(kEngineUnavailable, "engine-unavailable")                                                     \
+  X(kGlUnavailable, "gl-unavailable")                                                             \
+  X(kGlCompile, "gl-compile")                                                                     \
+  X(kGlError, "gl-error")
 
 enum class DiagnosticCode {
 #define VS11_DIAGNOSTIC_ENUMERATOR(code, name) code,

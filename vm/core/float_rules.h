@@ -5,8 +5,7 @@
 #pragma once
 
 #include <cstdint>
-#include <optional>
-#include <string_view>
+#include "vm/core/name_table.h"
 
 namespace vs11 {
 
@@ -23,7 +22,8 @@ enum class FloatRules : std::uint8_t {
 
 inline constexpr FloatRules kAllFloatRules[] = {FloatRules::kD3d9, FloatRules::kLegacy};
 
-std::optional<FloatRules> FloatRulesFromName(std::string_view name);  // "d3d9" | "legacy"
-std::string_view FloatRulesName(FloatRules rules);
+inline constexpr NameTable kFloatRulesNames("float rules", {
+    Choice(FloatRules::kD3d9, "d3d9", "IEEE: 0 * inf = NaN"),
+    Choice(FloatRules::kLegacy, "legacy", "0 * anything = 0, as DX8-era hardware and DXVK's strict mode")});
 
 }  // namespace vs11

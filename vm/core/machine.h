@@ -167,9 +167,10 @@ class Engine {
   // not write get UnwrittenOutputValue.
   virtual void Run(const VertexArrays& inputs, VertexArrays& outputs) = 0;
   virtual void SetConstants(const ConstantBank& api_constants) = 0;
-  // Empty while the engine works. An engine that depends on a driver (gl) says here why it could not
-  // be built (no EGL device with OpenGL ES 3.0) or why its last Run failed; it then writes NaN to every
-  // output lane, and callers report this text instead of the outputs. The CPU engines never fail.
+  // Empty while the engine works. An engine that depends on a driver (gl) says here why its last Run
+  // or SetConstants failed; it then writes NaN to every output lane, and callers report this text
+  // instead of the outputs. (Run returns nothing so that the CPU engines, which never fail, keep a
+  // plain call; an engine that cannot be built is an error of MakeEngine instead.)
   virtual std::string error() const { return {}; }
 };
 

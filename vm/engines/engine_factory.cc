@@ -1,7 +1,6 @@
 #include "vm/engines/engine_factory.h"
 
 #include <algorithm>
-#include <limits>
 #include <mutex>
 
 #include <fmt/format.h>
@@ -12,18 +11,27 @@
 namespace vs11 {
 namespace {
 
-std::unique_ptr<Engine> MakeReference(const Program& program, const ConstantBank& api_constants,
-                                      const EngineOptions& options) {
+Result<std::unique_ptr<Engine>> MakeReference(const Program& program, const ConstantBank& api_constants,
+                                              const EngineOptions& options) {
   return MakeReferenceEngine(program, api_constants, options.float_rules);
+}
+
+Result<std::unique_ptr<Engine>> MakeBatch(const Program& program, const ConstantBank& api_constants,
+                                          const EngineOptions& options) {
+  return MakeBatchEngine(program, api_constants, options);
+}
+
+Result<std::unique_ptr<Engine>> MakeJit(const Program& program, const ConstantBank& api_constants,
+                                        const EngineOptions& options) {
+  return MakeJitEngine(program, api_constants, options);
 }
 
 // The engines of this folder, in the order --help lists them. An engine of this folder is added here;
 // one of a library above registers itself (RegisterEngine).
 constexpr EngineInfo kBuiltInEngines[] = {
     {"ref", "reference", "scalar reference", &MakeReference},
-    {"batch", "", "SIMD kernels", &MakeBatchEngine},
-    {"jit", "", "the program compiled to AVX-512 or AVX2 code; the batch kernels on a CPU without AVX2",
-     &MakeJitEngine},
+    {"batch", "", "SIMD kernels", &MakeBatch},
+    {"jit", "", "the program compiled to AVX-512 or AVX2 code; the batch kernels on a CPU without AVX2", &MakeJit},
 };
 
 struct Registry {
@@ -35,24 +43,6 @@ Registry& TheRegistry() {
   static Registry registry;
   return registry;
 }
-
-class FailedEngine final : public Engine {
- public:
-  explicit FailedEngine(std::string error) : error_(std::move(error)) {}
-  void Run(const VertexArrays&, VertexArrays& outputs) override {
-    for (int reg : outputs.registers()) {
-      for (int c = 0; c < 4; ++c) {
-        float* lane = outputs.lane(reg, c);
-        std::fill(lane, lane + outputs.count(), std::numeric_limits<float>::quiet_NaN());
-      }
-    }
-  }
-  void SetConstants(const ConstantBank&) override {}
-  std::string error() const override { return error_; }
-
- private:
-  std::string error_;
-};
 
 }  // namespace
 
@@ -120,14 +110,13 @@ std::string EngineDescriptions() {
   return JoinEngines([](const EngineInfo& engine) { return fmt::format("{} ({})", engine.name, engine.summary); });
 }
 
-std::unique_ptr<Engine> MakeFailedEngine(std::string error) { return std::make_unique<FailedEngine>(std::move(error)); }
-
-std::unique_ptr<Engine> MakeEngine(std::string_view name, const Program& program, const ConstantBank& api_constants,
-                                   const EngineOptions& options) {
+Result<std::unique_ptr<Engine>> MakeEngine(std::string_view name, const Program& program,
+                                           const ConstantBank& api_constants, const EngineOptions& options) {
   if (std::optional<EngineInfo> engine = FindEngine(name)) return engine->make(program, api_constants, options);
-  return MakeFailedEngine(fmt::format("the {} engine is not part of this program (it has {}; the vs11 and irrmap "
-                                      "tools register vm/gl's gl engine)",
-                                      name, EngineNameList()));
+  return Failure(DiagnosticCode::kEngineUnavailable,
+                 fmt::format("the {} engine is not part of this program (it has {}; the vs11 and irrmap tools "
+                             "register vm/gl's gl engine)",
+                             name, EngineNameList()));
 }
 
 }  // namespace vs11

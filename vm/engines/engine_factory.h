@@ -14,12 +14,13 @@
 #include <vector>
 
 #include "vm/core/machine.h"
+#include "vm/core/result.h"
 
 namespace vs11 {
 
-// Builds an engine. A maker never returns null (MakeFailedEngine instead).
-using EngineMaker = std::unique_ptr<Engine> (*)(const Program& program, const ConstantBank& api_constants,
-                                                const EngineOptions& options);
+// Builds an engine, or says why it cannot (the gl engine without a device). Never a null engine.
+using EngineMaker = Result<std::unique_ptr<Engine>> (*)(const Program& program, const ConstantBank& api_constants,
+                                                        const EngineOptions& options);
 
 struct EngineInfo {
   std::string_view name;     // what --engine takes and reports print: "ref", "batch"
@@ -46,13 +47,10 @@ std::string EngineNameList(std::string_view quote = "");
 std::string EngineDescriptions();
 
 // `program` must be well formed (Decode accepted it); validation is the caller's choice. Temporaries
-// read before they are written (possible only with validation skipped) read 0. Never null: an engine
-// that cannot be had (a name nobody registered, the gl engine without a device) is an engine whose
-// error() says why and whose outputs are NaN.
-std::unique_ptr<Engine> MakeEngine(std::string_view name, const Program& program, const ConstantBank& api_constants,
-                                   const EngineOptions& options = {});
-
-// An engine that runs nothing: every output lane of every Run is NaN, and error() is `error`.
-std::unique_ptr<Engine> MakeFailedEngine(std::string error);
+// read before they are written (possible only with validation skipped) read 0. An error where the
+// engine cannot be had: a name nobody registered (kEngineUnavailable), the gl engine without a device.
+// The CPU engines (ref, batch, jit) never fail.
+Result<std::unique_ptr<Engine>> MakeEngine(std::string_view name, const Program& program,
+                                           const ConstantBank& api_constants, const EngineOptions& options = {});
 
 }  // namespace vs11

@@ -582,15 +582,6 @@ std::vector<JitIsa> SupportedIsas() {
   return supported;
 }
 
-std::string_view IsaName(JitIsa isa) {
-  switch (isa) {
-    case JitIsa::kBest: return "best";
-    case JitIsa::kAvx2: return "avx2";
-    case JitIsa::kAvx512: return "avx512";
-  }
-  return "best";
-}
-
 std::unique_ptr<CompiledProgram> Compile(const Program& program, std::string& why_not, JitIsa isa,
                                          std::span<const UniformInput> uniform_inputs, FloatRules rules) {
   const std::vector<JitIsa> supported = SupportedIsas();

@@ -74,7 +74,6 @@ class CompiledProgram {
 
 // The instruction sets this CPU (and its operating system) runs, from narrowest to widest.
 std::vector<JitIsa> SupportedIsas();
-std::string_view IsaName(JitIsa isa);  // "best", "avx2", "avx512"
 
 // An input lane that holds one value in every vertex (VertexArrays::uniform): compiled in, not read.
 struct UniformInput {

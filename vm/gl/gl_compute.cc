@@ -25,19 +25,20 @@ translate::TranslateOptions GlComputeTranslateOptions(const EngineOptions& optio
   return translation;
 }
 
-unsigned LinkComputeProgram(const std::string& source, std::string& error) {
-  const GLuint shader = CompileShader(GL_COMPUTE_SHADER, source, error);
-  if (shader == 0) return 0;
+Result<unsigned> LinkComputeProgram(const std::string& source) {
+  const Result<unsigned> shader = CompileShader(GL_COMPUTE_SHADER, source);
+  if (!shader) return shader.error();
   const GLuint program = glCreateProgram();
-  glAttachShader(program, shader);
-  glDeleteShader(shader);
-  return LinkAttachedProgram(program, "compute program", error);
+  glAttachShader(program, *shader);
+  glDeleteShader(*shader);
+  return LinkAttachedProgram(program, "compute program");
 }
 
-std::unique_ptr<ComputeRun> ComputeRun::Create(const std::string& compute_source, std::string& error) {
+Result<std::unique_ptr<ComputeRun>> ComputeRun::Create(const std::string& compute_source) {
   std::unique_ptr<ComputeRun> run(new ComputeRun());
-  run->program_ = LinkComputeProgram(compute_source, error);
-  if (run->program_ == 0) return nullptr;
+  const Result<unsigned> program = LinkComputeProgram(compute_source);
+  if (!program) return program.error();
+  run->program_ = *program;
   GLint max_groups = 0;
   glGetIntegeri_v(GL_MAX_COMPUTE_WORK_GROUP_COUNT, 0, &max_groups);
   if (max_groups > 0) run->max_groups_x_ = static_cast<std::uint32_t>(max_groups);
@@ -45,13 +46,13 @@ std::unique_ptr<ComputeRun> ComputeRun::Create(const std::string& compute_source
   glBindBuffer(GL_UNIFORM_BUFFER, run->layout_buffer_);
   glBufferData(GL_UNIFORM_BUFFER, sizeof(translate::ComputeLayoutBlock), nullptr, GL_DYNAMIC_DRAW);
   glGenBuffers(1, &run->constants_buffer_);
-  if (!GlOk("creating the compute program's buffers", error)) return nullptr;
+  if (Status created = GlOk("creating the compute program's buffers"); !created) return created.error();
   return run;
 }
 
-std::unique_ptr<ComputeRun> ComputeRun::Create(const Program& program, const translate::TranslateOptions& options,
-                                               std::string& error) {
-  return Create(translate::TranslateToGlsl(program, options), error);
+Result<std::unique_ptr<ComputeRun>> ComputeRun::Create(const Program& program,
+                                                       const translate::TranslateOptions& options) {
+  return Create(translate::TranslateToGlsl(program, options));
 }
 
 ComputeRun::~ComputeRun() {
@@ -66,19 +67,20 @@ void ComputeRun::BindConstantBuffer(unsigned buffer, std::size_t offset, int row
   bound_rows_ = static_cast<std::size_t>(rows);
 }
 
-bool ComputeRun::SetConstants(const std::vector<float>& rows, std::string& error) {
+Status ComputeRun::SetConstants(const std::vector<float>& rows) {
   glBindBuffer(GL_UNIFORM_BUFFER, constants_buffer_);
   glBufferData(GL_UNIFORM_BUFFER, static_cast<GLsizeiptr>(rows.size() * sizeof(float)), rows.data(), GL_DYNAMIC_DRAW);
   BindConstantBuffer(constants_buffer_, 0, static_cast<int>(rows.size() / 4));
-  return GlOk("uploading the constants", error);
+  return GlOk("uploading the constants");
 }
 
-bool ComputeRun::Dispatch(translate::ComputeLayoutBlock layout, unsigned input_buffer, unsigned output_buffer,
-                          std::size_t vertex_count, std::string& error) {
-  if (vertex_count == 0) return true;
+Status ComputeRun::Dispatch(translate::ComputeLayoutBlock layout, unsigned input_buffer, unsigned output_buffer,
+                            std::size_t vertex_count) {
+  if (vertex_count == 0) return {};
   if (vertex_count > 0xFFFFFFFFu) {
-    error = fmt::format("{} vertices in one dispatch: the compute translation counts vertices in 32 bits", vertex_count);
-    return false;
+    return Failure(DiagnosticCode::kGlError,
+                   fmt::format("{} vertices in one dispatch: the compute translation counts vertices in 32 bits",
+                               vertex_count));
   }
   layout.vertex_count = static_cast<std::uint32_t>(vertex_count);
   layout.opaque_zero = 0;
@@ -97,7 +99,7 @@ bool ComputeRun::Dispatch(translate::ComputeLayoutBlock layout, unsigned input_b
   // Mapping and buffer reads (the engine's read-back, a following pass's vertex fetch or copy) see
   // the stores; another shader's storage reads of them as well.
   glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT | GL_SHADER_STORAGE_BARRIER_BIT | GL_VERTEX_ATTRIB_ARRAY_BARRIER_BIT);
-  return GlOk("dispatching the compute translation", error);
+  return GlOk("dispatching the compute translation");
 }
 
 }  // namespace vs11::gl

@@ -12,6 +12,7 @@
 
 #include "vm/core/machine.h"
 #include "vm/core/program.h"
+#include "vm/core/result.h"
 #include "vm/translate/compute_interface.h"
 #include "vm/translate/translate.h"
 
@@ -28,17 +29,17 @@ bool OffersCompute(const GlContext& context);
 translate::TranslateOptions GlComputeTranslateOptions(const EngineOptions& options, int constant_count, bool es32);
 
 // Compiles and links the compute shader `source` (GLSL ES 3.10 or later, its #version first): the
-// program object, or 0 with `error` holding the compiler's or linker's log.
-unsigned LinkComputeProgram(const std::string& source, std::string& error);
+// program object, or an error (kGlCompile) holding the compiler's or linker's log.
+Result<unsigned> LinkComputeProgram(const std::string& source);
 
 class ComputeRun {
  public:
-  // Compiles and links `compute_source` (a compute translation, its #version first). Null with `error`
-  // holding the info log.
-  static std::unique_ptr<ComputeRun> Create(const std::string& compute_source, std::string& error);
+  // Compiles and links `compute_source` (a compute translation, its #version first); an error holding
+  // the info log where it does not compile or link.
+  static Result<std::unique_ptr<ComputeRun>> Create(const std::string& compute_source);
   // The translation of `program` under `options` (options.stage must be Stage::kCompute).
-  static std::unique_ptr<ComputeRun> Create(const Program& program, const translate::TranslateOptions& options,
-                                            std::string& error);
+  static Result<std::unique_ptr<ComputeRun>> Create(const Program& program,
+                                                    const translate::TranslateOptions& options);
   ~ComputeRun();
   ComputeRun(const ComputeRun&) = delete;
   ComputeRun& operator=(const ComputeRun&) = delete;
@@ -49,15 +50,15 @@ class ComputeRun {
   // buffer stays the caller's; it must hold `rows` vec4s from `offset` and outlive its use here.
   void BindConstantBuffer(unsigned buffer, std::size_t offset, int rows);
   // The bank from memory (N rows of 4 floats) into a buffer of the run's own, and bound as above.
-  bool SetConstants(const std::vector<float>& rows, std::string& error);
+  Status SetConstants(const std::vector<float>& rows);
 
   // Runs the program over `vertex_count` vertices, reading `input_buffer` and writing `output_buffer`
   // (GL buffer names) where `layout` says (its vertex_count is set here), in one dispatch of as many
   // work groups as the count needs, in two dimensions past max_groups_x(). Returns without waiting;
   // storage written is visible to buffer reads and mapping that follow (a memory barrier is issued).
-  // False with `error` set where GL reports an error.
-  bool Dispatch(translate::ComputeLayoutBlock layout, unsigned input_buffer, unsigned output_buffer,
-                std::size_t vertex_count, std::string& error);
+  // An error (kGlError) where GL reports one.
+  Status Dispatch(translate::ComputeLayoutBlock layout, unsigned input_buffer, unsigned output_buffer,
+                  std::size_t vertex_count);
 
   // Work groups along x at most: the driver's GL_MAX_COMPUTE_WORK_GROUP_COUNT[0] unless lowered (the
   // tests lower it to dispatch in two dimensions at small counts).

@@ -37,27 +37,30 @@ class GlComputeEngine final : public Engine, public GlPathOwner {
     }
   }
   ~GlComputeEngine() override {
-    std::string ignored;
-    ScopedCurrent current(*context_, ignored);
+    ScopedCurrent current(*context_);
     if (current.ok()) DeleteObjects();
   }
 
-  bool Build(int constant_count, std::string& error) {
-    ScopedCurrent current(*context_, error);
-    if (!current.ok()) return false;
+  // Translates for a bank of `constant_count` registers, links, and makes the buffers.
+  Status Build(int constant_count) {
+    ScopedCurrent current(*context_);
+    if (!current.ok()) return current.status();
     DeleteObjects();
     constant_count_ = constant_count;
-    run_ = ComputeRun::Create(program_, GlComputeTranslateOptions(options_, constant_count, context_->es32()), error);
-    if (!run_) {
+    Result<std::unique_ptr<ComputeRun>> run =
+        ComputeRun::Create(program_, GlComputeTranslateOptions(options_, constant_count, context_->es32()));
+    if (!run) {
       GLint block_size = 0;
       glGetIntegerv(GL_MAX_UNIFORM_BLOCK_SIZE, &block_size);
-      error += fmt::format(" (the constant bank is c[{}], --max-constants; '{}' allows uniform blocks of {} bytes)",
-                           constant_count, context_->renderer(), block_size);
-      return false;
+      Diagnostic error = run.error();
+      error.message += fmt::format(" (the constant bank is c[{}], --max-constants; '{}' allows uniform blocks of {} bytes)",
+                                   constant_count, context_->renderer(), block_size);
+      return error;
     }
+    run_ = std::move(run).value();
     glGenBuffers(1, &input_buffer_);
     glGenBuffers(1, &output_buffer_);
-    return GlOk("creating the storage buffers", error);
+    return GlOk("creating the storage buffers");
   }
 
   GlPath path() const override { return GlPath::kCompute; }
@@ -65,20 +68,20 @@ class GlComputeEngine final : public Engine, public GlPathOwner {
 
   void SetConstants(const ConstantBank& api_constants) override {
     if (!error_.empty()) return;
-    if (api_constants.size() != constant_count_ && !Build(api_constants.size(), error_)) return;
-    ScopedCurrent current(*context_, error_);
-    if (!current.ok()) return;
+    if (api_constants.size() != constant_count_ && !Keep(Build(api_constants.size()))) return;
+    ScopedCurrent current(*context_);
+    if (!Keep(current.status())) return;
     std::vector<float> rows;
     rows.reserve(static_cast<std::size_t>(api_constants.size()) * 4);
     for (const Vec4f& row : api_constants.values()) rows.insert(rows.end(), row.begin(), row.end());
-    run_->SetConstants(rows, error_);
+    Keep(run_->SetConstants(rows));
   }
 
   void Run(const VertexArrays& inputs, VertexArrays& outputs) override {
     if (error_.empty() && inputs.count() > 0) {
-      ScopedCurrent current(*context_, error_);
-      for (std::size_t first = 0; current.ok() && first < inputs.count(); first += kVerticesPerDispatch) {
-        if (!RunDispatch(inputs, first, std::min(kVerticesPerDispatch, inputs.count() - first), outputs)) break;
+      ScopedCurrent current(*context_);
+      for (std::size_t first = 0; Keep(current.status()) && first < inputs.count(); first += kVerticesPerDispatch) {
+        if (!Keep(RunDispatch(inputs, first, std::min(kVerticesPerDispatch, inputs.count() - first), outputs))) break;
       }
     }
     if (!error_.empty()) {
@@ -92,6 +95,12 @@ class GlComputeEngine final : public Engine, public GlPathOwner {
   }
 
  private:
+  // Keeps the message of a failed `status` as error(); whether it succeeded.
+  bool Keep(const Status& status) {
+    if (!status) error_ = status.message();
+    return status.ok();
+  }
+
   void DeleteObjects() {
     run_.reset();
     glDeleteBuffers(1, &input_buffer_);
@@ -127,7 +136,7 @@ class GlComputeEngine final : public Engine, public GlPathOwner {
                  GL_STREAM_DRAW);
   }
 
-  bool RunDispatch(const VertexArrays& inputs, std::size_t first, std::size_t count, VertexArrays& outputs) {
+  Status RunDispatch(const VertexArrays& inputs, std::size_t first, std::size_t count, VertexArrays& outputs) {
     translate::ComputeLayoutBlock layout;
     UploadInputs(inputs, first, count, layout);
     std::vector<int> wanted;
@@ -138,17 +147,17 @@ class GlComputeEngine final : public Engine, public GlPathOwner {
       layout.SetOutput(slot, {base, base + n, base + 2 * n, base + 3 * n}, 1);
       wanted.push_back(slot);
     }
-    if (wanted.empty()) return true;
+    if (wanted.empty()) return {};
     const std::size_t floats = wanted.size() * 4 * count;
     glBindBuffer(GL_SHADER_STORAGE_BUFFER, output_buffer_);
     glBufferData(GL_SHADER_STORAGE_BUFFER, static_cast<GLsizeiptr>(floats * sizeof(float)), nullptr, GL_STREAM_READ);
-    if (!run_->Dispatch(layout, input_buffer_, output_buffer_, count, error_)) return false;
+    if (Status dispatched = run_->Dispatch(layout, input_buffer_, output_buffer_, count); !dispatched) return dispatched;
     glBindBuffer(GL_SHADER_STORAGE_BUFFER, output_buffer_);
     const void* mapped =
         glMapBufferRange(GL_SHADER_STORAGE_BUFFER, 0, static_cast<GLsizeiptr>(floats * sizeof(float)), GL_MAP_READ_BIT);
     if (mapped == nullptr) {
-      if (GlOk("glMapBufferRange", error_)) error_ = "glMapBufferRange returned no pointer";
-      return false;
+      if (Status mapping = GlOk("glMapBufferRange"); !mapping) return mapping;
+      return Failure(DiagnosticCode::kGlError, "glMapBufferRange returned no pointer");
     }
     const auto* stored = static_cast<const float*>(mapped);
     for (std::size_t k = 0; k < wanted.size(); ++k) {
@@ -158,7 +167,7 @@ class GlComputeEngine final : public Engine, public GlPathOwner {
       }
     }
     glUnmapBuffer(GL_SHADER_STORAGE_BUFFER);
-    return GlOk("reading the output buffer", error_);
+    return GlOk("reading the output buffer");
   }
 
   Program program_;
@@ -174,17 +183,13 @@ class GlComputeEngine final : public Engine, public GlPathOwner {
 
 }  // namespace
 
-std::unique_ptr<Engine> MakeGlComputeEngine(const Program& program, const ConstantBank& api_constants,
-                                            const EngineOptions& options, std::unique_ptr<GlContext> context,
-                                            std::string& error) {
+Result<std::unique_ptr<Engine>> MakeGlComputeEngine(const Program& program, const ConstantBank& api_constants,
+                                                    const EngineOptions& options, std::unique_ptr<GlContext> context) {
   auto engine = std::make_unique<GlComputeEngine>(program, options, std::move(context));
-  if (!engine->Build(api_constants.size(), error)) return nullptr;
+  if (Status built = engine->Build(api_constants.size()); !built) return built.error();
   engine->SetConstants(api_constants);
-  if (!engine->error().empty()) {
-    error = engine->error();
-    return nullptr;
-  }
-  return engine;
+  if (!engine->error().empty()) return Failure(DiagnosticCode::kGlError, engine->error());
+  return std::unique_ptr<Engine>(std::move(engine));
 }
 
 }  // namespace vs11::gl

@@ -3,16 +3,14 @@
 #pragma once
 
 #include <memory>
-#include <string>
-
 #include "vm/core/machine.h"
+#include "vm/core/result.h"
 #include "vm/gl/gl_context.h"
 
 namespace vs11::gl {
 
-// Null with `error` set where the program does not compile or link on the context, or GL fails.
-std::unique_ptr<Engine> MakeGlComputeEngine(const Program& program, const ConstantBank& api_constants,
-                                            const EngineOptions& options, std::unique_ptr<GlContext> context,
-                                            std::string& error);
+// An error where the program does not compile or link on the context (kGlCompile), or GL fails.
+Result<std::unique_ptr<Engine>> MakeGlComputeEngine(const Program& program, const ConstantBank& api_constants,
+                                                    const EngineOptions& options, std::unique_ptr<GlContext> context);
 
 }  // namespace vs11::gl

@@ -25,7 +25,9 @@ bool HasExtension(const char* list, std::string_view name) {
   return false;
 }
 
-std::string EglErrorText(const char* call) { return fmt::format("{} failed (EGL error 0x{:04X})", call, eglGetError()); }
+Diagnostic EglFailure(const char* call) {
+  return Failure(DiagnosticCode::kGlUnavailable, fmt::format("{} failed (EGL error 0x{:04X})", call, eglGetError()));
+}
 
 // The EGL_EXT_device_* and EGL_EXT_platform_base entry points, where libEGL has them.
 struct EglEntryPoints {
@@ -42,12 +44,14 @@ struct EglEntryPoints {
            HasExtension(client_extensions.c_str(), "EGL_EXT_platform_device");
   }
   // Why CanEnumerateDevices is false, with what libEGL offers.
-  std::string CannotEnumerateText() const {
-    return fmt::format(
-        "EGL cannot enumerate devices (it needs EGL_EXT_device_enumeration or EGL_EXT_device_base, "
-        "EGL_EXT_platform_device and their entry points; is libegl1 with a vendor library such as libegl-mesa0 "
-        "installed?); EGL's client extensions: {}",
-        client_extensions.empty() ? "none" : client_extensions);
+  Diagnostic CannotEnumerate() const {
+    return Failure(
+        DiagnosticCode::kGlUnavailable,
+        fmt::format(
+            "EGL cannot enumerate devices (it needs EGL_EXT_device_enumeration or EGL_EXT_device_base, "
+            "EGL_EXT_platform_device and their entry points; is libegl1 with a vendor library such as libegl-mesa0 "
+            "installed?); EGL's client extensions: {}",
+            client_extensions.empty() ? "none" : client_extensions));
   }
 };
 
@@ -91,18 +95,15 @@ void AskMesaForLlvmpipe() {
 }
 
 // The display of `device` (ListGlDevices' index), or of llvmpipe for nullopt; initialised.
-EGLDisplay OpenDisplay(std::optional<int> device, std::string& error) {
+Result<EGLDisplay> OpenDisplay(std::optional<int> device) {
   const EglEntryPoints& entry = Entry();
   const std::vector<EGLDeviceEXT> devices = Devices();
   EGLDisplay display = EGL_NO_DISPLAY;
   if (device) {
-    if (!entry.CanEnumerateDevices()) {
-      error = entry.CannotEnumerateText();
-      return EGL_NO_DISPLAY;
-    }
+    if (!entry.CanEnumerateDevices()) return entry.CannotEnumerate();
     if (*device < 0 || *device >= static_cast<int>(devices.size())) {
-      error = fmt::format("no EGL device {}: EGL lists {} (see --gl-device list)", *device, devices.size());
-      return EGL_NO_DISPLAY;
+      return Failure(DiagnosticCode::kGlUnavailable,
+                     fmt::format("no EGL device {}: EGL lists {} (see --gl-device list)", *device, devices.size()));
     }
     display = entry.get_platform_display(EGL_PLATFORM_DEVICE_EXT, devices[static_cast<std::size_t>(*device)], nullptr);
   } else {
@@ -115,53 +116,43 @@ EGLDisplay OpenDisplay(std::optional<int> device, std::string& error) {
     if (display == EGL_NO_DISPLAY) {
       if (entry.get_platform_display == nullptr ||
           !HasExtension(entry.client_extensions.c_str(), "EGL_MESA_platform_surfaceless")) {
-        error = fmt::format("no EGL device is Mesa's llvmpipe ({} EGL devices; see --gl-device list) and EGL has no "
-                            "EGL_MESA_platform_surfaceless (is Mesa's libegl-mesa0 installed?)",
-                            devices.size());
-        return EGL_NO_DISPLAY;
+        return Failure(DiagnosticCode::kGlUnavailable,
+                       fmt::format("no EGL device is Mesa's llvmpipe ({} EGL devices; see --gl-device list) and EGL "
+                                   "has no EGL_MESA_platform_surfaceless (is Mesa's libegl-mesa0 installed?)",
+                                   devices.size()));
       }
       AskMesaForLlvmpipe();
       display = entry.get_platform_display(EGL_PLATFORM_SURFACELESS_MESA, EGL_DEFAULT_DISPLAY, nullptr);
     }
   }
-  if (display == EGL_NO_DISPLAY) {
-    error = EglErrorText("eglGetPlatformDisplayEXT");
-    return EGL_NO_DISPLAY;
-  }
+  if (display == EGL_NO_DISPLAY) return EglFailure("eglGetPlatformDisplayEXT");
   // Initialising an initialised display does nothing; displays stay open until the process ends
   // (eglTerminate would end every context on them, other engines' included).
   EGLint major = 0, minor = 0;
-  if (eglInitialize(display, &major, &minor) != EGL_TRUE) {
-    error = EglErrorText("eglInitialize");
-    return EGL_NO_DISPLAY;
-  }
+  if (eglInitialize(display, &major, &minor) != EGL_TRUE) return EglFailure("eglInitialize");
   return display;
 }
 
 // An OpenGL ES 3.0 context: without a config where the display allows (EGL_KHR_no_config_context),
 // else with the first config that renders OpenGL ES 3.
-EGLContext CreateEs3Context(EGLDisplay display, std::string& error) {
+Result<EGLContext> CreateEs3Context(EGLDisplay display) {
   const char* extensions = eglQueryString(display, EGL_EXTENSIONS);
   if (!HasExtension(extensions, "EGL_KHR_surfaceless_context")) {
-    error = "the EGL display lacks EGL_KHR_surfaceless_context (a context without a window)";
-    return EGL_NO_CONTEXT;
+    return Failure(DiagnosticCode::kGlUnavailable,
+                   "the EGL display lacks EGL_KHR_surfaceless_context (a context without a window)");
   }
-  if (eglBindAPI(EGL_OPENGL_ES_API) != EGL_TRUE) {
-    error = EglErrorText("eglBindAPI(EGL_OPENGL_ES_API)");
-    return EGL_NO_CONTEXT;
-  }
+  if (eglBindAPI(EGL_OPENGL_ES_API) != EGL_TRUE) return EglFailure("eglBindAPI(EGL_OPENGL_ES_API)");
   EGLConfig config = EGL_NO_CONFIG_KHR;
   if (!HasExtension(extensions, "EGL_KHR_no_config_context")) {
     const EGLint wanted[] = {EGL_RENDERABLE_TYPE, EGL_OPENGL_ES3_BIT, EGL_SURFACE_TYPE, EGL_DONT_CARE, EGL_NONE};
     EGLint found = 0;
     if (eglChooseConfig(display, wanted, &config, 1, &found) != EGL_TRUE || found < 1) {
-      error = "the EGL display has no config that renders OpenGL ES 3";
-      return EGL_NO_CONTEXT;
+      return Failure(DiagnosticCode::kGlUnavailable, "the EGL display has no config that renders OpenGL ES 3");
     }
   }
   const EGLint attributes[] = {EGL_CONTEXT_MAJOR_VERSION, 3, EGL_CONTEXT_MINOR_VERSION, 0, EGL_NONE};
   EGLContext context = eglCreateContext(display, config, EGL_NO_CONTEXT, attributes);
-  if (context == EGL_NO_CONTEXT) error = EglErrorText("eglCreateContext (OpenGL ES 3.0)");
+  if (context == EGL_NO_CONTEXT) return EglFailure("eglCreateContext (OpenGL ES 3.0)");
   return context;
 }
 
@@ -174,30 +165,32 @@ std::mutex& CreationMutex() {
 
 }  // namespace
 
-std::unique_ptr<GlContext> GlContext::Create(std::optional<int> device, std::string& error) {
+Result<std::unique_ptr<GlContext>> GlContext::Create(std::optional<int> device) {
   std::unique_ptr<GlContext> context(new GlContext());
   {
     std::lock_guard<std::mutex> lock(CreationMutex());
-    EGLDisplay display = OpenDisplay(device, error);
-    if (display == EGL_NO_DISPLAY) return nullptr;
-    context->display_ = display;
-    context->context_ = CreateEs3Context(display, error);
-    if (context->context_ == EGL_NO_CONTEXT) return nullptr;
+    Result<EGLDisplay> display = OpenDisplay(device);
+    if (!display) return display.error();
+    context->display_ = *display;
+    Result<EGLContext> made = CreateEs3Context(*display);
+    if (!made) return made.error();
+    context->context_ = *made;
   }
-  ScopedCurrent current(*context, error);
-  if (!current.ok() || !context->SetUp(error)) return nullptr;
+  ScopedCurrent current(*context);
+  if (!current.ok()) return current.status().error();
+  if (Status set_up = context->SetUp(); !set_up) return set_up.error();
   return context;
 }
 
-bool GlContext::SetUp(std::string& error) {
+Status GlContext::SetUp() {
   const char* version = reinterpret_cast<const char*>(glGetString(GL_VERSION));
   const char* renderer = reinterpret_cast<const char*>(glGetString(GL_RENDERER));
   version_ = version != nullptr ? version : "";
   renderer_ = renderer != nullptr ? renderer : "";
   int major = 0, minor = 0;
   if (std::sscanf(version_.c_str(), "OpenGL ES %d.%d", &major, &minor) != 2 || major < 3) {
-    error = fmt::format("the context is '{}' on '{}', not OpenGL ES 3.0 or later", version_, renderer_);
-    return false;
+    return Failure(DiagnosticCode::kGlUnavailable,
+                   fmt::format("the context is '{}' on '{}', not OpenGL ES 3.0 or later", version_, renderer_));
   }
   es32_ = major > 3 || minor >= 2;
   glGenFramebuffers(1, &framebuffer_);
@@ -207,22 +200,19 @@ bool GlContext::SetUp(std::string& error) {
   glRenderbufferStorage(GL_RENDERBUFFER, GL_RGBA8, 1, 1);
   glFramebufferRenderbuffer(GL_FRAMEBUFFER, GL_COLOR_ATTACHMENT0, GL_RENDERBUFFER, renderbuffer_);
   if (glCheckFramebufferStatus(GL_FRAMEBUFFER) != GL_FRAMEBUFFER_COMPLETE) {
-    error = "the 1x1 framebuffer object is not complete";
-    return false;
+    return Failure(DiagnosticCode::kGlError, "the 1x1 framebuffer object is not complete");
   }
   glEnable(GL_RASTERIZER_DISCARD);
   if (const GLenum code = glGetError(); code != GL_NO_ERROR) {
-    error = fmt::format("setting up the framebuffer: GL error 0x{:04X}", code);
-    return false;
+    return Failure(DiagnosticCode::kGlError, fmt::format("setting up the framebuffer: GL error 0x{:04X}", code));
   }
-  return true;
+  return {};
 }
 
 GlContext::~GlContext() {
   if (context_ == nullptr) return;
   {
-    std::string ignored;
-    ScopedCurrent current(*this, ignored);
+    ScopedCurrent current(*this);
     if (current.ok()) {
       glDeleteRenderbuffers(1, &renderbuffer_);
       glDeleteFramebuffers(1, &framebuffer_);
@@ -231,23 +221,22 @@ GlContext::~GlContext() {
   eglDestroyContext(display_, context_);
 }
 
-bool GlContext::MakeCurrent(std::string& error) {
-  if (eglGetCurrentContext() == context_) return true;
+Status GlContext::MakeCurrent() {
+  if (eglGetCurrentContext() == context_) return {};
   if (eglBindAPI(EGL_OPENGL_ES_API) != EGL_TRUE ||
       eglMakeCurrent(display_, EGL_NO_SURFACE, EGL_NO_SURFACE, context_) != EGL_TRUE) {
-    error = EglErrorText("eglMakeCurrent without a surface");
-    return false;
+    return EglFailure("eglMakeCurrent without a surface");
   }
-  return true;
+  return {};
 }
 
-ScopedCurrent::ScopedCurrent(GlContext& context, std::string& error)
+ScopedCurrent::ScopedCurrent(GlContext& context)
     : context_(context),
       previous_display_(eglGetCurrentDisplay()),
       previous_context_(eglGetCurrentContext()),
       previous_draw_(eglGetCurrentSurface(EGL_DRAW)),
       previous_read_(eglGetCurrentSurface(EGL_READ)) {
-  ok_ = context_.MakeCurrent(error);
+  status_ = context_.MakeCurrent();
 }
 
 ScopedCurrent::~ScopedCurrent() {
@@ -259,11 +248,8 @@ ScopedCurrent::~ScopedCurrent() {
   }
 }
 
-std::vector<GlDeviceInfo> ListGlDevices(std::string& error) {
-  if (!Entry().CanEnumerateDevices()) {
-    error = Entry().CannotEnumerateText();
-    return {};
-  }
+Result<std::vector<GlDeviceInfo>> ListGlDevices() {
+  if (!Entry().CanEnumerateDevices()) return Entry().CannotEnumerate();
   std::vector<GlDeviceInfo> list;
   const std::vector<EGLDeviceEXT> devices = Devices();
   for (std::size_t i = 0; i < devices.size(); ++i) {
@@ -274,13 +260,15 @@ std::vector<GlDeviceInfo> ListGlDevices(std::string& error) {
     if (HasExtension(info.extensions.c_str(), "EGL_EXT_device_drm")) {
       info.drm_file = DeviceString(devices[i], EGL_DRM_DEVICE_FILE_EXT);
     }
-    if (std::unique_ptr<GlContext> context = GlContext::Create(info.index, info.error)) {
-      info.renderer = context->renderer();
-      info.version = context->version();
+    if (Result<std::unique_ptr<GlContext>> context = GlContext::Create(info.index)) {
+      info.renderer = (*context)->renderer();
+      info.version = (*context)->version();
+    } else {
+      info.error = context.message();
     }
     list.push_back(std::move(info));
   }
-  if (list.empty()) error = "EGL lists no device";
+  if (list.empty()) return Failure(DiagnosticCode::kGlUnavailable, "EGL lists no device");
   return list;
 }
 

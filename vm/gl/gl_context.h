@@ -10,6 +10,8 @@
 #include <string_view>
 #include <vector>
 
+#include "vm/core/result.h"
+
 namespace vs11::gl {
 
 // One EGL device, as `--gl-device list` prints it.
@@ -23,9 +25,10 @@ struct GlDeviceInfo {
   std::string error;        // why no context could be made
 };
 
-// Every EGL device, each tried with an OpenGL ES 3.0 context. Empty, with `error` set, where EGL has
-// no device enumeration (no EGL at all, or a libEGL without EGL_EXT_device_enumeration).
-std::vector<GlDeviceInfo> ListGlDevices(std::string& error);
+// Every EGL device, each tried with an OpenGL ES 3.0 context. An error (kGlUnavailable) where EGL has
+// no device enumeration (no EGL at all, or a libEGL without EGL_EXT_device_enumeration) or lists no
+// device.
+Result<std::vector<GlDeviceInfo>> ListGlDevices();
 
 // `--gl-device list` as text: one line per device (index, llvmpipe or not, DRM file, GL_RENDERER and
 // GL_VERSION or why no context could be made).
@@ -44,22 +47,22 @@ class GlContext {
   // `device`: an index of ListGlDevices; nullopt: Mesa's llvmpipe, the device with
   // EGL_MESA_device_software, or else Mesa's surfaceless platform with llvmpipe asked for through
   // LIBGL_ALWAYS_SOFTWARE and GALLIUM_DRIVER (set only where the environment does not set them).
-  // Null, with `error` set, where there is no EGL, no such device, or no OpenGL ES 3.0 on it. What
+  // An error (kGlUnavailable) where there is no EGL, no such device, or no OpenGL ES 3.0 on it. What
   // was current on the calling thread before is current again when it returns.
-  static std::unique_ptr<GlContext> Create(std::optional<int> device, std::string& error);
+  static Result<std::unique_ptr<GlContext>> Create(std::optional<int> device);
   ~GlContext();
   GlContext(const GlContext&) = delete;
   GlContext& operator=(const GlContext&) = delete;
 
   // Makes the context current on the calling thread (a no-op where it already is), for good.
-  bool MakeCurrent(std::string& error);
+  Status MakeCurrent();
   const std::string& renderer() const { return renderer_; }  // GL_RENDERER
   const std::string& version() const { return version_; }    // GL_VERSION
   bool es32() const { return es32_; }                         // OpenGL ES 3.2 or later: GLSL ES 3.20
 
  private:
   GlContext() = default;
-  bool SetUp(std::string& error);  // the framebuffer object, rasterizer discard, the version check
+  Status SetUp();  // the framebuffer object, rasterizer discard, the version check
 
   friend class ScopedCurrent;
   void* display_ = nullptr;  // EGLDisplay
@@ -73,11 +76,13 @@ class GlContext {
 // was current before (another engine's context, a test's, or none).
 class ScopedCurrent {
  public:
-  ScopedCurrent(GlContext& context, std::string& error);
+  explicit ScopedCurrent(GlContext& context);
   ~ScopedCurrent();
   ScopedCurrent(const ScopedCurrent&) = delete;
   ScopedCurrent& operator=(const ScopedCurrent&) = delete;
-  bool ok() const { return ok_; }
+  // Whether the context could be made current, and why not.
+  const Status& status() const { return status_; }
+  bool ok() const { return status_.ok(); }
 
  private:
   GlContext& context_;
@@ -85,7 +90,7 @@ class ScopedCurrent {
   void* previous_context_ = nullptr;
   void* previous_draw_ = nullptr;
   void* previous_read_ = nullptr;
-  bool ok_ = false;
+  Status status_;
 };
 
 }  // namespace vs11::gl

@@ -46,7 +46,7 @@ class GlEngine final : public Engine, public GlPathOwner {
   ~GlEngine() override;
 
   // Translates for a bank of `constant_count` registers, links, and makes the buffers.
-  bool Build(int constant_count, std::string& error);
+  Status Build(int constant_count);
   void Run(const VertexArrays& inputs, VertexArrays& outputs) override;
   void SetConstants(const ConstantBank& api_constants) override;
   std::string error() const override { return error_; }
@@ -54,13 +54,17 @@ class GlEngine final : public Engine, public GlPathOwner {
 
  private:
   void DeleteObjects();
-  bool RunDraw(const VertexArrays& inputs, std::size_t first, std::size_t count, VertexArrays& outputs);
+  Status RunDraw(const VertexArrays& inputs, std::size_t first, std::size_t count, VertexArrays& outputs);
+  // Keeps the message of a failed `status` as error(); whether it succeeded.
+  bool Keep(const Status& status);
   void UploadInputs(const VertexArrays& inputs, std::size_t first, std::size_t count);
   void ScatterOutputs(const float* captured, std::size_t first, std::size_t count, VertexArrays& outputs) const;
 
   Program program_;
   EngineOptions options_;
   std::unique_ptr<GlContext> context_;
+  // Why the last SetConstants or Run failed: Run returns nothing, so the engine interface reports a
+  // run's failure through error() (vm/core/machine.h); construction returns its failure instead.
   std::string error_;
   int constant_count_ = 0;
   GLuint program_object_ = 0, vertex_array_ = 0, output_buffer_ = 0, query_ = 0;
@@ -73,8 +77,7 @@ class GlEngine final : public Engine, public GlPathOwner {
 };
 
 GlEngine::~GlEngine() {
-  std::string ignored;
-  ScopedCurrent current(*context_, ignored);
+  ScopedCurrent current(*context_);
   if (current.ok()) DeleteObjects();
 }
 
@@ -105,9 +108,14 @@ std::vector<int> ActiveInputs(GLuint program) {
   return registers;
 }
 
-bool GlEngine::Build(int constant_count, std::string& error) {
-  ScopedCurrent current(*context_, error);
-  if (!current.ok()) return false;
+bool GlEngine::Keep(const Status& status) {
+  if (!status) error_ = status.message();
+  return status.ok();
+}
+
+Status GlEngine::Build(int constant_count) {
+  ScopedCurrent current(*context_);
+  if (!current.ok()) return current.status();
   DeleteObjects();
   constant_count_ = constant_count;
   captures_.clear();
@@ -123,42 +131,44 @@ bool GlEngine::Build(int constant_count, std::string& error) {
   }
   const std::string glsl =
       translate::TranslateToGlsl(program_, GlTranslateOptions(options_, constant_count, context_->es32()));
-  program_object_ = LinkTransformFeedbackProgram(glsl, varyings, error);
-  if (program_object_ == 0) {
+  const Result<unsigned> linked = LinkTransformFeedbackProgram(glsl, varyings);
+  if (!linked) {
     GLint uniform_vectors = 0;
     glGetIntegerv(GL_MAX_VERTEX_UNIFORM_VECTORS, &uniform_vectors);
-    error += fmt::format(" (the constant bank is c[{}], --max-constants; '{}' allows {} vec4 uniforms)", constant_count,
-                         context_->renderer(), uniform_vectors);
-    return false;
+    Diagnostic error = linked.error();
+    error.message += fmt::format(" (the constant bank is c[{}], --max-constants; '{}' allows {} vec4 uniforms)",
+                                 constant_count, context_->renderer(), uniform_vectors);
+    return error;
   }
+  program_object_ = *linked;
   constants_location_ = glGetUniformLocation(program_object_, "c");
   active_inputs_ = ActiveInputs(program_object_);
   glGenVertexArrays(1, &vertex_array_);
   glGenBuffers(static_cast<GLsizei>(input_buffers_.size()), input_buffers_.data());
   glGenBuffers(1, &output_buffer_);
   glGenQueries(1, &query_);
-  return GlOk("creating the vertex array and buffers", error);
+  return GlOk("creating the vertex array and buffers");
 }
 
 void GlEngine::SetConstants(const ConstantBank& api_constants) {
   if (!error_.empty()) return;
-  if (api_constants.size() != constant_count_ && !Build(api_constants.size(), error_)) return;
+  if (api_constants.size() != constant_count_ && !Keep(Build(api_constants.size()))) return;
   if (constants_location_ < 0) return;  // the program reads no constant from the bank
-  ScopedCurrent current(*context_, error_);
-  if (!current.ok()) return;
+  ScopedCurrent current(*context_);
+  if (!Keep(current.status())) return;
   std::vector<float> floats;
   floats.reserve(static_cast<std::size_t>(api_constants.size()) * 4);
   for (const Vec4f& row : api_constants.values()) floats.insert(floats.end(), row.begin(), row.end());
   glUseProgram(program_object_);
   glUniform4fv(constants_location_, api_constants.size(), floats.data());
-  GlOk("setting the constants", error_);
+  Keep(GlOk("setting the constants"));
 }
 
 void GlEngine::Run(const VertexArrays& inputs, VertexArrays& outputs) {
   if (error_.empty() && !captures_.empty() && inputs.count() > 0) {
-    ScopedCurrent current(*context_, error_);
-    for (std::size_t first = 0; current.ok() && first < inputs.count(); first += kVerticesPerDraw) {
-      if (!RunDraw(inputs, first, std::min(kVerticesPerDraw, inputs.count() - first), outputs)) break;
+    ScopedCurrent current(*context_);
+    for (std::size_t first = 0; Keep(current.status()) && first < inputs.count(); first += kVerticesPerDraw) {
+      if (!Keep(RunDraw(inputs, first, std::min(kVerticesPerDraw, inputs.count() - first), outputs))) break;
     }
   }
   if (!error_.empty()) FillWithNaN(outputs);
@@ -200,7 +210,7 @@ void GlEngine::ScatterOutputs(const float* captured, std::size_t first, std::siz
   }
 }
 
-bool GlEngine::RunDraw(const VertexArrays& inputs, std::size_t first, std::size_t count, VertexArrays& outputs) {
+Status GlEngine::RunDraw(const VertexArrays& inputs, std::size_t first, std::size_t count, VertexArrays& outputs) {
   glUseProgram(program_object_);
   glBindVertexArray(vertex_array_);
   UploadInputs(inputs, first, count);
@@ -213,22 +223,22 @@ bool GlEngine::RunDraw(const VertexArrays& inputs, std::size_t first, std::size_
   glDrawArrays(GL_POINTS, 0, static_cast<GLsizei>(count));
   glEndTransformFeedback();
   glEndQuery(GL_TRANSFORM_FEEDBACK_PRIMITIVES_WRITTEN);
-  if (!GlOk("drawing with transform feedback", error_)) return false;
+  if (Status drawn = GlOk("drawing with transform feedback"); !drawn) return drawn;
   GLuint written = 0;
   glGetQueryObjectuiv(query_, GL_QUERY_RESULT, &written);
   if (written != count) {
-    error_ = fmt::format("transform feedback captured {} of {} vertices", written, count);
-    return false;
+    return Failure(DiagnosticCode::kGlError,
+                   fmt::format("transform feedback captured {} of {} vertices", written, count));
   }
   const void* mapped = glMapBufferRange(GL_TRANSFORM_FEEDBACK_BUFFER, 0,
                                         static_cast<GLsizeiptr>(floats * sizeof(float)), GL_MAP_READ_BIT);
   if (mapped == nullptr) {
-    if (GlOk("glMapBufferRange", error_)) error_ = "glMapBufferRange returned no pointer";
-    return false;
+    if (Status mapping = GlOk("glMapBufferRange"); !mapping) return mapping;
+    return Failure(DiagnosticCode::kGlError, "glMapBufferRange returned no pointer");
   }
   ScatterOutputs(static_cast<const float*>(mapped), first, count, outputs);
   glUnmapBuffer(GL_TRANSFORM_FEEDBACK_BUFFER);
-  return GlOk("reading the transform-feedback buffer", error_);
+  return GlOk("reading the transform-feedback buffer");
 }
 
 }  // namespace
@@ -243,52 +253,46 @@ translate::TranslateOptions GlTranslateOptions(const EngineOptions& options, int
   return translation;
 }
 
-std::optional<GlPath> GlPathFromName(std::string_view name) {
-  for (GlPath path : {GlPath::kAuto, GlPath::kCompute, GlPath::kTransformFeedback}) {
-    if (GlPathName(path) == name) return path;
-  }
-  return std::nullopt;
-}
-
-std::string_view GlPathName(GlPath path) {
-  switch (path) {
-    case GlPath::kAuto: return "auto";
-    case GlPath::kCompute: return "compute";
-    case GlPath::kTransformFeedback: return "transform-feedback";
-  }
-  return "auto";
-}
-
 std::optional<GlPath> GlPathOf(const Engine& engine) {
   const auto* owner = dynamic_cast<const GlPathOwner*>(&engine);
   if (owner == nullptr || !engine.error().empty()) return std::nullopt;
   return owner->path();
 }
 
-std::unique_ptr<Engine> MakeGlEngine(const Program& program, const ConstantBank& api_constants,
-                                     const EngineOptions& options) {
-  std::string error;
+namespace {
+
+// `error` with `prefix` before its message: what failed, then why.
+Diagnostic Prefixed(Diagnostic error, std::string_view prefix) {
+  error.message.insert(0, prefix);
+  return error;
+}
+
+}  // namespace
+
+Result<std::unique_ptr<Engine>> MakeGlEngine(const Program& program, const ConstantBank& api_constants,
+                                             const EngineOptions& options) {
   const GlOptions gl_options = options.settings.Get<GlOptions>();
-  std::unique_ptr<GlContext> context = GlContext::Create(gl_options.device, error);
-  if (!context) return MakeFailedEngine("the gl engine has no OpenGL ES 3.0 device: " + error);
-  const std::string renderer = context->renderer();
-  const bool compute = OffersCompute(*context);
+  Result<std::unique_ptr<GlContext>> context = GlContext::Create(gl_options.device);
+  if (!context) return Prefixed(context.error(), "the gl engine has no OpenGL ES 3.0 device: ");
+  const std::string renderer = (*context)->renderer();
+  const std::string on_renderer = fmt::format("the gl engine on '{}': ", renderer);
+  const bool compute = OffersCompute(**context);
   if (gl_options.path == GlPath::kCompute && !compute) {
-    return MakeFailedEngine(fmt::format("the gl engine on '{}': --gl-path compute needs OpenGL ES 3.1, the context is '{}'",
-                                        renderer, context->version()));
+    return Failure(DiagnosticCode::kGlUnavailable,
+                   fmt::format("{}--gl-path compute needs OpenGL ES 3.1, the context is '{}'", on_renderer,
+                               (*context)->version()));
   }
   if (compute && gl_options.path != GlPath::kTransformFeedback) {
-    std::unique_ptr<Engine> engine = MakeGlComputeEngine(program, api_constants, options, std::move(context), error);
-    if (!engine) return MakeFailedEngine(fmt::format("the gl engine on '{}' (compute path): {}", renderer, error));
+    Result<std::unique_ptr<Engine>> engine =
+        MakeGlComputeEngine(program, api_constants, options, std::move(context).value());
+    if (!engine) return Prefixed(engine.error(), fmt::format("the gl engine on '{}' (compute path): ", renderer));
     return engine;
   }
-  auto engine = std::make_unique<GlEngine>(program, options, std::move(context));
-  if (!engine->Build(api_constants.size(), error)) {
-    return MakeFailedEngine(fmt::format("the gl engine on '{}': {}", renderer, error));
-  }
+  auto engine = std::make_unique<GlEngine>(program, options, std::move(context).value());
+  if (Status built = engine->Build(api_constants.size()); !built) return Prefixed(built.error(), on_renderer);
   engine->SetConstants(api_constants);
   if (!engine->error().empty()) {
-    return MakeFailedEngine(fmt::format("the gl engine on '{}': {}", renderer, engine->error()));
+    return Failure(DiagnosticCode::kGlError, on_renderer + engine->error());
   }
   return engine;
 }

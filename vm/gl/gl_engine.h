@@ -4,8 +4,8 @@
 // lanes go to vertex attributes vN, the API bank to `uniform vec4 c[N]` (the program's def constants
 // are in the translation), and every output register the program writes comes back from the capture.
 // Its bits are the reference engine's wherever the driver computes IEEE single precision as the
-// translation asks (README, "vs11 translate" and "The gl engine"); where no device can be had the
-// engine's error() says why.
+// translation asks (README, "vs11 translate" and "The gl engine"); where no device can be had,
+// MakeGlEngine returns the error, and a Run that fails leaves NaN outputs and says why in error().
 #pragma once
 
 #include <memory>
@@ -13,6 +13,8 @@
 #include <string_view>
 
 #include "vm/core/machine.h"
+#include "vm/core/name_table.h"
+#include "vm/core/result.h"
 #include "vm/translate/translate.h"
 
 namespace vs11::gl {
@@ -28,8 +30,10 @@ translate::TranslateOptions GlTranslateOptions(const EngineOptions& options, int
 // OpenGL ES 3.1, as llvmpipe and NVIDIA offer), or a vertex shader with transform feedback (ES 3.0,
 // at most 65536 vertices a draw). kAuto: compute where the context offers ES 3.1.
 enum class GlPath { kAuto, kCompute, kTransformFeedback };
-std::optional<GlPath> GlPathFromName(std::string_view name);  // "auto" | "compute" | "transform-feedback"
-std::string_view GlPathName(GlPath path);
+inline constexpr NameTable kGlPathNames("gl path", {
+    Choice(GlPath::kCompute, "compute", "a compute shader, OpenGL ES 3.1"),
+    Choice(GlPath::kTransformFeedback, "transform-feedback", "a vertex shader, ES 3.0"),
+    Choice(GlPath::kAuto, "auto", "compute where the context offers it")});
 
 // The gl engine's own options (EngineOptions::settings).
 struct GlOptions {
@@ -46,15 +50,15 @@ class GlPathOwner {
   virtual GlPath path() const = 0;
 };
 
-// The path `engine` runs, where it is a working gl engine; nullopt for any other engine (another kind,
-// or a gl engine that could not be built).
+// The path `engine` runs, where it is a working gl engine; nullopt for any other engine.
 std::optional<GlPath> GlPathOf(const Engine& engine);
 
-// Never null: where the context or the program cannot be had, an engine whose error() says why
-// (MakeFailedEngine). EngineOptions::threads does not apply (the driver keeps its own threads:
-// llvmpipe's LP_NUM_THREADS); options.settings' GlOptions picks the device.
-std::unique_ptr<Engine> MakeGlEngine(const Program& program, const ConstantBank& api_constants,
-                                     const EngineOptions& options);
+// An error where the context (kGlUnavailable) or the program (kGlCompile, kGlError) cannot be had, or
+// where --gl-path compute is asked of a context without OpenGL ES 3.1 (kGlUnavailable).
+// EngineOptions::threads does not apply (the driver keeps its own threads: llvmpipe's LP_NUM_THREADS);
+// options.settings' GlOptions picks the device and the path.
+Result<std::unique_ptr<Engine>> MakeGlEngine(const Program& program, const ConstantBank& api_constants,
+                                             const EngineOptions& options);
 
 // Registers the gl engine (vm/engines/engine_factory.h's RegisterEngine), so that MakeEngine("gl", ...)
 // builds MakeGlEngine. The tools call it once before they parse their arguments; vm/engines sits below

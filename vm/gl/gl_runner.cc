@@ -21,7 +21,7 @@ std::string FragmentSourceFor(const std::string& vertex_source) {
 
 }  // namespace
 
-unsigned CompileShader(unsigned kind, const std::string& source, std::string& error) {
+Result<GLuint> CompileShader(GLenum kind, const std::string& source) {
   const GLuint shader = glCreateShader(kind);
   const char* text = source.c_str();
   glShaderSource(shader, 1, &text, nullptr);
@@ -31,46 +31,43 @@ unsigned CompileShader(unsigned kind, const std::string& source, std::string& er
   if (ok == GL_TRUE) return shader;
   char log[2048] = {};
   glGetShaderInfoLog(shader, sizeof log, nullptr, log);
-  error = fmt::format("shader does not compile: {}", log);
   glDeleteShader(shader);
-  return 0;
+  return Failure(DiagnosticCode::kGlCompile, fmt::format("shader does not compile: {}", log));
 }
 
-unsigned LinkAttachedProgram(unsigned program, const char* what, std::string& error) {
+Result<unsigned> LinkAttachedProgram(unsigned program, const char* what) {
   glLinkProgram(program);
   GLint ok = GL_FALSE;
   glGetProgramiv(program, GL_LINK_STATUS, &ok);
   if (ok == GL_TRUE) return program;
   char log[2048] = {};
   glGetProgramInfoLog(program, sizeof log, nullptr, log);
-  error = fmt::format("{} does not link: {}", what, log);
   glDeleteProgram(program);
-  return 0;
+  return Failure(DiagnosticCode::kGlCompile, fmt::format("{} does not link: {}", what, log));
 }
 
-bool GlOk(const char* what, std::string& error) {
+Status GlOk(const char* what) {
   const GLenum code = glGetError();
-  if (code == GL_NO_ERROR) return true;
-  error = fmt::format("{}: GL error 0x{:04X}", what, code);
-  return false;
+  if (code == GL_NO_ERROR) return {};
+  return Failure(DiagnosticCode::kGlError, fmt::format("{}: GL error 0x{:04X}", what, code));
 }
 
-std::optional<std::vector<float>> ReadBufferFloats(unsigned buffer, std::size_t count, std::string& error) {
+Result<std::vector<float>> ReadBufferFloats(unsigned buffer, std::size_t count) {
   glBindBuffer(GL_COPY_READ_BUFFER, buffer);
   const void* mapped =
       glMapBufferRange(GL_COPY_READ_BUFFER, 0, static_cast<GLsizeiptr>(count * sizeof(float)), GL_MAP_READ_BIT);
   if (mapped == nullptr) {
-    if (GlOk("glMapBufferRange", error)) error = "glMapBufferRange returned no pointer";
-    return std::nullopt;
+    if (Status mapping = GlOk("glMapBufferRange"); !mapping) return mapping.error();
+    return Failure(DiagnosticCode::kGlError, "glMapBufferRange returned no pointer");
   }
   std::vector<float> values(count);
   std::memcpy(values.data(), mapped, count * sizeof(float));
   glUnmapBuffer(GL_COPY_READ_BUFFER);
-  if (!GlOk("reading a buffer", error)) return std::nullopt;
+  if (Status read = GlOk("reading a buffer"); !read) return read.error();
   return values;
 }
 
-std::optional<std::string> CreateLlvmpipeContext(std::optional<int> lp_threads, std::string& error) {
+Result<std::string> CreateLlvmpipeContext(std::optional<int> lp_threads) {
   if (lp_threads) {
     setenv("LP_NUM_THREADS", std::to_string(*lp_threads).c_str(), 1);
   } else {
@@ -79,20 +76,24 @@ std::optional<std::string> CreateLlvmpipeContext(std::optional<int> lp_threads, 
   // Current on this thread until the process ends, as the callers (a test's fixture, the bench's
   // child process) expect.
   static std::unique_ptr<GlContext> context;
-  context = GlContext::Create(std::nullopt, error);
-  if (!context || !context->MakeCurrent(error)) return std::nullopt;
+  Result<std::unique_ptr<GlContext>> created = GlContext::Create(std::nullopt);
+  if (!created) return created.error();
+  context = std::move(created).value();
+  if (Status current = context->MakeCurrent(); !current) return current.error();
   return context->renderer();
 }
 
-unsigned LinkTransformFeedbackProgram(const std::string& vertex_source, const std::vector<std::string>& varyings,
-                                      std::string& error) {
-  const GLuint vertex = CompileShader(GL_VERTEX_SHADER, vertex_source, error);
-  if (vertex == 0) return 0;
-  const GLuint fragment = CompileShader(GL_FRAGMENT_SHADER, FragmentSourceFor(vertex_source), error);
-  if (fragment == 0) {
+Result<unsigned> LinkTransformFeedbackProgram(const std::string& vertex_source,
+                                              const std::vector<std::string>& varyings) {
+  const Result<GLuint> vertex_shader = CompileShader(GL_VERTEX_SHADER, vertex_source);
+  if (!vertex_shader) return vertex_shader.error();
+  const GLuint vertex = *vertex_shader;
+  const Result<GLuint> fragment_shader = CompileShader(GL_FRAGMENT_SHADER, FragmentSourceFor(vertex_source));
+  if (!fragment_shader) {
     glDeleteShader(vertex);
-    return 0;
+    return fragment_shader.error();
   }
+  const GLuint fragment = *fragment_shader;
   const GLuint program = glCreateProgram();
   glAttachShader(program, vertex);
   glAttachShader(program, fragment);
@@ -101,25 +102,20 @@ unsigned LinkTransformFeedbackProgram(const std::string& vertex_source, const st
   glTransformFeedbackVaryings(program, static_cast<GLsizei>(names.size()), names.data(), GL_INTERLEAVED_ATTRIBS);
   glDeleteShader(vertex);
   glDeleteShader(fragment);
-  return LinkAttachedProgram(program, "program", error);
+  return LinkAttachedProgram(program, "program");
 }
 
-std::unique_ptr<TransformFeedbackRun> TransformFeedbackRun::Create(const std::string& vertex_source,
-                                                                   const std::vector<std::string>& varyings,
-                                                                   int output_floats,
-                                                                   const std::vector<GlAttribute>& attributes,
-                                                                   const std::vector<float>& constants,
-                                                                   std::string& error, std::size_t vertex_count) {
+Result<std::unique_ptr<TransformFeedbackRun>> TransformFeedbackRun::Create(
+    const std::string& vertex_source, const std::vector<std::string>& varyings, int output_floats,
+    const std::vector<GlAttribute>& attributes, const std::vector<float>& constants, std::size_t vertex_count) {
   std::unique_ptr<TransformFeedbackRun> run(new TransformFeedbackRun());
-  run->program_ = LinkTransformFeedbackProgram(vertex_source, varyings, error);
-  if (run->program_ == 0) return nullptr;
+  const Result<unsigned> program = LinkTransformFeedbackProgram(vertex_source, varyings);
+  if (!program) return program.error();
+  run->program_ = *program;
   glUseProgram(run->program_);
   if (!constants.empty()) {
     const GLint location = glGetUniformLocation(run->program_, "c");
-    if (location < 0) {
-      error = "the shader has no uniform vec4 c[]";
-      return nullptr;
-    }
+    if (location < 0) return Failure(DiagnosticCode::kGlCompile, "the shader has no uniform vec4 c[]");
     glUniform4fv(location, static_cast<GLsizei>(constants.size() / 4), constants.data());
   }
 
@@ -145,7 +141,7 @@ std::unique_ptr<TransformFeedbackRun> TransformFeedbackRun::Create(const std::st
                static_cast<GLsizeiptr>(run->vertex_count_ * static_cast<std::size_t>(output_floats) * sizeof(float)),
                nullptr, GL_STREAM_READ);
   glGenQueries(1, &run->query_);
-  if (!GlOk("creating the buffers", error)) return nullptr;
+  if (Status created = GlOk("creating the buffers"); !created) return created.error();
   return run;
 }
 
@@ -157,7 +153,7 @@ TransformFeedbackRun::~TransformFeedbackRun() {
   glDeleteProgram(program_);
 }
 
-bool TransformFeedbackRun::Draw(int draws, std::string& error) {
+Status TransformFeedbackRun::Draw(int draws) {
   glUseProgram(program_);
   glBindVertexArray(vertex_array_);
   glBindBufferBase(GL_TRANSFORM_FEEDBACK_BUFFER, 0, output_buffer_);
@@ -167,20 +163,20 @@ bool TransformFeedbackRun::Draw(int draws, std::string& error) {
     glEndTransformFeedback();
   }
   glFinish();
-  return GlOk("drawing with transform feedback", error);
+  return GlOk("drawing with transform feedback");
 }
 
-std::optional<std::vector<float>> TransformFeedbackRun::DrawAndRead(std::string& error) {
+Result<std::vector<float>> TransformFeedbackRun::DrawAndRead() {
   glBeginQuery(GL_TRANSFORM_FEEDBACK_PRIMITIVES_WRITTEN, query_);
-  if (!Draw(1, error)) return std::nullopt;
+  if (Status drawn = Draw(1); !drawn) return drawn.error();
   glEndQuery(GL_TRANSFORM_FEEDBACK_PRIMITIVES_WRITTEN);
   GLuint written = 0;
   glGetQueryObjectuiv(query_, GL_QUERY_RESULT, &written);
   if (written != vertex_count_) {
-    error = fmt::format("transform feedback wrote {} of {} vertices", written, vertex_count_);
-    return std::nullopt;
+    return Failure(DiagnosticCode::kGlError,
+                   fmt::format("transform feedback wrote {} of {} vertices", written, vertex_count_));
   }
-  return ReadBufferFloats(output_buffer_, vertex_count_ * static_cast<std::size_t>(output_floats_), error);
+  return ReadBufferFloats(output_buffer_, vertex_count_ * static_cast<std::size_t>(output_floats_));
 }
 
 }  // namespace vs11::gl

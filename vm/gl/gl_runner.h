@@ -8,35 +8,37 @@
 #include <string>
 #include <vector>
 
+#include "vm/core/result.h"
+
 namespace vs11::gl {
 
 // Creates a context on Mesa's llvmpipe (GlContext::Create(nullopt)) that stays current on the calling
 // thread for the rest of the process. `lp_threads`, when set, goes to LP_NUM_THREADS, which Mesa reads
 // when the display is initialised (so only the process's first display honours it). Returns
-// GL_RENDERER, or nullopt with `error` set.
-std::optional<std::string> CreateLlvmpipeContext(std::optional<int> lp_threads, std::string& error);
+// GL_RENDERER.
+Result<std::string> CreateLlvmpipeContext(std::optional<int> lp_threads);
 
 // Compiles `vertex_source` (GLSL ES, its #version on the first line) with an empty fragment shader of
-// the same version, and links them capturing `varyings` interleaved. The program object, or 0 with
-// `error` holding the info log.
-unsigned LinkTransformFeedbackProgram(const std::string& vertex_source, const std::vector<std::string>& varyings,
-                                      std::string& error);
+// the same version, and links them capturing `varyings` interleaved. The program object, or an error
+// (kGlCompile) holding the info log.
+Result<unsigned> LinkTransformFeedbackProgram(const std::string& vertex_source,
+                                              const std::vector<std::string>& varyings);
 
-// Links `program` (its shaders attached, then deleted): the program, or 0 with `error` = "WHAT does
-// not link: LOG" and the program deleted.
-unsigned LinkAttachedProgram(unsigned program, const char* what, std::string& error);
+// Links `program` (its shaders attached, then deleted): the program, or an error (kGlCompile) "WHAT does
+// not link: LOG" with the program deleted.
+Result<unsigned> LinkAttachedProgram(unsigned program, const char* what);
 
 // Compiles `source` as a shader of `kind` (GL_VERTEX_SHADER, GL_COMPUTE_SHADER, ...): the shader
-// object, or 0 with `error` holding the info log.
-unsigned CompileShader(unsigned kind, const std::string& source, std::string& error);
+// object, or an error (kGlCompile) holding the info log.
+Result<unsigned> CompileShader(unsigned kind, const std::string& source);
 
-// glGetError as text: true when there is none, else false with `error` = "WHAT: GL error 0x....".
-bool GlOk(const char* what, std::string& error);
+// glGetError as a Status: an error (kGlError) "WHAT: GL error 0x...." where GL reports one.
+Status GlOk(const char* what);
 
 // The first `count` floats of GL buffer `buffer`, mapped for reading (through GL_COPY_READ_BUFFER, so
 // no other binding changes); waits for the commands that write it. A compute pass's stores need a
-// glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT) first. nullopt with `error` set where GL fails.
-std::optional<std::vector<float>> ReadBufferFloats(unsigned buffer, std::size_t count, std::string& error);
+// glMemoryBarrier(GL_BUFFER_UPDATE_BARRIER_BIT) first. An error (kGlError) where GL fails.
+Result<std::vector<float>> ReadBufferFloats(unsigned buffer, std::size_t count);
 
 // One vertex attribute: `components` floats per vertex, vertex after vertex, at `location`.
 struct GlAttribute {
@@ -49,24 +51,20 @@ struct GlAttribute {
 // (`varyings`, interleaved, `output_floats` floats per vertex).
 class TransformFeedbackRun {
  public:
-  // Compiles and links; nullopt with `error` holding the info log on failure. Each draw runs
-  // `vertex_count` vertices; 0 takes the count from the attributes (a shader that reads no attribute
-  // needs it given).
-  static std::unique_ptr<TransformFeedbackRun> Create(const std::string& vertex_source,
-                                                      const std::vector<std::string>& varyings, int output_floats,
-                                                      const std::vector<GlAttribute>& attributes,
-                                                      const std::vector<float>& constants, std::string& error,
-                                                      std::size_t vertex_count = 0);
+  // Compiles and links; an error holding the info log on failure. Each draw runs `vertex_count`
+  // vertices; 0 takes the count from the attributes (a shader that reads no attribute needs it given).
+  static Result<std::unique_ptr<TransformFeedbackRun>> Create(
+      const std::string& vertex_source, const std::vector<std::string>& varyings, int output_floats,
+      const std::vector<GlAttribute>& attributes, const std::vector<float>& constants, std::size_t vertex_count = 0);
   ~TransformFeedbackRun();
   TransformFeedbackRun(const TransformFeedbackRun&) = delete;
   TransformFeedbackRun& operator=(const TransformFeedbackRun&) = delete;
 
-  // Issues `draws` draws of every vertex, then waits for them (glFinish). False with `error` set
-  // when GL reports an error.
-  bool Draw(int draws, std::string& error);
+  // Issues `draws` draws of every vertex, then waits for them (glFinish). An error when GL reports one.
+  Status Draw(int draws);
   // Draws once, checks that every vertex reached the buffer, and returns the outputs (output_floats
-  // per vertex); nullopt with `error` set otherwise.
-  std::optional<std::vector<float>> DrawAndRead(std::string& error);
+  // per vertex).
+  Result<std::vector<float>> DrawAndRead();
 
  private:
   TransformFeedbackRun() = default;

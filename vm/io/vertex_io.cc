@@ -156,12 +156,13 @@ void ParseConstantsText(std::string_view text, const std::string& file_name, Con
   }
 }
 
-std::optional<std::string> ParseConstantAssignment(std::string_view text, ConstantBank& bank,
-                                                   std::vector<int>* assigned) {
+Status ParseConstantAssignment(std::string_view text, ConstantBank& bank, std::vector<int>* assigned) {
   Diagnostics diagnostics;
   ParseConstantsText(text, "--const", bank, diagnostics, assigned);
-  if (diagnostics.HasErrors()) return diagnostics.all().front().message + " in '" + std::string(text) + "'";
-  return std::nullopt;
+  if (!diagnostics.HasErrors()) return {};
+  Diagnostic first = diagnostics.all().front();
+  first.message += " in '" + std::string(text) + "'";
+  return first;
 }
 
 namespace {
@@ -396,17 +397,15 @@ std::vector<Vec4f> ParseVertexCsv(std::string_view text, const std::string& file
   return rows;
 }
 
-std::optional<InputSpec> ParseInputSpec(std::string_view flag, std::string& error) {
+Result<InputSpec> ParseInputSpec(std::string_view flag) {
   std::size_t equals = flag.find('=');
   if (equals == std::string_view::npos) {
-    error = fmt::format("'{}': expected v#=FILE.csv or v#=FILE.csv:COLUMNS", flag);
-    return std::nullopt;
+    return Failure(DiagnosticCode::kInputFlag, fmt::format("'{}': expected v#=FILE.csv or v#=FILE.csv:COLUMNS", flag));
   }
   std::string_view name = flag.substr(0, equals);
   const int index = ParseInputRegister(name).value_or(-1);
   if (index < 0 || index >= kInputRegisterCount) {
-    error = fmt::format("'{}' is not an input register v0-v15", name);
-    return std::nullopt;
+    return Failure(DiagnosticCode::kInputFlag, fmt::format("'{}' is not an input register v0-v15", name));
   }
   InputSpec spec{index, std::string(flag.substr(equals + 1)), ""};
   // FILE:COLUMNS, unless the whole text names a file (a path may hold ':').
@@ -463,9 +462,9 @@ UnsetRegisters FindUnsetRegisters(const Program& program, const std::vector<int>
   return out;
 }
 
-std::optional<std::string> UnsetRegisterError(const UnsetRegisters& unset, const std::vector<int>& inputs_given,
-                                              const RegisterSources& sources) {
-  if (unset.constants.empty() && unset.inputs.empty()) return std::nullopt;
+Status CheckNoUnsetRegisters(const UnsetRegisters& unset, const std::vector<int>& inputs_given,
+                             const RegisterSources& sources) {
+  if (unset.constants.empty() && unset.inputs.empty()) return {};
   std::vector<std::string> problems;
   if (!unset.constants.empty()) {
     problems.push_back(fmt::format("the program reads {}, which neither {} sets", RegisterNames('c', unset.constants),
@@ -476,8 +475,8 @@ std::optional<std::string> UnsetRegisterError(const UnsetRegisters& unset, const
     problems.push_back(fmt::format("the program reads {}, which no {} supplies", RegisterNames('v', unset.inputs), sources.inputs));
     if (!inputs_given.empty()) problems.back() += fmt::format(" (given: {})", RegisterNames('v', inputs_given));
   }
-  return fmt::format("{}; pass {} to run with them as 0 (inputs as 0, 0, 0, 1)", fmt::join(problems, "; "),
-                     sources.allow);
+  return Failure(DiagnosticCode::kUnsetRegister, fmt::format("{}; pass {} to run with them as 0 (inputs as 0, 0, 0, 1)",
+                                                             fmt::join(problems, "; "), sources.allow));
 }
 
 std::vector<std::string> UnsetRegisterWarnings(const Program& program, const std::vector<int>& constants_given,

@@ -9,6 +9,7 @@
 
 #include "vm/core/diagnostic.h"
 #include "vm/core/machine.h"
+#include "vm/core/result.h"
 
 namespace vs11 {
 
@@ -19,9 +20,9 @@ namespace vs11 {
 void ParseConstantsText(std::string_view text, const std::string& file_name, ConstantBank& bank,
                         Diagnostics& diagnostics, std::vector<int>* assigned = nullptr);
 
-// `c4=1,0,0,1` (the --const flag). Returns an error message on failure.
-std::optional<std::string> ParseConstantAssignment(std::string_view text, ConstantBank& bank,
-                                                   std::vector<int>* assigned = nullptr);
+// `c4=1,0,0,1` (the --const flag). The error is the first problem ParseConstantsText finds, its
+// message ending "in 'TEXT'", its place "--const:1:COLUMN".
+Status ParseConstantAssignment(std::string_view text, ConstantBank& bank, std::vector<int>* assigned = nullptr);
 
 // What a run should warn about before it starts, one message each: constant registers the program
 // reads (by absolute address; matrix rows included) that neither a def nor `constants_given` set
@@ -40,18 +41,19 @@ struct UnsetRegisters {
 UnsetRegisters FindUnsetRegisters(const Program& program, const std::vector<int>& constants_given,
                                   const std::vector<int>& inputs_given);
 
-// How a caller names what sets registers, for UnsetRegisterError: `vs11 run`'s flags or Python's
+// How a caller names what sets registers, for CheckNoUnsetRegisters: `vs11 run`'s flags or Python's
 // arguments.
 struct RegisterSources {
   std::string_view constants;  // "a def, --consts or --const"
   std::string_view inputs;     // "--input or --sphere"
   std::string_view allow;      // how to run anyway: "--missing zeros"
 };
-// Why a run that refuses unset registers (the default: --missing error, missing='error') stops, or
-// nullopt when the program reads nothing unset: "the program reads c4, which neither a def, --consts
-// or --const sets (they set c44, which it never reads); ...; pass --missing zeros to ...".
-std::optional<std::string> UnsetRegisterError(const UnsetRegisters& unset, const std::vector<int>& inputs_given,
-                                              const RegisterSources& sources);
+// Why a run that refuses unset registers (the default: --missing error, missing='error') stops
+// (kUnsetRegister), or success when the program reads nothing unset: "the program reads c4, which
+// neither a def, --consts or --const sets (they set c44, which it never reads); ...; pass --missing
+// zeros to ...".
+Status CheckNoUnsetRegisters(const UnsetRegisters& unset, const std::vector<int>& inputs_given,
+                             const RegisterSources& sources);
 
 // Vertex CSV: one vertex a row. Cells are separated by ',' (or by ';' when the first row holds
 // one; a ',' is then refused as a likely decimal comma), and by blanks or tabs in either. Numbers
@@ -64,13 +66,13 @@ std::vector<Vec4f> ParseVertexCsv(std::string_view text, const std::string& file
                                   std::string_view columns = {});
 
 // The --input flag: "v1=FILE.csv" or "v1=FILE.csv:COLUMNS" (see ParseVertexCsv; a FILE that
-// exists as written, ':' and all, is taken whole). nullopt with `error` set when malformed.
+// exists as written, ':' and all, is taken whole). An error (kInputFlag) when malformed.
 struct InputSpec {
   int reg = 0;
   std::string file;
   std::string columns;
 };
-std::optional<InputSpec> ParseInputSpec(std::string_view flag, std::string& error);
+Result<InputSpec> ParseInputSpec(std::string_view flag);
 
 // Formats the written output lanes as CSV with a header `oPos.x,...,oD0.z`. `prefix` columns (header,
 // then header.size() values per row, row after row) come first when given.

@@ -118,16 +118,21 @@ std::optional<std::string> AnnotateGlb(std::string& bytes, const std::string& no
 
 }  // namespace
 
-std::optional<std::string> ExportMesh(const Mesh& mesh, const ExportAttributes& attributes,
-                                      const std::filesystem::path& path) {
+Status ExportMesh(const Mesh& mesh, const ExportAttributes& attributes, const std::filesystem::path& path) {
   std::string extension = path.extension().string();
   for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   const char* format = extension == ".ply" ? "ply" : extension == ".glb" ? "glb2" : nullptr;
-  if (format == nullptr) return fmt::format("{}: --out-mesh writes .ply or .glb files", path.string());
+  if (format == nullptr) {
+    return Failure(DiagnosticCode::kCannotWriteFile,
+                   fmt::format("{}: --out-mesh writes .ply or .glb files", path.string()));
+  }
   auto check = [&](const std::vector<Vec4f>* values) { return values == nullptr || values->size() == mesh.vertex_count; };
   bool sizes_match = check(attributes.color);
   for (const auto* texcoords : attributes.texcoords) sizes_match = sizes_match && check(texcoords);
-  if (!sizes_match) return fmt::format("{}: an output array does not hold one value per vertex", path.string());
+  if (!sizes_match) {
+    return Failure(DiagnosticCode::kCannotWriteFile,
+                   fmt::format("{}: an output array does not hold one value per vertex", path.string()));
+  }
 
   // Assimp's PLY exporter stores colours as 8-bit channels: they
   // are clamped to [0, 1] first, as D3D clamps oD0. GLB keeps float RGBA as it is.
@@ -135,15 +140,20 @@ std::optional<std::string> ExportMesh(const Mesh& mesh, const ExportAttributes& 
   std::unique_ptr<aiScene> scene = BuildScene(mesh, attributes, ply);
   Assimp::Exporter exporter;
   const aiExportDataBlob* blob = exporter.ExportToBlob(scene.get(), format);
-  if (blob == nullptr) return fmt::format("{}: Assimp could not export: {}", path.string(), exporter.GetErrorString());
-  if (blob->next != nullptr) return fmt::format("{}: Assimp wrote more than one file", path.string());
+  if (blob == nullptr) {
+    return Failure(DiagnosticCode::kCannotWriteFile,
+                   fmt::format("{}: Assimp could not export: {}", path.string(), exporter.GetErrorString()));
+  }
+  if (blob->next != nullptr) {
+    return Failure(DiagnosticCode::kCannotWriteFile, fmt::format("{}: Assimp wrote more than one file", path.string()));
+  }
   std::string bytes(static_cast<const char*>(blob->data), blob->size);
   if (!attributes.note.empty()) {
     if (ply) {
       const std::string colour_note = attributes.color != nullptr ? "\nPLY colours: clamped to [0, 1], 8-bit" : "";
       bytes = AnnotatePly(std::move(bytes), attributes.note + colour_note);
     } else if (std::optional<std::string> error = AnnotateGlb(bytes, attributes.note)) {
-      return fmt::format("{}: {}", path.string(), *error);
+      return Failure(DiagnosticCode::kCannotWriteFile, fmt::format("{}: {}", path.string(), *error));
     }
   }
   return WriteFileAtomically(path, bytes);

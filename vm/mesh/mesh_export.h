@@ -7,6 +7,7 @@
 #include <string>
 #include <vector>
 
+#include "vm/core/result.h"
 #include "vm/mesh/mesh_io.h"
 
 namespace vs11::mesh {
@@ -27,8 +28,7 @@ struct ExportAttributes {
 // float colours under a uchar header, a file no reader can read) or .glb (binary glTF 2.0).
 // Positions, normals and triangles are the mesh's own (root space, joined: one mesh, one node with
 // the identity transform). Each array in `attributes` must hold mesh.vertex_count values. The file
-// is written atomically. Returns an error message on failure.
-std::optional<std::string> ExportMesh(const Mesh& mesh, const ExportAttributes& attributes,
-                                      const std::filesystem::path& path);
+// is written atomically. An error (kCannotWriteFile) names the file and what went wrong.
+Status ExportMesh(const Mesh& mesh, const ExportAttributes& attributes, const std::filesystem::path& path);
 
 }  // namespace vs11::mesh

@@ -191,7 +191,7 @@ std::string EncodeMesh(const Mesh& mesh) {
   return out.Take();
 }
 
-std::optional<Mesh> DecodeMesh(std::span<const std::uint8_t> bytes, std::string& error) {
+Result<Mesh> DecodeMesh(std::span<const std::uint8_t> bytes) {
   Reader in(bytes);
   char magic[kMagic.size()] = {};
   in.Take(magic, sizeof magic);
@@ -231,14 +231,8 @@ std::optional<Mesh> DecodeMesh(std::span<const std::uint8_t> bytes, std::string&
   mesh.warnings.resize(in.Count("warnings", kMaxMeshVertices, sizeof(std::uint64_t)));
   for (std::string& warning : mesh.warnings) warning = in.String();
   if (!in.failed() && !in.at_end()) in.Fail("bytes after the mesh");
-  if (in.failed()) {
-    error = in.error();
-    return std::nullopt;
-  }
-  if (std::optional<std::string> problem = CheckInvariants(mesh)) {
-    error = *problem;
-    return std::nullopt;
-  }
+  if (in.failed()) return Failure(DiagnosticCode::kMeshWire, in.error());
+  if (std::optional<std::string> problem = CheckInvariants(mesh)) return Failure(DiagnosticCode::kMeshWire, *problem);
   return mesh;
 }
 
@@ -278,9 +272,9 @@ ChildReply DecodeChildReply(std::span<const std::uint8_t> bytes) {
     if (reply.result.error.empty()) return malformed("an empty error message");
     return reply;
   }
-  std::string error;
-  reply.result.mesh = DecodeMesh(body, error);
-  if (!reply.result.ok()) return malformed("an unreadable mesh: " + error);
+  Result<Mesh> mesh = DecodeMesh(body);
+  if (!mesh) return malformed("an unreadable mesh: " + mesh.message());
+  reply.result.mesh = std::move(mesh).value();
   return reply;
 }
 

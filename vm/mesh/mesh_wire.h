@@ -12,6 +12,7 @@
 #include <span>
 #include <string>
 
+#include "vm/core/result.h"
 #include "vm/mesh/mesh_io.h"
 
 namespace vs11::mesh {
@@ -21,8 +22,8 @@ inline constexpr std::size_t kMaxWireStringBytes = 4096;
 
 std::string EncodeMesh(const Mesh& mesh);
 
-// The mesh, or std::nullopt with `error` saying what is wrong with the bytes.
-std::optional<Mesh> DecodeMesh(std::span<const std::uint8_t> bytes, std::string& error);
+// The mesh, or an error (kMeshWire) saying what is wrong with the bytes.
+Result<Mesh> DecodeMesh(std::span<const std::uint8_t> bytes);
 
 // The sandboxed child's whole output: stage bytes (mesh_sandbox.h's LoadStage), then one record,
 // 'M' u64 length + EncodeMesh's bytes or 'E' u64 length + an error message.

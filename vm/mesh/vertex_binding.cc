@@ -89,27 +89,34 @@ std::string AttributeName(const AttributeRef& attribute) {
   return "?";
 }
 
-std::optional<std::string> ParseBindings(std::string_view text, std::vector<RegisterBinding>& bindings) {
+Status ParseBindings(std::string_view text, std::vector<RegisterBinding>& bindings) {
   while (true) {
     const std::size_t comma = text.find(',');
     const std::string_view item = Trim(text.substr(0, comma));
     const std::size_t equals = item.find('=');
-    if (equals == std::string_view::npos) return fmt::format("'{}': expected v#=ATTRIBUTE, e.g. v3=normal", item);
+    if (equals == std::string_view::npos) {
+      return Failure(DiagnosticCode::kBinding, fmt::format("'{}': expected v#=ATTRIBUTE, e.g. v3=normal", item));
+    }
     std::optional<int> reg = ParseInputRegister(item.substr(0, equals));
-    if (!reg) return fmt::format("'{}' is not an input register v0-v15", Trim(item.substr(0, equals)));
+    if (!reg) {
+      return Failure(DiagnosticCode::kBinding,
+                     fmt::format("'{}' is not an input register v0-v15", Trim(item.substr(0, equals))));
+    }
     std::optional<AttributeRef> attribute = AttributeFromName(item.substr(equals + 1));
     if (!attribute) {
-      return fmt::format("'{}' is not a mesh attribute (position, normal, tangent, binormal, texcoord0-7, "
-                         "color0-7, blendweight, blendindices)", Trim(item.substr(equals + 1)));
+      return Failure(DiagnosticCode::kBinding,
+                     fmt::format("'{}' is not a mesh attribute (position, normal, tangent, binormal, texcoord0-7, "
+                                 "color0-7, blendweight, blendindices)",
+                                 Trim(item.substr(equals + 1))));
     }
     bindings.push_back({*reg, *attribute, fmt::format("--bind {}", item)});
-    if (comma == std::string_view::npos) return std::nullopt;
+    if (comma == std::string_view::npos) return {};
     text.remove_prefix(comma + 1);
   }
 }
 
-std::optional<std::string> ResolveBindings(const Program& program, const std::vector<RegisterBinding>& overrides,
-                                           std::vector<RegisterBinding>& bindings) {
+Status ResolveBindings(const Program& program, const std::vector<RegisterBinding>& overrides,
+                       std::vector<RegisterBinding>& bindings) {
   bindings.clear();
   auto overridden = [&](int reg) {
     for (const RegisterBinding& b : overrides) {
@@ -128,7 +135,9 @@ std::optional<std::string> ResolveBindings(const Program& program, const std::ve
     std::optional<Attribute> attribute = AttributeOfUsage(usage);
     const bool has_sets = attribute == Attribute::kTexCoord || attribute == Attribute::kColor;
     if (!attribute || (!has_sets && instruction.usage_index != 0) || instruction.usage_index >= kMaxTexCoordSets) {
-      return fmt::format("{}: a mesh has no such attribute; bind v{} with --bind v{}=ATTRIBUTE", origin, reg, reg);
+      return Failure(
+          DiagnosticCode::kBinding,
+          fmt::format("{}: a mesh has no such attribute; bind v{} with --bind v{}=ATTRIBUTE", origin, reg, reg));
     }
     bindings.push_back({reg, {*attribute, has_sets ? instruction.usage_index : 0}, origin});
   }
@@ -136,17 +145,18 @@ std::optional<std::string> ResolveBindings(const Program& program, const std::ve
     std::erase_if(bindings, [&](const RegisterBinding& old) { return old.reg == b.reg; });
     bindings.push_back(b);
   }
-  return std::nullopt;
+  return {};
 }
 
-std::optional<std::string> BindMesh(const Mesh& mesh, const std::vector<RegisterBinding>& bindings,
-                                    const BindOptions& options, RegisterData& registers) {
+Status BindMesh(const Mesh& mesh, const std::vector<RegisterBinding>& bindings, const BindOptions& options,
+                RegisterData& registers) {
   for (const RegisterBinding& binding : bindings) {
     const std::vector<Vec4f>* array = mesh.Find(binding.attribute.attribute, binding.attribute.set);
     if (array == nullptr) {
-      return fmt::format("{} needs {}, and {} has none (it has: {}); {}", binding.origin,
-                         AttributeName(binding.attribute), options.mesh_name, ListAttributes(mesh),
-                         Hint(binding.attribute));
+      return Failure(
+          DiagnosticCode::kMeshAttributeMissing,
+          fmt::format("{} needs {}, and {} has none (it has: {}); {}", binding.origin, AttributeName(binding.attribute),
+                      options.mesh_name, ListAttributes(mesh), Hint(binding.attribute)));
     }
     std::vector<Vec4f> values = *array;
     if (binding.attribute.attribute == Attribute::kBlendIndices && options.blend_index_scale != 1.0f) {
@@ -157,15 +167,16 @@ std::optional<std::string> BindMesh(const Mesh& mesh, const std::vector<Register
     std::erase_if(registers, [&](const auto& entry) { return entry.first == binding.reg; });
     registers.emplace_back(binding.reg, std::move(values));
   }
-  return std::nullopt;
+  return {};
 }
 
-std::optional<std::string> WriteBonePalette(const Mesh& mesh, int base, ConstantBank& constants) {
-  if (mesh.bones.empty()) return "the mesh has no bones for a palette";
+Status WriteBonePalette(const Mesh& mesh, int base, ConstantBank& constants) {
+  if (mesh.bones.empty()) return Failure(DiagnosticCode::kBonePalette, "the mesh has no bones for a palette");
   const long last = static_cast<long>(base) + 3L * static_cast<long>(mesh.bones.size()) - 1;
   if (base < 0 || last >= constants.size()) {
-    return fmt::format("{} bones need c{}..c{}, beyond the {} constant registers (raise --max-constants)",
-                       mesh.bones.size(), base, last, constants.size());
+    return Failure(DiagnosticCode::kBonePalette,
+                   fmt::format("{} bones need c{}..c{}, beyond the {} constant registers (raise --max-constants)",
+                               mesh.bones.size(), base, last, constants.size()));
   }
   for (std::size_t b = 0; b < mesh.bones.size(); ++b) {
     for (int row = 0; row < 3; ++row) {
@@ -173,7 +184,7 @@ std::optional<std::string> WriteBonePalette(const Mesh& mesh, int base, Constant
       for (int column = 0; column < 4; ++column) c[column] = static_cast<float>(mesh.bones[b].skin[row][column]);
     }
   }
-  return std::nullopt;
+  return {};
 }
 
 }  // namespace vs11::mesh

@@ -16,6 +16,7 @@
 
 #include "vm/core/machine.h"
 #include "vm/core/program.h"
+#include "vm/core/result.h"
 #include "vm/mesh/mesh_io.h"
 
 namespace vs11::mesh {
@@ -34,14 +35,14 @@ struct RegisterBinding {
   std::string origin;  // "dcl_normal v3" or "--bind v3=normal", for messages
 };
 
-// Parses one --bind value into `bindings` (appended). Returns an error message on failure.
-std::optional<std::string> ParseBindings(std::string_view text, std::vector<RegisterBinding>& bindings);
+// Parses one --bind value into `bindings` (appended); an error (kBinding) on failure.
+Status ParseBindings(std::string_view text, std::vector<RegisterBinding>& bindings);
 
 // One binding per dcl_* instruction. Usages a mesh cannot supply (psize, fog, tessfactor, ...) are
-// an error naming the instruction. `overrides` (from --bind) replace the declaration of the same
-// register and may add registers the program does not declare.
-std::optional<std::string> ResolveBindings(const Program& program, const std::vector<RegisterBinding>& overrides,
-                                           std::vector<RegisterBinding>& bindings);
+// an error (kBinding) naming the instruction. `overrides` (from --bind) replace the declaration of
+// the same register and may add registers the program does not declare.
+Status ResolveBindings(const Program& program, const std::vector<RegisterBinding>& overrides,
+                       std::vector<RegisterBinding>& bindings);
 
 struct BindOptions {
   // blendindices are multiplied by this: a DX8 palette program addresses c[a0.x + base] with the
@@ -52,13 +53,14 @@ struct BindOptions {
 
 using RegisterData = std::vector<std::pair<int, std::vector<Vec4f>>>;
 
-// The arrays for each binding. An attribute the mesh lacks is an error naming the attribute, the
-// binding that wants it and the mesh, with a hint (--compute-normals, --compute-tangents, --bind).
-std::optional<std::string> BindMesh(const Mesh& mesh, const std::vector<RegisterBinding>& bindings,
-                                    const BindOptions& options, RegisterData& registers);
+// The arrays for each binding. An attribute the mesh lacks is an error (kMeshAttributeMissing)
+// naming the attribute, the binding that wants it and the mesh, with a hint (--compute-normals,
+// --compute-tangents, --bind).
+Status BindMesh(const Mesh& mesh, const std::vector<RegisterBinding>& bindings, const BindOptions& options,
+                RegisterData& registers);
 
 // Writes each bone's skin matrix (rows 0-2, a 4x3 matrix as m4x3 reads it) into constants
-// c[base + 3b] .. c[base + 3b + 2]. Errors when the palette does not fit the bank.
-std::optional<std::string> WriteBonePalette(const Mesh& mesh, int base, ConstantBank& constants);
+// c[base + 3b] .. c[base + 3b + 2]. An error (kBonePalette) when the palette does not fit the bank.
+Status WriteBonePalette(const Mesh& mesh, int base, ConstantBank& constants);
 
 }  // namespace vs11::mesh

@@ -12,6 +12,7 @@
 #include <string_view>
 #include <vector>
 
+#include "vm/core/result.h"
 #include "vm/mesh/vertex_binding.h"
 
 namespace vs11::mesh {
@@ -24,18 +25,19 @@ struct BufferElement {
   int components = 4;       // 1-4 floats; the rest read from kDefaultInput (0, 0, 0, 1)
 };
 
-// "v3=12:3" -> {3, 12, 3}. Returns an error message on failure.
-std::optional<std::string> ParseBufferElement(std::string_view text, BufferElement& element);
+// "v3=12:3" -> {3, 12, 3}; an error (kBufferElement) naming the flag otherwise.
+Status ParseBufferElement(std::string_view text, BufferElement& element);
 
 // Whether the layout is one a buffer can have, whatever its bytes: a stride of 1 to
 // kMaxBufferStride, at least one element, each of 1 to 4 floats ending within the stride (the
-// end computed without wrapping around), no register twice. The message names the flag at fault.
-std::optional<std::string> CheckBufferLayout(std::size_t stride, const std::vector<BufferElement>& elements);
+// end computed without wrapping around), no register twice. The error (kBufferLayout) names the flag
+// at fault.
+Status CheckBufferLayout(std::size_t stride, const std::vector<BufferElement>& elements);
 
 // Reads every element of every vertex into `registers` (appended, one entry per element), after
-// CheckBufferLayout; no read leaves `bytes`.
-std::optional<std::string> ReadInterleaved(std::span<const std::uint8_t> bytes, std::size_t stride,
-                                           const std::vector<BufferElement>& elements, const std::string& name,
-                                           RegisterData& registers);
+// CheckBufferLayout; no read leaves `bytes`. An error (kBufferSize) for bytes that are not whole
+// vertices or none.
+Status ReadInterleaved(std::span<const std::uint8_t> bytes, std::size_t stride,
+                       const std::vector<BufferElement>& elements, const std::string& name, RegisterData& registers);
 
 }  // namespace vs11::mesh

@@ -65,8 +65,8 @@ std::optional<MetadataError> ApplyMetadata(ProgramMetadata& m, const std::string
   }
   if (key == "packing") {
     m.packing = std::string(value);
-    if (Sh9PackingFromName(value)) return std::nullopt;
-    return bad_value(fmt::format("unknown packing '{}' ({})", value, Sh9PackingNames()));
+    if (kSh9PackingNames.Find(value)) return std::nullopt;
+    return bad_value(fmt::format("unknown packing '{}' (use {})", value, kSh9PackingNames.List()));
   }
   if (key == "normal") return input(m.normal);
   if (key == "position") return input(m.position);

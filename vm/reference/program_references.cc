@@ -273,9 +273,9 @@ std::optional<ReferenceCase> BuildSh9(const ProgramMetadata& meta, const Referen
                                       std::string& error) {
   Sh9Packing packing = Sh9Packing::kTable1;
   if (!meta.packing.empty()) {
-    std::optional<Sh9Packing> parsed = Sh9PackingFromName(meta.packing);
+    std::optional<Sh9Packing> parsed = kSh9PackingNames.Find(meta.packing);
     if (!parsed) {
-      error = fmt::format("unknown sh9 packing '{}' ({})", meta.packing, Sh9PackingNames());
+      error = kSh9PackingNames.UnknownName(meta.packing);
       return std::nullopt;
     }
     packing = *parsed;
@@ -310,7 +310,7 @@ std::optional<ReferenceCase> BuildSh9(const ProgramMetadata& meta, const Referen
     irradiance.values[i] = glm::dvec4(IrradianceEq6(sh, glm::dvec3(n)), 0.0);
   }
   rc.named_inputs.push_back({normal_reg, "normal"});
-  rc.description = fmt::format("sh9 packing={}{}", Sh9PackingName(packing), RegisterList(meta, setup->base));
+  rc.description = fmt::format("sh9 packing={}{}", kSh9PackingNames.Name(packing), RegisterList(meta, setup->base));
 
   if (meta.transform) {
     const int transform = *meta.transform;
@@ -575,35 +575,6 @@ constexpr std::array<ReferenceInfo, 6> kReferences = {{
 }};
 
 }  // namespace
-
-std::optional<Sh9Packing> Sh9PackingFromName(std::string_view name) {
-  for (Sh9Packing packing : kAllSh9Packings) {
-    if (Sh9PackingName(packing) == name) return packing;
-  }
-  return std::nullopt;
-}
-
-std::string_view Sh9PackingName(Sh9Packing packing) {
-  switch (packing) {
-    case Sh9Packing::kTable1: return "table1";
-    case Sh9Packing::kUnitSphere10: return "unit_sphere10";
-    case Sh9Packing::kMatrix: return "matrix";
-    case Sh9Packing::kBasis: return "basis";
-    case Sh9Packing::kOrder0: return "order0";
-    case Sh9Packing::kOrder1: return "order1";
-    case Sh9Packing::kZh3: return "zh3";
-  }
-  return "?";
-}
-
-std::string Sh9PackingNames() {
-  std::string names;
-  for (std::size_t i = 0; i < kAllSh9Packings.size(); ++i) {
-    names += i == 0 ? "" : i + 1 == kAllSh9Packings.size() ? " or " : ", ";
-    names += Sh9PackingName(kAllSh9Packings[i]);
-  }
-  return names;
-}
 
 std::array<glm::vec4, 12> PackMatrix(const Sh9Rgb& sh) {
   // Ramamoorthi & Hanrahan's k1..k5 from the paper's c0..c4 (sh9.h), in double.

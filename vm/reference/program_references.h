@@ -18,6 +18,7 @@
 #include <glm/glm.hpp>
 
 #include "vm/core/machine.h"
+#include "vm/core/name_table.h"
 #include "vm/reference/program_metadata.h"
 #include "vm/reference/sh9.h"
 
@@ -33,12 +34,10 @@ enum class Sh9Packing {
   kOrder1,        // bands 0 and 1, 3 registers
   kZh3,           // bands 0 and 1 plus band 2's zonal part around the linear band's axis, 5 registers
 };
-inline constexpr std::array kAllSh9Packings = {Sh9Packing::kTable1, Sh9Packing::kUnitSphere10, Sh9Packing::kMatrix,
-                                              Sh9Packing::kBasis,  Sh9Packing::kOrder0,       Sh9Packing::kOrder1,
-                                              Sh9Packing::kZh3};
-std::optional<Sh9Packing> Sh9PackingFromName(std::string_view name);
-std::string_view Sh9PackingName(Sh9Packing packing);
-std::string Sh9PackingNames();  // "table1, unit_sphere10, ... or zh3", for messages
+inline constexpr NameTable kSh9PackingNames("sh9 packing", {
+    Choice(Sh9Packing::kTable1, "table1"), Choice(Sh9Packing::kUnitSphere10, "unit_sphere10"),
+    Choice(Sh9Packing::kMatrix, "matrix"), Choice(Sh9Packing::kBasis, "basis"), Choice(Sh9Packing::kOrder0, "order0"),
+    Choice(Sh9Packing::kOrder1, "order1"), Choice(Sh9Packing::kZh3, "zh3")});
 
 // Ramamoorthi & Hanrahan 2001, eq. (12): E(n) = n^T M n with n = (x, y, z, 1) and, per channel,
 //

@@ -174,10 +174,14 @@ VerifyReport Verify(const Program& program, const ProgramMetadata& metadata, con
   const std::size_t count = rc->inputs.count();
   report.vertices = count;
 
-  std::unique_ptr<Engine> engine = MakeEngine(options.engine, program, rc->constants, options.engine_options);
+  Result<std::unique_ptr<Engine>> engine = MakeEngine(options.engine, program, rc->constants, options.engine_options);
+  if (!engine) {
+    report.error = engine.message();
+    return report;
+  }
   VertexArrays outputs = MakeOutputArrays(count, program);
-  engine->Run(rc->inputs, outputs);
-  if (report.error = engine->error(); !report.error.empty()) return report;
+  (*engine)->Run(rc->inputs, outputs);
+  if (report.error = (*engine)->error(); !report.error.empty()) return report;
   const std::array<WriteMask, kOutputSlotCount> written = WrittenOutputLanes(program);
 
   report.pass = true;
@@ -289,9 +293,13 @@ EngineComparison CompareEngines(const Program& program, std::string a, std::stri
   failed.a = a;
   failed.b = b;
   for (auto [kind, outputs] : {std::pair{a, &out_a}, std::pair{b, &out_b}}) {
-    std::unique_ptr<Engine> engine = MakeEngine(kind, program, constants, engine_options);
-    engine->Run(inputs, *outputs);
-    if (failed.error = engine->error(); !failed.error.empty()) return failed;
+    Result<std::unique_ptr<Engine>> engine = MakeEngine(kind, program, constants, engine_options);
+    if (!engine) {
+      failed.error = engine.message();
+      return failed;
+    }
+    (*engine)->Run(inputs, *outputs);
+    if (failed.error = (*engine)->error(); !failed.error.empty()) return failed;
   }
   EngineComparison comparison = CompareOutputArrays(out_a, out_b);
   comparison.a = a;

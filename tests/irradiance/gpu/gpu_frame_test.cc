@@ -38,11 +38,10 @@ constexpr double kUnitRoundoff = 0x1p-24;
 
 // Why no OpenGL ES 3.1 context can be had here, or nullopt.
 std::optional<std::string> NoEs31Context() {
-  std::string error;
-  const std::unique_ptr<vs11::gl::GlContext> context = vs11::gl::GlContext::Create(std::nullopt, error);
-  if (!context) return error;
-  if (!vs11::gl::OffersCompute(*context)) {
-    return fmt::format("'{}' offers '{}'", context->renderer(), context->version());
+  const Result<std::unique_ptr<vs11::gl::GlContext>> context = vs11::gl::GlContext::Create(std::nullopt);
+  if (!context) return context.message();
+  if (!vs11::gl::OffersCompute(**context)) {
+    return fmt::format("'{}' offers '{}'", (*context)->renderer(), (*context)->version());
   }
   return std::nullopt;
 }
@@ -66,19 +65,17 @@ Cpu CpuPyramids(const CubeMap& environment) {
 }
 
 PaperProgram Paper() {
-  std::string error;
-  std::optional<PaperProgram> program = PaperProgram::Load(error);
-  EXPECT_TRUE(program) << error;
-  return std::move(*program);
+  Result<PaperProgram> program = PaperProgram::Load();
+  EXPECT_TRUE(program) << program.message();
+  return std::move(program).value();
 }
 
 std::unique_ptr<GpuFrame> MakeFrame(const BasisPyramid& basis, int level) {
   const PaperProgram paper = Paper();
-  std::string error;
-  std::unique_ptr<GpuFrame> frame = GpuFrame::Create(std::nullopt, basis, level, paper.Constants(SevenConstants{}).size(),
-                                                     paper.constant_base(), error);
-  EXPECT_TRUE(frame) << error;
-  return frame;
+  Result<std::unique_ptr<GpuFrame>> frame =
+      GpuFrame::Create(std::nullopt, basis, level, paper.Constants(SevenConstants{}).size(), paper.constant_base());
+  EXPECT_TRUE(frame) << frame.message();
+  return frame ? std::move(frame).value() : nullptr;
 }
 
 // An environment's CPU pyramids and a GPU frame for one of its levels.
@@ -94,12 +91,13 @@ Setup SetUpFrame(const CubeMap& environment, int level) {
 }
 
 Sh9Rgb ProjectOnGpu(GpuFrame& frame, const CubeMap& environment) {
-  std::string error;
-  EXPECT_TRUE(frame.Upload(environment, error)) << error;
-  EXPECT_TRUE(frame.Project(error)) << error;
-  const std::optional<Sh9Rgb> sh = frame.ReadCoefficients(error);
-  EXPECT_TRUE(sh) << error;
-  return sh.value_or(Sh9Rgb{});
+  const Status uploaded = frame.Upload(environment);
+  EXPECT_TRUE(uploaded) << uploaded.message();
+  const Status projected = frame.Project();
+  EXPECT_TRUE(projected) << projected.message();
+  const Result<Sh9Rgb> sh = frame.ReadCoefficients();
+  EXPECT_TRUE(sh) << sh.message();
+  return sh ? *sh : Sh9Rgb{};
 }
 
 // B_lm,c of GpuProjectionErrorFactor: the sum of the absolute values of every term of each
@@ -173,9 +171,8 @@ TEST(GpuFrame, ConstantsAreTable1OfItsCoefficients) {
   const auto [cpu, frame] = SetUpFrame(environment, 1);
   ASSERT_TRUE(frame);
   const Sh9Rgb sh = ProjectOnGpu(*frame, environment);
-  std::string error;
-  const std::optional<SevenConstants> constants = frame->ReadConstants(error);
-  ASSERT_TRUE(constants) << error;
+  const Result<SevenConstants> constants = frame->ReadConstants();
+  ASSERT_TRUE(constants) << constants.message();
   // The packing's terms by absolute value: L20 negated makes cA.w c0 |L00| + c3 |L20|.
   Sh9Rgb magnitudes = sh;
   for (glm::dvec3& c : magnitudes.coefficients) c = glm::abs(c);
@@ -192,10 +189,9 @@ TEST(GpuFrame, ConstantsAreTable1OfItsCoefficients) {
 // Lanes of the program stage's last run that differ from the jit's with the constants the frame holds.
 int LanesDifferingFromTheJit(GpuFrame& frame, ProgramStage& stage, const PaperProgram& paper,
                              const std::vector<glm::vec3>& normals) {
-  std::string error;
-  const std::optional<std::vector<glm::vec3>> gpu = stage.Read(error);
-  const std::optional<SevenConstants> constants = frame.ReadConstants(error);
-  EXPECT_TRUE(gpu && constants) << error;
+  const Result<std::vector<glm::vec3>> gpu = stage.Read();
+  const Result<SevenConstants> constants = frame.ReadConstants();
+  EXPECT_TRUE(gpu && constants) << gpu.message() << constants.message();
   if (!gpu || !constants) return -1;
   const std::vector<glm::dvec3> inputs(normals.begin(), normals.end());
   const std::vector<glm::dvec3> jit = paper.Irradiance(*constants, inputs, "jit");
@@ -215,11 +211,11 @@ TEST(GpuFrame, ProgramMatchesTheJitWithTheSameConstants) {
   const PaperProgram paper = Paper();
   const std::vector<glm::dvec3> normals = SphereNormals(1000);
   const std::vector<glm::vec3> float_normals(normals.begin(), normals.end());
-  std::string error;
-  const std::unique_ptr<ProgramStage> stage = ProgramStage::Create(*frame, paper, float_normals, error);
-  ASSERT_TRUE(stage) << error;
+  Result<std::unique_ptr<ProgramStage>> made = ProgramStage::Create(*frame, paper, float_normals);
+  ASSERT_TRUE(made) << made.message();
+  const std::unique_ptr<ProgramStage> stage = std::move(made).value();
   ProjectOnGpu(*frame, environment);
-  ASSERT_TRUE(stage->Run(error)) << error;
+  ASSERT_EQ(stage->Run().message(), "");
   EXPECT_EQ(LanesDifferingFromTheJit(*frame, *stage, paper, float_normals), 0) << "of " << normals.size() * 3;
 }
 
@@ -233,17 +229,17 @@ TEST(GpuFrame, ProgramReadsTheConstantsOfTheLatestFrame) {
   const PaperProgram paper = Paper();
   const std::vector<glm::dvec3> normals = SphereNormals(200);
   const std::vector<glm::vec3> float_normals(normals.begin(), normals.end());
-  std::string error;
-  const std::unique_ptr<ProgramStage> stage = ProgramStage::Create(*frame, paper, float_normals, error);
-  ASSERT_TRUE(stage) << error;
+  Result<std::unique_ptr<ProgramStage>> made = ProgramStage::Create(*frame, paper, float_normals);
+  ASSERT_TRUE(made) << made.message();
+  const std::unique_ptr<ProgramStage> stage = std::move(made).value();
   ProjectOnGpu(*frame, sky);
-  ASSERT_TRUE(stage->Run(error)) << error;
-  const std::optional<std::vector<glm::vec3>> under_sky = stage->Read(error);
-  ASSERT_TRUE(under_sky) << error;
+  ASSERT_EQ(stage->Run().message(), "");
+  const Result<std::vector<glm::vec3>> under_sky = stage->Read();
+  ASSERT_TRUE(under_sky) << under_sky.message();
   ProjectOnGpu(*frame, spot);
-  ASSERT_TRUE(stage->Run(error)) << error;
-  const std::optional<std::vector<glm::vec3>> under_spot = stage->Read(error);
-  ASSERT_TRUE(under_spot) << error;
+  ASSERT_EQ(stage->Run().message(), "");
+  const Result<std::vector<glm::vec3>> under_spot = stage->Read();
+  ASSERT_TRUE(under_spot) << under_spot.message();
   EXPECT_NE(*under_sky, *under_spot);
   EXPECT_EQ(LanesDifferingFromTheJit(*frame, *stage, paper, float_normals), 0);
 }

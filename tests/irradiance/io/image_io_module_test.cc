@@ -18,8 +18,10 @@ using ::testing::HasSubstr;
 TEST(ImageIoModule, MissingModuleNamesEveryFileLookedFor) {
   const std::vector<fs::path> candidates = {"/nonexistent/a/libvs11_image_io.so",
                                             "/nonexistent/b/libvs11_image_io.so"};
-  std::string error;
-  EXPECT_EQ(LoadImageIoModule(candidates, error), nullptr);
+  const Result<const ImageIoApi*> module = LoadImageIoModule(candidates);
+  ASSERT_FALSE(module.ok());
+  EXPECT_EQ(module.error().code, DiagnosticCode::kImageIoModule);
+  const std::string error = module.message();
   EXPECT_THAT(error, HasSubstr("OpenImageIO"));
   EXPECT_THAT(error, HasSubstr("missing"));
   EXPECT_THAT(error, HasSubstr("/nonexistent/a/libvs11_image_io.so, /nonexistent/b/libvs11_image_io.so"));
@@ -29,8 +31,7 @@ TEST(ImageIoModule, SharedObjectWithoutTheEntryPointIsRefusedByName) {
   // Any shared object that is not the module: the C library's math library is everywhere.
   const fs::path foreign = "/lib/x86_64-linux-gnu/libm.so.6";
   if (!fs::exists(foreign)) GTEST_SKIP() << foreign << " is not here";
-  std::string error;
-  EXPECT_EQ(LoadImageIoModule({"/nonexistent/libvs11_image_io.so", foreign}, error), nullptr);
+  const std::string error = LoadImageIoModule({"/nonexistent/libvs11_image_io.so", foreign}).message();
   EXPECT_THAT(error, HasSubstr(foreign.string()));
   EXPECT_THAT(error, HasSubstr(kImageIoEntryPoint));
 }
@@ -45,11 +46,10 @@ TEST(ImageIoModule, LooksBesideTheProgramThenInItsLibFolderFirst) {
 }
 
 TEST(ImageIoModule, TheBuiltModuleLoadsAndIsLoadedOnce) {
-  std::string error;
-  const ImageIoApi* first = ImageIo(error);
-  ASSERT_NE(first, nullptr) << error;
-  EXPECT_NE(first->read, nullptr);
-  EXPECT_EQ(ImageIo(error), first);
+  const Result<const ImageIoApi*> first = ImageIo();
+  ASSERT_TRUE(first) << first.message();
+  EXPECT_NE((*first)->read, nullptr);
+  EXPECT_EQ(ImageIo().value(), *first);
 }
 
 }  // namespace

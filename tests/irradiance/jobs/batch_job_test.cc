@@ -48,7 +48,7 @@ class BatchJob : public ::testing::Test {
   std::string WriteSky(const std::string& name, double azimuth) {
     SkyParams params;
     params.sun_azimuth_degrees = azimuth;
-    EXPECT_EQ(WriteCrossExr(MakeSky(kFace, params), Path(name)), std::nullopt);
+    EXPECT_EQ(WriteCrossExr(MakeSky(kFace, params), Path(name)).message(), "");
     return Path(name).string();
   }
 
@@ -206,15 +206,21 @@ TEST_F(BatchJob, InputsComeFromListsAndPatternsSortedOnce) {
   WriteSky("b.exr", 0.0);
   WriteSky("a.exr", 10.0);
   std::ofstream(Path("list.txt")) << "# comment\n\n" << Path("b.exr").string() << "\n  " << Path("*.exr").string() << "\n";
-  std::string error;
-  const std::vector<std::string> inputs = ExpandBatchInputs({Path("a.exr").string()}, {Path("list.txt")}, error);
-  EXPECT_EQ(error, "");
-  EXPECT_EQ(inputs, (std::vector<std::string>{Path("a.exr").string(), Path("b.exr").string()}));
-  ExpandBatchInputs({Path("*.none").string()}, {}, error);
-  EXPECT_NE(error.find("matches no file"), std::string::npos) << error;
-  error.clear();
-  ExpandBatchInputs({}, {Path("no-list.txt")}, error);
-  EXPECT_NE(error.find("no-list.txt"), std::string::npos) << error;
+  const Result<std::vector<std::string>> inputs = ExpandBatchInputs({Path("a.exr").string()}, {Path("list.txt")});
+  ASSERT_TRUE(inputs) << inputs.message();
+  EXPECT_EQ(*inputs, (std::vector<std::string>{Path("a.exr").string(), Path("b.exr").string()}));
+  const Result<std::vector<std::string>> none = ExpandBatchInputs({Path("*.none").string()}, {});
+  EXPECT_EQ(none.error().code, DiagnosticCode::kNoSuchInput);
+  EXPECT_NE(none.message().find("matches no file"), std::string::npos) << none.message();
+  const Result<std::vector<std::string>> no_list = ExpandBatchInputs({}, {Path("no-list.txt")});
+  EXPECT_EQ(no_list.error().code, DiagnosticCode::kCannotReadFile);
+  EXPECT_NE(no_list.message().find("no-list.txt"), std::string::npos) << no_list.message();
+  // A list's entry that matches nothing is placed at the list's line.
+  std::ofstream(Path("bad-list.txt")) << "# comment\n" << Path("*.none").string() << "\n";
+  const Result<std::vector<std::string>> bad_entry = ExpandBatchInputs({}, {Path("bad-list.txt")});
+  ASSERT_FALSE(bad_entry.ok());
+  EXPECT_EQ(bad_entry.error().loc, (SourceLoc{Path("bad-list.txt").string(), 2, 0}));
+  EXPECT_TRUE(bad_entry.message().starts_with(Path("bad-list.txt").string() + ":2: ")) << bad_entry.message();
 }
 
 TEST(BatchShard, ParsesKOverN) {
@@ -386,8 +392,7 @@ TEST_F(BatchJob, ResumeKnowsAnInputByItsCanonicalPath) {
   }
   EXPECT_EQ(Records(options.output).size(), 2u);
 
-  std::string error;
-  EXPECT_EQ(ExpandBatchInputs({a, relative_a, (Path(".") / "a.exr").string()}, {}, error).size(), 1u);
+  EXPECT_EQ(ExpandBatchInputs({a, relative_a, (Path(".") / "a.exr").string()}, {}).value().size(), 1u);
 }
 
 }  // namespace

@@ -88,9 +88,8 @@ TEST(Irrmap, DefaultLevelIsThe64x64LevelOfLargerFaces) {
 }
 
 TEST(Irrmap, PaperProgramReadsItsRegistersFromTheMetadataAndMatchesEq6) {
-  std::string error;
-  std::optional<PaperProgram> program = PaperProgram::Load(error);
-  ASSERT_TRUE(program) << error;
+  Result<PaperProgram> program = PaperProgram::Load();
+  ASSERT_TRUE(program) << program.message();
   EXPECT_EQ(program->normal_register(), 0);
   EXPECT_EQ(program->constant_base(), 0);
   EXPECT_EQ(OutputSlotName(program->output_slot()), "oD0");
@@ -253,7 +252,7 @@ TEST_F(IrrmapJob, RejectsAMissingFile) {
 
 TEST_F(IrrmapJob, RejectsALayoutThatDoesNotFitTheFile) {
   const fs::path cross = folder_ / "cross.exr";
-  ASSERT_EQ(WriteCrossExr(*MakeBuiltinEnvironment("spot", 16), cross), std::nullopt);
+  ASSERT_EQ(WriteCrossExr(*MakeBuiltinEnvironment("spot", 16), cross).message(), "");
   options_.environment = cross.string();
   options_.layout = EnvironmentLayout::kLatLong;
   EXPECT_TRUE(RunIrrmap(options_, report_));
@@ -262,7 +261,7 @@ TEST_F(IrrmapJob, RejectsALayoutThatDoesNotFitTheFile) {
 
 TEST_F(IrrmapJob, RejectsACubeWhoseFaceSizeIsNotAPowerOfTwo) {
   const fs::path cross = folder_ / "cross24.exr";
-  ASSERT_EQ(WriteCrossExr(MakeConstant(24), cross), std::nullopt);
+  ASSERT_EQ(WriteCrossExr(MakeConstant(24), cross).message(), "");
   options_.environment = cross.string();
   const std::optional<std::string> error = RunIrrmap(options_, report_);
   ASSERT_TRUE(error);
@@ -287,7 +286,7 @@ TEST_F(IrrmapJob, RejectsBadOptionsBeforeAnyWork) {
 
 TEST_F(IrrmapJob, ReadsACrossFileAndNamesItsLayout) {
   const fs::path cross = folder_ / "studio.exr";
-  ASSERT_EQ(WriteCrossExr(*MakeBuiltinEnvironment("studio", 16), cross), std::nullopt);
+  ASSERT_EQ(WriteCrossExr(*MakeBuiltinEnvironment("studio", 16), cross).message(), "");
   options_.environment = cross.string();
   options_.engine = "ref";
   ASSERT_EQ(RunIrrmap(options_, report_), std::nullopt);
@@ -341,7 +340,7 @@ bool UsePanoramaFile(const fs::path& folder, IrrmapOptions& options) {
   const fs::path file = folder / "pano.exr";
   options.environment = file.string();
   options.window = ShWindow::kNone;
-  return !WriteImage(Panorama(), file);
+  return WriteImage(Panorama(), file).ok();
 }
 
 bool HasTiming(const IrrmapReport& report, std::string_view name) {

@@ -110,9 +110,8 @@ TEST_F(MeshLightingTest, PictureShowsTheLitMeshBesideTheTruthAndTheError) {
   MeshGeometry geometry;
   std::vector<std::string> warnings;
   ASSERT_EQ(LoadMeshGeometry(kWuson, geometry, warnings), std::nullopt);
-  std::string error;
-  std::optional<PaperProgram> program = PaperProgram::Load(error);
-  ASSERT_TRUE(program) << error;
+  Result<PaperProgram> program = PaperProgram::Load();
+  ASSERT_TRUE(program) << program.message();
   // A constant environment of radiance 1: E = pi for every normal.
   CubeMap environment(kTestFaceSize, glm::vec3(1.0f));
   const double truth_error = ConstantTruthError(kTestFaceSize);

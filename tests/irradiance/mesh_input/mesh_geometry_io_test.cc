@@ -59,9 +59,8 @@ TEST(LoadMeshGeometry, AnStlWithZeroNormalsIsLitBySky) {
   MeshGeometry geometry;
   std::vector<std::string> warnings;
   ASSERT_EQ(LoadMeshGeometry(kWusonStl, geometry, warnings), std::nullopt);
-  std::string error;
-  std::optional<PaperProgram> program = PaperProgram::Load(error);
-  ASSERT_TRUE(program) << error;
+  Result<PaperProgram> program = PaperProgram::Load();
+  ASSERT_TRUE(program) << program.message();
   const CubeMap sky = *MakeBuiltinEnvironment("sky", 8);
   MeshLightingOptions options;
   options.truth_vertex_limit = 1;  // the program's irradiance alone

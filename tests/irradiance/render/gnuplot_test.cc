@@ -47,7 +47,7 @@ GnuplotChart LineChart() {
 TEST_F(Gnuplot, DrawsSvgAndPngAndLeavesNothingElse) {
   const fs::path svg = folder_ / "chart.svg";
   const fs::path png = folder_ / "chart.png";
-  ASSERT_EQ(RenderGnuplotChart(LineChart(), {svg, png}), std::nullopt);
+  ASSERT_EQ(RenderGnuplotChart(LineChart(), {svg, png}).message(), "");
   EXPECT_THAT(ReadText(svg), HasSubstr("<svg"));
   EXPECT_THAT(ReadText(svg), HasSubstr("it's a test"));
   EXPECT_THAT(ReadText(png), StartsWith("\x89PNG"));
@@ -57,16 +57,16 @@ TEST_F(Gnuplot, DrawsSvgAndPngAndLeavesNothingElse) {
 TEST_F(Gnuplot, AScriptErrorIsReportedAndNoImageIsLeft) {
   GnuplotChart chart = LineChart();
   chart.script = "plot datafile using 1:2 with nonsense_style";
-  const std::optional<std::string> error = RenderGnuplotChart(chart, {folder_ / "chart.svg"});
-  ASSERT_TRUE(error);
-  EXPECT_THAT(*error, HasSubstr("gnuplot failed"));
+  const Status error = RenderGnuplotChart(chart, {folder_ / "chart.svg"});
+  ASSERT_FALSE(error.ok());
+  EXPECT_THAT(error.message(), HasSubstr("gnuplot failed"));
   EXPECT_EQ(FileCount(), 0u);
 }
 
 TEST_F(Gnuplot, AnUnknownExtensionIsRefused) {
-  const std::optional<std::string> error = RenderGnuplotChart(LineChart(), {folder_ / "chart.gif"});
-  ASSERT_TRUE(error);
-  EXPECT_THAT(*error, HasSubstr(".svg or .png"));
+  const Status error = RenderGnuplotChart(LineChart(), {folder_ / "chart.gif"});
+  ASSERT_FALSE(error.ok());
+  EXPECT_THAT(error.message(), HasSubstr(".svg or .png"));
   EXPECT_EQ(FileCount(), 0u);
 }
 
@@ -76,7 +76,7 @@ TEST_F(Gnuplot, LogAxisTickLabelsReadLikeNumbers) {
   chart.data = "100 0.00001\n0.25 5000\n";
   chart.script = "set logscale x\nset xrange [*:*] reverse\nset logscale y\n"
                  "plot datafile using 1:2 with lines notitle\n";
-  ASSERT_EQ(RenderGnuplotChart(chart, {folder_ / "log.svg"}), std::nullopt);
+  ASSERT_EQ(RenderGnuplotChart(chart, {folder_ / "log.svg"}).message(), "");
   const std::string svg = ReadText(folder_ / "log.svg");
   EXPECT_THAT(svg, ::testing::ContainsRegex(">10000<"));
   EXPECT_THAT(svg, ::testing::ContainsRegex(">1e-05<"));

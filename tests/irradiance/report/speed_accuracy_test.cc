@@ -168,7 +168,7 @@ TEST(SpeedAccuracy, CurvesAreNamedByTheFilesBaseNameAsWritten) {
   const fs::path folder = fs::path(::testing::TempDir()) / "vs11_speed_accuracy_labels";
   fs::remove_all(folder);
   fs::create_directories(folder);
-  ASSERT_EQ(RenderGnuplotChart(chart, {folder / "chart.svg"}), std::nullopt);
+  ASSERT_EQ(RenderGnuplotChart(chart, {folder / "chart.svg"}).message(), "");
   std::ifstream svg(folder / "chart.svg");
   const std::string text(std::istreambuf_iterator<char>(svg), {});
   EXPECT_THAT(text, HasSubstr(">probulator_grace.hdr (mip pyramid)<"));

@@ -226,9 +226,9 @@ TEST(StabilityTest, ProgramsDifferOffTheSphereByTheL20Term) {
   const Sh9Rgb sky = ProjectDirect(MakeSky(kFaceSize));
   const std::vector<glm::dvec3> normals = SphereNormals(kNormals);
   const std::vector<double> lengths = {1.0, 1.1, 0.5};
-  std::string error;
-  const ProgramPrecision result = MeasureNormalLengths(sky, normals, lengths, error);
-  ASSERT_EQ(error, "");
+  const Result<ProgramPrecision> measured = MeasureNormalLengths(sky, normals, lengths);
+  ASSERT_TRUE(measured) << measured.message();
+  const ProgramPrecision& result = *measured;
   ASSERT_EQ(result.lengths.size(), 3u);
   EXPECT_LT(result.lengths[0].paper_error, 1e-6);
   EXPECT_LT(result.lengths[0].unit10_error, 1e-6);
@@ -253,9 +253,9 @@ TEST(StabilityTest, ProgramsDifferOffTheSphereByTheL20Term) {
 TEST(StabilityTest, DenormalConstantsAreKeptNotFlushed) {
   const Sh9Rgb sky = ProjectDirect(MakeSky(kFaceSize));
   const std::vector<double> scales = {1.0, 1e-40, 1e-43};
-  std::string error;
-  const std::vector<ScaledRun> runs = MeasureScaledRuns(sky, SphereNormals(kNormals), scales, error);
-  ASSERT_EQ(error, "");
+  const Result<std::vector<ScaledRun>> measured = MeasureScaledRuns(sky, SphereNormals(kNormals), scales);
+  ASSERT_TRUE(measured) << measured.message();
+  const std::vector<ScaledRun>& runs = *measured;
   EXPECT_FALSE(runs[0].constants_denormal);
   EXPECT_LT(runs[0].batch_error, 1e-5);
   // Denormal constants keep gradual underflow: measured 0.012 % at 1e-40 (a flush to zero would
@@ -268,17 +268,17 @@ TEST(StabilityTest, DenormalConstantsAreKeptNotFlushed) {
 }
 
 TEST(StabilityTest, HdrSunKeepsFloatPrecisionInTheProgram) {
-  std::string error;
-  const HdrResult hdr = MeasureHdrSky(kFaceSize, 1e6, SphereNormals(kNormals), 2, error);
-  ASSERT_EQ(error, "");
+  const Result<HdrResult> measured = MeasureHdrSky(kFaceSize, 1e6, SphereNormals(kNormals), 2);
+  ASSERT_TRUE(measured) << measured.message();
+  const HdrResult& hdr = *measured;
   EXPECT_GT(hdr.peak_irradiance, 100.0);
   EXPECT_LT(hdr.program_error, 1e-6);  // measured 1.1e-7 of the peak: float rounding only
 }
 
 TEST(StabilityTest, ABlackEnvironmentStaysExactlyZero) {
-  std::string error;
-  const ZeroEnvironmentResult zero = MeasureZeroEnvironment(16, SphereNormals(kNormals), error);
-  ASSERT_EQ(error, "");
+  const Result<ZeroEnvironmentResult> measured = MeasureZeroEnvironment(16, SphereNormals(kNormals));
+  ASSERT_TRUE(measured) << measured.message();
+  const ZeroEnvironmentResult& zero = *measured;
   EXPECT_TRUE(zero.coefficients_zero);
   EXPECT_TRUE(zero.program_zero);
   EXPECT_TRUE(zero.error_stats_finite);

@@ -75,9 +75,8 @@ TEST(ConstantsOutput, DefTextAssemblesInsideAProgramWithTheSameBits) {
 }
 
 TEST(ConstantsOutput, PaperProgramWithParsedConstantsReproducesEq6) {
-  std::string error;
-  std::optional<PaperProgram> program = PaperProgram::Load(error);
-  ASSERT_TRUE(program) << error;
+  Result<PaperProgram> program = PaperProgram::Load();
+  ASSERT_TRUE(program) << program.message();
   const std::vector<glm::dvec3> normals = SphereNormals(500);
   for (std::uint64_t seed : {11u, 12u, 13u}) {
     const Sh9Rgb sh = RandomCoefficients(seed);
@@ -94,7 +93,7 @@ TEST(ConstantsOutput, PaperProgramWithParsedConstantsReproducesEq6) {
         }
       }
       VertexArrays outputs = MakeOutputArrays(normals.size(), program->program());
-      MakeEngine(kind, program->program(), bank)->Run(inputs, outputs);
+      MakeEngine(kind, program->program(), bank).value()->Run(inputs, outputs);
       double scale = 0.0;
       for (const glm::dvec3& n : normals) {
         const glm::dvec3 e = IrradianceEq6(sh, n);

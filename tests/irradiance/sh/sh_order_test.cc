@@ -30,9 +30,8 @@ TEST(ShOrder, ProgramsHaveTheirSlotsAndComputeTheirRegistersPolynomial) {
   const std::vector<glm::dvec3> normals = SphereNormals(300);
   const Sh9Rgb sh = RandomCoefficients(3);
   for (ShOrder order : kAllShOrders) {
-    std::string error;
-    const std::optional<PaperProgram> program = PaperProgram::LoadOrder(order, error);
-    ASSERT_TRUE(program) << error;
+    const Result<PaperProgram> program = PaperProgram::LoadOrder(order);
+    ASSERT_TRUE(program) << program.message();
     EXPECT_EQ(ComputeStats(program->program()).slots, Info(order).slots) << ShOrderName(order);
     const std::vector<NamedRegister> registers = PackShOrder(sh, order);
     for (std::string engine : {"ref", "batch"}) {

@@ -147,7 +147,7 @@ TEST(UninitializedRead, UnwrittenLaneReadsZeroOnEveryEngine) {
   }
   const Vec4f expected = {(1 + 0.5f) * 2, 4 * 2, 9 * 2, 0};
   for (std::string kind : {"ref", "batch", "jit"}) {
-    std::unique_ptr<Engine> engine = MakeEngine(kind, *result.program, constants);
+    std::unique_ptr<Engine> engine = MakeEngine(kind, *result.program, constants).value();
     VertexArrays outputs = MakeOutputArrays(kCount, *result.program);
     engine->Run(inputs, outputs);
     for (int lane = 0; lane < 4; ++lane) {

@@ -61,25 +61,26 @@ TEST_F(AtomicFileTest, TemporaryIsHiddenBesideTheTargetWithItsExtensionAndNeverR
 }
 
 TEST_F(AtomicFileTest, WriteReplacesTheFileAndLeavesNoTemporary) {
-  ASSERT_FALSE(WriteFileAtomically(dir_ / "out.txt", std::string_view("first")));
-  ASSERT_FALSE(WriteFileAtomically(dir_ / "out.txt", std::string_view("second")));
+  ASSERT_TRUE(WriteFileAtomically(dir_ / "out.txt", std::string_view("first")).ok());
+  ASSERT_TRUE(WriteFileAtomically(dir_ / "out.txt", std::string_view("second")).ok());
   EXPECT_EQ(Read(dir_ / "out.txt"), "second");
   EXPECT_EQ(Entries(), std::vector<std::string>{"out.txt"});
 }
 
 TEST_F(AtomicFileTest, WriteIntoAMissingFolderFailsNamingThePath) {
   const fs::path path = dir_ / "missing" / "out.txt";
-  const std::optional<std::string> error = WriteFileAtomically(path, std::string_view("x"));
-  ASSERT_TRUE(error);
-  EXPECT_NE(error->find(path.string()), std::string::npos) << *error;
+  const Status error = WriteFileAtomically(path, std::string_view("x"));
+  ASSERT_FALSE(error.ok());
+  EXPECT_EQ(error.error().code, DiagnosticCode::kCannotWriteFile);
+  EXPECT_NE(error.message().find(path.string()), std::string::npos) << error.message();
   EXPECT_TRUE(Entries().empty());
 }
 
 TEST_F(AtomicFileTest, WriteOverAFolderFailsAndLeavesTheFolderAndNoTemporary) {
   fs::create_directories(dir_ / "taken");
-  const std::optional<std::string> error = WriteFileAtomically(dir_ / "taken", std::string_view("x"));
-  ASSERT_TRUE(error);
-  EXPECT_NE(error->find((dir_ / "taken").string()), std::string::npos) << *error;
+  const Status error = WriteFileAtomically(dir_ / "taken", std::string_view("x"));
+  ASSERT_FALSE(error.ok());
+  EXPECT_NE(error.message().find((dir_ / "taken").string()), std::string::npos) << error.message();
   EXPECT_EQ(Entries(), std::vector<std::string>{"taken"});
   EXPECT_TRUE(fs::is_directory(dir_ / "taken"));
 }
@@ -93,9 +94,9 @@ TEST_F(AtomicFileTest, CommitStopsAtTheFirstFailureAndRemovesTheTemporariesLeft)
   }
   fs::create_directories(dir_ / "b.txt" / "inside");  // a non-empty folder cannot be renamed over
   std::vector<fs::path> renamed;
-  const std::optional<std::string> error = CommitRenames(renames, &renamed);
-  ASSERT_TRUE(error);
-  EXPECT_NE(error->find((dir_ / "b.txt").string()), std::string::npos) << *error;
+  const Status error = CommitRenames(renames, &renamed);
+  ASSERT_FALSE(error.ok());
+  EXPECT_NE(error.message().find((dir_ / "b.txt").string()), std::string::npos) << error.message();
   EXPECT_EQ(renamed, std::vector<fs::path>{dir_ / "a.txt"});
   EXPECT_EQ(Read(dir_ / "a.txt"), "a.txt");
   EXPECT_EQ(Entries(), (std::vector<std::string>{"a.txt", "b.txt"}));  // c's temporary is gone
@@ -109,7 +110,7 @@ TEST_F(AtomicFileTest, CommitRenamesEveryFileAndReportsThemInOrder) {
     renames.push_back({temporary, dir_ / name});
   }
   std::vector<fs::path> renamed;
-  EXPECT_FALSE(CommitRenames(renames, &renamed));
+  EXPECT_TRUE(CommitRenames(renames, &renamed).ok());
   EXPECT_EQ(renamed, (std::vector<fs::path>{dir_ / "x.json", dir_ / "y.json"}));
   EXPECT_EQ(Entries(), (std::vector<std::string>{"x.json", "y.json"}));
 }
@@ -155,7 +156,7 @@ INSTANTIATE_TEST_SUITE_P(InterruptAndTerminate, AtomicFileSignalTest, ::testing:
 TEST_F(AtomicFileTest, ASignalAfterTheRenameLeavesTheFinishedFile) {
   const int status = InChild([&] {
     RemoveTemporariesOnSignals();
-    if (WriteFileAtomically(dir_ / "done.txt", std::string_view("done"))) ::_exit(3);
+    if (!WriteFileAtomically(dir_ / "done.txt", std::string_view("done")).ok()) ::_exit(3);
     ::raise(SIGTERM);
   });
   ASSERT_TRUE(WIFSIGNALED(status)) << status;
@@ -173,7 +174,7 @@ TEST_F(AtomicFileTest, StaleTemporaryOfADeadProcessIsRemovedByTheNextWrite) {
   for (const std::string& name : {stale, living, someone_elses}) {
     fs::last_write_time(dir_ / name, fs::file_time_type::clock::now() - kStaleTemporaryAge - 1min);
   }
-  ASSERT_FALSE(WriteFileAtomically(dir_ / "out.txt", std::string_view("new")));
+  ASSERT_TRUE(WriteFileAtomically(dir_ / "out.txt", std::string_view("new")).ok());
   // A fresh one may be another machine's, writing into a shared folder: its PID means nothing here.
   std::vector<std::string> kept = {fresh, living, someone_elses, "out.txt"};
   std::sort(kept.begin(), kept.end());
@@ -190,8 +191,8 @@ TEST_F(AtomicFileTest, AFailedWriteOfSeveralFilesLeavesNoneOfThem) {
     const rlimit limit{16 << 10, 16 << 10};
     ::setrlimit(RLIMIT_FSIZE, &limit);
     const FileToWrite files[] = {{dir_ / "a.bin", small}, {dir_ / "b.bin", large}, {dir_ / "c.bin", small}};
-    const std::optional<std::string> error = WriteFilesAtomically(files);
-    ::_exit(error && error->find("b.bin") != std::string::npos ? 0 : 1);
+    const Status error = WriteFilesAtomically(files);
+    ::_exit(!error.ok() && error.message().find("b.bin") != std::string::npos ? 0 : 1);
   });
   ASSERT_TRUE(WIFEXITED(status) && WEXITSTATUS(status) == 0) << status;
   EXPECT_EQ(Entries(), std::vector<std::string>{"b.bin"});
@@ -200,7 +201,7 @@ TEST_F(AtomicFileTest, AFailedWriteOfSeveralFilesLeavesNoneOfThem) {
 
 TEST_F(AtomicFileTest, SeveralFilesAllLand) {
   const FileToWrite files[] = {{dir_ / "a.txt", "a"}, {dir_ / "b.txt", "b"}};
-  ASSERT_FALSE(WriteFilesAtomically(files));
+  ASSERT_TRUE(WriteFilesAtomically(files).ok());
   EXPECT_EQ(Entries(), (std::vector<std::string>{"a.txt", "b.txt"}));
   EXPECT_EQ(Read(dir_ / "b.txt"), "b");
 }

@@ -81,15 +81,14 @@ TEST(RegisterNames, EveryEntryPointAcceptsTheSameInputSpellings) {
   for (const Spelling& spelling : kInputSpellings) {
     SCOPED_TRACE(spelling.text);
     EXPECT_EQ(ParseInputRegister(spelling.text), spelling.index);
-    std::string error;
-    const std::optional<InputSpec> spec = ParseInputSpec(spelling.text + "=inputs.csv", error);
-    EXPECT_EQ(spec ? std::optional<int>(spec->reg) : std::nullopt, spelling.index) << error;
+    const Result<InputSpec> spec = ParseInputSpec(spelling.text + "=inputs.csv");
+    EXPECT_EQ(spec ? std::optional<int>(spec->reg) : std::nullopt, spelling.index) << spec.message();
     std::vector<mesh::RegisterBinding> bindings;
-    const std::optional<std::string> bind_error = mesh::ParseBindings(spelling.text + "=normal", bindings);
-    EXPECT_EQ(bind_error ? std::nullopt : std::optional<int>(bindings.at(0).reg), spelling.index);
+    const Status bound = mesh::ParseBindings(spelling.text + "=normal", bindings);
+    EXPECT_EQ(bound ? std::optional<int>(bindings.at(0).reg) : std::nullopt, spelling.index);
     mesh::BufferElement element;
-    const std::optional<std::string> element_error = mesh::ParseBufferElement(spelling.text + "=0:3", element);
-    EXPECT_EQ(element_error ? std::nullopt : std::optional<int>(element.reg), spelling.index);
+    const Status parsed = mesh::ParseBufferElement(spelling.text + "=0:3", element);
+    EXPECT_EQ(parsed ? std::optional<int>(element.reg) : std::nullopt, spelling.index);
     EXPECT_EQ(FromMetadata("normal", spelling.text), spelling.index);
   }
 }

@@ -66,7 +66,7 @@ TEST(EngineCoverage, PerTargetSuitesRunOnEveryTargetThisCpuSupports) {
   std::string why_not;
   const bool jit_runs = jit::Compile(Program(), why_not) != nullptr;
   std::vector<std::string> jit_isas;
-  for (JitIsa isa : jit::SupportedIsas()) jit_isas.emplace_back(jit::IsaName(isa));
+  for (JitIsa isa : jit::SupportedIsas()) jit_isas.emplace_back(kJitIsaNames.Name(isa));
   const std::set<std::string> jit_instantiated = InstantiatedTargets("JitDifferential");
   EXPECT_EQ(jit_instantiated, std::set<std::string>(jit_isas.begin(), jit_isas.end()));
   EXPECT_EQ(jit_runs, !jit_isas.empty());

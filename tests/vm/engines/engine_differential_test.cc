@@ -70,7 +70,9 @@ Comparison CompareEngines(const Program& program, const ConstantBank& constants,
   VertexArrays expected = MakeOutputArrays(count, program);
   VertexArrays actual = MakeOutputArrays(count, program);
   MakeReferenceEngine(program, constants, engine.rules)->Run(inputs, expected);
-  MakeEngine(engine.kind, program, constants, WithJitIsa({.float_rules = engine.rules}, engine.jit_isa))->Run(inputs, actual);
+  MakeEngine(engine.kind, program, constants, WithJitIsa({.float_rules = engine.rules}, engine.jit_isa))
+      .value()
+      ->Run(inputs, actual);
   Comparison result;
   for (int slot : expected.registers()) {
     for (int c = 0; c < 4; ++c) {
@@ -83,7 +85,7 @@ Comparison CompareEngines(const Program& program, const ConstantBank& constants,
         }
         if (!result.difference.empty()) continue;
         std::ostringstream message;
-        message << FloatRulesName(engine.rules) << ": " << OutputSlotName(slot) << "." << kLaneLetters[c] << " of vertex " << i << " of " << count
+        message << kFloatRulesNames.Name(engine.rules) << ": " << OutputSlotName(slot) << "." << kLaneLetters[c] << " of vertex " << i << " of " << count
                 << ": " << engine.kind << " " << got << " (0x" << std::hex << Bits(got) << "), reference " << want << " (0x"
                 << Bits(want) << std::dec << ")\ninputs:";
         for (int reg : inputs.registers()) {
@@ -176,7 +178,7 @@ void SweepEveryOpcode(EngineUnderTest engine, const char* label) {
     }
   }
   std::printf("[ %s, %s ] %d programs x %zu vertices compared bit for bit (%zu lanes: NaN from two NaNs)\n", label,
-              std::string(FloatRulesName(engine.rules)).c_str(), programs, count, nan_bit_mismatches);
+              std::string(kFloatRulesNames.Name(engine.rules)).c_str(), programs, count, nan_bit_mismatches);
 }
 
 TEST_P(EngineDifferential, EveryOpcodeMaskSwizzleNegationAndSpecialValue) {
@@ -222,7 +224,7 @@ void CheckLoneNaNOperands(EngineUnderTest engine, const char* label) {
     }
   }
   std::printf("[ %s, %s ] %d programs x %zu vertices compared bit for bit, NaNs included\n", label,
-              std::string(FloatRulesName(engine.rules)).c_str(), programs, count);
+              std::string(kFloatRulesNames.Name(engine.rules)).c_str(), programs, count);
 }
 
 TEST_P(EngineDifferential, LoneNaNOperandKeepsItsBits) {
@@ -289,10 +291,10 @@ TEST_P(EngineDifferential, RandomProgramsMatchBitForBit) {
 class JitDifferential : public testing::TestWithParam<JitIsa> {
  protected:
   EngineUnderTest Engine() const { return {"jit", GetParam()}; }
-  std::string Label() const { return std::string("jit ").append(jit::IsaName(GetParam())); }
+  std::string Label() const { return std::string("jit ").append(kJitIsaNames.Name(GetParam())); }
 };
 INSTANTIATE_TEST_SUITE_P(SupportedIsas, JitDifferential, testing::ValuesIn(jit::SupportedIsas()),
-                         [](const testing::TestParamInfo<JitIsa>& info) { return std::string(jit::IsaName(info.param)); });
+                         [](const testing::TestParamInfo<JitIsa>& info) { return std::string(kJitIsaNames.Name(info.param)); });
 // A CPU without AVX2 has no instance: there the jit engine runs the batch kernels, tested above.
 GTEST_ALLOW_UNINSTANTIATED_PARAMETERIZED_TEST(JitDifferential);
 
@@ -307,7 +309,7 @@ TEST(JitIsas, TheTestsCoverEveryInstructionSetTheCpuHas) {
   }
   EXPECT_EQ(jit::SupportedIsas(), expected);
   std::string covered;
-  for (JitIsa isa : jit::SupportedIsas()) covered.append(" ").append(jit::IsaName(isa));
+  for (JitIsa isa : jit::SupportedIsas()) covered.append(" ").append(kJitIsaNames.Name(isa));
   std::printf("[ jit ] instruction sets covered:%s\n", covered.empty() ? " none (no AVX2: batch kernels)" : covered.c_str());
 }
 
@@ -335,7 +337,7 @@ TEST_P(JitDifferential, UniformLanesFollowTheirPromise) {
   for (std::size_t i = 0; i < count; ++i) {
     for (int c = 0; c < 4; ++c) inputs.lane(1, c)[i] = static_cast<float>(i) * 0.5f - static_cast<float>(c);
   }
-  std::unique_ptr<vs11::Engine> engine = MakeEngine("jit", program, constants, WithJitIsa({}, GetParam()));
+  std::unique_ptr<vs11::Engine> engine = MakeEngine("jit", program, constants, WithJitIsa({}, GetParam())).value();
   const auto check = [&](const char* when) {
     VertexArrays expected = MakeOutputArrays(count, program);
     MakeReferenceEngine(program, constants)->Run(inputs, expected);

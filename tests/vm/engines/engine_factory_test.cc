@@ -3,7 +3,6 @@
 #include "vm/engines/engine_factory.h"
 
 #include <algorithm>
-#include <cmath>
 #include <memory>
 #include <string>
 #include <vector>
@@ -29,8 +28,8 @@ std::vector<std::string> Names() {
 }
 
 // A stand-in for an engine of another library: the reference engine under another name.
-std::unique_ptr<Engine> MakeTestEngine(const Program& program, const ConstantBank& api_constants,
-                                       const EngineOptions& options) {
+Result<std::unique_ptr<Engine>> MakeTestEngine(const Program& program, const ConstantBank& api_constants,
+                                               const EngineOptions& options) {
   return MakeEngine("ref", program, api_constants, options);
 }
 
@@ -64,7 +63,9 @@ TEST(EngineRegistry, OneRegistrationAddsAnEngineToEveryList) {
   VertexArrays inputs = MakeInputArrays(2, std::vector<int>{0});
   inputs.lane(0, 0)[1] = 3.0f;
   VertexArrays outputs = MakeOutputArrays(2, program);
-  std::unique_ptr<Engine> engine = MakeEngine("test_engine", program, ConstantBank());
+  Result<std::unique_ptr<Engine>> made = MakeEngine("test_engine", program, ConstantBank());
+  ASSERT_TRUE(made.ok()) << made.message();
+  std::unique_ptr<Engine> engine = std::move(made).value();
   EXPECT_EQ(engine->error(), "");
   engine->Run(inputs, outputs);
   EXPECT_EQ(outputs.lane(static_cast<int>(OutputSlot::kFog), 0)[1], 3.0f);
@@ -77,17 +78,13 @@ TEST(EngineRegistry, OneRegistrationAddsAnEngineToEveryList) {
   EXPECT_FALSE(FindEngine("test_engine"));
 }
 
-TEST(EngineRegistry, AnUnknownNameGivesAnEngineThatSaysWhichThereAre) {
+TEST(EngineRegistry, AnUnknownNameGivesAnErrorThatSaysWhichThereAre) {
   const Program program = FogProgram();
-  std::unique_ptr<Engine> engine = MakeEngine("warp", program, ConstantBank());
-  ASSERT_NE(engine, nullptr);
-  EXPECT_NE(engine->error().find("the warp engine is not part of this program (it has ref, batch"),
-            std::string::npos)
-      << engine->error();
-  const VertexArrays inputs = MakeInputArrays(1, std::vector<int>{0});
-  VertexArrays outputs = MakeOutputArrays(1, program);
-  engine->Run(inputs, outputs);
-  EXPECT_TRUE(std::isnan(outputs.lane(static_cast<int>(OutputSlot::kFog), 0)[0]));
+  const Result<std::unique_ptr<Engine>> engine = MakeEngine("warp", program, ConstantBank());
+  ASSERT_FALSE(engine.ok());
+  EXPECT_EQ(engine.error().code, DiagnosticCode::kEngineUnavailable);
+  EXPECT_NE(engine.message().find("the warp engine is not part of this program (it has ref, batch"), std::string::npos)
+      << engine.message();
 }
 
 TEST(EngineSettings, CarryEachEnginesOwnOptionsByType) {

@@ -98,7 +98,7 @@ VertexArrays RunEngine(Engine& engine, const Program& program, const VertexArray
 
 VertexArrays RunOnce(std::string kind, const Program& program, const ConstantBank& constants,
                      const VertexArrays& inputs, const EngineOptions& options = {}) {
-  return RunEngine(*MakeEngine(kind, program, constants, options), program, inputs);
+  return RunEngine(*MakeEngine(kind, program, constants, options).value(), program, inputs);
 }
 
 // The first lane of two runs' outputs whose bits differ, reported with `context`.
@@ -130,7 +130,7 @@ TEST(EngineThreads, EnginesOnSeparateThreadsShareOneProgramConstantsAndInputs) {
   for (std::string kind : kAllKinds) {
     const VertexArrays alone = RunOnce(kind, program, constants, inputs);
     RunOnThreads(4, [&](int t) {
-      std::unique_ptr<Engine> engine = MakeEngine(kind, program, constants);
+      std::unique_ptr<Engine> engine = MakeEngine(kind, program, constants).value();
       for (int round = 0; round < 2; ++round) {
         ExpectSameBits(RunEngine(*engine, program, inputs), alone,
                        std::string(kind) + " thread " + std::to_string(t) + " round " + std::to_string(round));
@@ -163,7 +163,7 @@ TEST(EngineThreads, JitCompilesAndRunsEveryProgramAtOnce) {
   RunOnThreads(static_cast<int>(programs.size()), [&](int t) {
     const std::size_t p = static_cast<std::size_t>(t);
     const Program& program = programs[p].program;
-    std::unique_ptr<Engine> engine = MakeEngine("jit", program, constants, options_of(p));
+    std::unique_ptr<Engine> engine = MakeEngine("jit", program, constants, options_of(p)).value();
     ExpectSameBits(RunEngine(*engine, program, inputs), alone[p], programs[p].name);
     ExpectSameBits(RunEngine(*engine, program, uniform_inputs), alone_uniform[p], programs[p].name + ", uniform lanes");
     ExpectSameBits(RunEngine(*engine, program, inputs), alone[p], programs[p].name + ", again");

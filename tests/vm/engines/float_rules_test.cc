@@ -124,7 +124,9 @@ struct EngineUnderTest {
 VertexArrays Run(const EngineUnderTest& engine, const Program& program, const ConstantBank& bank,
                  const VertexArrays& inputs, FloatRules rules) {
   VertexArrays outputs = MakeOutputArrays(inputs.count(), program);
-  MakeEngine(engine.kind, program, bank, WithJitIsa({.float_rules = rules}, engine.jit_isa))->Run(inputs, outputs);
+  MakeEngine(engine.kind, program, bank, WithJitIsa({.float_rules = rules}, engine.jit_isa))
+      .value()
+      ->Run(inputs, outputs);
   return outputs;
 }
 
@@ -180,7 +182,7 @@ void CheckSignsOfZeroProducts(const EngineUnderTest& engine) {
       const float want = rules == FloatRules::kLegacy ? LegacyProductAsDocumented(a, b) : a * b;
       const float got = outputs.lane(static_cast<int>(OutputSlot::kDiffuse), 0)[i];
       if (std::isnan(a) && std::isnan(b) && std::isnan(want) && std::isnan(got)) continue;
-      EXPECT_EQ(Bits(got), Bits(want)) << FloatRulesName(rules) << ": " << a << " * " << b << " gave " << got
+      EXPECT_EQ(Bits(got), Bits(want)) << kFloatRulesNames.Name(rules) << ": " << a << " * " << b << " gave " << got
                                        << ", expected " << want;
     }
   }
@@ -207,10 +209,10 @@ TEST_P(FloatRulesBatch, SignOfZeroAsDocumented) {
 
 class FloatRulesJit : public testing::TestWithParam<JitIsa> {
  protected:
-  EngineUnderTest Engine() const { return {"jit", GetParam(), std::string("jit ") + std::string(jit::IsaName(GetParam()))}; }
+  EngineUnderTest Engine() const { return {"jit", GetParam(), std::string("jit ") + std::string(kJitIsaNames.Name(GetParam()))}; }
 };
 INSTANTIATE_TEST_SUITE_P(SupportedIsas, FloatRulesJit, testing::ValuesIn(jit::SupportedIsas()),
-                         [](const testing::TestParamInfo<JitIsa>& info) { return std::string(jit::IsaName(info.param)); });
+                         [](const testing::TestParamInfo<JitIsa>& info) { return std::string(kJitIsaNames.Name(info.param)); });
 // A CPU without AVX2 has no instance: there the jit engine runs the batch kernels, tested above.
 GTEST_ALLOW_UNINSTANTIATED_PARAMETERIZED_TEST(FloatRulesJit);
 
@@ -224,10 +226,10 @@ TEST_P(FloatRulesJit, InfinityTimesZeroIsNaNOrZero) {
 TEST_P(FloatRulesJit, SignOfZeroAsDocumented) { CheckSignsOfZeroProducts(Engine()); }
 
 TEST(FloatRules, NamesRoundTrip) {
-  for (FloatRules rules : kAllFloatRules) EXPECT_EQ(FloatRulesFromName(FloatRulesName(rules)), rules);
-  EXPECT_EQ(FloatRulesName(FloatRules::kD3d9), "d3d9");
-  EXPECT_EQ(FloatRulesName(FloatRules::kLegacy), "legacy");
-  EXPECT_FALSE(FloatRulesFromName("strict").has_value());
+  for (FloatRules rules : kAllFloatRules) EXPECT_EQ(kFloatRulesNames.Find(kFloatRulesNames.Name(rules)), rules);
+  EXPECT_EQ(kFloatRulesNames.Name(FloatRules::kD3d9), "d3d9");
+  EXPECT_EQ(kFloatRulesNames.Name(FloatRules::kLegacy), "legacy");
+  EXPECT_FALSE(kFloatRulesNames.Find("strict").has_value());
   EXPECT_EQ(EngineOptions().float_rules, FloatRules::kD3d9);
 }
 

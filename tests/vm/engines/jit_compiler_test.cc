@@ -220,9 +220,9 @@ TEST_P(JitCompiledLoop, ComputesExactlyCountVerticesAndNothingPastThem) {
   for (JitIsa isa : jit::SupportedIsas()) {
     std::string why_not;
     compiled.push_back(jit::Compile(program, why_not, isa));
-    ASSERT_NE(compiled.back(), nullptr) << jit::IsaName(isa) << ": " << why_not;
+    ASSERT_NE(compiled.back(), nullptr) << kJitIsaNames.Name(isa) << ": " << why_not;
     if (GetParam() == "register_pressure") {
-      EXPECT_GT(compiled.back()->spilled_values(), 0) << jit::IsaName(isa);
+      EXPECT_GT(compiled.back()->spilled_values(), 0) << kJitIsaNames.Name(isa);
     }
   }
   for (const std::size_t count : kCounts) {
@@ -230,7 +230,7 @@ TEST_P(JitCompiledLoop, ComputesExactlyCountVerticesAndNothingPastThem) {
     VertexArrays expected = MakeOutputArrays(count, program);
     MakeReferenceEngine(program, bank)->Run(inputs, expected);
     for (const auto& program_for_isa : compiled) {
-      SCOPED_TRACE(testing::Message() << jit::IsaName(program_for_isa->isa()) << " ("
+      SCOPED_TRACE(testing::Message() << kJitIsaNames.Name(program_for_isa->isa()) << " ("
                                       << program_for_isa->vertices_per_iteration() << " vertices per iteration), "
                                       << count << " vertices");
       const std::vector<Lane> actual = RunCompiled(*program_for_isa, inputs, constants, bank.size());
@@ -304,7 +304,7 @@ TEST(JitCompiler, RelativeReadsMatchTheReferenceWhetherTheRowIsSharedOrNot) {
         const float* reference = std::as_const(expected).lane(slot, c);
         for (std::size_t i = 0; i < kVertices; ++i) {
           ASSERT_EQ(Bits(lane[i]), Bits(reference[i]))
-              << jit::IsaName(isa) << " " << OutputSlotName(slot) << "." << "xyzw"[c] << " of vertex " << i;
+              << kJitIsaNames.Name(isa) << " " << OutputSlotName(slot) << "." << "xyzw"[c] << " of vertex " << i;
         }
       }
     }

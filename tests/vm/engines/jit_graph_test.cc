@@ -175,7 +175,7 @@ TEST(JitGraph, EvaluatesToTheReferenceEngineOnRandomProgramsInTwoGroups) {
       }
       const Evaluation evaluation = Evaluate(graph, groups, constants, bank.size());
       ASSERT_EQ(evaluation.error, "")
-          << "program " << k << " (" << FloatRulesName(rules) << ")\n" << Disassemble(program);
+          << "program " << k << " (" << kFloatRulesNames.Name(rules) << ")\n" << Disassemble(program);
       for (int g = 0; g < kGroups; ++g) {
         for (int slot = 0; slot < kOutputSlotCount; ++slot) {
           for (int c = 0; c < 4; ++c) {
@@ -187,7 +187,7 @@ TEST(JitGraph, EvaluatesToTheReferenceEngineOnRandomProgramsInTwoGroups) {
             if (stored == evaluation.stores.end()) continue;
             const float want = expected.lane(slot, c)[g * kVertices + vertex];
             ASSERT_TRUE(SameFloat(stored->second, want))
-                << "program " << k << " (" << FloatRulesName(rules) << ") group " << g << " vertex " << vertex << " " << OutputSlotName(slot) << "."
+                << "program " << k << " (" << kFloatRulesNames.Name(rules) << ") group " << g << " vertex " << vertex << " " << OutputSlotName(slot) << "."
                 << kLaneLetters[c] << ": graph " << stored->second << ", reference " << want << "\n" << Disassemble(program);
           }
         }

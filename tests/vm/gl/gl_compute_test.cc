@@ -40,11 +40,11 @@ Program TwoOutputProgram() {
 class GlComputeTest : public ::testing::Test {
  protected:
   void SetUp() override {
-    std::string error;
-    context_ = GlContext::Create(std::nullopt, error);
-    ASSERT_TRUE(context_) << error;
-    current_ = std::make_unique<ScopedCurrent>(*context_, error);
-    ASSERT_TRUE(current_->ok()) << error;
+    Result<std::unique_ptr<GlContext>> context = GlContext::Create(std::nullopt);
+    ASSERT_TRUE(context) << context.message();
+    context_ = std::move(context).value();
+    current_ = std::make_unique<ScopedCurrent>(*context_);
+    ASSERT_TRUE(current_->ok()) << current_->status().message();
     if (!OffersCompute(*context_)) GTEST_SKIP() << context_->version() << " has no compute shaders";
     glGenBuffers(2, buffers_);
   }
@@ -55,11 +55,10 @@ class GlComputeTest : public ::testing::Test {
   }
 
   std::unique_ptr<ComputeRun> Compile(const Program& program) {
-    std::string error;
-    std::unique_ptr<ComputeRun> run =
-        ComputeRun::Create(program, GlComputeTranslateOptions({}, kDefaultConstantCount, context_->es32()), error);
-    EXPECT_TRUE(run) << error;
-    return run;
+    Result<std::unique_ptr<ComputeRun>> run =
+        ComputeRun::Create(program, GlComputeTranslateOptions({}, kDefaultConstantCount, context_->es32()));
+    EXPECT_TRUE(run) << run.message();
+    return run ? std::move(run).value() : nullptr;
   }
 
   void Upload(unsigned buffer, const std::vector<float>& data) {
@@ -69,10 +68,9 @@ class GlComputeTest : public ::testing::Test {
   }
 
   std::vector<float> Read(unsigned buffer, std::size_t floats) {
-    std::string error;
-    std::optional<std::vector<float>> data = ReadBufferFloats(buffer, floats, error);
-    EXPECT_TRUE(data) << error;
-    return data.value_or(std::vector<float>(floats));
+    Result<std::vector<float>> data = ReadBufferFloats(buffer, floats);
+    EXPECT_TRUE(data) << data.message();
+    return data ? std::move(data).value() : std::vector<float>(floats);
   }
 
   std::unique_ptr<GlContext> context_;
@@ -122,13 +120,12 @@ TEST_F(GlComputeTest, InterleavedInputsAndOutputsInTwoDimensionsGiveTheReference
   const std::size_t out_floats = (kCount + kSpare) * Interleaved::kOut;
   Upload(buffers_[0], interleaved);
   Upload(buffers_[1], std::vector<float>(out_floats, kUntouched));
-  std::string error;
-  ASSERT_TRUE(run->SetConstants(rows, error)) << error;
-  ASSERT_TRUE(run->Dispatch(layout, buffers_[0], buffers_[1], kCount, error)) << error;
+  ASSERT_EQ(run->SetConstants(rows).message(), "");
+  ASSERT_EQ(run->Dispatch(layout, buffers_[0], buffers_[1], kCount).message(), "");
   const std::vector<float> out = Read(buffers_[1], out_floats);
 
   VertexArrays expected = MakeOutputArrays(kCount, program);
-  MakeEngine("ref", program, bank)->Run(soa, expected);
+  MakeEngine("ref", program, bank).value()->Run(soa, expected);
   for (std::size_t v = 0; v < kCount; ++v) {
     const float* vertex = out.data() + v * Interleaved::kOut;
     for (int c = 0; c < 4; ++c) {
@@ -162,12 +159,11 @@ TEST_F(GlComputeTest, AConstantBufferOnTheGpuIsReadWhereItIs) {
   layout.SetOutput(diffuse, {0, 1, 2, 3}, 4);
   Upload(buffers_[0], {1.0f, 2.0f, 3.0f, 4.0f, 0.0f});
   Upload(buffers_[1], std::vector<float>(3 * 4, kUntouched));
-  std::string error;
   for (float scale : {2.0f, -0.5f}) {
     for (int c = 0; c < 4; ++c) rows[static_cast<std::size_t>(c)] = scale;  // c0
     glBindBuffer(GL_UNIFORM_BUFFER, constants);
     glBufferSubData(GL_UNIFORM_BUFFER, 0, 16, rows.data());
-    ASSERT_TRUE(run->Dispatch(layout, buffers_[0], buffers_[1], 3, error)) << error;
+    ASSERT_EQ(run->Dispatch(layout, buffers_[0], buffers_[1], 3).message(), "");
     const std::vector<float> out = Read(buffers_[1], 12);
     for (int k = 0; k < 12; ++k) EXPECT_EQ(out[static_cast<std::size_t>(k)], scale * static_cast<float>(k % 4 + 1)) << k;
   }

@@ -53,10 +53,13 @@ EngineOptions OnPath(gl::GlPath path, FloatRules rules = FloatRules::kD3d9) {
   return options;
 }
 
+// The gl engine on the options' path, or null after a test failure that says why it could not be built.
 std::unique_ptr<Engine> MakeGl(const Program& program, const ConstantBank& bank, const EngineOptions& options) {
-  std::unique_ptr<Engine> gl = MakeEngine("gl", program, bank, options);
-  const gl::GlPath wanted = options.settings.Get<gl::GlOptions>().path;
-  EXPECT_EQ(gl::GlPathOf(*gl), wanted) << gl->error();
+  Result<std::unique_ptr<Engine>> made = MakeEngine("gl", program, bank, options);
+  EXPECT_TRUE(made.ok()) << made.message();
+  if (!made) return nullptr;
+  std::unique_ptr<Engine> gl = std::move(made).value();
+  EXPECT_EQ(gl::GlPathOf(*gl), options.settings.Get<gl::GlOptions>().path) << gl->error();
   return gl;
 }
 
@@ -83,8 +86,12 @@ Comparison CompareWithReference(gl::GlPath path, const Program& program, const C
   VertexArrays expected = MakeOutputArrays(inputs.count(), program);
   VertexArrays actual = MakeOutputArrays(inputs.count(), program);
   const EngineOptions options = OnPath(path, rules);
-  MakeEngine("ref", program, bank, options)->Run(inputs, expected);
+  MakeEngine("ref", program, bank, options).value()->Run(inputs, expected);
   std::unique_ptr<Engine> gl = MakeGl(program, bank, options);
+  if (gl == nullptr) {
+    comparison.error = "the gl engine could not be built";
+    return comparison;
+  }
   gl->Run(inputs, actual);
   comparison.error = gl->error();
   if (!comparison.error.empty()) return comparison;
@@ -188,8 +195,9 @@ void CountKinds(gl::GlPath path, const Program& program, const ConstantBank& ban
                 std::map<std::string, int>& kinds, int& exact_programs) {
   VertexArrays expected = MakeOutputArrays(inputs.count(), program);
   VertexArrays actual = MakeOutputArrays(inputs.count(), program);
-  MakeEngine("ref", program, bank)->Run(inputs, expected);
+  MakeEngine("ref", program, bank).value()->Run(inputs, expected);
   std::unique_ptr<Engine> gl = MakeGl(program, bank, OnPath(path));
+  ASSERT_NE(gl, nullptr);
   gl->Run(inputs, actual);
   ASSERT_EQ(gl->error(), "");
   bool exact = true;
@@ -270,6 +278,7 @@ TEST_P(GlEngineTest, InfinityTimesZeroFollowsTheEnginesFloatRules) {
   for (FloatRules rules : kAllFloatRules) {
     VertexArrays outputs = MakeOutputArrays(1, program);
     std::unique_ptr<Engine> gl = MakeGl(program, bank, OnPath(GetParam(), rules));
+    ASSERT_NE(gl, nullptr);
     gl->Run(inputs, outputs);
     ASSERT_EQ(gl->error(), "");
     const float mul_x = outputs.lane(static_cast<int>(OutputSlot::kDiffuse), 0)[0];
@@ -279,7 +288,7 @@ TEST_P(GlEngineTest, InfinityTimesZeroFollowsTheEnginesFloatRules) {
       EXPECT_EQ(Bits(mul_x), 0u) << "legacy: inf * 0 gave " << mul_x;
     }
     const Comparison comparison = CompareWithReference(GetParam(), program, bank, inputs, rules);
-    EXPECT_EQ(comparison.differing, 0) << FloatRulesName(rules) << ": " << comparison.first;
+    EXPECT_EQ(comparison.differing, 0) << kFloatRulesNames.Name(rules) << ": " << comparison.first;
     EXPECT_EQ(comparison.flushed, 0);
   }
 }
@@ -300,6 +309,7 @@ TEST_P(GlEngineTest, SetConstantsBetweenRunsGivesEachBanksOutputs) {
   const Program program = ProgramFromFile("all_instructions.vsh");
   const VertexArrays inputs = OrdinaryInputs(64, rng);
   std::unique_ptr<Engine> gl = MakeGl(program, OrdinaryConstants(rng), OnPath(GetParam()));
+  ASSERT_NE(gl, nullptr);
   for (int bank_size : {kDefaultConstantCount, kDefaultConstantCount, 192}) {
     ConstantBank bank(bank_size);
     for (int reg = 0; reg < bank.size(); ++reg) {
@@ -310,7 +320,7 @@ TEST_P(GlEngineTest, SetConstantsBetweenRunsGivesEachBanksOutputs) {
     VertexArrays expected = MakeOutputArrays(inputs.count(), program);
     gl->Run(inputs, actual);
     ASSERT_EQ(gl->error(), "");
-    MakeEngine("ref", program, bank)->Run(inputs, expected);
+    MakeEngine("ref", program, bank).value()->Run(inputs, expected);
     for (int slot : expected.registers()) {
       for (int c = 0; c < translate::OutputVariableOf(slot, /*exact_on_driver=*/true).components; ++c) {
         for (std::size_t v = 0; v < inputs.count(); ++v) {
@@ -330,9 +340,10 @@ TEST_P(GlEngineTest, RunsWhereverItIsCalledAndLeavesTheCurrentContextAlone) {
   const ConstantBank bank = OrdinaryConstants(rng);
   const VertexArrays inputs = OrdinaryInputs(100, rng);
   VertexArrays expected = MakeOutputArrays(inputs.count(), program);
-  MakeEngine("ref", program, bank)->Run(inputs, expected);
+  MakeEngine("ref", program, bank).value()->Run(inputs, expected);
   const void* current_before = eglGetCurrentContext();
   std::unique_ptr<Engine> gl = MakeGl(program, bank, OnPath(GetParam()));
+  ASSERT_NE(gl, nullptr);
   EXPECT_EQ(eglGetCurrentContext(), current_before);
   for (int round = 0; round < 3; ++round) {
     VertexArrays actual = MakeOutputArrays(inputs.count(), program);
@@ -351,20 +362,16 @@ TEST_P(GlEngineTest, RunsWhereverItIsCalledAndLeavesTheCurrentContextAlone) {
 }
 
 // Without a registered maker (a program that does not link vm/gl, such as the Python module) the
-// factory gives an engine that says so and writes NaN, never a null pointer.
-TEST(GlEngineFactoryTest, WithoutRegistrationTheFactoryGivesAnEngineThatSaysWhy) {
+// factory says so, with its code.
+TEST(GlEngineFactoryTest, WithoutRegistrationTheFactoryGivesAnErrorThatSaysWhy) {
   gl::RegisterGlEngine();
   UnregisterEngine("gl");
   const Program program = ProgramFromFile("fog.vsh");
-  std::unique_ptr<Engine> engine = MakeEngine("gl", program, ConstantBank());
+  const Result<std::unique_ptr<Engine>> engine = MakeEngine("gl", program, ConstantBank());
   gl::RegisterGlEngine();
-  ASSERT_NE(engine, nullptr);
-  EXPECT_NE(engine->error().find("the gl engine is not part of this program"), std::string::npos) << engine->error();
-  std::mt19937 rng(25);
-  const VertexArrays inputs = OrdinaryInputs(4, rng);
-  VertexArrays outputs = MakeOutputArrays(inputs.count(), program);
-  engine->Run(inputs, outputs);
-  for (int slot : outputs.registers()) EXPECT_TRUE(std::isnan(outputs.lane(slot, 0)[0])) << OutputSlotName(slot);
+  ASSERT_FALSE(engine.ok());
+  EXPECT_EQ(engine.error().code, DiagnosticCode::kEngineUnavailable);
+  EXPECT_NE(engine.message().find("the gl engine is not part of this program"), std::string::npos) << engine.message();
 }
 
 INSTANTIATE_TEST_SUITE_P(Paths, GlEngineTest, ::testing::Values(gl::GlPath::kCompute, gl::GlPath::kTransformFeedback),

@@ -48,11 +48,10 @@ constexpr Captured kCaptured[] = {
 
 bool ContextReady() {
   static const bool ready = [] {
-    std::string error;
-    const std::optional<std::string> renderer = gl::CreateLlvmpipeContext(std::nullopt, error);
-    EXPECT_TRUE(renderer) << "no llvmpipe context: " << error;
+    const Result<std::string> renderer = gl::CreateLlvmpipeContext(std::nullopt);
+    EXPECT_TRUE(renderer.ok()) << "no llvmpipe context: " << renderer.message();
     if (renderer) std::printf("[ gl ] renderer: %s\n", renderer->c_str());
-    return renderer.has_value();
+    return renderer.ok();
   }();
   return ready;
 }
@@ -94,11 +93,17 @@ Outcome RunOnLlvmpipe(const Program& program, const ConstantBank& bank, const Ve
     varyings.push_back(captured.name);
     floats += captured.lanes;
   }
-  std::unique_ptr<gl::TransformFeedbackRun> run =
-      gl::TransformFeedbackRun::Create(glsl, varyings, floats, attributes, constants, outcome.error);
-  if (!run) return outcome;
-  const std::optional<std::vector<float>> got = run->DrawAndRead(outcome.error);
-  if (!got) return outcome;
+  Result<std::unique_ptr<gl::TransformFeedbackRun>> run =
+      gl::TransformFeedbackRun::Create(glsl, varyings, floats, attributes, constants);
+  if (!run) {
+    outcome.error = run.message();
+    return outcome;
+  }
+  const Result<std::vector<float>> got = (*run)->DrawAndRead();
+  if (!got) {
+    outcome.error = got.message();
+    return outcome;
+  }
 
   VertexArrays expected = MakeOutputArrays(inputs.count(), program);
   MakeReferenceEngine(program, bank, rules)->Run(inputs, expected);
@@ -194,7 +199,7 @@ TEST(TranslationOnLlvmpipe, InfinityTimesZeroFollowsTheFloatRules) {
     EXPECT_EQ(std::isnan(mul_x), rules == FloatRules::kD3d9) << "the reference engine: " << mul_x;
     const Outcome outcome = RunOnLlvmpipe(program, bank, inputs, rules);
     ASSERT_EQ(outcome.error, "");
-    EXPECT_EQ(outcome.differing, 0) << FloatRulesName(rules) << ": " << outcome.first;
+    EXPECT_EQ(outcome.differing, 0) << kFloatRulesNames.Name(rules) << ": " << outcome.first;
   }
 }
 
@@ -213,7 +218,7 @@ TEST(TranslationOnLlvmpipe, ZeroProductsKeepTheReferenceSigns) {
   for (FloatRules rules : kAllFloatRules) {
     const Outcome outcome = RunOnLlvmpipe(*assembled.program, ConstantBank(), inputs, rules);
     ASSERT_EQ(outcome.error, "");
-    EXPECT_EQ(outcome.differing, 0) << FloatRulesName(rules) << ": " << outcome.first;
+    EXPECT_EQ(outcome.differing, 0) << kFloatRulesNames.Name(rules) << ": " << outcome.first;
   }
 }
 

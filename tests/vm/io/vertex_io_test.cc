@@ -45,11 +45,14 @@ TEST(VertexIo, ReportsBadConstantLinesWithLineAndColumn) {
 
 TEST(VertexIo, ConstantAssignmentFlag) {
   ConstantBank bank;
-  EXPECT_FALSE(ParseConstantAssignment("c4=1,0,0,1", bank).has_value());
+  EXPECT_TRUE(ParseConstantAssignment("c4=1,0,0,1", bank).ok());
   EXPECT_EQ(bank[4], (Vec4f{1, 0, 0, 1}));
-  std::optional<std::string> error = ParseConstantAssignment("c4=1,zz", bank);
-  ASSERT_TRUE(error.has_value());
-  EXPECT_NE(error->find("c4=1,zz"), std::string::npos);
+  const Status error = ParseConstantAssignment("c4=1,zz", bank);
+  ASSERT_FALSE(error.ok());
+  EXPECT_NE(error.message().find("c4=1,zz"), std::string::npos);
+  EXPECT_EQ(error.error().code, DiagnosticCode::kConstantValue);
+  EXPECT_EQ(error.error().loc.file, "--const");
+  EXPECT_EQ(error.error().loc.line, 1);
 }
 
 TEST(VertexIo, CsvRowsFillMissingComponentsFromZeroZeroZeroOne) {
@@ -173,17 +176,16 @@ TEST(VertexIo, EveryCsvAndConstantProblemHasItsCode) {
 }
 
 TEST(VertexIo, InputFlagSplitsRegisterFileAndColumns) {
-  std::string error;
-  std::optional<InputSpec> spec = ParseInputSpec("v3=out.csv:oD0.x,oD0.y", error);
-  ASSERT_TRUE(spec) << error;
+  Result<InputSpec> spec = ParseInputSpec("v3=out.csv:oD0.x,oD0.y");
+  ASSERT_TRUE(spec) << spec.message();
   EXPECT_EQ(spec->reg, 3);
   EXPECT_EQ(spec->file, "out.csv");
   EXPECT_EQ(spec->columns, "oD0.x,oD0.y");
-  spec = ParseInputSpec("v0=plain.csv", error);
+  spec = ParseInputSpec("v0=plain.csv");
   ASSERT_TRUE(spec);
   EXPECT_EQ(spec->columns, "");
-  EXPECT_FALSE(ParseInputSpec("v16=a.csv", error));
-  EXPECT_FALSE(ParseInputSpec("a.csv", error));
+  EXPECT_EQ(ParseInputSpec("v16=a.csv").error().code, DiagnosticCode::kInputFlag);
+  EXPECT_EQ(ParseInputSpec("a.csv").message(), "'a.csv': expected v#=FILE.csv or v#=FILE.csv:COLUMNS");
 }
 
 TEST(VertexIo, WarnsAboutRegistersNobodySetsAndDefsThatOverride) {

@@ -37,7 +37,7 @@ void Dump(const std::filesystem::path& dir, const std::string& name, const Progr
                                            rules);
         ASSERT_NE(compiled, nullptr) << why_not;
         const std::span<const std::uint8_t> code = compiled->code();
-        WriteFile(dir / ("jit_" + name + "_" + std::string(jit::IsaName(isa)) + "_" + rule_name +
+        WriteFile(dir / ("jit_" + name + "_" + std::string(kJitIsaNames.Name(isa)) + "_" + rule_name +
                          (uniform ? "_uniform" : "") + ".bin"),
                   code.data(), code.size());
       }

@@ -195,9 +195,8 @@ std::span<const std::uint8_t> Bytes(const std::string& text) {
 TEST(MeshWire, RoundTripIsExact) {
   const Mesh mesh = LoadWuson();
   const std::string bytes = EncodeMesh(mesh);
-  std::string error;
-  std::optional<Mesh> back = DecodeMesh(Bytes(bytes), error);
-  ASSERT_TRUE(back) << error;
+  Result<Mesh> back = DecodeMesh(Bytes(bytes));
+  ASSERT_TRUE(back) << back.message();
   EXPECT_EQ(back->positions, mesh.positions);
   EXPECT_EQ(back->normals, mesh.normals);
   EXPECT_EQ(back->texcoords, mesh.texcoords);
@@ -211,21 +210,20 @@ TEST(MeshWire, RoundTripIsExact) {
 
 TEST(MeshWire, DamagedBytesAreRefused) {
   Mesh mesh = LoadWuson();
-  std::string error;
   const std::string bytes = EncodeMesh(mesh);
-  EXPECT_FALSE(DecodeMesh(Bytes(bytes.substr(0, bytes.size() - 1)), error));
-  EXPECT_EQ(error, "the data ends early");
-  EXPECT_FALSE(DecodeMesh(Bytes(bytes + "x"), error));
-  EXPECT_EQ(error, "bytes after the mesh");
+  EXPECT_EQ(DecodeMesh(Bytes(bytes.substr(0, bytes.size() - 1))).message(), "the data ends early");
+  EXPECT_EQ(DecodeMesh(Bytes(bytes + "x")).error().code, DiagnosticCode::kMeshWire);
+  EXPECT_EQ(DecodeMesh(Bytes(bytes + "x")).message(), "bytes after the mesh");
+  std::string error;
   // A vertex count over the limit is refused from the count, before anything is allocated.
   std::string huge = bytes;
   const std::uint64_t too_many = kMaxMeshVertices + 1;
   std::memcpy(huge.data() + 12, &too_many, sizeof too_many);
-  EXPECT_FALSE(DecodeMesh(Bytes(huge), error));
+  error = DecodeMesh(Bytes(huge)).message();
   EXPECT_NE(error.find("over the limit"), std::string::npos) << error;
   // An index past the vertices.
   mesh.indices[5] = static_cast<std::uint32_t>(mesh.vertex_count);
-  EXPECT_FALSE(DecodeMesh(Bytes(EncodeMesh(mesh)), error));
+  error = DecodeMesh(Bytes(EncodeMesh(mesh))).message();
   EXPECT_NE(error.find("past the"), std::string::npos) << error;
 }
 

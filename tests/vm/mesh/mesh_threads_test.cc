@@ -50,9 +50,9 @@ void ExpectSameMesh(const MeshLoadResult& loaded, const Mesh& alone, const std::
 // The box's vertices through programs/directional_light.vsh, bound by its declarations.
 std::vector<float> LightBox(const Mesh& box, const Program& program, std::string kind) {
   std::vector<RegisterBinding> bindings;
-  EXPECT_EQ(ResolveBindings(program, {}, bindings), std::nullopt);
+  EXPECT_EQ(ResolveBindings(program, {}, bindings).message(), "");
   RegisterData registers;
-  EXPECT_EQ(BindMesh(box, bindings, {}, registers), std::nullopt);
+  EXPECT_EQ(BindMesh(box, bindings, {}, registers).message(), "");
   std::vector<int> used;
   for (const auto& [reg, values] : registers) used.push_back(reg);
   VertexArrays inputs = MakeInputArrays(box.vertex_count, used);
@@ -64,7 +64,7 @@ std::vector<float> LightBox(const Mesh& box, const Program& program, std::string
   ConstantBank constants;
   for (int reg = 0; reg < constants.size(); ++reg) constants[reg] = {0.1f * reg, 0.5f, -0.25f * reg, 1.0f};
   VertexArrays outputs = MakeOutputArrays(box.vertex_count, program);
-  MakeEngine(kind, program, constants)->Run(inputs, outputs);
+  MakeEngine(kind, program, constants).value()->Run(inputs, outputs);
   std::vector<float> flat;
   for (int slot : outputs.registers()) {
     for (int c = 0; c < 4; ++c) flat.insert(flat.end(), outputs.lane(slot, c), outputs.lane(slot, c) + box.vertex_count);

@@ -26,12 +26,14 @@ std::vector<std::uint8_t> Floats(int count) {
 TEST(VertexBuffer, RefusesAnOffsetWhoseEndWrapsAround) {
   // 2^64 - 16 + 4 * 4 wraps to 0, which passed the old check and read 16 bytes before the buffer.
   BufferElement element;
-  ASSERT_FALSE(ParseBufferElement("v0=18446744073709551600:4", element));
+  ASSERT_TRUE(ParseBufferElement("v0=18446744073709551600:4", element).ok());
   const std::vector<std::uint8_t> bytes = Floats(8);
   RegisterData registers;
-  std::optional<std::string> error = ReadInterleaved(bytes, 16, {element}, "seq.bin", registers);
-  ASSERT_TRUE(error);
-  EXPECT_NE(error->find("--element v0=18446744073709551600:4 ends past the 16-byte stride"), std::string::npos) << *error;
+  const Status error = ReadInterleaved(bytes, 16, {element}, "seq.bin", registers);
+  ASSERT_FALSE(error.ok());
+  EXPECT_EQ(error.error().code, DiagnosticCode::kBufferLayout);
+  EXPECT_NE(error.message().find("--element v0=18446744073709551600:4 ends past the 16-byte stride"), std::string::npos)
+      << error.message();
   EXPECT_TRUE(registers.empty());
 }
 
@@ -40,7 +42,8 @@ TEST(VertexBuffer, RefusesEveryOffsetAndCountNearTheTopOfTheAddressSpace) {
   for (std::size_t offset : {kHuge, kHuge - 3, kHuge - 4, kHuge - 15, kHuge / 4 + 1, std::size_t{17}, std::size_t{13}}) {
     for (int components = 1; components <= 4; ++components) {
       RegisterData registers;
-      EXPECT_TRUE(ReadInterleaved(bytes, 16, {{0, offset, components}}, "b", registers)) << offset << ":" << components;
+      EXPECT_FALSE(ReadInterleaved(bytes, 16, {{0, offset, components}}, "b", registers).ok())
+          << offset << ":" << components;
       EXPECT_TRUE(registers.empty());
     }
   }
@@ -65,17 +68,17 @@ TEST(VertexBuffer, RefusesLayoutsNoParserWouldMake) {
   };
   for (const auto& c : cases) {
     RegisterData registers;
-    std::optional<std::string> error = ReadInterleaved(bytes, c.stride, c.elements, "b", registers);
-    ASSERT_TRUE(error) << c.message;
-    EXPECT_NE(error->find(c.message), std::string::npos) << *error;
-    EXPECT_EQ(CheckBufferLayout(c.stride, c.elements), error);
+    const Status error = ReadInterleaved(bytes, c.stride, c.elements, "b", registers);
+    ASSERT_FALSE(error.ok()) << c.message;
+    EXPECT_NE(error.message().find(c.message), std::string::npos) << error.message();
+    EXPECT_EQ(CheckBufferLayout(c.stride, c.elements).message(), error.message());
   }
 }
 
 TEST(VertexBuffer, ElementEndingExactlyAtTheStrideReadsTheLastFloats) {
   const std::vector<std::uint8_t> bytes = Floats(8);
   RegisterData registers;
-  ASSERT_FALSE(ReadInterleaved(bytes, 16, {{2, 12, 1}, {5, 0, 4}}, "b", registers));
+  ASSERT_TRUE(ReadInterleaved(bytes, 16, {{2, 12, 1}, {5, 0, 4}}, "b", registers).ok());
   ASSERT_EQ(registers.size(), 2u);
   EXPECT_EQ(registers[0].second[1], (Vec4f{7, 0, 0, 1}));
   EXPECT_EQ(registers[1].second[1], (Vec4f{4, 5, 6, 7}));
@@ -83,12 +86,13 @@ TEST(VertexBuffer, ElementEndingExactlyAtTheStrideReadsTheLastFloats) {
 
 TEST(VertexBuffer, ParserRefusesOffsetsBeyondSizeT) {
   BufferElement element;
-  std::optional<std::string> error = ParseBufferElement("v0=18446744073709551616:4", element);
-  ASSERT_TRUE(error);
-  EXPECT_NE(error->find("the offset is not a byte count"), std::string::npos) << *error;
-  EXPECT_TRUE(ParseBufferElement("v0=-16:4", element));
-  EXPECT_TRUE(ParseBufferElement("v0=0:-1", element));
-  EXPECT_TRUE(ParseBufferElement("v0=0:4294967297", element));
+  const Status error = ParseBufferElement("v0=18446744073709551616:4", element);
+  ASSERT_FALSE(error.ok());
+  EXPECT_EQ(error.error().code, DiagnosticCode::kBufferElement);
+  EXPECT_NE(error.message().find("the offset is not a byte count"), std::string::npos) << error.message();
+  EXPECT_FALSE(ParseBufferElement("v0=-16:4", element).ok());
+  EXPECT_FALSE(ParseBufferElement("v0=0:-1", element).ok());
+  EXPECT_FALSE(ParseBufferElement("v0=0:4294967297", element).ok());
 }
 
 }  // namespace

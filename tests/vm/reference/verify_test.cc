@@ -108,13 +108,13 @@ TEST(VerifyMetadata, ReportsBadLinesWithFileAndLine) {
   EXPECT_NE(r.diagnostics.all()[1].message.find("'colour'"), std::string::npos);
 }
 
-// An unknown packing is answered with every packing there is (Sh9PackingNames), not a list typed by hand.
+// An unknown packing is answered with every packing there is (kSh9PackingNames), not a list typed by hand.
 TEST(VerifyMetadata, UnknownPackingNamesEveryPacking) {
   MetadataResult r = ParseProgramMetadata("; vs11: packing=nope\n", "p.vsh");
   ASSERT_EQ(r.diagnostics.error_count(), 1);
   EXPECT_EQ(r.diagnostics.all()[0].code, DiagnosticCode::kMetadataValue);
-  for (Sh9Packing packing : kAllSh9Packings) {
-    EXPECT_NE(r.diagnostics.all()[0].message.find(Sh9PackingName(packing)), std::string::npos) << Sh9PackingName(packing);
+  for (const NamedChoice<Sh9Packing>& packing : kSh9PackingNames) {
+    EXPECT_NE(r.diagnostics.all()[0].message.find(packing.name), std::string::npos) << packing.name;
   }
 }
 

@@ -132,7 +132,7 @@ TEST(ShaderGraph, MatchesTheReferenceEngineOnRandomPrograms) {
           for (int c = 0; c < 4; ++c) {
             const float want = expected.has(slot) ? expected.lane(slot, c)[vertex] : UnwrittenOutputValue(slot)[c];
             ASSERT_TRUE(SameFloat(outputs[slot][c], want))
-                << FloatRulesName(rules) << ", program " << k << " vertex " << vertex << " " << OutputSlotName(slot)
+                << kFloatRulesNames.Name(rules) << ", program " << k << " vertex " << vertex << " " << OutputSlotName(slot)
                 << "." << kLaneLetters[c] << ": translation " << outputs[slot][c] << ", reference " << want << "\n"
                 << Disassemble(program);
           }
@@ -176,7 +176,7 @@ TEST(Translate, EveryProgramOfProgramsCompilesForEveryTarget) {
     ASSERT_TRUE(loaded.program) << entry.path() << ": " << loaded.diagnostics.ToString();
     for (FloatRules rules : kAllFloatRules) {
       EXPECT_EQ(CheckTranslations(*loaded.program, entry.path().filename().string(), rules), "")
-          << entry.path() << " under " << FloatRulesName(rules);
+          << entry.path() << " under " << kFloatRulesNames.Name(rules);
     }
     ++checked;
   }
@@ -198,7 +198,7 @@ TEST(Translate, GeneratedProgramsCompileForEveryTarget) {
     const Program program = generator.MakeProgram();
     const FloatRules rules = k % 2 == 0 ? FloatRules::kD3d9 : FloatRules::kLegacy;
     ASSERT_EQ(CheckTranslations(program, "generated", rules), "")
-        << "generated program " << k << " under " << FloatRulesName(rules) << ":\n" << Disassemble(program);
+        << "generated program " << k << " under " << kFloatRulesNames.Name(rules) << ":\n" << Disassemble(program);
   }
 }
 
