@@ -1,4 +1,5 @@
-"""Helper of compare_irrmap_outputs.sh (standard library only).
+"""Helper of compare_irrmap_outputs.sh (standard library only): its inputs, and its JSON and EXR
+comparisons.
 
 make-inputs DIR: writes small environment files in every layout irrmap reads (PFM crosses, strips,
   six faces, a lat-long map and an angular probe; a Radiance lat-long map), and for vs11 run a
@@ -121,7 +122,9 @@ def load(path):
     text = Path(path).read_text()
     if path.endswith(".jsonl"):
         records = [json.loads(line) for line in text.splitlines() if line.strip()]
-        return {record.get("input", str(i)): record for i, record in enumerate(records)}
+        # Threads finish files in any order: records are matched by input, in sorted order.
+        return dict(sorted(((record.get("input", str(i)), record) for i, record in enumerate(records)),
+                           key=lambda pair: pair[0]))
     return json.loads(text)
 
 
