@@ -12,7 +12,8 @@
  *   accepts (vs_1_0 and vs_1_1 today).
  * - Thread safety: a vs11c_shader may be used by one thread at a time (its calls change its
  *   constants and its engine's caches); distinct shaders may be used from any number of threads at
- *   once. vs11c_validate_d3d8/9, vs11c_status_name and vs11c_version are safe from any thread.
+ *   once. Validation, creation (each call makes a new shader), vs11c_status_name and
+ *   vs11c_version are safe from any number of threads at once.
  *   (tests/vm/capi/capi_threads_test.cc.)
  */
 #ifndef VS11_VS11_C_H_
@@ -132,14 +133,17 @@ typedef struct vs11c_viewport {
 } vs11c_viewport;
 
 /* Where the shader's outputs go, as the destination buffer of ProcessVertices. Exactly one of
- * `fvf` (non-zero: D3DFVF_XYZ or D3DFVF_XYZRHW, D3DFVF_PSIZE, D3DFVF_DIFFUSE, D3DFVF_SPECULAR,
- * D3DFVF_TEXn with D3DFVF_TEXCOORDSIZEn) and `declaration` (D3DVERTEXELEMENT9s of stream 0 ending in
+ * `fvf` (non-zero: D3DFVF_XYZ, D3DFVF_XYZRHW or D3DFVF_XYZW, D3DFVF_PSIZE, D3DFVF_DIFFUSE,
+ * D3DFVF_SPECULAR, D3DFVF_TEXn with D3DFVF_TEXCOORDSIZEn; blend weights and D3DFVF_NORMAL, which
+ * no shader writes, give VS11C_UNSUPPORTED) and `declaration` (D3DVERTEXELEMENT9s of stream 0 ending in
  * VS11C_DECL_END, types FLOAT1..4 and D3DCOLOR; usages POSITION/POSITIONT, COLOR0/1, TEXCOORD0-7,
  * PSIZE, FOG) is given. Vertex i is written at data + i * stride; bytes no element names are left
  * as they were. Colours are clamped to [0, 1] and rounded to the nearest of 255 steps (NaN: 0).
  * A transformed position (XYZRHW, POSITIONT) with a viewport is D3D's screen position
  * (x + (1 + X/W) * width/2, y + (1 - Y/W) * height/2, min_z + Z/W * (max_z - min_z), 1/W); without a
- * viewport, and for an untransformed one, the shader's oPos as it is. No clipping is done. */
+ * viewport, and for an untransformed one, the shader's oPos as it is. No clipping is done. An
+ * output register the shader never writes gives (1, 1, 1, 1) for oD0, (0, 0, 0, 1) for oD1 and 0
+ * elsewhere (DXVK's choice; D3D leaves it undefined). */
 typedef struct vs11c_output {
   void* data;
   size_t stride;

@@ -11,6 +11,8 @@
 namespace vs11::capi {
 namespace {
 
+static_assert(sizeof(vs11c_vertex_element) == 8, "vs11c_vertex_element must be laid out as D3DVERTEXELEMENT9");
+
 // d3d8types.h: a declaration token's type in bits 29-31 (D3DVSD_TOKENTYPESHIFT).
 enum class D3d8Token : std::uint32_t { kNop = 0, kStream = 1, kStreamData = 2, kTessellator = 3, kConstMem = 4, kExt = 5, kEnd = 7 };
 constexpr int kTokenTypeShift = 29;
