@@ -33,13 +33,16 @@ long InstructionAtWord(const Program& program, long word) {
   return found == program.word_offsets.end() ? -1 : static_cast<long>(found - program.word_offsets.begin());
 }
 
-std::vector<int> InputsRead(const Program& program) {
-  std::vector<int> read;
-  for (const Instruction& instruction : program.instructions) {
+// Each input register the program reads, with the first instruction that reads it.
+std::vector<std::pair<int, int>> InputsRead(const Program& program) {
+  std::vector<std::pair<int, int>> read;
+  for (int index = 0; index < static_cast<int>(program.instructions.size()); ++index) {
+    const Instruction& instruction = program.instructions[static_cast<std::size_t>(index)];
     for (int s = 0; s < instruction.info().source_count(); ++s) {
       const RegisterRef& reg = instruction.sources[static_cast<std::size_t>(s)].reg;
-      if (reg.file == RegisterFile::kInput && std::find(read.begin(), read.end(), reg.index) == read.end()) {
-        read.push_back(reg.index);
+      if (reg.file == RegisterFile::kInput &&
+          std::none_of(read.begin(), read.end(), [&](const auto& seen) { return seen.first == reg.index; })) {
+        read.emplace_back(reg.index, index);
       }
     }
   }
@@ -105,13 +108,13 @@ Validation ValidateShader(Api api, std::span<const std::uint32_t> declaration, s
   if (diagnostics.HasErrors() && result.status == VS11C_OK) result.status = VS11C_INVALID_SHADER;
   if (result.d3d8_declaration) {
     // D3D8 binds registers, not usages: a register the declaration does not load reads (0, 0, 0, 1).
-    for (int reg : InputsRead(*decoded.program)) {
+    for (const auto& [reg, index] : InputsRead(*decoded.program)) {
       const auto& inputs = result.d3d8_declaration->inputs;
       if (std::none_of(inputs.begin(), inputs.end(), [&](const InputElement& input) { return input.reg == reg; })) {
         result.messages.push_back(Message(Severity::kWarning, kD3d8DeclarationCode,
-                                          "the shader reads v" + std::to_string(reg) +
+                                          "instruction " + std::to_string(index) + " reads v" + std::to_string(reg) +
                                               ", which the declaration does not load: it reads (0, 0, 0, 1)",
-                                          -1, -1));
+                                          index, decoded.program->WordOffsetOf(index)));
       }
     }
   }

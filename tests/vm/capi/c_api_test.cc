@@ -139,6 +139,8 @@ TEST(CApi, ValidationGivesCodeTextAndInstruction) {
   ASSERT_EQ(count, 1u);
   EXPECT_STREQ(messages[0].code, "d3d8-declaration");
   EXPECT_EQ(messages[0].severity, VS11C_WARNING);
+  EXPECT_EQ(messages[0].instruction, 1);
+  EXPECT_EQ(messages[0].token, 4);  // version 0, mov oPos, c0 at 1-3, mov oD0, v1 at 4
 }
 
 TEST(CApi, MalformedTokensAndDeclarationsNameTheirToken) {
