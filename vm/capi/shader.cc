@@ -108,7 +108,8 @@ Validation ValidateShader(Api api, std::span<const std::uint32_t> declaration, s
   if (diagnostics.HasErrors() && result.status == VS11C_OK) result.status = VS11C_INVALID_SHADER;
   if (result.d3d8_declaration) {
     // D3D8 binds registers, not usages: a register the declaration does not load reads (0, 0, 0, 1).
-    for (const auto& [reg, index] : InputsRead(*decoded.program)) {
+    for (const std::pair<int, int>& read : InputsRead(*decoded.program)) {
+      const int reg = read.first, index = read.second;  // not a structured binding: clang 14 cannot capture one
       const auto& inputs = result.d3d8_declaration->inputs;
       if (std::none_of(inputs.begin(), inputs.end(), [&](const InputElement& input) { return input.reg == reg; })) {
         result.messages.push_back(Message(Severity::kWarning, kD3d8DeclarationCode,
