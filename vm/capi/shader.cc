@@ -193,33 +193,42 @@ vs11c_status Shader::Process(const vs11c_vertex_element* declaration, std::span<
 
   std::vector<int> registers;
   for (const InputElement& input : inputs) registers.push_back(input.reg);
+  std::vector<float> screen;  // the screen positions of a chunk, lane after lane
+  VertexArrays in, out;
   for (std::size_t first = 0; first < vertex_count; first += kProcessChunk) {
     const std::size_t count = std::min(kProcessChunk, vertex_count - first);
-    VertexArrays in = MakeInputArrays(count, registers);
+    // The arrays of one chunk serve the next of the same size: every input lane is rewritten, and
+    // the engine writes the same output lanes each run.
+    if (in.count() != count) {
+      in = MakeInputArrays(count, registers);
+      out = MakeOutputArrays(count, program_);
+    }
     for (const InputElement& input : inputs) {
       const vs11c_stream& stream = streams[input.stream];
       const auto* bytes = static_cast<const std::uint8_t*>(stream.data) + first * stream.stride + input.offset;
       std::array<float*, 4> lanes;
       for (int c = 0; c < 4; ++c) lanes[c] = in.lane(input.reg, c);
-      for (std::size_t i = 0; i < count; ++i) {
-        const Vec4f value = ReadElement(input.type, bytes + i * stream.stride);
-        for (int c = 0; c < 4; ++c) lanes[c][i] = value[c];
-      }
+      ReadElements(input.type, bytes, stream.stride, count, lanes);
     }
-    VertexArrays out = MakeOutputArrays(count, program_);
     engine_->Run(in, out);
     if (!engine_->error().empty()) return VS11C_ENGINE_FAILED;
     auto* destination = static_cast<std::uint8_t*>(output.data) + first * output.stride;
     for (const OutputElement& element : outputs) {
-      const bool written = out.has(element.slot);
-      for (std::size_t i = 0; i < count; ++i) {
-        Vec4f value = UnwrittenOutputValue(element.slot);
-        if (written) {
-          for (int c = 0; c < 4; ++c) value[c] = out.view(element.slot, c)[i];
-        }
-        if (element.transformed && output.viewport != nullptr) value = ScreenPosition(value, *output.viewport);
-        WriteElement(element.type, value, destination + i * output.stride + element.offset);
+      // An unwritten register reads its one value (stride 0); a screen position, lanes of its own.
+      const Vec4f unwritten = UnwrittenOutputValue(element.slot);
+      std::array<StridedLane, 4> lanes;
+      for (int c = 0; c < 4; ++c) {
+        lanes[c] = out.has(element.slot) ? out.view(element.slot, c) : StridedLane{&unwritten[c], 0};
       }
+      if (element.transformed && output.viewport != nullptr) {
+        screen.resize(4 * count);
+        for (std::size_t i = 0; i < count; ++i) {
+          const Vec4f position = ScreenPosition({lanes[0][i], lanes[1][i], lanes[2][i], lanes[3][i]}, *output.viewport);
+          for (int c = 0; c < 4; ++c) screen[c * count + i] = position[c];
+        }
+        for (int c = 0; c < 4; ++c) lanes[c] = StridedLane{screen.data() + c * count, 1};
+      }
+      WriteElements(element.type, lanes, destination + element.offset, output.stride, count);
     }
   }
   return VS11C_OK;

@@ -3,9 +3,14 @@
 #include <array>
 #include <bit>
 #include <cmath>
+#include <cassert>
 #include <cstring>
+#include <utility>
 
 #include <glm/gtc/packing.hpp>
+#if defined(__SSE__)
+#include <immintrin.h>
+#endif
 
 namespace vs11::capi {
 namespace {
@@ -51,7 +56,11 @@ std::optional<std::size_t> DeclTypeSize(int type) {
 
 float HalfToFloat(std::uint16_t half) { return glm::unpackHalf1x16(half); }
 
-Vec4f ReadElement(DeclType type, const std::uint8_t* bytes) {
+namespace {
+
+// The reading of one element; always inlined, so that ReadElements's loops, each for one constant
+// type, keep only that type's case.
+[[gnu::always_inline]] inline Vec4f Read(DeclType type, const std::uint8_t* bytes) {
   switch (type) {
     case DeclType::kFloat1:
     case DeclType::kFloat2:
@@ -92,25 +101,86 @@ Vec4f ReadElement(DeclType type, const std::uint8_t* bytes) {
   return kDefaultInput;
 }
 
-std::uint32_t PackD3dColor(const Vec4f& rgba) {
-  auto channel = [](float value) -> std::uint32_t {
-    if (!(value > 0.0f)) return 0;  // NaN too
-    if (value >= 1.0f) return 255;
-    return static_cast<std::uint32_t>(std::nearbyint(value * kUbyteNorm));
-  };
-  constexpr int kRed = 16, kGreen = 8, kAlpha = 24;
-  return channel(rgba[3]) << kAlpha | channel(rgba[0]) << kRed | channel(rgba[1]) << kGreen | channel(rgba[2]);
+template <DeclType kType>
+void ReadLoop(const std::uint8_t* bytes, std::size_t stride, std::size_t count, const std::array<float*, 4>& lanes) {
+  for (std::size_t i = 0; i < count; ++i) {
+    const Vec4f value = Read(kType, bytes + i * stride);
+    for (int c = 0; c < 4; ++c) lanes[c][i] = value[c];
+  }
 }
+
+template <int... kTypes>
+constexpr auto MakeReadLoops(std::integer_sequence<int, kTypes...>) {
+  return std::array{&ReadLoop<static_cast<DeclType>(kTypes)>...};
+}
+constexpr auto kReadLoops = MakeReadLoops(std::make_integer_sequence<int, kDeclTypeCount>());
+
+}  // namespace
+
+Vec4f ReadElement(DeclType type, const std::uint8_t* bytes) { return Read(type, bytes); }
+
+void ReadElements(DeclType type, const std::uint8_t* bytes, std::size_t stride, std::size_t count,
+                  const std::array<float*, 4>& lanes) {
+  if (type == DeclType::kUnused) return;
+  kReadLoops[static_cast<std::size_t>(type)](bytes, stride, count, lanes);
+}
+
+namespace {
+
+// value * 255 rounded to nearest, ties to even: the SSE conversion (in the default rounding mode)
+// where there is one, as std::nearbyint's libm call costs more than the rest of the packing.
+[[gnu::always_inline]] inline std::uint32_t ColorChannel(float value) {
+  if (!(value > 0.0f)) return 0;  // NaN too
+  if (value >= 1.0f) return 255;
+#if defined(__SSE__)
+  return static_cast<std::uint32_t>(_mm_cvtss_si32(_mm_set_ss(value * kUbyteNorm)));
+#else
+  return static_cast<std::uint32_t>(std::nearbyint(value * kUbyteNorm));
+#endif
+}
+
+[[gnu::always_inline]] inline std::uint32_t Pack(float r, float g, float b, float a) {
+  constexpr int kRed = 16, kGreen = 8, kAlpha = 24;
+  return ColorChannel(a) << kAlpha | ColorChannel(r) << kRed | ColorChannel(g) << kGreen | ColorChannel(b);
+}
+
+template <DeclType kType>
+void WriteLoop(const std::array<StridedLane, 4>& lanes, std::uint8_t* bytes, std::size_t stride, std::size_t count) {
+  for (std::size_t i = 0; i < count; ++i) {
+    std::uint8_t* at = bytes + i * stride;
+    if constexpr (kType == DeclType::kD3dColor) {
+      const std::uint32_t color = Pack(lanes[0][i], lanes[1][i], lanes[2][i], lanes[3][i]);
+      std::memcpy(at, &color, sizeof color);
+    } else {
+      constexpr int kCount = static_cast<int>(kType) + 1;
+      float values[kCount];
+      for (int c = 0; c < kCount; ++c) values[c] = lanes[c][i];
+      std::memcpy(at, values, sizeof values);
+    }
+  }
+}
+
+}  // namespace
+
+std::uint32_t PackD3dColor(const Vec4f& rgba) { return Pack(rgba[0], rgba[1], rgba[2], rgba[3]); }
 
 bool IsWritableType(DeclType type) { return type <= DeclType::kD3dColor; }
 
-void WriteElement(DeclType type, const Vec4f& value, std::uint8_t* bytes) {
-  if (type == DeclType::kD3dColor) {
-    const std::uint32_t color = PackD3dColor(value);
-    std::memcpy(bytes, &color, sizeof color);
-    return;
+void WriteElements(DeclType type, const std::array<StridedLane, 4>& lanes, std::uint8_t* bytes, std::size_t stride,
+                   std::size_t count) {
+  switch (type) {
+    case DeclType::kFloat1: return WriteLoop<DeclType::kFloat1>(lanes, bytes, stride, count);
+    case DeclType::kFloat2: return WriteLoop<DeclType::kFloat2>(lanes, bytes, stride, count);
+    case DeclType::kFloat3: return WriteLoop<DeclType::kFloat3>(lanes, bytes, stride, count);
+    case DeclType::kFloat4: return WriteLoop<DeclType::kFloat4>(lanes, bytes, stride, count);
+    case DeclType::kD3dColor: return WriteLoop<DeclType::kD3dColor>(lanes, bytes, stride, count);
+    default: assert(!"not an output type");
   }
-  std::memcpy(bytes, value.data(), sizeof(float) * (static_cast<std::size_t>(type) + 1));
+}
+
+void WriteElement(DeclType type, const Vec4f& value, std::uint8_t* bytes) {
+  WriteElements(type, {StridedLane{&value[0], 0}, StridedLane{&value[1], 0}, StridedLane{&value[2], 0}, StridedLane{&value[3], 0}},
+                bytes, 0, 1);
 }
 
 }  // namespace vs11::capi

@@ -3,6 +3,7 @@
 // are d3d9types.h's; the readings are the D3D9 documentation's for D3DDECLTYPE ("expanded to").
 #pragma once
 
+#include <array>
 #include <cstddef>
 #include <cstdint>
 #include <optional>
@@ -38,6 +39,9 @@ std::optional<std::size_t> DeclTypeSize(int type);
 // The four floats of an element of `type` (a readable type) whose bytes start at `bytes`, with the
 // components the type lacks filled from kDefaultInput (0, 0, 0, 1).
 Vec4f ReadElement(DeclType type, const std::uint8_t* bytes);
+// ReadElement over `count` elements `stride` bytes apart, component c of element i into lanes[c][i].
+void ReadElements(DeclType type, const std::uint8_t* bytes, std::size_t stride, std::size_t count,
+                  const std::array<float*, 4>& lanes);
 
 // IEEE half to float, exactly (every half is a float): denormals, infinities and NaN payloads kept.
 float HalfToFloat(std::uint16_t half);
@@ -46,8 +50,12 @@ float HalfToFloat(std::uint16_t half);
 // [0, 1], times 255, rounded to nearest (ties to even); NaN gives 0.
 std::uint32_t PackD3dColor(const Vec4f& rgba);
 
-// Writes `count` (1-4) floats or a D3DCOLOR at `bytes`; the only output types of the library.
+// FLOAT1-4 and D3DCOLOR, the only output types of the library.
 bool IsWritableType(DeclType type);
+// Writes `value` at `bytes` as `type` (a writable one): its first 1-4 floats, or PackD3dColor.
 void WriteElement(DeclType type, const Vec4f& value, std::uint8_t* bytes);
+// WriteElement over `count` elements `stride` bytes apart, element i from lanes[c][i].
+void WriteElements(DeclType type, const std::array<StridedLane, 4>& lanes, std::uint8_t* bytes, std::size_t stride,
+                   std::size_t count);
 
 }  // namespace vs11::capi

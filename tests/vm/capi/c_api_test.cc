@@ -59,10 +59,10 @@ T At(const std::vector<std::uint8_t>& bytes, std::size_t offset) {
 }
 
 TEST(CApi, D3d9ShaderOverTwoInterleavedStreamsWritesTheFvfVertex) {
-  constexpr std::size_t kCount = 5000;  // more than one chunk of the library's loop
+  constexpr std::size_t kCount = 9000;  // two whole chunks of the library's loop (arrays reused) and a part
   const std::vector<std::uint8_t> output = RunTwoStreams("ref", kCount);
   ASSERT_EQ(output.size(), kCount * kOutputStride);
-  for (std::size_t i : {std::size_t{0}, std::size_t{7}, std::size_t{4097}}) {
+  for (std::size_t i : {std::size_t{0}, std::size_t{7}, std::size_t{4097}, std::size_t{8199}, std::size_t{8999}}) {
     const std::size_t at = i * kOutputStride;
     EXPECT_EQ(At<float>(output, at), static_cast<float>(i));  // identity m4x4
     EXPECT_EQ(At<float>(output, at + 4), 0.5f);
