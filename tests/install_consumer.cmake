@@ -14,12 +14,9 @@ foreach(shown cmake:CMakeLists.txt cpp:main.cc)
     message(FATAL_ERROR "README.md does not show tests/consumer/${file} verbatim in a ```${language} block")
   endif()
 endforeach()
+include(${CMAKE_CURRENT_LIST_DIR}/install_steps.cmake)
 file(REMOVE_RECURSE "${WORK_DIR}")
-execute_process(COMMAND ${CMAKE_COMMAND} --install "${BINARY_DIR}" --prefix "${WORK_DIR}/prefix"
-                RESULT_VARIABLE status OUTPUT_QUIET)
-if(status)
-  message(FATAL_ERROR "cmake --install failed: ${status}")
-endif()
+vs11_install_build("${BINARY_DIR}" "${WORK_DIR}/prefix")
 execute_process(COMMAND ${CMAKE_COMMAND} -S "${SOURCE_DIR}/tests/consumer" -B "${WORK_DIR}/build"
                         -DCMAKE_PREFIX_PATH=${WORK_DIR}/prefix -DCMAKE_BUILD_TYPE=Release
                         -DCMAKE_CXX_COMPILER=${CXX_COMPILER} "-DCMAKE_EXE_LINKER_FLAGS=${LINK_FLAGS}"
@@ -36,19 +33,7 @@ if(status)
   message(FATAL_ERROR "the consumer failed: ${status}")
 endif()
 # Without CMake: the same example built with `pkg-config --cflags --libs vs11` alone.
-find_program(PKG_CONFIG pkg-config REQUIRED)
-file(GLOB_RECURSE pc_file "${WORK_DIR}/prefix/*/vs11.pc")
-if(NOT pc_file)
-  message(FATAL_ERROR "cmake --install put no vs11.pc under ${WORK_DIR}/prefix")
-endif()
-get_filename_component(pc_dir "${pc_file}" DIRECTORY)
-set(ENV{PKG_CONFIG_PATH} "${pc_dir}")
-execute_process(COMMAND ${PKG_CONFIG} --cflags --libs vs11 OUTPUT_VARIABLE pkg_flags
-                RESULT_VARIABLE status OUTPUT_STRIP_TRAILING_WHITESPACE ERROR_VARIABLE pkg_error)
-if(status)
-  message(FATAL_ERROR "pkg-config --cflags --libs vs11 failed: ${pkg_error}")
-endif()
-separate_arguments(pkg_flags UNIX_COMMAND "${pkg_flags}")
+vs11_installed_pkg_config("${WORK_DIR}/prefix" vs11 pkg_flags lib_dir)
 separate_arguments(link_flags UNIX_COMMAND "${LINK_FLAGS}")
 execute_process(COMMAND ${CXX_COMPILER} "${SOURCE_DIR}/tests/consumer/main.cc" -o "${WORK_DIR}/vs11_consumer_pkgconfig"
                         ${pkg_flags} ${link_flags}

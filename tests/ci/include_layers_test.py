@@ -1,7 +1,7 @@
 #!/usr/bin/env python3
 """Includes point down only (README, Layout): a file includes its own folder or a lower layer.
 
-vm:          core <- asm, io <- engines <- reference, mesh, translate <- gl (the gl engine runs the translation)
+vm:          core <- asm, io <- engines <- reference, mesh, translate <- gl (the gl engine runs the translation), capi (the C library)
 irradiance:  io <- sh <- render <- report <- jobs <- mesh_input, gpu (the GPU frame, over vm/gl)
 tools:       vm/cli (vs11) <- irradiance/cli (irrmap, which shares vs11's command-line parse)
 python:      the Python module, over the vm and irradiance libraries (not the tools, not vm/mesh)
@@ -18,13 +18,15 @@ import sys
 
 # (folder, layer): a file may include from folders of a lower layer, or from its own folder.
 LAYERS = {
-    "vm/core": 0, "vm/ir": 1, "vm/asm": 1, "vm/io": 1, "vm/engines": 2, "vm/reference": 3, "vm/mesh": 3, "vm/translate": 3, "vm/gl": 4,
+    "vm/core": 0, "vm/ir": 1, "vm/asm": 1, "vm/io": 1, "vm/engines": 2, "vm/reference": 3, "vm/mesh": 3, "vm/translate": 3, "vm/gl": 4, "vm/capi": 4,
     "irradiance/io": 5, "irradiance/sh": 6, "irradiance/render": 7, "irradiance/report": 8,
     "irradiance/jobs": 9, "irradiance/mesh_input": 10, "irradiance/gpu": 10, "vm/cli": 11, "irradiance/cli": 12,
     "python": 13,
 }
 # The Python module binds the libraries only: what the tools do is theirs.
 NOT_FROM = {"python": {"vm/cli", "irradiance/cli", "irradiance/mesh_input"},
+            # The C library (libvs11c) is the machine alone.
+            "vm/capi": {folder for folder in LAYERS if folder.startswith("irradiance/")},
             # The VM tool needs nothing of irradiance: what it verifies is vm/reference's.
             "vm/cli": {folder for folder in LAYERS if folder.startswith("irradiance/")}}
 # Exceptions to "any lower layer": vm/mesh is below the irradiance library's layers but only

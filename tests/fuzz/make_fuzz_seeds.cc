@@ -7,6 +7,7 @@
 //   CORPUS_DIR/fuzz_mesh_wire    the sandboxed mesh loader's replies for those that load
 //   CORPUS_DIR/fuzz_npy          .npy files of 1 to 4 columns
 //   CORPUS_DIR/fuzz_buffer_element  "STRIDE v#=OFFSET:COUNT..." lines, each with a buffer of floats
+//   CORPUS_DIR/fuzz_capi         a D3D9 and a D3D8 shader with declarations, FVF and declaration outputs
 //   CORPUS_DIR/fuzz_batch_merge  only its committed seeds: shard outputs (records, a duplicate, a cut-off line)
 // plus, for each target, the committed files in tests/fuzz/seeds/<target>/.
 #include <cctype>
@@ -23,6 +24,7 @@
 #include "vm/mesh/mesh_io.h"
 #include "vm/mesh/mesh_wire.h"
 #include "vm/mesh/npy.h"
+#include "tests/fuzz/fuzz_capi_input.h"
 
 namespace {
 
@@ -160,6 +162,40 @@ bool WriteBufferElementSeeds(const fs::path& dir) {
   return ok;
 }
 
+// The C library's inputs (tests/fuzz/fuzz_capi_input.h): shaders that validate, so that the fuzzer
+// starts from runs that reach the engines and the output writers.
+bool WriteCApiSeeds(const fs::path& dir) {
+  auto tokens = [](const char* source) {
+    vs11::AssembleResult assembled = vs11::AssembleSource(source, "seed.vsh", {});
+    return assembled.program ? vs11::Encode(*assembled.program) : std::vector<std::uint32_t>{};
+  };
+  vs11::fuzz::CApiInput d3d9;
+  d3d9.vertex_count = 3;
+  d3d9.tokens = tokens("vs_1_1\ndcl_position v0\ndcl_color v1\ndcl_texcoord v2\nm4x4 oPos, v0, c0\nmov oD0, v1\nmov oT0, v2\n");
+  // FLOAT3 POSITION and D3DCOLOR COLOR in stream 0, SHORT2N TEXCOORD0 in stream 1.
+  d3d9.input = {{0, 0, 2, 0, 0, 0}, {0, 12, 4, 0, 10, 0}, {1, 0, 9, 0, 5, 0}};
+  d3d9.fvf = 0x004 | 0x040 | 0x100;  // XYZRHW, DIFFUSE, TEX1
+  d3d9.output_stride = 28;
+  d3d9.strides[0] = 16;
+  d3d9.strides[1] = 4;
+  for (int i = 0; i < 64; ++i) d3d9.vertex_bytes.push_back(static_cast<std::uint8_t>(i * 37));
+  vs11::fuzz::CApiInput declared = d3d9;
+  declared.fvf = 0;
+  declared.output = {{0, 0, 3, 0, 9, 0}, {0, 16, 4, 0, 10, 0}, {0, 20, 1, 0, 5, 0}};
+  vs11::fuzz::CApiInput d3d8 = d3d9;
+  d3d8.d3d8 = true;
+  d3d8.input.clear();
+  d3d8.tokens = tokens("vs.1.1\nm4x4 oPos, v0, c0\nmov oD0, v5\nmov oT0, v7\n");
+  // STREAM(0), REG(0, FLOAT3), REG(5, D3DCOLOR), STREAM(1), REG(7, SHORT2), CONST(0, 1) + 4 floats, END.
+  d3d8.declaration = {0x20000000, 0x40020000, 0x40040005, 0x20000001, 0x40060007, 0x82000000,
+                      0x3F800000, 0, 0, 0, 0xFFFFFFFF};
+  bool ok = true;
+  ok &= WriteOrComplain(dir / "d3d9_fvf", vs11::fuzz::SerializeCApiInput(d3d9));
+  ok &= WriteOrComplain(dir / "d3d9_declaration", vs11::fuzz::SerializeCApiInput(declared));
+  ok &= WriteOrComplain(dir / "d3d8", vs11::fuzz::SerializeCApiInput(d3d8));
+  return ok;
+}
+
 int main(int argc, char** argv) {
   if (argc != 3) {
     std::fprintf(stderr, "usage: make_fuzz_seeds SOURCE_DIR CORPUS_DIR\n");
@@ -168,7 +204,7 @@ int main(int argc, char** argv) {
   fs::path source_dir = argv[1], corpus_dir = argv[2];
   bool ok = true;
   for (const char* target : {"fuzz_assembler", "fuzz_bytecode", "fuzz_environment", "fuzz_mesh", "fuzz_mesh_wire", "fuzz_npy",
-                             "fuzz_buffer_element", "fuzz_translate", "fuzz_batch_merge"}) {
+                             "fuzz_buffer_element", "fuzz_translate", "fuzz_batch_merge", "fuzz_capi"}) {
     fs::create_directories(corpus_dir / target);
     fs::path committed = source_dir / "tests" / "fuzz" / "seeds" / target;
     if (fs::is_directory(committed)) {
@@ -181,5 +217,6 @@ int main(int argc, char** argv) {
   ok &= WriteMeshReplySeeds(corpus_dir / "fuzz_mesh", corpus_dir / "fuzz_mesh_wire");
   ok &= WriteNpySeeds(corpus_dir / "fuzz_npy");
   ok &= WriteBufferElementSeeds(corpus_dir / "fuzz_buffer_element");
+  ok &= WriteCApiSeeds(corpus_dir / "fuzz_capi");
   return ok ? 0 : 1;
 }
