@@ -79,7 +79,12 @@ void BM_ProcessVerticesEngineOnly(benchmark::State& state, const char* engine) {
     for (int c = 0; c < 4; ++c) std::fill_n(inputs.lane(reg, c), kVertices, 0.25f * static_cast<float>(c + reg));
   }
   VertexArrays outputs = MakeOutputArrays(kVertices, program);
-  const std::unique_ptr<Engine> run = MakeEngine(engine, program, constants);
+  Result<std::unique_ptr<Engine>> made = MakeEngine(engine, program, constants);
+  if (!made) {
+    state.SkipWithError(made.message().c_str());
+    return;
+  }
+  const std::unique_ptr<Engine> run = std::move(made).value();
   for (auto _ : state) {
     run->Run(inputs, outputs);
     benchmark::DoNotOptimize(outputs.view(0, 0).base);

@@ -6,7 +6,7 @@
 # output (issue 32's restructuring): build irrmap and vs11 of the base commit into one build
 # directory and of the change into another, then
 #   tests/irradiance/compare_irrmap_outputs.sh BASE_BUILD NEW_BUILD
-# A build directory holds irradiance/irrmap and vm/vs11. The inputs are made here (PFM and Radiance
+# A build directory holds the irrmap and vs11 executables (in its irradiance and vm folders). The inputs are made here (PFM and Radiance
 # files by compare_irrmap_outputs.py; an EXR cross and a DDS cube by the new irrmap). A case whose
 # flags the base build does not know (exit 2 from it only) is listed as such, not compared. What each
 # side prints on stderr is compared with its numbers masked, and listed, not counted. About 2 minutes

@@ -49,13 +49,14 @@ std::vector<std::pair<int, int>> InputsRead(const Program& program) {
   return read;
 }
 
-// The one place the library builds an engine: engine_factory.h's MakeEngine, with the error an
-// engine that cannot run reports through error().
+// The one place the library builds an engine: engine_factory.h's MakeEngine; null where the engine
+// cannot be made.
 std::unique_ptr<Engine> BuildEngine(std::string_view name, const Program& program, const ConstantBank& constants,
                                     FloatRules rules) {
   EngineOptions options;
   options.float_rules = rules;
-  return MakeEngine(name, program, constants, options);
+  Result<std::unique_ptr<Engine>> engine = MakeEngine(name, program, constants, options);
+  return engine ? std::move(engine).value() : nullptr;
 }
 
 std::string_view FastestEngine() { return FindEngine("jit") ? "jit" : "batch"; }
@@ -156,6 +157,7 @@ vs11c_status Shader::SetEngine(const char* name, vs11c_float_rules rules) {
 vs11c_status Shader::EnsureEngine() {
   if (!engine_) {
     engine_ = BuildEngine(engine_name_, program_, constants_, float_rules_);
+    if (!engine_) return VS11C_ENGINE_FAILED;
     constants_changed_ = false;
   } else if (constants_changed_) {
     engine_->SetConstants(constants_);
