@@ -124,6 +124,7 @@ std::unique_ptr<Engine> MakeFailedEngine(std::string error) { return std::make_u
 
 std::unique_ptr<Engine> MakeEngine(std::string_view name, const Program& program, const ConstantBank& api_constants,
                                    const EngineOptions& options) {
+  if (std::optional<std::string> refusal = EngineRefusal(program, name)) return MakeFailedEngine(*refusal);
   if (std::optional<EngineInfo> engine = FindEngine(name)) return engine->make(program, api_constants, options);
   return MakeFailedEngine(fmt::format("the {} engine is not part of this program (it has {}; the vs11 and irrmap "
                                       "tools register vm/gl's gl engine)",
