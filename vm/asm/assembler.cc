@@ -55,29 +55,36 @@ WriteMask MaskWithLane(WriteMask mask, int lane) {
 }
 
 // What each operand position of an instruction holds, from its operand shape (§3.2 "form").
-enum class OperandKind { kDest, kSource, kFloat };
+enum class OperandKind { kDest, kSource, kFloat, kInteger, kBool };
 
-std::vector<OperandKind> OperandKinds(const OpcodeInfo& info) {
+std::vector<OperandKind> OperandKinds(const OpcodeInfo& info, ShaderModel model) {
   constexpr int kDefValues = 4;
   std::vector<OperandKind> kinds;
-  if (!info.has_dest()) return kinds;
-  kinds.push_back(OperandKind::kDest);
+  if (info.has_dest()) kinds.push_back(OperandKind::kDest);
   if (info.shape == OperandShape::kDefinition) {
     kinds.insert(kinds.end(), kDefValues, OperandKind::kFloat);
+  } else if (info.shape == OperandShape::kIntDefinition) {
+    kinds.insert(kinds.end(), kDefValues, OperandKind::kInteger);
+  } else if (info.shape == OperandShape::kBoolDefinition) {
+    kinds.push_back(OperandKind::kBool);
   } else {
-    kinds.insert(kinds.end(), info.source_count(), OperandKind::kSource);
+    kinds.insert(kinds.end(), SourceCount(info, model), OperandKind::kSource);
   }
   return kinds;
 }
 
 std::string FormText(const std::vector<OperandKind>& kinds) {
+  constexpr std::array<std::string_view, 5> kNames = {"dest", "src", "float", "int", "bool"};
   std::string text;
   for (OperandKind kind : kinds) {
     if (!text.empty()) text += ", ";
-    text += kind == OperandKind::kDest ? "dest" : kind == OperandKind::kSource ? "src" : "float";
+    text += kNames[static_cast<int>(kind)];
   }
   return text;
 }
+
+// The opcodes whose mnemonic takes a comparison suffix: if_gt, break_ne, setp_le.
+constexpr std::array kComparisonOpcodes = {Opcode::kIfc, Opcode::kBreakc, Opcode::kSetp};
 
 // Walks the tokens of one operand (or one statement).
 class Cursor {
@@ -110,32 +117,49 @@ int ColumnAfter(const Token& token) { return token.column + static_cast<int>(tok
 // false; the caller then abandons the line.
 class StatementParser {
  public:
-  StatementParser(const LexedLine& line, Diagnostics& diagnostics) : line_(line), diagnostics_(diagnostics) {}
+  StatementParser(const LexedLine& line, ShaderModel model, Diagnostics& diagnostics)
+      : line_(line), model_(model), diagnostics_(diagnostics) {}
 
   bool ParseInstruction(Instruction& instruction) {
-    const std::vector<Token>& tokens = line_.tokens;
-    const Token& first = tokens.front();
-    if (first.kind == TokenKind::kPlus) {
-      return Fail(first, DiagnosticCode::kNotInVs11,
+    std::span<const Token> tokens = line_.tokens;
+    const Token& start = tokens.front();
+    if (start.kind == TokenKind::kPlus) {
+      return Fail(start, DiagnosticCode::kNotInVs11,
                   "co-issue ('+' before an instruction) is not available in vertex shaders");
     }
-    if (first.kind == TokenKind::kLeftParen) return Fail(first, DiagnosticCode::kNotInVs11,
-                                                         "predication ('(p0)') is not available in vs_1_1");
+    if (start.kind == TokenKind::kLeftParen) {
+      if (!RegisterCount(RegisterFile::kPredicate, model_)) {
+        return Fail(start, NotInModelCode(), fmt::format("predication ('(p0)') is not available in {}", ModelName()));
+      }
+      if (!ParsePredicate(tokens, instruction)) return false;
+    }
+    const Token& first = tokens.front();
     if (first.kind != TokenKind::kIdentifier)
       return Fail(first, DiagnosticCode::kUnexpectedToken,
                   fmt::format("expected an instruction, found '{}'", first.text));
     if (!ParseMnemonic(first, instruction)) return false;
+    if (instruction.predicated && !instruction.info().is_executable()) {
+      return Fail(start, DiagnosticCode::kPredicateSyntax,
+                  fmt::format("{} cannot be predicated", instruction.info().mnemonic));
+    }
     std::vector<std::span<const Token>> operands;
-    if (!SplitOperands(std::span(tokens).subspan(1), operands)) return false;
+    if (!SplitOperands(tokens.subspan(1), operands)) return false;
     // Operands are parsed before the count is checked, so that `mov r0 r1` points at the stray r1.
-    std::vector<OperandKind> kinds = OperandKinds(instruction.info());
+    std::vector<OperandKind> kinds = OperandKinds(instruction.info(), model_);
     int source = 0;
+    int value = 0;
     for (std::size_t i = 0; i < std::min(kinds.size(), operands.size()); ++i) {
       Cursor cursor(operands[i], ColumnAfter(operands[i].back()));
-      bool ok = kinds[i] == OperandKind::kDest     ? ParseDest(cursor, WriteMask(instruction.info().default_mask),
-                                                               instruction.dest)
-                : kinds[i] == OperandKind::kSource ? ParseSource(cursor, instruction.sources[source++])
-                                                   : ParseFloat(cursor, instruction.def_bits[i - 1]);
+      bool ok = false;
+      switch (kinds[i]) {
+        case OperandKind::kDest:
+          ok = ParseDest(cursor, WriteMask(instruction.info().default_mask), instruction.dest);
+          break;
+        case OperandKind::kSource: ok = ParseSource(cursor, instruction.sources[source++]); break;
+        case OperandKind::kFloat: ok = ParseFloat(cursor, instruction.def_bits[value++]); break;
+        case OperandKind::kInteger: ok = ParseInteger(cursor, instruction.def_bits[value++]); break;
+        case OperandKind::kBool: ok = ParseBool(cursor, instruction.def_bits[value++]); break;
+      }
       if (!ok) return false;
     }
     if (operands.size() != kinds.size()) {
@@ -157,28 +181,100 @@ class StatementParser {
     return Fail(token.column, code, std::move(message));
   }
 
+  std::string_view ModelName() const { return ShaderModelName(model_); }
+  bool Later() const { return model_ != ShaderModel::kVs11; }
+  DiagnosticCode NotInModelCode() const { return Later() ? DiagnosticCode::kNotInModel : DiagnosticCode::kNotInVs11; }
+
+  // `(p0)`, `(!p0.x)` before an instruction (vs_2_x on); `tokens` is left at the instruction.
+  bool ParsePredicate(std::span<const Token>& tokens, Instruction& instruction) {
+    std::size_t close = 1;
+    while (close < tokens.size() && tokens[close].kind != TokenKind::kRightParen) ++close;
+    if (close == tokens.size() || close == 1) {
+      return Fail(tokens.front(), DiagnosticCode::kPredicateSyntax, "expected (p0) or (!p0) before the instruction");
+    }
+    Cursor cursor(tokens.subspan(1, close - 1), tokens[close].column);
+    const int column = cursor.column();
+    if (!ParseSource(cursor, instruction.predicate)) return false;
+    if (instruction.predicate.reg.file != RegisterFile::kPredicate || instruction.predicate.negate ||
+        instruction.predicate.absolute) {
+      return Fail(column, DiagnosticCode::kPredicateSyntax, "an instruction is predicated on p0 or !p0 only");
+    }
+    if (close + 1 == tokens.size()) {
+      return Fail(ColumnAfter(tokens[close]), DiagnosticCode::kUnexpectedToken, "expected an instruction after the predicate");
+    }
+    instruction.predicated = true;
+    tokens = tokens.subspan(close + 1);
+    return true;
+  }
+
+  // `opcode` exists in the program's model, or an error naming the model that has it.
+  bool CheckOpcodeModel(const Token& token, Opcode opcode) {
+    const OpcodeInfo& info = Info(opcode);
+    if (OpcodeAllowed(info, model_)) return true;
+    if (!Later()) return Fail(token, DiagnosticCode::kNotInVs11, fmt::format("'{}' is not a vs_1_1 instruction", token.text));
+    return Fail(token, DiagnosticCode::kNotInModel, fmt::format("'{}' is not a {} instruction (it exists from {} on)",
+                                                                token.text, ModelName(), ShaderModelName(info.since)));
+  }
+
+  // if_gt, break_ne, setp_le, and the _sat instruction modifier of later models.
+  std::optional<bool> ParseSuffixedMnemonic(const Token& token, std::string_view stem, std::string_view suffix,
+                                            Instruction& instruction) {
+    if (std::optional<int> comparison = ComparisonFromName(suffix)) {
+      for (Opcode opcode : kComparisonOpcodes) {
+        if (ComparisonStem(opcode) != stem) continue;
+        instruction.opcode = opcode;
+        instruction.comparison = *comparison;
+        return CheckOpcodeModel(token, opcode);
+      }
+    }
+    std::optional<Opcode> opcode = OpcodeFromMnemonic(stem);
+    if (Later() && suffix == "sat" && opcode && Info(*opcode).has_dest() && Info(*opcode).is_executable() &&
+        !TakesComparison(*opcode)) {
+      instruction.opcode = *opcode;
+      instruction.dest.saturate = true;
+      return CheckOpcodeModel(token, *opcode);
+    }
+    return std::nullopt;
+  }
+
   bool ParseMnemonic(const Token& token, Instruction& instruction) {
     std::string name = ToLowerAscii(token.text);
     constexpr std::string_view kDclPrefix = "dcl_";
     if (name.starts_with(kDclPrefix)) {
       instruction.opcode = Opcode::kDcl;
-      return ParseDclUsage(token, std::string_view(name).substr(kDclPrefix.size()), instruction);
+      std::string_view rest = std::string_view(name).substr(kDclPrefix.size());
+      if (std::optional<int> sampler = SamplerTypeFromName(rest); sampler && RegisterCount(RegisterFile::kSampler, model_)) {
+        instruction.sampler_type = *sampler;
+        return true;
+      }
+      return ParseDclUsage(token, rest, instruction);
     }
-    if (std::optional<Opcode> opcode = OpcodeFromMnemonic(name); opcode && *opcode != Opcode::kDcl) {
+    if (std::optional<Opcode> opcode = OpcodeFromMnemonic(name);
+        opcode && *opcode != Opcode::kDcl && !TakesComparison(*opcode)) {
       instruction.opcode = *opcode;
-      return true;
+      return CheckOpcodeModel(token, *opcode);
     }
     if (name == Info(Opcode::kDcl).mnemonic) {
       return Fail(token, DiagnosticCode::kDeclarationUsage, "dcl needs a usage, as in dcl_position or dcl_texcoord1");
     }
     std::size_t underscore = name.find('_');
-    if (underscore != std::string::npos && OpcodeFromMnemonic(name.substr(0, underscore)) &&
-        Contains(kInstructionModifiers, std::string_view(name).substr(underscore + 1))) {
-      return Fail(token, DiagnosticCode::kNotInVs11,
-                  fmt::format("instruction modifier '{}' is not available in vs_1_1", token.text.substr(underscore)));
+    if (underscore != std::string::npos) {
+      std::string_view stem = std::string_view(name).substr(0, underscore);
+      std::string_view suffix = std::string_view(name).substr(underscore + 1);
+      if (std::optional<bool> ok = ParseSuffixedMnemonic(token, stem, suffix, instruction)) return *ok;
+      if (OpcodeFromMnemonic(stem) && Contains(kInstructionModifiers, suffix)) {
+        return Fail(token, NotInModelCode(), fmt::format("instruction modifier '{}' is not available in {}",
+                                                         token.text.substr(underscore), Later() ? "vertex shaders" : "vs_1_1"));
+      }
+    }
+    if (std::optional<Opcode> opcode = OpcodeFromMnemonic(name); opcode && TakesComparison(*opcode)) {
+      if (!OpcodeAllowed(Info(*opcode), model_)) return CheckOpcodeModel(token, *opcode);
+      return Fail(token, DiagnosticCode::kUnknownInstruction,
+                  fmt::format("'{}' needs a comparison: {}_gt, _eq, _ge, _lt, _ne or _le", token.text,
+                              ComparisonStem(*opcode)));
     }
     if (Contains(kOtherModelMnemonics, name)) {
-      return Fail(token, DiagnosticCode::kNotInVs11, fmt::format("'{}' is not a vs_1_1 instruction", token.text));
+      return Fail(token, NotInModelCode(), fmt::format("'{}' is not a {} instruction", token.text, ModelName()));
     }
     return Fail(token, DiagnosticCode::kUnknownInstruction, fmt::format("unknown instruction '{}'", token.text));
   }
@@ -231,8 +327,13 @@ class StatementParser {
                                                       "a destination cannot be negated");
     int column = cursor.column();
     if (!ParseRegister(cursor, dest.reg)) return false;
-    if (dest.reg.relative) return Fail(column, DiagnosticCode::kDestinationSyntax,
-                                       "a destination cannot be relatively addressed");
+    const bool relative_output = model_ >= ShaderModel::kVs30 && dest.reg.file == RegisterFile::kTexCoordOut;
+    if (dest.reg.relative && !relative_output) {
+      return Fail(column, DiagnosticCode::kDestinationSyntax,
+                  Later() ? fmt::format("a destination cannot be relatively addressed in {} (vs_3_0: o# only)", ModelName())
+                          : std::string("a destination cannot be relatively addressed"));
+    }
+    if (!CheckRegisterExists(column, dest.reg)) return false;
     dest.mask = default_mask;
     if (cursor.Accept(TokenKind::kDot) && !ParseWriteMask(cursor, dest.mask)) return false;
     return ExpectEnd(cursor, "destination");
@@ -243,18 +344,28 @@ class StatementParser {
     if (source.negate && cursor.NextIs(TokenKind::kMinus)) return Fail(cursor.Peek(), DiagnosticCode::kSourceModifier,
                                                                        "double negation");
     if (cursor.NextIs(TokenKind::kBang)) {
-      return Fail(cursor.Peek(), DiagnosticCode::kSourceModifier,
-                  "the '!' source modifier is not available in vs_1_1 (only negation)");
+      if (!Later() || source.negate) {
+        return Fail(cursor.Peek(), DiagnosticCode::kSourceModifier,
+                    fmt::format("the '!' source modifier is not available {}",
+                                Later() ? "with negation" : "in vs_1_1 (only negation)"));
+      }
+      cursor.Next();
+      source.logical_not = true;
     }
     if (cursor.NextIs(TokenKind::kInteger) && cursor.NextIs(TokenKind::kMinus, 1)) {
       return Fail(cursor.Peek(), DiagnosticCode::kSourceModifier,
-                  "the complement source modifier '1-' is not available in vs_1_1 (only negation)");
+                  fmt::format("the complement source modifier '1-' is not available in {} (only negation{})",
+                              Later() ? "vertex shaders" : "vs_1_1", model_ >= ShaderModel::kVs30 ? " and _abs" : ""));
     }
     if (cursor.NextIs(TokenKind::kInteger) || cursor.NextIs(TokenKind::kFloat)) {
       return Fail(cursor.Peek(), DiagnosticCode::kExpectedRegister,
                   fmt::format("a source must be a register, not the number '{}' (use def)", cursor.Peek().text));
     }
+    const int column = cursor.column();
+    absolute_ = false;
     if (!ParseRegister(cursor, source.reg)) return false;
+    source.absolute = absolute_;
+    if (!CheckRegisterExists(column, source.reg)) return false;
     source.swizzle = Swizzle();
     if (cursor.Accept(TokenKind::kDot) && !ParseSwizzle(cursor, source.swizzle)) return false;
     return ExpectEnd(cursor, "source");
@@ -271,9 +382,14 @@ class StatementParser {
     if (!ResolveRegisterName(name, reg, has_number)) return false;
     if (cursor.NextIs(TokenKind::kLeftBracket)) {
       const Token& bracket = cursor.Next();
-      if (reg.file != RegisterFile::kConst) {
+      const bool indexable = reg.file == RegisterFile::kConst ||
+                             (model_ >= ShaderModel::kVs30 &&
+                              (reg.file == RegisterFile::kInput || reg.file == RegisterFile::kTexCoordOut));
+      if (!indexable) {
         return Fail(bracket, DiagnosticCode::kConstantIndexSyntax,
-                    fmt::format("only constant registers can be indexed with [...], not '{}'", name.text));
+                    fmt::format("only {} registers can be indexed with [...] in {}, not '{}'",
+                                model_ >= ShaderModel::kVs30 ? "constant, input and output" : "constant", ModelName(),
+                                name.text));
       }
       return ParseConstantIndex(cursor, bracket, reg);
     }
@@ -290,13 +406,23 @@ class StatementParser {
     std::size_t digits = letters;
     while (digits < text.size() && std::isdigit(static_cast<unsigned char>(text[digits]))) ++digits;
     std::string_view rest = text.substr(digits);
-    if (rest.starts_with('_') && Contains(kSourceModifierSuffixes, ToLowerAscii(rest.substr(1)))) {
+    if (model_ >= ShaderModel::kVs30 && EqualsIgnoringAsciiCase(rest, "_abs")) {
+      absolute_ = true;
+      rest = {};
+      text = text.substr(0, digits);
+    } else if (rest.starts_with('_') && Contains(kSourceModifierSuffixes, ToLowerAscii(rest.substr(1)))) {
       return Fail(name, DiagnosticCode::kSourceModifier,
-                  fmt::format("source modifier '{}' is not available in vs_1_1 (only negation)", rest));
+                  fmt::format("source modifier '{}' is not available in {} (only negation{})", rest, ModelName(),
+                              Later() ? "; _abs from vs_3_0 on" : ""));
     }
     auto spelling = std::find_if(kRegisterSpellings.begin(), kRegisterSpellings.end(), [&](const auto& s) {
       return EqualsIgnoringAsciiCase(s.name, text.substr(0, letters));
     });
+    // vs_3_0 names its outputs o#, the earlier models oPos, oFog, oPts, oD#, oT#.
+    if (spelling != kRegisterSpellings.end() && IsOutput(spelling->file) &&
+        (spelling->name == kVs30OutputSpelling) != (model_ >= ShaderModel::kVs30)) {
+      spelling = kRegisterSpellings.end();
+    }
     bool fixed = spelling != kRegisterSpellings.end() && spelling->fixed_index != RegisterSpelling::kNumbered;
     if (spelling == kRegisterSpellings.end() || !rest.empty() || (fixed && digits > letters)) {
       return Fail(name, DiagnosticCode::kUnknownRegister, fmt::format("unknown register '{}'", text));
@@ -349,6 +475,11 @@ class StatementParser {
         int value = 0;
         if (!ParseRegisterNumber(token, token.text, value)) return false;
         total += sign * value;
+      } else if (token.kind == TokenKind::kIdentifier && Later() &&
+                 (EqualsIgnoringAsciiCase(token.text, kAddressRegisterName) ||
+                  (EqualsIgnoringAsciiCase(token.text, RegisterName(RegisterFile::kLoop, 0)) &&
+                   RegisterCount(RegisterFile::kLoop, model_)))) {
+        if (!ParseAddressRegister(cursor, token, sign, reg)) return false;
       } else if (token.kind == TokenKind::kIdentifier && EqualsIgnoringAsciiCase(token.text, kAddressRegisterName)) {
         if (!ParseAddressLane(cursor, token, sign, reg.relative)) return false;
       } else if (token.kind == TokenKind::kFloat) {
@@ -386,6 +517,65 @@ class StatementParser {
     if (relative) return Fail(a0, DiagnosticCode::kConstantIndexSyntax, "a0.x appears twice in the constant index");
     relative = true;
     return true;
+  }
+
+  // Later models: a0 with any swizzle (a0 alone: .xyzw, as Microsoft's assembler writes it) or aL.
+  bool ParseAddressRegister(Cursor& cursor, const Token& name, int sign, RegisterRef& reg) {
+    if (sign < 0) return Fail(name, DiagnosticCode::kConstantIndexSyntax,
+                              fmt::format("{} cannot be subtracted in an index", name.text));
+    if (reg.relative) return Fail(name, DiagnosticCode::kConstantIndexSyntax, "an index holds one address register");
+    reg.relative = true;
+    const bool loop = !EqualsIgnoringAsciiCase(name.text, kAddressRegisterName);
+    Swizzle swizzle;
+    if (cursor.Accept(TokenKind::kDot) && !ParseSwizzle(cursor, swizzle)) return false;
+    if (loop && !swizzle.is_identity()) {
+      return Fail(name, DiagnosticCode::kConstantIndexSyntax, "aL takes no swizzle in an index");
+    }
+    reg.address = AddressRegister{loop ? RegisterFile::kLoop : RegisterFile::kAddress, swizzle.bits()};
+    return true;
+  }
+
+  // Later models: a register the model does not have is a syntax error, as in Microsoft's assembler
+  // (constants are the validator's question: the bank's size is the device's; relative operands are
+  // not checked). vs_1_1 leaves every register to the validator.
+  bool CheckRegisterExists(int column, const RegisterRef& reg) {
+    const bool later_only_file = reg.file == RegisterFile::kSampler || reg.file == RegisterFile::kLabel;
+    if ((!Later() && !later_only_file) || reg.relative || reg.file == RegisterFile::kConst) return true;
+    const int count = RegisterCount(reg.file, model_);
+    if (reg.index < count) return true;
+    return Fail(column, DiagnosticCode::kNoSuchRegister,
+                count == 0 ? fmt::format("{} has no {} registers", ModelName(), RegisterName(reg.file, 0, model_))
+                           : fmt::format("{} has no register {} (there are {})", ModelName(),
+                                         RegisterName(reg.file, reg.index, model_), count));
+  }
+
+  // One defi value: a 32-bit signed integer.
+  bool ParseInteger(Cursor& cursor, std::uint32_t& bits) {
+    const bool negative = cursor.Accept(TokenKind::kMinus);
+    if (!cursor.NextIs(TokenKind::kInteger)) {
+      return Fail(cursor.column(), DiagnosticCode::kExpectedNumber,
+                  cursor.AtEnd() ? std::string("expected an integer")
+                                 : fmt::format("expected an integer, found '{}'", cursor.Peek().text));
+    }
+    const Token& token = cursor.Next();
+    long long value = 0;
+    auto [ptr, ec] = std::from_chars(token.text.data(), token.text.data() + token.text.size(), value);
+    if (negative) value = -value;
+    if (ec != std::errc() || value < INT32_MIN || value > INT32_MAX) {
+      return Fail(token, DiagnosticCode::kNumberOutOfRange, fmt::format("'{}' is not a 32-bit integer", token.text));
+    }
+    bits = static_cast<std::uint32_t>(static_cast<std::int32_t>(value));
+    return ExpectEnd(cursor, "integer");
+  }
+
+  // The defb value: true or false.
+  bool ParseBool(Cursor& cursor, std::uint32_t& bits) {
+    const bool word = cursor.NextIs(TokenKind::kIdentifier) &&
+                      (EqualsIgnoringAsciiCase(cursor.Peek().text, "true") ||
+                       EqualsIgnoringAsciiCase(cursor.Peek().text, "false"));
+    if (!word) return Fail(cursor.column(), DiagnosticCode::kExpectedNumber, "expected true or false");
+    bits = EqualsIgnoringAsciiCase(cursor.Next().text, "true") ? 1u : 0u;
+    return ExpectEnd(cursor, "boolean");
   }
 
   bool ParseWriteMask(Cursor& cursor, WriteMask& mask) {
@@ -485,7 +675,9 @@ class StatementParser {
   }
 
   const LexedLine& line_;
+  ShaderModel model_;
   Diagnostics& diagnostics_;
+  bool absolute_ = false;  // the register just parsed carried _abs (vs_3_0)
 };
 
 // A version statement as written: "vs_1_1" is one token, "vs.1.1" three (vs . 1.1).
@@ -527,7 +719,7 @@ class Assembler {
                                   "the first statement must be the version (vs_1_1 or vs.1.1)");
       }
       Instruction instruction;
-      if (StatementParser(lexed, result_.diagnostics).ParseInstruction(instruction)) {
+      if (StatementParser(lexed, program_.model(), result_.diagnostics).ParseInstruction(instruction)) {
         program_.instructions.push_back(instruction);
         program_.source_locs.push_back(LocOf(lexed, lexed.tokens.front()));
       }
@@ -557,7 +749,8 @@ class Assembler {
     if (spelling == kVersionSpellings.end()) {
       result_.diagnostics.Error(
           loc, DiagnosticCode::kVersionStatement,
-          fmt::format("unsupported shader version '{}' (expected vs_1_1, vs.1.1 or vs.1.0)", version.text));
+          fmt::format("unsupported shader version '{}' (expected vs_1_1, vs_2_0, vs_2_x, vs_3_0, vs.1.1 or vs.1.0)",
+                      version.text));
       return;
     }
     if (line.tokens.size() > version.token_count) {

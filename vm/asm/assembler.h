@@ -20,6 +20,15 @@
 // .xyzw otherwise. A written mask is emitted as written, oFog and oPts included (`mov oFog.x, r0.x`
 // keeps mask .x; whether a mask is allowed is the validator's question).
 //
+// Later models (vs_2_0 | vs.2.0, vs_2_x | vs.2.x, vs_3_0 | vs.3.0; the tokens are Microsoft's, spec
+// sections "vs_2_0" to "vs_3_0"): the opcode table's later rows; flow-control operands (rep i0, loop aL,
+// i0, if [!]b0, call l0, callnz l0, !p0.z); if_gt/break_ne/setp_le comparisons; (p0) / (!p0.x) before an
+// instruction (vs_2_x on); _sat on an instruction; defi i#, n, n, n, n and defb b#, true|false; relative
+// operands indexed by a0 with any swizzle (c0[a0.y], c0[a0] = .xyzw) or aL; vs_3_0's o# outputs, dcl on
+// o# and s# (dcl_2d, dcl_cube, dcl_volume), v#[aL], o[a0.x + n] and r#_abs. A register the model does
+// not have (v16, o12, s4, r12 in vs_2_0) is a syntax error there, as in Microsoft's assembler, except on
+// a relative operand; vs_1_1 leaves register ranges to the validator.
+//
 // Every error carries the file, line and column it comes from, and parsing goes on with the next
 // line, so one run reports many errors.
 #pragma once

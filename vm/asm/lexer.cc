@@ -41,6 +41,7 @@ class LineLexer {
         break;  // comment to the end of the line
       } else if (IsIdentifierStart(c)) {
         LexIdentifier();
+      } else if (LexVersion2x()) {
       } else if (StartsNumber()) {
         if (!LexNumber()) break;
       } else if (!LexPunctuation()) {
@@ -73,6 +74,21 @@ class LineLexer {
     TokenKind previous = out_.tokens.back().kind;
     return previous != TokenKind::kIdentifier && previous != TokenKind::kRightBracket &&
            previous != TokenKind::kInteger && previous != TokenKind::kFloat;
+  }
+
+  // The "2.x" of a `vs.2.x` version statement, which is no number: one token after `vs` `.`.
+  bool LexVersion2x() {
+    constexpr std::string_view kMinor = "2.x";
+    if (out_.tokens.size() != 2 || out_.tokens[1].kind != TokenKind::kDot ||
+        !EqualsIgnoringAsciiCase(out_.tokens[0].text, "vs") ||
+        !EqualsIgnoringAsciiCase(text_.substr(pos_, kMinor.size()), kMinor) ||
+        (pos_ + kMinor.size() < text_.size() && IsIdentifierChar(text_[pos_ + kMinor.size()]))) {
+      return false;
+    }
+    const std::size_t begin = pos_;
+    pos_ += kMinor.size();
+    Push(TokenKind::kFloat, begin);
+    return true;
   }
 
   void LexIdentifier() {
@@ -162,6 +178,13 @@ std::string RegisterName(RegisterFile file, int index) {
 }
 
 bool HasRegisterName(RegisterFile file, int index) { return FindSpelling(file, index) != nullptr; }
+
+std::string RegisterName(RegisterFile file, int index, ShaderModel model) {
+  if (file == RegisterFile::kTexCoordOut && model >= ShaderModel::kVs30) {
+    return fmt::format("{}{}", kVs30OutputSpelling, index);
+  }
+  return RegisterName(file, index);
+}
 
 int LaneFromLetter(char letter) {
   constexpr std::array<char, 4> kColorLetters = {'r', 'g', 'b', 'a'};  // §2.3: synonyms of x y z w

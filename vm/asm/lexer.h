@@ -61,6 +61,12 @@ inline constexpr std::array kVersionSpellings = {
     VersionSpelling{"vs_1_0", kVersionVs10, true},
     VersionSpelling{"vs.1.1", kVersionVs11, false},
     VersionSpelling{"vs.1.0", kVersionVs10, false},
+    VersionSpelling{"vs_2_0", Info(ShaderModel::kVs20).version_token, true},
+    VersionSpelling{"vs.2.0", Info(ShaderModel::kVs20).version_token, true},
+    VersionSpelling{"vs_2_x", Info(ShaderModel::kVs2x).version_token, true},
+    VersionSpelling{"vs.2.x", Info(ShaderModel::kVs2x).version_token, true},
+    VersionSpelling{"vs_3_0", Info(ShaderModel::kVs30).version_token, true},
+    VersionSpelling{"vs.3.0", Info(ShaderModel::kVs30).version_token, true},
 };
 
 // The text form of a register (no mask, swizzle or relative suffix): "r3", "oPos", "oT7". A register
@@ -68,6 +74,8 @@ inline constexpr std::array kVersionSpellings = {
 // assemble; Decode refuses such registers (HasRegisterName).
 std::string RegisterName(RegisterFile file, int index);
 bool HasRegisterName(RegisterFile file, int index);
+// As a program of `model` spells it: vs_3_0's outputs are o0-o11 (the oT file's type number).
+std::string RegisterName(RegisterFile file, int index, ShaderModel model);
 
 // Component letters: x y z w, with r g b a as synonyms (§2.3). Returns the lane 0-3, or -1.
 int LaneFromLetter(char letter);

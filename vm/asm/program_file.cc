@@ -15,8 +15,9 @@ bool LooksLikeBytecode(const std::filesystem::path& path, std::string_view bytes
   std::string extension = path.extension().string();
   for (char& c : extension) c = static_cast<char>(std::tolower(static_cast<unsigned char>(c)));
   if (extension == ".vso" || extension == ".cso" || extension == ".bin") return true;
-  // 0xFFFE01xx little-endian: xx 01 FE FF.
-  return bytes.size() >= 4 && static_cast<unsigned char>(bytes[1]) == 0x01 &&
+  // 0xFFFE01xx to 0xFFFE03xx little-endian: xx 01 FE FF (vs_1_x) ... xx 03 FE FF (vs_3_0).
+  const auto major = static_cast<unsigned char>(bytes.size() >= 4 ? bytes[1] : 0);
+  return bytes.size() >= 4 && major >= 0x01 && major <= 0x03 &&
          static_cast<unsigned char>(bytes[2]) == 0xFE && static_cast<unsigned char>(bytes[3]) == 0xFF;
 }
 

@@ -35,7 +35,16 @@ struct ValidatorOptions {
 // program.LocOf(instruction index), or just the file for whole-program problems (missing oPos,
 // version). When an instruction has no source location the message starts with
 // "instruction N (mnemonic)". Bad input never asserts.
+// Programs of vs_2_0, vs_2_x and vs_3_0 get their models' rules (ValidateLaterModel).
 Diagnostics Validate(const Program& program, const ValidatorOptions& options = {});
+
+// The rules of vs_2_0, vs_2_x and vs_3_0 (vm/asm/validator_models.cc): each model's register counts,
+// instruction slots and nesting depths (vm/core/shader_model.h; vs_2_x with the maximal D3DVS20CAPS),
+// matched if/else/endif, loop/endloop and rep/endrep, break inside a loop, labels that exist and are
+// defined once outside any block, calls neither recursive nor deeper than the model allows, ret outside
+// open blocks, aL only inside a loop (in the main program), the operands each instruction takes, every
+// v# read declared, and oPos written (vs_3_0: an output declared with dcl_position).
+Diagnostics ValidateLaterModel(const Program& program, const ValidatorOptions& options);
 
 // The lanes (bit i = lane i, as in WriteMask) of the register named by source `operand` that an
 // instruction described by `info` reads when it writes `dest_mask` and the operand carries

@@ -85,7 +85,7 @@ void AddDisasmCommand(CLI::App& app) {
     flags.skip_validation = true;  // disassembly shows what is there, valid or not
     LoadedProgram loaded = LoadProgram(args->input, flags.ToOptions());
     if (loaded.program && !loaded.from_bytecode) {
-      Fail(fmt::format("{}: not a bytecode file (it does not start with a vs_1_x version token)", args->input));
+      Fail(fmt::format("{}: not a bytecode file (it does not start with a vertex-shader version token, vs_1_0 to vs_3_0)", args->input));
     }
     std::fputs(loaded.diagnostics.ToString().c_str(), stderr);
     if (!loaded.program) throw CommandFailure{1};
@@ -124,7 +124,8 @@ void AddValidateCommand(CLI::App& app) {
     }
     Program program = LoadProgramOrFail(args->input, args->flags);
     ProgramStats stats = ComputeStats(program);
-    std::printf("%s: valid vs_1_1: %d instructions, %d slots\n", args->input.c_str(), stats.instructions, stats.slots);
+    std::printf("%s: valid %s: %d instructions, %d slots\n", args->input.c_str(),
+                std::string(ShaderModelName(program.model())).c_str(), stats.instructions, stats.slots);
   });
 }
 

@@ -74,6 +74,8 @@ inline constexpr NameTable kSeverityNames("severity", {
   X(kExpectedNumber, "expected-number")                                                           \
   X(kNumberOutOfRange, "number-out-of-range")                                                     \
   X(kNumberUnderflow, "number-underflow")                                                         \
+  X(kNotInModel, "not-in-model")                                                                  \
+  X(kPredicateSyntax, "predicate-syntax")                                                         \
   /* Validator (vm/asm/validator.h, spec §6). */                                                 \
   X(kVersionToken, "version-token")                                                               \
   X(kMisplacedDeclaration, "misplaced-declaration")                                               \
@@ -99,6 +101,12 @@ inline constexpr NameTable kSeverityNames("severity", {
   X(kBadDefinition, "bad-definition")                                                             \
   X(kDuplicateDefinition, "duplicate-definition")                                                 \
   X(kTooManyDefinitions, "too-many-definitions")                                                  \
+  X(kUnmatchedFlowControl, "unmatched-flow-control")                                              \
+  X(kNestingTooDeep, "nesting-too-deep")                                                          \
+  X(kUndefinedLabel, "undefined-label")                                                           \
+  X(kDuplicateLabel, "duplicate-label")                                                           \
+  X(kLoopRegisterOutsideLoop, "loop-register-outside-loop")                                       \
+  X(kBadOperand, "bad-operand")                                                                   \
   /* Bytecode decoder (vm/asm/bytecode.h, spec §4). */                                           \
   X(kBytecodeTruncated, "bytecode-truncated")                                                     \
   X(kBytecodeTrailingWords, "bytecode-trailing-words")                                            \

@@ -35,4 +35,18 @@ std::optional<int> DeclUsageFromName(std::string_view name) {
   return std::nullopt;
 }
 
+std::optional<int> ComparisonFromName(std::string_view name) {
+  for (int i = 1; i < static_cast<int>(kComparisonNames.size()); ++i) {
+    if (EqualsIgnoringCase(kComparisonNames[i], name)) return i;
+  }
+  return std::nullopt;
+}
+
+std::optional<int> SamplerTypeFromName(std::string_view name) {
+  for (int i = 0; i < static_cast<int>(kSamplerTypeNames.size()); ++i) {
+    if (!kSamplerTypeNames[i].empty() && EqualsIgnoringCase(kSamplerTypeNames[i], name)) return i;
+  }
+  return std::nullopt;
+}
+
 }  // namespace vs11

@@ -11,6 +11,14 @@
 
 namespace vs11 {
 
+std::optional<std::string> EngineRefusal(const Program& program, std::string_view engine) {
+  const ShaderModel model = program.model();
+  if (Info(model).runs) return std::nullopt;
+  return fmt::format("the {} engine cannot run {} programs yet (they assemble, disassemble and validate; only "
+                     "vs_1_1 programs run)",
+                     engine, ShaderModelName(model));
+}
+
 ConstantBank ApplyDefinitions(const Program& program, ConstantBank api_constants) {
   for (const Instruction& instruction : program.instructions) {
     if (instruction.opcode != Opcode::kDef) continue;

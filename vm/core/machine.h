@@ -41,6 +41,11 @@ class ConstantBank {
   std::vector<Vec4f> values_;
 };
 
+// Why `engine` ("ref", "batch", "jit", "gl", "translate") cannot run `program`, or nullopt. Programs of
+// vs_2_0, vs_2_x and vs_3_0 assemble, decode and validate, but no engine executes them yet: every
+// engine refuses them by name (MakeEngine and translate::Translate ask here) rather than run them wrong.
+std::optional<std::string> EngineRefusal(const Program& program, std::string_view engine);
+
 // The bank a program sees: the API's values with the program's def constants written over them (§3.3
 // def). A def beyond the bank is ignored (the validator rejects it).
 ConstantBank ApplyDefinitions(const Program& program, ConstantBank api_constants);

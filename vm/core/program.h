@@ -24,10 +24,19 @@ constexpr bool IsOutput(RegisterFile file) {
          file == RegisterFile::kTexCoordOut;
 }
 
+// The register that indexes a relative operand: a0 with a swizzle choosing its lane (vs_1_1 has only
+// a0.x), or aL (later models; its swizzle is always .xyzw).
+struct AddressRegister {
+  RegisterFile file = RegisterFile::kAddress;
+  std::uint8_t swizzle_bits = 0x00;  // Swizzle bits: .x
+  friend constexpr bool operator==(const AddressRegister&, const AddressRegister&) = default;
+};
+
 struct RegisterRef {
   RegisterFile file = RegisterFile::kTemp;
   int index = 0;          // for a relative constant: the offset n of c[a0.x + n]
   bool relative = false;  // c[a0.x + index]
+  AddressRegister address{};  // what indexes a relative register
   friend constexpr bool operator==(const RegisterRef&, const RegisterRef&) = default;
 };
 
@@ -73,12 +82,15 @@ struct SourceOperand {
   RegisterRef reg;
   Swizzle swizzle;
   bool negate = false;
+  bool absolute = false;     // r0_abs (vs_3_0); with negate: -r0_abs
+  bool logical_not = false;  // !b0, !p0 (flow-control conditions and predicates)
   friend constexpr bool operator==(const SourceOperand&, const SourceOperand&) = default;
 };
 
 struct DestOperand {
   RegisterRef reg;
   WriteMask mask;
+  bool saturate = false;  // _sat (vs_2_0 on): the result clamped to [0, 1]
   friend constexpr bool operator==(const DestOperand&, const DestOperand&) = default;
 };
 
@@ -95,7 +107,12 @@ struct Instruction {
   std::array<SourceOperand, 3> sources;   // the first Info(opcode).source_count() are used
   int usage = 0;                          // dcl: D3DDECLUSAGE value
   int usage_index = 0;                    // dcl: 0-15
-  std::array<std::uint32_t, 4> def_bits{};  // def: the four floats as raw IEEE bits (kept exact)
+  std::array<std::uint32_t, 4> def_bits{};  // def: the four floats as raw IEEE bits (kept exact);
+                                            // defi: the four integers; defb: the bool in def_bits[0]
+  int comparison = 0;          // if_comp, break_comp, setp_comp: 1 gt ... 6 le (kComparisonNames)
+  int sampler_type = 0;        // dcl on s#: 2 2d, 3 cube, 4 volume (kSamplerTypeNames)
+  bool predicated = false;     // (p0) / (!p0) before the instruction (vs_2_x on)
+  SourceOperand predicate{RegisterRef{RegisterFile::kPredicate, 0, false, {}}, Swizzle(), false, false, false};
 
   const OpcodeInfo& info() const { return Info(opcode); }
   std::array<float, 4> def_values() const {

@@ -34,7 +34,12 @@ inline constexpr std::array kRegisterSpellings = {
     RegisterSpelling{"b", RegisterFile::kConstBool, RegisterSpelling::kNumbered},
     RegisterSpelling{"aL", RegisterFile::kLoop, 0},
     RegisterSpelling{"p", RegisterFile::kPredicate, RegisterSpelling::kNumbered},
+    RegisterSpelling{"s", RegisterFile::kSampler, RegisterSpelling::kNumbered},
+    RegisterSpelling{"l", RegisterFile::kLabel, RegisterSpelling::kNumbered},
+    // vs_3_0's name for the output file (the assembler takes it only there; RegisterName(..., model)).
+    RegisterSpelling{"o", RegisterFile::kTexCoordOut, RegisterSpelling::kNumbered},
 };
+inline constexpr std::string_view kVs30OutputSpelling = "o";
 
 // The length of `file`'s numbered spelling ("v", "c", "oT") when `text` begins with it in any case;
 // 0 otherwise.

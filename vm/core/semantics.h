@@ -176,6 +176,35 @@ struct M4x3Semantics {};
 struct M3x4Semantics {};
 struct M3x3Semantics {};
 struct M3x2Semantics {};
+// The later models' rows: no kernel yet (the engines refuse their programs: vm/core/machine.h's
+// EngineRefusal), so that every row still names a struct.
+struct LrpSemantics {};
+struct CallSemantics {};
+struct CallnzSemantics {};
+struct LoopSemantics {};
+struct RetSemantics {};
+struct EndloopSemantics {};
+struct LabelSemantics {};
+struct PowSemantics {};
+struct CrsSemantics {};
+struct SgnSemantics {};
+struct AbsSemantics {};
+struct NrmSemantics {};
+struct SincosSemantics {};
+struct RepSemantics {};
+struct EndrepSemantics {};
+struct IfSemantics {};
+struct ElseSemantics {};
+struct EndifSemantics {};
+struct MovaSemantics {};
+struct DefbSemantics {};
+struct DefiSemantics {};
+struct IfcSemantics {};
+struct BreakSemantics {};
+struct BreakcSemantics {};
+struct SetpSemantics {};
+struct BreakpSemantics {};
+struct TexldlSemantics {};
 
 struct MovSemantics {
   template <class V> static V Lane(V a, V, V) { return a; }

@@ -1,9 +1,12 @@
 // The D3D9 vertex shader models and what each allows: the one place the assembler, validator,
-// disassembler and bytecode ask whether an opcode or a register exists in a program's model. vs_1_1
-// is the only model enabled today: the others are here so that adding one is new rows and a switch
-// turned on, not a new set of checks (vm/core/isa.h's opcode table names each opcode's first model).
+// disassembler and bytecode ask whether an opcode or a register exists in a program's model, and what
+// its limits are (vm/core/isa.h's opcode table names each opcode's first model). Every model assembles,
+// decodes, disassembles and validates; only vs_1_1 runs (the engines refuse the others by name,
+// EngineRefusal in vm/core/machine.h).
 // Sources: ../shared/spec/vs_1_1.md §1.1, §4.2 (version tokens), §4.6 (register types), §4.7; the
-// later models' register counts are the D3D9 minimums (D3DVS20CAPS / vs_3_0's fixed counts).
+// later models' register counts and limits from the D3D9 reference (D3DVS20CAPS / vs_3_0's fixed
+// counts) and the register types and numbers Microsoft's assembler writes (Wine's tests; spec sections
+// "vs_2_0", "vs_2_x", "vs_3_0").
 #pragma once
 
 #include <array>
@@ -20,13 +23,23 @@ struct ShaderModelInfo {
   ShaderModel model;
   std::string_view name;        // as a version statement spells it
   std::uint32_t version_token;  // §4.2: 0xFFFE, major, minor (vs_2_x is minor 1)
-  bool enabled;                 // programs of this model assemble, decode and run
+  bool enabled;                 // programs of this model assemble, decode and validate
+  bool runs;                    // the engines run programs of this model
+  // Instruction slots (vs_3_0: the minimum a device offers), and nesting depths: static flow control
+  // (if on b#, call), loop/rep, call, and dynamic flow control (if_comp, predicated if, break_comp).
+  // vs_2_x: the maximal D3DVS20CAPS (DynamicFlowControlDepth 24, NumTemps 32, StaticFlowControlDepth 4,
+  // predication) and 256 slots.
+  int instruction_slots;
+  int static_flow_depth;
+  int loop_depth;
+  int call_depth;
+  int dynamic_flow_depth;
 };
 inline constexpr std::array kShaderModels = {
-    ShaderModelInfo{ShaderModel::kVs11, "vs_1_1", 0xFFFE0101, true},
-    ShaderModelInfo{ShaderModel::kVs20, "vs_2_0", 0xFFFE0200, false},
-    ShaderModelInfo{ShaderModel::kVs2x, "vs_2_x", 0xFFFE0201, false},
-    ShaderModelInfo{ShaderModel::kVs30, "vs_3_0", 0xFFFE0300, false},
+    ShaderModelInfo{ShaderModel::kVs11, "vs_1_1", 0xFFFE0101, true, true, 128, 0, 0, 0, 0},
+    ShaderModelInfo{ShaderModel::kVs20, "vs_2_0", 0xFFFE0200, true, false, 256, 4, 4, 4, 0},
+    ShaderModelInfo{ShaderModel::kVs2x, "vs_2_x", 0xFFFE0201, true, false, 256, 4, 4, 4, 24},
+    ShaderModelInfo{ShaderModel::kVs30, "vs_3_0", 0xFFFE0300, true, false, 512, 4, 4, 4, 24},
 };
 inline constexpr int kShaderModelCount = static_cast<int>(kShaderModels.size());
 static_assert([] {
@@ -64,8 +77,10 @@ enum class RegisterFile : std::uint8_t {
   kAttributeOut = 5,   // oD0, oD1
   kTexCoordOut = 6,    // oT0-oT7 (vs_3_0: o0-o11)
   kConstInt = 7,       // i#, vs_2_0 on
+  kSampler = 10,       // s#, vs_3_0 (texldl)
   kConstBool = 14,     // b#, vs_2_0 on
   kLoop = 15,          // aL, vs_2_0 on
+  kLabel = 18,         // l#, vs_2_0 on (call, callnz, label)
   kPredicate = 19,     // p0, vs_2_x on
 };
 
@@ -78,7 +93,7 @@ struct RegisterFileLimits {
 };
 inline constexpr std::array kRegisterFileLimits = {
     //                                           vs_1_1 vs_2_0 vs_2_x vs_3_0
-    RegisterFileLimits{RegisterFile::kTemp, {12, 12, 12, 32}},
+    RegisterFileLimits{RegisterFile::kTemp, {12, 12, 32, 32}},
     RegisterFileLimits{RegisterFile::kInput, {16, 16, 16, 16}},
     RegisterFileLimits{RegisterFile::kConst, {96, 256, 256, 256}},
     RegisterFileLimits{RegisterFile::kAddress, {1, 1, 1, 1}},
@@ -89,6 +104,8 @@ inline constexpr std::array kRegisterFileLimits = {
     RegisterFileLimits{RegisterFile::kConstBool, {0, 16, 16, 16}},
     RegisterFileLimits{RegisterFile::kLoop, {0, 1, 1, 1}},
     RegisterFileLimits{RegisterFile::kPredicate, {0, 0, 1, 1}},
+    RegisterFileLimits{RegisterFile::kSampler, {0, 0, 0, 4}},
+    RegisterFileLimits{RegisterFile::kLabel, {0, 2048, 2048, 2048}},
 };
 
 // Registers of `file` in `model` (0 for a file or a register type number it does not have).

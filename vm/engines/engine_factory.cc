@@ -112,6 +112,9 @@ std::string EngineDescriptions() {
 
 Result<std::unique_ptr<Engine>> MakeEngine(std::string_view name, const Program& program,
                                            const ConstantBank& api_constants, const EngineOptions& options) {
+  if (std::optional<std::string> refusal = EngineRefusal(program, name)) {
+    return Failure(DiagnosticCode::kEngineUnavailable, *refusal);
+  }
   if (std::optional<EngineInfo> engine = FindEngine(name)) return engine->make(program, api_constants, options);
   return Failure(DiagnosticCode::kEngineUnavailable,
                  fmt::format("the {} engine is not part of this program (it has {}; the vs11 and irrmap tools "

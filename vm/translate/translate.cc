@@ -366,7 +366,9 @@ std::string TranslateToGlsl(const Program& program, const TranslateOptions& opti
 }
 
 Artifact Translate(const Program& program, const TranslateOptions& options) {
-  if (std::optional<std::string> problem = StageProblem(options.target, options.stage)) {
+  std::optional<std::string> problem = EngineRefusal(program, "translate");
+  if (!problem) problem = StageProblem(options.target, options.stage);
+  if (problem) {
     Artifact refused;
     refused.error = *problem;
     return refused;

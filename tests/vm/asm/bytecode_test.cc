@@ -40,7 +40,7 @@ TEST_P(BytecodeDecode, RejectsMalformedStreamAtTheBadWord) {
 const MalformedCase kMalformed[] = {
     {"EmptyStream", {}, 0, "empty token stream"},
     {"PixelShaderVersion", {0xFFFF0101, 0x0000FFFF}, 0, "is not vs_1_1"},
-    {"Version20", {0xFFFE0200, 0x0000FFFF}, 0, "is not vs_1_1"},
+    {"Version40", {0xFFFE0400, 0x0000FFFF}, 0, "is not vs_1_1"},
     {"NotAVersionAtAll", {0x00000001, 0x800F0000, 0x80E40001, 0x0000FFFF}, 0, "is not vs_1_1"},
     {"LrpOpcode",
      {0xFFFE0101, 0x00000012, 0x800F0000, 0x80E40001, 0x80E40002, 0x80E40003, 0x0000FFFF},

@@ -348,7 +348,7 @@ TEST_P(DisassemblerGenerated, RoundTripsEveryOperandCombination) {
 std::vector<Opcode> ExecutableOpcodes() {
   std::vector<Opcode> opcodes;
   for (const OpcodeInfo& info : kOpcodeTable) {
-    if (info.is_executable()) opcodes.push_back(info.opcode);
+    if (info.is_executable() && info.since == ShaderModel::kVs11) opcodes.push_back(info.opcode);
   }
   return opcodes;
 }
@@ -488,7 +488,7 @@ class ValidProgramGenerator {
   Instruction RandomInstruction(bool relative) {
     std::vector<const OpcodeInfo*> executable;
     for (const OpcodeInfo& info : kOpcodeTable) {
-      if (info.is_executable() && info.has_dest()) executable.push_back(&info);
+      if (info.is_executable() && info.has_dest() && info.since == ShaderModel::kVs11) executable.push_back(&info);
     }
     const OpcodeInfo& info = *executable[static_cast<std::size_t>(Uniform(0, static_cast<int>(executable.size()) - 1))];
     const bool matrix = info.kind == ResultKind::kMatrix;

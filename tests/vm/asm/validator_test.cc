@@ -241,7 +241,7 @@ TEST(Validator, AcceptsMinimalDx9Program) {
 }
 
 TEST(Validator, RejectsUnknownVersion) {
-  Diagnostics d = Validate(Prog({WritePosition()}, 0xFFFE0200));
+  Diagnostics d = Validate(Prog({WritePosition()}, 0xFFFE0400));
   EXPECT_TRUE(HasError(d, DiagnosticCode::kVersionToken, 0));
   ASSERT_FALSE(d.all().empty());
   EXPECT_EQ(d.all().front().loc.file, kFileName);

@@ -158,6 +158,13 @@ std::optional<Result> Model(Opcode opcode, const Operands& v) {
     case Opcode::kNop:
     case Opcode::kDcl:
     case Opcode::kDef:
+    // The later models' rows: this model is vs_1_1's (their semantics are not written yet).
+    case Opcode::kLrp: case Opcode::kCall: case Opcode::kCallnz: case Opcode::kLoop: case Opcode::kRet:
+    case Opcode::kEndloop: case Opcode::kLabel: case Opcode::kPow: case Opcode::kCrs: case Opcode::kSgn:
+    case Opcode::kAbs: case Opcode::kNrm: case Opcode::kSincos: case Opcode::kRep: case Opcode::kEndrep:
+    case Opcode::kIf: case Opcode::kElse: case Opcode::kEndif: case Opcode::kMova: case Opcode::kDefb:
+    case Opcode::kDefi: case Opcode::kIfc: case Opcode::kBreak: case Opcode::kBreakc: case Opcode::kSetp:
+    case Opcode::kBreakp: case Opcode::kTexldl:
       return std::nullopt;
     case Opcode::kMov:
       return each_lane([&](int i) { return Bits(a[i], "mov: r = a"); });

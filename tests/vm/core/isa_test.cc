@@ -19,7 +19,7 @@ TEST(Isa, EveryRowIsFoundByItsTokenAndByItsMnemonicInAnyCase) {
 }
 
 TEST(Isa, TokensAndMnemonicsOutsideTheTableAreNotFound) {
-  EXPECT_EQ(OpcodeFromToken(0x12), std::nullopt);  // the gap between dst and frc
+  EXPECT_EQ(OpcodeFromToken(0x31), std::nullopt);  // between defi (0x30) and the pixel shaders' texcoord (0x40)
   EXPECT_EQ(OpcodeFromToken(0xFFFF), std::nullopt);  // the end token's low half
   EXPECT_EQ(OpcodeFromMnemonic("texld"), std::nullopt);
   EXPECT_EQ(OpcodeFromMnemonic("mo"), std::nullopt);

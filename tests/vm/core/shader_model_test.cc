@@ -1,7 +1,7 @@
 // The shader-model table (vm/core/shader_model.h) and the opcode table's model column
-// (vm/core/isa.h): vs_1_1 is the only model enabled, its register counts are the machine's, and the
-// register files of the later models are spelled and encoded but refused in a vs_1_1 program by the
-// assembler, the validator and the decoder, with a message that says which model has them.
+// (vm/core/isa.h): every model assembles and decodes, only vs_1_1 runs, its register counts are the
+// machine's, and the register files of the later models are spelled and encoded but refused in a vs_1_1
+// program by the assembler, the validator and the decoder, with a message that says which model has them.
 #include "vm/core/shader_model.h"
 
 #include <cstdint>
@@ -23,20 +23,22 @@ std::string FirstMessage(const Diagnostics& diagnostics) {
   return diagnostics.all().empty() ? std::string() : FormatDiagnostic(diagnostics.all().front());
 }
 
-TEST(ShaderModel, NamesTokensAndOnlyVs11Enabled) {
+TEST(ShaderModel, NamesTokensEveryModelEnabledAndOnlyVs11Runs) {
   const std::vector<std::pair<std::string_view, std::uint32_t>> expected = {
       {"vs_1_1", 0xFFFE0101}, {"vs_2_0", 0xFFFE0200}, {"vs_2_x", 0xFFFE0201}, {"vs_3_0", 0xFFFE0300}};
   ASSERT_EQ(kShaderModels.size(), expected.size());
   for (std::size_t i = 0; i < expected.size(); ++i) {
     EXPECT_EQ(kShaderModels[i].name, expected[i].first);
     EXPECT_EQ(kShaderModels[i].version_token, expected[i].second);
-    EXPECT_EQ(kShaderModels[i].enabled, i == 0) << expected[i].first;
+    EXPECT_TRUE(kShaderModels[i].enabled) << expected[i].first;
+    EXPECT_EQ(kShaderModels[i].runs, i == 0) << expected[i].first;
     EXPECT_EQ(ShaderModelOfVersion(expected[i].second), kShaderModels[i].model);
   }
   EXPECT_EQ(ShaderModelOfVersion(kVersionVs10), ShaderModel::kVs11);
   EXPECT_EQ(ShaderModelOfVersion(0xFFFF0200), std::nullopt);  // ps_2_0
   EXPECT_TRUE(VersionEnabled(kVersionVs11) && VersionEnabled(kVersionVs10));
-  EXPECT_FALSE(VersionEnabled(0xFFFE0200) || VersionEnabled(0xFFFE0300) || VersionEnabled(0xFFFF0101));
+  EXPECT_TRUE(VersionEnabled(0xFFFE0200) && VersionEnabled(0xFFFE0201) && VersionEnabled(0xFFFE0300));
+  EXPECT_FALSE(VersionEnabled(0xFFFF0101) || VersionEnabled(0xFFFE0400));
   EXPECT_EQ(Program{}.model(), ShaderModel::kVs11);
   EXPECT_TRUE(Program{}.regions.empty());
 }
@@ -63,11 +65,17 @@ TEST(ShaderModel, Vs11RegisterCountsAreTheMachinesAndLaterFilesAreAbsent) {
   for (std::uint32_t type = 0; type <= 6; ++type) EXPECT_TRUE(RegisterFileOfType(type, ShaderModel::kVs11)) << type;
 }
 
-TEST(ShaderModel, EveryOpcodeIsVs11sAndStaysInLaterModels) {
+TEST(ShaderModel, EveryOpcodeStaysInLaterModels) {
   for (const OpcodeInfo& info : kOpcodeTable) {
-    EXPECT_EQ(info.since, ShaderModel::kVs11) << info.mnemonic;
-    for (const ShaderModelInfo& model : kShaderModels) EXPECT_TRUE(OpcodeAllowed(info, model.model)) << info.mnemonic;
+    for (const ShaderModelInfo& model : kShaderModels) {
+      EXPECT_EQ(OpcodeAllowed(info, model.model), model.model >= info.since) << info.mnemonic;
+    }
   }
+  EXPECT_EQ(Info(Opcode::kLrp).since, ShaderModel::kVs20);
+  EXPECT_EQ(Info(Opcode::kSetp).since, ShaderModel::kVs2x);
+  EXPECT_EQ(Info(Opcode::kTexldl).since, ShaderModel::kVs30);
+  EXPECT_EQ(SourceCount(Info(Opcode::kSincos), ShaderModel::kVs20), 3);
+  EXPECT_EQ(SourceCount(Info(Opcode::kSincos), ShaderModel::kVs30), 1);
   OpcodeInfo later = Info(Opcode::kMov);
   later.since = ShaderModel::kVs20;
   EXPECT_FALSE(OpcodeAllowed(later, ShaderModel::kVs11));
@@ -96,10 +104,10 @@ TEST(ShaderModel, LaterRegistersAreSpelledButRefusedInVs11) {
     EXPECT_NE(FirstMessage(result.diagnostics).find(c.message), std::string::npos)
         << c.source << FirstMessage(result.diagnostics);
   }
-  // A later model's version gives the error it always gave.
-  const AssembleResult vs20 = AssembleSource("vs_2_0\nmov oPos, v0\n", "t.vsh", {});
-  const std::string expected = "unsupported shader version 'vs_2_0' (expected vs_1_1, vs.1.1 or vs.1.0)";
-  EXPECT_NE(FirstMessage(vs20.diagnostics).find(expected), std::string::npos) << FirstMessage(vs20.diagnostics);
+  // A version beyond the vertex models is named.
+  const AssembleResult vs40 = AssembleSource("vs_4_0\nmov oPos, v0\n", "t.vsh", {});
+  const std::string expected = "unsupported shader version 'vs_4_0'";
+  EXPECT_NE(FirstMessage(vs40.diagnostics).find(expected), std::string::npos) << FirstMessage(vs40.diagnostics);
 }
 
 TEST(ShaderModel, TheDecoderRefusesLaterRegisterTypesAndVersions) {
@@ -110,7 +118,9 @@ TEST(ShaderModel, TheDecoderRefusesLaterRegisterTypesAndVersions) {
   EXPECT_NE(FirstMessage(result.diagnostics).find("register type 7 is not used by vs_1_1"), std::string::npos)
       << FirstMessage(result.diagnostics);
   const std::vector<std::uint32_t> vs20 = {0xFFFE0200, 0x0000FFFF};
-  EXPECT_FALSE(Decode(vs20).program);
+  EXPECT_TRUE(Decode(vs20).program);
+  const std::vector<std::uint32_t> vs40 = {0xFFFE0400, 0x0000FFFF};
+  EXPECT_FALSE(Decode(vs40).program);
 }
 
 }  // namespace

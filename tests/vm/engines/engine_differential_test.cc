@@ -134,7 +134,7 @@ void SweepEveryOpcode(EngineUnderTest engine, const char* label) {
   int programs = 0;
   std::size_t nan_bit_mismatches = 0;
   for (const OpcodeInfo& info : kOpcodeTable) {
-    if (!info.is_executable() || info.kind == ResultKind::kNoResult) continue;
+    if (!info.is_executable() || info.kind == ResultKind::kNoResult || info.since != ShaderModel::kVs11) continue;
     std::vector<WriteMask> masks = LegalMasks(info);
     if (info.mask_rule == MaskRule::kAny) masks = {WriteMask(0x1), WriteMask(0xA), WriteMask(0x7), WriteMask(0xF)};
     if (info.kind == ResultKind::kMatrix) masks.push_back(WriteMask(0xD));  // beyond the rows: unvalidated
@@ -207,7 +207,7 @@ void CheckLoneNaNOperands(EngineUnderTest engine, const char* label) {
   }
   int programs = 0;
   for (const OpcodeInfo& info : kOpcodeTable) {
-    if (!info.is_executable() || info.kind == ResultKind::kNoResult) continue;
+    if (!info.is_executable() || info.kind == ResultKind::kNoResult || info.since != ShaderModel::kVs11) continue;
     const int arity = info.source_count();
     for (const Swizzle& swizzle : {Swizzle(), Swizzle(0x1B)}) {
       for (int negations = 0; negations < (1 << arity); ++negations) {

@@ -176,7 +176,7 @@ class ProgramGenerator {
   Instruction RandomInstruction() {
     const OpcodeInfo* info;
     do {
-      info = &kOpcodeTable[static_cast<std::size_t>(Uniform(0, kOpcodeCount - 1))];
+      info = &kOpcodeTable[static_cast<std::size_t>(Uniform(0, kVs11OpcodeCount - 1))];  // vs_1_1's rows
     } while (!info->is_executable());
     Instruction instruction;
     instruction.opcode = info->opcode;
