@@ -102,8 +102,9 @@ typedef enum vs11c_float_rules {
 } vs11c_float_rules;
 
 /* The engine: "ref" (or "reference"), "batch" or "jit"; NULL: the fastest this CPU runs. Every
- * engine gives the same bits. */
-vs11c_status vs11c_shader_set_engine(vs11c_shader* shader, const char* engine, vs11c_float_rules rules);
+ * engine gives the same bits. `float_rules` is a vs11c_float_rules; it is an int so that any value a
+ * caller passes is defined to read (another value is VS11C_INVALID_ARGUMENT). */
+vs11c_status vs11c_shader_set_engine(vs11c_shader* shader, const char* engine, int float_rules);
 
 /* ---- Vertices ---- */
 

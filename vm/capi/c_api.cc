@@ -122,9 +122,9 @@ vs11c_status vs11c_shader_set_constants(vs11c_shader* shader, unsigned start, co
   return Guarded([&] { return shader->shader.SetConstants(start, values, vector_count); });
 }
 
-vs11c_status vs11c_shader_set_engine(vs11c_shader* shader, const char* engine, vs11c_float_rules rules) {
+vs11c_status vs11c_shader_set_engine(vs11c_shader* shader, const char* engine, int float_rules) {
   if (shader == nullptr) return VS11C_INVALID_ARGUMENT;
-  return Guarded([&] { return shader->shader.SetEngine(engine, rules); });
+  return Guarded([&] { return shader->shader.SetEngine(engine, float_rules); });
 }
 
 vs11c_status vs11c_process_vertices(vs11c_shader* shader, const vs11c_vertex_element* declaration,

@@ -144,7 +144,7 @@ vs11c_status Shader::SetConstants(unsigned start, const float* values, std::size
   return VS11C_OK;
 }
 
-vs11c_status Shader::SetEngine(const char* name, vs11c_float_rules rules) {
+vs11c_status Shader::SetEngine(const char* name, int rules) {
   if (rules != VS11C_FLOAT_RULES_D3D9 && rules != VS11C_FLOAT_RULES_LEGACY) return VS11C_INVALID_ARGUMENT;
   const std::optional<EngineInfo> info = name == nullptr ? FindEngine(FastestEngine()) : FindEngine(name);
   if (!info) return VS11C_INVALID_ARGUMENT;

@@ -169,7 +169,7 @@ TEST(CApi, ArgumentsOutOfRangeAreRefused) {
   EXPECT_EQ(vs11c_shader_set_constants(handle.shader, 256, value, 1), VS11C_REGISTER_OUT_OF_RANGE);
   EXPECT_EQ(vs11c_shader_set_constants(handle.shader, 255, value, 2), VS11C_REGISTER_OUT_OF_RANGE);
   EXPECT_EQ(vs11c_shader_set_engine(handle.shader, "gl", VS11C_FLOAT_RULES_D3D9), VS11C_INVALID_ARGUMENT);
-  EXPECT_EQ(vs11c_shader_set_engine(handle.shader, "ref", static_cast<vs11c_float_rules>(7)), VS11C_INVALID_ARGUMENT);
+  EXPECT_EQ(vs11c_shader_set_engine(handle.shader, "ref", 7), VS11C_INVALID_ARGUMENT);
   std::vector<std::uint8_t> output(64);
   const testing::TwoStreams input = testing::MakeTwoStreams(1);
   const vs11c_stream one_stream[] = {{input.stream0.data(), 16}};
