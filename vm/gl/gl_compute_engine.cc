@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cstring>
-#include <limits>
 #include <vector>
 
 #include <fmt/format.h>
@@ -84,14 +83,7 @@ class GlComputeEngine final : public Engine, public GlPathOwner {
         if (!Keep(RunDispatch(inputs, first, std::min(kVerticesPerDispatch, inputs.count() - first), outputs))) break;
       }
     }
-    if (!error_.empty()) {
-      for (int reg : outputs.registers()) {
-        for (int c = 0; c < 4; ++c) {
-          float* lane = outputs.lane(reg, c);
-          std::fill(lane, lane + outputs.count(), std::numeric_limits<float>::quiet_NaN());
-        }
-      }
-    }
+    if (!error_.empty()) FillWithNaN(outputs);
   }
 
  private:

@@ -4,7 +4,6 @@
 
 #include <algorithm>
 #include <cstring>
-#include <limits>
 #include <string>
 #include <vector>
 
@@ -29,15 +28,6 @@ struct Capture {
   int components = 4;
   int offset = 0;
 };
-
-void FillWithNaN(VertexArrays& outputs) {
-  for (int reg : outputs.registers()) {
-    for (int c = 0; c < 4; ++c) {
-      float* lane = outputs.lane(reg, c);
-      std::fill(lane, lane + outputs.count(), std::numeric_limits<float>::quiet_NaN());
-    }
-  }
-}
 
 class GlEngine final : public Engine, public GlPathOwner {
  public:

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "vm/core/machine.h"
 #include "vm/core/result.h"
 
 namespace vs11::gl {
@@ -31,6 +32,10 @@ Result<unsigned> LinkAttachedProgram(unsigned program, const char* what);
 // Compiles `source` as a shader of `kind` (GL_VERTEX_SHADER, GL_COMPUTE_SHADER, ...): the shader
 // object, or an error (kGlCompile) holding the info log.
 Result<unsigned> CompileShader(unsigned kind, const std::string& source);
+
+// Every lane of every register of `outputs` NaN: what a gl engine whose run failed writes (both paths;
+// its error() says why).
+void FillWithNaN(VertexArrays& outputs);
 
 // glGetError as a Status: an error (kGlError) "WHAT: GL error 0x...." where GL reports one.
 Status GlOk(const char* what);
