@@ -1,15 +1,15 @@
-// The test binary's end-of-main leak check (vm/cli/end_of_main_leak_check.h says why): the tests
+// The test binary's end-of-main leak check (vm/core/leak_check.h says why): the tests
 // load OpenImageIO in this process, and gtest_main owns main, so the check runs when the last test
 // environment is torn down.
 #include <gtest/gtest.h>
 
-#include "vm/cli/end_of_main_leak_check.h"
+#include "vm/core/leak_check.h"
 
 namespace {
 
 class LeakCheckAfterTheTests : public testing::Environment {
  public:
-  void TearDown() override { vs11::cli::CheckForLeaksNow(); }
+  void TearDown() override { vs11::CheckForLeaksNow(); }
 };
 
 // GoogleTest owns and deletes the environment.

@@ -20,9 +20,9 @@
 #include "irradiance/render/preview.h"
 #include "irradiance/sh/engine_sh.h"
 #include "vm/cli/choice_option.h"
-#include "vm/cli/end_of_main_leak_check.h"
 #include "vm/cli/parse_command_line.h"
 #include "vm/core/atomic_file.h"
+#include "vm/core/leak_check.h"
 #include "vm/core/version.h"
 #include "vm/engines/engine_factory.h"
 #include "vm/gl/gl_context.h"
@@ -326,7 +326,7 @@ int RunJob(const CLI::App& app, JobCommandLine& line) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  const vs11::cli::EndOfMainLeakCheck leak_check;  // first: destroyed last, before the static objects
+  const vs11::EndOfMainLeakCheck leak_check;  // first: destroyed last, before the static objects
   vs11::RemoveTemporariesOnSignals();  // an interrupted run leaves no half-written file
   vs11::gl::RegisterGlEngine();
   CLI::App app{fmt::format(

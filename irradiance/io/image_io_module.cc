@@ -7,6 +7,8 @@
 
 #include <fmt/format.h>
 
+#include "vm/core/leak_check.h"
+
 // Set for this file by irradiance/CMakeLists.txt.
 #ifndef VS11_IMAGE_IO_LIBDIR
 #error "VS11_IMAGE_IO_LIBDIR (CMAKE_INSTALL_LIBDIR) must be defined"
@@ -75,6 +77,7 @@ Result<const ImageIoApi*> LoadImageIoModule(const std::vector<fs::path>& candida
                      fmt::format("cannot load the OpenImageIO module {} ({})", candidate.string(),
                                  reason ? reason : "no reason given"));
     }
+    CheckForLeaksBeforeLoadedLibrariesUnload();  // before log4cplus's pool ends (vm/core/leak_check.h)
     const auto entry = reinterpret_cast<EntryPoint>(dlsym(handle, kImageIoEntryPoint));
     if (!entry) {
       return Failure(DiagnosticCode::kImageIoModule,

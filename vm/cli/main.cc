@@ -6,9 +6,9 @@
 #include <fmt/format.h>
 
 #include "vm/cli/commands.h"
-#include "vm/cli/end_of_main_leak_check.h"
 #include "vm/cli/parse_command_line.h"
 #include "vm/core/atomic_file.h"
+#include "vm/core/leak_check.h"
 #include "vm/core/version.h"
 #include "vm/gl/gl_engine.h"
 
@@ -52,7 +52,7 @@ int Main(int argc, char** argv) {
 }  // namespace
 
 int main(int argc, char** argv) {
-  const vs11::cli::EndOfMainLeakCheck leak_check;  // first: destroyed last, before the static objects
+  const vs11::EndOfMainLeakCheck leak_check;  // first: destroyed last, before the static objects
   vs11::RemoveTemporariesOnSignals();  // an interrupted run leaves no half-written file
   try {
     return Main(argc, argv);

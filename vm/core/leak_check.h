@@ -1,5 +1,7 @@
-// LeakSanitizer's check, run when main returns instead of at exit: a guard for the tools' main().
+// LeakSanitizer's end-of-process check, run before third-party libraries tear themselves down.
 #pragma once
+
+#include <cstdlib>
 
 #if defined(__has_feature)
 #if __has_feature(address_sanitizer) || __has_feature(leak_sanitizer)
@@ -13,7 +15,7 @@
 #include <sanitizer/lsan_interface.h>
 #endif
 
-namespace vs11::cli {
+namespace vs11 {
 
 // In a sanitizer build, LeakSanitizer's end-of-process check, now (a leak ends the process with its
 // report); elsewhere nothing. The check runs once: later calls, and the one at exit, do nothing.
@@ -37,4 +39,16 @@ class EndOfMainLeakCheck {
   ~EndOfMainLeakCheck() { CheckForLeaksNow(); }
 };
 
-}  // namespace vs11::cli
+// Registers CheckForLeaksNow with std::atexit, once. exit runs its handlers and the static
+// destructors in the reverse order of their registration, so the check runs before the destructors
+// of every library loaded so far. For a library dlopen'ed while the process runs (the OpenImageIO
+// module), in a process whose main is not ours (a libFuzzer target), and so without
+// EndOfMainLeakCheck.
+inline void CheckForLeaksBeforeLoadedLibrariesUnload() {
+#ifdef VS11_LEAK_SANITIZER
+  static const bool registered = std::atexit(CheckForLeaksNow) == 0;
+  (void)registered;
+#endif
+}
+
+}  // namespace vs11
