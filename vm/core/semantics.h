@@ -294,8 +294,8 @@ struct LogpSemantics {
 };
 
 // ---- the later models' arithmetic (vs_2_0 on) -------------------------------------------------------
-// Source of every formula: Microsoft's D3D9 reference pages for each instruction (docs/vs2_semantics.md
-// lists the facts). Where the reference leaves the bits open (pow, sincos, mova's ties, sgn's NaN), the
+// Source of every formula: Microsoft's D3D9 reference pages for each instruction (the README's "Shader
+// models" section lists the facts). Where the reference leaves the bits open (pow, sincos, mova's ties, sgn's NaN), the
 // choice is said at the kernel and in the README's "Shader models" section.
 
 struct AbsSemantics {
@@ -313,9 +313,9 @@ struct SgnSemantics {
     return IfThenElse(a < zero, Constant(a, -1.0f), IfThenElse(a == zero, zero, Constant(a, 1.0f)));
   }
 };
-// mova: the nearest integer, ties away from zero (x.5 -> x+1, -x.5 -> -(x+1)), as Wine's GLSL backend
-// emits it (floor(abs(x) + 0.5) * sign(x)); Microsoft's reference says only "RoundToNearest", so the tie
-// rule is our choice, tested against the other reading (ties to even) in tests/vm/core. The fraction is
+// mova: the nearest integer, ties away from zero (x.5 -> x+1, -x.5 -> -(x+1)). Microsoft's reference
+// says only "RoundToNearest", so the tie rule is our choice (unconfirmed on hardware), tested against
+// the other reading (ties to even) in tests/vm/core/later_model_semantics_test.cc. The fraction is
 // taken as |x| - floor(|x|), which is exact, rather than floor(|x| + 0.5), whose sum rounds up for
 // 0.49999997. The engine then clamps the integer as vs_1_1's a0 (AddressFromFloat: NaN -> -2^20).
 struct MovaSemantics {
