@@ -1,7 +1,5 @@
 // `vs11 run` on a vs_2_0 program end to end: the ref engine runs a skinning loop over bones with
 // c#[aL]; the other engines refuse it by name.
-#include <filesystem>
-#include <fstream>
 #include <string>
 
 #include <gmock/gmock.h>
@@ -10,8 +8,6 @@
 #include "tests/run_tool.h"
 
 namespace {
-
-namespace fs = std::filesystem;
 
 using ::testing::EndsWith;
 using ::testing::HasSubstr;
@@ -39,22 +35,13 @@ const std::string kBones =
     " --const c10=1,0,0,1 --const c11=0,1,0,0 --const c12=0,0,1,0 --const c13=0,0,0,1"
     " --const c14=2,0,0,0 --const c15=0,2,0,0 --const c16=0,0,2,0 --const c17=0,0,0,1";
 
-class LaterModelRun : public ::testing::Test {
+class LaterModelRun : public vs11::testing::ToolFolderTest {
  protected:
   void SetUp() override {
-    dir_ = fs::path(::testing::TempDir()) / ("vs11_later_" + std::string(::testing::UnitTest::GetInstance()->current_test_info()->name()));
-    fs::remove_all(dir_);
-    fs::create_directories(dir_);
+    ToolFolderTest::SetUp();
     program_ = Write("skin.vsh", kSkinning);
     positions_ = Write("p.csv", "x,y,z,w\n1,2,3,1\n0,0,0,1\n");
   }
-  void TearDown() override { fs::remove_all(dir_); }
-  std::string Write(const std::string& name, const std::string& text) {
-    const fs::path path = dir_ / name;
-    std::ofstream(path, std::ios::binary) << text;
-    return path.string();
-  }
-  fs::path dir_;
   std::string program_, positions_;
 };
 

@@ -4,6 +4,7 @@
 #include <cmath>
 #include <initializer_list>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <gtest/gtest.h>
@@ -53,6 +54,13 @@ std::vector<Vec4f> RunRef(const std::string& source, ConstantBank bank = Constan
   return result;
 }
 
+// A bank of kBankSize registers holding `values`, the rest 0.
+ConstantBank Bank(std::initializer_list<std::pair<int, Vec4f>> values) {
+  ConstantBank bank(kBankSize);
+  for (const auto& [index, value] : values) bank[index] = value;
+  return bank;
+}
+
 Vec4f RunOne(const std::string& source, ConstantBank bank = ConstantBank(kBankSize), int slot = kPosition) {
   const std::vector<Vec4f> result = RunRef(source, std::move(bank), {{0, 0, 0, 1}}, slot);
   return result.empty() ? Vec4f{-999, -999, -999, -999} : result[0];
@@ -67,8 +75,7 @@ TEST(ReferenceFlow, RepAndLoopThatRunZeroTimesSkipTheirBodies) {
 }
 
 TEST(ReferenceFlow, LoopCountsOutsideTheRangeAreClamped) {
-  ConstantBank bank(kBankSize);
-  bank[1] = {1, 1, 1, 1};
+  ConstantBank bank = Bank({{1, {1, 1, 1, 1}}});
   bank.integer(0) = {300, 0, 1, 0};
   bank.integer(1) = {-5, 0, 1, 0};
   const Vec4f r = RunOne("vs_2_0\ndcl_position v0\nmov r0, c0\nrep i0\nadd r0.x, r0.x, c1.x\nendrep\n"
@@ -109,8 +116,7 @@ TEST(ReferenceFlow, BreakpLeavesWhenThePredicateLaneIsTrue) {
 }
 
 TEST(ReferenceFlow, CallFromInsideALoopReturnsIntoIt) {
-  ConstantBank bank(kBankSize);
-  bank[1] = {1, 2, 3, 4};
+  ConstantBank bank = Bank({{1, {1, 2, 3, 4}}});
   const Vec4f r = RunOne("vs_2_0\ndefi i0, 3, 0, 0, 0\ndcl_position v0\nmov r0, c0\nrep i0\ncall l0\nendrep\n"
                          "mov oPos, r0\nret\nlabel l0\nadd r0, r0, c1\nret\n",
                          bank);
@@ -118,10 +124,7 @@ TEST(ReferenceFlow, CallFromInsideALoopReturnsIntoIt) {
 }
 
 TEST(ReferenceFlow, CallnzOnBooleansFromTheProgramAndTheCaller) {
-  ConstantBank bank(kBankSize);
-  bank[1] = {1, 0, 0, 0};
-  bank[2] = {0, 10, 0, 0};
-  bank[3] = {0, 0, 100, 0};
+  ConstantBank bank = Bank({{1, {1, 0, 0, 0}}, {2, {0, 10, 0, 0}}, {3, {0, 0, 100, 0}}});
   bank.SetBoolean(2, true);  // set by the API, as c# is
   const Vec4f r = RunOne("vs_2_0\ndefb b0, true\ndefb b1, false\ndcl_position v0\nmov r0, c0\n"
                          "callnz l0, b0\ncallnz l1, b1\ncallnz l2, b2\nmov oPos, r0\nret\n"
@@ -131,9 +134,7 @@ TEST(ReferenceFlow, CallnzOnBooleansFromTheProgramAndTheCaller) {
 }
 
 TEST(ReferenceFlow, IfOnABooleanTakesEitherBranch) {
-  ConstantBank bank(kBankSize);
-  bank[1] = {1, 0, 0, 0};
-  bank[2] = {0, 1, 0, 0};
+  ConstantBank bank = Bank({{1, {1, 0, 0, 0}}, {2, {0, 1, 0, 0}}});
   const Vec4f r = RunOne("vs_2_0\ndefb b0, true\ndefb b1, false\ndcl_position v0\nmov r0, c0\n"
                          "if b0\nadd r0, r0, c1\nelse\nadd r0, r0, c2\nendif\n"
                          "if b1\nadd r0.zw, r0, c1.x\nelse\nadd r0.z, r0.z, c2.y\nendif\nmov oPos, r0\n",
@@ -142,9 +143,7 @@ TEST(ReferenceFlow, IfOnABooleanTakesEitherBranch) {
 }
 
 TEST(ReferenceFlow, APredicatedWriteChangesOnlyTheTrueLanes) {
-  ConstantBank bank(kBankSize);
-  bank[1] = {5, 5, 5, 5};
-  bank[2] = {7, 7, 7, 7};
+  ConstantBank bank = Bank({{1, {5, 5, 5, 5}}, {2, {7, 7, 7, 7}}});
   const std::vector<Vec4f> r = RunRef("vs_2_x\ndcl_position v0\nsetp_gt p0, v0, c0\nmov r0, c1\n(p0) mov r0, v0\n"
                                       "mov r1, c1\n(!p0) mov r1, c2\n(p0.x) add r0.w, r0.w, c2.w\n"
                                       "mov oPos, r0\nmov oD0, r1\n",
@@ -159,9 +158,7 @@ TEST(ReferenceFlow, APredicatedWriteChangesOnlyTheTrueLanes) {
 }
 
 TEST(ReferenceFlow, IfCompBranchesPerVertex) {
-  ConstantBank bank(kBankSize);
-  bank[1] = {1, 1, 1, 1};
-  bank[2] = {2, 2, 2, 2};
+  ConstantBank bank = Bank({{1, {1, 1, 1, 1}}, {2, {2, 2, 2, 2}}});
   const std::vector<Vec4f> r =
       RunRef("vs_2_x\ndcl_position v0\nif_gt v0.x, c0.x\nmov r0, c1\nelse\nmov r0, c2\nendif\nmov oPos, r0\n", bank,
              {{1, 0, 0, 1}, {-1, 0, 0, 1}, {0, 0, 0, 1}});
@@ -208,9 +205,7 @@ TEST(ReferenceFlow, TheNewArithmeticThroughTheEngine) {
 }
 
 TEST(ReferenceFlow, Vs30OutputsGoToTheSlotsTheirDeclarationsName) {
-  ConstantBank bank(kBankSize);
-  bank[1] = {1, 2, 3, 4};
-  bank[2] = {5, 6, 7, 8};
+  ConstantBank bank = Bank({{1, {1, 2, 3, 4}}, {2, {5, 6, 7, 8}}});
   const std::string source =
       "vs_3_0\ndcl_position v0\ndcl_position o0\ndcl_texcoord2 o5\ndcl_color1 o3\n"
       "mov o0, v0\nmov o5, c1\nmov o3, c2\n";
@@ -239,9 +234,7 @@ TEST(ReferenceFlow, RefusesTexldlAndOutputsWithoutASlotByName) {
 
 TEST(ReferenceFlow, BothFloatRulesRunTheLaterModels) {
   // lrp with a zero weight and an infinite span: NaN under d3d9's products, s2 under legacy's.
-  ConstantBank bank(kBankSize);
-  bank[1] = {INFINITY, INFINITY, INFINITY, INFINITY};
-  bank[2] = {1, 1, 1, 1};
+  ConstantBank bank = Bank({{1, {INFINITY, INFINITY, INFINITY, INFINITY}}, {2, {1, 1, 1, 1}}});
   const std::string source = "vs_2_0\ndcl_position v0\nlrp r0, c0, c1, c2\nmov oPos, r0\n";
   EXPECT_TRUE(std::isnan(RunRef(source, bank, {{0, 0, 0, 1}}, kPosition, FloatRules::kD3d9)[0][0]));
   EXPECT_EQ(RunRef(source, bank, {{0, 0, 0, 1}}, kPosition, FloatRules::kLegacy)[0], (Vec4f{1, 1, 1, 1}));
