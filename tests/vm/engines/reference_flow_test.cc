@@ -157,6 +157,18 @@ TEST(ReferenceFlow, APredicatedWriteChangesOnlyTheTrueLanes) {
   EXPECT_EQ(d0[0], (Vec4f{5, 7, 5, 7}));
 }
 
+TEST(ReferenceFlow, IfAndCallnzOnAPredicateLane) {
+  ConstantBank bank = Bank({{1, {1, 0, 0, 0}}, {2, {0, 1, 0, 0}}, {3, {0, 0, 1, 0}}, {4, {0, 0, 0, 1}}});
+  const std::string source =
+      "vs_2_x\ndcl_position v0\nsetp_gt p0, v0, c0\nmov r0, c0\nif p0.x\nadd r0, r0, c1\nendif\n"
+      "if !p0.y\nadd r0, r0, c2\nendif\ncallnz l0, p0.z\ncallnz l1, !p0.w\nmov oPos, r0\nret\n"
+      "label l0\nadd r0, r0, c3\nret\nlabel l1\nadd r0, r0, c4\nret\n";
+  const std::vector<Vec4f> r = RunRef(source, bank, {{1, 1, 1, 1}, {-1, -1, -1, -1}});
+  ASSERT_EQ(r.size(), 2u);
+  EXPECT_EQ(r[0], (Vec4f{1, 0, 1, 0}));
+  EXPECT_EQ(r[1], (Vec4f{0, 1, 0, 1}));
+}
+
 TEST(ReferenceFlow, IfCompBranchesPerVertex) {
   ConstantBank bank = Bank({{1, {1, 1, 1, 1}}, {2, {2, 2, 2, 2}}});
   const std::vector<Vec4f> r =
@@ -212,6 +224,17 @@ TEST(ReferenceFlow, Vs30OutputsGoToTheSlotsTheirDeclarationsName) {
   EXPECT_EQ(RunRef(source, bank, {{9, 8, 7, 6}})[0], (Vec4f{9, 8, 7, 6}));
   EXPECT_EQ(RunRef(source, bank, {{9, 8, 7, 6}}, static_cast<int>(OutputSlot::kTexCoord0) + 2)[0], (Vec4f{1, 2, 3, 4}));
   EXPECT_EQ(RunRef(source, bank, {{9, 8, 7, 6}}, static_cast<int>(OutputSlot::kSpecular))[0], (Vec4f{5, 6, 7, 8}));
+}
+
+TEST(ReferenceFlow, Vs30OutputsThroughAlAndSaturatedAbsoluteSources) {
+  ConstantBank bank = Bank({{1, {1, 2, 3, 4}}, {2, {5, 6, 7, 8}}, {4, {-0.5f, 2, -3, -0.25f}}});
+  const std::string source =
+      "vs_3_0\ndefi i0, 2, 0, 1, 0\ndcl_position v0\ndcl_position o0\ndcl_texcoord0 o1\ndcl_texcoord1 o2\n"
+      "dcl_color0 o3\nmov o0, v0\nloop aL, i0\nmov o[aL + 1], c1[aL]\nendloop\nmov_sat o3, c4_abs\n";
+  const int texcoord0 = static_cast<int>(OutputSlot::kTexCoord0);
+  EXPECT_EQ(RunRef(source, bank, {{0, 0, 0, 1}}, texcoord0)[0], (Vec4f{1, 2, 3, 4}));
+  EXPECT_EQ(RunRef(source, bank, {{0, 0, 0, 1}}, texcoord0 + 1)[0], (Vec4f{5, 6, 7, 8}));
+  EXPECT_EQ(RunRef(source, bank, {{0, 0, 0, 1}}, static_cast<int>(OutputSlot::kDiffuse))[0], (Vec4f{0.5f, 1, 1, 0.25f}));
 }
 
 AssembleResult Assembled(const std::string& source) { return AssembleSource(source, "refused.vsh", {}, NoFiles); }
