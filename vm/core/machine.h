@@ -46,6 +46,10 @@ class ConstantBank {
     return index >= 0 && index < kBooleanConstantCount && booleans_[static_cast<std::size_t>(index)];
   }
   int size() const { return static_cast<int>(values_.size()); }
+  // At least `count` registers, the new ones 0 (a later model's device has 256 at least).
+  void GrowTo(int count) {
+    if (count > size()) values_.resize(static_cast<std::size_t>(count), Vec4f{});
+  }
   Vec4f& operator[](int index) { return values_[static_cast<std::size_t>(index)]; }
   const Vec4f& operator[](int index) const { return values_[static_cast<std::size_t>(index)]; }
   // Out-of-range reads give (0, 0, 0, 0) (§1.4: the deterministic reading of "unpredictable").

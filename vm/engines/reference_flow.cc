@@ -2,6 +2,7 @@
 
 #include <algorithm>
 #include <optional>
+#include <utility>
 #include <vector>
 
 #include "vm/core/operands.h"
@@ -323,14 +324,21 @@ class FlowInterpreter {
   std::vector<CallFrame> calls_;
 };
 
+// The bank the program sees: at least the model's constants (vs_2_0 on: 256, which the validator lets a
+// program read whatever the API bank's size), the program's definitions written over the API's values.
+ConstantBank ModelConstants(const Program& program, ConstantBank api_constants) {
+  api_constants.GrowTo(RegisterCount(RegisterFile::kConst, program.model()));
+  return ApplyDefinitions(program, std::move(api_constants));
+}
+
 class FlowReferenceEngine final : public Engine {
  public:
   FlowReferenceEngine(const Program& program, const ConstantBank& api_constants, FloatRules rules)
-      : program_(program), control_(BuildControlTable(program)), constants_(ApplyDefinitions(program, api_constants)),
+      : program_(program), control_(BuildControlTable(program)), constants_(ModelConstants(program, api_constants)),
         written_(WrittenOutputLanes(program)), declared_outputs_(DeclaredOutputSlots(program)), rules_(rules) {}
 
   void SetConstants(const ConstantBank& api_constants) override {
-    constants_ = ApplyDefinitions(program_, api_constants);
+    constants_ = ModelConstants(program_, api_constants);
   }
 
   void Run(const VertexArrays& inputs, VertexArrays& outputs) override {

@@ -237,6 +237,13 @@ TEST(ReferenceFlow, Vs30OutputsThroughAlAndSaturatedAbsoluteSources) {
   EXPECT_EQ(RunRef(source, bank, {{0, 0, 0, 1}}, static_cast<int>(OutputSlot::kDiffuse))[0], (Vec4f{0.5f, 1, 1, 0.25f}));
 }
 
+TEST(ReferenceFlow, TheBankHasTheModelsConstantsWhateverTheApiBanksSize) {
+  ConstantBank small;  // kDefaultConstantCount, vs_1_1's 96
+  small[5] = {5, 5, 5, 5};
+  const Vec4f r = RunOne("vs_2_0\ndef c200, 1, 2, 3, 4\ndcl_position v0\nadd oPos, c200, c5\n", small);
+  EXPECT_EQ(r, (Vec4f{6, 7, 8, 9}));
+}
+
 AssembleResult Assembled(const std::string& source) { return AssembleSource(source, "refused.vsh", {}, NoFiles); }
 
 TEST(ReferenceFlow, RefusesTexldlAndOutputsWithoutASlotByName) {
