@@ -46,25 +46,6 @@ constexpr std::uint32_t kFvfTexCoordSizeBits = 0xFFFF0000;
 
 LayoutError Error(vs11c_status status, long token, std::string message) { return {status, std::move(message), token}; }
 
-std::optional<int> OutputSlotOfUsage(int usage, int index) {
-  switch (static_cast<DeclUsage>(usage)) {
-    case DeclUsage::kPosition:
-    case DeclUsage::kPositionT:
-      return index == 0 ? std::optional(static_cast<int>(OutputSlot::kPosition)) : std::nullopt;
-    case DeclUsage::kColor:
-      return index <= 1 ? std::optional(static_cast<int>(OutputSlot::kDiffuse) + index) : std::nullopt;
-    case DeclUsage::kTexCoord:
-      return index < kTexCoordOutputCount ? std::optional(static_cast<int>(OutputSlot::kTexCoord0) + index)
-                                          : std::nullopt;
-    case DeclUsage::kPointSize:
-      return index == 0 ? std::optional(static_cast<int>(OutputSlot::kPointSize)) : std::nullopt;
-    case DeclUsage::kFog:
-      return index == 0 ? std::optional(static_cast<int>(OutputSlot::kFog)) : std::nullopt;
-    default:
-      return std::nullopt;
-  }
-}
-
 std::optional<LayoutError> CheckWithinStride(const std::vector<OutputElement>& elements, std::size_t stride) {
   for (std::size_t i = 0; i < elements.size(); ++i) {
     const std::size_t end = elements[i].offset + *DeclTypeSize(static_cast<int>(elements[i].type));

@@ -11,18 +11,55 @@
 
 namespace vs11 {
 
-std::optional<std::string> EngineRefusal(const Program& program, std::string_view engine) {
+Status EngineRefusal(const Program& program, std::string_view engine) {
   const ShaderModel model = program.model();
-  if (Info(model).runs) return std::nullopt;
-  return fmt::format("the {} engine cannot run {} programs yet (they assemble, disassemble and validate; only "
-                     "vs_1_1 programs run)",
-                     engine, ShaderModelName(model));
+  if (Info(model).runs) return {};
+  if (engine != kLaterModelEngine) {
+    return Failure(DiagnosticCode::kEngineUnavailable,
+                   fmt::format("the {} engine cannot run {} programs yet (they assemble, disassemble and validate, "
+                               "and run on the {} engine; the {} engine runs only vs_1_1 programs)",
+                               engine, ShaderModelName(model), kLaterModelEngine, engine));
+  }
+  for (std::size_t i = 0; i < program.instructions.size(); ++i) {
+    if (program.instructions[i].opcode != Opcode::kTexldl) continue;
+    const SourceLoc loc = program.LocOf(static_cast<int>(i));
+    return Failure(DiagnosticCode::kEngineUnavailable,
+                   fmt::format("the {} engine cannot run texldl (instruction {}{}): vertex textures are not "
+                               "modelled yet",
+                               engine, i + 1, loc.line > 0 ? fmt::format(", line {}", loc.line) : ""),
+                   loc);
+  }
+  if (model != ShaderModel::kVs30) return {};
+  const auto slots = DeclaredOutputSlots(program);
+  for (const Instruction& instruction : program.instructions) {
+    if (instruction.opcode != Opcode::kDcl || instruction.dest.reg.file != RegisterFile::kTexCoordOut) continue;
+    const int reg = instruction.dest.reg.index;
+    if (reg >= 0 && reg < kOutputRegisterCountVs30 && slots[static_cast<std::size_t>(reg)]) continue;
+    const std::string_view usage = instruction.usage >= 0 && instruction.usage < static_cast<int>(kDeclUsageNames.size())
+                                       ? kDeclUsageNames[static_cast<std::size_t>(instruction.usage)]
+                                       : "?";
+    return Failure(DiagnosticCode::kEngineUnavailable,
+                   fmt::format("the {} engine cannot run this vs_3_0 program: o{} is declared dcl_{}{}, which has no "
+                               "output of the engine (oPos, oFog, oPts, oD0-oD1, oT0-oT7)",
+                               engine, reg, usage, instruction.usage_index == 0 ? "" : std::to_string(instruction.usage_index)));
+  }
+  return {};
 }
 
 ConstantBank ApplyDefinitions(const Program& program, ConstantBank api_constants) {
   for (const Instruction& instruction : program.instructions) {
+    const int index = instruction.dest.reg.index;
+    if (instruction.opcode == Opcode::kDefi) {
+      if (index >= 0 && index < kIntegerConstantCount) {
+        for (int c = 0; c < 4; ++c) api_constants.integer(index)[c] = static_cast<std::int32_t>(instruction.def_bits[c]);
+      }
+      continue;
+    }
+    if (instruction.opcode == Opcode::kDefb) {
+      if (index >= 0 && index < kBooleanConstantCount) api_constants.SetBoolean(index, instruction.def_bits[0] != 0);
+      continue;
+    }
     if (instruction.opcode != Opcode::kDef) continue;
-    int index = instruction.dest.reg.index;
     if (index >= 0 && index < api_constants.size()) {
       std::array<float, 4> values = instruction.def_values();
       api_constants[index] = {values[0], values[1], values[2], values[3]};
@@ -44,6 +81,37 @@ std::optional<int> OutputSlotOf(const RegisterRef& reg) {
       return std::nullopt;
     default: return std::nullopt;
   }
+}
+
+std::optional<int> OutputSlotOfUsage(int usage, int index) {
+  // D3DDECLUSAGE values (kDeclUsageNames).
+  constexpr int kPosition = 0, kPointSize = 4, kTexCoord = 5, kPositionT = 9, kColor = 10, kFog = 11;
+  switch (usage) {
+    case kPosition:
+    case kPositionT: return index == 0 ? std::optional(static_cast<int>(OutputSlot::kPosition)) : std::nullopt;
+    case kColor:
+      return index >= 0 && index < kColorOutputCount ? std::optional(static_cast<int>(OutputSlot::kDiffuse) + index)
+                                                     : std::nullopt;
+    case kTexCoord:
+      return index >= 0 && index < kTexCoordOutputCount
+                 ? std::optional(static_cast<int>(OutputSlot::kTexCoord0) + index)
+                 : std::nullopt;
+    case kPointSize: return index == 0 ? std::optional(static_cast<int>(OutputSlot::kPointSize)) : std::nullopt;
+    case kFog: return index == 0 ? std::optional(static_cast<int>(OutputSlot::kFog)) : std::nullopt;
+    default: return std::nullopt;
+  }
+}
+
+std::array<std::optional<int>, kOutputRegisterCountVs30> DeclaredOutputSlots(const Program& program) {
+  std::array<std::optional<int>, kOutputRegisterCountVs30> slots{};
+  for (const Instruction& instruction : program.instructions) {
+    const int reg = instruction.dest.reg.index;
+    if (instruction.opcode != Opcode::kDcl || instruction.dest.reg.file != RegisterFile::kTexCoordOut) continue;
+    if (reg >= 0 && reg < kOutputRegisterCountVs30) {
+      slots[static_cast<std::size_t>(reg)] = OutputSlotOfUsage(instruction.usage, instruction.usage_index);
+    }
+  }
+  return slots;
 }
 
 std::string OutputSlotName(int slot) {
@@ -73,7 +141,20 @@ Vec4f UnwrittenOutputValue(int slot) {
 
 std::array<WriteMask, kOutputSlotCount> WrittenOutputLanes(const Program& program) {
   std::array<std::uint8_t, kOutputSlotCount> bits{};
+  if (program.model() == ShaderModel::kVs30) {
+    // o# through its declaration; o[aL + n] may reach every declared output.
+    const auto declared = DeclaredOutputSlots(program);
+    for (const Instruction& instruction : program.instructions) {
+      const RegisterRef& reg = instruction.dest.reg;
+      if (!instruction.info().is_executable() || !instruction.info().has_dest() || reg.file != RegisterFile::kTexCoordOut) continue;
+      for (int o = 0; o < kOutputRegisterCountVs30; ++o) {
+        const std::optional<int> slot = declared[static_cast<std::size_t>(o)];
+        if (slot && (reg.relative || reg.index == o)) bits[*slot] |= instruction.dest.mask.bits();
+      }
+    }
+  }
   for (const Instruction& instruction : program.instructions) {
+    if (program.model() == ShaderModel::kVs30) break;
     if (!instruction.info().is_executable() || !instruction.info().has_dest()) continue;
     if (std::optional<int> slot = OutputSlotOf(instruction.dest.reg)) bits[*slot] |= instruction.dest.mask.bits();
   }

@@ -18,6 +18,7 @@
 
 #include "vm/core/float_rules.h"
 #include "vm/core/program.h"
+#include "vm/core/result.h"
 
 namespace vs11 {
 
@@ -26,11 +27,29 @@ using Vec4f = std::array<float, 4>;
 // What a vertex element does not supply reads as (0, 0, 0, 1) (§1.2).
 inline constexpr Vec4f kDefaultInput = {0.0f, 0.0f, 0.0f, 1.0f};
 
-// Constant registers c0..c(N-1), N = MaxVertexShaderConst (at least 96). Unset registers read 0.
+using Vec4i = std::array<int, 4>;
+inline constexpr int kIntegerConstantCount = RegisterCount(RegisterFile::kConstInt, ShaderModel::kVs20);
+inline constexpr int kBooleanConstantCount = RegisterCount(RegisterFile::kConstBool, ShaderModel::kVs20);
+
+// Constant registers c0..c(N-1), N = MaxVertexShaderConst (at least 96), and the later models'
+// integer constants i0..i15 and boolean constants b0..b15, set by the API as c# is. Unset registers
+// read 0 (false); out-of-range i#/b# read 0 (false).
 class ConstantBank {
  public:
   explicit ConstantBank(int count = kDefaultConstantCount) : values_(static_cast<std::size_t>(count), Vec4f{}) {}
+  Vec4i& integer(int index) { return integers_[static_cast<std::size_t>(index)]; }
+  Vec4i ReadInteger(long index) const {
+    return index >= 0 && index < kIntegerConstantCount ? integers_[static_cast<std::size_t>(index)] : Vec4i{};
+  }
+  void SetBoolean(int index, bool value) { booleans_[static_cast<std::size_t>(index)] = value; }
+  bool ReadBoolean(long index) const {
+    return index >= 0 && index < kBooleanConstantCount && booleans_[static_cast<std::size_t>(index)];
+  }
   int size() const { return static_cast<int>(values_.size()); }
+  // At least `count` registers, the new ones 0 (a later model's device has 256 at least).
+  void GrowTo(int count) {
+    if (count > size()) values_.resize(static_cast<std::size_t>(count), Vec4f{});
+  }
   Vec4f& operator[](int index) { return values_[static_cast<std::size_t>(index)]; }
   const Vec4f& operator[](int index) const { return values_[static_cast<std::size_t>(index)]; }
   // Out-of-range reads give (0, 0, 0, 0) (§1.4: the deterministic reading of "unpredictable").
@@ -39,21 +58,36 @@ class ConstantBank {
 
  private:
   std::vector<Vec4f> values_;
+  std::array<Vec4i, kIntegerConstantCount> integers_{};
+  std::array<bool, kBooleanConstantCount> booleans_{};
 };
 
-// Why `engine` ("ref", "batch", "jit", "gl", "translate") cannot run `program`, or nullopt. Programs of
-// vs_2_0, vs_2_x and vs_3_0 assemble, decode and validate, but no engine executes them yet: every
-// engine refuses them by name (MakeEngine and translate::Translate ask here) rather than run them wrong.
-std::optional<std::string> EngineRefusal(const Program& program, std::string_view engine);
+// The one engine that runs the later models' programs (vs_2_0, vs_2_x, vs_3_0): the reference engine,
+// with its program counter (vm/engines/reference_flow.cc).
+inline constexpr std::string_view kLaterModelEngine = "ref";
 
-// The bank a program sees: the API's values with the program's def constants written over them (§3.3
-// def). A def beyond the bank is ignored (the validator rejects it).
+// Success, or why `engine` ("ref", "batch", "jit", "gl", "translate") cannot run `program`
+// (kEngineUnavailable; MakeEngine and translate::Translate ask here). vs_1_1 runs everywhere; the later
+// models run only on the ref engine, and there not texldl (no vertex textures yet) nor a vs_3_0 output
+// declared with a usage that has no output slot (dcl_normal o3): every other engine refuses them by
+// name rather than run them wrong.
+Status EngineRefusal(const Program& program, std::string_view engine);
+
+// The bank a program sees: the API's values with the program's def, defi and defb constants written
+// over them (§3.3 def). A definition beyond its bank is ignored (the validator rejects it).
 ConstantBank ApplyDefinitions(const Program& program, ConstantBank api_constants);
 
 // Output registers, flattened: oPos, oFog, oPts, oD0, oD1, oT0..oT7.
 enum class OutputSlot : int { kPosition, kFog, kPointSize, kDiffuse, kSpecular, kTexCoord0 };
 inline constexpr int kOutputSlotCount = 5 + kTexCoordOutputCount;
 std::optional<int> OutputSlotOf(const RegisterRef& reg);  // nullopt for non-output or out-of-range registers
+// The slot of an output declared with D3DDECLUSAGE `usage` and usage index `index` (a vs_3_0 o#, an
+// output element of the C library's layouts): position, psize, fog, color0-1, texcoord0-7; else nullopt.
+std::optional<int> OutputSlotOfUsage(int usage, int index);
+// A vs_3_0 program's o0..o11 mapped to slots by its dcl_<usage> o# lines; nullopt where undeclared or
+// where the usage has no slot.
+inline constexpr int kOutputRegisterCountVs30 = RegisterCount(RegisterFile::kTexCoordOut, ShaderModel::kVs30);
+std::array<std::optional<int>, kOutputRegisterCountVs30> DeclaredOutputSlots(const Program& program);
 std::string OutputSlotName(int slot);                    // "oPos", "oD0", "oT3"
 std::optional<int> OutputSlotFromName(std::string_view name);  // case-insensitive
 

@@ -176,27 +176,20 @@ struct M4x3Semantics {};
 struct M3x4Semantics {};
 struct M3x3Semantics {};
 struct M3x2Semantics {};
-// The later models' rows: no kernel yet (the engines refuse their programs: vm/core/machine.h's
-// EngineRefusal), so that every row still names a struct.
-struct LrpSemantics {};
+// The later models' rows without arithmetic: flow control (run by the reference engine's program
+// counter, vm/engines/reference_flow.cc), definitions, and texldl (no vertex textures yet). if_comp,
+// break_comp and setp_comp compare with Compare below.
 struct CallSemantics {};
 struct CallnzSemantics {};
 struct LoopSemantics {};
 struct RetSemantics {};
 struct EndloopSemantics {};
 struct LabelSemantics {};
-struct PowSemantics {};
-struct CrsSemantics {};
-struct SgnSemantics {};
-struct AbsSemantics {};
-struct NrmSemantics {};
-struct SincosSemantics {};
 struct RepSemantics {};
 struct EndrepSemantics {};
 struct IfSemantics {};
 struct ElseSemantics {};
 struct EndifSemantics {};
-struct MovaSemantics {};
 struct DefbSemantics {};
 struct DefiSemantics {};
 struct IfcSemantics {};
@@ -297,6 +290,121 @@ struct LogpSemantics {
     const V lowest = Constant(v, -kMaxFloat), one = Constant(v, 1.0f);
     return {IfThenElse(zero, lowest, exponent), IfThenElse(zero, one, mantissa),
             IfThenElse(zero, lowest, PartialPrecision(Log2(v))), one};
+  }
+};
+
+// ---- the later models' arithmetic (vs_2_0 on) -------------------------------------------------------
+// Source of every formula: Microsoft's D3D9 reference pages for each instruction (the README's "Shader
+// models" section lists the facts). Where the reference leaves the bits open (pow, sincos, mova's ties, sgn's NaN), the
+// choice is said at the kernel and in the README's "Shader models" section.
+
+struct AbsSemantics {
+  template <class V> static V Lane(V a, V, V) { return Abs(a); }
+};
+struct LrpSemantics {
+  // s0 * (s1 - s2) + s2, unfused, as the reference's formula orders it.
+  template <FloatRules kRules, class V> static V Lane(V a, V b, V c) { return Product<kRules>(a, b - c) + c; }
+};
+// -1, 0 or 1. Both zeros give +0; NaN fails both tests and gives 1, the reference's "else" case read
+// literally. vs_2_0's two scratch temporaries (s1, s2) are left unchanged: their contents are undefined.
+struct SgnSemantics {
+  template <class V> static V Lane(V a, V, V) {
+    const V zero = Constant(a, 0.0f);
+    return IfThenElse(a < zero, Constant(a, -1.0f), IfThenElse(a == zero, zero, Constant(a, 1.0f)));
+  }
+};
+// mova: the nearest integer, ties away from zero (x.5 -> x+1, -x.5 -> -(x+1)). Microsoft's reference
+// says only "RoundToNearest", so the tie rule is our choice (unconfirmed on hardware), tested against
+// the other reading (ties to even) in tests/vm/core/later_model_semantics_test.cc. The fraction is
+// taken as |x| - floor(|x|), which is exact, rather than floor(|x| + 0.5), whose sum rounds up for
+// 0.49999997. The engine then clamps the integer as vs_1_1's a0 (AddressFromFloat: NaN -> -2^20).
+struct MovaSemantics {
+  template <class V> static V Lane(V a, V, V) {
+    const V magnitude = Abs(a);
+    const V whole = Floor(magnitude);
+    const V rounded = IfThenElse(magnitude - whole >= Constant(a, 0.5f), whole + Constant(a, 1.0f), whole);
+    return IfThenElse(a < Constant(a, 0.0f), Negate(rounded), rounded);
+  }
+};
+// if_comp, break_comp and setp_comp's test (Instruction::comparison: 1 gt, 2 eq, 3 ge, 4 lt, 5 ne,
+// 6 le): 1 where it holds, else 0. Every comparison with a NaN is false except ne.
+template <class V>
+V Compare(int comparison, V a, V b) {
+  const V one = Constant(a, 1.0f), zero = Constant(a, 0.0f);
+  switch (comparison) {
+    case 1: return IfThenElse(a > b, one, zero);
+    case 2: return IfThenElse(a == b, one, zero);
+    case 3: return IfThenElse(a >= b, one, zero);
+    case 4: return IfThenElse(a < b, one, zero);
+    case 5: return IfThenElse(a == b, zero, one);
+    case 6: return IfThenElse(b >= a, one, zero);
+    default: return zero;
+  }
+}
+
+// pow: |s0|^s1 as exp2(s1 * log2|s0|) with the float rules' Exp2 and Log2 above and the product under
+// kRules, lit's specular power without its clamp. Reads the w lane of each (replicate-swizzled) source,
+// as vs_1_1's scalar instructions do, and replicates. 0^0 = 1, 0^y = 0 for y > 0, +inf for y < 0
+// (log2 0 = -FLT_MAX); exact for powers of two raised to integers (log2 and exp2 are exact there).
+struct PowSemantics {
+  template <FloatRules kRules, class V> static Vec4<V> Vector(const Vec4<V>& a, const Vec4<V>& b) {
+    const V power = Exp2(Product<kRules>(b[3], Log2(Abs(a[3]))));
+    return {power, power, power, power};
+  }
+};
+// crs: the cross product of the xyz lanes; w is never written (the engine limits the mask to xyz).
+struct CrsSemantics {
+  template <FloatRules kRules, class V> static Vec4<V> Vector(const Vec4<V>& a, const Vec4<V>& b) {
+    return {Product<kRules>(a[1], b[2]) - Product<kRules>(a[2], b[1]),
+            Product<kRules>(a[2], b[0]) - Product<kRules>(a[0], b[2]),
+            Product<kRules>(a[0], b[1]) - Product<kRules>(a[1], b[0]), Constant(a[0], 0.0f)};
+  }
+};
+// nrm: src * (1 / sqrt(x^2 + y^2 + z^2)), w scaled too; a zero length scales by FLT_MAX (so a zero
+// vector stays zero in xyz and a nonzero w becomes +-inf).
+struct NrmSemantics {
+  template <FloatRules kRules, class V> static Vec4<V> Vector(const Vec4<V>& a, const Vec4<V>&) {
+    const V f = Dot<kRules, V, 3>(a, a);
+    const V scale = IfThenElse(f == Constant(f, 0.0f), Constant(f, kMaxFloat), Constant(f, 1.0f) / Sqrt(f));
+    return {Product<kRules>(a[0], scale), Product<kRules>(a[1], scale), Product<kRules>(a[2], scale),
+            Product<kRules>(a[3], scale)};
+  }
+};
+
+// sin and cos of x to about 1e-7 absolute, from + - * and Floor alone so that every lane type computes
+// the same bits: x reduced to r in [-pi, pi] (2 pi split in two parts so that r is exact for |x| up to
+// a few thousand), then h = r / 2 in [-pi/2, pi/2], sin h and cos h by their Taylor series to h^11 and
+// h^12 (truncation below 6e-8), and sin r = 2 sin h cos h, cos r = cos^2 h - sin^2 h. NaN and +-inf
+// give NaN. The reference's own D3DSINCOSCONST series is not used: it is accurate on [-pi, pi] only to
+// about 1e-3, and hardware computes sin and cos its own way.
+template <class V>
+std::array<V, 2> CosSin(V x) {
+  const V turns = Floor(x * Constant(x, 0.159154943f) + Constant(x, 0.5f));
+  const V r = (x - turns * Constant(x, 6.28125f)) - turns * Constant(x, 1.93530718e-3f);
+  const V h = r * Constant(x, 0.5f);
+  const V h2 = h * h;
+  V s = Constant(x, -2.50521084e-8f);  // -1/11!
+  s = s * h2 + Constant(x, 2.75573192e-6f);
+  s = s * h2 + Constant(x, -1.98412698e-4f);
+  s = s * h2 + Constant(x, 8.33333333e-3f);
+  s = s * h2 + Constant(x, -1.66666667e-1f);
+  s = (s * h2) * h + h;
+  V c = Constant(x, 2.08767570e-9f);  // 1/12!
+  c = c * h2 + Constant(x, -2.75573192e-7f);
+  c = c * h2 + Constant(x, 2.48015873e-5f);
+  c = c * h2 + Constant(x, -1.38888889e-3f);
+  c = c * h2 + Constant(x, 4.16666667e-2f);
+  c = c * h2 + Constant(x, -0.5f);
+  c = c * h2 + Constant(x, 1.0f);
+  return {c * c - s * s, Constant(x, 2.0f) * s * c};
+}
+// sincos: x = cos, y = sin of the source's w lane (the source is replicate-swizzled); z and w are never
+// written (the engine limits the mask to xy). vs_2_0's two constant operands are not read: the result
+// does not depend on them.
+struct SincosSemantics {
+  template <class V> static Vec4<V> Vector(const Vec4<V>& a, const Vec4<V>&) {
+    const std::array<V, 2> cos_sin = CosSin(a[3]);
+    return {cos_sin[0], cos_sin[1], Constant(a[3], 0.0f), Constant(a[3], 0.0f)};
   }
 };
 

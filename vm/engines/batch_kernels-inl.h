@@ -331,7 +331,9 @@ void FillDotWidth(std::array<std::array<Kernel, 9>, 4>& rows, std::index_sequenc
 template <class Semantics, Opcode kOpcode, FloatRules kRules>
 void FillOpcode(KernelTable& table) {
   constexpr int kIndex = static_cast<int>(kOpcode);
-  if constexpr (kRules != FloatRules::kD3d9 && !semantics::FollowsFloatRules<Semantics>) {
+  if constexpr (Info(kOpcode).since != ShaderModel::kVs11) {
+    return;  // the batch engine refuses the later models' programs (EngineRefusal): no kernels to carry
+  } else if constexpr (kRules != FloatRules::kD3d9 && !semantics::FollowsFloatRules<Semantics>) {
     return;
   } else if constexpr (semantics::HasLane<Semantics, VF>) {
     constexpr int kArity = Info(kOpcode).source_count();

@@ -112,10 +112,12 @@ std::string EngineDescriptions() {
 
 Result<std::unique_ptr<Engine>> MakeEngine(std::string_view name, const Program& program,
                                            const ConstantBank& api_constants, const EngineOptions& options) {
-  if (std::optional<std::string> refusal = EngineRefusal(program, name)) {
-    return Failure(DiagnosticCode::kEngineUnavailable, *refusal);
+  if (std::optional<EngineInfo> engine = FindEngine(name)) {
+    // By its name, so that an alias (reference) is refused or allowed as the engine itself.
+    if (Status refusal = EngineRefusal(program, engine->name); !refusal) return refusal.error();
+    return engine->make(program, api_constants, options);
   }
-  if (std::optional<EngineInfo> engine = FindEngine(name)) return engine->make(program, api_constants, options);
+  if (Status refusal = EngineRefusal(program, name); !refusal) return refusal.error();
   return Failure(DiagnosticCode::kEngineUnavailable,
                  fmt::format("the {} engine is not part of this program (it has {}; the vs11 and irrmap tools "
                              "register vm/gl's gl engine)",

@@ -4,6 +4,7 @@
 
 #include "vm/core/operands.h"
 #include "vm/core/semantics.h"
+#include "vm/engines/reference_flow.h"
 
 namespace vs11 {
 namespace {
@@ -34,9 +35,15 @@ constexpr bool KernelMatchesKind(ResultKind kind) {
   if constexpr (semantics::HasVector<Semantics, float>) return kind == ResultKind::kVector;
   return kind == ResultKind::kDotProduct || kind == ResultKind::kMatrix || kind == ResultKind::kNoResult;
 }
-// A later model's row has no kernel yet: MakeEngine refuses its programs (EngineRefusal).
+template <class Semantics>
+constexpr bool HasKernel() {
+  return semantics::HasLane<Semantics, float> || semantics::HasScalar<Semantics, float> ||
+         semantics::HasVector<Semantics, float>;
+}
+// A later model's row without a kernel (flow control, setp's comparison, texldl) is run by the
+// program counter of vm/engines/reference_flow.cc instead.
 #define VS11_CHECK_KERNEL(name, mnemonic, token, shape, kind, slots, mask, default_mask, dot, rows, since) \
-  static_assert(ShaderModel::since != ShaderModel::kVs11 ||                                             \
+  static_assert((ShaderModel::since != ShaderModel::kVs11 && !HasKernel<semantics::name##Semantics>()) ||  \
                     KernelMatchesKind<semantics::name##Semantics>(ResultKind::kind),                      \
                 mnemonic);
 VS11_OPCODES(VS11_CHECK_KERNEL)
@@ -129,6 +136,8 @@ void RunVertex(const Program& program, const ConstantBank& constants, VertexStat
 
 std::unique_ptr<Engine> MakeReferenceEngine(const Program& program, const ConstantBank& api_constants,
                                             FloatRules rules) {
+  // The later models' flow control runs on a program counter of its own; vs_1_1 keeps its loop.
+  if (program.model() != ShaderModel::kVs11) return MakeFlowReferenceEngine(program, api_constants, rules);
   return std::make_unique<ReferenceEngine>(program, api_constants, rules);
 }
 

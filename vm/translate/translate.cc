@@ -366,8 +366,8 @@ std::string TranslateToGlsl(const Program& program, const TranslateOptions& opti
 }
 
 Artifact Translate(const Program& program, const TranslateOptions& options) {
-  std::optional<std::string> problem = EngineRefusal(program, "translate");
-  if (!problem) problem = StageProblem(options.target, options.stage);
+  const Status refusal = EngineRefusal(program, "translate");
+  std::optional<std::string> problem = refusal ? StageProblem(options.target, options.stage) : refusal.message();
   if (problem) {
     Artifact refused;
     refused.error = *problem;

@@ -1,0 +1,69 @@
+// `vs11 run` on a vs_2_0 program end to end: the ref engine runs a skinning loop over bones with
+// c#[aL]; the other engines refuse it by name.
+#include <string>
+
+#include <gmock/gmock.h>
+#include <gtest/gtest.h>
+
+#include "tests/run_tool.h"
+
+namespace {
+
+using ::testing::EndsWith;
+using ::testing::HasSubstr;
+using vs11::testing::CommandResult;
+using vs11::testing::RunVs11;
+
+// Two bones at c10..c13 and c14..c17 (aL = 10, 14), their weights in c40.x and c44.x (c30[aL]):
+// bone 0 moves x by 1, bone 1 scales by 2, each weighted 0.5.
+const std::string kSkinning =
+    "vs_2_0\n"
+    "defi i0, 2, 10, 4, 0\n"
+    "def c40, 0.5, 0, 0, 0\n"
+    "def c44, 0.5, 0, 0, 0\n"
+    "dcl_position v0\n"
+    "mov r0, c0\n"
+    "loop aL, i0\n"
+    "dp4 r1.x, v0, c0[aL]\n"
+    "dp4 r1.y, v0, c1[aL]\n"
+    "dp4 r1.z, v0, c2[aL]\n"
+    "dp4 r1.w, v0, c3[aL]\n"
+    "mad r0, r1, c30[aL].x, r0\n"
+    "endloop\n"
+    "mov oPos, r0\n";
+const std::string kBones =
+    " --const c10=1,0,0,1 --const c11=0,1,0,0 --const c12=0,0,1,0 --const c13=0,0,0,1"
+    " --const c14=2,0,0,0 --const c15=0,2,0,0 --const c16=0,0,2,0 --const c17=0,0,0,1";
+
+class LaterModelRun : public vs11::testing::ToolFolderTest {
+ protected:
+  void SetUp() override {
+    ToolFolderTest::SetUp();
+    program_ = Write("skin.vsh", kSkinning);
+    positions_ = Write("p.csv", "x,y,z,w\n1,2,3,1\n0,0,0,1\n");
+  }
+  std::string program_, positions_;
+};
+
+TEST_F(LaterModelRun, TheRefEngineRunsASkinningLoopOverBones) {
+  const CommandResult r = RunVs11("run " + program_ + " --input v0=" + positions_ + kBones + " --engine ref --missing zeros");
+  ASSERT_EQ(r.status, 0) << r.output;
+  // (1,2,3,1): bone 0 gives (2,2,3,1), bone 1 (2,4,6,1), half of each (2,3,4.5,1); the origin: (0.5,0,0,1).
+  EXPECT_THAT(r.output, EndsWith("oPos.x,oPos.y,oPos.z,oPos.w\n2,3,4.5,1\n0.5,0,0,1\n"));
+}
+
+TEST_F(LaterModelRun, TheOtherEnginesRefuseItByName) {
+  for (const char* engine : {"batch", "jit"}) {
+    const CommandResult r = RunVs11("run " + program_ + " --input v0=" + positions_ + kBones + " --missing zeros --engine " + engine);
+    EXPECT_EQ(r.status, 1) << engine;
+    EXPECT_THAT(r.output, HasSubstr(std::string("the ") + engine + " engine cannot run vs_2_0 programs yet")) << r.output;
+  }
+}
+
+TEST_F(LaterModelRun, TraceSaysItRunsOnlyVs11) {
+  const CommandResult r = RunVs11("run " + program_ + " --input v0=" + positions_ + kBones + " --missing zeros --engine ref --trace 0");
+  EXPECT_EQ(r.status, 1);
+  EXPECT_THAT(r.output, HasSubstr("--trace runs only vs_1_1 programs yet"));
+}
+
+}  // namespace

@@ -1,0 +1,385 @@
+#include "vm/engines/reference_flow.h"
+
+#include <algorithm>
+#include <optional>
+#include <utility>
+#include <vector>
+
+#include "vm/core/operands.h"
+#include "vm/core/semantics.h"
+
+namespace vs11 {
+namespace {
+
+constexpr int kTemps = RegisterCount(RegisterFile::kTemp, ShaderModel::kVs30);
+constexpr int kInputs = RegisterCount(RegisterFile::kInput, ShaderModel::kVs30);
+constexpr int kNoMatch = -1;
+
+// One vertex's registers in the later models: 32 temporaries, a0 as four lanes, aL and p0.
+struct FlowState {
+  std::array<Vec4f, kInputs> inputs{};
+  std::array<Vec4f, kTemps> temps{};
+  std::array<Vec4f, kOutputSlotCount> outputs{};
+  std::array<int, 4> a0{};
+  int aL = 0;
+  std::array<bool, 4> p0{};
+};
+
+struct LoopFrame {
+  int first = 0;  // the body's first instruction
+  int end = 0;    // the endloop or endrep
+  int remaining = 0;
+  int step = 0;
+  int outer_aL = 0;  // restored when a loop ends: aL is the innermost loop's
+  bool is_loop = false;
+};
+
+struct CallFrame {
+  int return_to = 0;
+  std::size_t loop_depth = 0;
+};
+
+// Where each block instruction's partner is, found once: if/ifc -> its else or endif, else -> endif,
+// loop/rep -> endloop/endrep; and where each label is. kNoMatch for an unbalanced program (only an
+// unvalidated one), which then ends at that instruction.
+struct ControlTable {
+  std::vector<int> partner;
+  std::vector<int> label_at;  // by label number
+};
+
+bool OpensBlock(Opcode op) { return op == Opcode::kIf || op == Opcode::kIfc || op == Opcode::kLoop || op == Opcode::kRep; }
+bool ClosesBlock(Opcode op) { return op == Opcode::kEndif || op == Opcode::kEndloop || op == Opcode::kEndrep; }
+
+ControlTable BuildControlTable(const Program& program) {
+  const int n = static_cast<int>(program.instructions.size());
+  ControlTable table;
+  table.partner.assign(static_cast<std::size_t>(n), kNoMatch);
+  std::vector<int> open;  // indices of if/loop/rep, and of else in place of its if
+  for (int i = 0; i < n; ++i) {
+    const Instruction& instruction = program.instructions[static_cast<std::size_t>(i)];
+    const Opcode op = instruction.opcode;
+    if (op == Opcode::kLabel) {
+      const int label = instruction.sources[0].reg.index;
+      if (label >= 0 && label < RegisterCount(RegisterFile::kLabel, ShaderModel::kVs30)) {
+        if (static_cast<int>(table.label_at.size()) <= label) table.label_at.resize(static_cast<std::size_t>(label) + 1, kNoMatch);
+        table.label_at[static_cast<std::size_t>(label)] = i;
+      }
+      open.clear();  // a subroutine starts afresh
+    } else if (OpensBlock(op)) {
+      open.push_back(i);
+    } else if (op == Opcode::kElse && !open.empty()) {
+      table.partner[static_cast<std::size_t>(open.back())] = i;
+      open.back() = i;
+    } else if (ClosesBlock(op) && !open.empty()) {
+      table.partner[static_cast<std::size_t>(open.back())] = i;
+      if (op != Opcode::kEndif) table.partner[static_cast<std::size_t>(i)] = open.back();
+      open.pop_back();
+    }
+  }
+  return table;
+}
+
+template <FloatRules kRules>
+class FlowInterpreter {
+ public:
+  FlowInterpreter(const Program& program, const ControlTable& control, const ConstantBank& constants,
+                  const std::array<std::optional<int>, kOutputRegisterCountVs30>& declared_outputs, FlowState& state)
+      : program_(program), control_(control), constants_(constants), declared_outputs_(declared_outputs),
+        state_(state), model_(program.model()) {}
+
+  void Run() {
+    const int n = static_cast<int>(program_.instructions.size());
+    int pc = 0;
+    while (pc >= 0 && pc < n) pc = Step(pc);
+  }
+
+ private:
+  // Runs instruction `pc`; the next one to run, or -1 when the program is done.
+  int Step(int pc) {
+    const Instruction& instruction = program_.instructions[static_cast<std::size_t>(pc)];
+    const int partner = control_.partner[static_cast<std::size_t>(pc)];
+    switch (instruction.opcode) {
+      case Opcode::kRet:
+      case Opcode::kLabel: return Return();  // falling onto a label ends the routine, as ret does
+      case Opcode::kCall: return Call(instruction.sources[0], pc);
+      case Opcode::kCallnz: return Condition(instruction.sources[1]) ? Call(instruction.sources[0], pc) : pc + 1;
+      case Opcode::kIf: return Condition(instruction.sources[0]) ? pc + 1 : Skip(partner);
+      case Opcode::kIfc: return Comparison(instruction) ? pc + 1 : Skip(partner);
+      case Opcode::kElse: return Skip(partner);  // the if's branch ran: past the endif
+      case Opcode::kEndif: return pc + 1;
+      case Opcode::kRep:
+      case Opcode::kLoop: return EnterLoop(instruction, pc, partner);
+      case Opcode::kEndrep:
+      case Opcode::kEndloop: return EndOfBody(pc);
+      case Opcode::kBreak: return Break(pc);
+      case Opcode::kBreakc: return Comparison(instruction) ? Break(pc) : pc + 1;
+      case Opcode::kBreakp: return Condition(instruction.sources[0]) ? Break(pc) : pc + 1;
+      default: Execute(instruction); return pc + 1;
+    }
+  }
+
+  // Past a block's closing instruction; an unmatched block ends the program.
+  static int Skip(int partner) { return partner == kNoMatch ? -1 : partner + 1; }
+
+  int Return() {
+    if (calls_.empty()) return -1;  // the main program's ret
+    const CallFrame frame = calls_.back();
+    calls_.pop_back();
+    loops_.resize(std::min(loops_.size(), frame.loop_depth));
+    return frame.return_to;
+  }
+
+  // A call beyond the model's nesting (the validator rejects it; recursion included) is skipped, so
+  // that an unvalidated program cannot recurse without end.
+  int Call(const SourceOperand& label, int pc) {
+    const int index = label.reg.index;
+    const bool known = index >= 0 && index < static_cast<int>(control_.label_at.size()) &&
+                       control_.label_at[static_cast<std::size_t>(index)] != kNoMatch;
+    if (!known || static_cast<int>(calls_.size()) >= Info(model_).call_depth) return pc + 1;
+    calls_.push_back({pc + 1, loops_.size()});
+    return control_.label_at[static_cast<std::size_t>(index)] + 1;
+  }
+
+  int EnterLoop(const Instruction& instruction, int pc, int partner) {
+    const bool is_loop = instruction.opcode == Opcode::kLoop;
+    const Vec4i counter = constants_.ReadInteger(instruction.sources[is_loop ? 1 : 0].reg.index);
+    const int count = std::clamp(counter[0], 0, kMaxLoopCount);
+    if (count == 0 || partner == kNoMatch) return Skip(partner);
+    loops_.push_back({pc + 1, partner, count, counter[2], state_.aL, is_loop});
+    if (is_loop) state_.aL = counter[1];
+    return pc + 1;
+  }
+
+  int EndOfBody(int pc) {
+    if (loops_.empty() || loops_.back().end != pc) return pc + 1;  // only an unvalidated program
+    LoopFrame& frame = loops_.back();
+    if (frame.is_loop) state_.aL += frame.step;
+    if (--frame.remaining > 0) return frame.first;
+    Leave();
+    return pc + 1;
+  }
+
+  int Break(int pc) {
+    if (loops_.empty()) return pc + 1;
+    const int end = loops_.back().end;
+    Leave();
+    return end + 1;
+  }
+
+  void Leave() {
+    if (loops_.back().is_loop) state_.aL = loops_.back().outer_aL;
+    loops_.pop_back();
+  }
+
+  // if b#, callnz l#, b#, breakp p0.c, if p0.c: a boolean constant or one predicate lane, `!` applied.
+  bool Condition(const SourceOperand& source) const {
+    bool value = false;
+    if (source.reg.file == RegisterFile::kConstBool) value = constants_.ReadBoolean(source.reg.index);
+    if (source.reg.file == RegisterFile::kPredicate) value = state_.p0[static_cast<std::size_t>(source.swizzle[0])];
+    return value != source.logical_not;
+  }
+
+  // if_comp, break_comp: the x lanes of the two (replicate-swizzled) sources.
+  bool Comparison(const Instruction& instruction) const {
+    return semantics::Compare(instruction.comparison, Fetch(instruction.sources[0], 0)[0],
+                              Fetch(instruction.sources[1], 0)[0]) != 0.0f;
+  }
+
+  long AddressOf(const RegisterRef& reg) const {
+    if (!reg.relative) return reg.index;
+    const int offset = reg.address.file == RegisterFile::kLoop ? state_.aL : state_.a0[reg.address.swizzle_bits & 3];
+    return static_cast<long>(reg.index) + offset;
+  }
+
+  Vec4f ReadRegister(const RegisterRef& reg, int row) const {
+    const long index = AddressOf(reg) + row;
+    switch (reg.file) {
+      case RegisterFile::kConst: return constants_.Read(index);
+      case RegisterFile::kTemp: return index >= 0 && index < kTemps ? state_.temps[static_cast<std::size_t>(index)] : Vec4f{};
+      case RegisterFile::kInput: return index >= 0 && index < kInputs ? state_.inputs[static_cast<std::size_t>(index)] : Vec4f{};
+      default: return {};
+    }
+  }
+
+  // The register, swizzled, then _abs, then negated (§3.1's order, with vs_3_0's _abs before the sign).
+  Vec4f Fetch(const SourceOperand& source, int row) const {
+    const Vec4f base = ReadRegister(source.reg, row);
+    Vec4f value;
+    for (int lane = 0; lane < 4; ++lane) {
+      float v = base[static_cast<std::size_t>(source.swizzle[lane])];
+      if (source.absolute) v = semantics::Abs(v);
+      value[static_cast<std::size_t>(lane)] = source.negate ? semantics::Negate(v) : v;
+    }
+    return value;
+  }
+
+  template <class Semantics>
+  std::optional<Vec4f> Compute(const Instruction& instruction) const {
+    const OpcodeInfo& info = instruction.info();
+    std::array<Vec4f, 3> src{};
+    for (int s = 0; s < std::min(SourceCount(info, model_), 3); ++s) src[s] = Fetch(instruction.sources[s], 0);
+    Vec4f result{};
+    if constexpr (semantics::HasLane<Semantics, float>) {
+      for (int lane = 0; lane < 4; ++lane) {
+        result[lane] = semantics::RunLane<kRules, Semantics>(src[0][lane], src[1][lane], src[2][lane]);
+      }
+    } else if constexpr (semantics::HasScalar<Semantics, float>) {
+      result.fill(Semantics::Scalar(src[0][3]));
+    } else if constexpr (semantics::HasVector<Semantics, float>) {
+      result = semantics::RunVector<kRules, Semantics>(src[0], src[1]);
+    } else if (info.kind == ResultKind::kDotProduct) {
+      result.fill(semantics::DotOfWidth<kRules>(info.dot_width, src[0], src[1]));
+    } else if (info.kind == ResultKind::kMatrix) {
+      for (int row = 0; row < info.matrix_rows; ++row) {
+        result[row] = semantics::DotOfWidth<kRules>(info.dot_width, src[0],
+                                                    Fetch(instruction.sources[OpcodeInfo::kMatrixSource], row));
+      }
+    } else {
+      return std::nullopt;  // dcl, def, defi, defb, nop
+    }
+    return result;
+  }
+
+  std::optional<Vec4f> ComputeAny(const Instruction& instruction) const {
+    switch (instruction.opcode) {
+#define VS11_FLOW_COMPUTE_CASE(name, ...) \
+  case Opcode::k##name: return Compute<semantics::name##Semantics>(instruction);
+      VS11_OPCODES(VS11_FLOW_COMPUTE_CASE)
+#undef VS11_FLOW_COMPUTE_CASE
+    }
+    return std::nullopt;
+  }
+
+  // The lanes an instruction writes: its mask, less what the opcode never writes (crs's w, sincos's z
+  // and w, a matrix's missing rows), less the lanes a predicate turns off.
+  WriteMask LanesWritten(const Instruction& instruction) const {
+    std::uint8_t lanes = instruction.dest.mask.bits();
+    if (instruction.opcode == Opcode::kCrs) lanes &= kLanesXyz;
+    if (instruction.opcode == Opcode::kSincos) lanes &= kLanesXy;
+    lanes &= static_cast<std::uint8_t>((1u << instruction.info().result_lanes()) - 1);
+    if (instruction.predicated) {
+      for (int lane = 0; lane < 4; ++lane) {
+        const bool on = state_.p0[static_cast<std::size_t>(instruction.predicate.swizzle[lane])] !=
+                        instruction.predicate.logical_not;
+        if (!on) lanes &= static_cast<std::uint8_t>(~(1u << lane));
+      }
+    }
+    return WriteMask(lanes);
+  }
+
+  Vec4f* Target(const RegisterRef& reg) {
+    const long index = AddressOf(reg);
+    if (reg.file == RegisterFile::kTemp) {
+      return index >= 0 && index < kTemps ? &state_.temps[static_cast<std::size_t>(index)] : nullptr;
+    }
+    std::optional<int> slot;
+    if (model_ == ShaderModel::kVs30) {
+      if (reg.file == RegisterFile::kTexCoordOut && index >= 0 && index < kOutputRegisterCountVs30) {
+        slot = declared_outputs_[static_cast<std::size_t>(index)];
+      }
+    } else {
+      slot = OutputSlotOf(reg);
+    }
+    return slot ? &state_.outputs[static_cast<std::size_t>(*slot)] : nullptr;
+  }
+
+  void Execute(const Instruction& instruction) {
+    if (!instruction.info().is_executable()) return;
+    const WriteMask lanes = LanesWritten(instruction);
+    if (instruction.opcode == Opcode::kSetp) {
+      const Vec4f a = Fetch(instruction.sources[0], 0), b = Fetch(instruction.sources[1], 0);
+      for (int lane = 0; lane < 4; ++lane) {
+        if (lanes.has(lane)) state_.p0[lane] = semantics::Compare(instruction.comparison, a[lane], b[lane]) != 0.0f;
+      }
+      return;
+    }
+    std::optional<Vec4f> result = ComputeAny(instruction);
+    if (!result) return;
+    if (instruction.dest.saturate) {
+      // [0, 1]; NaN gives 0.
+      for (float& v : *result) v = v > 0.0f ? (v < 1.0f ? v : 1.0f) : 0.0f;
+    }
+    if (instruction.dest.reg.file == RegisterFile::kAddress) {
+      // mova's value is already rounded; vs_1_1's mov a0 floors (AddressFromFloat), and on integers
+      // the two agree.
+      for (int lane = 0; lane < 4; ++lane) {
+        if (lanes.has(lane)) state_.a0[lane] = semantics::AddressFromFloat((*result)[lane]);
+      }
+      return;
+    }
+    if (Vec4f* target = Target(instruction.dest.reg)) {
+      for (int lane = 0; lane < 4; ++lane) {
+        if (lanes.has(lane)) (*target)[lane] = (*result)[lane];
+      }
+    }
+  }
+
+  const Program& program_;
+  const ControlTable& control_;
+  const ConstantBank& constants_;
+  const std::array<std::optional<int>, kOutputRegisterCountVs30>& declared_outputs_;
+  FlowState& state_;
+  const ShaderModel model_;
+  std::vector<LoopFrame> loops_;
+  std::vector<CallFrame> calls_;
+};
+
+// The bank the program sees: at least the model's constants (vs_2_0 on: 256, which the validator lets a
+// program read whatever the API bank's size), the program's definitions written over the API's values.
+ConstantBank ModelConstants(const Program& program, ConstantBank api_constants) {
+  api_constants.GrowTo(RegisterCount(RegisterFile::kConst, program.model()));
+  return ApplyDefinitions(program, std::move(api_constants));
+}
+
+class FlowReferenceEngine final : public Engine {
+ public:
+  FlowReferenceEngine(const Program& program, const ConstantBank& api_constants, FloatRules rules)
+      : program_(program), control_(BuildControlTable(program)), constants_(ModelConstants(program, api_constants)),
+        written_(WrittenOutputLanes(program)), declared_outputs_(DeclaredOutputSlots(program)), rules_(rules) {}
+
+  void SetConstants(const ConstantBank& api_constants) override {
+    constants_ = ModelConstants(program_, api_constants);
+  }
+
+  void Run(const VertexArrays& inputs, VertexArrays& outputs) override {
+    const std::vector<int> input_registers = inputs.registers();
+    const std::vector<int> output_slots = outputs.registers();
+    FlowState state;
+    for (std::size_t i = 0; i < inputs.count(); ++i) {
+      state = FlowState{};
+      state.inputs.fill(kDefaultInput);
+      for (int reg : input_registers) {
+        if (reg >= kInputs) continue;
+        for (int c = 0; c < 4; ++c) state.inputs[static_cast<std::size_t>(reg)][c] = inputs.view(reg, c)[i];
+      }
+      for (int slot = 0; slot < kOutputSlotCount; ++slot) {
+        state.outputs[static_cast<std::size_t>(slot)] = written_[slot].bits() ? Vec4f{} : UnwrittenOutputValue(slot);
+      }
+      if (rules_ == FloatRules::kLegacy) {
+        FlowInterpreter<FloatRules::kLegacy>(program_, control_, constants_, declared_outputs_, state).Run();
+      } else {
+        FlowInterpreter<FloatRules::kD3d9>(program_, control_, constants_, declared_outputs_, state).Run();
+      }
+      for (int slot : output_slots) {
+        for (int c = 0; c < 4; ++c) outputs.lane(slot, c)[i] = state.outputs[static_cast<std::size_t>(slot)][c];
+      }
+    }
+  }
+
+ private:
+  Program program_;
+  ControlTable control_;
+  ConstantBank constants_;
+  std::array<WriteMask, kOutputSlotCount> written_;
+  std::array<std::optional<int>, kOutputRegisterCountVs30> declared_outputs_;
+  FloatRules rules_;
+};
+
+}  // namespace
+
+std::unique_ptr<Engine> MakeFlowReferenceEngine(const Program& program, const ConstantBank& api_constants,
+                                                FloatRules rules) {
+  return std::make_unique<FlowReferenceEngine>(program, api_constants, rules);
+}
+
+}  // namespace vs11
