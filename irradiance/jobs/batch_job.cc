@@ -170,7 +170,8 @@ std::optional<std::string> BatchOutputOverwritesInput(const BatchOptions& option
   if (Result<std::vector<std::string>> expanded = ExpandBatchInputs(options.inputs, options.list_files)) {
     inputs.insert(inputs.end(), expanded->begin(), expanded->end());
   }
-  return OutputOverwritesInput(options.output, inputs);
+  if (const Status error = OutputOverwritesInput(options.output, inputs); !error.ok()) return error.message();
+  return std::nullopt;
 }
 
 Result<std::vector<std::string>> ExpandBatchInputs(const std::vector<std::string>& inputs,

@@ -108,7 +108,7 @@ std::optional<std::string> MergeBatchOutputs(const MergeOptions& options, MergeR
     std::vector<fs::path> read(options.list_files);
     read.insert(read.end(), parts.begin(), parts.end());
     read.insert(read.end(), inputs.begin(), inputs.end());
-    if (std::optional<std::string> overwrite = OutputOverwritesInput(options.output, read)) return overwrite;
+    if (const Status overwrite = OutputOverwritesInput(options.output, read); !overwrite.ok()) return overwrite.message();
   }
   report.inputs = inputs.size();
   report.parts = parts.size();

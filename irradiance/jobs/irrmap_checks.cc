@@ -152,7 +152,7 @@ std::optional<std::string> CheckOutputsAreNotInputs(const IrrmapOptions& options
   }
   if (!options.coefficients_only && !options.no_ground_truth) names.push_back(kPreviewFile);
   for (std::string_view name : names) {
-    if (auto error = OutputOverwritesInput(options.out_dir / name, inputs)) return error;
+    if (const Status error = OutputOverwritesInput(options.out_dir / name, inputs); !error.ok()) return error.message();
   }
   return std::nullopt;
 }
