@@ -127,7 +127,7 @@ class BatchStream {
     Item end{Item::kEnd, ""};
     try {
       irradiance::BatchSummary summary;
-      const std::optional<std::string> error = irradiance::RunBatch(
+      const Status ran = irradiance::RunBatch(
           options_, summary, {},
           [this](const irradiance::BatchFailure& failure) {
             {
@@ -137,7 +137,7 @@ class BatchStream {
             Push({Item::kFailure, fmt::format("{}: {}", failure.input, failure.reason)});
           },
           [this](const std::string& line) { Push({Item::kRecord, line}); });
-      end.text = error.value_or("");
+      end.text = ran.message();
     } catch (const std::bad_alloc&) {
       end = {Item::kOutOfMemory, "out of memory while running the batch"};
     } catch (const std::exception& e) {

@@ -158,12 +158,12 @@ irradiance::IrrmapOptions OptionsFor(const py::object& environment, const std::s
 
 irradiance::IrrmapReport RunJob(const irradiance::IrrmapOptions& options) {
   irradiance::IrrmapReport report;
-  std::optional<std::string> error;
+  Status ran;
   {
     py::gil_scoped_release release;
-    error = irradiance::RunIrrmap(options, report);
+    ran = irradiance::RunIrrmap(options, report);
   }
-  if (error) throw py::value_error(*error);
+  if (!ran.ok()) throw py::value_error(ran.message());
   for (const std::string& warning : report.warnings) {
     if (PyErr_WarnEx(PyExc_UserWarning, warning.c_str(), 2) != 0) throw py::error_already_set();
   }

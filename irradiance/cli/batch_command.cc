@@ -67,15 +67,17 @@ void RunBatchCommand(BatchArguments& arguments) {
   options.shard_index = shard->first;
   options.shard_count = shard->second;
   if (arguments.level >= 0) options.level = arguments.level;
-  if (std::optional<std::string> usage = CheckBatchOptions(options)) throw CLI::ValidationError(*usage);
-  if (std::optional<std::string> error = BatchOutputOverwritesInput(options)) throw CLI::ValidationError("-o", *error);
+  if (const Status usage = CheckBatchOptions(options); !usage.ok()) throw CLI::ValidationError(usage.message());
+  if (const Status error = BatchOutputOverwritesInput(options); !error.ok()) {
+    throw CLI::ValidationError("-o", error.message());
+  }
   BatchSummary summary;
   const bool terminal = isatty(fileno(stderr)) != 0;
   auto report = [terminal](const BatchFailure& failure) {
     fmt::print(stderr, "{}irrmap batch: skipped {}: {}\n", terminal ? "\r\033[K" : "", failure.input, failure.reason);
   };
-  if (std::optional<std::string> error = RunBatch(options, summary, MakeProgress(), report)) {
-    throw SubcommandFailure(*error);
+  if (const Status error = RunBatch(options, summary, MakeProgress(), report); !error.ok()) {
+    throw SubcommandFailure(error.message());
   }
   const std::size_t processed = summary.succeeded + summary.failures.size();
   fmt::print("{} inputs in shard {}/{}: {} written to {}, {} already there (--resume), {} failed; {:.2f} s, {:.1f} files/s\n",

@@ -34,7 +34,9 @@ void PrintReport(const MergeReport& report, const MergeOptions& options) {
 
 void RunMergeCommand(const MergeArguments& arguments) {
   MergeReport report;
-  if (std::optional<std::string> error = MergeBatchOutputs(arguments.options, report)) throw SubcommandFailure(*error);
+  if (const Status error = MergeBatchOutputs(arguments.options, report); !error.ok()) {
+    throw SubcommandFailure(error.message());
+  }
   if (arguments.json) {
     fmt::print("{}\n", MergeReportJson(report, arguments.options.output).dump(2));
   } else {

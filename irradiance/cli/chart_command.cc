@@ -22,21 +22,21 @@ struct ChartArguments {
 };
 
 void RunChart(const ChartArguments& arguments) {
-  if (std::optional<std::string> usage = CheckSpeedAccuracyOptions(arguments.options)) {
-    throw CLI::ValidationError(*usage);
+  if (const Status usage = CheckSpeedAccuracyOptions(arguments.options); !usage.ok()) {
+    throw CLI::ValidationError(usage.message());
   }
-  if (std::optional<std::string> error = CheckOutputFolder(arguments.out_dir)) throw SubcommandFailure(*error);
+  if (const Status error = CheckOutputFolder(arguments.out_dir); !error.ok()) throw SubcommandFailure(error.message());
   SpeedAccuracyResult result;
   const auto progress = [](std::string_view environment, int index, int count) {
     fmt::print(stderr, "irrmap chart: {} ({} of {})\n", environment, index + 1, count);
   };
-  if (std::optional<std::string> error = RunSpeedAccuracySweep(arguments.options, result, progress)) {
-    throw SubcommandFailure(*error);
+  if (const Status error = RunSpeedAccuracySweep(arguments.options, result, progress); !error.ok()) {
+    throw SubcommandFailure(error.message());
   }
   for (const std::string& warning : result.warnings) fmt::print(stderr, "irrmap: warning: {}\n", warning);
   std::vector<std::filesystem::path> written;
-  if (std::optional<std::string> error = WriteSpeedAccuracy(result, arguments.out_dir, written)) {
-    throw SubcommandFailure(*error);
+  if (const Status error = WriteSpeedAccuracy(result, arguments.out_dir, written); !error.ok()) {
+    throw SubcommandFailure(error.message());
   }
   fmt::print("{:<12} {:<6} {:>5} {:>9} {:>11} {:>9} {:>13} {:>12} {:>10} {:>10}\n", "environment", "method", "level",
              "size", "update ms", "mips ms", "mean rel err", "max rel err", "peak err", "rms err");

@@ -263,8 +263,8 @@ int RunJob(const CLI::App& app, JobCommandLine& line) {
   options.out_dir = line.out_dir;
   options.font = line.font;
   if (app.count("--level") > 0) options.level = line.level;
-  if (std::optional<std::string> usage = vs11::irradiance::CheckIrrmapOptions(options)) {
-    fmt::print(stderr, "irrmap: error: {}\nRun with --help for more information.\n", *usage);
+  if (const vs11::Status usage = vs11::irradiance::CheckIrrmapOptions(options); !usage.ok()) {
+    fmt::print(stderr, "irrmap: error: {}\nRun with --help for more information.\n", usage.message());
     return vs11::cli::kUsageErrorStatus;
   }
   if (line.gl_device == "list") {
@@ -285,29 +285,28 @@ int RunJob(const CLI::App& app, JobCommandLine& line) {
                options.engine);
   }
   options.face_size_given = app.count("--face-size") > 0;
-  if (std::optional<std::string> error = vs11::irradiance::CheckOutputsAreNotInputs(options, line.mesh_file)) {
-    fmt::print(stderr, "irrmap: error: {}\n", *error);
+  if (const vs11::Status error = vs11::irradiance::CheckOutputsAreNotInputs(options, line.mesh_file); !error.ok()) {
+    fmt::print(stderr, "irrmap: error: {}\n", error.message());
     return vs11::cli::kUsageErrorStatus;
   }
   if (!line.mesh_file.empty()) {
     std::vector<std::string> mesh_warnings;
     options.mesh.emplace();
-    std::optional<std::string> mesh_error =
-        vs11::irradiance::LoadMeshGeometry(line.mesh_file, *options.mesh, mesh_warnings, line.mesh_timeout,
-                                           line.compute_normals);
+    const vs11::Status mesh_loaded = vs11::irradiance::LoadMeshGeometry(
+        line.mesh_file, *options.mesh, mesh_warnings, line.mesh_timeout, line.compute_normals);
     for (const std::string& warning : mesh_warnings) fmt::print(stderr, "irrmap: warning: {}\n", warning);
-    if (mesh_error) {
-      fmt::print(stderr, "irrmap: error: {}\n", *mesh_error);
+    if (!mesh_loaded.ok()) {
+      fmt::print(stderr, "irrmap: error: {}\n", mesh_loaded.message());
       return kJobError;
     }
   }
 
   const auto start = std::chrono::steady_clock::now();
   vs11::irradiance::IrrmapReport report;
-  std::optional<std::string> error = vs11::irradiance::RunIrrmap(options, report, TerminalProgress());
+  const vs11::Status ran = vs11::irradiance::RunIrrmap(options, report, TerminalProgress());
   for (const std::string& warning : report.warnings) fmt::print(stderr, "irrmap: warning: {}\n", warning);
-  if (error) {
-    fmt::print(stderr, "irrmap: error: {}\n", *error);
+  if (!ran.ok()) {
+    fmt::print(stderr, "irrmap: error: {}\n", ran.message());
     return report.usage_error ? kUsageError : kJobError;
   }
   const double total_ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();

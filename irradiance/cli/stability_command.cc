@@ -75,14 +75,16 @@ void AddStabilityCommand(CLI::App& app) {
   command->add_option("--threads", options->threads, "worker threads (0 = every core)")->capture_default_str();
   command->callback([options, out_dir] {
     options->out_dir = *out_dir;
-    if (std::optional<std::string> usage = CheckStabilityOptions(*options)) throw CLI::ValidationError(*usage);
-    if (std::optional<std::string> error = CheckOutputFolder(options->out_dir)) throw SubcommandFailure(*error);
+    if (const Status usage = CheckStabilityOptions(*options); !usage.ok()) throw CLI::ValidationError(usage.message());
+    if (const Status error = CheckOutputFolder(options->out_dir); !error.ok()) throw SubcommandFailure(error.message());
     StabilityReport report;
-    if (std::optional<std::string> error = RunStability(*options, report, TerminalProgress())) {
-      throw SubcommandFailure(*error);
+    if (const Status error = RunStability(*options, report, TerminalProgress()); !error.ok()) {
+      throw SubcommandFailure(error.message());
     }
     std::vector<std::filesystem::path> written;
-    if (std::optional<std::string> error = WriteStabilityReport(report, written)) throw SubcommandFailure(*error);
+    if (const Status error = WriteStabilityReport(report, written); !error.ok()) {
+      throw SubcommandFailure(error.message());
+    }
     fmt::print("wrote:");
     for (const auto& path : written) fmt::print(" {}", path.string());
     fmt::print("\n");

@@ -46,17 +46,17 @@ struct ImageFile {
 };
 
 // Whether `path` names a non-empty regular file; fills `file`.
-std::optional<std::string> CheckIsFile(const fs::path& path, ImageFile& file) {
+Status CheckIsFile(const fs::path& path, ImageFile& file) {
   file.path = path;
   std::error_code ec;
   const fs::file_status status = fs::status(path, ec);
-  if (ec || !fs::exists(status)) return "file not found";
+  if (ec || !fs::exists(status)) return Failure(DiagnosticCode::kNoSuchInput, "file not found");
   // Images are read by seeking (OpenImageIO, DDS): a pipe is refused too, like a device or a folder.
-  if (std::optional<std::string> problem = InputFileProblem(path, /*pipes_allowed=*/false)) return problem;
+  if (Status problem = InputFileProblem(path, /*pipes_allowed=*/false); !problem.ok()) return problem;
   const std::uintmax_t size = fs::file_size(path, ec);
   if (!ec) file.size = size;
-  if (size == 0 && !ec) return "file is empty";
-  return std::nullopt;
+  if (size == 0 && !ec) return Failure(DiagnosticCode::kCannotReadFile, "file is empty");
+  return {};
 }
 
 // A DDS file, before OpenImageIO sees it: read here (`read`), refused (`error`), or left to
@@ -100,7 +100,7 @@ ImageReadResult ReadImageFile(const fs::path& path, const ImageSizeCheck& check_
     return ReadImageFailure(fmt::format("{}: {}", path.string(), message));
   };
   ImageFile file;
-  if (std::optional<std::string> error = CheckIsFile(path, file)) return failure(*error);
+  if (const Status checked = CheckIsFile(path, file); !checked.ok()) return failure(checked.message());
   DdsStage dds = ReadDdsStage(path);
   if (dds.error) return failure(*dds.error);
   ImageReadResult result;

@@ -37,11 +37,12 @@ namespace fs = std::filesystem;
 
 bool IsPattern(const std::string& text) { return text.find_first_of("*?[") != std::string::npos; }
 
-// Appends the paths `pattern` matches (glob(3), sorted), or the path itself when it is no pattern.
-std::optional<std::string> AddExpanded(const std::string& input, std::vector<std::string>& out) {
+// Appends the paths `pattern` matches (glob(3), sorted), or the path itself when it is no pattern;
+// kNoSuchInput when a pattern matches nothing.
+Status AddExpanded(const std::string& input, std::vector<std::string>& out) {
   if (!IsPattern(input)) {
     out.push_back(input);  // a missing file is reported as that file's failure
-    return std::nullopt;
+    return {};
   }
   glob_t matches{};
   const int status = glob(input.c_str(), GLOB_ERR, nullptr, &matches);
@@ -49,9 +50,14 @@ std::optional<std::string> AddExpanded(const std::string& input, std::vector<std
     for (std::size_t i = 0; i < matches.gl_pathc; ++i) out.emplace_back(matches.gl_pathv[i]);
   }
   globfree(&matches);
-  if (status == GLOB_NOMATCH) return fmt::format("pattern '{}' matches no file", input);
-  if (status != 0) return fmt::format("pattern '{}' cannot be expanded (a folder cannot be read)", input);
-  return std::nullopt;
+  if (status == GLOB_NOMATCH) {
+    return Failure(DiagnosticCode::kNoSuchInput, fmt::format("pattern '{}' matches no file", input));
+  }
+  if (status != 0) {
+    return Failure(DiagnosticCode::kNoSuchInput,
+                   fmt::format("pattern '{}' cannot be expanded (a folder cannot be read)", input));
+  }
+  return {};
 }
 
 std::string Trimmed(const std::string& line) {
@@ -100,13 +106,15 @@ IrrmapOptions InputOptions(const BatchOptions& options, BasisCache& basis, const
 }
 
 // The record of one input, or the reason it has none (batch_job.h lists its fields).
-std::optional<std::string> ProcessInput(const BatchOptions& options, BasisCache& basis, const std::string& input,
-                                        nlohmann::ordered_json& record) {
+Status ProcessInput(const BatchOptions& options, BasisCache& basis, const std::string& input,
+                    nlohmann::ordered_json& record) {
   const IrrmapOptions job = InputOptions(options, basis, input);
   IrrmapReport report;
-  if (std::optional<std::string> error = RunIrrmap(job, report)) {
+  if (Status ran = RunIrrmap(job, report); !ran.ok()) {
     const std::string prefix = input + ": ";  // the failure report names the input already
-    return error->starts_with(prefix) ? error->substr(prefix.size()) : *error;
+    const std::string& message = ran.error().message;
+    if (!message.starts_with(prefix)) return ran;
+    return Failure(ran.error().code, message.substr(prefix.size()), ran.error().loc);
   }
   nlohmann::ordered_json coefficients = nlohmann::ordered_json::array();
   for (const glm::dvec3& c : report.coefficients.coefficients) coefficients.push_back({c.r, c.g, c.b});
@@ -125,23 +133,26 @@ std::optional<std::string> ProcessInput(const BatchOptions& options, BasisCache&
             {"constants", ConstantsJson(report.constants)},
             {"convention", std::move(metadata["convention"])},
             {"provenance", std::move(metadata["provenance"])}};
-  return std::nullopt;
+  return {};
 }
 
 // The options of every input's job (irrmap's own checks), then the batch's.
-std::optional<std::string> CheckOptions(const BatchOptions& options) {
+Status CheckOptions(const BatchOptions& options) {
   BasisCache unused;
   CheckedOptions checked;
-  if (std::optional<std::string> error = CheckOptionValues(InputOptions(options, unused, "each input"), checked)) return error;
+  if (Status error = CheckOptionValues(InputOptions(options, unused, "each input"), checked); !error.ok()) return error;
+  const auto usage = [](std::string message) { return Failure(DiagnosticCode::kOptionValue, std::move(message)); };
   if (options.shard_count < 1 || options.shard_index < 0 || options.shard_index >= options.shard_count) {
-    return fmt::format("--shard {}/{} is out of range: K/N with 0 <= K < N", options.shard_index, options.shard_count);
+    return usage(
+        fmt::format("--shard {}/{} is out of range: K/N with 0 <= K < N", options.shard_index, options.shard_count));
   }
   if (options.threads < 0) {
-    return fmt::format("{} must be >= 0 (0: every core)", OptionWithValue(OptionName(options.naming, "threads"), options.threads));
+    return usage(fmt::format("{} must be >= 0 (0: every core)",
+                             OptionWithValue(OptionName(options.naming, "threads"), options.threads)));
   }
-  if (options.output.empty()) return std::string("no output file given (-o FILE.jsonl)");
-  if (options.inputs.empty() && options.list_files.empty()) return std::string("no input files given");
-  return std::nullopt;
+  if (options.output.empty()) return usage("no output file given (-o FILE.jsonl)");
+  if (options.inputs.empty() && options.list_files.empty()) return usage("no input files given");
+  return {};
 }
 
 // The lock of a --per-file folder, one per shard: shards of one input list write disjoint names
@@ -153,7 +164,7 @@ fs::path PerFileLock(const BatchOptions& options) {
 
 }  // namespace
 
-std::optional<std::string> CheckBatchOptions(const BatchOptions& options) { return CheckOptions(options); }
+Status CheckBatchOptions(const BatchOptions& options) { return CheckOptions(options); }
 
 std::optional<std::pair<int, int>> ParseShard(const std::string& text) {
   int index = 0, count = 0;
@@ -164,7 +175,7 @@ std::optional<std::pair<int, int>> ParseShard(const std::string& text) {
   return std::pair{index, count};
 }
 
-std::optional<std::string> BatchOutputOverwritesInput(const BatchOptions& options) {
+Status BatchOutputOverwritesInput(const BatchOptions& options) {
   std::vector<fs::path> inputs(options.list_files.begin(), options.list_files.end());
   // A list that cannot be read is reported by RunBatch.
   if (Result<std::vector<std::string>> expanded = ExpandBatchInputs(options.inputs, options.list_files)) {
@@ -177,9 +188,7 @@ Result<std::vector<std::string>> ExpandBatchInputs(const std::vector<std::string
                                                    const std::vector<fs::path>& list_files) {
   std::vector<std::string> out;
   for (const std::string& input : inputs) {
-    if (std::optional<std::string> problem = AddExpanded(input, out)) {
-      return Failure(DiagnosticCode::kNoSuchInput, *problem);
-    }
+    if (const Status problem = AddExpanded(input, out); !problem.ok()) return problem.error();
   }
   for (const fs::path& list : list_files) {
     const auto unreadable = [&list] {
@@ -191,8 +200,8 @@ Result<std::vector<std::string>> ExpandBatchInputs(const std::vector<std::string
     for (int number = 1; std::getline(in, line); ++number) {
       const std::string entry = Trimmed(line);
       if (entry.empty() || entry.starts_with('#')) continue;
-      if (std::optional<std::string> problem = AddExpanded(entry, out)) {
-        return Failure(DiagnosticCode::kNoSuchInput, fmt::format("{}:{}: {}", list.string(), number, *problem),
+      if (const Status problem = AddExpanded(entry, out); !problem.ok()) {
+        return Failure(problem.error().code, fmt::format("{}:{}: {}", list.string(), number, problem.message()),
                        {list.string(), number});
       }
     }
@@ -212,24 +221,24 @@ std::vector<std::string> ShardOf(const std::vector<std::string>& sorted_inputs, 
   return out;
 }
 
-std::optional<std::string> RunBatch(const BatchOptions& options, BatchSummary& summary, const BatchProgress& progress,
-                                    const BatchFailureReport& report, const BatchRecordReport& record) {
+Status RunBatch(const BatchOptions& options, BatchSummary& summary, const BatchProgress& progress,
+                const BatchFailureReport& report, const BatchRecordReport& record) {
   const auto start = std::chrono::steady_clock::now();
   summary = BatchSummary{};
-  if (std::optional<std::string> error = CheckOptions(options)) return error;
-  if (std::optional<std::string> error = BatchOutputOverwritesInput(options)) return error;
+  if (Status error = CheckOptions(options); !error.ok()) return error;
+  if (Status error = BatchOutputOverwritesInput(options); !error.ok()) return error;
   const Result<std::vector<std::string>> expanded = ExpandBatchInputs(options.inputs, options.list_files);
-  if (!expanded) return expanded.message();
+  if (!expanded) return expanded.error();
   const std::vector<std::string>& all = *expanded;
-  if (all.empty()) return std::string("no input files given");
+  if (all.empty()) return Failure(DiagnosticCode::kNoSuchInput, "no input files given");
   const std::vector<std::string> shard = ShardOf(all, options.shard_index, options.shard_count);
   summary.selected = shard.size();
   const bool per_file = !options.per_file_dir.empty();
   if (per_file) {
-    if (std::optional<std::string> collision = CheckPerFileNames(options.per_file_dir, all, {})) return collision;
+    if (Status collision = CheckPerFileNames(options.per_file_dir, all, {}); !collision.ok()) return collision;
   }
   BatchOutput out;
-  if (std::optional<std::string> problem = out.Open(options.output, options.resume)) return problem;
+  if (Status problem = out.Open(options.output, options.resume); !problem.ok()) return problem;
   std::vector<std::string> todo;
   for (const std::string& input : shard) {
     if (out.completed().count(InputKey(input)) == 0) todo.push_back(input);
@@ -239,25 +248,31 @@ std::optional<std::string> RunBatch(const BatchOptions& options, BatchSummary& s
   if (per_file) {
     std::error_code ec;
     fs::create_directories(options.per_file_dir, ec);
-    if (ec) return fmt::format("cannot create {} ({})", options.per_file_dir.string(), ec.message());
+    if (ec) {
+      return Failure(DiagnosticCode::kCannotWriteFile,
+                     fmt::format("cannot create {} ({})", options.per_file_dir.string(), ec.message()));
+    }
     Result<OutputLock> lock = OutputLock::Take(PerFileLock(options), options.per_file_dir.string());
-    if (!lock) return lock.message();
+    if (!lock) return lock.error();
     per_file_lock = std::move(lock).value();
-    if (std::optional<std::string> overwrite = CheckPerFileNames(options.per_file_dir, {}, todo)) return overwrite;
+    if (Status overwrite = CheckPerFileNames(options.per_file_dir, {}, todo); !overwrite.ok()) return overwrite;
   }
-  if (std::optional<std::string> problem = out.BeginWriting()) return problem;
+  if (Status problem = out.BeginWriting(); !problem.ok()) return problem;
 
   BasisCache basis;
   std::mutex mutex;  // guards `out`, `summary`, the callbacks and `failures`
   std::vector<std::pair<std::size_t, BatchFailure>> failures;
   std::atomic<std::size_t> next = 0;
   std::size_t finished = 0;
-  std::optional<std::string> write_error;
+  Status write_error;
   auto work = [&] {
     for (std::size_t i = next++; i < todo.size(); i = next++) {
       if (options.stop != nullptr && options.stop->load()) break;
       nlohmann::ordered_json json;
-      std::optional<std::string> reason = ProcessInput(options, basis, todo[i], json);
+      std::optional<std::string> reason;  // why this input has no record
+      if (const Status processed = ProcessInput(options, basis, todo[i], json); !processed.ok()) {
+        reason = processed.message();
+      }
       std::string line;
       if (!reason) {
         line = json.dump() + "\n";
@@ -273,7 +288,8 @@ std::optional<std::string> RunBatch(const BatchOptions& options, BatchSummary& s
         failures.push_back({i, {todo[i], *reason}});
         if (report) report(failures.back().second);
       } else if (!out.Append(line)) {
-        write_error = fmt::format("cannot write to {}", options.output.string());
+        write_error =
+            Failure(DiagnosticCode::kCannotWriteFile, fmt::format("cannot write to {}", options.output.string()));
         next = todo.size();  // stop: nothing more can be kept
       } else {
         ++summary.succeeded;

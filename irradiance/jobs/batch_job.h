@@ -102,20 +102,20 @@ Result<std::vector<std::string>> ExpandBatchInputs(const std::vector<std::string
                                                    const std::vector<std::filesystem::path>& list_files);
 
 // "OUT is the input IN: refusing to overwrite it" when -o is one of the inputs or list files (the
-// same file, however spelled), checked before anything is read or written; else nullopt.
-std::optional<std::string> BatchOutputOverwritesInput(const BatchOptions& options);
+// same file, however spelled; kOutputOverwritesInput), checked before anything is read or written;
+// else success.
+Status BatchOutputOverwritesInput(const BatchOptions& options);
 
 // The inputs with index % count == index_of_shard.
 std::vector<std::string> ShardOf(const std::vector<std::string>& sorted_inputs, int index_of_shard, int count);
 
-// The problem with the options themselves (a usage error: a bad value, no output or input given),
-// or nullopt; RunBatch checks them first too.
-std::optional<std::string> CheckBatchOptions(const BatchOptions& options);
+// The problem with the options themselves (a usage error: a bad value, no output or input given;
+// kOptionValue or kFaceSize), or success; RunBatch checks them first too.
+Status CheckBatchOptions(const BatchOptions& options);
 
-// Runs the batch. Returns a message for a problem with the options or the output file (nothing
+// Runs the batch. Returns the error of a problem with the options or the output file (nothing
 // processed); failures of single inputs go to summary.failures instead.
-std::optional<std::string> RunBatch(const BatchOptions& options, BatchSummary& summary,
-                                    const BatchProgress& progress = {}, const BatchFailureReport& report = {},
-                                    const BatchRecordReport& record = {});
+Status RunBatch(const BatchOptions& options, BatchSummary& summary, const BatchProgress& progress = {},
+                const BatchFailureReport& report = {}, const BatchRecordReport& record = {});
 
 }  // namespace vs11::irradiance

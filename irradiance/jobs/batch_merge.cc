@@ -35,13 +35,17 @@ std::string Location(const std::vector<std::string>& parts, const RecordLine& re
 }
 
 // Appends the records of `parts[index]`, or says which line is not one.
-std::optional<std::string> ReadPart(const std::vector<std::string>& parts, std::size_t index,
-                                    std::vector<RecordLine>& records) {
+Status ReadPart(const std::vector<std::string>& parts, std::size_t index, std::vector<RecordLine>& records) {
   const std::string& part = parts[index];
   std::error_code ec;
-  if (!fs::is_regular_file(part, ec)) return fmt::format("{}: not a file (a part to merge)", part);
+  if (!fs::is_regular_file(part, ec)) {
+    return Failure(DiagnosticCode::kCannotReadFile, fmt::format("{}: not a file (a part to merge)", part));
+  }
+  const auto unreadable = [&part] {
+    return Failure(DiagnosticCode::kCannotReadFile, fmt::format("cannot read {}", part));
+  };
   std::ifstream in(part, std::ios::binary);
-  if (!in) return fmt::format("cannot read {}", part);
+  if (!in) return unreadable();
   std::string text;
   std::streamoff offset = 0;
   for (std::size_t number = 1; std::getline(in, text); ++number) {
@@ -52,18 +56,20 @@ std::optional<std::string> ReadPart(const std::vector<std::string>& parts, std::
     std::optional<std::string> key;
     if (text.size() <= kMaxRecordBytes) key = RecordKey(nlohmann::json::parse(text, nullptr, false));
     if (!key) {
-      return fmt::format("{}:{}: not a record of irrmap batch{}", part, number,
-                         cut_off ? " (cut off: that shard was interrupted; run it again with --resume)" : "");
+      return Failure(DiagnosticCode::kBatchRecord,
+                     fmt::format("{}:{}: not a record of irrmap batch{}", part, number,
+                                 cut_off ? " (cut off: that shard was interrupted; run it again with --resume)" : ""),
+                     {part, static_cast<int>(number)});
     }
     records.push_back({*key, index, number, start, text.size()});
   }
-  if (in.bad()) return fmt::format("cannot read {}", part);
-  return std::nullopt;
+  if (in.bad()) return unreadable();
+  return {};
 }
 
 // The records' lines in `records`' order into `output`, through a temporary.
-std::optional<std::string> WriteMerged(const std::vector<std::string>& parts, const std::vector<RecordLine>& records,
-                                       const fs::path& output) {
+Status WriteMerged(const std::vector<std::string>& parts, const std::vector<RecordLine>& records,
+                   const fs::path& output) {
   const fs::path temporary = TemporaryPathBeside(output);
   {
     std::ofstream out(temporary, std::ios::binary | std::ios::trunc);
@@ -76,7 +82,8 @@ std::optional<std::string> WriteMerged(const std::vector<std::string>& parts, co
       source.seekg(record.offset);
       if (!source.read(line.data(), static_cast<std::streamsize>(line.size()))) {
         RemoveQuietly(temporary);
-        return fmt::format("cannot read {} again (did it change during the merge?)", Location(parts, record));
+        return Failure(DiagnosticCode::kCannotReadFile,
+                       fmt::format("cannot read {} again (did it change during the merge?)", Location(parts, record)));
       }
       out << line << '\n';
     }
@@ -84,38 +91,43 @@ std::optional<std::string> WriteMerged(const std::vector<std::string>& parts, co
     if (!out) {
       out.close();
       RemoveQuietly(temporary);
-      return fmt::format("cannot write {} (a full disk, or a folder that cannot be written)", output.string());
+      return Failure(DiagnosticCode::kCannotWriteFile,
+                     fmt::format("cannot write {} (a full disk, or a folder that cannot be written)", output.string()));
     }
   }
   const PendingRename rename{temporary, output};
-  if (const Status renamed = CommitRenames({&rename, 1}); !renamed) return renamed.message();
-  return std::nullopt;
+  return CommitRenames({&rename, 1});
 }
 
 }  // namespace
 
-std::optional<std::string> MergeBatchOutputs(const MergeOptions& options, MergeReport& report) {
+Status MergeBatchOutputs(const MergeOptions& options, MergeReport& report) {
   report = MergeReport{};
-  if (options.parts.empty()) return std::string("no parts given (--parts FILE.jsonl...)");
-  if (options.inputs.empty() && options.list_files.empty()) return std::string("no inputs given");
+  if (options.parts.empty()) return Failure(DiagnosticCode::kOptionValue, "no parts given (--parts FILE.jsonl...)");
+  if (options.inputs.empty() && options.list_files.empty()) {
+    return Failure(DiagnosticCode::kOptionValue, "no inputs given");
+  }
   const Result<std::vector<std::string>> expanded_inputs = ExpandBatchInputs(options.inputs, options.list_files);
-  if (!expanded_inputs) return expanded_inputs.message();
+  if (!expanded_inputs) return expanded_inputs.error();
   const std::vector<std::string>& inputs = *expanded_inputs;
   const Result<std::vector<std::string>> expanded_parts = ExpandBatchInputs(options.parts, {});
-  if (!expanded_parts) return fmt::format("--parts: {}", expanded_parts.message());
+  if (!expanded_parts) {
+    return Failure(expanded_parts.error().code, fmt::format("--parts: {}", expanded_parts.message()),
+                   expanded_parts.error().loc);
+  }
   const std::vector<std::string>& parts = *expanded_parts;
   if (!options.output.empty()) {
     std::vector<fs::path> read(options.list_files);
     read.insert(read.end(), parts.begin(), parts.end());
     read.insert(read.end(), inputs.begin(), inputs.end());
-    if (std::optional<std::string> overwrite = OutputOverwritesInput(options.output, read)) return overwrite;
+    if (Status overwrite = OutputOverwritesInput(options.output, read); !overwrite.ok()) return overwrite;
   }
   report.inputs = inputs.size();
   report.parts = parts.size();
 
   std::vector<RecordLine> records;
   for (std::size_t i = 0; i < parts.size(); ++i) {
-    if (std::optional<std::string> problem = ReadPart(parts, i, records)) return problem;
+    if (Status problem = ReadPart(parts, i, records); !problem.ok()) return problem;
   }
   report.records = records.size();
   std::stable_sort(records.begin(), records.end(),
@@ -141,10 +153,10 @@ std::optional<std::string> MergeBatchOutputs(const MergeOptions& options, MergeR
   for (const RecordLine& record : records) {
     if (expected.count(record.key) == 0) report.unexpected.push_back({record.key, Location(parts, record)});
   }
-  if (!report.complete() || options.output.empty()) return std::nullopt;
-  if (std::optional<std::string> problem = WriteMerged(parts, records, options.output)) return problem;
+  if (!report.complete() || options.output.empty()) return {};
+  if (Status problem = WriteMerged(parts, records, options.output); !problem.ok()) return problem;
   report.written = true;
-  return std::nullopt;
+  return {};
 }
 
 nlohmann::ordered_json MergeReportJson(const MergeReport& report, const fs::path& output) {

@@ -18,6 +18,8 @@
 
 #include <nlohmann/json.hpp>
 
+#include "vm/core/result.h"
+
 namespace vs11::irradiance {
 
 struct MergeOptions {
@@ -48,9 +50,9 @@ struct MergeReport {
 };
 
 // Checks the parts against the inputs, filling `report`, and writes the output when complete().
-// Returns a message when the check could not be made (a pattern that matches nothing, an unreadable
+// Returns the error when the check could not be made (a pattern that matches nothing, an unreadable
 // part, a line that is not a record, an output that is an input or a part, a failed write).
-std::optional<std::string> MergeBatchOutputs(const MergeOptions& options, MergeReport& report);
+Status MergeBatchOutputs(const MergeOptions& options, MergeReport& report);
 
 // The report as irrmap batch-merge --json prints it: inputs, parts, records, missing, duplicated
 // ([{"path", "in": [PART:LINE...]}]), unexpected ([{"path", "in"}]), complete, output (null when

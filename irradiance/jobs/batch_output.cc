@@ -30,15 +30,27 @@ constexpr std::string_view kRecordStart = R"({"input":")";
 
 bool IsBlank(std::string_view line) { return line.find_first_not_of(" \t\r") == std::string_view::npos; }
 
-std::string NotARegularFile(const fs::path& path, const fs::file_status& status) {
-  if (fs::is_directory(status)) return fmt::format("{} is a folder: -o names the JSON Lines file", path.string());
-  return fmt::format("{} is not a regular file (a device, FIFO or socket): -o names the JSON Lines file",
-                     path.string());
+Diagnostic NotARegularFile(const fs::path& path, const fs::file_status& status) {
+  if (fs::is_directory(status)) {
+    return Failure(DiagnosticCode::kCannotWriteFile,
+                   fmt::format("{} is a folder: -o names the JSON Lines file", path.string()));
+  }
+  return Failure(DiagnosticCode::kCannotWriteFile,
+                 fmt::format("{} is not a regular file (a device, FIFO or socket): -o names the JSON Lines file",
+                             path.string()));
 }
 
-std::string Untouched(const fs::path& path, int line, std::string_view what) {
-  return fmt::format("{}:{}: {}; {} is not irrmap batch's output, and nothing in it was changed", path.string(),
-                     line, what, path.string());
+Diagnostic Untouched(const fs::path& path, int line, std::string_view what) {
+  return Failure(DiagnosticCode::kBatchRecord,
+                 fmt::format("{}:{}: {}; {} is not irrmap batch's output, and nothing in it was changed", path.string(),
+                             line, what, path.string()),
+                 {path.string(), line});
+}
+
+// "cannot open PATH (why)", "cannot open PATH for appending (why)".
+Diagnostic CannotOpen(std::string_view what, const fs::path& path, int error, std::string_view how = "") {
+  return Failure(DiagnosticCode::kCannotWriteFile,
+                 fmt::format("{} {}{} ({})", what, path.string(), how, std::strerror(error)));
 }
 
 // The record in a --per-file file (at most kMaxRecordBytes), or nullopt.
@@ -73,44 +85,46 @@ std::optional<std::string> RecordKey(const nlohmann::json& record) {
   return InputKey(record["input"].get<std::string>());
 }
 
-std::optional<std::string> BatchOutput::Open(const fs::path& path, bool resume) {
+Status BatchOutput::Open(const fs::path& path, bool resume) {
   std::error_code ec;
   const fs::file_status status = fs::status(path, ec);
   if (fs::exists(status) && !fs::is_regular_file(status)) return NotARegularFile(path, status);
   if (path.has_parent_path()) fs::create_directories(path.parent_path(), ec);  // a failure shows in the lock's error
   Result<OutputLock> lock = OutputLock::Take(fs::path(path) += ".lock", path.string());
-  if (!lock) return lock.message();
+  if (!lock) return lock.error();
   lock_ = std::move(lock).value();
   path_ = path;
   const int fd = open(path.c_str(), O_RDWR | O_CLOEXEC | O_NONBLOCK);
-  if (fd < 0 && errno == ENOENT) return std::nullopt;  // BeginWriting creates it
-  if (fd < 0) return fmt::format("cannot open {} ({})", path.string(), std::strerror(errno));
+  if (fd < 0 && errno == ENOENT) return {};  // BeginWriting creates it
+  if (fd < 0) return CannotOpen("cannot open", path, errno);
   struct stat opened {};
-  std::optional<std::string> problem;
+  Status problem;
   if (fstat(fd, &opened) != 0 || !S_ISREG(opened.st_mode)) {  // replaced since the check above
     problem = NotARegularFile(path, fs::status(path, ec));
   } else if (!resume) {
-    problem = fmt::format("{} exists: pass --resume to continue it, or remove it", path.string());
+    problem = Failure(DiagnosticCode::kOutputExists,
+                      fmt::format("{} exists: pass --resume to continue it, or remove it", path.string()));
   } else {
     problem = ReadRecords(fd, path);
   }
-  if (!problem) file_.reset(fdopen(fd, "a"));
-  if (!problem && !file_) problem = fmt::format("cannot open {} for appending ({})", path.string(), std::strerror(errno));
-  if (problem && !file_) close(fd);
+  if (problem.ok()) file_.reset(fdopen(fd, "a"));
+  if (problem.ok() && !file_) problem = CannotOpen("cannot open", path, errno, " for appending");
+  if (!problem.ok() && !file_) close(fd);
   return problem;
 }
 
-std::optional<std::string> BatchOutput::BeginWriting() {
-  if (file_) return std::nullopt;
+Status BatchOutput::BeginWriting() {
+  if (file_) return {};
   const int fd = open(path_.c_str(), O_WRONLY | O_CREAT | O_EXCL | O_CLOEXEC, 0644);
-  if (fd < 0) return fmt::format("cannot create {} ({})", path_.string(), std::strerror(errno));
+  if (fd < 0) return CannotOpen("cannot create", path_, errno);
   file_.reset(fdopen(fd, "a"));
-  if (file_) return std::nullopt;
+  if (file_) return {};
+  const int error = errno;
   close(fd);
-  return fmt::format("cannot open {} for appending ({})", path_.string(), std::strerror(errno));
+  return CannotOpen("cannot open", path_, error, " for appending");
 }
 
-std::optional<std::string> BatchOutput::ReadRecords(int fd, const fs::path& path) {
+Status BatchOutput::ReadRecords(int fd, const fs::path& path) {
   std::array<char, kReadChunkBytes> chunk;
   std::string line;
   int number = 1;
@@ -118,7 +132,10 @@ std::optional<std::string> BatchOutput::ReadRecords(int fd, const fs::path& path
   for (;;) {
     const ssize_t got = read(fd, chunk.data(), chunk.size());
     if (got < 0 && errno == EINTR) continue;
-    if (got < 0) return fmt::format("cannot read {} to resume it ({})", path.string(), std::strerror(errno));
+    if (got < 0) {
+      return Failure(DiagnosticCode::kCannotReadFile,
+                     fmt::format("cannot read {} to resume it ({})", path.string(), std::strerror(errno)));
+    }
     if (got == 0) break;
     std::string_view rest(chunk.data(), static_cast<std::size_t>(got));
     while (!rest.empty()) {
@@ -133,9 +150,12 @@ std::optional<std::string> BatchOutput::ReadRecords(int fd, const fs::path& path
         const nlohmann::json record = nlohmann::json::parse(line, nullptr, false);
         const std::optional<std::string> key = RecordKey(record);
         if (!key) return Untouched(path, number, "not a record (a JSON object with \"input\", \"coefficients\" and \"constants\")");
-        if (std::optional<std::string> other = OtherSchemaVersion(record)) {
-          return fmt::format("{}:{}: {}: one output holds records of one schema, so it is not resumed and nothing "
-                             "in it was changed; write the rest into a new output", path.string(), number, *other);
+        if (const Status schema = OtherSchemaVersion(record); !schema.ok()) {
+          return Failure(DiagnosticCode::kBatchRecord,
+                         fmt::format("{}:{}: {}: one output holds records of one schema, so it is not resumed and "
+                                     "nothing in it was changed; write the rest into a new output",
+                                     path.string(), number, schema.message()),
+                         {path.string(), number});
         }
         completed_.insert(*key);
       }
@@ -144,15 +164,16 @@ std::optional<std::string> BatchOutput::ReadRecords(int fd, const fs::path& path
       line.clear();
     }
   }
-  if (line.empty()) return std::nullopt;
+  if (line.empty()) return {};
   if (!line.starts_with(kRecordStart) && !kRecordStart.starts_with(line)) {
     return Untouched(path, number, "a last line without its newline that is not the start of a record");
   }
   // The start of a record that a stopped run was writing: cut off, so that the next line starts fresh.
   if (ftruncate(fd, complete) != 0) {
-    return fmt::format("cannot cut the unfinished last line off {} ({})", path.string(), std::strerror(errno));
+    return Failure(DiagnosticCode::kCannotWriteFile,
+                   fmt::format("cannot cut the unfinished last line off {} ({})", path.string(), std::strerror(errno)));
   }
-  return std::nullopt;
+  return {};
 }
 
 bool BatchOutput::Append(const std::string& line) {
@@ -166,14 +187,16 @@ std::string PerFileName(std::string input) {
   return name + ".json";
 }
 
-std::optional<std::string> CheckPerFileNames(const fs::path& folder, const std::vector<std::string>& inputs,
-                                             const std::vector<std::string>& todo) {
+Status CheckPerFileNames(const fs::path& folder, const std::vector<std::string>& inputs,
+                         const std::vector<std::string>& todo) {
   std::map<std::string, const std::string*> owners;
   for (const std::string& input : inputs) {
     const auto [owner, fresh] = owners.emplace(PerFileName(input), &input);
     if (!fresh) {
-      return fmt::format("--per-file: {} and {} would both be written to {}; rename one of them or leave out --per-file",
-                         *owner->second, input, (folder / owner->first).string());
+      return Failure(DiagnosticCode::kPerFileCollision,
+                     fmt::format("--per-file: {} and {} would both be written to {}; rename one of them or leave out "
+                                 "--per-file",
+                                 *owner->second, input, (folder / owner->first).string()));
     }
   }
   std::error_code ec;
@@ -181,13 +204,17 @@ std::optional<std::string> CheckPerFileNames(const fs::path& folder, const std::
     const fs::path path = folder / PerFileName(input);
     if (!fs::exists(fs::symlink_status(path, ec))) continue;
     const std::optional<nlohmann::json> record = ReadRecordFile(path);
-    if (!record) return fmt::format("--per-file: {} is not a record of irrmap batch; it is left as it is", path.string());
+    if (!record) {
+      return Failure(DiagnosticCode::kBatchRecord,
+                     fmt::format("--per-file: {} is not a record of irrmap batch; it is left as it is", path.string()));
+    }
     if (*RecordKey(*record) != InputKey(input)) {
-      return fmt::format("--per-file: {} holds the record of {}, not of {}; it is left as it is", path.string(),
-                         (*record)["input"].get<std::string>(), input);
+      return Failure(DiagnosticCode::kPerFileCollision,
+                     fmt::format("--per-file: {} holds the record of {}, not of {}; it is left as it is",
+                                 path.string(), (*record)["input"].get<std::string>(), input));
     }
   }
-  return std::nullopt;
+  return {};
 }
 
 }  // namespace vs11::irradiance

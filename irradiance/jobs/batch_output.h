@@ -35,17 +35,17 @@ class BatchOutput {
   // with `resume`, and only once every line was checked to be a record (a last line without its
   // newline must be the start of one, and is then cut off: a run stopped while writing it). Nothing
   // in the file changes unless every line passed. Returns why not, with file:line.
-  std::optional<std::string> Open(const std::filesystem::path& path, bool resume);
+  Status Open(const std::filesystem::path& path, bool resume);
   // Creates the output if Open found none: once the run is sure to start, so that a run refused
   // before any work leaves no empty output behind.
-  std::optional<std::string> BeginWriting();
+  Status BeginWriting();
   // The keys of the records the file held when opened.
   const std::set<std::string>& completed() const { return completed_; }
   // Appends `line` and flushes it; false when that failed.
   bool Append(const std::string& line);
 
  private:
-  std::optional<std::string> ReadRecords(int fd, const std::filesystem::path& path);
+  Status ReadRecords(int fd, const std::filesystem::path& path);
 
   std::optional<OutputLock> lock_;
   std::filesystem::path path_;
@@ -58,8 +58,8 @@ std::string PerFileName(std::string input);
 
 // Checked before any work: that no two of `inputs` (every shard's) get one --per-file name (x/y.pfm
 // and x__y.pfm), and that no file in `folder` named for one of `todo` holds another input's record or
-// something that is not a record.
-std::optional<std::string> CheckPerFileNames(const std::filesystem::path& folder, const std::vector<std::string>& inputs,
-                                             const std::vector<std::string>& todo);
+// something that is not a record (kPerFileCollision, kBatchRecord).
+Status CheckPerFileNames(const std::filesystem::path& folder, const std::vector<std::string>& inputs,
+                         const std::vector<std::string>& todo);
 
 }  // namespace vs11::irradiance

@@ -36,20 +36,22 @@ std::string BeyondFloatRangeMessage(std::string_view what, const TexelRange& ran
                      range.max);
 }
 
-std::optional<std::string> CheckCoefficientsFitFloat(const Sh9Rgb& coefficients, std::span<const glm::vec4> constants,
-                                                     const TexelRange& range) {
+Status CheckCoefficientsFitFloat(const Sh9Rgb& coefficients, std::span<const glm::vec4> constants,
+                                 const TexelRange& range) {
   constexpr double kFloatMax = std::numeric_limits<float>::max();
   for (const glm::dvec3& c : coefficients.coefficients) {
     for (int channel = 0; channel < 3; ++channel) {
-      if (!(std::abs(c[channel]) <= kFloatMax)) return BeyondFloatRangeMessage("the SH coefficients are", range);
+      if (!(std::abs(c[channel]) <= kFloatMax)) {
+        return Failure(DiagnosticCode::kBeyondFloatRange, BeyondFloatRangeMessage("the SH coefficients are", range));
+      }
     }
   }
   for (const glm::vec4& r : constants) {
     if (!std::isfinite(r.x) || !std::isfinite(r.y) || !std::isfinite(r.z) || !std::isfinite(r.w)) {
-      return BeyondFloatRangeMessage("the program's constants are", range);
+      return Failure(DiagnosticCode::kBeyondFloatRange, BeyondFloatRangeMessage("the program's constants are", range));
     }
   }
-  return std::nullopt;
+  return {};
 }
 
 bool AllTexelsFinite(const CubeMap& cube) {

@@ -15,6 +15,7 @@
 
 #include "irradiance/io/cube_map.h"
 #include "irradiance/sh/sh9.h"
+#include "vm/core/result.h"
 
 namespace vs11::irradiance {
 
@@ -30,10 +31,10 @@ TexelRange RangeOfTexels(const Image& image);
 // of a job that fails for it.
 std::string BeyondFloatRangeMessage(std::string_view what, const TexelRange& range);
 
-// nullopt when every coefficient fits float and every constant register is finite; else
-// BeyondFloatRangeMessage naming which.
-std::optional<std::string> CheckCoefficientsFitFloat(const Sh9Rgb& coefficients, std::span<const glm::vec4> constants,
-                                                     const TexelRange& range);
+// Success when every coefficient fits float and every constant register is finite; else
+// BeyondFloatRangeMessage naming which (kBeyondFloatRange).
+Status CheckCoefficientsFitFloat(const Sh9Rgb& coefficients, std::span<const glm::vec4> constants,
+                                 const TexelRange& range);
 
 // Whether every channel of every texel is finite.
 bool AllTexelsFinite(const CubeMap& cube);

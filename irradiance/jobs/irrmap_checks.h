@@ -26,10 +26,11 @@ std::string LevelRange(int face_size);
 // "--level 9" or "level=9", as the caller named the option.
 std::string LevelWithValue(const IrrmapOptions& options);
 
-// The options' own values; the environment and the output folder are CheckOptions'.
-std::optional<std::string> CheckOptionValues(const IrrmapOptions& options, CheckedOptions& checked);
+// The options' own values (kOptionValue, or kFaceSize); the environment and the output folder are
+// CheckOptions'.
+Status CheckOptionValues(const IrrmapOptions& options, CheckedOptions& checked);
 
 // CheckOptionValues, then the environment and the output folder; fills `checked`.
-std::optional<std::string> CheckOptions(const IrrmapOptions& options, CheckedOptions& checked);
+Status CheckOptions(const IrrmapOptions& options, CheckedOptions& checked);
 
 }  // namespace vs11::irradiance

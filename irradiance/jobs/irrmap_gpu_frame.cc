@@ -9,15 +9,14 @@
 
 namespace vs11::irradiance {
 
-std::optional<std::string> RunIrrmapGpuFrame(const IrrmapGpuFrame& frame, IrrmapReport& report,
-                                             std::vector<glm::dvec3>& irradiance) {
+Status RunIrrmapGpuFrame(const IrrmapGpuFrame& frame, IrrmapReport& report, std::vector<glm::dvec3>& irradiance) {
   GpuFrameReport& gpu = report.gpu.emplace();
   const IrrmapEnvironment& environment = frame.environment;
   if (std::optional<std::string> reason = WhyNotOnGpu(environment.mips.has_value(), report.order, frame.window)) {
     gpu.stages = {"program"};
     gpu.cpu_reason = *reason;
     report.warnings.push_back(fmt::format("--engine gl: {}; the projection ran on the CPU", *reason));
-    return std::nullopt;
+    return {};
   }
   // Only now: a frame that stays on the CPU needs no directions here.
   const std::vector<glm::dvec3> normals = frame.map_size > 0 ? CubeTexelDirections(frame.map_size)
@@ -27,7 +26,7 @@ std::optional<std::string> RunIrrmapGpuFrame(const IrrmapGpuFrame& frame, Irrmap
   if (const Status ran =
           frame.hook({environment.mips->levels[0], *environment.basis, report.level, frame.program, normals}, result);
       !ran) {
-    return fmt::format("--engine gl: {}", ran.message());
+    return Failure(ran.error().code, fmt::format("--engine gl: {}", ran.message()));
   }
   gpu.ms = std::chrono::duration<double, std::milli>(std::chrono::steady_clock::now() - start).count();
   report.timings.push_back({"gpu_frame", gpu.ms});
@@ -40,7 +39,7 @@ std::optional<std::string> RunIrrmapGpuFrame(const IrrmapGpuFrame& frame, Irrmap
     report.program_constants[r].value = result.constants.registers[r];
   }
   irradiance = std::move(result.irradiance);
-  return std::nullopt;
+  return {};
 }
 
 }  // namespace vs11::irradiance

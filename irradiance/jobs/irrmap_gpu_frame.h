@@ -12,6 +12,7 @@
 #include "irradiance/jobs/gpu_frame_hook.h"
 #include "irradiance/jobs/irrmap_environment.h"
 #include "irradiance/jobs/irrmap_job.h"
+#include "vm/core/result.h"
 
 namespace vs11::irradiance {
 
@@ -29,8 +30,8 @@ struct IrrmapGpuFrame {
 // Fills report.gpu. Where WhyNotOnGpu gives a reason, only that (and a warning): the projection stays
 // on the CPU and `irradiance` empty. Otherwise runs the frame and replaces report.coefficients,
 // constants and program_constants with the GPU's, with the "gpu_frame" timing, and `irradiance` with
-// the program's outputs per texel of the map (CubeTexelDirections(map_size)). The hook's error, prefixed "--engine gl: ", where it fails.
-std::optional<std::string> RunIrrmapGpuFrame(const IrrmapGpuFrame& frame, IrrmapReport& report,
-                                             std::vector<glm::dvec3>& irradiance);
+// the program's outputs per texel of the map (CubeTexelDirections(map_size)). The hook's error (its
+// code, the message prefixed "--engine gl: "), where it fails.
+Status RunIrrmapGpuFrame(const IrrmapGpuFrame& frame, IrrmapReport& report, std::vector<glm::dvec3>& irradiance);
 
 }  // namespace vs11::irradiance

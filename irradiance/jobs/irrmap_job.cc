@@ -76,9 +76,14 @@ auto Timed(IrrmapReport& report, std::string name, F&& stage) {
 }
 
 
+Diagnostic LevelOutOfRange(const IrrmapOptions& options, int face_size) {
+  return Failure(DiagnosticCode::kOptionValue,
+                 fmt::format("{} is out of range: {}", LevelWithValue(options), LevelRange(face_size)));
+}
+
 // Fills `cube`, or `latlong` for a lat-long map, which is projected where it lies.
-std::optional<std::string> LoadCube(const IrrmapOptions& options, const CheckedOptions& checked,
-                                    IrrmapReport& report, CubeMap& cube, std::optional<Image>& latlong) {
+Status LoadCube(const IrrmapOptions& options, const CheckedOptions& checked, IrrmapReport& report, CubeMap& cube,
+                std::optional<Image>& latlong) {
   if (options.latlong) {
     latlong = *options.latlong;
     report.environment = options.environment;
@@ -86,9 +91,9 @@ std::optional<std::string> LoadCube(const IrrmapOptions& options, const CheckedO
     report.layout_reason = "as given";
     report.sh_source = ShSourceKindOf(EnvironmentLayout::kLatLong);
     if (options.level && *options.level >= LevelCount(options.face_size)) {
-      return fmt::format("{} is out of range: {}", LevelWithValue(options), LevelRange(options.face_size));
+      return LevelOutOfRange(options, options.face_size);
     }
-    return std::nullopt;
+    return {};
   }
   if (options.cube) {
     cube = *options.cube;
@@ -96,15 +101,16 @@ std::optional<std::string> LoadCube(const IrrmapOptions& options, const CheckedO
     report.layout = LayoutName(options.layout);
     report.layout_reason = "as given";
     report.sh_source = ShSourceKindOf(options.layout);
-    if (const Status size = CheckPyramidFaceSize(options.environment, cube.face_size); !size) return size.message();
-    if (options.level && *options.level >= LevelCount(cube.face_size)) {
-      return fmt::format("{} is out of range: {}", LevelWithValue(options), LevelRange(cube.face_size));
-    }
-    return std::nullopt;
+    if (Status size = CheckPyramidFaceSize(options.environment, cube.face_size); !size.ok()) return size;
+    if (options.level && *options.level >= LevelCount(cube.face_size)) return LevelOutOfRange(options, cube.face_size);
+    return {};
   }
   if (checked.builtin) {
     std::optional<CubeMap> made = MakeBuiltinEnvironment(options.environment, options.face_size);
-    if (!made) return fmt::format("cannot make the built-in environment '{}'", options.environment);
+    if (!made) {
+      return Failure(DiagnosticCode::kNoSuchInput,
+                     fmt::format("cannot make the built-in environment '{}'", options.environment));
+    }
     cube = std::move(*made);
     report.environment = fmt::format("{} (built-in)", options.environment);
     report.layout = "builtin";
@@ -113,7 +119,7 @@ std::optional<std::string> LoadCube(const IrrmapOptions& options, const CheckedO
       report.warnings.push_back(fmt::format("{} ignored for a built-in environment",
                                             OptionWithValue(OptionName(options.naming, "layout"), LayoutName(options.layout))));
     }
-    return std::nullopt;
+    return {};
   }
   LoadOptions load;
   load.layout = options.layout;
@@ -121,7 +127,9 @@ std::optional<std::string> LoadCube(const IrrmapOptions& options, const CheckedO
   load.keep_latlong = true;
   LoadResult loaded = LoadEnvironment(options.environment, load);
   report.usage_error = loaded.needs_layout;
-  if (!loaded.ok()) return loaded.error;
+  if (!loaded.ok()) {
+    return Failure(loaded.needs_layout ? DiagnosticCode::kOptionValue : DiagnosticCode::kCannotReadFile, loaded.error);
+  }
   for (std::string& warning : loaded.environment->warnings) report.warnings.push_back(std::move(warning));
   cube = std::move(loaded.environment->cube);
   latlong = std::move(loaded.environment->latlong);
@@ -138,11 +146,9 @@ std::optional<std::string> LoadCube(const IrrmapOptions& options, const CheckedO
                                           options.environment, report.layout, cube.face_size, cube.face_size));
   }
   const int face_size = latlong ? options.face_size : cube.face_size;
-  if (const Status size = CheckPyramidFaceSize(options.environment, face_size); !size) return size.message();
-  if (options.level && *options.level >= LevelCount(face_size)) {
-    return fmt::format("{} is out of range: {}", LevelWithValue(options), LevelRange(face_size));
-  }
-  return std::nullopt;
+  if (Status size = CheckPyramidFaceSize(options.environment, face_size); !size.ok()) return size;
+  if (options.level && *options.level >= LevelCount(face_size)) return LevelOutOfRange(options, face_size);
+  return {};
 }
 
 // Mean time of one level's projection, in ms, repeated until `min_ms` have passed.
@@ -339,9 +345,8 @@ std::string ConstantsFileComment(const IrrmapReport& report, const PaperProgram&
 
 // Writes coeffs.json, constants.vsh and `more` into out_dir, all or none (WriteOutputs), timed as
 // "write"; the paths go to report.files.
-std::optional<std::string> WriteJobOutputs(const IrrmapOptions& options, const CheckedOptions& checked,
-                                           const PaperProgram& program, std::vector<PendingOutput> more,
-                                           IrrmapReport& report) {
+Status WriteJobOutputs(const IrrmapOptions& options, const CheckedOptions& checked, const PaperProgram& program,
+                       std::vector<PendingOutput> more, IrrmapReport& report) {
   std::string coefficients_text;
   const std::string constants_text =
       report.order == ShOrder::kOrder2
@@ -359,12 +364,12 @@ std::optional<std::string> WriteJobOutputs(const IrrmapOptions& options, const C
   for (const PendingOutput& output : outputs) coefficients["files"].push_back(std::string(output.name));
   coefficients_text = coefficients.dump(2) + "\n";
   std::vector<fs::path> written;
-  const Status write_status = Timed(report, "write", [&] { return WriteOutputs(options.out_dir, outputs, written); });
-  if (!write_status) return write_status.message();
+  Status write_status = Timed(report, "write", [&] { return WriteOutputs(options.out_dir, outputs, written); });
+  if (!write_status.ok()) return write_status;
   const std::vector<std::string> leftovers = LeftoverOutputWarnings(options.out_dir, written);
   report.warnings.insert(report.warnings.end(), leftovers.begin(), leftovers.end());
   report.files = std::move(written);
-  return std::nullopt;
+  return {};
 }
 
 // Picks report.order and report.level (--order, --level, else by --max-error), marks the level,
@@ -453,26 +458,26 @@ struct IrrmapRun {
   }
 };
 
-std::optional<std::string> LoadStage(IrrmapRun& run) {
+Status LoadStage(IrrmapRun& run) {
   CubeMap cube;
   std::optional<Image> latlong;
   // Loading has no fraction to report: the bar shows the stage at 0 % and at its end.
   if (run.progress) run.progress("load", 0.0);
-  std::optional<std::string> error =
+  Status error =
       Timed(run.report, "load", [&] { return LoadCube(run.options, run.checked, run.report, cube, latlong); });
-  if (error) return error;
+  if (!error.ok()) return error;
   if (run.progress) run.progress("load", 1.0);
   // Hashed after loading, so that a file the loader refused is reported as the loader says.
   if (!run.options.cube && !run.options.latlong && !run.checked.builtin) {
-    error = Timed(run.report, "hash", [&]() -> std::optional<std::string> {
+    error = Timed(run.report, "hash", [&]() -> Status {
       for (const fs::path& file : EnvironmentFiles(run.options.environment)) {
-        if (std::optional<std::string> problem = DigestInputFile(file, run.report.input_files.emplace_back())) {
-          return problem;
+        if (Status digested = DigestInputFile(file, run.report.input_files.emplace_back()); !digested.ok()) {
+          return digested;
         }
       }
-      return std::nullopt;
+      return {};
     });
-    if (error) return error;
+    if (!error.ok()) return error;
   }
   IrrmapEnvironment& environment = run.environment;
   environment.threads = run.checked.threads;
@@ -483,7 +488,7 @@ std::optional<std::string> LoadStage(IrrmapRun& run) {
     environment.panorama = Timed(run.report, "latlong_pyramid", [&] {
       return BuildLatLongPyramid(std::move(*latlong), run.face_size, run.checked.threads);
     });
-    return std::nullopt;
+    return {};
   }
   run.face_size = run.report.face_size = environment.face_size = cube.face_size;
   run.report.texel_range = RangeOfTexels(cube);
@@ -497,9 +502,10 @@ std::optional<std::string> LoadStage(IrrmapRun& run) {
     return std::make_shared<const BasisPyramid>(std::move(*built));
   });
   if (!environment.mips || !environment.basis) {
-    return fmt::format("cannot build the mip pyramids of face size {}", run.face_size);
+    return Failure(DiagnosticCode::kOutOfMemory,
+                   fmt::format("cannot build the mip pyramids of face size {}", run.face_size));
   }
-  return std::nullopt;
+  return {};
 }
 
 // The environment as a cube, for the stages that read one: a panorama is resampled the first time,
@@ -511,7 +517,7 @@ const CubeMap& EnvironmentCube(IrrmapRun& run) {
 
 // Every level's coefficients (each update timed on its own), the level and window chosen, the
 // constants packed.
-std::optional<std::string> CoefficientsStage(IrrmapRun& run) {
+Status CoefficientsStage(IrrmapRun& run) {
   IrrmapReport& report = run.report;
   Timed(report, "level_updates", [&] {
     for (int level = 0; level < LevelCount(run.face_size); ++level) {
@@ -537,31 +543,31 @@ std::optional<std::string> CoefficientsStage(IrrmapRun& run) {
   // Every level's constants feed the level table and the preview, not only the chosen one's.
   for (const LevelReport& row : report.levels) {
     const SevenConstants constants = PackTable1(row.coefficients);
-    if (std::optional<std::string> error = CheckCoefficientsFitFloat(row.coefficients, constants.registers,
-                                                                     report.texel_range)) {
-      return fmt::format("{}: level {}: {}", report.environment, row.level, *error);
+    if (const Status fits = CheckCoefficientsFitFloat(row.coefficients, constants.registers, report.texel_range);
+        !fits.ok()) {
+      return Failure(fits.error().code, fmt::format("{}: level {}: {}", report.environment, row.level, fits.message()));
     }
   }
   std::vector<glm::vec4> program_registers;
   for (const NamedRegister& r : report.program_constants) program_registers.push_back(r.value);
-  if (std::optional<std::string> error =
-          CheckCoefficientsFitFloat(report.coefficients, program_registers, report.texel_range)) {
-    return fmt::format("{}: {}", report.environment, *error);
+  if (const Status fits = CheckCoefficientsFitFloat(report.coefficients, program_registers, report.texel_range);
+      !fits.ok()) {
+    return Failure(fits.error().code, fmt::format("{}: {}", report.environment, fits.message()));
   }
   Result<PaperProgram> program = Timed(report, "program", [] { return PaperProgram::Load(); });
-  if (!program) return program.message();
+  if (!program) return program.error();
   run.program = std::move(program).value();
   Result<PaperProgram> chosen_program = PaperProgram::LoadOrder(report.order);
-  if (!chosen_program) return chosen_program.message();
+  if (!chosen_program) return chosen_program.error();
   run.chosen_program = std::move(chosen_program).value();
   run.chosen_bank = run.chosen_program->Constants(report.program_constants);
-  return std::nullopt;
+  return {};
 }
 
 // --engine gl: the chosen level's frame on the GPU (irrmap_gpu_frame.h); the bank follows the
 // constants it leaves in the report.
-std::optional<std::string> GpuFrameStage(IrrmapRun& run) {
-  std::optional<std::string> error =
+Status GpuFrameStage(IrrmapRun& run) {
+  Status error =
       RunIrrmapGpuFrame({run.options.gpu_frame, run.environment, run.options.window, *run.chosen_program,
                          run.options.coefficients_only ? 0 : run.options.map_size},
                         run.report, run.gpu_irradiance);
@@ -569,7 +575,7 @@ std::optional<std::string> GpuFrameStage(IrrmapRun& run) {
   return error;
 }
 
-std::optional<std::string> MeshStage(IrrmapRun& run) {
+Status MeshStage(IrrmapRun& run) {
   const IrrmapOptions& options = run.options;
   const CubeMap& cube = EnvironmentCube(run);
   run.lighting = Timed(run.report, "mesh", [&] {
@@ -588,11 +594,11 @@ std::optional<std::string> MeshStage(IrrmapRun& run) {
                                       : Status(Failure(DiagnosticCode::kCannotWriteFile, "no mesh writer"));
                          }});
   run.outputs.push_back({kMeshPictureFile, [&run](const fs::path& path) { return WriteImage(run.lighting.picture, path); }});
-  return std::nullopt;
+  return {};
 }
 
 // The irradiance cube map: the chosen program once per texel direction.
-std::optional<std::string> IrradianceMapStage(IrrmapRun& run) {
+Status IrradianceMapStage(IrrmapRun& run) {
   run.irradiance_map = CubeMap(run.options.map_size);
   Timed(run.report, "irradiance_map", [&] {
     std::vector<glm::dvec3> evaluated;  // stays empty where the GPU frame evaluated the map (--engine gl)
@@ -607,8 +613,9 @@ std::optional<std::string> IrradianceMapStage(IrrmapRun& run) {
     }
   });
   if (!AllTexelsFinite(run.irradiance_map)) {
-    return fmt::format("{}: {}", run.report.environment,
-                       BeyondFloatRangeMessage("the irradiance map is", run.report.texel_range));
+    return Failure(DiagnosticCode::kBeyondFloatRange,
+                   fmt::format("{}: {}", run.report.environment,
+                               BeyondFloatRangeMessage("the irradiance map is", run.report.texel_range)));
   }
   const MapFileFormat format = run.checked.exports.map_format;
   const std::span<const std::string_view> files = IrradianceMapFileNames(format);
@@ -621,11 +628,11 @@ std::optional<std::string> IrradianceMapStage(IrrmapRun& run) {
                              return WriteMapFile(run.irradiance_map, format, file, path);
                            }});
   }
-  return std::nullopt;
+  return {};
 }
 
 // The nine coefficients in each --sh-export engine's convention (irradiance/sh/engine_sh.h).
-std::optional<std::string> ShExportStage(IrrmapRun& run) {
+Status ShExportStage(IrrmapRun& run) {
   if (run.options.coefficients_only && run.checked.exports.map_format != MapFileFormat::kExr) {
     run.report.warnings.push_back(fmt::format("--map-format {} ignored: --coefficients-only makes no irradiance map",
                                               MapFileFormatName(run.options.map_format)));
@@ -637,12 +644,12 @@ std::optional<std::string> ShExportStage(IrrmapRun& run) {
                                  path, ShExportText(format, run.report.sh_source, run.report.coefficients, source));
                            }});
   }
-  return std::nullopt;
+  return {};
 }
 
 // The ground truth at the error normals and at the preview's grid, in one pass, and every level's
 // error against it.
-std::optional<std::string> GroundTruthStage(IrrmapRun& run) {
+Status GroundTruthStage(IrrmapRun& run) {
   IrrmapReport& report = run.report;
   run.error_normals = SphereNormals(run.options.error_normals);
   std::vector<glm::dvec3> truth_normals = run.error_normals;
@@ -669,10 +676,10 @@ std::optional<std::string> GroundTruthStage(IrrmapRun& run) {
   });
   report.errors_measured = true;
   report.error_normals = static_cast<int>(run.error_normals.size());
-  return std::nullopt;
+  return {};
 }
 
-std::optional<std::string> PreviewStage(IrrmapRun& run) {
+Status PreviewStage(IrrmapRun& run) {
   const IrrmapReport& report = run.report;
   const CubeMap& cube = EnvironmentCube(run);
   run.preview = Timed(run.report, "preview", [&] {
@@ -710,12 +717,12 @@ std::optional<std::string> PreviewStage(IrrmapRun& run) {
   });
   for (const std::string& warning : run.preview.warnings) run.report.warnings.push_back(warning);
   run.outputs.push_back({kPreviewFile, [&run](const fs::path& path) { return WriteImage(run.preview.image, path); }});
-  return std::nullopt;
+  return {};
 }
 
 struct Stage {
   const char* doing;  // "while ..." in an out-of-memory message
-  std::optional<std::string> (*run)(IrrmapRun&);
+  Status (*run)(IrrmapRun&);
 };
 
 // The stages the options ask for, in order.
@@ -733,61 +740,62 @@ std::vector<Stage> StagesFor(const IrrmapOptions& options) {
   return stages;
 }
 
-// The message of a job that ran out of memory `doing` something, with what its pyramids take.
-std::string OutOfMemoryMessage(const IrrmapRun& run, std::string_view doing) {
+// The error of a job that ran out of memory `doing` something, with what its pyramids take.
+Diagnostic OutOfMemory(const IrrmapRun& run, std::string_view doing) {
   const int face_size = run.face_size > 0 ? run.face_size : run.options.face_size;
-  return fmt::format("{}: out of memory while {} (face size {} needs about {} MB)", run.options.environment, doing,
-                     face_size, (ProjectionMemoryBytes(face_size) >> 20) + 1);
+  return Failure(DiagnosticCode::kOutOfMemory,
+                 fmt::format("{}: out of memory while {} (face size {} needs about {} MB)", run.options.environment,
+                             doing, face_size, (ProjectionMemoryBytes(face_size) >> 20) + 1));
 }
 
 // The engine is built once for the paper's program before any work: where one that depends on a driver
 // (the gl engine) cannot be built, the job ends with MakeEngine's error, and later stages may build
 // it again without checking (PaperProgram::Irradiance, LightMesh). (The CPU engines never fail;
 // building them costs microseconds.)
-std::optional<std::string> CheckEngine(const std::string& kind, const EngineOptions& engine_options) {
+Status CheckEngine(const std::string& kind, const EngineOptions& engine_options) {
   const Result<PaperProgram> paper = PaperProgram::LoadOrder(ShOrder::kOrder2);
-  if (!paper) return paper.message();
+  if (!paper) return paper.error();
   const Result<std::unique_ptr<Engine>> engine = MakeEngine(kind, paper->program(), ConstantBank(), engine_options);
-  if (engine) return std::nullopt;
-  return fmt::format("--engine {}: {}", kind, engine.message());
+  if (engine) return {};
+  return Failure(engine.error().code, fmt::format("--engine {}: {}", kind, engine.message()));
 }
 
 }  // namespace
 
-std::optional<std::string> RunIrrmap(const IrrmapOptions& options, IrrmapReport& report,
-                                     const IrrmapProgress& progress) {
+Status RunIrrmap(const IrrmapOptions& options, IrrmapReport& report, const IrrmapProgress& progress) {
   report = IrrmapReport{};
   IrrmapRun run(options, report, progress);
-  std::optional<std::string> error = CheckOptions(options, run.checked);
-  if (!error) {
+  Status error = CheckOptions(options, run.checked);
+  if (error.ok()) {
     report.threads = run.checked.threads;
     run.engine_options = EngineOptions{run.checked.threads};
     run.engine_options.settings = options.engine_settings;
     error = CheckEngine(run.checked.engine, run.engine_options);
   }
-  if (!error) {
+  if (error.ok()) {
     for (const Stage& stage : StagesFor(options)) {
       try {
         error = stage.run(run);
       } catch (const std::bad_alloc&) {
-        error = OutOfMemoryMessage(run, stage.doing);
+        error = OutOfMemory(run, stage.doing);
       }
-      if (error) break;
+      if (!error.ok()) break;
     }
   }
-  if (error) return error;
+  if (!error.ok()) return error;
   // The last guard: a figure no stage checked (an error measured from an irradiance beyond float
   // range at the ground truth's normals) fails the job rather than becoming null in coeffs.json.
   if (!AllNumbersFinite(CoefficientsJson(report, options, run.checked))) {
-    return fmt::format("{}: {}", report.environment,
-                       BeyondFloatRangeMessage("a figure of coeffs.json is", report.texel_range));
+    return Failure(DiagnosticCode::kBeyondFloatRange,
+                   fmt::format("{}: {}", report.environment,
+                               BeyondFloatRangeMessage("a figure of coeffs.json is", report.texel_range)));
   }
   report.irradiance_map = run.irradiance_map;
-  if (!options.write_files) return std::nullopt;
+  if (!options.write_files) return {};
   try {
     return WriteJobOutputs(options, run.checked, *run.chosen_program, std::move(run.outputs), report);
   } catch (const std::bad_alloc&) {  // WriteOutputs has removed its temporaries
-    return OutOfMemoryMessage(run, "writing the outputs");
+    return OutOfMemory(run, "writing the outputs");
   }
 }
 

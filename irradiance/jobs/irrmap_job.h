@@ -42,6 +42,7 @@
 #include "irradiance/sh/sh_projection.h"
 #include "vm/core/machine.h"
 #include "vm/core/program.h"
+#include "vm/core/result.h"
 
 namespace vs11::irradiance {
 
@@ -140,15 +141,15 @@ struct MeshReport {
 };
 
 // Whether files can be created in `out_dir` (or in the folder that would hold it, when it does
-// not exist yet): nullopt if so, else why not. Checked before any work, so that a bad --out fails
-// at once rather than after the whole job.
-std::optional<std::string> CheckOutputFolder(const std::filesystem::path& out_dir);
+// not exist yet): success if so, else why not (kCannotWriteFile). Checked before any work, so that
+// a bad --out fails at once rather than after the whole job.
+Status CheckOutputFolder(const std::filesystem::path& out_dir);
 
 // Whether a file this run may write into out_dir is one of its inputs (the environment file, each
 // face file of a "{face}" pattern, `mesh_file`), which it would replace: "OUTPUT is the input INPUT:
-// refusing to overwrite it", or nullopt. Same file means same inode, through links and spellings.
-std::optional<std::string> CheckOutputsAreNotInputs(const IrrmapOptions& options,
-                                                    const std::filesystem::path& mesh_file);
+// refusing to overwrite it" (kOutputOverwritesInput), or success. Same file means same inode,
+// through links and spellings.
+Status CheckOutputsAreNotInputs(const IrrmapOptions& options, const std::filesystem::path& mesh_file);
 
 // One row of the level table.
 struct LevelReport {
@@ -220,14 +221,15 @@ struct IrrmapReport {
 using IrrmapProgress = std::function<void(std::string_view stage, double fraction)>;
 
 // What is wrong with the options' own values (a usage error: an unknown name, a number out of
-// range), or nullopt; RunIrrmap checks them first, then the environment and the output folder.
-std::optional<std::string> CheckIrrmapOptions(const IrrmapOptions& options);
+// range; kOptionValue or kFaceSize), or success; RunIrrmap checks them first, then the environment
+// and the output folder.
+Status CheckIrrmapOptions(const IrrmapOptions& options);
 
-// Runs the job. Returns nullopt on success; otherwise a message saying what is wrong (bad option,
-// unreadable or unusable environment, write failure), in which case no output file is left behind
-// (out_dir may have been created). Options are checked before any work starts.
-std::optional<std::string> RunIrrmap(const IrrmapOptions& options, IrrmapReport& report,
-                                     const IrrmapProgress& progress = {});
+// Runs the job. Returns success, or the error that says what is wrong (bad option, unreadable or
+// unusable environment, write failure), in which case no output file is left behind (out_dir may
+// have been created). Options are checked before any work starts. Whether the caller must fix its
+// options rather than the input is report.usage_error.
+Status RunIrrmap(const IrrmapOptions& options, IrrmapReport& report, const IrrmapProgress& progress = {});
 
 // The level table, one row per level (the chosen one marked with '*'):
 //   level   size     update ms   max rel err   mean rel err   peak err   rms err   est vs lvl 0

@@ -56,12 +56,15 @@ nlohmann::ordered_json ConventionJson(ShSourceKind kind, std::string_view window
 
 }  // namespace
 
-std::optional<std::string> DigestInputFile(const fs::path& path, InputFileDigest& digest) {
+Status DigestInputFile(const fs::path& path, InputFileDigest& digest) {
+  const auto fail = [&path](std::string_view why) {
+    return Failure(DiagnosticCode::kCannotReadFile, fmt::format("{}: {}", path.string(), why));
+  };
   std::ifstream in(path, std::ios::binary);
-  if (!in) return fmt::format("{}: cannot be read to hash it ({})", path.string(), std::strerror(errno));
+  if (!in) return fail(fmt::format("cannot be read to hash it ({})", std::strerror(errno)));
   std::unique_ptr<EVP_MD_CTX, void (*)(EVP_MD_CTX*)> context(EVP_MD_CTX_new(), &EVP_MD_CTX_free);
   if (!context || EVP_DigestInit_ex(context.get(), EVP_sha256(), nullptr) != 1) {
-    return fmt::format("{}: OpenSSL's SHA-256 is not available", path.string());
+    return fail("OpenSSL's SHA-256 is not available");
   }
   std::vector<char> chunk(kDigestChunkBytes);
   std::uintmax_t size = 0;
@@ -69,21 +72,21 @@ std::optional<std::string> DigestInputFile(const fs::path& path, InputFileDigest
     in.read(chunk.data(), static_cast<std::streamsize>(chunk.size()));
     const std::streamsize got = in.gcount();
     if (got > 0 && EVP_DigestUpdate(context.get(), chunk.data(), static_cast<std::size_t>(got)) != 1) {
-      return fmt::format("{}: hashing failed", path.string());
+      return fail("hashing failed");
     }
     size += static_cast<std::uintmax_t>(got);
   }
-  if (in.bad()) return fmt::format("{}: cannot be read to hash it", path.string());
+  if (in.bad()) return fail("cannot be read to hash it");
   std::array<unsigned char, EVP_MAX_MD_SIZE> bytes{};
   unsigned int length = 0;
-  if (EVP_DigestFinal_ex(context.get(), bytes.data(), &length) != 1) return fmt::format("{}: hashing failed", path.string());
+  if (EVP_DigestFinal_ex(context.get(), bytes.data(), &length) != 1) return fail("hashing failed");
   std::error_code ec;
   const fs::path absolute = fs::absolute(path, ec);
   digest.path = (ec ? path : absolute.lexically_normal()).string();
   digest.size_bytes = size;
   digest.sha256.clear();
   for (unsigned int i = 0; i < length; ++i) digest.sha256 += fmt::format("{:02x}", bytes[i]);
-  return std::nullopt;
+  return {};
 }
 
 std::vector<fs::path> EnvironmentFiles(const std::string& environment) {
@@ -132,12 +135,14 @@ std::optional<int> OutputSchemaVersion(const nlohmann::json& output) {
   return version.get<int>();
 }
 
-std::optional<std::string> OtherSchemaVersion(const nlohmann::json& record) {
+Status OtherSchemaVersion(const nlohmann::json& record) {
   const std::optional<int> version = OutputSchemaVersion(record);
-  if (!version) return std::string("a \"schema_version\" that is not a positive integer");
-  if (*version == kOutputSchemaVersion) return std::nullopt;
-  return fmt::format("a record of schema version {} ({} vs11's; this vs11 {} writes version {})", *version,
-                     *version < kOutputSchemaVersion ? "an older" : "a newer", Vs11Version(), kOutputSchemaVersion);
+  if (!version) return Failure(DiagnosticCode::kBatchRecord, "a \"schema_version\" that is not a positive integer");
+  if (*version == kOutputSchemaVersion) return {};
+  return Failure(DiagnosticCode::kBatchRecord,
+                 fmt::format("a record of schema version {} ({} vs11's; this vs11 {} writes version {})", *version,
+                             *version < kOutputSchemaVersion ? "an older" : "a newer", Vs11Version(),
+                             kOutputSchemaVersion));
 }
 
 }  // namespace vs11::irradiance

@@ -27,6 +27,7 @@
 #include <nlohmann/json.hpp>
 
 #include "irradiance/sh/engine_sh.h"
+#include "vm/core/result.h"
 
 namespace vs11::irradiance {
 
@@ -41,8 +42,8 @@ struct InputFileDigest {
   std::string sha256;  // 64 lowercase hex digits
 };
 
-// The size and SHA-256 of a file (OpenSSL's EVP), or why it cannot be read.
-std::optional<std::string> DigestInputFile(const std::filesystem::path& path, InputFileDigest& digest);
+// The size and SHA-256 of a file (OpenSSL's EVP), or why it cannot be read (kCannotReadFile).
+Status DigestInputFile(const std::filesystem::path& path, InputFileDigest& digest);
 
 // The files an environment path reads: itself, or the six of a "{face}" pattern (each face under
 // the name that exists, px or posx, as the loader looks for them).
@@ -58,8 +59,9 @@ nlohmann::ordered_json OutputMetadata(const IrrmapReport& report, const IrrmapOp
 // where it is not a positive integer.
 std::optional<int> OutputSchemaVersion(const nlohmann::json& output);
 
-// nullopt when `record` is of kOutputSchemaVersion; else what it is ("schema version 1 (an older
-// vs11's)", "schema version 3 (a newer vs11's)", "a schema_version that is not a positive integer").
-std::optional<std::string> OtherSchemaVersion(const nlohmann::json& record);
+// Success when `record` is of kOutputSchemaVersion; else what it is (kBatchRecord: "schema version 1
+// (an older vs11's)", "schema version 3 (a newer vs11's)", "a schema_version that is not a positive
+// integer").
+Status OtherSchemaVersion(const nlohmann::json& record);
 
 }  // namespace vs11::irradiance

@@ -9,23 +9,25 @@
 
 namespace vs11::irradiance {
 
-std::optional<std::string> LoadMeshGeometry(const std::string& path, MeshGeometry& geometry,
-                                            std::vector<std::string>& warnings, double timeout_seconds,
-                                            bool compute_normals) {
+Status LoadMeshGeometry(const std::string& path, MeshGeometry& geometry, std::vector<std::string>& warnings,
+                        double timeout_seconds, bool compute_normals) {
   mesh::MeshLoadOptions options;
   options.timeout_seconds = timeout_seconds;
   options.repair_normals = true;
   options.compute_normals = compute_normals;
   mesh::MeshLoadResult loaded = mesh::LoadMesh(path, options);
-  if (!loaded.ok()) return loaded.error;
+  if (!loaded.ok()) return Failure(DiagnosticCode::kCannotReadFile, loaded.error);
   auto source = std::make_shared<const mesh::Mesh>(std::move(*loaded.mesh));
   for (const std::string& warning : source->warnings) warnings.push_back(fmt::format("{}: {}", path, warning));
   if (source->indices.empty()) {
-    return fmt::format("{}: the mesh has no triangles (points or lines only): nothing to light and draw", path);
+    return Failure(DiagnosticCode::kMeshAttributeMissing,
+                   fmt::format("{}: the mesh has no triangles (points or lines only): nothing to light and draw",
+                               path));
   }
   // Not reached with repair_normals: a mesh with triangles gets computed normals where it has none.
   if (source->normals.empty()) {
-    return fmt::format("{}: the mesh has no normals, and the irradiance is a function of the normal", path);
+    return Failure(DiagnosticCode::kMeshAttributeMissing,
+                   fmt::format("{}: the mesh has no normals, and the irradiance is a function of the normal", path));
   }
   geometry = MeshGeometry{};
   geometry.name = path;
@@ -44,7 +46,7 @@ std::optional<std::string> LoadMeshGeometry(const std::string& path, MeshGeometr
                       "mesh.png (brightest vertex 0.8, sRGB), 8-bit";
     return mesh::ExportMesh(*source, attributes, target);
   };
-  return std::nullopt;
+  return {};
 }
 
 }  // namespace vs11::irradiance

@@ -37,25 +37,27 @@ bool IsBuiltinName(std::string_view name) {
 }
 
 // The environment as irrmap reads its ENV: an existing file or {face} pattern first, else a built-in.
-std::optional<std::string> LoadSweepEnvironment(const std::string& name, const SpeedAccuracyOptions& options,
-                                                EnvironmentLayout layout, CubeMap& cube,
-                                                std::vector<std::string>& warnings) {
+Status LoadSweepEnvironment(const std::string& name, const SpeedAccuracyOptions& options, EnvironmentLayout layout,
+                            CubeMap& cube, std::vector<std::string>& warnings) {
   std::error_code ec;
   if (IsBuiltinName(name) && !fs::exists(name, ec)) {
     std::optional<CubeMap> made = MakeBuiltinEnvironment(name, options.face_size);
-    if (!made) return fmt::format("cannot make the built-in environment '{}'", name);
+    if (!made) {
+      return Failure(DiagnosticCode::kNoSuchInput, fmt::format("cannot make the built-in environment '{}'", name));
+    }
     cube = std::move(*made);
-    return std::nullopt;
+    return {};
   }
   LoadOptions load;
   load.layout = layout;
   load.face_size = options.face_size;
   LoadResult loaded = LoadEnvironment(name, load);
-  if (!loaded.ok()) return loaded.error;
+  if (!loaded.ok()) {
+    return Failure(loaded.needs_layout ? DiagnosticCode::kOptionValue : DiagnosticCode::kCannotReadFile, loaded.error);
+  }
   for (std::string& warning : loaded.environment->warnings) warnings.push_back(name + ": " + warning);
   cube = std::move(loaded.environment->cube);
-  if (const Status size = CheckPyramidFaceSize(name, cube.face_size); !size) return size.message();
-  return std::nullopt;
+  return CheckPyramidFaceSize(name, cube.face_size);
 }
 
 // The median over options.batches of the mean time of `update` in a batch, in ms.
@@ -79,13 +81,14 @@ double MedianBatchMs(const SpeedAccuracyOptions& options, F&& update) {
 
 }  // namespace
 
-std::optional<std::string> CheckSpeedAccuracyOptions(const SpeedAccuracyOptions& options) {
-  if (const Status size = CheckFaceSizeOption("--face-size", options.face_size); !size) return size.message();
-  if (options.error_normals < 1) return fmt::format("--error-normals {} must be >= 1", options.error_normals);
-  if (options.threads < 0) return fmt::format("--threads {} must be >= 0 (0: every core)", options.threads);
-  if (options.batches < 1) return fmt::format("--batches {} must be >= 1", options.batches);
-  if (!(options.min_batch_ms >= 0.0)) return fmt::format("--min-batch-ms {} must be >= 0", options.min_batch_ms);
-  return std::nullopt;
+Status CheckSpeedAccuracyOptions(const SpeedAccuracyOptions& options) {
+  if (Status size = CheckFaceSizeOption("--face-size", options.face_size); !size.ok()) return size;
+  const auto usage = [](std::string message) { return Failure(DiagnosticCode::kOptionValue, std::move(message)); };
+  if (options.error_normals < 1) return usage(fmt::format("--error-normals {} must be >= 1", options.error_normals));
+  if (options.threads < 0) return usage(fmt::format("--threads {} must be >= 0 (0: every core)", options.threads));
+  if (options.batches < 1) return usage(fmt::format("--batches {} must be >= 1", options.batches));
+  if (!(options.min_batch_ms >= 0.0)) return usage(fmt::format("--min-batch-ms {} must be >= 0", options.min_batch_ms));
+  return {};
 }
 
 double ChartErrorFigure(const ErrorStats& error, ErrorMetric metric) {
@@ -97,10 +100,10 @@ std::string ChartEnvironmentName(const std::string& environment) {
   return base.empty() ? environment : base;
 }
 
-std::optional<std::string> RunSpeedAccuracySweep(const SpeedAccuracyOptions& options, SpeedAccuracyResult& result,
-                                                 const SpeedAccuracyProgress& progress) {
+Status RunSpeedAccuracySweep(const SpeedAccuracyOptions& options, SpeedAccuracyResult& result,
+                             const SpeedAccuracyProgress& progress) {
   result = SpeedAccuracyResult{};
-  if (std::optional<std::string> error = CheckSpeedAccuracyOptions(options)) return error;
+  if (Status error = CheckSpeedAccuracyOptions(options); !error.ok()) return error;
   result.metric = options.error_metric;
   const EnvironmentLayout layout = options.layout;
   const std::vector<std::string> names =
@@ -109,11 +112,11 @@ std::optional<std::string> RunSpeedAccuracySweep(const SpeedAccuracyOptions& opt
       options.threads > 0 ? options.threads : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
   const EngineOptions engine_options{threads};
   const Result<PaperProgram> program = PaperProgram::Load();
-  if (!program) return program.message();
+  if (!program) return program.error();
   std::vector<PaperProgram> order_programs;  // the reduced orders, kAllShOrders order
   for (std::size_t o = 0; o + 1 < kAllShOrders.size(); ++o) {
     Result<PaperProgram> loaded = PaperProgram::LoadOrder(kAllShOrders[o]);
-    if (!loaded) return loaded.message();
+    if (!loaded) return loaded.error();
     order_programs.push_back(std::move(loaded).value());
   }
   const std::vector<glm::dvec3> normals = SphereNormals(options.error_normals);
@@ -124,9 +127,7 @@ std::optional<std::string> RunSpeedAccuracySweep(const SpeedAccuracyOptions& opt
     const std::string& name = names[e];
     if (progress) progress(name, static_cast<int>(e), static_cast<int>(names.size()));
     CubeMap cube;
-    if (std::optional<std::string> error = LoadSweepEnvironment(name, options, layout, cube, result.warnings)) {
-      return error;
-    }
+    if (Status error = LoadSweepEnvironment(name, options, layout, cube, result.warnings); !error.ok()) return error;
     if (!basis || basis->face_size != cube.face_size) basis = BuildBasisPyramid(cube.face_size, threads);
     SpeedAccuracyEnvironment environment{name, cube.face_size, 0.0};
     environment.mips_ms = MedianBatchMs(options, [&] { RefillEnvironmentMips(cube, mips); });
@@ -159,7 +160,7 @@ std::optional<std::string> RunSpeedAccuracySweep(const SpeedAccuracyOptions& opt
       }
     }
   }
-  return std::nullopt;
+  return {};
 }
 
 std::string SpeedAccuracyCsv(const SpeedAccuracyResult& result) {
@@ -308,23 +309,28 @@ GnuplotChart SpeedAccuracyChart(const SpeedAccuracyResult& result) {
   return chart;
 }
 
-std::optional<std::string> WriteSpeedAccuracy(const SpeedAccuracyResult& result, const fs::path& out_dir,
-                                              std::vector<fs::path>& written) {
+Status WriteSpeedAccuracy(const SpeedAccuracyResult& result, const fs::path& out_dir, std::vector<fs::path>& written) {
   std::error_code ec;
   fs::create_directories(out_dir, ec);
-  if (ec) return fmt::format("cannot create the output directory {} ({})", out_dir.string(), ec.message());
+  if (ec) {
+    return Failure(DiagnosticCode::kCannotWriteFile,
+                   fmt::format("cannot create the output directory {} ({})", out_dir.string(), ec.message()));
+  }
   const fs::path csv = out_dir / kSpeedAccuracyCsv;
   const std::vector<fs::path> images = {out_dir / kSpeedAccuracySvg, out_dir / kSpeedAccuracyPng};
   for (const fs::path& path : {csv, images[0], images[1]}) {
-    if (fs::is_directory(path, ec)) return fmt::format("cannot write {}: it is a directory", path.string());
+    if (fs::is_directory(path, ec)) {
+      return Failure(DiagnosticCode::kCannotWriteFile,
+                     fmt::format("cannot write {}: it is a directory", path.string()));
+    }
   }
-  if (const Status chart = RenderGnuplotChart(SpeedAccuracyChart(result), images); !chart) return chart.message();
-  if (const Status written = WriteFileAtomically(csv, SpeedAccuracyCsv(result)); !written) {
+  if (Status chart = RenderGnuplotChart(SpeedAccuracyChart(result), images); !chart.ok()) return chart;
+  if (const Status csv_written = WriteFileAtomically(csv, SpeedAccuracyCsv(result)); !csv_written.ok()) {
     for (const fs::path& image : images) fs::remove(image, ec);
-    return fmt::format("cannot write {}: {}", csv.string(), written.message());
+    return Failure(csv_written.error().code, fmt::format("cannot write {}: {}", csv.string(), csv_written.message()));
   }
   written = {csv, images[0], images[1]};
-  return std::nullopt;
+  return {};
 }
 
 }  // namespace vs11::irradiance

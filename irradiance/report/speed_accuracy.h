@@ -29,6 +29,7 @@
 #include "irradiance/sh/ground_truth.h"
 #include "irradiance/report/paper_program.h"
 #include "vm/core/name_table.h"
+#include "vm/core/result.h"
 
 namespace vs11::irradiance {
 
@@ -83,13 +84,14 @@ struct SpeedAccuracyResult {
 // Progress: the environment being measured (index from 0 of `count`).
 using SpeedAccuracyProgress = std::function<void(std::string_view environment, int index, int count)>;
 
-// What is wrong with the options themselves (a bad value: a usage error), or nullopt.
-std::optional<std::string> CheckSpeedAccuracyOptions(const SpeedAccuracyOptions& options);
+// What is wrong with the options themselves (a bad value: a usage error; kOptionValue or kFaceSize),
+// or success.
+Status CheckSpeedAccuracyOptions(const SpeedAccuracyOptions& options);
 
-// Runs the sweep. nullopt on success, otherwise what is wrong (a bad option, an environment that
+// Runs the sweep. Success, or the error that says what is wrong (a bad option, an environment that
 // cannot be loaded or whose face size is not a power of two).
-std::optional<std::string> RunSpeedAccuracySweep(const SpeedAccuracyOptions& options, SpeedAccuracyResult& result,
-                                                 const SpeedAccuracyProgress& progress = {});
+Status RunSpeedAccuracySweep(const SpeedAccuracyOptions& options, SpeedAccuracyResult& result,
+                             const SpeedAccuracyProgress& progress = {});
 
 // One header line, then one line per point:
 //   environment,method,level,size,update_ms,mips_ms,mean_relative_error,max_relative_error,order,slots,
@@ -119,9 +121,9 @@ inline constexpr std::string_view kSpeedAccuracySvg = "speed_accuracy.svg";
 inline constexpr std::string_view kSpeedAccuracyPng = "speed_accuracy.png";
 
 // Writes the three files into `out_dir` (created if needed). Each is written to a temporary and
-// renamed; if any fails, the ones already in place from this call are removed again. nullopt on
-// success, the paths written in `written`.
-std::optional<std::string> WriteSpeedAccuracy(const SpeedAccuracyResult& result, const std::filesystem::path& out_dir,
-                                              std::vector<std::filesystem::path>& written);
+// renamed; if any fails, the ones already in place from this call are removed again. Success, with
+// the paths written in `written`, or the error.
+Status WriteSpeedAccuracy(const SpeedAccuracyResult& result, const std::filesystem::path& out_dir,
+                          std::vector<std::filesystem::path>& written);
 
 }  // namespace vs11::irradiance

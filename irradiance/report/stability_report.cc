@@ -120,8 +120,7 @@ void RunLevels(StabilityReport& report, std::span<const glm::dvec3> normals, con
   if (progress) progress("mip levels", 1.0);
 }
 
-std::optional<std::string> RunPrecision(StabilityReport& report, std::span<const glm::dvec3> normals,
-                                        const StabilityProgress& progress) {
+Status RunPrecision(StabilityReport& report, std::span<const glm::dvec3> normals, const StabilityProgress& progress) {
   const StabilityOptions& o = report.options;
   if (progress) progress("precision", 0.0);
   report.accumulation.push_back(MeasureFloatAccumulation(MakeSky(o.face_size), normals));
@@ -132,21 +131,21 @@ std::optional<std::string> RunPrecision(StabilityReport& report, std::span<const
   if (progress) progress("precision", 0.7);
   const Sh9Rgb sky = ProjectDirect(MakeSky(o.face_size));
   Result<ProgramPrecision> programs = MeasureNormalLengths(sky, normals, kNormalLengths);
-  if (!programs) return programs.message();
+  if (!programs) return programs.error();
   report.programs = std::move(programs).value();
   Result<std::vector<ScaledRun>> scaled = MeasureScaledRuns(sky, normals, kScales);
-  if (!scaled) return scaled.message();
+  if (!scaled) return scaled.error();
   report.scaled = std::move(scaled).value();
   for (double radiance : kHdrSunRadiances) {
     const Result<HdrResult> hdr = MeasureHdrSky(o.face_size, radiance, normals, report.threads);
-    if (!hdr) return hdr.message();
+    if (!hdr) return hdr.error();
     report.hdr.push_back(*hdr);
   }
   const Result<ZeroEnvironmentResult> zero = MeasureZeroEnvironment(std::min(o.face_size, 64), normals);
-  if (!zero) return zero.message();
+  if (!zero) return zero.error();
   report.zero = *zero;
   if (progress) progress("precision", 1.0);
-  return std::nullopt;
+  return {};
 }
 
 // ---- Markdown ----------------------------------------------------------------------------------------
@@ -460,30 +459,31 @@ std::string ReportPercent(double fraction) {
   return fmt::format("{:.3g} %", p);
 }
 
-std::optional<std::string> CheckStabilityOptions(const StabilityOptions& options) {
-  if (const Status size = CheckFaceSizeOption("--face-size", options.face_size, kMaxStabilityFaceSize); !size) {
-    return size.message();
+Status CheckStabilityOptions(const StabilityOptions& options) {
+  if (Status size = CheckFaceSizeOption("--face-size", options.face_size, kMaxStabilityFaceSize); !size.ok()) {
+    return size;
   }
-  if (const Status size =
-          CheckFaceSizeOption("--precision-face-size", options.precision_face_size, kMaxStabilityFaceSize);
-      !size) {
-    return size.message();
+  if (Status size = CheckFaceSizeOption("--precision-face-size", options.precision_face_size, kMaxStabilityFaceSize);
+      !size.ok()) {
+    return size;
   }
-  if (options.error_normals < 16) return fmt::format("--error-normals {} is too few (>= 16)", options.error_normals);
-  if (!(options.max_error > 0.0)) return fmt::format("--max-error {} must be > 0", options.max_error);
+  const auto usage = [](std::string message) { return Failure(DiagnosticCode::kOptionValue, std::move(message)); };
+  if (options.error_normals < 16) {
+    return usage(fmt::format("--error-normals {} is too few (>= 16)", options.error_normals));
+  }
+  if (!(options.max_error > 0.0)) return usage(fmt::format("--max-error {} must be > 0", options.max_error));
   if (options.radii.empty() || !std::is_sorted(options.radii.rbegin(), options.radii.rend()) ||
       options.radii.back() <= 0.0 || options.radii.front() > 90.0) {
-    return std::string("the radii must lie in (0, 90] degrees, largest first");
+    return usage("the radii must lie in (0, 90] degrees, largest first");
   }
-  if (options.threads < 0) return fmt::format("--threads {} must be >= 0", options.threads);
-  if (options.out_dir.empty()) return std::string("the output directory is empty");
-  return std::nullopt;
+  if (options.threads < 0) return usage(fmt::format("--threads {} must be >= 0", options.threads));
+  if (options.out_dir.empty()) return usage("the output directory is empty");
+  return {};
 }
 
-std::optional<std::string> RunStability(const StabilityOptions& options, StabilityReport& report,
-                                        const StabilityProgress& progress) {
+Status RunStability(const StabilityOptions& options, StabilityReport& report, const StabilityProgress& progress) {
   report = StabilityReport{};
-  if (std::optional<std::string> error = CheckStabilityOptions(options)) return error;
+  if (Status error = CheckStabilityOptions(options); !error.ok()) return error;
   report.options = options;
   report.threads = options.threads > 0 ? options.threads
                                        : static_cast<int>(std::max(1u, std::thread::hardware_concurrency()));
@@ -495,7 +495,7 @@ std::optional<std::string> RunStability(const StabilityOptions& options, Stabili
     if (progress) progress("built-ins", 1.0);
   });
   Section(report, "mip levels", [&] { RunLevels(report, normals, progress); });
-  std::optional<std::string> error;
+  Status error;
   Section(report, "precision", [&] { error = RunPrecision(report, normals, progress); });
   return error;
 }
@@ -514,15 +514,18 @@ std::string FormatStabilityMarkdown(const StabilityReport& r) {
   return out + "\n";
 }
 
-std::optional<std::string> WriteStabilityReport(const StabilityReport& report, std::vector<fs::path>& written) {
+Status WriteStabilityReport(const StabilityReport& report, std::vector<fs::path>& written) {
   const fs::path& dir = report.options.out_dir;
   std::error_code ec;
   fs::create_directories(dir, ec);
-  if (ec) return fmt::format("cannot create the output directory {} ({})", dir.string(), ec.message());
-  auto fail = [&](std::string message) {
+  if (ec) {
+    return Failure(DiagnosticCode::kCannotWriteFile,
+                   fmt::format("cannot create the output directory {} ({})", dir.string(), ec.message()));
+  }
+  auto fail = [&](const Status& failed) {
     for (const fs::path& path : written) fs::remove(path, ec);
     written.clear();
-    return std::optional<std::string>(std::move(message));
+    return failed;
   };
   const std::array<std::pair<std::string_view, GnuplotChart>, 3> charts = {{
       {kSweepChart, SweepChart(report, false)},
@@ -530,14 +533,15 @@ std::optional<std::string> WriteStabilityReport(const StabilityReport& report, s
       {kLevelsChart, LevelsChart(report)},
   }};
   for (const auto& [name, chart] : charts) {
-    if (const Status rendered = RenderGnuplotChart(chart, {dir / name}); !rendered) return fail(rendered.message());
+    if (const Status rendered = RenderGnuplotChart(chart, {dir / name}); !rendered.ok()) return fail(rendered);
     written.push_back(dir / name);
   }
-  if (const Status written = WriteFileAtomically(dir / kMarkdownFile, FormatStabilityMarkdown(report)); !written) {
-    return fail(written.message());
+  if (const Status markdown = WriteFileAtomically(dir / kMarkdownFile, FormatStabilityMarkdown(report));
+      !markdown.ok()) {
+    return fail(markdown);
   }
   written.push_back(dir / kMarkdownFile);
-  return std::nullopt;
+  return {};
 }
 
 }  // namespace vs11::irradiance

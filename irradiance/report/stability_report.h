@@ -15,6 +15,7 @@
 #include "irradiance/io/environment_io.h"
 #include "irradiance/report/stability.h"
 #include "irradiance/sh/level_choice.h"
+#include "vm/core/result.h"
 
 namespace vs11::irradiance {
 
@@ -59,12 +60,13 @@ struct StabilityReport {
 
 using StabilityProgress = std::function<void(std::string_view stage, double fraction)>;
 
-// What is wrong with the options themselves (a bad value: a usage error), or nullopt.
-std::optional<std::string> CheckStabilityOptions(const StabilityOptions& options);
+// What is wrong with the options themselves (a bad value: a usage error; kOptionValue or
+// kFaceSize), or success.
+Status CheckStabilityOptions(const StabilityOptions& options);
 
-// Runs every measurement. nullopt on success, else what went wrong (bad option, program load).
-std::optional<std::string> RunStability(const StabilityOptions& options, StabilityReport& report,
-                                        const StabilityProgress& progress = {});
+// Runs every measurement. Success, or the error that says what went wrong (bad option, program
+// load).
+Status RunStability(const StabilityOptions& options, StabilityReport& report, const StabilityProgress& progress = {});
 
 // "1.23 %", "3.1e-04 %", "inf": a fraction as the report prints it.
 std::string ReportPercent(double fraction);
@@ -81,7 +83,6 @@ std::string FormatStabilityMarkdown(const StabilityReport& report);
 // Renders the charts and writes the markdown into report.options.out_dir (created if needed), each
 // file atomically; on failure the files already written by this call are removed. Returns the
 // paths written, or the error.
-std::optional<std::string> WriteStabilityReport(const StabilityReport& report,
-                                                std::vector<std::filesystem::path>& written);
+Status WriteStabilityReport(const StabilityReport& report, std::vector<std::filesystem::path>& written);
 
 }  // namespace vs11::irradiance

@@ -37,12 +37,14 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   options.parts = {part.string()};
   options.output = ScratchFolder() / "merged.jsonl";
   vs11::irradiance::MergeReport report;
-  const std::optional<std::string> error = vs11::irradiance::MergeBatchOutputs(options, report);
-  if (!error && report.complete()) {
+  const vs11::Status error = vs11::irradiance::MergeBatchOutputs(options, report);
+  if (error.ok() && report.complete()) {
     vs11::irradiance::MergeReport again;
     options.parts = {options.output.string()};
     options.output = ScratchFolder() / "merged-again.jsonl";
-    if (vs11::irradiance::MergeBatchOutputs(options, again) || !again.complete() || again.records != 2) __builtin_trap();
+    if (!vs11::irradiance::MergeBatchOutputs(options, again).ok() || !again.complete() || again.records != 2) {
+      __builtin_trap();
+    }
   }
   (void)vs11::irradiance::MergeReportJson(report, options.output).dump();
   return 0;

@@ -39,7 +39,9 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       const vs11::translate::GlslangResult compiled = vs11::translate::CompileWithGlslang(glsl, target, stage);
       if (!compiled.ok) Report(vs11::translate::TargetName(target), compiled.log, glsl);
       if (target != Target::kSpirv) continue;
-      if (std::optional<std::string> invalid = vs11::translate::ValidateSpirv(compiled.spirv)) Report("spirv-val", *invalid, glsl);
+      if (const vs11::Status valid = vs11::translate::ValidateSpirv(compiled.spirv); !valid.ok()) {
+        Report("spirv-val", valid.message(), glsl);
+      }
     }
   }
   return 0;

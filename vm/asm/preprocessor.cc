@@ -586,7 +586,7 @@ std::vector<Token> Preprocessor::Substitute(const Macro& macro, const Args& args
 
 std::optional<std::string> ReadFileFromDisk(const std::filesystem::path& path) {
   // Only regular files: a FIFO named by an #include would block until someone writes to it.
-  if (InputFileProblem(path, /*pipes_allowed=*/false)) return std::nullopt;
+  if (!InputFileProblem(path, /*pipes_allowed=*/false).ok()) return std::nullopt;
   return ReadInputFile(path, kMaxProgramFileBytes).bytes;
 }
 

@@ -182,7 +182,7 @@ void CheckInputsAndOutputs(const std::vector<std::string>& inputs, const std::ve
   }
   const std::vector<std::filesystem::path> input_paths(inputs.begin(), inputs.end());
   for (const std::string& output : outputs) {
-    if (std::optional<std::string> error = OutputOverwritesInput(output, input_paths)) FailUsage(*error);
+    if (const Status error = OutputOverwritesInput(output, input_paths); !error.ok()) FailUsage(error.message());
   }
 }
 

@@ -111,7 +111,9 @@ void ReadBufferInput(const VertexSourceFlags& flags, mesh::RegisterData& supplie
     elements.push_back(element);
   }
   if (const Status layout = mesh::CheckBufferLayout(flags.stride, elements); !layout) FailUsage(layout.message());
-  if (std::optional<std::string> why = InputFileProblem(flags.buffer, /*pipes_allowed=*/false)) Fail(fmt::format("{}: {}", flags.buffer, *why));
+  if (const Status why = InputFileProblem(flags.buffer, /*pipes_allowed=*/false); !why.ok()) {
+    Fail(fmt::format("{}: {}", flags.buffer, why.message()));
+  }
   std::error_code error;
   const std::uintmax_t size = std::filesystem::file_size(flags.buffer, error);
   if (error) Fail(fmt::format("{}: cannot read the buffer file", flags.buffer));

@@ -144,7 +144,22 @@ inline constexpr NameTable kSeverityNames("severity", {
   X(kEngineUnavailable, "engine-unavailable")                                                     \
   X(kGlUnavailable, "gl-unavailable")                                                             \
   X(kGlCompile, "gl-compile")                                                                     \
-  X(kGlError, "gl-error")
+  X(kGlError, "gl-error")                                                                         \
+  /* Options of a job or a tool whose values are wrong: a usage error (irradiance/jobs/). */      \
+  X(kOptionValue, "option-value")                                                                 \
+  /* An output that is one of the run's inputs (vm/core/input_file.h). */                         \
+  X(kOutputOverwritesInput, "output-overwrites-input")                                            \
+  /* An output that exists and is not to be replaced or continued (irradiance/jobs/). */          \
+  X(kOutputExists, "output-exists")                                                               \
+  /* A file that should hold records of irrmap batch and does not (irradiance/jobs/). */          \
+  X(kBatchRecord, "batch-record")                                                                 \
+  /* Two inputs whose --per-file outputs would have one name (irradiance/jobs/). */               \
+  X(kPerFileCollision, "per-file-collision")                                                      \
+  /* A result beyond float range (irradiance/jobs/float_range.h). */                              \
+  X(kBeyondFloatRange, "beyond-float-range")                                                      \
+  X(kOutOfMemory, "out-of-memory")                                                                \
+  /* SPIR-V that spirv-val refuses (vm/translate/glslang_compiler.h). */                          \
+  X(kInvalidSpirv, "invalid-spirv")
 
 enum class DiagnosticCode {
 #define VS11_DIAGNOSTIC_ENUMERATOR(code, name) code,

@@ -72,10 +72,15 @@ InputBytes ReadDescriptor(int fd, std::size_t max_bytes, std::size_t expected_si
 
 std::string InputDisplayName(const fs::path& path) { return IsStandardInput(path) ? "<stdin>" : path.string(); }
 
-std::optional<std::string> InputFileProblem(const fs::path& path, bool pipes_allowed) {
+Status InputFileProblem(const fs::path& path, bool pipes_allowed) {
   struct stat status {};
-  if (::stat(path.c_str(), &status) != 0) return errno == ENOENT ? "no such file" : std::strerror(errno);
-  return ModeProblem(status.st_mode, false, pipes_allowed);
+  if (::stat(path.c_str(), &status) != 0) {
+    return Failure(DiagnosticCode::kCannotReadFile, errno == ENOENT ? "no such file" : std::strerror(errno));
+  }
+  if (std::optional<std::string> problem = ModeProblem(status.st_mode, false, pipes_allowed)) {
+    return Failure(DiagnosticCode::kCannotReadFile, std::move(*problem));
+  }
+  return {};
 }
 
 InputBytes ReadInputFile(const fs::path& path, std::size_t max_bytes) {
@@ -112,16 +117,17 @@ InputBytes ReadInputFile(const fs::path& path, std::size_t max_bytes) {
   return result;
 }
 
-std::optional<std::string> OutputOverwritesInput(const fs::path& output, std::span<const fs::path> inputs) {
-  if (output.empty() || IsStandardInput(output)) return std::nullopt;
+Status OutputOverwritesInput(const fs::path& output, std::span<const fs::path> inputs) {
+  if (output.empty() || IsStandardInput(output)) return {};
   for (const fs::path& input : inputs) {
     if (input.empty() || IsStandardInput(input)) continue;
     std::error_code error;  // set when either does not exist: then they are not one file
     if (fs::equivalent(output, input, error) && !error) {
-      return fmt::format("{} is the input {}: refusing to overwrite it", output.string(), input.string());
+      return Failure(DiagnosticCode::kOutputOverwritesInput,
+                     fmt::format("{} is the input {}: refusing to overwrite it", output.string(), input.string()));
     }
   }
-  return std::nullopt;
+  return {};
 }
 
 }  // namespace vs11

@@ -12,6 +12,8 @@
 #include <string>
 #include <string_view>
 
+#include "vm/core/result.h"
+
 namespace vs11 {
 
 // The name that reads standard input wherever a tool reads a file.
@@ -33,10 +35,11 @@ inline constexpr std::size_t kMaxInputFileBytes = std::size_t{4} << 30;
 // "<stdin>" for "-", else the path as given: the name messages use.
 std::string InputDisplayName(const std::filesystem::path& path);
 
-// Why `path` cannot be an input file, or nullopt when it can: "no such file", "is a folder", "is a
-// device, not a file" (a character or block device), "is a socket". Pipes are accepted only with
-// `pipes_allowed`, for readers that need to seek (images) they are "not a regular file".
-std::optional<std::string> InputFileProblem(const std::filesystem::path& path, bool pipes_allowed);
+// Why `path` cannot be an input file (kCannotReadFile), or success when it can: "no such file", "is a
+// folder", "is a device, not a file" (a character or block device), "is a socket". Pipes are
+// accepted only with `pipes_allowed`, for readers that need to seek (images) they are "not a regular
+// file".
+Status InputFileProblem(const std::filesystem::path& path, bool pipes_allowed);
 
 struct InputBytes {
   std::optional<std::string> bytes;  // the whole file, read once
@@ -48,9 +51,9 @@ struct InputBytes {
 InputBytes ReadInputFile(const std::filesystem::path& path, std::size_t max_bytes);
 
 // The first of `inputs` that is the same file as `output` (same device and inode: through links,
-// "./" and any other spelling), as "OUTPUT is the input INPUT: refusing to overwrite it"; nullopt
-// when none is. An output that does not exist yet is no input, and "-" is no file.
-std::optional<std::string> OutputOverwritesInput(const std::filesystem::path& output,
-                                                 std::span<const std::filesystem::path> inputs);
+// "./" and any other spelling), as "OUTPUT is the input INPUT: refusing to overwrite it"
+// (kOutputOverwritesInput); success when none is. An output that does not exist yet is no input,
+// and "-" is no file.
+Status OutputOverwritesInput(const std::filesystem::path& output, std::span<const std::filesystem::path> inputs);
 
 }  // namespace vs11

@@ -142,7 +142,7 @@ std::optional<std::string> SourceLines::Line(const SourceLoc& loc) {
   if (inserted) {
     // Only a regular file can be read again: a pipe's program (/dev/stdin) is gone once assembled.
     std::optional<std::string> text;
-    if (!InputFileProblem(loc.file, /*pipes_allowed=*/false)) text = ReadWholeFile(loc.file);
+    if (InputFileProblem(loc.file, /*pipes_allowed=*/false).ok()) text = ReadWholeFile(loc.file);
     if (text) {
       std::vector<std::string> lines;
       std::size_t start = 0;

@@ -94,14 +94,19 @@ void WriteU32(std::string& bytes, std::size_t at, std::uint32_t value) { std::me
 
 // GLB: header (12 bytes), then the JSON chunk (length, "JSON", text padded with spaces to 4 bytes),
 // then the binary chunk. The note goes into asset.extras.vs11; lengths are rewritten.
-std::optional<std::string> AnnotateGlb(std::string& bytes, const std::string& note) {
+// The errors name `path`.
+Status AnnotateGlb(std::string& bytes, const std::string& note, const std::filesystem::path& path) {
+  const auto unexpected = [&path](std::string_view what) {
+    return Failure(DiagnosticCode::kCannotWriteFile,
+                   fmt::format("{}: Assimp's GLB exporter wrote {}", path.string(), what));
+  };
   if (bytes.size() < 20 || bytes.compare(0, 4, "glTF") != 0 || bytes.compare(16, 4, "JSON") != 0) {
-    return "Assimp's GLB exporter wrote an unexpected layout";
+    return unexpected("an unexpected layout");
   }
   const std::uint32_t json_length = ReadU32(bytes, 12);
-  if (20 + static_cast<std::size_t>(json_length) > bytes.size()) return "Assimp's GLB exporter wrote a short JSON chunk";
+  if (20 + static_cast<std::size_t>(json_length) > bytes.size()) return unexpected("a short JSON chunk");
   nlohmann::json json = nlohmann::json::parse(bytes.substr(20, json_length), nullptr, false);
-  if (json.is_discarded()) return "Assimp's GLB exporter wrote JSON that does not parse";
+  if (json.is_discarded()) return unexpected("JSON that does not parse");
   json["asset"]["extras"]["vs11"] = note;
   std::string text = json.dump();
   text.append((4 - text.size() % 4) % 4, ' ');
@@ -113,7 +118,7 @@ std::optional<std::string> AnnotateGlb(std::string& bytes, const std::string& no
   rebuilt += bytes.substr(20 + json_length);
   WriteU32(rebuilt, 8, static_cast<std::uint32_t>(rebuilt.size()));
   bytes = std::move(rebuilt);
-  return std::nullopt;
+  return {};
 }
 
 }  // namespace
@@ -152,8 +157,8 @@ Status ExportMesh(const Mesh& mesh, const ExportAttributes& attributes, const st
     if (ply) {
       const std::string colour_note = attributes.color != nullptr ? "\nPLY colours: clamped to [0, 1], 8-bit" : "";
       bytes = AnnotatePly(std::move(bytes), attributes.note + colour_note);
-    } else if (std::optional<std::string> error = AnnotateGlb(bytes, attributes.note)) {
-      return Failure(DiagnosticCode::kCannotWriteFile, fmt::format("{}: {}", path.string(), *error));
+    } else if (Status annotated = AnnotateGlb(bytes, attributes.note, path); !annotated.ok()) {
+      return annotated;
     }
   }
   return WriteFileAtomically(path, bytes);

@@ -634,7 +634,9 @@ bool IsMeshFileExtension(const std::string& extension) {
 MeshLoadResult LoadMesh(const std::filesystem::path& path, const MeshLoadOptions& options) {
   const std::string name = path.string();
   std::error_code error;
-  if (std::optional<std::string> why = InputFileProblem(path, /*pipes_allowed=*/false)) return {std::nullopt, name + ": " + *why};
+  if (const Status why = InputFileProblem(path, /*pipes_allowed=*/false); !why.ok()) {
+    return {std::nullopt, name + ": " + why.message()};
+  }
   const std::uintmax_t size = std::filesystem::file_size(path, error);
   if (error) return {std::nullopt, fmt::format("{}: cannot read its size ({})", name, error.message())};
   std::vector<std::uint8_t> head(std::min<std::uintmax_t>(size, kHeaderBytes));

@@ -122,34 +122,41 @@ class Reader {
 constexpr std::size_t kBoneBytes = sizeof(std::uint64_t) + sizeof(Matrix4d);
 constexpr std::size_t kPartBytes = 2 * sizeof(std::uint64_t) + sizeof(Matrix4d) + 2 + 4 * sizeof(std::uint64_t);
 
-// What a loaded Mesh promises its users beyond the sizes the reader already checked.
-std::optional<std::string> CheckInvariants(const Mesh& mesh) {
-  if (mesh.vertex_count == 0) return "a mesh without vertices";
-  if (mesh.nonfinite_vertex_count > mesh.vertex_count) return "more non-finite vertices than vertices";
-  if (mesh.tangents.empty() != mesh.binormals.empty()) return "tangents without binormals or the reverse";
-  if (mesh.blend_weights.empty() != mesh.blend_indices.empty()) return "blend weights without indices or the reverse";
-  for (int component : mesh.texcoord_components) {
-    if (component < 0 || component > 3) return fmt::format("a UV set of {} components", component);
+// What a loaded Mesh promises its users beyond the sizes the reader already checked (kMeshWire).
+Status CheckInvariants(const Mesh& mesh) {
+  const auto broken = [](std::string what) { return Failure(DiagnosticCode::kMeshWire, std::move(what)); };
+  if (mesh.vertex_count == 0) return broken("a mesh without vertices");
+  if (mesh.nonfinite_vertex_count > mesh.vertex_count) return broken("more non-finite vertices than vertices");
+  if (mesh.tangents.empty() != mesh.binormals.empty()) return broken("tangents without binormals or the reverse");
+  if (mesh.blend_weights.empty() != mesh.blend_indices.empty()) {
+    return broken("blend weights without indices or the reverse");
   }
-  if (mesh.indices.size() % 3 != 0) return "an index count that is not a multiple of 3";
+  for (int component : mesh.texcoord_components) {
+    if (component < 0 || component > 3) return broken(fmt::format("a UV set of {} components", component));
+  }
+  if (mesh.indices.size() % 3 != 0) return broken("an index count that is not a multiple of 3");
   for (std::uint32_t index : mesh.indices) {
-    if (index >= mesh.vertex_count) return fmt::format("index {} past the {} vertices", index, mesh.vertex_count);
+    if (index >= mesh.vertex_count) {
+      return broken(fmt::format("index {} past the {} vertices", index, mesh.vertex_count));
+    }
   }
   for (const Vec4f& row : mesh.blend_indices) {
     for (float index : row) {
       const bool names_bone = index >= 0.0f && index == std::floor(index) &&
                               (static_cast<double>(index) < static_cast<double>(mesh.bones.size()) || index == 0.0f);
-      if (!names_bone) return fmt::format("blend index {} names none of the {} bones", index, mesh.bones.size());
+      if (!names_bone) {
+        return broken(fmt::format("blend index {} names none of the {} bones", index, mesh.bones.size()));
+      }
     }
   }
   for (const MeshPart& part : mesh.parts) {
     if (part.first_vertex > mesh.vertex_count || part.vertex_count > mesh.vertex_count - part.first_vertex ||
         part.first_index > mesh.indices.size() || part.index_count > mesh.indices.size() - part.first_index ||
         part.index_count % 3 != 0) {
-      return fmt::format("part '{}' lies outside the mesh's arrays", part.mesh_name);
+      return broken(fmt::format("part '{}' lies outside the mesh's arrays", part.mesh_name));
     }
   }
-  return std::nullopt;
+  return {};
 }
 
 }  // namespace
@@ -232,7 +239,7 @@ Result<Mesh> DecodeMesh(std::span<const std::uint8_t> bytes) {
   for (std::string& warning : mesh.warnings) warning = in.String();
   if (!in.failed() && !in.at_end()) in.Fail("bytes after the mesh");
   if (in.failed()) return Failure(DiagnosticCode::kMeshWire, in.error());
-  if (std::optional<std::string> problem = CheckInvariants(mesh)) return Failure(DiagnosticCode::kMeshWire, *problem);
+  if (Status invariants = CheckInvariants(mesh); !invariants.ok()) return invariants.error();
   return mesh;
 }
 

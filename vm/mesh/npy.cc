@@ -168,7 +168,9 @@ NpyResult ParseNpy(std::span<const std::uint8_t> bytes, const std::string& name)
 }
 
 NpyResult ReadNpy(const std::filesystem::path& path) {
-  if (std::optional<std::string> why = InputFileProblem(path, /*pipes_allowed=*/false)) return {std::nullopt, fmt::format("{}: {}", path.string(), *why)};
+  if (const Status why = InputFileProblem(path, /*pipes_allowed=*/false); !why.ok()) {
+    return {std::nullopt, fmt::format("{}: {}", path.string(), why.message())};
+  }
   std::error_code error;
   const std::uintmax_t size = std::filesystem::file_size(path, error);
   if (error) return {std::nullopt, fmt::format("{}: cannot read the file", path.string())};

@@ -89,14 +89,14 @@ GlslangResult CompileHlslWithGlslang(const std::string& hlsl, const std::string&
   return result;
 }
 
-std::optional<std::string> ValidateSpirv(const std::vector<std::uint32_t>& words) {
+Status ValidateSpirv(const std::vector<std::uint32_t>& words) {
   spvtools::SpirvTools tools(SPV_ENV_VULKAN_1_0);
   std::string messages;
   tools.SetMessageConsumer([&](spv_message_level_t, const char*, const spv_position_t& position, const char* message) {
     messages += "word " + std::to_string(position.index) + ": " + message + "\n";
   });
-  if (tools.Validate(words)) return std::nullopt;
-  return messages.empty() ? std::string("invalid SPIR-V") : messages;
+  if (tools.Validate(words)) return {};
+  return Failure(DiagnosticCode::kInvalidSpirv, messages.empty() ? std::string("invalid SPIR-V") : messages);
 }
 
 }  // namespace vs11::translate

@@ -8,6 +8,7 @@
 #include <string>
 #include <vector>
 
+#include "vm/core/result.h"
 #include "vm/translate/profile.h"
 
 namespace vs11::translate {
@@ -27,7 +28,7 @@ GlslangResult CompileWithGlslang(const std::string& glsl, Target target, Stage s
 // (irrmap --sh-export hlsl). Thread-safe.
 GlslangResult CompileHlslWithGlslang(const std::string& hlsl, const std::string& entry_point);
 
-// nullopt when `words` is valid SPIR-V for Vulkan 1.0, else SPIRV-Tools' message.
-std::optional<std::string> ValidateSpirv(const std::vector<std::uint32_t>& words);
+// Success when `words` is valid SPIR-V for Vulkan 1.0, else SPIRV-Tools' message (kInvalidSpirv).
+Status ValidateSpirv(const std::vector<std::uint32_t>& words);
 
 }  // namespace vs11::translate

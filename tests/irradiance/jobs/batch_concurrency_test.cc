@@ -130,8 +130,8 @@ class BatchConcurrency : public TempFolderTest {
     options.threads = 1;
     options.out_dir = Path("single");
     IrrmapReport report;
-    const std::optional<std::string> error = RunIrrmap(options, report);
-    EXPECT_EQ(error, std::nullopt) << input;
+    const Status error = RunIrrmap(options, report);
+    EXPECT_EQ(error.message(), "") << input;
     nlohmann::json coefficients = nlohmann::json::array();
     for (const glm::dvec3& c : report.coefficients.coefficients) coefficients.push_back({c.r, c.g, c.b});
     return {{"level", report.level}, {"coefficients", coefficients}};
@@ -150,7 +150,7 @@ TEST_F(BatchConcurrency, EveryRecordAtAnyThreadCountIsTheSingleFileResult) {
     options.threads = threads;
     options.face_size = kLatLongFaceSize;
     BatchSummary summary;
-    ASSERT_EQ(RunBatch(options, summary), std::nullopt);
+    ASSERT_EQ(RunBatch(options, summary).message(), "");
     EXPECT_TRUE(summary.failures.empty()) << summary.failures.front().input << ": " << summary.failures.front().reason;
     const std::map<std::string, nlohmann::json> records = Records(options.output);
     ASSERT_EQ(records.size(), inputs.size()) << threads << " threads";

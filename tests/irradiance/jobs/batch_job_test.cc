@@ -91,7 +91,7 @@ TEST_F(BatchJob, AGoodFileGetsItsCoefficientsConstantsLevelAndError) {
   BatchOptions options = Options({sky});
   options.per_file_dir = Path("each");
   BatchSummary summary;
-  ASSERT_EQ(RunBatch(options, summary), std::nullopt);
+  ASSERT_EQ(RunBatch(options, summary).message(), "");
   EXPECT_EQ(summary.succeeded, 1u);
   EXPECT_TRUE(summary.failures.empty());
 
@@ -132,8 +132,9 @@ TEST_F(BatchJob, BadFilesAreReportedWithTheirReasonAndSkipped) {
   BatchOptions options = Options({Path("*.exr").string(), Path("unsupported.txt").string(), Path("missing.exr").string()});
   std::vector<std::string> reported;
   BatchSummary summary;
-  ASSERT_EQ(RunBatch(options, summary, {}, [&](const BatchFailure& failure) { reported.push_back(failure.input); }),
-            std::nullopt);
+  ASSERT_EQ(
+      RunBatch(options, summary, {}, [&](const BatchFailure& failure) { reported.push_back(failure.input); }).message(),
+      "");
   EXPECT_EQ(summary.selected, 5u);
   EXPECT_EQ(summary.succeeded, 1u);
   ASSERT_EQ(summary.failures.size(), 4u);
@@ -154,7 +155,7 @@ TEST_F(BatchJob, ResumeDropsACutOffLineAndSkipsFinishedInputs) {
   for (int i = 0; i < 4; ++i) inputs.push_back(WriteSky(fmt::format("sky{}.exr", i), 40.0 * i));
   BatchOptions options = Options({Path("sky*.exr").string()});
   BatchSummary summary;
-  ASSERT_EQ(RunBatch(options, summary), std::nullopt);
+  ASSERT_EQ(RunBatch(options, summary).message(), "");
   const std::map<std::string, nlohmann::json> complete = Records(options.output);
   ASSERT_EQ(complete.size(), 4u);
 
@@ -163,14 +164,16 @@ TEST_F(BatchJob, ResumeDropsACutOffLineAndSkipsFinishedInputs) {
   std::size_t second_end = text.find('\n', text.find('\n') + 1) + 1;
   std::ofstream(options.output, std::ios::binary | std::ios::trunc) << text.substr(0, second_end + 40);
 
-  EXPECT_NE(RunBatch(options, summary), std::nullopt) << "an existing output needs --resume";
+  const Status exists = RunBatch(options, summary);
+  ASSERT_FALSE(exists.ok()) << "an existing output needs --resume";
+  EXPECT_EQ(exists.error().code, DiagnosticCode::kOutputExists) << exists.message();
   options.resume = true;
-  ASSERT_EQ(RunBatch(options, summary), std::nullopt);
+  ASSERT_EQ(RunBatch(options, summary).message(), "");
   EXPECT_EQ(summary.resumed, 2u);
   EXPECT_EQ(summary.succeeded, 2u);
   EXPECT_EQ(Records(options.output), complete);  // each input once, the same records
 
-  ASSERT_EQ(RunBatch(options, summary), std::nullopt);  // nothing left to do
+  ASSERT_EQ(RunBatch(options, summary).message(), "");  // nothing left to do
   EXPECT_EQ(summary.resumed, 4u);
   EXPECT_EQ(summary.succeeded, 0u);
 }
@@ -196,7 +199,7 @@ TEST_F(BatchJob, ShardsPartitionTheInputsExactly) {
     options.shard_index = k;
     options.shard_count = 3;
     BatchSummary summary;
-    ASSERT_EQ(RunBatch(options, summary), std::nullopt);
+    ASSERT_EQ(RunBatch(options, summary).message(), "");
     for (auto& [input, record] : Records(options.output)) EXPECT_TRUE(all.emplace(input, record).second) << input;
   }
   EXPECT_EQ(all.size(), 5u);
@@ -249,7 +252,7 @@ TEST_F(BatchJob, ResumeChangesNothingInAFileThatIsNotItsOutput) {
   const std::string good = WriteSky("good.exr", 0.0);
   BatchSummary summary;
   BatchOptions first = Options({good});
-  ASSERT_EQ(RunBatch(first, summary), std::nullopt);
+  ASSERT_EQ(RunBatch(first, summary).message(), "");
   const std::string record = ReadText(first.output);
   ASSERT_TRUE(record.ends_with("\n"));
 
@@ -272,10 +275,12 @@ TEST_F(BatchJob, ResumeChangesNothingInAFileThatIsNotItsOutput) {
     BatchOptions options = Options({good});
     options.output = Path(name);
     options.resume = true;
-    const std::optional<std::string> error = RunBatch(options, summary);
-    ASSERT_NE(error, std::nullopt) << name;
-    EXPECT_NE(error->find(Path(name).string() + expected_line.at(name)), std::string::npos) << *error;
-    EXPECT_NE(error->find("nothing in it was changed"), std::string::npos) << *error;
+    const Status error = RunBatch(options, summary);
+    ASSERT_FALSE(error.ok()) << name;
+    EXPECT_EQ(error.error().code, DiagnosticCode::kBatchRecord) << name;
+    EXPECT_NE(error.message().find(Path(name).string() + expected_line.at(name)), std::string::npos)
+        << error.message();
+    EXPECT_NE(error.message().find("nothing in it was changed"), std::string::npos) << error.message();
     EXPECT_EQ(ReadText(Path(name)), bytes) << name;
     EXPECT_FALSE(fs::exists(Path(name + ".lock"))) << name;
   }
@@ -284,7 +289,7 @@ TEST_F(BatchJob, ResumeChangesNothingInAFileThatIsNotItsOutput) {
   BatchOptions options = Options({good, WriteSky("other.exr", 90.0)});
   options.output = Path("cut.jsonl");
   options.resume = true;
-  ASSERT_EQ(RunBatch(options, summary), std::nullopt);
+  ASSERT_EQ(RunBatch(options, summary).message(), "");
   EXPECT_EQ(summary.resumed, 1u);
   EXPECT_EQ(summary.succeeded, 1u);
   EXPECT_EQ(Records(options.output).size(), 2u);
@@ -304,17 +309,17 @@ TEST_F(BatchJob, AHeldOutputLockRefusesTheRunAndAStaleOneDoesNot) {
   ASSERT_GE(fd, 0);
   ASSERT_EQ(flock(fd, LOCK_EX | LOCK_NB), 0);
   BatchSummary summary;
-  const std::optional<std::string> error = RunBatch(options, summary);
-  ASSERT_NE(error, std::nullopt);
-  EXPECT_NE(error->find(options.output.string() + " is in use by another irrmap batch: pid 4242 on node17 since "
+  const Status error = RunBatch(options, summary);
+  ASSERT_FALSE(error.ok());
+  EXPECT_NE(error.message().find(options.output.string() + " is in use by another irrmap batch: pid 4242 on node17 since "
                         "2024-01-02 03:04:05 +0000"),
             std::string::npos)
-      << *error;
+      << error.message();
   EXPECT_FALSE(fs::exists(options.output));
   EXPECT_EQ(ReadText(lock_file), holder);
   close(fd);  // the holder ends; its lock file stays behind
 
-  ASSERT_EQ(RunBatch(options, summary), std::nullopt);
+  ASSERT_EQ(RunBatch(options, summary).message(), "");
   EXPECT_EQ(summary.succeeded, 1u);
   EXPECT_FALSE(fs::exists(lock_file));
 }
@@ -332,14 +337,15 @@ TEST_F(BatchJob, APerFileFolderIsLockedForItsShard) {
   BatchOptions options = Options({good});
   options.per_file_dir = Path("each");
   BatchSummary summary;
-  const std::optional<std::string> error = RunBatch(options, summary);
-  ASSERT_NE(error, std::nullopt);
-  EXPECT_NE(error->find("is in use by another irrmap batch: pid 4242 on node17"), std::string::npos) << *error;
+  const Status error = RunBatch(options, summary);
+  ASSERT_FALSE(error.ok());
+  EXPECT_NE(error.message().find("is in use by another irrmap batch: pid 4242 on node17"), std::string::npos)
+      << error.message();
   EXPECT_EQ(Records(options.output).size(), 0u);
 
   options.shard_count = 2;
   options.output = Path("shard0of2.jsonl");
-  ASSERT_EQ(RunBatch(options, summary), std::nullopt);
+  ASSERT_EQ(RunBatch(options, summary).message(), "");
   EXPECT_EQ(summary.succeeded, 1u);
   close(fd);
 }
@@ -353,19 +359,23 @@ TEST_F(BatchJob, PerFileNamesThatCollideAreRefusedBeforeAnyWork) {
   BatchOptions options = Options({nested, flat});
   options.per_file_dir = Path("each");
   BatchSummary summary;
-  const std::optional<std::string> error = RunBatch(options, summary);
-  ASSERT_NE(error, std::nullopt);
-  EXPECT_NE(error->find(nested + " and " + flat + " would both be written to "), std::string::npos) << *error;
+  const Status error = RunBatch(options, summary);
+  ASSERT_FALSE(error.ok());
+  EXPECT_EQ(error.error().code, DiagnosticCode::kPerFileCollision);
+  EXPECT_NE(error.message().find(nested + " and " + flat + " would both be written to "), std::string::npos)
+      << error.message();
   EXPECT_FALSE(fs::exists(options.output));
   EXPECT_FALSE(fs::exists(Path("each")) && !fs::is_empty(Path("each")));
 
   options.inputs = {nested};
-  ASSERT_EQ(RunBatch(options, summary), std::nullopt);
+  ASSERT_EQ(RunBatch(options, summary).message(), "");
   options.inputs = {flat};
   options.output = Path("flat.jsonl");
-  const std::optional<std::string> overwrite = RunBatch(options, summary);
-  ASSERT_NE(overwrite, std::nullopt);
-  EXPECT_NE(overwrite->find("holds the record of " + nested + ", not of " + flat), std::string::npos) << *overwrite;
+  const Status overwrite = RunBatch(options, summary);
+  ASSERT_FALSE(overwrite.ok());
+  EXPECT_EQ(overwrite.error().code, DiagnosticCode::kPerFileCollision);
+  EXPECT_NE(overwrite.message().find("holds the record of " + nested + ", not of " + flat), std::string::npos)
+      << overwrite.message();
   EXPECT_FALSE(fs::exists(options.output));
 }
 
@@ -378,7 +388,7 @@ TEST_F(BatchJob, ResumeKnowsAnInputByItsCanonicalPath) {
   BatchOptions options = Options({relative_a, fs::relative(b).string()});
   ASSERT_NE(relative_a, a);
   BatchSummary summary;
-  ASSERT_EQ(RunBatch(options, summary), std::nullopt);
+  ASSERT_EQ(RunBatch(options, summary).message(), "");
   EXPECT_EQ(summary.succeeded, 2u);
 
   options.resume = true;
@@ -386,7 +396,7 @@ TEST_F(BatchJob, ResumeKnowsAnInputByItsCanonicalPath) {
        {std::vector<std::string>{a, b}, std::vector<std::string>{(Path(".") / "a.exr").string(),
                                                                  (Path("..") / dir_.filename() / "b.exr").string()}}) {
     options.inputs = inputs;
-    ASSERT_EQ(RunBatch(options, summary), std::nullopt);
+    ASSERT_EQ(RunBatch(options, summary).message(), "");
     EXPECT_EQ(summary.resumed, 2u) << inputs[0];
     EXPECT_EQ(summary.succeeded, 0u) << inputs[0];
   }

@@ -80,7 +80,7 @@ TEST_F(BatchMerge, EveryInputOnceIsJoinedSortedByPathWithEachLineAsItWas) {
   WritePart("part-1.jsonl", {inputs_[5], inputs_[1], inputs_[3]});
   WritePart("part-0.jsonl", {inputs_[4], inputs_[0], inputs_[2]});
   MergeReport report;
-  ASSERT_EQ(MergeBatchOutputs(Options(), report), std::nullopt);
+  ASSERT_EQ(MergeBatchOutputs(Options(), report).message(), "");
   EXPECT_TRUE(report.complete());
   EXPECT_TRUE(report.written);
   EXPECT_EQ(report.inputs, 6u);
@@ -90,7 +90,7 @@ TEST_F(BatchMerge, EveryInputOnceIsJoinedSortedByPathWithEachLineAsItWas) {
   for (const std::string& input : inputs_) expected += Record(input) + "\n";  // extra fields kept
   EXPECT_EQ(ReadText(dir_ / "merged.jsonl"), expected);
   // Running it again: the merged file is no part (its name does not match), and is replaced whole.
-  ASSERT_EQ(MergeBatchOutputs(Options(), report), std::nullopt);
+  ASSERT_EQ(MergeBatchOutputs(Options(), report).message(), "");
   EXPECT_EQ(ReadText(dir_ / "merged.jsonl"), expected);
 }
 
@@ -99,7 +99,7 @@ TEST_F(BatchMerge, MissingDuplicatedAndForeignRecordsAreListedAndNothingIsWritte
   WritePart("part-0.jsonl", {inputs_[0], inputs_[2], inputs_[4]});
   WritePart("part-1.jsonl", {inputs_[1], inputs_[2], other});  // inputs_[3] and [5] missing
   MergeReport report;
-  ASSERT_EQ(MergeBatchOutputs(Options(), report), std::nullopt);
+  ASSERT_EQ(MergeBatchOutputs(Options(), report).message(), "");
   EXPECT_FALSE(report.complete());
   EXPECT_FALSE(report.written);
   EXPECT_FALSE(fs::exists(dir_ / "merged.jsonl"));
@@ -122,15 +122,16 @@ TEST_F(BatchMerge, ALineThatIsNoRecordIsNamedByPartAndLine) {
   const std::string part = WritePart("part-0.jsonl", {inputs_[0], inputs_[1]});
   std::ofstream(part, std::ios::app) << "{\"input\": \"x\"}\n";
   MergeReport report;
-  std::optional<std::string> error = MergeBatchOutputs(Options(), report);
-  ASSERT_TRUE(error.has_value());
-  EXPECT_EQ(*error, part + ":3: not a record of irrmap batch");
+  Status error = MergeBatchOutputs(Options(), report);
+  ASSERT_FALSE(error.ok());
+  EXPECT_EQ(error.message(), part + ":3: not a record of irrmap batch");
 
   WritePart("part-0.jsonl", {inputs_[0]});
   std::ofstream(part, std::ios::app) << Record(inputs_[1]).substr(0, 30);  // a shard stopped mid-line
   error = MergeBatchOutputs(Options(), report);
-  ASSERT_TRUE(error.has_value());
-  EXPECT_NE(error->find(part + ":2: not a record of irrmap batch (cut off"), std::string::npos) << *error;
+  ASSERT_FALSE(error.ok());
+  EXPECT_NE(error.message().find(part + ":2: not a record of irrmap batch (cut off"), std::string::npos)
+      << error.message();
   EXPECT_FALSE(fs::exists(dir_ / "merged.jsonl"));
 }
 
@@ -139,16 +140,16 @@ TEST_F(BatchMerge, AnOutputThatIsAPartOrAnInputIsRefused) {
   MergeOptions options = Options();
   options.output = part;
   MergeReport report;
-  std::optional<std::string> error = MergeBatchOutputs(options, report);
-  ASSERT_TRUE(error.has_value());
-  EXPECT_NE(error->find("refusing to overwrite"), std::string::npos) << *error;
+  Status error = MergeBatchOutputs(options, report);
+  ASSERT_FALSE(error.ok());
+  EXPECT_NE(error.message().find("refusing to overwrite"), std::string::npos) << error.message();
   options.output = inputs_[0];
-  EXPECT_NE(MergeBatchOutputs(options, report), std::nullopt);
+  EXPECT_FALSE(MergeBatchOutputs(options, report).ok());
   options.parts = {(dir_ / "nothing-*.jsonl").string()};
   options.output = dir_ / "merged.jsonl";
   error = MergeBatchOutputs(options, report);
-  ASSERT_TRUE(error.has_value());
-  EXPECT_NE(error->find("matches no file"), std::string::npos) << *error;
+  ASSERT_FALSE(error.ok());
+  EXPECT_NE(error.message().find("matches no file"), std::string::npos) << error.message();
 }
 
 // End to end: irrmap batch in three shards, one of them run twice (a requeued job without

@@ -93,7 +93,7 @@ class BatchJobThreads : public TempFolderTest {
     options.threads = threads;
     options.face_size = kResampledFace;
     BatchSummary summary;
-    EXPECT_EQ(RunBatch(options, summary), std::nullopt);
+    EXPECT_EQ(RunBatch(options, summary).message(), "");
     for (const BatchFailure& failure : summary.failures) ADD_FAILURE() << failure.input << ": " << failure.reason;
     EXPECT_EQ(summary.succeeded, inputs.size()) << threads << " threads";
     std::map<std::string, std::string> records;

@@ -51,11 +51,12 @@ void ExpectFiniteResults(const IrrmapReport& report) {
 TEST_F(FloatRange, LatLongOfHugeTexelsFailsWithTheTexelRangeAndWritesNothing) {
   WritePfm(Path("bright.pfm"), LatLong(64, 32, glm::vec3(3e38f)));
   IrrmapReport report;
-  const std::optional<std::string> error = RunIrrmap(QuickOptions(Path("bright.pfm"), Path("out")), report);
-  ASSERT_TRUE(error);
-  EXPECT_THAT(*error, HasSubstr("bright.pfm"));
-  EXPECT_THAT(*error, HasSubstr("beyond float range"));
-  EXPECT_THAT(*error, HasSubstr("to 3e+38"));
+  const Status error = RunIrrmap(QuickOptions(Path("bright.pfm"), Path("out")), report);
+  ASSERT_FALSE(error.ok());
+  EXPECT_EQ(error.error().code, DiagnosticCode::kBeyondFloatRange);
+  EXPECT_THAT(error.message(), HasSubstr("bright.pfm"));
+  EXPECT_THAT(error.message(), HasSubstr("beyond float range"));
+  EXPECT_THAT(error.message(), HasSubstr("to 3e+38"));
   EXPECT_FALSE(fs::exists(Path("out")) && !fs::is_empty(Path("out")));
 }
 
@@ -64,9 +65,9 @@ TEST_F(FloatRange, CoefficientsOnlyOfHugeTexelsFailsToo) {
   IrrmapOptions options = QuickOptions(Path("bright.pfm"), Path("out"));
   options.coefficients_only = true;
   IrrmapReport report;
-  const std::optional<std::string> error = RunIrrmap(options, report);
-  ASSERT_TRUE(error);
-  EXPECT_THAT(*error, HasSubstr("beyond float range"));
+  const Status error = RunIrrmap(options, report);
+  ASSERT_FALSE(error.ok());
+  EXPECT_THAT(error.message(), HasSubstr("beyond float range"));
 }
 
 TEST_F(FloatRange, TwoNeighbouringHugeTexelsGiveAFiniteAnswer) {
@@ -74,8 +75,8 @@ TEST_F(FloatRange, TwoNeighbouringHugeTexelsGiveAFiniteAnswer) {
   image.at(20, 10) = image.at(21, 10) = glm::vec3(3e38f);
   WritePfm(Path("two.pfm"), image);
   IrrmapReport report;
-  const std::optional<std::string> error = RunIrrmap(QuickOptions(Path("two.pfm"), Path("out")), report);
-  ASSERT_FALSE(error) << *error;
+  const Status error = RunIrrmap(QuickOptions(Path("two.pfm"), Path("out")), report);
+  ASSERT_TRUE(error.ok()) << error.message();
   ExpectFiniteResults(report);
   EXPECT_THAT(ReadBytes(Path("out") / "coeffs.json"), Not(HasSubstr("null")));
   EXPECT_THAT(ReadBytes(Path("out") / "constants.vsh"), Not(::testing::ContainsRegex(",[ -]*(inf|nan)")));
@@ -86,8 +87,8 @@ TEST_F(FloatRange, ACrossWithOneTexelAtFloatMaxGivesAFiniteAnswer) {
   cube.face(CubeFace::kNegativeZ).at(3, 12) = glm::vec3(kFloatMax, 1.0f, kFloatMax);
   WritePfm(Path("cross.pfm"), CubeMapToImage(cube, EnvironmentLayout::kHorizontalCross));
   IrrmapReport report;
-  const std::optional<std::string> error = RunIrrmap(QuickOptions(Path("cross.pfm"), Path("out")), report);
-  ASSERT_FALSE(error) << *error;
+  const Status error = RunIrrmap(QuickOptions(Path("cross.pfm"), Path("out")), report);
+  ASSERT_TRUE(error.ok()) << error.message();
   ExpectFiniteResults(report);
   EXPECT_EQ(report.texel_range.max, kFloatMax);
 }
@@ -97,8 +98,8 @@ TEST_F(FloatRange, HugeNegativeTexelsAreClampedAndTheAnswerIsFinite) {
   for (int x = 0; x < 64; ++x) image.at(x, 5) = glm::vec3(-kFloatMax);
   WritePfm(Path("negative.pfm"), image);
   IrrmapReport report;
-  const std::optional<std::string> error = RunIrrmap(QuickOptions(Path("negative.pfm"), Path("out")), report);
-  ASSERT_FALSE(error) << *error;
+  const Status error = RunIrrmap(QuickOptions(Path("negative.pfm"), Path("out")), report);
+  ASSERT_TRUE(error.ok()) << error.message();
   ExpectFiniteResults(report);
 }
 
@@ -112,9 +113,9 @@ TEST_F(FloatRange, AnInMemoryCubeOfHugeTexelsFails) {
   options.write_files = false;
   options.coefficients_only = true;
   IrrmapReport report;
-  const std::optional<std::string> error = RunIrrmap(options, report);
-  ASSERT_TRUE(error);
-  EXPECT_THAT(*error, HasSubstr("texels from 3e+38 to 3e+38"));
+  const Status error = RunIrrmap(options, report);
+  ASSERT_FALSE(error.ok());
+  EXPECT_THAT(error.message(), HasSubstr("texels from 3e+38 to 3e+38"));
 }
 
 TEST_F(FloatRange, BatchRecordsHoldOnlyFiniteNumbersAndFailTheOverflowingFile) {
@@ -128,7 +129,7 @@ TEST_F(FloatRange, BatchRecordsHoldOnlyFiniteNumbersAndFailTheOverflowingFile) {
   options.face_size = 32;
   options.threads = 1;
   BatchSummary summary;
-  ASSERT_EQ(RunBatch(options, summary), std::nullopt);
+  ASSERT_EQ(RunBatch(options, summary).message(), "");
   EXPECT_EQ(summary.succeeded, 1u);
   ASSERT_EQ(summary.failures.size(), 1u);
   EXPECT_THAT(summary.failures[0].input, HasSubstr("a_bright.pfm"));

@@ -109,7 +109,7 @@ TEST(Irrmap, PaperProgramReadsItsRegistersFromTheMetadataAndMatchesEq6) {
 
 TEST_F(IrrmapJob, WritesTheFiveFilesForASmallBuiltin) {
   options_.environment = "sky";
-  ASSERT_EQ(RunIrrmap(options_, report_), std::nullopt);
+  ASSERT_EQ(RunIrrmap(options_, report_).message(), "");
   const fs::path out = options_.out_dir;
   for (const char* name : {"coeffs.json", "constants.vsh", "program.vsh", "irradiance.exr", "preview.png"}) {
     EXPECT_TRUE(fs::is_regular_file(out / name)) << name;
@@ -178,11 +178,11 @@ TEST_F(IrrmapJob, WritesTheFiveFilesForASmallBuiltin) {
 TEST_F(IrrmapJob, CoefficientsOnlyWritesTheSameCoefficientsAndNoMore) {
   options_.environment = "studio";
   options_.level = 2;
-  ASSERT_EQ(RunIrrmap(options_, report_), std::nullopt);
+  ASSERT_EQ(RunIrrmap(options_, report_).message(), "");
   const Sh9Rgb full_run = report_.coefficients;
   options_.out_dir = folder_ / "coefficients_only";
   options_.coefficients_only = true;
-  ASSERT_EQ(RunIrrmap(options_, report_), std::nullopt);
+  ASSERT_EQ(RunIrrmap(options_, report_).message(), "");
   std::vector<std::string> names;
   for (const auto& entry : fs::directory_iterator(options_.out_dir)) names.push_back(entry.path().filename());
   std::sort(names.begin(), names.end());
@@ -200,7 +200,7 @@ TEST_F(IrrmapJob, ReportsEveryLevelAndCoarseLevelsKeepTheFullResolutionError) {
   options_.environment = "sky";
   options_.face_size = 128;
   options_.level = 3;
-  ASSERT_EQ(RunIrrmap(options_, report_), std::nullopt);
+  ASSERT_EQ(RunIrrmap(options_, report_).message(), "");
   EXPECT_EQ(report_.level, 3);
   ASSERT_EQ(report_.levels.size(), 8u);
   const ErrorStats& full = report_.levels[0].error;
@@ -223,7 +223,7 @@ TEST_F(IrrmapJob, ReportsEveryLevelAndCoarseLevelsKeepTheFullResolutionError) {
 
 TEST_F(IrrmapJob, WhiteFurnaceHasNoErrorAtAnyLevel) {
   options_.environment = "constant";
-  ASSERT_EQ(RunIrrmap(options_, report_), std::nullopt);
+  ASSERT_EQ(RunIrrmap(options_, report_).message(), "");
   for (const LevelReport& level : report_.levels) {
     EXPECT_LT(level.error.max_relative, kFurnaceError) << "level " << level.level;
   }
@@ -232,21 +232,22 @@ TEST_F(IrrmapJob, WhiteFurnaceHasNoErrorAtAnyLevel) {
 TEST_F(IrrmapJob, RejectsAnOutOfRangeLevelNamingTheRange) {
   options_.environment = "sky";
   options_.level = 6;
-  const std::optional<std::string> error = RunIrrmap(options_, report_);
-  ASSERT_TRUE(error);
-  EXPECT_THAT(*error, HasSubstr("--level 6"));
-  EXPECT_THAT(*error, HasSubstr("0 (32x32) to 5 (1x1)"));
+  const Status error = RunIrrmap(options_, report_);
+  ASSERT_FALSE(error.ok());
+  EXPECT_THAT(error.message(), HasSubstr("--level 6"));
+  EXPECT_THAT(error.message(), HasSubstr("0 (32x32) to 5 (1x1)"));
   ExpectNoOutput();
   options_.level = -1;
-  EXPECT_TRUE(RunIrrmap(options_, report_));
+  EXPECT_FALSE(RunIrrmap(options_, report_).ok());
   ExpectNoOutput();
 }
 
 TEST_F(IrrmapJob, RejectsAMissingFile) {
   options_.environment = (folder_ / "missing.exr").string();
-  const std::optional<std::string> error = RunIrrmap(options_, report_);
-  ASSERT_TRUE(error);
-  EXPECT_THAT(*error, HasSubstr("missing.exr"));
+  const Status error = RunIrrmap(options_, report_);
+  ASSERT_FALSE(error.ok());
+  EXPECT_EQ(error.error().code, DiagnosticCode::kNoSuchInput);
+  EXPECT_THAT(error.message(), HasSubstr("missing.exr"));
   ExpectNoOutput();
 }
 
@@ -255,7 +256,7 @@ TEST_F(IrrmapJob, RejectsALayoutThatDoesNotFitTheFile) {
   ASSERT_EQ(WriteCrossExr(*MakeBuiltinEnvironment("spot", 16), cross).message(), "");
   options_.environment = cross.string();
   options_.layout = EnvironmentLayout::kLatLong;
-  EXPECT_TRUE(RunIrrmap(options_, report_));
+  EXPECT_FALSE(RunIrrmap(options_, report_).ok());
   ExpectNoOutput();
 }
 
@@ -263,24 +264,27 @@ TEST_F(IrrmapJob, RejectsACubeWhoseFaceSizeIsNotAPowerOfTwo) {
   const fs::path cross = folder_ / "cross24.exr";
   ASSERT_EQ(WriteCrossExr(MakeConstant(24), cross).message(), "");
   options_.environment = cross.string();
-  const std::optional<std::string> error = RunIrrmap(options_, report_);
-  ASSERT_TRUE(error);
-  EXPECT_THAT(*error, HasSubstr("power of two"));
+  const Status error = RunIrrmap(options_, report_);
+  ASSERT_FALSE(error.ok());
+  EXPECT_THAT(error.message(), HasSubstr("power of two"));
   ExpectNoOutput();
 }
 
 TEST_F(IrrmapJob, RejectsBadOptionsBeforeAnyWork) {
   options_.environment = "nosuchbuiltin";
-  EXPECT_THAT(RunIrrmap(options_, report_).value_or(""), HasSubstr("built-in"));
+  EXPECT_THAT(RunIrrmap(options_, report_).message(), HasSubstr("built-in"));
   options_.environment = "sky";
   options_.engine = "gpu";
-  EXPECT_THAT(RunIrrmap(options_, report_).value_or(""), HasSubstr("gpu"));
+  EXPECT_THAT(RunIrrmap(options_, report_).message(), HasSubstr("gpu"));
   options_.engine = "ref";
   options_.face_size = 48;
-  EXPECT_THAT(RunIrrmap(options_, report_).value_or(""), HasSubstr("power of two"));
+  EXPECT_THAT(RunIrrmap(options_, report_).message(), HasSubstr("power of two"));
   options_.face_size = 32;
   options_.map_size = 0;
-  EXPECT_THAT(RunIrrmap(options_, report_).value_or(""), HasSubstr("--map-size"));
+  const Status map_size = RunIrrmap(options_, report_);
+  EXPECT_THAT(map_size.message(), HasSubstr("--map-size"));
+  EXPECT_EQ(map_size.error().code, DiagnosticCode::kOptionValue);
+  EXPECT_EQ(CheckIrrmapOptions(options_).message(), map_size.message()) << "the same check, before any work";
   ExpectNoOutput();
 }
 
@@ -289,7 +293,7 @@ TEST_F(IrrmapJob, ReadsACrossFileAndNamesItsLayout) {
   ASSERT_EQ(WriteCrossExr(*MakeBuiltinEnvironment("studio", 16), cross).message(), "");
   options_.environment = cross.string();
   options_.engine = "ref";
-  ASSERT_EQ(RunIrrmap(options_, report_), std::nullopt);
+  ASSERT_EQ(RunIrrmap(options_, report_).message(), "");
   EXPECT_EQ(report_.layout, "hcross");
   EXPECT_EQ(report_.face_size, 16);
   const nlohmann::json json = nlohmann::json::parse(ReadText(options_.out_dir / "coeffs.json"));
@@ -303,9 +307,9 @@ TEST_F(IrrmapJob, AnUnwritableOutputLeavesNoFiles) {
   std::ofstream(blocker) << "x";
   options_.environment = "spot";
   options_.out_dir = blocker / "out";
-  const std::optional<std::string> error = RunIrrmap(options_, report_);
-  ASSERT_TRUE(error);
-  EXPECT_THAT(*error, HasSubstr("blocker"));
+  const Status error = RunIrrmap(options_, report_);
+  ASSERT_FALSE(error.ok());
+  EXPECT_THAT(error.message(), HasSubstr("blocker"));
   EXPECT_EQ(ReadText(blocker), "x");
   EXPECT_EQ(std::distance(fs::directory_iterator(folder_), fs::directory_iterator()), 1);
 }
@@ -314,9 +318,9 @@ TEST_F(IrrmapJob, AFolderInPlaceOfAnOutputFailsBeforeAnythingIsReplaced) {
   options_.environment = "spot";
   fs::create_directories(options_.out_dir / "preview.png");
   std::ofstream(options_.out_dir / "coeffs.json") << "old";
-  const std::optional<std::string> error = RunIrrmap(options_, report_);
-  ASSERT_TRUE(error);
-  EXPECT_THAT(*error, HasSubstr("preview.png"));
+  const Status error = RunIrrmap(options_, report_);
+  ASSERT_FALSE(error.ok());
+  EXPECT_THAT(error.message(), HasSubstr("preview.png"));
   EXPECT_EQ(ReadText(options_.out_dir / "coeffs.json"), "old");
   EXPECT_EQ(std::distance(fs::directory_iterator(options_.out_dir), fs::directory_iterator()), 2);
 }
@@ -364,7 +368,7 @@ TEST_F(IrrmapJob, LatLongCoefficientsOnlyProjectThePanoramaInPlaceAndBuildNoCube
   options_.coefficients_only = true;
   options_.no_ground_truth = true;
   options_.level = 0;
-  ASSERT_EQ(RunIrrmap(options_, report_), std::nullopt);
+  ASSERT_EQ(RunIrrmap(options_, report_).message(), "");
   EXPECT_TRUE(HasTiming(report_, "latlong_pyramid"));
   EXPECT_FALSE(HasTiming(report_, "resample_cube"));
   EXPECT_FALSE(HasTiming(report_, "env_mips"));
@@ -380,11 +384,11 @@ TEST_F(IrrmapJob, LatLongCoefficientsOnlyProjectThePanoramaInPlaceAndBuildNoCube
 TEST_F(IrrmapJob, LatLongTheIrradianceMapNeedsNoCubeButTheGroundTruthResamplesOnce) {
   ASSERT_TRUE(UsePanoramaFile(folder_, options_));
   options_.no_ground_truth = true;
-  ASSERT_EQ(RunIrrmap(options_, report_), std::nullopt);
+  ASSERT_EQ(RunIrrmap(options_, report_).message(), "");
   EXPECT_FALSE(HasTiming(report_, "resample_cube"));
   EXPECT_EQ(report_.irradiance_map.face_size, 16);
   options_.no_ground_truth = false;
-  ASSERT_EQ(RunIrrmap(options_, report_), std::nullopt);
+  ASSERT_EQ(RunIrrmap(options_, report_).message(), "");
   EXPECT_EQ(std::count_if(report_.timings.begin(), report_.timings.end(),
                           [](const Timing& timing) { return timing.name == "resample_cube"; }),
             1);
@@ -396,13 +400,13 @@ TEST_F(IrrmapJob, LatLongTheIrradianceMapNeedsNoCubeButTheGroundTruthResamplesOn
 TEST_F(IrrmapJob, LatLongAnArrayInMemoryGivesWhatItsFileGives) {
   ASSERT_TRUE(UsePanoramaFile(folder_, options_));
   options_.coefficients_only = true;
-  ASSERT_EQ(RunIrrmap(options_, report_), std::nullopt);
+  ASSERT_EQ(RunIrrmap(options_, report_).message(), "");
   const Sh9Rgb from_file = report_.coefficients;
   const int level = report_.level;
   options_.latlong = Panorama();
   options_.environment = "array";
   options_.layout = EnvironmentLayout::kLatLong;
-  ASSERT_EQ(RunIrrmap(options_, report_), std::nullopt);
+  ASSERT_EQ(RunIrrmap(options_, report_).message(), "");
   EXPECT_EQ(report_.level, level);
   EXPECT_EQ(LargestDifference(report_.coefficients, from_file), 0.0);
 }

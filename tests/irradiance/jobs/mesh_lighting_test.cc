@@ -65,11 +65,11 @@ TEST_F(MeshLightingTest, EveryTestModelWithTrianglesIsLitAsIrrmapDoes) {
     if (!entry.is_regular_file() || !mesh::IsMeshFileExtension(entry.path().extension().string())) continue;
     MeshGeometry geometry;
     std::vector<std::string> warnings;
-    std::optional<std::string> error = LoadMeshGeometry(entry.path().string(), geometry, warnings);
-    if (error) {
-      if (error->find("no normals") != std::string::npos) {
+    Status error = LoadMeshGeometry(entry.path().string(), geometry, warnings);
+    if (!error.ok()) {
+      if (error.message().find("no normals") != std::string::npos) {
         ++without_normals;
-      } else if (error->find("no triangles") != std::string::npos) {
+      } else if (error.message().find("no triangles") != std::string::npos) {
         ++without_triangles;
       } else {
         ++unreadable;
@@ -89,7 +89,7 @@ TEST_F(MeshLightingTest, EveryTestModelWithTrianglesIsLitAsIrrmapDoes) {
     // picture's content is checked by the Wuson tests below.
     options.mesh_panel_size = 48;
     IrrmapReport report;
-    ASSERT_EQ(RunIrrmap(options, report), std::nullopt);
+    ASSERT_EQ(RunIrrmap(options, report).message(), "");
     ASSERT_TRUE(report.mesh);
     EXPECT_EQ(report.mesh->vertex_count, options.mesh->positions.size());
     EXPECT_TRUE(fs::exists(dir_ / "out" / "mesh.ply"));
@@ -109,7 +109,7 @@ TEST_F(MeshLightingTest, EveryTestModelWithTrianglesIsLitAsIrrmapDoes) {
 TEST_F(MeshLightingTest, PictureShowsTheLitMeshBesideTheTruthAndTheError) {
   MeshGeometry geometry;
   std::vector<std::string> warnings;
-  ASSERT_EQ(LoadMeshGeometry(kWuson, geometry, warnings), std::nullopt);
+  ASSERT_EQ(LoadMeshGeometry(kWuson, geometry, warnings).message(), "");
   Result<PaperProgram> program = PaperProgram::Load();
   ASSERT_TRUE(program) << program.message();
   // A constant environment of radiance 1: E = pi for every normal.

@@ -62,22 +62,23 @@ class OutputMetadata : public ::testing::Test {
 TEST_F(OutputMetadata, AFileIsDigestedWithItsSizeAndSha256) {
   std::ofstream(Path("abc.txt"), std::ios::binary) << "abc";
   InputFileDigest digest;
-  ASSERT_EQ(DigestInputFile(Path("abc.txt"), digest), std::nullopt);
+  ASSERT_EQ(DigestInputFile(Path("abc.txt"), digest).message(), "");
   EXPECT_EQ(digest.size_bytes, 3u);
   EXPECT_EQ(digest.sha256, "ba7816bf8f01cfea414140de5dae2223b00361a396177a9cb410ff61f20015ad");  // FIPS 180-2's "abc"
   EXPECT_EQ(digest.path, Path("abc.txt").string());
-  const std::optional<std::string> missing = DigestInputFile(Path("gone.exr"), digest);
-  ASSERT_NE(missing, std::nullopt);
-  EXPECT_THAT(*missing, HasSubstr("gone.exr"));
+  const Status missing = DigestInputFile(Path("gone.exr"), digest);
+  ASSERT_FALSE(missing.ok());
+  EXPECT_THAT(missing.message(), HasSubstr("gone.exr"));
 }
 
 TEST(OutputSchema, OnlyThisVersionPassesAndOthersAreNamed) {
-  EXPECT_EQ(OtherSchemaVersion({{"schema_version", kOutputSchemaVersion}}), std::nullopt);
-  EXPECT_THAT(OtherSchemaVersion(nlohmann::json::object()).value_or(""), HasSubstr("schema version 1 (an older"));
-  EXPECT_THAT(OtherSchemaVersion({{"schema_version", kOutputSchemaVersion + 1}}).value_or(""),
+  EXPECT_EQ(OtherSchemaVersion({{"schema_version", kOutputSchemaVersion}}).message(), "");
+  EXPECT_EQ(OtherSchemaVersion(nlohmann::json::object()).error().code, DiagnosticCode::kBatchRecord);
+  EXPECT_THAT(OtherSchemaVersion(nlohmann::json::object()).message(), HasSubstr("schema version 1 (an older"));
+  EXPECT_THAT(OtherSchemaVersion({{"schema_version", kOutputSchemaVersion + 1}}).message(),
               HasSubstr(fmt::format("schema version {} (a newer", kOutputSchemaVersion + 1)));
-  EXPECT_THAT(OtherSchemaVersion({{"schema_version", "2"}}).value_or(""), HasSubstr("not a positive integer"));
-  EXPECT_THAT(OtherSchemaVersion({{"schema_version", 0}}).value_or(""), HasSubstr("not a positive integer"));
+  EXPECT_THAT(OtherSchemaVersion({{"schema_version", "2"}}).message(), HasSubstr("not a positive integer"));
+  EXPECT_THAT(OtherSchemaVersion({{"schema_version", 0}}).message(), HasSubstr("not a positive integer"));
 }
 
 TEST_F(OutputMetadata, CoeffsJsonSaysItsConventionAndProvenance) {
@@ -87,7 +88,7 @@ TEST_F(OutputMetadata, CoeffsJsonSaysItsConventionAndProvenance) {
   options.coefficients_only = true;
   options.out_dir = Path("out");
   IrrmapReport report;
-  ASSERT_EQ(RunIrrmap(options, report), std::nullopt);
+  ASSERT_EQ(RunIrrmap(options, report).message(), "");
   const nlohmann::json json = nlohmann::json::parse(ReadText(Path("out") / "coeffs.json"));
   EXPECT_EQ(json["schema_version"], kOutputSchemaVersion);
   EXPECT_EQ(json["convention"]["quantity"], "radiance");
@@ -98,7 +99,7 @@ TEST_F(OutputMetadata, CoeffsJsonSaysItsConventionAndProvenance) {
   EXPECT_EQ(provenance["input_kind"], "latlong");
   ASSERT_EQ(provenance["files"].size(), 1u);
   InputFileDigest digest;
-  ASSERT_EQ(DigestInputFile(options.environment, digest), std::nullopt);
+  ASSERT_EQ(DigestInputFile(options.environment, digest).message(), "");
   EXPECT_EQ(provenance["files"][0]["sha256"], digest.sha256);
   EXPECT_EQ(provenance["files"][0]["size_bytes"], digest.size_bytes);
   EXPECT_EQ(provenance["options"]["face_size"], 8);
@@ -106,7 +107,7 @@ TEST_F(OutputMetadata, CoeffsJsonSaysItsConventionAndProvenance) {
 
   options.environment = "sky";  // a built-in reads no file
   options.out_dir = Path("sky");
-  ASSERT_EQ(RunIrrmap(options, report), std::nullopt);
+  ASSERT_EQ(RunIrrmap(options, report).message(), "");
   const nlohmann::json sky = nlohmann::json::parse(ReadText(Path("sky") / "coeffs.json"));
   EXPECT_EQ(sky["provenance"]["input_kind"], "builtin");
   EXPECT_EQ(sky["convention"]["source_kind"], "cube");
@@ -126,7 +127,7 @@ TEST_F(OutputMetadata, ABatchRecordIsMadeAgainFromItsOwnMetadata) {
   batch.window_width = 3.0;
   batch.max_error = 0.02;
   BatchSummary summary;
-  ASSERT_EQ(RunBatch(batch, summary), std::nullopt);
+  ASSERT_EQ(RunBatch(batch, summary).message(), "");
   ASSERT_EQ(summary.succeeded, 2u);
   std::ifstream in(batch.output);
   std::string line;
@@ -153,7 +154,7 @@ TEST_F(OutputMetadata, ABatchRecordIsMadeAgainFromItsOwnMetadata) {
     again.coefficients_only = true;
     again.write_files = false;
     IrrmapReport report;
-    ASSERT_EQ(RunIrrmap(again, report), std::nullopt);
+    ASSERT_EQ(RunIrrmap(again, report).message(), "");
     EXPECT_EQ(record["level"], report.level);
     for (int i = 0; i < kSh9Coefficients; ++i) {
       for (int c = 0; c < 3; ++c) {
@@ -171,7 +172,7 @@ TEST_F(OutputMetadata, ResumeRefusesRecordsOfAnotherSchemaVersionAndChangesNothi
   batch.output = Path("out.jsonl");
   batch.face_size = 8;
   BatchSummary summary;
-  ASSERT_EQ(RunBatch(batch, summary), std::nullopt);
+  ASSERT_EQ(RunBatch(batch, summary).message(), "");
   const std::string written = ReadText(batch.output);
   const std::string current = fmt::format("\"schema_version\":{},", kOutputSchemaVersion);
   ASSERT_NE(written.find(current), std::string::npos);
@@ -181,9 +182,9 @@ TEST_F(OutputMetadata, ResumeRefusesRecordsOfAnotherSchemaVersionAndChangesNothi
     std::string text = written;
     text.replace(text.find(current), current.size(), other);
     std::ofstream(batch.output, std::ios::binary) << text;
-    const std::optional<std::string> error = RunBatch(batch, summary);
-    ASSERT_NE(error, std::nullopt) << other;
-    EXPECT_THAT(*error, HasSubstr(batch.output.string() + ":1: a record of schema version"));
+    const Status error = RunBatch(batch, summary);
+    ASSERT_FALSE(error.ok()) << other;
+    EXPECT_THAT(error.message(), HasSubstr(batch.output.string() + ":1: a record of schema version"));
     EXPECT_EQ(ReadText(batch.output), text);
   }
 }

@@ -42,7 +42,7 @@ std::string AllWarnings(const std::vector<std::string>& warnings) {
 TEST(LoadMeshGeometry, ZeroNormalsOfAnStlAreComputedWithAWarning) {
   MeshGeometry geometry;
   std::vector<std::string> warnings;
-  ASSERT_EQ(LoadMeshGeometry(kWusonStl, geometry, warnings), std::nullopt);
+  ASSERT_EQ(LoadMeshGeometry(kWusonStl, geometry, warnings).message(), "");
   ASSERT_EQ(geometry.normals.size(), kWusonStlVertices);
   for (std::size_t i = 0; i < geometry.normals.size(); ++i) {
     ASSERT_NEAR(glm::length(glm::dvec3(geometry.normals[i])), 1.0, kUnitTolerance) << "vertex " << i;
@@ -58,7 +58,7 @@ TEST(LoadMeshGeometry, ZeroNormalsOfAnStlAreComputedWithAWarning) {
 TEST(LoadMeshGeometry, AnStlWithZeroNormalsIsLitBySky) {
   MeshGeometry geometry;
   std::vector<std::string> warnings;
-  ASSERT_EQ(LoadMeshGeometry(kWusonStl, geometry, warnings), std::nullopt);
+  ASSERT_EQ(LoadMeshGeometry(kWusonStl, geometry, warnings).message(), "");
   Result<PaperProgram> program = PaperProgram::Load();
   ASSERT_TRUE(program) << program.message();
   const CubeMap sky = *MakeBuiltinEnvironment("sky", 8);
@@ -87,7 +87,7 @@ TEST(LoadMeshGeometry, OnlyUnusableNormalsAreReplaced) {
                          "f 1//1 2//2 3//3\nf 1//1 3//3 4//1\n";
   MeshGeometry geometry;
   std::vector<std::string> warnings;
-  ASSERT_EQ(LoadMeshGeometry(file.string(), geometry, warnings), std::nullopt);
+  ASSERT_EQ(LoadMeshGeometry(file.string(), geometry, warnings).message(), "");
   const mesh::MeshLoadResult plain = mesh::LoadMesh(file);
   ASSERT_TRUE(plain.ok()) << plain.error;
   ASSERT_EQ(geometry.normals.size(), plain.mesh->vertex_count);
@@ -109,7 +109,7 @@ TEST(LoadMeshGeometry, OnlyUnusableNormalsAreReplaced) {
 TEST(LoadMeshGeometry, GoodNormalsKeepTheirBitsAndGiveNoWarning) {
   MeshGeometry geometry;
   std::vector<std::string> warnings;
-  ASSERT_EQ(LoadMeshGeometry(kWusonPly, geometry, warnings), std::nullopt);
+  ASSERT_EQ(LoadMeshGeometry(kWusonPly, geometry, warnings).message(), "");
   const mesh::MeshLoadResult plain = mesh::LoadMesh(kWusonPly);
   ASSERT_TRUE(plain.ok()) << plain.error;
   ASSERT_EQ(geometry.normals.size(), plain.mesh->vertex_count);
@@ -123,8 +123,8 @@ TEST(LoadMeshGeometry, GoodNormalsKeepTheirBitsAndGiveNoWarning) {
 TEST(LoadMeshGeometry, ComputeNormalsReplacesGoodNormals) {
   MeshGeometry file_normals, computed;
   std::vector<std::string> warnings;
-  ASSERT_EQ(LoadMeshGeometry(kWusonPly, file_normals, warnings), std::nullopt);
-  ASSERT_EQ(LoadMeshGeometry(kWusonPly, computed, warnings, 0, /*compute_normals=*/true), std::nullopt);
+  ASSERT_EQ(LoadMeshGeometry(kWusonPly, file_normals, warnings).message(), "");
+  ASSERT_EQ(LoadMeshGeometry(kWusonPly, computed, warnings, 0, /*compute_normals=*/true).message(), "");
   ASSERT_EQ(computed.normals.size(), file_normals.normals.size());
   std::size_t differ = 0;
   for (std::size_t i = 0; i < computed.normals.size(); ++i) {

@@ -65,7 +65,7 @@ TEST_F(TranslateCommand, WritesValidSpirvToAFileOnly) {
   std::memcpy(words.data(), bytes.data(), bytes.size());
   ASSERT_FALSE(words.empty());
   EXPECT_EQ(words[0], 0x07230203u) << "SPIR-V magic";
-  EXPECT_EQ(translate::ValidateSpirv(words), std::nullopt);
+  EXPECT_EQ(translate::ValidateSpirv(words).message(), "");
 }
 
 TEST_F(TranslateCommand, StageComputeWritesACompileableComputeShader) {

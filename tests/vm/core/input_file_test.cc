@@ -85,10 +85,11 @@ TEST_F(InputFileTest, DevicesFoldersAndMissingFilesAreRefusedWithTheReason) {
 
 TEST_F(InputFileTest, ImagesNeedARegularFileButProgramsTakePipes) {
   FilledPipe pipe("x");
-  EXPECT_FALSE(InputFileProblem(Write("a.pfm", "x"), false));
-  EXPECT_EQ(InputFileProblem(pipe.path(), false), "is a named pipe (FIFO), not a regular file");
-  EXPECT_FALSE(InputFileProblem(pipe.path(), true));
-  EXPECT_EQ(InputFileProblem("/dev/zero", true), "is a device, not a file or a pipe");
+  EXPECT_TRUE(InputFileProblem(Write("a.pfm", "x"), false).ok());
+  EXPECT_EQ(InputFileProblem(pipe.path(), false).message(), "is a named pipe (FIFO), not a regular file");
+  EXPECT_EQ(InputFileProblem(pipe.path(), false).error().code, DiagnosticCode::kCannotReadFile);
+  EXPECT_TRUE(InputFileProblem(pipe.path(), true).ok());
+  EXPECT_EQ(InputFileProblem("/dev/zero", true).message(), "is a device, not a file or a pipe");
 }
 
 TEST_F(InputFileTest, StandardInputIsNamedForMessages) {
@@ -103,18 +104,19 @@ TEST_F(InputFileTest, AnOutputIsRecognisedAsAnInputHoweverItIsSpelled) {
   const std::vector<fs::path> inputs = {dir_ / "other.csv", input};
   for (const fs::path& output : {input, dir_ / "." / "in.csv", dir_ / "link.csv", dir_ / "hard.csv",
                                  dir_ / ".." / dir_.filename() / "in.csv"}) {
-    const std::optional<std::string> error = OutputOverwritesInput(output, inputs);
-    ASSERT_TRUE(error) << output;
-    EXPECT_NE(error->find("refusing to overwrite"), std::string::npos) << *error;
+    const Status error = OutputOverwritesInput(output, inputs);
+    ASSERT_FALSE(error.ok()) << output;
+    EXPECT_EQ(error.error().code, DiagnosticCode::kOutputOverwritesInput);
+    EXPECT_NE(error.message().find("refusing to overwrite"), std::string::npos) << error.message();
   }
 }
 
 TEST_F(InputFileTest, NewOutputsAndStandardStreamsAreNoInputs) {
   const fs::path input = Write("in.csv", "1\n");
   const std::vector<fs::path> inputs = {input, "-"};
-  EXPECT_FALSE(OutputOverwritesInput(dir_ / "new.csv", inputs));
-  EXPECT_FALSE(OutputOverwritesInput(Write("other.csv", "1\n"), inputs));
-  EXPECT_FALSE(OutputOverwritesInput("-", inputs));
+  EXPECT_TRUE(OutputOverwritesInput(dir_ / "new.csv", inputs).ok());
+  EXPECT_TRUE(OutputOverwritesInput(Write("other.csv", "1\n"), inputs).ok());
+  EXPECT_TRUE(OutputOverwritesInput("-", inputs).ok());
 }
 
 }  // namespace

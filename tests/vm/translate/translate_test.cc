@@ -160,8 +160,8 @@ std::string CheckTranslations(const Program& program, const std::string& name, F
       const std::string what = fmt::format("{} {}", TargetName(target), StageName(stage));
       if (!compiled.ok) return what + ": " + compiled.log + "\n" + glsl;
       if (target != Target::kSpirv) continue;
-      if (std::optional<std::string> invalid = ValidateSpirv(compiled.spirv)) {
-        return what + ": spirv-val: " + *invalid + "\n" + glsl;
+      if (const Status valid = ValidateSpirv(compiled.spirv); !valid.ok()) {
+        return what + ": spirv-val: " + valid.message() + "\n" + glsl;
       }
     }
   }
