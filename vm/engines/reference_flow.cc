@@ -7,13 +7,13 @@
 
 #include "vm/core/operands.h"
 #include "vm/core/semantics.h"
+#include "vm/core/static_flow.h"
 
 namespace vs11 {
 namespace {
 
 constexpr int kTemps = RegisterCount(RegisterFile::kTemp, ShaderModel::kVs30);
 constexpr int kInputs = RegisterCount(RegisterFile::kInput, ShaderModel::kVs30);
-constexpr int kNoMatch = -1;
 
 // One vertex's registers in the later models: 32 temporaries, a0 as four lanes, aL and p0.
 struct FlowState {
@@ -38,46 +38,6 @@ struct CallFrame {
   int return_to = 0;
   std::size_t loop_depth = 0;
 };
-
-// Where each block instruction's partner is, found once: if/ifc -> its else or endif, else -> endif,
-// loop/rep -> endloop/endrep; and where each label is. kNoMatch for an unbalanced program (only an
-// unvalidated one), which then ends at that instruction.
-struct ControlTable {
-  std::vector<int> partner;
-  std::vector<int> label_at;  // by label number
-};
-
-bool OpensBlock(Opcode op) { return op == Opcode::kIf || op == Opcode::kIfc || op == Opcode::kLoop || op == Opcode::kRep; }
-bool ClosesBlock(Opcode op) { return op == Opcode::kEndif || op == Opcode::kEndloop || op == Opcode::kEndrep; }
-
-ControlTable BuildControlTable(const Program& program) {
-  const int n = static_cast<int>(program.instructions.size());
-  ControlTable table;
-  table.partner.assign(static_cast<std::size_t>(n), kNoMatch);
-  std::vector<int> open;  // indices of if/loop/rep, and of else in place of its if
-  for (int i = 0; i < n; ++i) {
-    const Instruction& instruction = program.instructions[static_cast<std::size_t>(i)];
-    const Opcode op = instruction.opcode;
-    if (op == Opcode::kLabel) {
-      const int label = instruction.sources[0].reg.index;
-      if (label >= 0 && label < RegisterCount(RegisterFile::kLabel, ShaderModel::kVs30)) {
-        if (static_cast<int>(table.label_at.size()) <= label) table.label_at.resize(static_cast<std::size_t>(label) + 1, kNoMatch);
-        table.label_at[static_cast<std::size_t>(label)] = i;
-      }
-      open.clear();  // a subroutine starts afresh
-    } else if (OpensBlock(op)) {
-      open.push_back(i);
-    } else if (op == Opcode::kElse && !open.empty()) {
-      table.partner[static_cast<std::size_t>(open.back())] = i;
-      open.back() = i;
-    } else if (ClosesBlock(op) && !open.empty()) {
-      table.partner[static_cast<std::size_t>(open.back())] = i;
-      if (op != Opcode::kEndif) table.partner[static_cast<std::size_t>(i)] = open.back();
-      open.pop_back();
-    }
-  }
-  return table;
-}
 
 template <FloatRules kRules>
 class FlowInterpreter {
@@ -323,13 +283,6 @@ class FlowInterpreter {
   std::vector<LoopFrame> loops_;
   std::vector<CallFrame> calls_;
 };
-
-// The bank the program sees: at least the model's constants (vs_2_0 on: 256, which the validator lets a
-// program read whatever the API bank's size), the program's definitions written over the API's values.
-ConstantBank ModelConstants(const Program& program, ConstantBank api_constants) {
-  api_constants.GrowTo(RegisterCount(RegisterFile::kConst, program.model()));
-  return ApplyDefinitions(program, std::move(api_constants));
-}
 
 class FlowReferenceEngine final : public Engine {
  public:
