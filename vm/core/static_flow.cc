@@ -125,20 +125,6 @@ RegisterRef RegisterOfSlot(int slot) {
   return {RegisterFile::kTexCoordOut, slot - static_cast<int>(OutputSlot::kTexCoord0)};
 }
 
-struct LoopFrame {
-  int first = 0;  // the body's first instruction
-  int end = 0;    // the endloop or endrep
-  int remaining = 0;
-  int step = 0;
-  int outer_aL = 0;
-  bool is_loop = false;
-};
-
-struct CallFrame {
-  int return_to = 0;
-  std::size_t loop_depth = 0;
-};
-
 // The reference engine's control walk (vm/engines/reference_flow.cc) with every condition a constant:
 // the instructions it would run, in order, each with aL resolved.
 class Specialiser {
@@ -152,7 +138,8 @@ class Specialiser {
   Result<Program> Run(std::string_view engine) {
     const int n = static_cast<int>(program_.instructions.size());
     int steps = 0;
-    for (int pc = 0; pc >= 0 && pc < n; pc = Step(pc)) {
+    FlowWalk<Specialiser> walk(program_, control_, *this, aL_);
+    for (int pc = 0; pc >= 0 && pc < n; pc = walk.Step(pc)) {
       if (++steps > kMaxStaticFlowSteps) {
         return Failure(DiagnosticCode::kEngineUnavailable,
                        fmt::format("the {} engine cannot specialise this {} program for its integer and boolean "
@@ -172,79 +159,12 @@ class Specialiser {
   }
 
  private:
-  int Step(int pc) {
-    const Instruction& instruction = program_.instructions[static_cast<std::size_t>(pc)];
-    const int partner = control_.partner[static_cast<std::size_t>(pc)];
-    switch (instruction.opcode) {
-      case Opcode::kRet:
-      case Opcode::kLabel: return Return();
-      case Opcode::kCall: return Call(instruction.sources[0], pc);
-      case Opcode::kCallnz: return Condition(instruction.sources[1]) ? Call(instruction.sources[0], pc) : pc + 1;
-      case Opcode::kIf: return Condition(instruction.sources[0]) ? pc + 1 : Skip(partner);
-      case Opcode::kElse: return Skip(partner);
-      case Opcode::kEndif: return pc + 1;
-      case Opcode::kRep:
-      case Opcode::kLoop: return EnterLoop(instruction, pc, partner);
-      case Opcode::kEndrep:
-      case Opcode::kEndloop: return EndOfBody(pc);
-      case Opcode::kBreak: return Break(pc);
-      default: Emit(instruction); return pc + 1;
-    }
-  }
-
-  static int Skip(int partner) { return partner == kNoMatch ? -1 : partner + 1; }
-
-  int Return() {
-    if (calls_.empty()) return -1;
-    const CallFrame frame = calls_.back();
-    calls_.pop_back();
-    loops_.resize(std::min(loops_.size(), frame.loop_depth));
-    return frame.return_to;
-  }
-
-  int Call(const SourceOperand& label, int pc) {
-    const int index = label.reg.index;
-    const bool known = index >= 0 && index < static_cast<int>(control_.label_at.size()) &&
-                       control_.label_at[static_cast<std::size_t>(index)] != kNoMatch;
-    if (!known || static_cast<int>(calls_.size()) >= Info(program_.model()).call_depth) return pc + 1;
-    calls_.push_back({pc + 1, loops_.size()});
-    return control_.label_at[static_cast<std::size_t>(index)] + 1;
-  }
+  friend class FlowWalk<Specialiser>;
 
   Vec4i Integer(int index) const {
     return index >= 0 && index < kIntegerConstantCount ? key_.integers[static_cast<std::size_t>(index)] : Vec4i{};
   }
-
-  int EnterLoop(const Instruction& instruction, int pc, int partner) {
-    const bool is_loop = instruction.opcode == Opcode::kLoop;
-    const Vec4i counter = Integer(instruction.sources[is_loop ? 1 : 0].reg.index);
-    const int count = std::clamp(counter[0], 0, kMaxLoopCount);
-    if (count == 0 || partner == kNoMatch) return Skip(partner);
-    loops_.push_back({pc + 1, partner, count, counter[2], aL_, is_loop});
-    if (is_loop) aL_ = counter[1];
-    return pc + 1;
-  }
-
-  int EndOfBody(int pc) {
-    if (loops_.empty() || loops_.back().end != pc) return pc + 1;
-    LoopFrame& frame = loops_.back();
-    if (frame.is_loop) aL_ += frame.step;
-    if (--frame.remaining > 0) return frame.first;
-    Leave();
-    return pc + 1;
-  }
-
-  int Break(int pc) {
-    if (loops_.empty()) return pc + 1;
-    const int end = loops_.back().end;
-    Leave();
-    return end + 1;
-  }
-
-  void Leave() {
-    if (loops_.back().is_loop) aL_ = loops_.back().outer_aL;
-    loops_.pop_back();
-  }
+  static bool Comparison(const Instruction&) { return false; }  // StaticFlowRefusal keeps if_comp out
 
   bool Condition(const SourceOperand& source) const {
     const int index = source.reg.index;
@@ -269,7 +189,7 @@ class Specialiser {
     return reg;
   }
 
-  void Emit(const Instruction& instruction) {
+  void Execute(const Instruction& instruction) {
     const OpcodeInfo& info = instruction.info();
     if (!info.is_executable()) return;  // dcl, def, defi, defb: the bank and the outputs are the engine's
     Instruction out = instruction;
@@ -293,8 +213,6 @@ class Specialiser {
   const std::array<std::optional<int>, kOutputRegisterCountVs30> declared_outputs_;
   Program out_;
   int aL_ = 0;
-  std::vector<LoopFrame> loops_;
-  std::vector<CallFrame> calls_;
 };
 
 }  // namespace
