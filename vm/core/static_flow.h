@@ -155,7 +155,6 @@ struct StaticFlowKey {
   std::array<bool, kBooleanConstantCount> booleans{};
   int constant_count = 0;  // the bank's size: a static c# past it reads 0
   friend bool operator==(const StaticFlowKey&, const StaticFlowKey&) = default;
-  friend auto operator<=>(const StaticFlowKey&, const StaticFlowKey&) = default;
 };
 StaticFlowKey StaticFlowKeyOf(const ConstantBank& constants);  // constants: ModelConstants'
 
