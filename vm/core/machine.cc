@@ -8,18 +8,15 @@
 #include <fmt/format.h>
 
 #include "vm/core/checked_arithmetic.h"
+#include "vm/core/static_flow.h"
 
 namespace vs11 {
 
-Status EngineRefusal(const Program& program, std::string_view engine) {
+namespace {
+
+// What no engine runs of a later model yet.
+Status LaterModelRefusal(const Program& program, std::string_view engine) {
   const ShaderModel model = program.model();
-  if (Info(model).runs) return {};
-  if (engine != kLaterModelEngine) {
-    return Failure(DiagnosticCode::kEngineUnavailable,
-                   fmt::format("the {} engine cannot run {} programs yet (they assemble, disassemble and validate, "
-                               "and run on the {} engine; the {} engine runs only vs_1_1 programs)",
-                               engine, ShaderModelName(model), kLaterModelEngine, engine));
-  }
   for (std::size_t i = 0; i < program.instructions.size(); ++i) {
     if (program.instructions[i].opcode != Opcode::kTexldl) continue;
     const SourceLoc loc = program.LocOf(static_cast<int>(i));
@@ -43,6 +40,27 @@ Status EngineRefusal(const Program& program, std::string_view engine) {
                                "output of the engine (oPos, oFog, oPts, oD0-oD1, oT0-oT7)",
                                engine, reg, usage, instruction.usage_index == 0 ? "" : std::to_string(instruction.usage_index)));
   }
+  return {};
+}
+
+}  // namespace
+
+Status EngineRefusal(const Program& program, std::string_view engine, const ConstantBank* api_constants) {
+  const ShaderModel model = program.model();
+  if (Info(model).runs) return {};
+  const bool specialises = std::ranges::find(kStaticFlowEngines, engine) != kStaticFlowEngines.end();
+  if (engine != kLaterModelEngine && !specialises) {
+    return Failure(DiagnosticCode::kEngineUnavailable,
+                   fmt::format("the {} engine cannot run {} programs yet (they assemble, disassemble and validate, "
+                               "and run on the {} engine, and on batch and jit when their flow control is static; "
+                               "the {} engine runs only vs_1_1 programs)",
+                               engine, ShaderModelName(model), kLaterModelEngine, engine));
+  }
+  if (Status refusal = LaterModelRefusal(program, engine); !refusal || !specialises) return refusal;
+  if (Status refusal = StaticFlowRefusal(program, engine); !refusal || api_constants == nullptr) return refusal;
+  const Result<Program> specialised =
+      SpecialiseStaticFlow(program, StaticFlowKeyOf(ModelConstants(program, *api_constants)), engine);
+  if (!specialised) return specialised.error();
   return {};
 }
 

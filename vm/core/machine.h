@@ -62,16 +62,20 @@ class ConstantBank {
   std::array<bool, kBooleanConstantCount> booleans_{};
 };
 
-// The one engine that runs the later models' programs (vs_2_0, vs_2_x, vs_3_0): the reference engine,
+// The one engine that runs every later model's program (vs_2_0, vs_2_x, vs_3_0): the reference engine,
 // with its program counter (vm/engines/reference_flow.cc).
 inline constexpr std::string_view kLaterModelEngine = "ref";
+// The engines that run a later model's program specialised for its integer and boolean constants
+// (vm/core/static_flow.h) when its flow control is static and they have a kernel for every instruction.
+inline constexpr std::array<std::string_view, 2> kStaticFlowEngines = {"batch", "jit"};
 
 // Success, or why `engine` ("ref", "batch", "jit", "gl", "translate") cannot run `program`
 // (kEngineUnavailable; MakeEngine and translate::Translate ask here). vs_1_1 runs everywhere; the later
-// models run only on the ref engine, and there not texldl (no vertex textures yet) nor a vs_3_0 output
-// declared with a usage that has no output slot (dcl_normal o3): every other engine refuses them by
-// name rather than run them wrong.
-Status EngineRefusal(const Program& program, std::string_view engine);
+// models run on the ref engine, and on batch and jit when StaticFlowRefusal lets them and (given
+// `api_constants`) the program specialises for those constants; every other engine refuses them. Not
+// texldl (no vertex textures yet) nor a vs_3_0 output declared with a usage that has no output slot
+// (dcl_normal o3): engines refuse them by name rather than run them wrong.
+Status EngineRefusal(const Program& program, std::string_view engine, const ConstantBank* api_constants = nullptr);
 
 // The bank a program sees: the API's values with the program's def, defi and defb constants written
 // over them (§3.3 def). A definition beyond its bank is ignored (the validator rejects it).

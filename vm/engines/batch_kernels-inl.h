@@ -332,7 +332,7 @@ template <class Semantics, Opcode kOpcode, FloatRules kRules>
 void FillOpcode(KernelTable& table) {
   constexpr int kIndex = static_cast<int>(kOpcode);
   if constexpr (Info(kOpcode).since != ShaderModel::kVs11) {
-    return;  // the batch engine refuses the later models' programs (EngineRefusal): no kernels to carry
+    return;  // the batch engine refuses the later models' arithmetic rows (StaticFlowRefusal): no kernels to carry
   } else if constexpr (kRules != FloatRules::kD3d9 && !semantics::FollowsFloatRules<Semantics>) {
     return;
   } else if constexpr (semantics::HasLane<Semantics, VF>) {

@@ -7,6 +7,7 @@
 
 #include "vm/engines/batch_engine.h"
 #include "vm/engines/reference_engine.h"
+#include "vm/engines/static_flow_engine.h"
 
 namespace vs11 {
 namespace {
@@ -18,11 +19,13 @@ Result<std::unique_ptr<Engine>> MakeReference(const Program& program, const Cons
 
 Result<std::unique_ptr<Engine>> MakeBatch(const Program& program, const ConstantBank& api_constants,
                                           const EngineOptions& options) {
+  if (!Info(program.model()).runs) return MakeStaticFlowEngine(program, api_constants, options, "batch", &MakeBatchEngine);
   return MakeBatchEngine(program, api_constants, options);
 }
 
 Result<std::unique_ptr<Engine>> MakeJit(const Program& program, const ConstantBank& api_constants,
                                         const EngineOptions& options) {
+  if (!Info(program.model()).runs) return MakeStaticFlowEngine(program, api_constants, options, "jit", &MakeJitEngine);
   return MakeJitEngine(program, api_constants, options);
 }
 
@@ -114,7 +117,7 @@ Result<std::unique_ptr<Engine>> MakeEngine(std::string_view name, const Program&
                                            const ConstantBank& api_constants, const EngineOptions& options) {
   if (std::optional<EngineInfo> engine = FindEngine(name)) {
     // By its name, so that an alias (reference) is refused or allowed as the engine itself.
-    if (Status refusal = EngineRefusal(program, engine->name); !refusal) return refusal.error();
+    if (Status refusal = EngineRefusal(program, engine->name, &api_constants); !refusal) return refusal.error();
     return engine->make(program, api_constants, options);
   }
   if (Status refusal = EngineRefusal(program, name); !refusal) return refusal.error();

@@ -7,13 +7,13 @@
 
 #include "vm/core/operands.h"
 #include "vm/core/semantics.h"
+#include "vm/core/static_flow.h"
 
 namespace vs11 {
 namespace {
 
 constexpr int kTemps = RegisterCount(RegisterFile::kTemp, ShaderModel::kVs30);
 constexpr int kInputs = RegisterCount(RegisterFile::kInput, ShaderModel::kVs30);
-constexpr int kNoMatch = -1;
 
 // One vertex's registers in the later models: 32 temporaries, a0 as four lanes, aL and p0.
 struct FlowState {
@@ -25,60 +25,6 @@ struct FlowState {
   std::array<bool, 4> p0{};
 };
 
-struct LoopFrame {
-  int first = 0;  // the body's first instruction
-  int end = 0;    // the endloop or endrep
-  int remaining = 0;
-  int step = 0;
-  int outer_aL = 0;  // restored when a loop ends: aL is the innermost loop's
-  bool is_loop = false;
-};
-
-struct CallFrame {
-  int return_to = 0;
-  std::size_t loop_depth = 0;
-};
-
-// Where each block instruction's partner is, found once: if/ifc -> its else or endif, else -> endif,
-// loop/rep -> endloop/endrep; and where each label is. kNoMatch for an unbalanced program (only an
-// unvalidated one), which then ends at that instruction.
-struct ControlTable {
-  std::vector<int> partner;
-  std::vector<int> label_at;  // by label number
-};
-
-bool OpensBlock(Opcode op) { return op == Opcode::kIf || op == Opcode::kIfc || op == Opcode::kLoop || op == Opcode::kRep; }
-bool ClosesBlock(Opcode op) { return op == Opcode::kEndif || op == Opcode::kEndloop || op == Opcode::kEndrep; }
-
-ControlTable BuildControlTable(const Program& program) {
-  const int n = static_cast<int>(program.instructions.size());
-  ControlTable table;
-  table.partner.assign(static_cast<std::size_t>(n), kNoMatch);
-  std::vector<int> open;  // indices of if/loop/rep, and of else in place of its if
-  for (int i = 0; i < n; ++i) {
-    const Instruction& instruction = program.instructions[static_cast<std::size_t>(i)];
-    const Opcode op = instruction.opcode;
-    if (op == Opcode::kLabel) {
-      const int label = instruction.sources[0].reg.index;
-      if (label >= 0 && label < RegisterCount(RegisterFile::kLabel, ShaderModel::kVs30)) {
-        if (static_cast<int>(table.label_at.size()) <= label) table.label_at.resize(static_cast<std::size_t>(label) + 1, kNoMatch);
-        table.label_at[static_cast<std::size_t>(label)] = i;
-      }
-      open.clear();  // a subroutine starts afresh
-    } else if (OpensBlock(op)) {
-      open.push_back(i);
-    } else if (op == Opcode::kElse && !open.empty()) {
-      table.partner[static_cast<std::size_t>(open.back())] = i;
-      open.back() = i;
-    } else if (ClosesBlock(op) && !open.empty()) {
-      table.partner[static_cast<std::size_t>(open.back())] = i;
-      if (op != Opcode::kEndif) table.partner[static_cast<std::size_t>(i)] = open.back();
-      open.pop_back();
-    }
-  }
-  return table;
-}
-
 template <FloatRules kRules>
 class FlowInterpreter {
  public:
@@ -89,87 +35,15 @@ class FlowInterpreter {
 
   void Run() {
     const int n = static_cast<int>(program_.instructions.size());
+    FlowWalk<FlowInterpreter> walk(program_, control_, *this, state_.aL);
     int pc = 0;
-    while (pc >= 0 && pc < n) pc = Step(pc);
+    while (pc >= 0 && pc < n) pc = walk.Step(pc);
   }
 
  private:
-  // Runs instruction `pc`; the next one to run, or -1 when the program is done.
-  int Step(int pc) {
-    const Instruction& instruction = program_.instructions[static_cast<std::size_t>(pc)];
-    const int partner = control_.partner[static_cast<std::size_t>(pc)];
-    switch (instruction.opcode) {
-      case Opcode::kRet:
-      case Opcode::kLabel: return Return();  // falling onto a label ends the routine, as ret does
-      case Opcode::kCall: return Call(instruction.sources[0], pc);
-      case Opcode::kCallnz: return Condition(instruction.sources[1]) ? Call(instruction.sources[0], pc) : pc + 1;
-      case Opcode::kIf: return Condition(instruction.sources[0]) ? pc + 1 : Skip(partner);
-      case Opcode::kIfc: return Comparison(instruction) ? pc + 1 : Skip(partner);
-      case Opcode::kElse: return Skip(partner);  // the if's branch ran: past the endif
-      case Opcode::kEndif: return pc + 1;
-      case Opcode::kRep:
-      case Opcode::kLoop: return EnterLoop(instruction, pc, partner);
-      case Opcode::kEndrep:
-      case Opcode::kEndloop: return EndOfBody(pc);
-      case Opcode::kBreak: return Break(pc);
-      case Opcode::kBreakc: return Comparison(instruction) ? Break(pc) : pc + 1;
-      case Opcode::kBreakp: return Condition(instruction.sources[0]) ? Break(pc) : pc + 1;
-      default: Execute(instruction); return pc + 1;
-    }
-  }
+  friend class FlowWalk<FlowInterpreter>;
 
-  // Past a block's closing instruction; an unmatched block ends the program.
-  static int Skip(int partner) { return partner == kNoMatch ? -1 : partner + 1; }
-
-  int Return() {
-    if (calls_.empty()) return -1;  // the main program's ret
-    const CallFrame frame = calls_.back();
-    calls_.pop_back();
-    loops_.resize(std::min(loops_.size(), frame.loop_depth));
-    return frame.return_to;
-  }
-
-  // A call beyond the model's nesting (the validator rejects it; recursion included) is skipped, so
-  // that an unvalidated program cannot recurse without end.
-  int Call(const SourceOperand& label, int pc) {
-    const int index = label.reg.index;
-    const bool known = index >= 0 && index < static_cast<int>(control_.label_at.size()) &&
-                       control_.label_at[static_cast<std::size_t>(index)] != kNoMatch;
-    if (!known || static_cast<int>(calls_.size()) >= Info(model_).call_depth) return pc + 1;
-    calls_.push_back({pc + 1, loops_.size()});
-    return control_.label_at[static_cast<std::size_t>(index)] + 1;
-  }
-
-  int EnterLoop(const Instruction& instruction, int pc, int partner) {
-    const bool is_loop = instruction.opcode == Opcode::kLoop;
-    const Vec4i counter = constants_.ReadInteger(instruction.sources[is_loop ? 1 : 0].reg.index);
-    const int count = std::clamp(counter[0], 0, kMaxLoopCount);
-    if (count == 0 || partner == kNoMatch) return Skip(partner);
-    loops_.push_back({pc + 1, partner, count, counter[2], state_.aL, is_loop});
-    if (is_loop) state_.aL = counter[1];
-    return pc + 1;
-  }
-
-  int EndOfBody(int pc) {
-    if (loops_.empty() || loops_.back().end != pc) return pc + 1;  // only an unvalidated program
-    LoopFrame& frame = loops_.back();
-    if (frame.is_loop) state_.aL += frame.step;
-    if (--frame.remaining > 0) return frame.first;
-    Leave();
-    return pc + 1;
-  }
-
-  int Break(int pc) {
-    if (loops_.empty()) return pc + 1;
-    const int end = loops_.back().end;
-    Leave();
-    return end + 1;
-  }
-
-  void Leave() {
-    if (loops_.back().is_loop) state_.aL = loops_.back().outer_aL;
-    loops_.pop_back();
-  }
+  Vec4i Integer(int index) const { return constants_.ReadInteger(index); }
 
   // if b#, callnz l#, b#, breakp p0.c, if p0.c: a boolean constant or one predicate lane, `!` applied.
   bool Condition(const SourceOperand& source) const {
@@ -320,16 +194,7 @@ class FlowInterpreter {
   const std::array<std::optional<int>, kOutputRegisterCountVs30>& declared_outputs_;
   FlowState& state_;
   const ShaderModel model_;
-  std::vector<LoopFrame> loops_;
-  std::vector<CallFrame> calls_;
 };
-
-// The bank the program sees: at least the model's constants (vs_2_0 on: 256, which the validator lets a
-// program read whatever the API bank's size), the program's definitions written over the API's values.
-ConstantBank ModelConstants(const Program& program, ConstantBank api_constants) {
-  api_constants.GrowTo(RegisterCount(RegisterFile::kConst, program.model()));
-  return ApplyDefinitions(program, std::move(api_constants));
-}
 
 class FlowReferenceEngine final : public Engine {
  public:

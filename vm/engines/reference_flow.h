@@ -7,11 +7,9 @@
 #include <memory>
 
 #include "vm/core/machine.h"
+#include "vm/core/static_flow.h"  // kMaxLoopCount
 
 namespace vs11 {
-
-// Loop and rep counts outside [0, 255] (the range the reference gives for i#.x) are clamped to it.
-inline constexpr int kMaxLoopCount = 255;
 
 // `program` must be of a later model and pass EngineRefusal(program, kLaterModelEngine).
 std::unique_ptr<Engine> MakeFlowReferenceEngine(const Program& program, const ConstantBank& api_constants,

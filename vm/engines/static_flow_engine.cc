@@ -1,0 +1,101 @@
+#include "vm/engines/static_flow_engine.h"
+
+#include <algorithm>
+#include <limits>
+#include <string>
+#include <utility>
+#include <vector>
+
+#include "vm/core/static_flow.h"
+
+namespace vs11 {
+namespace {
+
+// Specialisations kept: a program's i#/b# usually take a few values (a bone count, a light count).
+constexpr std::size_t kMaxSpecialisations = 8;
+
+struct Specialisation {
+  StaticFlowKey key;
+  std::array<WriteMask, kOutputSlotCount> written;  // by the straight-line program
+  std::unique_ptr<Engine> engine;
+};
+
+class StaticFlowEngine final : public Engine {
+ public:
+  StaticFlowEngine(const Program& program, const ConstantBank& api_constants, const EngineOptions& options,
+                   std::string_view engine, StraightLineEngineMaker make)
+      : program_(program), written_(WrittenOutputLanes(program)), options_(options), name_(engine), make_(make) {
+    SetConstants(api_constants);
+  }
+
+  void SetConstants(const ConstantBank& api_constants) override {
+    const ConstantBank bank = ModelConstants(program_, api_constants);
+    const StaticFlowKey key = StaticFlowKeyOf(bank);
+    auto found = std::ranges::find_if(cache_, [&](const Specialisation& s) { return s.key == key; });
+    if (found == cache_.end()) {
+      ++specialisations_;
+      Result<Program> straight = SpecialiseStaticFlow(program_, key, name_);
+      if (!straight) {
+        current_ = nullptr;
+        error_ = straight.message();
+        return;
+      }
+      if (cache_.size() == kMaxSpecialisations) cache_.erase(cache_.begin());  // the least recently used
+      cache_.push_back({key, WrittenOutputLanes(*straight), make_(*straight, bank, options_)});
+    } else {
+      std::rotate(found, found + 1, cache_.end());  // most recently used last
+    }
+    current_ = &cache_.back();
+    error_.clear();
+    current_->engine->SetConstants(bank);
+  }
+
+  void Run(const VertexArrays& inputs, VertexArrays& outputs) override {
+    const std::vector<int> slots = outputs.registers();
+    if (current_ == nullptr) {
+      for (int slot : slots) {
+        for (int c = 0; c < 4; ++c) std::fill_n(outputs.lane(slot, c), inputs.count(), std::numeric_limits<float>::quiet_NaN());
+      }
+      return;
+    }
+    current_->engine->Run(inputs, outputs);
+    // An output the program writes somewhere starts at 0 in the reference engine, even where this
+    // specialisation never writes it (the straight-line engine would give UnwrittenOutputValue).
+    for (int slot : slots) {
+      if (!written_[slot].bits() || current_->written[slot].bits()) continue;
+      const Vec4f unwritten = UnwrittenOutputValue(slot);
+      for (int c = 0; c < 4; ++c) {
+        if (unwritten[c] != 0.0f) std::fill_n(outputs.lane(slot, c), inputs.count(), 0.0f);
+      }
+    }
+  }
+
+  std::string error() const override { return error_; }
+  int specialisations() const { return specialisations_; }
+
+ private:
+  Program program_;
+  std::array<WriteMask, kOutputSlotCount> written_;
+  EngineOptions options_;
+  std::string name_;
+  StraightLineEngineMaker make_;
+  std::vector<Specialisation> cache_;
+  Specialisation* current_ = nullptr;
+  std::string error_;
+  int specialisations_ = 0;
+};
+
+}  // namespace
+
+std::unique_ptr<Engine> MakeStaticFlowEngine(const Program& program, const ConstantBank& api_constants,
+                                             const EngineOptions& options, std::string_view engine,
+                                             StraightLineEngineMaker make) {
+  return std::make_unique<StaticFlowEngine>(program, api_constants, options, engine, make);
+}
+
+int SpecialisationCount(const Engine& engine) {
+  const auto* flow = dynamic_cast<const StaticFlowEngine*>(&engine);
+  return flow != nullptr ? flow->specialisations() : -1;
+}
+
+}  // namespace vs11

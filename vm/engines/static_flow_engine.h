@@ -1,0 +1,26 @@
+// The batch and jit engines on a later model's program (vs_2_0 on) whose flow control is static: the
+// program is specialised for the integer and boolean constants (vm/core/static_flow.h) into straight
+// vs_1_1 code, which the engine runs as it runs any vs_1_1 program. A specialisation is built when the
+// engine is made and again in SetConstants only when i#, b# or the bank's size change; the last few are
+// kept by those values with their compiled engines, so switching back costs nothing.
+#pragma once
+
+#include <memory>
+#include <string_view>
+
+#include "vm/core/machine.h"
+
+namespace vs11 {
+
+using StraightLineEngineMaker = std::unique_ptr<Engine> (*)(const Program&, const ConstantBank&, const EngineOptions&);
+
+// `program` must pass EngineRefusal(program, engine, &api_constants); `make` builds the engine that
+// runs each specialisation. When later constants do not specialise, error() says why and Run writes NaN.
+std::unique_ptr<Engine> MakeStaticFlowEngine(const Program& program, const ConstantBank& api_constants,
+                                             const EngineOptions& options, std::string_view engine,
+                                             StraightLineEngineMaker make);
+
+// How many specialisations `engine` (one MakeStaticFlowEngine made) has built; -1 for another engine.
+int SpecialisationCount(const Engine& engine);
+
+}  // namespace vs11
