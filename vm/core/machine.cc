@@ -45,7 +45,7 @@ Status LaterModelRefusal(const Program& program, std::string_view engine) {
 
 }  // namespace
 
-Status EngineRefusal(const Program& program, std::string_view engine, const ConstantBank* api_constants) {
+Status EngineRefusal(const Program& program, std::string_view engine) {
   const ShaderModel model = program.model();
   if (Info(model).runs) return {};
   const bool specialises = std::ranges::find(kStaticFlowEngines, engine) != kStaticFlowEngines.end();
@@ -57,11 +57,7 @@ Status EngineRefusal(const Program& program, std::string_view engine, const Cons
                                engine, ShaderModelName(model), kLaterModelEngine, engine));
   }
   if (Status refusal = LaterModelRefusal(program, engine); !refusal || !specialises) return refusal;
-  if (Status refusal = StaticFlowRefusal(program, engine); !refusal || api_constants == nullptr) return refusal;
-  const Result<Program> specialised =
-      SpecialiseStaticFlow(program, StaticFlowKeyOf(ModelConstants(program, *api_constants)), engine);
-  if (!specialised) return specialised.error();
-  return {};
+  return StaticFlowRefusal(program, engine);
 }
 
 ConstantBank ApplyDefinitions(const Program& program, ConstantBank api_constants) {
@@ -170,11 +166,11 @@ std::array<WriteMask, kOutputSlotCount> WrittenOutputLanes(const Program& progra
         if (slot && (reg.relative || reg.index == o)) bits[*slot] |= instruction.dest.mask.bits();
       }
     }
-  }
-  for (const Instruction& instruction : program.instructions) {
-    if (program.model() == ShaderModel::kVs30) break;
-    if (!instruction.info().is_executable() || !instruction.info().has_dest()) continue;
-    if (std::optional<int> slot = OutputSlotOf(instruction.dest.reg)) bits[*slot] |= instruction.dest.mask.bits();
+  } else {
+    for (const Instruction& instruction : program.instructions) {
+      if (!instruction.info().is_executable() || !instruction.info().has_dest()) continue;
+      if (std::optional<int> slot = OutputSlotOf(instruction.dest.reg)) bits[*slot] |= instruction.dest.mask.bits();
+    }
   }
   std::array<WriteMask, kOutputSlotCount> masks;
   for (int i = 0; i < kOutputSlotCount; ++i) masks[i] = WriteMask(bits[i]);

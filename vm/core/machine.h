@@ -71,11 +71,12 @@ inline constexpr std::array<std::string_view, 2> kStaticFlowEngines = {"batch", 
 
 // Success, or why `engine` ("ref", "batch", "jit", "gl", "translate") cannot run `program`
 // (kEngineUnavailable; MakeEngine and translate::Translate ask here). vs_1_1 runs everywhere; the later
-// models run on the ref engine, and on batch and jit when StaticFlowRefusal lets them and (given
-// `api_constants`) the program specialises for those constants; every other engine refuses them. Not
-// texldl (no vertex textures yet) nor a vs_3_0 output declared with a usage that has no output slot
-// (dcl_normal o3): engines refuse them by name rather than run them wrong.
-Status EngineRefusal(const Program& program, std::string_view engine, const ConstantBank* api_constants = nullptr);
+// models run on the ref engine, and on batch and jit when StaticFlowRefusal lets them (whether the
+// program then specialises for the constants, batch and jit find when they are made:
+// MakeStaticFlowEngine); every other engine refuses them. Not texldl (no vertex textures yet) nor a
+// vs_3_0 output declared with a usage that has no output slot (dcl_normal o3): engines refuse them by
+// name rather than run them wrong.
+Status EngineRefusal(const Program& program, std::string_view engine);
 
 // The bank a program sees: the API's values with the program's def, defi and defb constants written
 // over them (§3.3 def). A definition beyond its bank is ignored (the validator rejects it).

@@ -117,7 +117,7 @@ Result<std::unique_ptr<Engine>> MakeEngine(std::string_view name, const Program&
                                            const ConstantBank& api_constants, const EngineOptions& options) {
   if (std::optional<EngineInfo> engine = FindEngine(name)) {
     // By its name, so that an alias (reference) is refused or allowed as the engine itself.
-    if (Status refusal = EngineRefusal(program, engine->name, &api_constants); !refusal) return refusal.error();
+    if (Status refusal = EngineRefusal(program, engine->name); !refusal) return refusal.error();
     return engine->make(program, api_constants, options);
   }
   if (Status refusal = EngineRefusal(program, name); !refusal) return refusal.error();

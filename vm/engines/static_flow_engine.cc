@@ -22,13 +22,13 @@ struct Specialisation {
 
 class StaticFlowEngine final : public Engine {
  public:
-  StaticFlowEngine(const Program& program, const ConstantBank& api_constants, const EngineOptions& options,
-                   std::string_view engine, StraightLineEngineMaker make)
-      : program_(program), written_(WrittenOutputLanes(program)), options_(options), name_(engine), make_(make) {
-    SetConstants(api_constants);
-  }
+  StaticFlowEngine(const Program& program, const EngineOptions& options, std::string_view engine,
+                   StraightLineEngineMaker make)
+      : program_(program), written_(WrittenOutputLanes(program)), options_(options), name_(engine), make_(make) {}
 
-  void SetConstants(const ConstantBank& api_constants) override {
+  // Runs the specialisation for these constants from now on, building it unless it is cached; or why
+  // the program does not specialise for them (Run then writes NaN).
+  Status Specialise(const ConstantBank& api_constants) {
     const ConstantBank bank = ModelConstants(program_, api_constants);
     const StaticFlowKey key = StaticFlowKeyOf(bank);
     auto found = std::ranges::find_if(cache_, [&](const Specialisation& s) { return s.key == key; });
@@ -38,7 +38,7 @@ class StaticFlowEngine final : public Engine {
       if (!straight) {
         current_ = nullptr;
         error_ = straight.message();
-        return;
+        return straight.error();
       }
       if (cache_.size() == kMaxSpecialisations) cache_.erase(cache_.begin());  // the least recently used
       cache_.push_back({key, WrittenOutputLanes(*straight), make_(*straight, bank, options_)});
@@ -48,7 +48,10 @@ class StaticFlowEngine final : public Engine {
     current_ = &cache_.back();
     error_.clear();
     current_->engine->SetConstants(bank);
+    return {};
   }
+
+  void SetConstants(const ConstantBank& api_constants) override { (void)Specialise(api_constants); }
 
   void Run(const VertexArrays& inputs, VertexArrays& outputs) override {
     const std::vector<int> slots = outputs.registers();
@@ -87,10 +90,12 @@ class StaticFlowEngine final : public Engine {
 
 }  // namespace
 
-std::unique_ptr<Engine> MakeStaticFlowEngine(const Program& program, const ConstantBank& api_constants,
-                                             const EngineOptions& options, std::string_view engine,
-                                             StraightLineEngineMaker make) {
-  return std::make_unique<StaticFlowEngine>(program, api_constants, options, engine, make);
+Result<std::unique_ptr<Engine>> MakeStaticFlowEngine(const Program& program, const ConstantBank& api_constants,
+                                                     const EngineOptions& options, std::string_view engine,
+                                                     StraightLineEngineMaker make) {
+  auto made = std::make_unique<StaticFlowEngine>(program, options, engine, make);
+  if (Status specialised = made->Specialise(api_constants); !specialised) return specialised.error();
+  return std::unique_ptr<Engine>(std::move(made));
 }
 
 int SpecialisationCount(const Engine& engine) {

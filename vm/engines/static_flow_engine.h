@@ -14,11 +14,12 @@ namespace vs11 {
 
 using StraightLineEngineMaker = std::unique_ptr<Engine> (*)(const Program&, const ConstantBank&, const EngineOptions&);
 
-// `program` must pass EngineRefusal(program, engine, &api_constants); `make` builds the engine that
-// runs each specialisation. When later constants do not specialise, error() says why and Run writes NaN.
-std::unique_ptr<Engine> MakeStaticFlowEngine(const Program& program, const ConstantBank& api_constants,
-                                             const EngineOptions& options, std::string_view engine,
-                                             StraightLineEngineMaker make);
+// `program` must pass EngineRefusal(program, engine); `make` builds the engine that runs each
+// specialisation. Fails when the program does not specialise for `api_constants` (the unrolling is too
+// long); when later constants do not, error() says why and Run writes NaN.
+Result<std::unique_ptr<Engine>> MakeStaticFlowEngine(const Program& program, const ConstantBank& api_constants,
+                                                     const EngineOptions& options, std::string_view engine,
+                                                     StraightLineEngineMaker make);
 
 // How many specialisations `engine` (one MakeStaticFlowEngine made) has built; -1 for another engine.
 int SpecialisationCount(const Engine& engine);
