@@ -194,15 +194,15 @@ TEST(StaticFlow, RandomProgramsMatchTheReferenceBitForBit) {
 // declarations, and a call from inside a loop.
 TEST(StaticFlow, CornersMatchTheReference) {
   const char* const kPrograms[] = {
-      "vs_2_0\ndefi i0, 4, -2, 1, 0\ndefi i1, 3, 253, 1, 0\ndcl_position v0\nmov r0, v0\n"
+      ("vs_2_0\ndefi i0, 4, -2, 1, 0\ndefi i1, 3, 253, 1, 0\ndcl_position v0\nmov r0, v0\n"
       "loop aL, i0\nadd r0, r0, c[aL + 0]\nendloop\nloop aL, i1\nm4x4 r1, r0, c[aL + 0]\nadd r0, r0, r1\n"
-      "endloop\nmov oPos, r0\n",
+      "endloop\nmov oPos, r0\n"),
       "vs_2_0\ndefb b0, false\ndcl_position v0\nmov oPos, v0\nif b0\nmov oD0.xy, v0\nmov oD1.x, v0\nendif\n",
-      "vs_3_0\ndefi i0, 3, 0, 1, 0\ndcl_position v0\ndcl_texcoord v1\ndcl_texcoord v2\ndcl_position o0\n"
+      ("vs_3_0\ndefi i0, 3, 0, 1, 0\ndcl_position v0\ndcl_texcoord v1\ndcl_texcoord v2\ndcl_position o0\n"
       "dcl_texcoord0 o1\ndcl_texcoord1 o2\ndcl_color o3\nmov o0, v0\nloop aL, i0\nadd o1[aL], v0[aL], c[aL + 7]\n"
-      "endloop\n",
-      "vs_2_0\ndefi i0, 3, 5, 2, 0\ndcl_position v0\nmov r0, v0\nloop aL, i0\ncall l0\nadd r0, r0, c[aL + 1]\n"
-      "endloop\nmov oPos, r0\nret\nlabel l0\nmul r0, r0, c2\nret\n",
+      "endloop\n"),
+      ("vs_2_0\ndefi i0, 3, 5, 2, 0\ndcl_position v0\nmov r0, v0\nloop aL, i0\ncall l0\nadd r0, r0, c[aL + 1]\n"
+      "endloop\nmov oPos, r0\nret\nlabel l0\nmul r0, r0, c2\nret\n"),
   };
   std::mt19937 random(7);
   for (const char* source : kPrograms) {
