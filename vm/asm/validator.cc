@@ -14,6 +14,7 @@
 #include <fmt/ranges.h>
 
 #include "vm/asm/disassembler.h"
+#include "vm/asm/read_ports.h"
 
 namespace vs11 {
 namespace {
@@ -55,8 +56,8 @@ constexpr const VectorLaneRule* FindVectorLaneRule(Opcode opcode) {
   return nullptr;
 }
 
-// Every kVector row of vs_1_1 must have a lane rule above (the later models' validator does not track
-// lanes yet: ConsumedLanes says every lane for them).
+// Every kVector row of vs_1_1 must have a lane rule above (ConsumedLanes says every lane for the later
+// models' rows; their own lanes are in temporary_dataflow.cc).
 static_assert([] {
   for (const OpcodeInfo& info : kOpcodeTable) {
     if (info.kind == ResultKind::kVector && info.since == ShaderModel::kVs11 &&
@@ -451,71 +452,12 @@ class Validator {
     }
   }
 
-  // --- read ports (§1.7, §3.4) -----------------------------------------------------------------
-
-  // The sources read together: one group for ordinary instructions, one per expanded row of m*x*
-  // (row i reads s0 and the register s1 + i).
-  std::vector<std::vector<RegisterRef>> ReadPortGroups(const Instruction& instruction) const {
-    const OpcodeInfo& info = instruction.info();
-    std::vector<std::vector<RegisterRef>> groups;
-    if (info.kind == ResultKind::kMatrix) {
-      for (int row = 0; row < info.matrix_rows; ++row) {
-        const RegisterRef& matrix = instruction.sources[OpcodeInfo::kMatrixSource].reg;
-        groups.push_back({instruction.sources[0].reg, RowRegister(matrix, row)});
-      }
-      return groups;
-    }
-    groups.emplace_back();
-    for (int s = 0; s < info.source_count(); ++s) groups.back().push_back(instruction.sources[s].reg);
-    return groups;
-  }
-
-  // The distinct registers of `file` in `group`, in operand order (RegisterRef equality: an absolute c5
-  // and a relative c5[a0.x] are different operands).
-  static std::vector<RegisterRef> DistinctRegisters(const std::vector<RegisterRef>& group, RegisterFile file) {
-    std::vector<RegisterRef> distinct;
-    for (const RegisterRef& reg : group) {
-      if (reg.file == file && std::find(distinct.begin(), distinct.end(), reg) == distinct.end()) {
-        distinct.push_back(reg);
-      }
-    }
-    return distinct;
-  }
+  // --- read ports (§1.7, §3.4): vm/asm/read_ports.h ------------------------------------------
 
   void CheckReadPorts(int index) {
-    const Instruction& instruction = At(index);
-    const auto groups = ReadPortGroups(instruction);
-    constexpr std::array<std::pair<RegisterFile, std::string_view>, 2> kOnePortFiles = {
-        {{RegisterFile::kConst, "constant"}, {RegisterFile::kInput, "input"}}};
-    for (const auto& [file, role] : kOnePortFiles) {
-      for (int row = 0; row < static_cast<int>(groups.size()); ++row) {
-        const std::vector<RegisterRef> distinct = DistinctRegisters(groups[row], file);
-        if (distinct.size() < 2) continue;
-        ReportReadPort(index, row, groups.size() > 1, role, distinct);
-        break;  // one report per register file and instruction
-      }
+    for (const ReadPortViolation& violation : FindReadPortViolations(At(index), program_.model())) {
+      Error(index, DiagnosticCode::kReadPorts, DescribeReadPortViolation(violation, program_.model()));
     }
-  }
-
-  void ReportReadPort(int index, int row, bool is_macro, std::string_view role,
-                      const std::vector<RegisterRef>& distinct) {
-    std::string where = is_macro ? fmt::format("row {} of the macro expansion (§3.4) ", row) : "";
-    std::vector<std::string> names;
-    bool absolute_and_relative = false;
-    for (const RegisterRef& reg : distinct) {
-      names.push_back(RegisterName(reg));
-      for (const RegisterRef& other : distinct) {
-        absolute_and_relative |= reg.index == other.index && reg.relative != other.relative;
-      }
-    }
-    // Unconfirmed (§10.8): we count an absolute and a relative constant as two operands.
-    std::string note = absolute_and_relative ? " (an absolute and a relative constant count as two)" : "";
-    const bool two = distinct.size() == 2;
-    Error(index, DiagnosticCode::kReadPorts,
-          fmt::format("{}reads {} different {} registers ({}){}; vs_1_1 allows one per instruction "
-                             "— copy {} into {} first",
-                             where, two ? "two" : std::to_string(distinct.size()), role, fmt::join(names, ", "), note,
-                             two ? "one of them" : "all but one of them", two ? "a temporary" : "temporaries"));
   }
 
   // --- matrix macros (§3.3) --------------------------------------------------------------------
