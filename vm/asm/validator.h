@@ -42,8 +42,10 @@ Diagnostics Validate(const Program& program, const ValidatorOptions& options = {
 // instruction slots and nesting depths (vm/core/shader_model.h; vs_2_x with the maximal D3DVS20CAPS),
 // matched if/else/endif, loop/endloop and rep/endrep, break inside a loop, labels that exist and are
 // defined once outside any block, calls neither recursive nor deeper than the model allows, ret outside
-// open blocks, aL only inside a loop (in the main program), the operands each instruction takes, every
-// v# read declared, and oPos written (vs_3_0: an output declared with dcl_position).
+// open blocks, aL only inside a loop (in the main program), the operands each instruction takes, the
+// read ports of each register type, temporaries read before any path writes them (errors; lanes only
+// some paths write: warnings), every v# read declared, and oPos written (vs_3_0: an output declared with
+// dcl_position).
 Diagnostics ValidateLaterModel(const Program& program, const ValidatorOptions& options);
 
 // The lanes (bit i = lane i, as in WriteMask) of the register named by source `operand` that an

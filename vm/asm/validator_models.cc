@@ -1,8 +1,16 @@
 // The validator's rules for vs_2_0, vs_2_x and vs_3_0 (vm/asm/validator.h): register counts, slot and
 // nesting limits of each model (vm/core/shader_model.h), the structure of flow control, labels and
-// subroutines, and the operands each later instruction takes. vs_1_1's rules are in validator.cc.
-// Not modelled yet for these models: read ports, reads of unwritten temporaries, per-instruction
-// write-mask and swizzle rules beyond crs, sincos and the scalar operands of pow (spec "vs_2_0").
+// subroutines, the operands each later instruction takes, the read ports of each register type
+// (vm/asm/read_ports.h, shared with vs_1_1) and reads of unwritten temporaries along the flow control
+// (vm/asm/temporary_dataflow.h). vs_1_1's rules are in validator.cc.
+// Operand rules from the D3D9 asm reference's instruction pages ("- vs"): crs writes no w; sincos writes
+// .x, .y or .xy; pow's sources are single components; sgn's src1 and src2 are two different temporaries;
+// nrm writes a temporary that is not its source; mova writes a0, with any mask in every later model (the
+// mova page: "for versions 2_x and above, the address register is a component vector, therefore any write
+// mask is allowed"; we read "2_x" as the 2.x family, as Microsoft's assembler takes `mova a0.y` in
+// vs_2_0: Wine's case 20). Not modelled yet: the other per-instruction write-mask and swizzle rules
+// (replicate swizzles of if_comp and break_comp, sincos's vs_2_0 constant operands being c#), a0 and p0
+// read before they are written.
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -15,6 +23,8 @@
 
 #include "vm/asm/disassembler.h"
 #include "vm/asm/lexer.h"
+#include "vm/asm/read_ports.h"
+#include "vm/asm/temporary_dataflow.h"
 #include "vm/asm/validator.h"
 
 namespace vs11 {
@@ -53,6 +63,9 @@ class LaterModelValidator {
             fmt::format("is not closed (expected {})", Closer(block.kind)));
     }
     CheckLabels();
+    for (const TemporaryReadFinding& finding : FindUnwrittenTemporaryReads(program_)) {
+      Report(finding.index, finding.severity, finding.code, finding.message);
+    }
     CheckInputsDeclared();
     if (options_.require_position) CheckPosition();
     return std::move(diagnostics_);
@@ -61,11 +74,12 @@ class LaterModelValidator {
  private:
   const Instruction& At(int index) const { return program_.instructions[index]; }
 
-  void Error(int index, DiagnosticCode code, std::string_view message) {
+  void Error(int index, DiagnosticCode code, std::string_view message) { Report(index, Severity::kError, code, message); }
+  void Report(int index, Severity severity, DiagnosticCode code, std::string_view message) {
     const SourceLoc loc = program_.LocOf(index);
     const std::string subject = loc.line > 0 ? FormatInstruction(At(index), Syntax::kDx9, model_)
                                              : fmt::format("instruction {} ({})", index, At(index).info().mnemonic);
-    diagnostics_.Add(Diagnostic{loc, Severity::kError, code, fmt::format("{}: {}", subject, message),
+    diagnostics_.Add(Diagnostic{loc, severity, code, fmt::format("{}: {}", subject, message),
                                 program_.WordOffsetOf(index)});
   }
   SourceLoc ProgramLoc() const {
@@ -126,6 +140,9 @@ class LaterModelValidator {
       }
     }
     if (instruction.predicated) CheckExists(index, instruction.predicate.reg, "the predicate");
+    for (const ReadPortViolation& violation : FindReadPortViolations(instruction, model_)) {
+      Error(index, DiagnosticCode::kReadPorts, DescribeReadPortViolation(violation, model_));
+    }
     if (instruction.dest.reg.relative) CheckRelative(index, instruction.dest.reg);
     const SourceOperand& s0 = instruction.sources[0];
     const SourceOperand& s1 = instruction.sources[1];
@@ -162,6 +179,21 @@ class LaterModelValidator {
       case Opcode::kPow:
         Expect(index, s0.swizzle.is_replicate() && s1.swizzle.is_replicate(), "pow's sources",
                "single components (a replicate swizzle such as .x)");
+        break;
+      case Opcode::kSgn: {
+        // D3D9 reference, sgn - vs: src1 and src2 are scratch space whose contents are undefined afterwards.
+        const SourceOperand& s2 = instruction.sources[2];
+        Expect(index, IsFile(s1, RegisterFile::kTemp) && IsFile(s2, RegisterFile::kTemp) && !s1.reg.relative &&
+                          !s2.reg.relative && s1.reg.index != s2.reg.index,
+               "sgn's src1 and src2", "two different temporaries r# (the reference page: their contents are "
+               "undefined after sgn)");
+        break;
+      }
+      case Opcode::kNrm:
+        // D3D9 reference, nrm - vs: "dest must be a temporary register", and dest and src not the same.
+        Expect(index, dest == RegisterFile::kTemp, "nrm's destination", "a temporary r# (the reference page's rule)");
+        Expect(index, !(dest == s0.reg.file && instruction.dest.reg.index == s0.reg.index && !s0.reg.relative),
+               "nrm's destination", "a different register from its source (the reference page's rule)");
         break;
       case Opcode::kDcl: CheckDeclaration(index); return;
       case Opcode::kDefi:

@@ -13,6 +13,7 @@
 #include "vm/asm/assembler.h"
 #include "vm/asm/bytecode.h"
 #include "vm/asm/disassembler.h"
+#include "vm/asm/validator.h"
 
 namespace vs11 {
 namespace {
@@ -215,6 +216,30 @@ TEST_P(LaterModelTokens, DecodesIntoTheAssembledProgram) {
 
 INSTANTIATE_TEST_SUITE_P(Wine, LaterModelTokens, testing::ValuesIn(kTokenCases),
                          [](const testing::TestParamInfo<TokenCase>& info) { return fmt::format("Case{}", info.index); });
+
+// Microsoft assembled these without validation. Through the validator (as fragments: most write no
+// position) the read ports refuse only case 11's two relative constants, as Microsoft's validator would,
+// and sgn's, nrm's and mova's operand rules none. Their other errors are those of pieces that are not
+// whole shaders (temporaries read before any write, inputs without dcl, calls of labels not defined,
+// crs, pow and sincos examples with a full write mask or no replicate swizzle).
+TEST_P(LaterModelTokens, ReadPortsRefuseOnlyCase11AndSgnNrmMovaRulesNone) {
+  const TokenCase& c = GetParam();
+  const AssembleResult result = AssembleUnvalidated(c.source);
+  ASSERT_TRUE(result.program) << Messages(result.diagnostics);
+  ValidatorOptions options;
+  options.require_position = false;
+  const Diagnostics diagnostics = Validate(*result.program, options);
+  int read_ports = 0;
+  int bad_operands = 0;
+  for (const Diagnostic& d : diagnostics.all()) {
+    read_ports += d.code == DiagnosticCode::kReadPorts;
+    for (const char* rule : {"sgn's", "nrm's", "mova's"}) {
+      bad_operands += d.code == DiagnosticCode::kBadOperand && d.message.find(rule) != std::string::npos;
+    }
+  }
+  EXPECT_EQ(read_ports, c.name.starts_with("vs_2_0 #11 ") ? 1 : 0) << Messages(diagnostics);
+  EXPECT_EQ(bad_operands, 0) << Messages(diagnostics);
+}
 
 class LaterModelReject : public testing::TestWithParam<RejectCase> {};
 

@@ -186,7 +186,7 @@ TEST(ReferenceFlow, RelativeReadsAtTheBanksEdgesReadZeroOutside) {
   // aL = 254, 255 (both inside); aL = 255, 256 (the second outside: 0); a0.x = round(-1.4) = -1: c[-1] = 0.
   const Vec4f r = RunOne("vs_2_0\ndefi i0, 2, 254, 1, 0\ndefi i1, 2, 255, 1, 0\ndcl_position v0\nmov r0, c0\n"
                          "loop aL, i0\nadd r0.x, r0.x, c0[aL]\nendloop\nloop aL, i1\nadd r0.y, r0.y, c0[aL]\nendloop\n"
-                         "mova a0.x, c3.x\nadd r0.z, c0[a0.x].z, c2.z\nmov oPos, r0\n",
+                         "mova a0.x, c3.x\nmov r1.z, c2.z\nadd r0.z, c0[a0.x].z, r1.z\nmov oPos, r0\n",
                          bank);
   EXPECT_EQ(r, (Vec4f{254 + 255, 255, 2, 0}));
 }
@@ -205,7 +205,7 @@ TEST(ReferenceFlow, TheNewArithmeticThroughTheEngine) {
       "vs_2_0\ndef c1, 0, 0, 0, 0\ndef c2, 3, 0, 4, 10\ndef c3, -1.5, 0, 2, -0\ndef c4, 1, 2, 3, 0\ndef c5, 4, 5, 6, 0\n"
       "def c6, -1.5500992e-006, -2.1701389e-005, 0.0026041667, 0.00026041668\n"
       "def c7, -0.020833334, -0.12500000, 1.0, 0.50000000\ndef c8, 9, 9, 9, 9\ndef c9, 2, 3, 0, 0\n"
-      "dcl_position v0\nmov r0, c8\nsincos r0.xy, c1.x, c6, c7\nnrm r1, c2\nsgn r2, c3, r4, r5\ncrs r3.xyz, c4, c5\n"
+      "dcl_position v0\nmov r0, c8\nsincos r0.xy, c1.x, c6, c7\nnrm r1, c2\nsgn r2, c3, r4, r5\nmov r9, c5\ncrs r3.xyz, c4, r9\n"
       "pow r6, c9.x, c9.y\nadd r7.x, r0.x, r0.y\nadd r7.y, r0.z, r0.w\nadd r7.z, r1.x, r1.z\nadd r7.w, r1.w, r6.x\n"
       "dp4 r8.x, r2, c4\ndp3 r8.y, r3, c4\nmov r8.zw, r7\nadd oPos, r7, r8\n");
   // r0 = (cos 0, sin 0, 9, 9); r1 = (0.6, 0, 0.8, 2); r2 = (-1, 0, 1, 0); r3 = (-3, 6, -3); r6 = 8.
@@ -240,7 +240,7 @@ TEST(ReferenceFlow, Vs30OutputsThroughAlAndSaturatedAbsoluteSources) {
 TEST(ReferenceFlow, TheBankHasTheModelsConstantsWhateverTheApiBanksSize) {
   ConstantBank small;  // kDefaultConstantCount, vs_1_1's 96
   small[5] = {5, 5, 5, 5};
-  const Vec4f r = RunOne("vs_2_0\ndef c200, 1, 2, 3, 4\ndcl_position v0\nadd oPos, c200, c5\n", small);
+  const Vec4f r = RunOne("vs_2_0\ndef c200, 1, 2, 3, 4\ndcl_position v0\nmov r0, c5\nadd oPos, c200, r0\n", small);
   EXPECT_EQ(r, (Vec4f{6, 7, 8, 9}));
 }
 
@@ -265,7 +265,7 @@ TEST(ReferenceFlow, RefusesTexldlAndOutputsWithoutASlotByName) {
 TEST(ReferenceFlow, BothFloatRulesRunTheLaterModels) {
   // lrp with a zero weight and an infinite span: NaN under d3d9's products, s2 under legacy's.
   ConstantBank bank = Bank({{1, {INFINITY, INFINITY, INFINITY, INFINITY}}, {2, {1, 1, 1, 1}}});
-  const std::string source = "vs_2_0\ndcl_position v0\nlrp r0, c0, c1, c2\nmov oPos, r0\n";
+  const std::string source = "vs_2_0\ndcl_position v0\nmov r1, c1\nmov r2, c2\nlrp r0, c0, r1, r2\nmov oPos, r0\n";
   EXPECT_TRUE(std::isnan(RunRef(source, bank, {{0, 0, 0, 1}}, kPosition, FloatRules::kD3d9)[0][0]));
   EXPECT_EQ(RunRef(source, bank, {{0, 0, 0, 1}}, kPosition, FloatRules::kLegacy)[0], (Vec4f{1, 1, 1, 1}));
 }

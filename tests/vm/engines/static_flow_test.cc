@@ -54,24 +54,39 @@ class ProgramWriter {
  private:
   int Pick(int low, int high) { return std::uniform_int_distribution<int>(low, high)(random_); }
   std::string Temp() { return fmt::format("r{}", Pick(0, 3)); }
-  std::string Source(bool in_loop) {
+  // One source; a temporary where the instruction already reads a constant or an input (the later
+  // models' read ports: one c# and one v# per instruction).
+  std::string Source(bool in_loop, bool& reads_constant, bool& reads_input) {
     static constexpr const char* kSwizzles[] = {"", ".x", ".yzxw", ".wwzy", ".zzzz"};
     std::string reg;
-    switch (Pick(0, in_loop ? 3 : 2)) {
-      case 0: reg = Temp(); break;
-      case 1: reg = fmt::format("v{}", Pick(0, 1)); break;
-      case 2: reg = fmt::format("c{}", Pick(0, 255)); break;
-      default: reg = fmt::format("c[aL + {}]", Pick(0, 8)); break;
+    const int kind = Pick(0, in_loop ? 3 : 2);
+    if (kind == 0 || (kind == 1 && reads_input) || (kind >= 2 && reads_constant)) {
+      reg = Temp();
+    } else if (kind == 1) {
+      reg = fmt::format("v{}", Pick(0, 1));
+      reads_input = true;
+    } else {
+      reg = kind == 2 ? fmt::format("c{}", Pick(0, 255)) : fmt::format("c[aL + {}]", Pick(0, 8));
+      reads_constant = true;
     }
     return (Pick(0, 3) == 0 ? "-" : "") + reg + kSwizzles[Pick(0, 4)];
   }
   std::string Arithmetic(bool in_loop) {
     static constexpr const char* kTwo[] = {"add", "mul", "dp3", "dp4", "min", "max", "slt", "sge"};
+    bool constant = false;
+    bool input = false;
+    const auto source = [&] { return Source(in_loop, constant, input); };
     switch (Pick(0, 3)) {
-      case 0: return fmt::format("mad {}, {}, {}, {}\n", Temp(), Source(in_loop), Source(in_loop), Source(in_loop));
-      case 1: return fmt::format("mov {}, {}\n", Temp(), Source(in_loop));
+      case 0: {
+        const std::string dest = Temp(), s0 = source(), s1 = source(), s2 = source();
+        return fmt::format("mad {}, {}, {}, {}\n", dest, s0, s1, s2);
+      }
+      case 1: return fmt::format("mov {}, {}\n", Temp(), source());
       case 2: return fmt::format("m4x4 {}, {}, c{}\n", Temp(), Temp(), Pick(0, 252));
-      default: return fmt::format("{} {}, {}, {}\n", kTwo[Pick(0, 7)], Temp(), Source(in_loop), Source(in_loop));
+      default: {
+        const std::string op = kTwo[Pick(0, 7)], dest = Temp(), s0 = source(), s1 = source();
+        return fmt::format("{} {}, {}, {}\n", op, dest, s0, s1);
+      }
     }
   }
   // Statements at nesting `depth` (`loops` rep/loop blocks around, `in_loop`: a loop with aL among them),
