@@ -5,6 +5,7 @@
 
 #include <algorithm>
 #include <array>
+#include <iterator>
 
 #include "vm/asm/disassembler.h"
 
@@ -51,15 +52,24 @@ std::string CountWord(int count) {
 
 std::vector<ReadPortViolation> FindReadPortViolations(const Instruction& instruction, ShaderModel model) {
   const auto groups = ReadPortGroups(instruction, model);
+  const bool in_macro = groups.size() > 1;
   std::vector<ReadPortViolation> violations;
   for (const ReadPortLimit& limit : kReadPortLimits) {
     const int ports = limit.ports[static_cast<int>(model)];
-    if (ports == 0) continue;
+    const int reads = limit.reads[static_cast<int>(model)];
     for (int row = 0; row < static_cast<int>(groups.size()); ++row) {
       std::vector<RegisterRef> distinct = DistinctRegisters(groups[row], limit.file);
-      if (static_cast<int>(distinct.size()) <= ports) continue;
-      violations.push_back(ReadPortViolation{&limit, ports, row, groups.size() > 1, std::move(distinct)});
-      break;  // one report per register type and instruction
+      if (ports > 0 && static_cast<int>(distinct.size()) > ports) {
+        violations.push_back(ReadPortViolation{&limit, false, ports, row, in_macro, std::move(distinct)});
+        break;  // one report per register type and instruction
+      }
+      std::vector<RegisterRef> operands;
+      std::copy_if(groups[row].begin(), groups[row].end(), std::back_inserter(operands),
+                   [&](const RegisterRef& reg) { return reg.file == limit.file; });
+      if (reads > 0 && static_cast<int>(operands.size()) > reads) {
+        violations.push_back(ReadPortViolation{&limit, true, reads, row, in_macro, std::move(operands)});
+        break;
+      }
     }
   }
   return violations;
@@ -83,11 +93,17 @@ std::string DescribeReadPortViolation(const ReadPortViolation& violation, Shader
           ? ""
           : fmt::format(" (the read-port limit of the D3D9 reference's {} registers page)", ShaderModelName(model));
   const int count = static_cast<int>(violation.registers.size());
-  const int excess = count - violation.ports;
+  if (violation.reads) {
+    return fmt::format("{}reads {} registers {} times ({}); {} allows {} {} reads per instruction (the reads/inst "
+                       "limit of the D3D9 reference's {} registers page) — copy one into a temporary first",
+                       where, violation.limit->role, count, fmt::join(names, ", "), ShaderModelName(model),
+                       violation.allowed, violation.limit->role, ShaderModelName(model));
+  }
+  const int excess = count - violation.allowed;
   return fmt::format("{}reads {} different {} registers ({}){}; {} allows {} per instruction{} — copy {} into {} first",
                      where, count == 2 ? "two" : std::to_string(count), violation.limit->role, fmt::join(names, ", "), note, ShaderModelName(model),
-                     CountWord(violation.ports), source,
-                     excess == 1 ? "one of them" : fmt::format("all but {} of them", CountWord(violation.ports)),
+                     CountWord(violation.allowed), source,
+                     excess == 1 ? "one of them" : fmt::format("all but {} of them", CountWord(violation.allowed)),
                      excess == 1 ? "a temporary" : "temporaries");
 }
 

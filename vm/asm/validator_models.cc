@@ -1,7 +1,7 @@
 // The validator's rules for vs_2_0, vs_2_x and vs_3_0 (vm/asm/validator.h): register counts, slot and
 // nesting limits of each model (vm/core/shader_model.h), the structure of flow control, labels and
-// subroutines, the operands each later instruction takes, the read ports of each register type
-// (vm/asm/read_ports.h, shared with vs_1_1) and reads of unwritten temporaries along the flow control
+// subroutines, the operands each later instruction takes, the read ports and reads per instruction of
+// each register type (vm/asm/read_ports.h, shared with vs_1_1) and reads of unwritten temporaries along the flow control
 // (vm/asm/temporary_dataflow.h). vs_1_1's rules are in validator.cc.
 // Operand rules from the D3D9 asm reference's instruction pages ("- vs"): crs writes no w; sincos writes
 // .x, .y or .xy; pow's sources are single components; sgn's src1 and src2 are two different temporaries;

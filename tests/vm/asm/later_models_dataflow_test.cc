@@ -74,7 +74,7 @@ std::string ExpectWarningOnly(const std::string& model, const std::string& body,
 
 TEST(LaterModelReadPorts, OneConstantAndOneInputPerInstructionInEveryLaterModel) {
   for (const std::string& model : kLaterModels) {
-    ExpectClean(model, "mad r0, c0, c0, c0\nadd r1, v0, c1\nmad r2, v1, v1, r0\nm4x4 r3, v0, c4\n");
+    ExpectClean(model, "mad r0, c0, c0, v0\nadd r1, v0, c1\nmad r2, v1, v1, r0\nm4x4 r3, v0, c4\n");
     const std::string message = ExpectError(model, "add r0, c0, c1\n", DiagnosticCode::kReadPorts, 1);
     EXPECT_NE(message.find("reads two different constant registers (c0, c1); " + model +
                            " allows one per instruction (the read-port limit of the D3D9 reference's " + model +
@@ -87,6 +87,19 @@ TEST(LaterModelReadPorts, OneConstantAndOneInputPerInstructionInEveryLaterModel)
     const std::string row = ExpectError(model, "m4x4 r0, c4, c0\n", DiagnosticCode::kReadPorts, 1);
     EXPECT_NE(row.find("row 0 of the macro expansion"), std::string::npos) << row;
   }
+}
+
+// The reference's "# reads/inst": vs_2_0 and vs_2_x read c# at most twice per instruction, the same
+// register or not; vs_3_0 without limit.
+TEST(LaterModelReadPorts, Vs2ReadsAConstantAtMostTwicePerInstruction) {
+  for (const std::string& model : {std::string("vs_2_0"), std::string("vs_2_x")}) {
+    const std::string message = ExpectError(model, "mad r0, c0, c0, c0\n", DiagnosticCode::kReadPorts, 1);
+    EXPECT_NE(message.find("reads constant registers 3 times (c0, c0, c0); " + model +
+                           " allows 2 constant reads per instruction"),
+              std::string::npos)
+        << message;
+  }
+  ExpectClean("vs_3_0", "mad r0, c0, c0, c0\n");
 }
 
 TEST(LaterModelReadPorts, RelativeConstantsCountAsDifferentUnlessTheSameOperand) {
