@@ -25,8 +25,9 @@ using Lanes = std::array<std::uint8_t, kMaxTemps>;
 // What is known about the temporaries at one point of the program, over the paths that reach it.
 struct FlowState {
   bool reachable = true;
-  Lanes must{};  // written on every path
-  Lanes may{};   // written on some path
+  Lanes must{};       // written on every path
+  Lanes may{};        // written on some path
+  Lanes clobbered{};  // left undefined by sgn on some path, and not written since
 };
 
 FlowState Unreachable() {
@@ -43,6 +44,7 @@ FlowState Merge(const FlowState& a, const FlowState& b) {
   for (int r = 0; r < kMaxTemps; ++r) {
     joined.must[r] = a.must[r] & b.must[r];
     joined.may[r] = a.may[r] | b.may[r];
+    joined.clobbered[r] = a.clobbered[r] | b.clobbered[r];
   }
   return joined;
 }
@@ -134,6 +136,7 @@ class TemporaryDataflow {
   struct Effect {
     Lanes must{};
     Lanes may{};
+    Lanes clobbered{};
   };
 
   const Instruction& At(int index) const { return program_.instructions[index]; }
@@ -182,7 +185,7 @@ class TemporaryDataflow {
     const FlowState out = Walk(label, FlowState{}, false);
     computing_.erase(label);
     Effect& effect = effects_[label];
-    if (out.reachable) effect = Effect{out.must, out.may};
+    if (out.reachable) effect = Effect{out.must, out.may, out.clobbered};
     return effect;
   }
 
@@ -245,7 +248,10 @@ class TemporaryDataflow {
           break;
         case Opcode::kCall:
         case Opcode::kCallnz: Call(instruction, state, report, conditional || instruction.opcode == Opcode::kCallnz); break;
-        default: Write(instruction, state); break;
+        default:
+          Clobber(instruction, state);
+          Write(instruction, state);
+          break;
       }
     }
     return Merge(out, state);
@@ -260,8 +266,12 @@ class TemporaryDataflow {
     }
     const Effect& effect = EffectOf(target);
     for (int r = 0; r < kMaxTemps; ++r) {
-      if (!conditional) state.must[r] |= effect.must[r];
+      if (!conditional) {
+        state.must[r] |= effect.must[r];
+        state.clobbered[r] &= ~effect.must[r];
+      }
       state.may[r] |= effect.may[r];
+      state.clobbered[r] |= effect.clobbered[r];
     }
   }
 
@@ -272,15 +282,29 @@ class TemporaryDataflow {
       return;
     }
     const std::uint8_t mask = instruction.dest.mask.bits() & kAllLanes;
-    if (!instruction.predicated) state.must[reg.index] |= mask;
+    if (!instruction.predicated) {
+      state.must[reg.index] |= mask;
+      state.clobbered[reg.index] &= ~mask;
+    }
     state.may[reg.index] |= mask;
+  }
+
+  // sgn's src1 and src2: "their contents are undefined after execution" (D3D9 reference, sgn - vs).
+  void Clobber(const Instruction& instruction, FlowState& state) const {
+    if (!state.reachable || instruction.opcode != Opcode::kSgn) return;
+    for (int s = 1; s < 3; ++s) {
+      const RegisterRef& reg = instruction.sources[s].reg;
+      if (reg.file == RegisterFile::kTemp && !reg.relative && reg.index >= 0 && reg.index < temp_count_) {
+        state.clobbered[reg.index] = kAllLanes;
+      }
+    }
   }
 
   void CheckReads(int index, const FlowState& state, int owner) {
     const Instruction& instruction = At(index);
     const OpcodeInfo& info = instruction.info();
     if (!state.reachable || !info.is_executable()) return;
-    Lanes none{}, partly{}, some_paths{};
+    Lanes none{}, partly{}, some_paths{}, clobbered{};
     for (int s = 0; s < SourceCount(info, program_.model()); ++s) {
       const RegisterRef& reg = instruction.sources[s].reg;
       if (reg.file != RegisterFile::kTemp || reg.relative) continue;
@@ -292,6 +316,7 @@ class TemporaryDataflow {
         const std::uint8_t unwritten = lanes & ~state.may[r];
         (state.may[r] == 0 ? none : partly)[r] |= unwritten;
         some_paths[r] |= lanes & ~state.must[r] & ~unwritten;
+        clobbered[r] |= lanes & state.clobbered[r] & state.must[r];
       }
     }
     const std::string context = owner == kMainProgram ? "" : fmt::format(" (on entry to l{}: no call writes it first)", owner);
@@ -315,6 +340,12 @@ class TemporaryDataflow {
                              "path",
                              list, some_context, one ? "it is" : "they are", one ? "it" : "them");
         });
+    Add(index, Severity::kWarning, DiagnosticCode::kUninitializedLanes, clobbered, [&](const std::string& list, bool one) {
+      return fmt::format("reads {}, which an earlier sgn left undefined (on some path at least): sgn's src1 and src2 "
+                         "are scratch registers whose contents are undefined afterwards (D3D9 reference, sgn - vs); "
+                         "write {} again before reading",
+                         list, one ? "it" : "them");
+    });
   }
 
   template <typename Describe>

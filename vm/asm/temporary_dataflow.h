@@ -18,8 +18,8 @@
 // - call l#: each subroutine is checked once, from the lanes written before every one of its calls
 //   (must: all of them; may: any of them), and a call adds what the subroutine writes on every path
 //   through it (callnz: only "may"). A subroutine no call reaches is not checked (it never runs).
-// - sgn's src1 and src2 are scratch registers: they are not read (their contents are undefined after
-//   sgn, which is not modelled).
+// - sgn's src1 and src2 are scratch registers: they are not read, and their contents are undefined
+//   afterwards: a read of one before it is written again (on some path) is a warning.
 // The lanes each source reads are vs_1_1's (ConsumedLanes, §6.3) for its instructions and, for the later
 // ones: crs x, y, z as the cross product needs them; nrm x, y, z and the written lanes; pow and sincos's
 // source the one lane its swizzle's w selects (both need a replicate swizzle); texldl every lane (w is

@@ -140,6 +140,20 @@ TEST(LaterModelOperandRules, SgnScratchRegistersAreTwoDifferentTemporaries) {
   }
 }
 
+// "Their contents are undefined after execution": a read of a scratch register after sgn is a warning.
+TEST(LaterModelOperandRules, SgnLeavesItsScratchRegistersUndefined) {
+  for (const std::string& model : kLaterModels) {
+    const std::string message = ExpectWarningOnly(model, "mov r1, c0\nsgn r0, c0, r1, r2\nadd r3, r1, c1\n",
+                                                  DiagnosticCode::kUninitializedLanes, 3);
+    EXPECT_NE(message.find("an earlier sgn left undefined"), std::string::npos) << message;
+    ExpectClean(model, "sgn r0, c0, r1, r2\nmov r1, c1\nadd r3, r1, c1\n");
+    ExpectWarningOnly(model, "mov r1, c0\ncall l0\nadd r3, r1, c1\nret\nlabel l0\nsgn r0, c0, r1, r2\nret\n",
+                      DiagnosticCode::kUninitializedLanes, 3);
+    ExpectWarningOnly(model, "mov r1, c0\nif b0\nsgn r0, c0, r1, r2\nendif\nadd r3, r1, c1\n",
+                      DiagnosticCode::kUninitializedLanes, 5);
+  }
+}
+
 TEST(LaterModelOperandRules, NrmWritesATemporaryOtherThanItsSource) {
   for (const std::string& model : kLaterModels) {
     ExpectClean(model, "mov r0, c0\nnrm r1, r0\nmov r2.xyz, c0\nnrm r3.xyz, r2\n");
