@@ -1,4 +1,5 @@
-// The gl engine's two paths on Mesa's llvmpipe against the jit, per program of programs/*.vsh:
+// The gl engine's two paths on Mesa's llvmpipe against the jit, per program of programs/*.vsh and a
+// vs_2_0 skinning loop over bones (kSkinningLoopVs20):
 // BM_GlPath/<program>/<compute|transform-feedback|jit>/<vertices>, each an Engine::Run as a caller
 // makes it (the gl paths: inputs uploaded, the shader run, outputs read back into VertexArrays), real
 // time (llvmpipe runs its own threads), items_per_second = vertices per second. Inputs: unit normals
@@ -10,17 +11,47 @@
 #include <optional>
 #include <random>
 #include <string>
+#include <utility>
 #include <vector>
 
 #include <benchmark/benchmark.h>
 
 #include "bench/bench_common.h"
+#include "vm/asm/assembler.h"
 #include "vm/reference/verify.h"
 #include "vm/engines/engine_factory.h"
 #include "vm/gl/gl_engine.h"
 
 namespace vs11::bench {
 namespace {
+
+// A vs_2_0 skinning program with a loop over its bones (i0.x = 4 bones, 3x4 matrices from c10, aL
+// stepping 3 rows): each vertex blends the bones' transforms of its position by its weights in v1, taken
+// in turn by rotating them through r3 (vs_2_0 has no v[aL]). The gl engine runs its specialisation for
+// i0, as the jit does.
+constexpr const char* kSkinningLoopVs20 =
+    "vs_2_0\n"
+    "defi i0, 4, 10, 3, 0\n"
+    "def c9, 0, 0, 0, 1\n"
+    "dcl_position v0\n"
+    "dcl_blendweight v1\n"
+    "dcl_normal v2\n"
+    "mov r0, c9\n"
+    "mov r4, c9\n"
+    "mov r3, v1\n"
+    "loop aL, i0\n"
+    "dp4 r1.x, v0, c0[aL]\n"
+    "dp4 r1.y, v0, c1[aL]\n"
+    "dp4 r1.z, v0, c2[aL]\n"
+    "mad r0.xyz, r1, r3.x, r0\n"
+    "dp3 r2.x, v2, c0[aL]\n"
+    "dp3 r2.y, v2, c1[aL]\n"
+    "dp3 r2.z, v2, c2[aL]\n"
+    "mad r4.xyz, r2, r3.x, r4\n"
+    "mov r3, r3.yzwx\n"
+    "endloop\n"
+    "m4x4 oPos, r0, c0\n"
+    "mov oT0, r4\n";
 
 struct Case {
   Program program;
@@ -81,11 +112,14 @@ void RunEngine(benchmark::State& state, const Program& program, const std::strin
     if (entry.path().extension() == ".vsh") files.push_back(entry.path());
   }
   std::sort(files.begin(), files.end());
+  std::vector<std::pair<std::string, std::shared_ptr<Program>>> programs;
   for (const fs::path& file : files) {
     ProgramForVerify loaded = LoadProgramForVerify(file);
-    if (!loaded.program) continue;
-    auto program = std::make_shared<Program>(std::move(*loaded.program));
-    const std::string name = file.stem().string();
+    if (loaded.program) programs.emplace_back(file.stem().string(), std::make_shared<Program>(std::move(*loaded.program)));
+  }
+  const AssembleResult skinning = AssembleSource(kSkinningLoopVs20, "skinning_loop_vs_2_0.vsh", {});
+  if (skinning.program) programs.emplace_back("skinning_loop_vs_2_0", std::make_shared<Program>(*skinning.program));
+  for (const auto& [name, program] : programs) {
     struct Variant {
       const char* label;
       const char* engine;

@@ -67,12 +67,12 @@ class ConstantBank {
 inline constexpr std::string_view kLaterModelEngine = "ref";
 // The engines that run a later model's program specialised for its integer and boolean constants
 // (vm/core/static_flow.h) when its flow control is static and they have a kernel for every instruction.
-inline constexpr std::array<std::string_view, 2> kStaticFlowEngines = {"batch", "jit"};
+inline constexpr std::array<std::string_view, 3> kStaticFlowEngines = {"batch", "jit", "gl"};
 
 // Success, or why `engine` ("ref", "batch", "jit", "gl", "translate") cannot run `program`
 // (kEngineUnavailable; MakeEngine and translate::Translate ask here). vs_1_1 runs everywhere; the later
-// models run on the ref engine, and on batch and jit when StaticFlowRefusal lets them (whether the
-// program then specialises for the constants, batch and jit find when they are made:
+// models run on the ref engine, and on batch, jit and gl when StaticFlowRefusal lets them (whether the
+// program then specialises for the constants, those engines find when they are made:
 // MakeStaticFlowEngine); every other engine refuses them. Not texldl (no vertex textures yet) nor a
 // vs_3_0 output declared with a usage that has no output slot (dcl_normal o3): engines refuse them by
 // name rather than run them wrong.

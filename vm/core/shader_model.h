@@ -24,7 +24,7 @@ struct ShaderModelInfo {
   std::string_view name;        // as a version statement spells it
   std::uint32_t version_token;  // §4.2: 0xFFFE, major, minor (vs_2_x is minor 1)
   bool enabled;                 // programs of this model assemble, decode and validate
-  bool runs;                    // every engine runs programs of this model (the later ones: ref; batch and jit when static)
+  bool runs;                    // every engine runs programs of this model (the later ones: ref; batch, jit and gl when static)
   // Instruction slots (vs_3_0: the minimum a device offers), and nesting depths: static flow control
   // (if on b#, call), loop/rep, call, and dynamic flow control (if_comp, predicated if, break_comp).
   // vs_2_x: the maximal D3DVS20CAPS (DynamicFlowControlDepth 24, NumTemps 32, StaticFlowControlDepth 4,

@@ -1,6 +1,6 @@
 // Static flow control resolved for one set of integer and boolean constants, as drivers do: a later
 // model's program (vs_2_0 on) whose rep/loop counts and if/call conditions come from i# and b# only
-// becomes straight-line vs_1_1 code that the batch and jit engines run (vm/engines/static_flow_engine.h).
+// becomes straight-line vs_1_1 code that the batch, jit and gl engines run (vm/engines/static_flow_engine.h).
 // The walk follows the reference engine's control rules (vm/engines/reference_flow.cc) exactly: loop
 // counts clamped to [0, 255], the outer aL restored when a loop ends, calls beyond the model's depth
 // skipped, each c#[aL + n] read as the static c#[k] of its iteration.

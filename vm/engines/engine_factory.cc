@@ -19,13 +19,13 @@ Result<std::unique_ptr<Engine>> MakeReference(const Program& program, const Cons
 
 Result<std::unique_ptr<Engine>> MakeBatch(const Program& program, const ConstantBank& api_constants,
                                           const EngineOptions& options) {
-  if (!Info(program.model()).runs) return MakeStaticFlowEngine(program, api_constants, options, "batch", &MakeBatchEngine);
+  if (!Info(program.model()).runs) return MakeStaticFlowEngine(program, api_constants, options, "batch", &MakeBatch);
   return MakeBatchEngine(program, api_constants, options);
 }
 
 Result<std::unique_ptr<Engine>> MakeJit(const Program& program, const ConstantBank& api_constants,
                                         const EngineOptions& options) {
-  if (!Info(program.model()).runs) return MakeStaticFlowEngine(program, api_constants, options, "jit", &MakeJitEngine);
+  if (!Info(program.model()).runs) return MakeStaticFlowEngine(program, api_constants, options, "jit", &MakeJit);
   return MakeJitEngine(program, api_constants, options);
 }
 

@@ -40,8 +40,14 @@ class StaticFlowEngine final : public Engine {
         error_ = straight.message();
         return straight.error();
       }
+      Result<std::unique_ptr<Engine>> made = make_(*straight, bank, options_);
+      if (!made) {
+        current_ = nullptr;
+        error_ = made.message();
+        return made.error();
+      }
       if (cache_.size() == kMaxSpecialisations) cache_.erase(cache_.begin());  // the least recently used
-      cache_.push_back({key, WrittenOutputLanes(*straight), make_(*straight, bank, options_)});
+      cache_.push_back({key, WrittenOutputLanes(*straight), std::move(made).value()});
     } else {
       std::rotate(found, found + 1, cache_.end());  // most recently used last
     }

@@ -1,4 +1,4 @@
-// The batch and jit engines on a later model's program (vs_2_0 on) whose flow control is static: the
+// The batch, jit and gl engines on a later model's program (vs_2_0 on) whose flow control is static: the
 // program is specialised for the integer and boolean constants (vm/core/static_flow.h) into straight
 // vs_1_1 code, which the engine runs as it runs any vs_1_1 program. A specialisation is built when the
 // engine is made and again in SetConstants only when i#, b# or the bank's size change; the last few are
@@ -12,11 +12,13 @@
 
 namespace vs11 {
 
-using StraightLineEngineMaker = std::unique_ptr<Engine> (*)(const Program&, const ConstantBank&, const EngineOptions&);
+using StraightLineEngineMaker = Result<std::unique_ptr<Engine>> (*)(const Program&, const ConstantBank&,
+                                                                 const EngineOptions&);
 
 // `program` must pass EngineRefusal(program, engine); `make` builds the engine that runs each
 // specialisation. Fails when the program does not specialise for `api_constants` (the unrolling is too
-// long); when later constants do not, error() says why and Run writes NaN.
+// long) or `make` fails on the specialisation; when later constants do not, error() says why and Run
+// writes NaN.
 Result<std::unique_ptr<Engine>> MakeStaticFlowEngine(const Program& program, const ConstantBank& api_constants,
                                                      const EngineOptions& options, std::string_view engine,
                                                      StraightLineEngineMaker make);

@@ -10,6 +10,7 @@
 #include <fmt/format.h>
 
 #include "vm/engines/engine_factory.h"
+#include "vm/engines/static_flow_engine.h"
 #include "vm/gl/gl_compute.h"
 #include "vm/gl/gl_compute_engine.h"
 #include "vm/gl/gl_context.h"
@@ -261,6 +262,9 @@ Diagnostic Prefixed(Diagnostic error, std::string_view prefix) {
 
 Result<std::unique_ptr<Engine>> MakeGlEngine(const Program& program, const ConstantBank& api_constants,
                                              const EngineOptions& options) {
+  // A later model's program runs as its straight-line specialisations, each translated and linked once
+  // (vm/engines/static_flow_engine.h), as a driver compiles a shader per set of i#/b# values.
+  if (!Info(program.model()).runs) return MakeStaticFlowEngine(program, api_constants, options, "gl", &MakeGlEngine);
   const GlOptions gl_options = options.settings.Get<GlOptions>();
   Result<std::unique_ptr<GlContext>> context = GlContext::Create(gl_options.device);
   if (!context) return Prefixed(context.error(), "the gl engine has no OpenGL ES 3.0 device: ");

@@ -5,7 +5,8 @@
 // are in the translation), and every output register the program writes comes back from the capture.
 // Its bits are the reference engine's wherever the driver computes IEEE single precision as the
 // translation asks (README, "vs11 translate" and "The gl engine"); where no device can be had,
-// MakeGlEngine returns the error, and a Run that fails leaves NaN outputs and says why in error().
+// MakeGlEngine returns the error, and a Run that fails leaves NaN outputs and says why in error(). A
+// later model's program with static flow runs specialised for its i#/b# values (static_flow_engine.h).
 #pragma once
 
 #include <memory>
