@@ -7,7 +7,6 @@
 #include <algorithm>
 #include <cmath>
 #include <cstdlib>
-#include <cstring>
 #include <limits>
 #include <random>
 #include <string>
@@ -16,28 +15,19 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
-#include "vm/asm/assembler.h"
-#include "vm/engines/engine_factory.h"
-#include "vm/engines/jit_compiler.h"
-#include "vm/engines/jit_options.h"
+#include "tests/vm/engines/later_model_comparison.h"
 
 namespace vs11 {
 namespace {
 
+using namespace later_model;  // NOLINT(build/namespaces): the shared comparison of these tests
+
 constexpr int kBankSize = 256;
 
-std::optional<std::string> NoFiles(const std::filesystem::path&) { return std::nullopt; }
-
-Program Assemble(const std::string& source) {
-  const AssembleResult assembled = AssembleSource(source, "dynamic.vsh", {}, NoFiles);
-  EXPECT_TRUE(assembled.program) << assembled.diagnostics.ToString() << "\n" << source;
-  return assembled.program ? *assembled.program : Program{};
-}
-
 // A random vs_2_x program with vs_1_1 arithmetic and every kind of dynamic flow control.
-class ProgramWriter {
+class ProgramWriter : later_model::Draws {
  public:
-  explicit ProgramWriter(unsigned seed) : random_(seed) {}
+  explicit ProgramWriter(unsigned seed) : Draws(seed) {}
 
   // Drawn again until it fits vs_2_x's 256 instruction slots with room to spare.
   std::string Write() {
@@ -61,8 +51,6 @@ class ProgramWriter {
     return text;
   }
 
-  int Pick(int low, int high) { return std::uniform_int_distribution<int>(low, high)(random_); }
-  std::string Temp() { return fmt::format("r{}", Pick(0, 3)); }
   std::string Lane() { return std::string(1, "xyzw"[Pick(0, 3)]); }
   std::string Register(bool in_loop) {
     switch (Pick(0, in_loop ? 3 : 2)) {
@@ -73,8 +61,7 @@ class ProgramWriter {
     }
   }
   std::string Source(bool in_loop) {
-    static constexpr const char* kSwizzles[] = {"", ".x", ".yzxw", ".wwzy", ".zzzz"};
-    return (Pick(0, 3) == 0 ? "-" : "") + Register(in_loop) + kSwizzles[Pick(0, 4)];
+    return (Pick(0, 3) == 0 ? "-" : "") + Register(in_loop) + SwizzleSuffix();
   }
   // One lane of a source, as if_comp and break_comp read it.
   std::string Scalar(bool in_loop) { return (Pick(0, 3) == 0 ? "-" : "") + Register(in_loop) + "." + Lane(); }
@@ -138,8 +125,6 @@ class ProgramWriter {
     }
     return text;
   }
-
-  std::mt19937 random_;
 };
 
 // Values from a small set, so that eq, ne, ge and le hold for some vertices and not for their
@@ -156,60 +141,12 @@ ConstantBank RandomBank(std::mt19937& random) {
   return bank;
 }
 
-VertexArrays RandomInputs(std::mt19937& random, std::size_t count) {
-  const std::vector<int> registers = {0, 1};
-  VertexArrays inputs = MakeInputArrays(count, registers);
-  for (int reg : registers) {
-    for (int c = 0; c < 4; ++c) {
-      for (std::size_t i = 0; i < count; ++i) inputs.lane(reg, c)[i] = SmallValue(random);
-    }
-  }
-  return inputs;
-}
-
-VertexArrays RunOn(std::string_view name, const Program& program, const ConstantBank& bank,
-                   const VertexArrays& inputs, EngineOptions options) {
-  VertexArrays outputs = MakeOutputArrays(inputs.count(), program);
-  Result<std::unique_ptr<Engine>> engine = MakeEngine(name, program, bank, options);
-  EXPECT_TRUE(engine.ok()) << engine.message();
-  if (engine.ok()) (*engine)->Run(inputs, outputs);
-  return outputs;
-}
-
-// The first lane whose bits differ (any NaN matches any NaN), or empty.
-std::string Difference(const VertexArrays& expected, const VertexArrays& actual) {
-  for (int slot : expected.registers()) {
-    for (int c = 0; c < 4; ++c) {
-      for (std::size_t i = 0; i < expected.count(); ++i) {
-        const float a = expected.lane(slot, c)[i], b = actual.lane(slot, c)[i];
-        if (std::memcmp(&a, &b, sizeof a) == 0 || (a != a && b != b)) continue;
-        return fmt::format("{}.{} of vertex {}: ref {} got {}", OutputSlotName(slot), kLaneLetters[c], i, a, b);
-      }
-    }
-  }
-  return {};
-}
-
-struct Candidate {
-  std::string engine;
-  std::string name;
-  EngineOptions options;
-};
-
-std::vector<Candidate> Candidates(FloatRules rules) {
-  std::vector<Candidate> candidates = {{"batch", "batch", {.float_rules = rules}}};
-  for (JitIsa isa : jit::SupportedIsas()) {
-    candidates.push_back({"jit", fmt::format("jit {}", kJitIsaNames.Name(isa)), WithJitIsa({.float_rules = rules}, isa)});
-  }
-  return candidates;
-}
-
 // Runs `source` on ref and every candidate; the differences found, one line each.
 std::string Compare(const std::string& source, std::mt19937& random, std::size_t vertices, int* ran = nullptr) {
   const Program program = Assemble(source);
   if (program.instructions.empty()) return "does not assemble";
   const ConstantBank bank = RandomBank(random);
-  const VertexArrays inputs = RandomInputs(random, vertices);
+  const VertexArrays inputs = RandomInputs(vertices, [&] { return SmallValue(random); });
   std::string differences;
   for (FloatRules rules : kAllFloatRules) {
     const VertexArrays expected = RunOn("ref", program, bank, inputs, {.float_rules = rules});
