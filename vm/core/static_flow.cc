@@ -71,8 +71,6 @@ bool IsStaticFlowInstruction(Opcode op) {
   }
 }
 
-// Run per vertex with execution masks (the Specialiser below); setp is an arithmetic row.
-bool IsDynamicFlowInstruction(Opcode op) { return op == Opcode::kIfc || op == Opcode::kBreakc || op == Opcode::kBreakp; }
 constexpr int kComparisonCount = static_cast<int>(kComparisonNames.size()) - 1;  // 1 gt ... 6 le
 
 Diagnostic Refuse(const Program& program, std::size_t i, std::string_view engine, std::string_view why) {
@@ -91,7 +89,14 @@ std::optional<std::string> RefusalOf(const Instruction& instruction) {
   if (TakesComparison(op) && (instruction.comparison < 1 || instruction.comparison > kComparisonCount)) {
     return "its comparison is none of gt, eq, ge, lt, ne, le";
   }
-  if (IsStaticFlowInstruction(op) || IsDynamicFlowInstruction(op) || !info.is_executable()) return std::nullopt;
+  if (op == Opcode::kIfc || op == Opcode::kBreakc) {
+    // Its sources are read as the setp the specialiser compares them with, under setp's rules.
+    Instruction setp = instruction;
+    setp.opcode = Opcode::kSetp;
+    setp.dest = DestOperand{RegisterRef{RegisterFile::kPredicate, 0, false, {}}, WriteMask(1), false};
+    return RefusalOf(setp);
+  }
+  if (IsStaticFlowInstruction(op) || op == Opcode::kBreakp || !info.is_executable()) return std::nullopt;
   if (info.since != ShaderModel::kVs11 && op != Opcode::kSetp) return "the engine has no kernel for it yet (it runs vs_1_1's instructions)";
   if (instruction.dest.saturate) return "the engine has no _sat yet";
   const RegisterRef& dest = instruction.dest.reg;
