@@ -52,7 +52,7 @@ Status EngineRefusal(const Program& program, std::string_view engine) {
   if (engine != kLaterModelEngine && !specialises) {
     return Failure(DiagnosticCode::kEngineUnavailable,
                    fmt::format("the {} engine cannot run {} programs yet (they assemble, disassemble and validate, "
-                               "and run on the {} engine, and on batch, jit and gl when their flow control is static; "
+                               "and run on the {} engine, and on batch, jit and gl; "
                                "the {} engine runs only vs_1_1 programs)",
                                engine, ShaderModelName(model), kLaterModelEngine, engine));
   }

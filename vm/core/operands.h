@@ -12,11 +12,17 @@
 //   Vec4& Output(int slot);                               // an OutputSlot
 //   void WriteAddress(Float x);                           // mov a0.x, x (see AddressFromFloat)
 //   Vec4 Zero() const;                                    // what unreadable registers read
+// and, to run the straight-line programs batch and jit make of a later model's dynamic flow
+// (vm/core/static_flow.h: setp, predicated writes, predicate registers p0, p1, ... as 1/0 lanes):
+//   Vec4& Predicate(long index);  const Vec4& Predicate(long index) const;
+//   Float AddressValue() const;                           // the float last written to a0.x (0 before)
+//   Float Written(Float old) const;                       // a lane's value before a predicated write
 #pragma once
 
 #include <array>
 #include <cstdint>
 #include <optional>
+#include <type_traits>
 
 #include "vm/core/isa.h"
 #include "vm/core/machine.h"
@@ -44,6 +50,9 @@ V DotOfWidth(int width, const Vec4<V>& a, const Vec4<V>& b) {
   return width == 3 ? Dot<kRules, V, 3>(a, b) : Dot<kRules, V, 4>(a, b);
 }
 
+template <class M>
+concept HasPredicates = requires(M& machine) { machine.Predicate(0L); };
+
 // Register `reg` + `row` (row > 0: the next registers of a matrix operand). Temporaries and inputs
 // past the file, outputs and a0 read Zero() (the validator rejects such sources).
 template <class M>
@@ -53,6 +62,9 @@ typename M::Vec4 ReadRegister(const M& machine, const RegisterRef& reg, int row)
     case RegisterFile::kConst: return machine.ReadConstant(index, reg.relative);
     case RegisterFile::kTemp: return index < kTempRegisterCount ? machine.Temp(index) : machine.Zero();
     case RegisterFile::kInput: return index < kInputRegisterCount ? machine.ReadInput(index) : machine.Zero();
+    case RegisterFile::kPredicate:
+      if constexpr (HasPredicates<M>) return machine.Predicate(index);
+      return machine.Zero();
     default: return machine.Zero();
   }
 }
@@ -69,22 +81,42 @@ typename M::Vec4 FetchSource(const M& machine, const SourceOperand& source, int 
   return value;
 }
 
-// Writes the lanes of `value` that the mask selects among the first `lane_count` (a matrix's rows).
+// Writes the lanes of `value` that the mask selects among the first `lane_count` (a matrix's rows);
+// a predicated instruction's lanes only where its predicate holds (PredicatedWrite).
 template <class M>
-void StoreDest(M& machine, const DestOperand& dest, const typename M::Vec4& value, int lane_count) {
+void StoreDest(M& machine, const Instruction& instruction, const typename M::Vec4& value, int lane_count) {
+  const DestOperand& dest = instruction.dest;
+  typename M::Vec4 guard{};
+  bool predicated = false;
+  if constexpr (HasPredicates<M>) {
+    predicated = instruction.predicated;
+    if (predicated) guard = FetchSource(machine, instruction.predicate, 0);
+  }
+  const auto written = [&](typename M::Float old, int lane) {
+    if constexpr (HasPredicates<M>) {
+      if (predicated) return PredicatedWrite(guard[lane], instruction.predicate.logical_not, value[lane], machine.Written(old));
+    }
+    return value[lane];
+  };
   if (dest.reg.file == RegisterFile::kAddress) {
+    if constexpr (HasPredicates<M>) {
+      if (dest.mask.has(0) && predicated) machine.WriteAddress(written(machine.AddressValue(), 0));
+      if (predicated) return;
+    }
     if (dest.mask.has(0)) machine.WriteAddress(value[0]);
     return;
   }
   typename M::Vec4* target = nullptr;
   if (dest.reg.file == RegisterFile::kTemp) {
     if (dest.reg.index < kTempRegisterCount) target = &machine.Temp(dest.reg.index);
+  } else if (dest.reg.file == RegisterFile::kPredicate) {
+    if constexpr (HasPredicates<M>) target = &machine.Predicate(dest.reg.index);
   } else if (std::optional<int> slot = OutputSlotOf(dest.reg)) {
     target = &machine.Output(*slot);
   }
   if (target == nullptr) return;
   for (int lane = 0; lane < lane_count; ++lane) {
-    if (dest.mask.has(lane)) (*target)[lane] = value[lane];
+    if (dest.mask.has(lane)) (*target)[lane] = written((*target)[lane], lane);
   }
 }
 
@@ -98,7 +130,9 @@ void Execute(M& machine, const Instruction& instruction) {
   std::array<Vec4F, 3> src{};
   for (int s = 0; s < info.source_count(); ++s) src[s] = FetchSource(machine, instruction.sources[s], 0);
   Vec4F result{};
-  if constexpr (HasLane<Semantics, Float>) {
+  if constexpr (std::is_same_v<Semantics, SetpSemantics>) {
+    for (int lane = 0; lane < 4; ++lane) result[lane] = Compare(instruction.comparison, src[0][lane], src[1][lane]);
+  } else if constexpr (HasLane<Semantics, Float>) {
     for (int lane = 0; lane < 4; ++lane) {
       result[lane] = RunLane<kRules, Semantics>(src[0][lane], src[1][lane], src[2][lane]);
     }
@@ -116,7 +150,7 @@ void Execute(M& machine, const Instruction& instruction) {
   } else {
     return;  // nop, dcl, def
   }
-  StoreDest(machine, instruction.dest, result, info.result_lanes());
+  StoreDest(machine, instruction, result, info.result_lanes());
 }
 
 // The one opcode dispatch: `instruction` on `machine` with its row's kernel. The reference engine runs

@@ -342,6 +342,25 @@ V Compare(int comparison, V a, V b) {
   }
 }
 
+// Compare with the comparison fixed, as a componentwise kernel (the batch engine's setp steps).
+template <int kComparison>
+struct CompareSemantics {
+  template <class V> static V Lane(V a, V b, V) { return Compare(kComparison, a, b); }
+};
+
+// A predicated write (vs_2_x's `(p0.c) op` and the execution masks batch and jit run dynamic flow
+// with): `value` where the predicate lane holds (1, as Compare gives; 0 where it does not), `old`
+// elsewhere; `!p0` the other way round.
+template <class V>
+V PredicatedWrite(V predicate, bool negated, V value, V old) {
+  const auto on = predicate == Constant(predicate, 1.0f);
+  return negated ? IfThenElse(on, old, value) : IfThenElse(on, value, old);
+}
+template <bool kNegated>
+struct PredicatedWriteSemantics {
+  template <class V> static V Lane(V predicate, V value, V old) { return PredicatedWrite(predicate, kNegated, value, old); }
+};
+
 // pow: |s0|^s1 as exp2(s1 * log2|s0|) with the float rules' Exp2 and Log2 above and the product under
 // kRules, lit's specular power without its clamp. Reads the w lane of each (replicate-swizzled) source,
 // as vs_1_1's scalar instructions do, and replicates. 0^0 = 1, 0^y = 0 for y > 0, +inf for y < 0

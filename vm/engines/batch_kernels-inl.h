@@ -347,6 +347,13 @@ void FillOpcode(KernelTable& table) {
   }
 }
 
+template <std::size_t... kComparisonMinusOne>
+void FillCompareKernels(KernelTable& table, std::index_sequence<kComparisonMinusOne...>) {
+  (FillLaneCounts<semantics::CompareSemantics<kComparisonMinusOne + 1>, FloatRules::kD3d9, 2>(
+       table.compare[kComparisonMinusOne], std::make_index_sequence<4>()),
+   ...);
+}
+
 // `table` holds the d3d9 kernels for every rule but d3d9; this fills in what differs.
 template <FloatRules kRules>
 KernelTable MakeKernelTable(KernelTable table) {
@@ -356,6 +363,11 @@ KernelTable MakeKernelTable(KernelTable table) {
   FillDotWidth<kRules, 3>(table.dot[0], std::make_index_sequence<4>());
   FillDotWidth<kRules, 4>(table.dot[1], std::make_index_sequence<4>());
   table.gather = &GatherKernel;
+  if constexpr (kRules == FloatRules::kD3d9) {  // masks and compares follow no float rules
+    FillCompareKernels(table, std::make_index_sequence<6>());
+    FillLaneCounts<semantics::PredicatedWriteSemantics<false>, kRules, 3>(table.predicated[0], std::make_index_sequence<4>());
+    FillLaneCounts<semantics::PredicatedWriteSemantics<true>, kRules, 3>(table.predicated[1], std::make_index_sequence<4>());
+  }
   return table;
 }
 

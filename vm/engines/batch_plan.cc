@@ -94,6 +94,22 @@ class PlanBuilder {
     if (lane == kNoLane) lane = NewArenaLane();
     return lane;
   }
+  // p# of the straight-line form of a later model's flow (vm/core/static_flow.h): 1 or 0 per vertex.
+  std::uint16_t PredicateLane(int reg, int component) {
+    if (static_cast<std::size_t>(reg) >= predicate_lanes_.size()) {
+      predicate_lanes_.resize(static_cast<std::size_t>(reg) + 1, {kNoLane, kNoLane, kNoLane, kNoLane});
+    }
+    std::uint16_t& lane = predicate_lanes_[static_cast<std::size_t>(reg)][component];
+    if (lane == kNoLane) lane = NewArenaLane();
+    return lane;
+  }
+  bool PredicateWritten(int reg, int component) const {
+    return static_cast<std::size_t>(reg) < predicate_written_.size() && predicate_written_[static_cast<std::size_t>(reg)][component];
+  }
+  std::uint16_t ScratchLane(int component) {
+    if (scratch_lanes_[component] == kNoLane) scratch_lanes_[component] = NewArenaLane();
+    return scratch_lanes_[component];
+  }
   std::uint16_t AddressValueLane() {
     if (address_value_lane_ == kNoLane) address_value_lane_ = NewArenaLane();
     return address_value_lane_;
@@ -122,6 +138,9 @@ class PlanBuilder {
         if (index < 0) return ZeroOperand();
         plan_.max_static_constant = std::max(plan_.max_static_constant, index);
         return Operand{ConstantIndex(index, component), false};
+      case RegisterFile::kPredicate:  // 0 until written, as p0 starts false
+        if (index < 0 || !PredicateWritten(index, component)) return ZeroOperand();
+        return ArrayOperand(PredicateLane(index, component));
       default:
         return ZeroOperand();  // outputs and a0 read as 0 (the validator rejects such sources)
     }
@@ -139,6 +158,8 @@ class PlanBuilder {
         if (reg.index >= 0 && reg.index < kTempRegisterCount) lanes[c] = TempLane(reg.index, c);
       } else if (reg.file == RegisterFile::kAddress) {
         if (c == 0) lanes[c] = AddressValueLane();
+      } else if (reg.file == RegisterFile::kPredicate) {
+        if (reg.index >= 0) lanes[c] = PredicateLane(reg.index, c);
       } else if (slot) {
         lanes[c] = static_cast<std::uint16_t>(OutputLane(*slot, c));
         plan_.stored_lanes[*slot] |= static_cast<std::uint8_t>(1 << c);
@@ -147,12 +168,59 @@ class PlanBuilder {
     return lanes;
   }
 
+  // What a predicated write keeps where its predicate does not hold: the lane's value, or 0 for a
+  // lane nothing has written yet (p#, a temporary, a0, an output: all start at 0 in a later model).
+  std::array<bool, 4> KeptValues(const Instruction& instruction, int lane_count) {
+    std::array<bool, 4> kept{};
+    const RegisterRef& reg = instruction.dest.reg;
+    const std::optional<int> slot = OutputSlotOf(reg);
+    for (int c = 0; c < lane_count; ++c) {
+      bool written = false;
+      if (reg.file == RegisterFile::kTemp) written = reg.index >= 0 && reg.index < kTempRegisterCount && temp_written_[reg.index][c];
+      if (reg.file == RegisterFile::kPredicate) written = PredicateWritten(reg.index, c);
+      if (reg.file == RegisterFile::kAddress) written = address_written_;
+      if (slot) written = (plan_.stored_lanes[*slot] >> c) & 1;
+      kept[c] = written;
+    }
+    return kept;
+  }
+
+  // dest[c] = the instruction's predicate lane c ? scratch[c] : old[c], one step for every lane.
+  void CompilePredicated(const Instruction& instruction, const std::array<std::uint16_t, 4>& dest,
+                         const std::array<bool, 4>& kept) {
+    Step step;
+    int lanes = 0;
+    for (int c = 0; c < 4; ++c) {
+      if (dest[c] == kNoLane) continue;
+      step.sources[0][lanes] = Resolve(instruction.predicate, 0, 0, instruction.predicate.swizzle[c]);
+      step.sources[1][lanes] = ArrayOperand(ScratchLane(c));
+      step.sources[2][lanes] = kept[c] ? ArrayOperand(dest[c]) : ZeroOperand();
+      step.dest[lanes++] = dest[c];
+    }
+    int index = 0;
+    for (int s = 0, scale = 1; s < 3; ++s, scale *= kOperandKinds) {
+      std::array<Operand*, 4> group;
+      for (int l = 0; l < lanes; ++l) group[l] = &step.sources[s][l];
+      index += scale * static_cast<int>(UnifyKind(std::span(group.data(), lanes), false));
+    }
+    step.kernel = kernels_.predicated[instruction.predicate.logical_not ? 1 : 0][lanes - 1][index];
+    plan_.steps.push_back(step);
+    fusable_dot_ = false;
+  }
+
   void Compile(const Instruction& instruction) {
     const OpcodeInfo& info = instruction.info();
     if (!info.is_executable() || info.kind == ResultKind::kNoResult) return;
     const int lane_count = info.result_lanes();
-    const std::array<std::uint16_t, 4> dest = DestLanes(instruction.dest, lane_count);
-    if (std::all_of(dest.begin(), dest.end(), [](std::uint16_t lane) { return lane == kNoLane; })) return;
+    const std::array<bool, 4> kept = instruction.predicated ? KeptValues(instruction, lane_count) : std::array<bool, 4>{};
+    const std::array<std::uint16_t, 4> stored = DestLanes(instruction.dest, lane_count);
+    if (std::all_of(stored.begin(), stored.end(), [](std::uint16_t lane) { return lane == kNoLane; })) return;
+    // A predicated instruction computes into scratch lanes, then writes through its predicate.
+    std::array<std::uint16_t, 4> dest = stored;
+    if (instruction.predicated) {
+      for (int c = 0; c < 4; ++c) dest[c] = stored[c] == kNoLane ? kNoLane : ScratchLane(c);
+      fusable_dot_ = false;
+    }
 
     gathers_ = {};
     steps_.clear();
@@ -170,19 +238,25 @@ class PlanBuilder {
       fusable_dot_ = fusable_candidate_;
     }
     fusable_candidate_ = false;
+    if (instruction.predicated) CompilePredicated(instruction, stored, kept);
 
-    if (instruction.dest.reg.file == RegisterFile::kAddress && dest[0] != kNoLane) {
+    if (instruction.dest.reg.file == RegisterFile::kAddress && stored[0] != kNoLane) {
       Step step;
       step.kernel = &AddressKernel;
-      step.sources[0][0] = ArrayOperand(dest[0]);
+      step.sources[0][0] = ArrayOperand(stored[0]);
       plan_.steps.push_back(step);
       address_written_ = true;
       fusable_dot_ = false;
     }
     if (instruction.dest.reg.file == RegisterFile::kTemp) {
       for (int c = 0; c < 4; ++c) {
-        if (dest[c] != kNoLane) temp_written_[instruction.dest.reg.index][c] = true;
+        if (stored[c] != kNoLane) temp_written_[instruction.dest.reg.index][c] = true;
       }
+    }
+    if (instruction.dest.reg.file == RegisterFile::kPredicate) {
+      const auto reg = static_cast<std::size_t>(instruction.dest.reg.index);
+      if (predicate_written_.size() <= reg) predicate_written_.resize(reg + 1);
+      for (int c = 0; c < 4; ++c) predicate_written_[reg][c] = predicate_written_[reg][c] || stored[c] != kNoLane;
     }
   }
 
@@ -223,7 +297,9 @@ class PlanBuilder {
       step.negate[s] = instruction.sources[s].negate;
       index += scale * static_cast<int>(UnifyKind(std::span(group.data(), lanes), step.negate[s]));
     }
-    step.kernel = kernels_.lane[static_cast<int>(instruction.opcode)][lanes - 1][index];
+    const auto& kernels = instruction.opcode == Opcode::kSetp ? kernels_.compare[instruction.comparison - 1]
+                                                               : kernels_.lane[static_cast<int>(instruction.opcode)];
+    step.kernel = kernels[lanes - 1][index];
     steps_.push_back(step);
   }
 
@@ -350,6 +426,9 @@ class PlanBuilder {
   std::array<std::array<std::uint8_t, kMaxRows>, kMaxSources> gathers_{};  // components to gather
   std::array<std::array<int, kMaxRows>, kMaxSources> gather_base_{};
   std::uint16_t address_value_lane_ = kNoLane;
+  std::vector<std::array<std::uint16_t, 4>> predicate_lanes_;
+  std::vector<std::array<bool, 4>> predicate_written_;
+  std::array<std::uint16_t, 4> scratch_lanes_ = {kNoLane, kNoLane, kNoLane, kNoLane};
   bool address_written_ = false;
   std::array<bool, 4 * kInputRegisterCount> inputs_read_{};
   // The last step is a dot step another dp may join (see CompileDot).

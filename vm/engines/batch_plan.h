@@ -101,6 +101,11 @@ struct KernelTable {
   // Dot products and matrix rows: [width - 3][rows - 1][vector kind + 3 row kind].
   std::array<std::array<std::array<Kernel, 9>, 4>, 2> dot{};
   Kernel gather = nullptr;
+  // setp (semantics::Compare, 1 where it holds, else 0): [comparison - 1][lanes - 1][k0 + 3 k1].
+  std::array<std::array<std::array<Kernel, 27>, 4>, 6> compare{};
+  // A predicated write (semantics::PredicatedWrite), sources (predicate, new value, old value):
+  // [!p][lanes - 1][k0 + 3 k1 + 9 k2]. A predicated instruction computes into scratch lanes first.
+  std::array<std::array<std::array<Kernel, 27>, 4>, 2> predicated{};
 };
 
 // Target-independent kernels (memory moves and the a0 conversion, shared with the reference engine).

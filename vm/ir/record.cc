@@ -1,5 +1,7 @@
 #include "vm/ir/record.h"
 
+#include <vector>
+
 #include "vm/core/operands.h"
 
 namespace vs11::ir {
@@ -36,8 +38,20 @@ class RecordingMachine {
   Vec4& Output(int slot) { return outputs_[static_cast<std::size_t>(slot)]; }
   void WriteAddress(Float x) {
     address_ = semantics::AddressFromFloat(x);
+    address_value_ = x;
     address_written_ = true;
   }
+  Float AddressValue() const { return address_written_ ? address_value_ : Zero()[0]; }
+  // Predicate registers (only the straight-line form of a later model's flow has them): 0 until written.
+  Vec4& Predicate(long index) {
+    if (static_cast<std::size_t>(index) >= predicates_.size()) predicates_.resize(static_cast<std::size_t>(index) + 1, Zero());
+    return predicates_[static_cast<std::size_t>(index)];
+  }
+  Vec4 Predicate(long index) const {
+    return static_cast<std::size_t>(index) < predicates_.size() ? predicates_[static_cast<std::size_t>(index)] : Zero();
+  }
+  // An output lane no instruction has written reads 0 under a predicated write, as in the reference.
+  static Float Written(Float old) { return old.id == kNoNode ? Zero()[0] : old; }
   static Vec4 Zero() {
     const Float zero = Constant(Float{}, 0.0f);
     return {zero, zero, zero, zero};
@@ -57,7 +71,9 @@ class RecordingMachine {
   std::array<Vec4, kTempRegisterCount> temps_{};
   std::array<Vec4, kOutputSlotCount> outputs_{};
   Int address_;
+  Float address_value_;
   bool address_written_ = false;
+  std::vector<Vec4> predicates_;
 };
 
 }  // namespace

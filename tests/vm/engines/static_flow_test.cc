@@ -4,7 +4,6 @@
 // and jit on every instruction set the CPU has under both float rules, compared bit for bit.
 #include <cmath>
 #include <cstdlib>
-#include <cstring>
 #include <random>
 #include <string>
 #include <vector>
@@ -12,30 +11,21 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
-#include "vm/asm/assembler.h"
+#include "tests/vm/engines/later_model_comparison.h"
 #include "vm/core/static_flow.h"
-#include "vm/engines/engine_factory.h"
-#include "vm/engines/jit_compiler.h"
-#include "vm/engines/jit_options.h"
 #include "vm/engines/static_flow_engine.h"
 
 namespace vs11 {
 namespace {
 
+using namespace later_model;  // NOLINT(build/namespaces): the shared comparison of these tests
+
 constexpr int kBankSize = 256;
 
-std::optional<std::string> NoFiles(const std::filesystem::path&) { return std::nullopt; }
-
-Program Assemble(const std::string& source) {
-  const AssembleResult assembled = AssembleSource(source, "static.vsh", {}, NoFiles);
-  EXPECT_TRUE(assembled.program) << assembled.diagnostics.ToString() << "\n" << source;
-  return assembled.program ? *assembled.program : Program{};
-}
-
 // A random vs_2_x program whose flow depends on i0-i3 and b0-b3 only.
-class ProgramWriter {
+class ProgramWriter : later_model::Draws {
  public:
-  explicit ProgramWriter(unsigned seed) : random_(seed) {}
+  explicit ProgramWriter(unsigned seed) : Draws(seed) {}
 
   std::string Write() {
     std::string text = "vs_2_x\n";  // break is vs_2_x's
@@ -52,12 +42,9 @@ class ProgramWriter {
   }
 
  private:
-  int Pick(int low, int high) { return std::uniform_int_distribution<int>(low, high)(random_); }
-  std::string Temp() { return fmt::format("r{}", Pick(0, 3)); }
   // One source; a temporary where the instruction already reads a constant or an input (the later
   // models' read ports: one c# and one v# per instruction).
   std::string Source(bool in_loop, bool& reads_constant, bool& reads_input) {
-    static constexpr const char* kSwizzles[] = {"", ".x", ".yzxw", ".wwzy", ".zzzz"};
     std::string reg;
     const int kind = Pick(0, in_loop ? 3 : 2);
     if (kind == 0 || (kind == 1 && reads_input) || (kind >= 2 && reads_constant)) {
@@ -69,7 +56,7 @@ class ProgramWriter {
       reg = kind == 2 ? fmt::format("c{}", Pick(0, 255)) : fmt::format("c[aL + {}]", Pick(0, 8));
       reads_constant = true;
     }
-    return (Pick(0, 3) == 0 ? "-" : "") + reg + kSwizzles[Pick(0, 4)];
+    return (Pick(0, 3) == 0 ? "-" : "") + reg + SwizzleSuffix();
   }
   std::string Arithmetic(bool in_loop) {
     static constexpr const char* kTwo[] = {"add", "mul", "dp3", "dp4", "min", "max", "slt", "sge"};
@@ -115,8 +102,6 @@ class ProgramWriter {
     }
     return text;
   }
-
-  std::mt19937 random_;
 };
 
 ConstantBank RandomBank(std::mt19937& random) {
@@ -126,52 +111,9 @@ ConstantBank RandomBank(std::mt19937& random) {
   return bank;
 }
 
-VertexArrays RandomInputs(std::mt19937& random, std::size_t count) {
+VertexArrays InputsFrom(std::mt19937& random, std::size_t count) {
   std::uniform_real_distribution<float> value(-3.0f, 3.0f);
-  const std::vector<int> registers = {0, 1};
-  VertexArrays inputs = MakeInputArrays(count, registers);
-  for (int reg : registers) {
-    for (int c = 0; c < 4; ++c) {
-      for (std::size_t i = 0; i < count; ++i) inputs.lane(reg, c)[i] = value(random);
-    }
-  }
-  return inputs;
-}
-
-VertexArrays RunOn(std::string_view name, const Program& program, const ConstantBank& bank,
-                   const VertexArrays& inputs, EngineOptions options) {
-  VertexArrays outputs = MakeOutputArrays(inputs.count(), program);
-  Result<std::unique_ptr<Engine>> engine = MakeEngine(name, program, bank, options);
-  EXPECT_TRUE(engine.ok()) << engine.message();
-  if (engine.ok()) (*engine)->Run(inputs, outputs);
-  return outputs;
-}
-
-// The first lane whose bits differ (any NaN matches any NaN), or empty.
-std::string Difference(const VertexArrays& expected, const VertexArrays& actual) {
-  for (int slot : expected.registers()) {
-    for (int c = 0; c < 4; ++c) {
-      for (std::size_t i = 0; i < expected.count(); ++i) {
-        const float a = expected.lane(slot, c)[i], b = actual.lane(slot, c)[i];
-        if (std::memcmp(&a, &b, sizeof a) == 0 || (a != a && b != b)) continue;
-        return fmt::format("{}.{} of vertex {}: ref {} got {}", OutputSlotName(slot), kLaneLetters[c], i, a, b);
-      }
-    }
-  }
-  return {};
-}
-
-struct Candidate {
-  std::string name;
-  EngineOptions options;
-};
-
-std::vector<Candidate> Candidates(FloatRules rules) {
-  std::vector<Candidate> candidates = {{"batch", {.float_rules = rules}}};
-  for (JitIsa isa : jit::SupportedIsas()) {
-    candidates.push_back({fmt::format("jit {}", kJitIsaNames.Name(isa)), WithJitIsa({.float_rules = rules}, isa)});
-  }
-  return candidates;
+  return later_model::RandomInputs(count, [&] { return value(random); });
 }
 
 TEST(StaticFlow, RandomProgramsMatchTheReferenceBitForBit) {
@@ -184,11 +126,11 @@ TEST(StaticFlow, RandomProgramsMatchTheReferenceBitForBit) {
     const Program program = Assemble(source);
     if (program.instructions.empty()) continue;
     const ConstantBank bank = RandomBank(random);
-    const VertexArrays inputs = RandomInputs(random, 37);
+    const VertexArrays inputs = InputsFrom(random, 37);
     for (FloatRules rules : kAllFloatRules) {
       const VertexArrays expected = RunOn("ref", program, bank, inputs, {.float_rules = rules});
       for (const Candidate& candidate : Candidates(rules)) {
-        const std::string engine = candidate.name.substr(0, candidate.name.find(' '));
+        const std::string& engine = candidate.engine;
         if (Result<std::unique_ptr<Engine>> made = MakeEngine(engine, program, bank, candidate.options); !made) {
           // Only the unrolled length may stop a program of this writer.
           EXPECT_NE(made.message().find("unrolled"), std::string::npos) << made.message();
@@ -223,11 +165,11 @@ TEST(StaticFlow, CornersMatchTheReference) {
   for (const char* source : kPrograms) {
     const Program program = Assemble(source);
     const ConstantBank bank = RandomBank(random);
-    VertexArrays inputs = RandomInputs(random, 19);
+    VertexArrays inputs = InputsFrom(random, 19);
     for (FloatRules rules : kAllFloatRules) {
       const VertexArrays expected = RunOn("ref", program, bank, inputs, {.float_rules = rules});
       for (const Candidate& candidate : Candidates(rules)) {
-        const std::string engine = candidate.name.substr(0, candidate.name.find(' '));
+        const std::string& engine = candidate.engine;
         EXPECT_EQ(Difference(expected, RunOn(engine, program, bank, inputs, candidate.options)), "")
             << candidate.name << ", " << kFloatRulesNames.Name(rules) << ":\n" << source;
       }
@@ -271,16 +213,11 @@ TEST(StaticFlow, NewIntegerConstantsChangeTheUnrollingAndKnownOnesHitTheCache) {
   }
 }
 
-TEST(StaticFlow, DynamicFlowAndMissingKernelsAreRefusedWithTheirReason) {
-  const Program dynamic = Assemble(
-      "vs_2_x\ndcl_position v0\nmov r0, v0\nif_gt r0.x, c0.x\nadd r0, r0, c1\nendif\nmov oPos, r0\n");
+// (Dynamic flow control runs on batch and jit too: tests/vm/engines/dynamic_flow_test.cc.)
+TEST(StaticFlow, MissingKernelsAreRefusedWithTheirReason) {
   const Program mova = Assemble("vs_2_0\ndcl_position v0\nmova a0.x, v0.x\nmov oPos, c[a0.x + 1]\n");
   for (const char* engine : {"batch", "jit"}) {
-    Result<std::unique_ptr<Engine>> made = MakeEngine(engine, dynamic, ConstantBank(kBankSize), {});
-    ASSERT_FALSE(made.ok());
-    EXPECT_NE(made.message().find("instruction 3"), std::string::npos) << made.message();
-    EXPECT_NE(made.message().find("dynamic flow control"), std::string::npos) << made.message();
-    made = MakeEngine(engine, mova, ConstantBank(kBankSize), {});
+    Result<std::unique_ptr<Engine>> made = MakeEngine(engine, mova, ConstantBank(kBankSize), {});
     ASSERT_FALSE(made.ok());
     EXPECT_NE(made.message().find("mova): the engine has no kernel"), std::string::npos) << made.message();
   }
