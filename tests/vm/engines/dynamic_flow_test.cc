@@ -44,27 +44,45 @@ class ProgramWriter : later_model::Draws {
       text += fmt::format("defi i{}, {}, {}, {}, 0\n", i, Pick(0, 4), Pick(-2, 6), Pick(-1, 2));
       text += fmt::format("defb b{}, {}\n", i, Pick(0, 1) ? "true" : "false");
     }
-    text += "dcl_position v0\ndcl_normal v1\nmov r0, v0\nmov r1, v1\nmov r2, c1\nmov r3, c2\nsetp_gt p0, v0, v1\n";
+    text += "dcl_position v0\ndcl_normal v1\nmov r0, v0\nmov r1, v1\nmov r2, c1\nmov r3, c2\nsetp_gt p0, v0, r1.yzwx\n";
     text += Block(0, 0, false, true);
     text += "mov oPos, r0\nmov oD0, r1\nmov oT0, r2\nmov oT1, r3\nret\nlabel l0\n" + Block(0, 0, false, false) +
             "ret\nlabel l1\n" + Block(0, 0, false, false) + "ret\n";
     return text;
   }
 
+  // What one instruction has read so far: the later models' read ports allow one c# and one v#.
+  struct Reads {
+    bool constant = false;
+    bool input = false;
+  };
   std::string Lane() { return std::string(1, "xyzw"[Pick(0, 3)]); }
-  std::string Register(bool in_loop) {
-    switch (Pick(0, in_loop ? 3 : 2)) {
-      case 0: return Temp();
-      case 1: return fmt::format("v{}", Pick(0, 1));
-      case 2: return fmt::format("c{}", Pick(0, 7));
-      default: return fmt::format("c[aL + {}]", Pick(0, 4));
+  // A register of the kind drawn, or a temporary where the instruction already reads one of that file.
+  std::string Register(bool in_loop, Reads& reads) {
+    const int kind = Pick(0, in_loop ? 3 : 2);
+    if (kind == 0 || (kind == 1 && reads.input) || (kind >= 2 && reads.constant)) return Temp();
+    if (kind == 1) {
+      reads.input = true;
+      return fmt::format("v{}", Pick(0, 1));
     }
+    reads.constant = true;
+    return kind == 2 ? fmt::format("c{}", Pick(0, 7)) : fmt::format("c[aL + {}]", Pick(0, 4));
   }
-  std::string Source(bool in_loop) {
-    return (Pick(0, 3) == 0 ? "-" : "") + Register(in_loop) + SwizzleSuffix();
+  std::string Source(bool in_loop, Reads& reads) {
+    const bool negate = Pick(0, 3) == 0;
+    return (negate ? "-" : "") + Register(in_loop, reads) + SwizzleSuffix();
   }
   // One lane of a source, as if_comp and break_comp read it.
-  std::string Scalar(bool in_loop) { return (Pick(0, 3) == 0 ? "-" : "") + Register(in_loop) + "." + Lane(); }
+  std::string Scalar(bool in_loop, Reads& reads) {
+    const bool negate = Pick(0, 3) == 0;
+    return (negate ? "-" : "") + Register(in_loop, reads) + "." + Lane();
+  }
+  // The two operands of if_comp and break_comp.
+  std::string Scalars(bool in_loop) {
+    Reads reads;
+    const std::string first = Scalar(in_loop, reads);
+    return first + ", " + Scalar(in_loop, reads);
+  }
   std::string Comparison() {
     static constexpr const char* kNames[] = {"gt", "eq", "ge", "lt", "ne", "le"};
     return kNames[Pick(0, 5)];
@@ -82,12 +100,26 @@ class ProgramWriter : later_model::Draws {
       static constexpr const char* kPredicateSwizzles[] = {".x", ".y", ".z", ".w", "", ".yzwx", ".wzyx"};
       prefix = fmt::format("({}p0{}) ", Pick(0, 1) ? "!" : "", kPredicateSwizzles[Pick(0, 6)]);
     }
+    Reads reads;
+    const auto source = [&] { return Source(in_loop, reads); };
     switch (Pick(0, 4)) {
-      case 0: return prefix + fmt::format("mad {}, {}, {}, {}\n", Destination(), Source(in_loop), Source(in_loop), Source(in_loop));
-      case 1: return prefix + fmt::format("mov {}, {}\n", Destination(), Source(in_loop));
+      case 0: {
+        const std::string dest = Destination(), s0 = source(), s1 = source(), s2 = source();
+        return prefix + fmt::format("mad {}, {}, {}, {}\n", dest, s0, s1, s2);
+      }
+      case 1: {
+        const std::string dest = Destination();
+        return prefix + fmt::format("mov {}, {}\n", dest, source());
+      }
       case 2: return prefix + fmt::format("m4x3 {}, {}, c{}\n", Temp(), Temp(), Pick(0, 5));
-      case 3: return fmt::format("setp_{} p0{}, {}, {}\n", Comparison(), Pick(0, 1) ? "" : "." + Lane(), Source(in_loop), Source(in_loop));
-      default: return prefix + fmt::format("{} {}, {}, {}\n", kTwo[Pick(0, 7)], Destination(), Source(in_loop), Source(in_loop));
+      case 3: {
+        const std::string comparison = Comparison(), lanes = Pick(0, 1) ? "" : "." + Lane(), s0 = source(), s1 = source();
+        return fmt::format("setp_{} p0{}, {}, {}\n", comparison, lanes, s0, s1);
+      }
+      default: {
+        const std::string op = kTwo[Pick(0, 7)], dest = Destination(), s0 = source(), s1 = source();
+        return prefix + fmt::format("{} {}, {}, {}\n", op, dest, s0, s1);
+      }
     }
   }
   std::string Branch(int depth, int loops, bool in_loop, bool main) {
@@ -106,15 +138,15 @@ class ProgramWriter : later_model::Draws {
       } else if (kind == 5 && main) {
         text += fmt::format("loop aL, i{}\n", Pick(0, 3)) + Block(depth + 1, loops + 1, true, main) + "endloop\n";
       } else if (kind == 6 || kind == 7) {
-        text += fmt::format("if_{} {}, {}\n", Comparison(), Scalar(in_loop), Scalar(in_loop)) + Branch(depth, loops, in_loop, main);
+        text += fmt::format("if_{} {}\n", Comparison(), Scalars(in_loop)) + Branch(depth, loops, in_loop, main);
       } else if (kind == 8) {
         text += "if " + Predicate() + "\n" + Branch(depth, loops, in_loop, main);
       } else if (kind == 9 && loops > 0) {
-        text += fmt::format("break_{} {}, {}\n", Comparison(), Scalar(in_loop), Scalar(in_loop));
+        text += fmt::format("break_{} {}\n", Comparison(), Scalars(in_loop));
       } else if (kind == 10 && loops > 0) {
         text += "breakp " + Predicate() + "\n";
       } else if (kind == 11 && loops > 0) {  // a break some vertices reach
-        text += fmt::format("if_{} {}, {}\n{}break\nendif\n", Comparison(), Scalar(in_loop), Scalar(in_loop), Arithmetic(in_loop));
+        text += fmt::format("if_{} {}\n{}break\nendif\n", Comparison(), Scalars(in_loop), Arithmetic(in_loop));
       } else if (kind == 12 && main) {
         text += Pick(0, 1) ? "callnz l1, " + Predicate() + "\n" : fmt::format("callnz l0, {}b{}\n", Pick(0, 1) ? "!" : "", Pick(0, 3));
       } else if (kind == 13) {

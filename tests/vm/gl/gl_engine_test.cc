@@ -141,11 +141,11 @@ TEST_P(GlEngineTest, EveryProgramOfProgramsGivesTheReferenceBitsOnOrdinaryInputs
   EXPECT_GE(programs, 10) << "programs/ lost its programs";
 }
 
-// Later models' programs whose flow control is static run as their specialisation for i#/b#
-// (vm/engines/static_flow_engine.h), translated like any vs_1_1 program: a skinning loop over bones
-// through c[aL], nested rep/if b#/break, calls, and vs_3_0's outputs by declaration with o[aL]; then new
-// integer constants, which build a second specialisation.
-TEST_P(GlEngineTest, LaterModelProgramsWithStaticFlowGiveTheReferenceBits) {
+// Later models' programs run as their specialisation for i#/b# (vm/engines/static_flow_engine.h), dynamic
+// flow as execution masks, translated like any vs_1_1 program: a skinning loop over bones through c[aL],
+// nested rep/if b#/break, calls, a per-vertex if_comp and break_comp in a loop with predicated writes, and
+// vs_3_0's outputs by declaration with o[aL]; then new integer constants, a second specialisation.
+TEST_P(GlEngineTest, LaterModelProgramsGiveTheReferenceBits) {
   const char* const kPrograms[] = {
       ("vs_2_0\ndcl_position v0\nmov r0, c0\nloop aL, i0\ndp4 r1.x, v0, c0[aL]\n"
        "dp4 r1.y, v0, c1[aL]\ndp4 r1.z, v0, c2[aL]\ndp4 r1.w, v0, c3[aL]\nmad r0, r1, c30[aL].x, r0\nendloop\n"
@@ -154,6 +154,9 @@ TEST_P(GlEngineTest, LaterModelProgramsWithStaticFlowGiveTheReferenceBits) {
        "mov r0, v0\nmov r1, v1\nrep i1\nif b0\nmad r0, r0, c3, r1\nelse\nadd r0, r0, c4\nendif\nrep i1\n"
        "mul r1, r1, c5\nif !b1\nbreak\nendif\nendrep\ncall l0\nendrep\ncallnz l0, b1\nmov oPos, r0\n"
        "mov oD0, r1\nret\nlabel l0\nmax r0, r0, -r1\nret\n"),
+      ("vs_2_x\ndcl_position v0\ndcl_normal v1\nmov r0, v0\nmov r1, v1\nrep i1\nif_gt r0.x, c0.x\n"
+       "add r0, r0, c1\nelse\nmul r0, r0, c2\nendif\nbreak_lt r0.y, c3.x\nendrep\nsetp_lt p0, v0, c1\n"
+       "(p0) mov r0.yz, c1.w\n(!p0.x) add r1, r1, c4\nmov oPos, r0\nmov oD0, r1\n"),
       ("vs_3_0\ndcl_position v0\ndcl_position o0\ndcl_texcoord0 o1\n"
        "dcl_texcoord1 o2\nmov o0, v0\nloop aL, i2\nmul o[aL], v0, c[aL + 7]\nendloop\n"),
   };
