@@ -6,6 +6,8 @@
 
 #include <fmt/format.h>
 
+#include "vm/core/operands.h"
+
 namespace vs11 {
 
 bool OpensBlock(Opcode op) { return op == Opcode::kIf || op == Opcode::kIfc || op == Opcode::kLoop || op == Opcode::kRep; }
@@ -59,17 +61,6 @@ namespace {
 // past r31) points in the straight-line program: a constant far below c0, which every engine reads as 0
 // with all the rows of a matrix.
 constexpr int kZeroRow = -(1 << 20);
-// The batch and jit engines' temporaries (vs_1_1's r0-r11).
-constexpr int kEngineTemps = RegisterCount(RegisterFile::kTemp, ShaderModel::kVs11);
-
-bool IsStaticFlowInstruction(Opcode op) {
-  switch (op) {
-    case Opcode::kRep: case Opcode::kEndrep: case Opcode::kLoop: case Opcode::kEndloop: case Opcode::kIf:
-    case Opcode::kElse: case Opcode::kEndif: case Opcode::kCall: case Opcode::kCallnz: case Opcode::kRet:
-    case Opcode::kLabel: case Opcode::kBreak: return true;
-    default: return false;
-  }
-}
 
 Diagnostic Refuse(const Program& program, std::size_t i, std::string_view engine, std::string_view why) {
   const SourceLoc loc = program.LocOf(static_cast<int>(i));
@@ -87,7 +78,6 @@ constexpr std::string_view kDynamicFlow =
 
 std::optional<std::string> RefusalOf(const Instruction& instruction) {
   const Opcode op = instruction.opcode;
-  const OpcodeInfo& info = instruction.info();
   if (op == Opcode::kIfc || op == Opcode::kBreakc || op == Opcode::kBreakp || op == Opcode::kSetp ||
       instruction.predicated) {
     return std::string(kDynamicFlow);
@@ -96,25 +86,7 @@ std::optional<std::string> RefusalOf(const Instruction& instruction) {
       instruction.sources[op == Opcode::kIf ? 0 : 1].reg.file == RegisterFile::kPredicate) {
     return std::string(kDynamicFlow);
   }
-  if (IsStaticFlowInstruction(op) || !info.is_executable()) return std::nullopt;
-  if (info.since != ShaderModel::kVs11) return "the engine has no kernel for it yet (it runs vs_1_1's instructions)";
-  if (instruction.dest.saturate) return "the engine has no _sat yet";
-  const RegisterRef& dest = instruction.dest.reg;
-  if (dest.file == RegisterFile::kAddress && (op != Opcode::kMov || instruction.dest.mask.bits() != 1)) {
-    return "the engine writes a0.x with mov only";  // (mask bit 1: x)
-  }
-  if (dest.file == RegisterFile::kTemp && dest.index >= kEngineTemps) return "the engine has temporaries r0-r11 only";
-  for (int s = 0; s < info.source_count(); ++s) {
-    const SourceOperand& source = instruction.sources[static_cast<std::size_t>(s)];
-    if (source.absolute) return "the engine has no _abs yet";
-    if (source.reg.relative && source.reg.address.file == RegisterFile::kAddress && (source.reg.address.swizzle_bits & 3) != 0) {
-      return "the engine indexes by a0.x only";
-    }
-    if (source.reg.file == RegisterFile::kTemp && source.reg.index + info.registers_read(s) > kEngineTemps) {
-      return "the engine has temporaries r0-r11 only";
-    }
-  }
-  return std::nullopt;
+  return std::nullopt;  // texldl is refused before (LaterModelRefusal); every other row has a kernel
 }
 
 RegisterRef RegisterOfSlot(int slot) {
@@ -132,7 +104,7 @@ class Specialiser {
   Specialiser(const Program& program, const StaticFlowKey& key)
       : program_(program), control_(BuildControlTable(program)), key_(key),
         declared_outputs_(DeclaredOutputSlots(program)) {
-    out_.version = kVersionVs11;
+    out_.version = semantics::kLaterModelStraightLine;
   }
 
   Result<Program> Run(std::string_view engine) {

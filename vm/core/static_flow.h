@@ -159,9 +159,9 @@ struct StaticFlowKey {
 StaticFlowKey StaticFlowKeyOf(const ConstantBank& constants);  // constants: ModelConstants'
 
 // Success, or why `engine` cannot run `program` (a later model) specialised, whatever the constants:
-// dynamic flow control (if_comp, break_comp, breakp, setp, predicated instructions, if/callnz on p0),
-// texldl, an instruction the engine has no kernel for (the later models' arithmetic rows: abs, crs,
-// lrp, mova, nrm, pow, sgn, sincos), _sat and _abs, a0 lanes other than x, more than 12 temporaries.
+// dynamic flow control (if_comp, break_comp, breakp, setp, predicated instructions, if/callnz on p0)
+// and texldl. The later arithmetic rows, _sat, _abs, a0's four lanes and r0-r31 all run
+// (semantics::kLaterModelStraightLine).
 Status StaticFlowRefusal(const Program& program, std::string_view engine);
 
 // `program` (which passes StaticFlowRefusal) as a vs_1_1 program for the constants `key`, or why not

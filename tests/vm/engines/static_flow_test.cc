@@ -256,7 +256,9 @@ TEST(StaticFlow, NewIntegerConstantsChangeTheUnrollingAndKnownOnesHitTheCache) {
   }
 }
 
-TEST(StaticFlow, DynamicFlowAndMissingKernelsAreRefusedWithTheirReason) {
+// Dynamic flow is refused by name; the later arithmetic rows (tests/vm/engines/later_arithmetic_test.cc)
+// run.
+TEST(StaticFlow, DynamicFlowIsRefusedWithItsReasonAndLaterArithmeticRuns) {
   const Program dynamic = Assemble(
       "vs_2_x\ndcl_position v0\nmov r0, v0\nif_gt r0.x, c0.x\nadd r0, r0, c1\nendif\nmov oPos, r0\n");
   const Program mova = Assemble("vs_2_0\ndcl_position v0\nmova a0.x, v0.x\nmov oPos, c[a0.x + 1]\n");
@@ -266,8 +268,7 @@ TEST(StaticFlow, DynamicFlowAndMissingKernelsAreRefusedWithTheirReason) {
     EXPECT_NE(made.message().find("instruction 3"), std::string::npos) << made.message();
     EXPECT_NE(made.message().find("dynamic flow control"), std::string::npos) << made.message();
     made = MakeEngine(engine, mova, ConstantBank(kBankSize), {});
-    ASSERT_FALSE(made.ok());
-    EXPECT_NE(made.message().find("mova): the engine has no kernel"), std::string::npos) << made.message();
+    EXPECT_TRUE(made.ok()) << made.message();
   }
 }
 
