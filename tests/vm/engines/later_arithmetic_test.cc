@@ -7,7 +7,6 @@
 #include <cfloat>
 #include <cmath>
 #include <cstdlib>
-#include <cstring>
 #include <limits>
 #include <random>
 #include <string>
@@ -16,11 +15,8 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include "tests/vm/engines/engine_comparison.h"
 #include "vm/asm/assembler.h"
-#include "vm/engines/batch_plan.h"
-#include "vm/engines/engine_factory.h"
-#include "vm/engines/jit_compiler.h"
-#include "vm/engines/jit_options.h"
 
 namespace vs11 {
 namespace {
@@ -110,7 +106,8 @@ class LaterProgramWriter {
   // A source: a register, maybe _abs (vs_3_0), maybe negated, swizzled as `swizzle` says.
   std::string Source(const std::string& swizzle) {
     const std::string modifier = vs30_ && values_.Pick(0, 3) == 0 ? "_abs" : "";
-    return (values_.Pick(0, 3) == 0 ? "-" : "") + Register(modifier) + swizzle;
+    const char* sign = values_.Pick(0, 3) == 0 ? "-" : "";
+    return fmt::format("{}{}{}", sign, Register(modifier), swizzle);
   }
   std::string Source() { return Source(Swizzle()); }
   std::string Mask(std::uint8_t allowed) {
@@ -182,42 +179,10 @@ VertexArrays EdgeInputs(Values& values) {
   return inputs;
 }
 
-VertexArrays RunOn(std::string_view name, const Program& program, const ConstantBank& bank,
-                   const VertexArrays& inputs, const EngineOptions& options) {
-  VertexArrays outputs = MakeOutputArrays(inputs.count(), program);
-  Result<std::unique_ptr<Engine>> engine = MakeEngine(name, program, bank, options);
-  EXPECT_TRUE(engine.ok()) << name << ": " << engine.message();
-  if (engine.ok()) (*engine)->Run(inputs, outputs);
-  return outputs;
-}
-
-// The first lane whose bits differ (any NaN matches any NaN), or empty.
-std::string Difference(const VertexArrays& expected, const VertexArrays& actual) {
-  for (int slot : expected.registers()) {
-    for (int c = 0; c < 4; ++c) {
-      for (std::size_t i = 0; i < expected.count(); ++i) {
-        const float a = expected.lane(slot, c)[i], b = actual.lane(slot, c)[i];
-        if (std::memcmp(&a, &b, sizeof a) == 0 || (a != a && b != b)) continue;
-        return fmt::format("{}.{} of vertex {}: ref {} got {}", OutputSlotName(slot), kLaneLetters[c], i, a, b);
-      }
-    }
-  }
-  return {};
-}
-
-struct Candidate {
-  std::string label;
-  std::string engine;
-  EngineOptions options;
-};
-
-std::vector<Candidate> Candidates(FloatRules rules) {
-  std::vector<Candidate> candidates = {{"batch", "batch", {.float_rules = rules}}};
-  for (JitIsa isa : jit::SupportedIsas()) {
-    candidates.push_back({fmt::format("jit {}", kJitIsaNames.Name(isa)), "jit", WithJitIsa({.float_rules = rules}, isa)});
-  }
-  return candidates;
-}
+using engine_comparison::Candidate;
+using engine_comparison::Candidates;
+using engine_comparison::Difference;
+using engine_comparison::RunOn;
 
 // Ref against every candidate on `source`; the number of runs compared.
 int ExpectSameAsReference(const std::string& source, Values& values) {
@@ -229,8 +194,8 @@ int ExpectSameAsReference(const std::string& source, Values& values) {
   for (FloatRules rules : kAllFloatRules) {
     const VertexArrays expected = RunOn("ref", program, bank, inputs, {.float_rules = rules});
     for (const Candidate& candidate : Candidates(rules)) {
-      EXPECT_EQ(Difference(expected, RunOn(candidate.engine, program, bank, inputs, candidate.options)), "")
-          << candidate.label << ", " << kFloatRulesNames.Name(rules) << ":\n" << source;
+      EXPECT_EQ(Difference(expected, RunOn(candidate.engine(), program, bank, inputs, candidate.options)), "")
+          << candidate.name << ", " << kFloatRulesNames.Name(rules) << ":\n" << source;
       ++compared;
     }
   }

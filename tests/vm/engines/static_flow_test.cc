@@ -18,6 +18,7 @@
 #include "vm/engines/jit_compiler.h"
 #include "vm/engines/jit_options.h"
 #include "vm/engines/static_flow_engine.h"
+#include "tests/vm/engines/engine_comparison.h"
 
 namespace vs11 {
 namespace {
@@ -123,41 +124,10 @@ VertexArrays RandomInputs(std::mt19937& random, std::size_t count) {
   return inputs;
 }
 
-VertexArrays RunOn(std::string_view name, const Program& program, const ConstantBank& bank,
-                   const VertexArrays& inputs, EngineOptions options) {
-  VertexArrays outputs = MakeOutputArrays(inputs.count(), program);
-  Result<std::unique_ptr<Engine>> engine = MakeEngine(name, program, bank, options);
-  EXPECT_TRUE(engine.ok()) << engine.message();
-  if (engine.ok()) (*engine)->Run(inputs, outputs);
-  return outputs;
-}
-
-// The first lane whose bits differ (any NaN matches any NaN), or empty.
-std::string Difference(const VertexArrays& expected, const VertexArrays& actual) {
-  for (int slot : expected.registers()) {
-    for (int c = 0; c < 4; ++c) {
-      for (std::size_t i = 0; i < expected.count(); ++i) {
-        const float a = expected.lane(slot, c)[i], b = actual.lane(slot, c)[i];
-        if (std::memcmp(&a, &b, sizeof a) == 0 || (a != a && b != b)) continue;
-        return fmt::format("{}.{} of vertex {}: ref {} got {}", OutputSlotName(slot), kLaneLetters[c], i, a, b);
-      }
-    }
-  }
-  return {};
-}
-
-struct Candidate {
-  std::string name;
-  EngineOptions options;
-};
-
-std::vector<Candidate> Candidates(FloatRules rules) {
-  std::vector<Candidate> candidates = {{"batch", {.float_rules = rules}}};
-  for (JitIsa isa : jit::SupportedIsas()) {
-    candidates.push_back({fmt::format("jit {}", kJitIsaNames.Name(isa)), WithJitIsa({.float_rules = rules}, isa)});
-  }
-  return candidates;
-}
+using engine_comparison::Candidate;
+using engine_comparison::Candidates;
+using engine_comparison::Difference;
+using engine_comparison::RunOn;
 
 TEST(StaticFlow, RandomProgramsMatchTheReferenceBitForBit) {
   const char* env = std::getenv("VS11_STATIC_FLOW_PROGRAMS");
