@@ -2,8 +2,8 @@
 // abs, crs, lrp, nrm, pow, sgn, sincos and mova, _sat on destinations, _abs on sources (vs_3_0),
 // relative reads by every lane of a0 and temporaries up to r31, with inputs and constants that hold
 // the edge values (signed zeros, denormals, infinities, NaN, mova's ties 2.5 and -2.5, pow of 0 and
-// of negatives, nrm of a zero vector), run by ref, batch and jit on every instruction set the CPU has
-// under both float rules and compared bit for bit.
+// of negatives, nrm of a zero vector), run by ref, batch (at every Highway target the CPU has) and jit
+// (at every instruction set) under both float rules and compared bit for bit.
 #include <cfloat>
 #include <cmath>
 #include <cstdlib>
@@ -15,6 +15,8 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include "hwy/highway.h"
+#include "hwy/tests/hwy_gtest.h"
 #include "tests/vm/engines/engine_comparison.h"
 #include "vm/asm/assembler.h"
 
@@ -202,7 +204,11 @@ int ExpectSameAsReference(const std::string& source, Values& values) {
   return compared;
 }
 
-TEST(LaterArithmetic, RandomProgramsMatchTheReferenceBitForBit) {
+// Parameterised by the Highway target the batch engine's kernels run on.
+class LaterArithmetic : public hwy::TestWithParamTarget {};
+HWY_TARGET_INSTANTIATE_TEST_SUITE_P(LaterArithmetic);
+
+TEST_P(LaterArithmetic, RandomProgramsMatchTheReferenceBitForBit) {
   const char* env = std::getenv("VS11_LATER_ARITHMETIC_PROGRAMS");
   const int programs = env != nullptr ? std::atoi(env) : 40;
   int compared = 0;
@@ -218,7 +224,7 @@ TEST(LaterArithmetic, RandomProgramsMatchTheReferenceBitForBit) {
 }
 
 // Each later row and modifier alone, on every pair of edge values.
-TEST(LaterArithmetic, EachRowOnEdgeValuesMatchesTheReference) {
+TEST_P(LaterArithmetic, EachRowOnEdgeValuesMatchesTheReference) {
   const char* const kBodies[] = {
       "abs r0, v0\nmov oT0, r0\n",
       "crs r0.xyz, v0, v1\nmov oT0, r0\n",
