@@ -39,6 +39,7 @@ inline bool HasLaterModelRegisters(const Program& program) { return program.vers
 inline int TempCountOf(const Program& program) {
   return HasLaterModelRegisters(program) ? kLaterModelTempCount : kTempRegisterCount;
 }
+inline int AddressLaneCountOf(const Program& program) { return HasLaterModelRegisters(program) ? 4 : 1; }
 
 // a0.x = floor(x) (§1.5). NaN and values beyond +-2^20 become +-2^20, which puts every relative read
 // out of range, so it reads 0 (the bank holds at most 2048 registers).

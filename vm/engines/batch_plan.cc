@@ -67,7 +67,7 @@ class PlanBuilder {
   PlanBuilder(const KernelTable& kernels, const Program& program)
       : kernels_(kernels),
         temp_count_(semantics::TempCountOf(program)),
-        address_lanes_(semantics::HasLaterModelRegisters(program) ? 4 : 1) {
+        address_lanes_(semantics::AddressLaneCountOf(program)) {
     for (auto& reg : temp_lanes_) reg.fill(kNoLane);
     for (auto* lanes : {&gather_lanes_, &abs_lanes_}) {
       for (auto& source : *lanes) {

@@ -17,7 +17,7 @@ class RecordingMachine {
   RecordingMachine(Bindings& bindings, const Program& program)
       : bindings_(bindings),
         temp_count_(semantics::TempCountOf(program)),
-        address_lanes_(semantics::HasLaterModelRegisters(program) ? 4 : 1) {
+        address_lanes_(semantics::AddressLaneCountOf(program)) {
     for (auto& temp : temps_) temp = Zero();  // temporaries start at 0, as in the engines
     for (int slot = 0; slot < kOutputSlotCount; ++slot) outputs_[slot] = bindings.InitialOutput(slot);
   }
