@@ -1,6 +1,7 @@
 // Static flow control resolved for one set of integer and boolean constants, as drivers do: a later
 // model's program (vs_2_0 on) whose rep/loop counts and if/call conditions come from i# and b# only
-// becomes straight-line vs_1_1 code that the batch and jit engines run (vm/engines/static_flow_engine.h).
+// becomes straight-line code that the batch and jit engines run as vs_1_1 code with the later model's
+// registers (semantics::kLaterModelStraightLine; vm/engines/static_flow_engine.h).
 // The walk follows the reference engine's control rules (vm/engines/reference_flow.cc) exactly: loop
 // counts clamped to [0, 255], the outer aL restored when a loop ends, calls beyond the model's depth
 // skipped, each c#[aL + n] read as the static c#[k] of its iteration.
@@ -164,7 +165,8 @@ StaticFlowKey StaticFlowKeyOf(const ConstantBank& constants);  // constants: Mod
 // (semantics::kLaterModelStraightLine).
 Status StaticFlowRefusal(const Program& program, std::string_view engine);
 
-// `program` (which passes StaticFlowRefusal) as a vs_1_1 program for the constants `key`, or why not
+// `program` (which passes StaticFlowRefusal) as a straight-line program for the constants `key` (its
+// version semantics::kLaterModelStraightLine: read as vs_1_1, with r0-r31 and a0's lanes), or why not
 // (the walk exceeds kMaxStaticFlowSteps or the result kMaxUnrolledInstructions). Its constants are
 // the later model's bank: run it with ModelConstants(program, api_constants). It has no dcl or def.
 Result<Program> SpecialiseStaticFlow(const Program& program, const StaticFlowKey& key, std::string_view engine);
