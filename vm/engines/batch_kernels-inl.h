@@ -352,7 +352,7 @@ void FillOpcode(KernelTable& table) {
   if constexpr (kRules != FloatRules::kD3d9 && !semantics::FollowsFloatRules<Semantics>) {
     return;
   } else if constexpr (semantics::HasLane<Semantics, VF>) {
-    constexpr int kArity = Info(kOpcode).source_count();
+    constexpr int kArity = KernelArity(Info(kOpcode));
     FillLaneCounts<Semantics, kRules, kArity>(table.lane[kIndex], std::make_index_sequence<4>());
   } else if constexpr (semantics::HasScalar<Semantics, VF>) {
     table.scalar[kIndex] = {&ScalarKernel<Semantics, OperandKind::kArray>,

@@ -252,7 +252,7 @@ class PlanBuilder {
   // One step for all written lanes; its kernel loads every source of a vertex group before storing,
   // so a destination that is also a source (add r0, r0.yzwx, r0) needs no copy.
   void CompileComponentwise(const Instruction& instruction, const std::array<std::uint16_t, 4>& dest) {
-    const int arity = instruction.info().source_count();
+    const int arity = KernelArity(instruction.info());
     Step step;
     int lanes = 0;
     for (int lane = 0; lane < 4; ++lane) {

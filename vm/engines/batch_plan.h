@@ -91,6 +91,10 @@ struct Step {
   std::uint8_t address_lane = 0;  // gather and address steps: the lane of a0 (0 for vs_1_1's a0.x)
 };
 
+// The sources a componentwise kernel reads: sgn's second and third (vs_2_0's scratch registers, which
+// its semantics leave alone) are neither loaded nor given kernels for their kinds.
+constexpr int KernelArity(const OpcodeInfo& info) { return info.opcode == Opcode::kSgn ? 1 : info.source_count(); }
+
 // The kernels of one Highway target, indexed by opcode and operand kinds.
 struct KernelTable {
   // Componentwise ops: [opcode][lanes - 1][k0 + 3 k1 + 9 k2] over the opcode's sources.
