@@ -6,17 +6,20 @@
 //
 //   using Float = ...;                         // the lane type (float, a recorded value)
 //   using Vec4 = std::array<Float, 4>;
-//   Vec4 ReadConstant(long index, bool relative) const;  // c[index] or c[a0.x + index]
+//   Vec4 ReadConstant(long index, bool relative, int lane) const;  // c[index] or c[a0.<lane> + index]
 //   Vec4 ReadInput(long index) const;                     // v#, index < kInputRegisterCount
-//   Vec4& Temp(long index);  const Vec4& Temp(long index) const;  // index < kTempRegisterCount
+//   int TempCount() const;                                // r0 .. r(TempCount() - 1) exist
+//   Vec4& Temp(long index);  const Vec4& Temp(long index) const;  // index < TempCount()
 //   Vec4& Output(int slot);                               // an OutputSlot
-//   void WriteAddress(Float x);                           // mov a0.x, x (see AddressFromFloat)
+//   void WriteAddress(int lane, Float x);                 // mov/mova a0.<lane>, x (see AddressFromFloat)
 //   Vec4 Zero() const;                                    // what unreadable registers read
 // and, to run the straight-line programs batch and jit make of a later model's dynamic flow
 // (vm/core/static_flow.h: setp, predicated writes, predicate registers p0, p1, ... as 1/0 lanes):
 //   Vec4& Predicate(long index);  const Vec4& Predicate(long index) const;
-//   Float AddressValue() const;                           // the float last written to a0.x (0 before)
+//   Float AddressValue(int lane) const;                   // the float last written to a0.<lane> (0 before)
 //   Float Written(Float old) const;                       // a lane's value before a predicated write
+// A vs_1_1 machine has r0-r11 and reads and writes a0.x only (the lane is ignored); a straight-line
+// program specialised from a later model (kLaterModelStraightLine) gets r0-r31 and a0's four lanes.
 #pragma once
 
 #include <array>
@@ -30,6 +33,19 @@
 #include "vm/core/semantics.h"
 
 namespace vs11::semantics {
+
+// The version token of a straight-line program that vm/core/static_flow.h specialised from a later
+// model. It is no model's token, so the program reads as vs_1_1 (Program::model) everywhere but in the
+// registers the engines give it: the later models' r0-r31 and the four lanes of a0, where a vs_1_1
+// program has r0-r11 and a0.x.
+inline constexpr std::uint32_t kLaterModelStraightLine = 0xFFFE02FFu;
+static_assert(!ShaderModelOfVersion(kLaterModelStraightLine));
+inline constexpr int kLaterModelTempCount = RegisterCount(RegisterFile::kTemp, ShaderModel::kVs30);
+inline bool HasLaterModelRegisters(const Program& program) { return program.version == kLaterModelStraightLine; }
+inline int TempCountOf(const Program& program) {
+  return HasLaterModelRegisters(program) ? kLaterModelTempCount : kTempRegisterCount;
+}
+inline int AddressLaneCountOf(const Program& program) { return HasLaterModelRegisters(program) ? 4 : 1; }
 
 // a0.x = floor(x) (§1.5). NaN and values beyond +-2^20 become +-2^20, which puts every relative read
 // out of range, so it reads 0 (the bank holds at most 2048 registers).
@@ -59,8 +75,8 @@ template <class M>
 typename M::Vec4 ReadRegister(const M& machine, const RegisterRef& reg, int row) {
   const long index = static_cast<long>(reg.index) + row;
   switch (reg.file) {
-    case RegisterFile::kConst: return machine.ReadConstant(index, reg.relative);
-    case RegisterFile::kTemp: return index < kTempRegisterCount ? machine.Temp(index) : machine.Zero();
+    case RegisterFile::kConst: return machine.ReadConstant(index, reg.relative, reg.address.swizzle_bits & 3);
+    case RegisterFile::kTemp: return index < machine.TempCount() ? machine.Temp(index) : machine.Zero();
     case RegisterFile::kInput: return index < kInputRegisterCount ? machine.ReadInput(index) : machine.Zero();
     case RegisterFile::kPredicate:
       if constexpr (HasPredicates<M>) return machine.Predicate(index);
@@ -69,22 +85,34 @@ typename M::Vec4 ReadRegister(const M& machine, const RegisterRef& reg, int row)
   }
 }
 
-// A source operand's value: its register, swizzled, negated when the operand says so.
+// A source operand's value: its register, swizzled, then _abs (vs_3_0), then negated when the operand
+// says so (-r0_abs is -|r0|).
 template <class M>
 typename M::Vec4 FetchSource(const M& machine, const SourceOperand& source, int row) {
   const typename M::Vec4 base = ReadRegister(machine, source.reg, row);
   typename M::Vec4 value;
   for (int lane = 0; lane < 4; ++lane) {
-    const typename M::Float v = base[source.swizzle[lane]];
+    typename M::Float v = base[source.swizzle[lane]];
+    if (source.absolute) v = Abs(v);
     value[lane] = source.negate ? Negate(v) : v;
   }
   return value;
 }
 
-// Writes the lanes of `value` that the mask selects among the first `lane_count` (a matrix's rows);
-// a predicated instruction's lanes only where its predicate holds (PredicatedWrite).
+// The lanes an instruction writes: its mask, less what the opcode never writes (crs's w, sincos's z
+// and w, a matrix's missing rows), whatever mask an unvalidated program gives.
+inline WriteMask LanesWritten(const Instruction& instruction) {
+  std::uint8_t lanes = instruction.dest.mask.bits();
+  if (instruction.opcode == Opcode::kCrs) lanes &= kLanesXyz;
+  if (instruction.opcode == Opcode::kSincos) lanes &= kLanesXy;
+  lanes &= static_cast<std::uint8_t>((1u << instruction.info().result_lanes()) - 1);
+  return WriteMask(lanes);
+}
+
+// Writes the lanes of `value` that `lanes` selects; a predicated instruction's lanes only where its
+// predicate holds (PredicatedWrite).
 template <class M>
-void StoreDest(M& machine, const Instruction& instruction, const typename M::Vec4& value, int lane_count) {
+void StoreDest(M& machine, const Instruction& instruction, const typename M::Vec4& value, WriteMask lanes) {
   const DestOperand& dest = instruction.dest;
   typename M::Vec4 guard{};
   bool predicated = false;
@@ -99,24 +127,29 @@ void StoreDest(M& machine, const Instruction& instruction, const typename M::Vec
     return value[lane];
   };
   if (dest.reg.file == RegisterFile::kAddress) {
-    if constexpr (HasPredicates<M>) {
-      if (dest.mask.has(0) && predicated) machine.WriteAddress(written(machine.AddressValue(), 0));
-      if (predicated) return;
+    for (int lane = 0; lane < 4; ++lane) {
+      if (!lanes.has(lane)) continue;
+      if constexpr (HasPredicates<M>) {
+        if (predicated) {
+          machine.WriteAddress(lane, written(machine.AddressValue(lane), lane));
+          continue;
+        }
+      }
+      machine.WriteAddress(lane, value[lane]);
     }
-    if (dest.mask.has(0)) machine.WriteAddress(value[0]);
     return;
   }
   typename M::Vec4* target = nullptr;
   if (dest.reg.file == RegisterFile::kTemp) {
-    if (dest.reg.index < kTempRegisterCount) target = &machine.Temp(dest.reg.index);
+    if (dest.reg.index < machine.TempCount()) target = &machine.Temp(dest.reg.index);
   } else if (dest.reg.file == RegisterFile::kPredicate) {
     if constexpr (HasPredicates<M>) target = &machine.Predicate(dest.reg.index);
   } else if (std::optional<int> slot = OutputSlotOf(dest.reg)) {
     target = &machine.Output(*slot);
   }
   if (target == nullptr) return;
-  for (int lane = 0; lane < lane_count; ++lane) {
-    if (dest.mask.has(lane)) (*target)[lane] = written((*target)[lane], lane);
+  for (int lane = 0; lane < 4; ++lane) {
+    if (lanes.has(lane)) (*target)[lane] = written((*target)[lane], lane);
   }
 }
 
@@ -150,7 +183,10 @@ void Execute(M& machine, const Instruction& instruction) {
   } else {
     return;  // nop, dcl, def
   }
-  StoreDest(machine, instruction, result, info.result_lanes());
+  if (instruction.dest.saturate) {
+    for (Float& v : result) v = Saturate(v);
+  }
+  StoreDest(machine, instruction, result, LanesWritten(instruction));
 }
 
 // The one opcode dispatch: `instruction` on `machine` with its row's kernel. The reference engine runs

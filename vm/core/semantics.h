@@ -326,6 +326,12 @@ struct MovaSemantics {
     return IfThenElse(a < Constant(a, 0.0f), Negate(rounded), rounded);
   }
 };
+// _sat on a destination (vs_2_0 on): the result clamped to [0, 1]; NaN and -0 give +0.
+template <class V>
+V Saturate(V v) {
+  const V zero = Constant(v, 0.0f), one = Constant(v, 1.0f);
+  return IfThenElse(v > zero, IfThenElse(v < one, v, one), zero);
+}
 // if_comp, break_comp and setp_comp's test (Instruction::comparison: 1 gt, 2 eq, 3 ge, 4 lt, 5 ne,
 // 6 le): 1 where it holds, else 0. Every comparison with a NaN is false except ne.
 template <class V>

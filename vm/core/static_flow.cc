@@ -6,6 +6,8 @@
 
 #include <fmt/format.h>
 
+#include "vm/core/operands.h"
+
 namespace vs11 {
 
 bool OpensBlock(Opcode op) { return op == Opcode::kIf || op == Opcode::kIfc || op == Opcode::kLoop || op == Opcode::kRep; }
@@ -59,17 +61,6 @@ namespace {
 // past r31) points in the straight-line program: a constant far below c0, which every engine reads as 0
 // with all the rows of a matrix.
 constexpr int kZeroRow = -(1 << 20);
-// The batch and jit engines' temporaries (vs_1_1's r0-r11).
-constexpr int kEngineTemps = RegisterCount(RegisterFile::kTemp, ShaderModel::kVs11);
-
-bool IsStaticFlowInstruction(Opcode op) {
-  switch (op) {
-    case Opcode::kRep: case Opcode::kEndrep: case Opcode::kLoop: case Opcode::kEndloop: case Opcode::kIf:
-    case Opcode::kElse: case Opcode::kEndif: case Opcode::kCall: case Opcode::kCallnz: case Opcode::kRet:
-    case Opcode::kLabel: case Opcode::kBreak: return true;
-    default: return false;
-  }
-}
 
 constexpr int kComparisonCount = static_cast<int>(kComparisonNames.size()) - 1;  // 1 gt ... 6 le
 
@@ -84,37 +75,10 @@ Diagnostic Refuse(const Program& program, std::size_t i, std::string_view engine
 }
 
 std::optional<std::string> RefusalOf(const Instruction& instruction) {
-  const Opcode op = instruction.opcode;
-  const OpcodeInfo& info = instruction.info();
-  if (TakesComparison(op) && (instruction.comparison < 1 || instruction.comparison > kComparisonCount)) {
+  if (TakesComparison(instruction.opcode) && (instruction.comparison < 1 || instruction.comparison > kComparisonCount)) {
     return "its comparison is none of gt, eq, ge, lt, ne, le";
   }
-  if (op == Opcode::kIfc || op == Opcode::kBreakc) {
-    // Its sources are read as the setp the specialiser compares them with, under setp's rules.
-    Instruction setp = instruction;
-    setp.opcode = Opcode::kSetp;
-    setp.dest = DestOperand{RegisterRef{RegisterFile::kPredicate, 0, false, {}}, WriteMask(1), false};
-    return RefusalOf(setp);
-  }
-  if (IsStaticFlowInstruction(op) || op == Opcode::kBreakp || !info.is_executable()) return std::nullopt;
-  if (info.since != ShaderModel::kVs11 && op != Opcode::kSetp) return "the engine has no kernel for it yet (it runs vs_1_1's instructions)";
-  if (instruction.dest.saturate) return "the engine has no _sat yet";
-  const RegisterRef& dest = instruction.dest.reg;
-  if (dest.file == RegisterFile::kAddress && (op != Opcode::kMov || instruction.dest.mask.bits() != 1)) {
-    return "the engine writes a0.x with mov only";  // (mask bit 1: x)
-  }
-  if (dest.file == RegisterFile::kTemp && dest.index >= kEngineTemps) return "the engine has temporaries r0-r11 only";
-  for (int s = 0; s < info.source_count(); ++s) {
-    const SourceOperand& source = instruction.sources[static_cast<std::size_t>(s)];
-    if (source.absolute) return "the engine has no _abs yet";
-    if (source.reg.relative && source.reg.address.file == RegisterFile::kAddress && (source.reg.address.swizzle_bits & 3) != 0) {
-      return "the engine indexes by a0.x only";
-    }
-    if (source.reg.file == RegisterFile::kTemp && source.reg.index + info.registers_read(s) > kEngineTemps) {
-      return "the engine has temporaries r0-r11 only";
-    }
-  }
-  return std::nullopt;
+  return std::nullopt;  // texldl is refused before (LaterModelRefusal); every other row has a kernel
 }
 
 RegisterRef RegisterOfSlot(int slot) {
@@ -141,7 +105,7 @@ class Specialiser {
   Specialiser(const Program& program, const StaticFlowKey& key)
       : program_(program), control_(BuildControlTable(program)), key_(key),
         declared_outputs_(DeclaredOutputSlots(program)) {
-    out_.version = kVersionVs11;
+    out_.version = semantics::kLaterModelStraightLine;
   }
 
   Result<Program> Run(std::string_view engine) {

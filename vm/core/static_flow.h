@@ -1,6 +1,7 @@
 // Static flow control resolved for one set of integer and boolean constants, as drivers do: a later
-// model's program (vs_2_0 on) becomes straight-line vs_1_1 code that the batch, jit and gl engines
-// run (vm/engines/static_flow_engine.h), rep/loop counts and if/call on b# resolved, dynamic flow (if_comp,
+// model's program (vs_2_0 on) becomes straight-line code that the batch, jit and gl engines run as
+// vs_1_1 code with the later model's registers (semantics::kLaterModelStraightLine;
+// vm/engines/static_flow_engine.h): rep/loop counts and if/call on b# resolved, dynamic flow (if_comp,
 // if p0, break_comp, breakp, callnz p0) as per-vertex execution masks.
 // The walk follows the reference engine's control rules (vm/engines/reference_flow.cc) exactly: loop
 // counts clamped to [0, 255], the outer aL restored when a loop ends, calls beyond the model's depth
@@ -226,15 +227,16 @@ struct StaticFlowKey {
 StaticFlowKey StaticFlowKeyOf(const ConstantBank& constants);  // constants: ModelConstants'
 
 // Success, or why `engine` cannot run `program` (a later model) specialised, whatever the constants:
-// texldl, an instruction the engine has no kernel for (the later models' arithmetic rows: abs, crs,
-// lrp, mova, nrm, pow, sgn, sincos), _sat and _abs, a0 lanes other than x, more than 12 temporaries.
+// texldl, and an instruction whose comparison is none of the six. Every arithmetic row, _sat, _abs,
+// a0's four lanes, r0-r31 and dynamic flow run.
 Status StaticFlowRefusal(const Program& program, std::string_view engine);
 
-// `program` (which passes StaticFlowRefusal) as a vs_1_1 program for the constants `key`, or why not
+// `program` (which passes StaticFlowRefusal) as a straight-line program for the constants `key` (its
+// version semantics::kLaterModelStraightLine: read as vs_1_1, with r0-r31 and a0's lanes), or why not
 // (the walk exceeds kMaxStaticFlowSteps or the result kMaxUnrolledInstructions; an unvalidated ret or
 // break under a per-vertex condition). Dynamic flow becomes execution masks: setp, min, slt and sge
 // on predicate registers p1, p2, ... (1 or 0 per vertex) and instructions predicated by them, which
-// the engines run as vs_1_1 arithmetic plus setp and predicated writes (vm/core/operands.h). Its constants are
+// the engines run as arithmetic plus setp and predicated writes (vm/core/operands.h). Its constants are
 // the later model's bank: run it with ModelConstants(program, api_constants). It has no dcl or def.
 Result<Program> SpecialiseStaticFlow(const Program& program, const StaticFlowKey& key, std::string_view engine);
 

@@ -104,7 +104,7 @@ struct Workspace {
       : arena_lanes(plan.arena_lanes),
         arena(hwy::AllocateAligned<float>(
             (plan.arena_lanes + plan.input_lanes.size() + plan.output_lanes.size()) * kLaneStride)),
-        address(hwy::AllocateAligned<std::int32_t>(kBatchSize)),
+        address(hwy::AllocateAligned<std::int32_t>(4 * kBatchSize)),  // a0's four lanes
         read_lanes(kArenaLaneBase + plan.arena_lanes, nullptr),
         write_lanes(kArenaLaneBase + plan.arena_lanes, nullptr),
         input_arrays(plan.input_lanes.size()),

@@ -70,6 +70,18 @@ HWY_API Vec<RebindToFloat<DFromV<VI>>> ToFloat(VI v) {
   return ConvertTo(RebindToFloat<DFromV<VI>>(), v);
 }
 
+// Flips the sign bit, as scalar -x (mova's kernel and the negate source modifier). The empty asm keeps
+// the compiler from folding a + (-b) into a - b (clang does), which would return b's NaN unflipped
+// where the reference engine flips it.
+template <class V, HWY_IF_FLOAT_V(V)>
+HWY_API V Negate(V value) {
+  V negated = Neg(value);
+#if HWY_ARCH_X86 && HWY_TARGET != HWY_EMU128 && HWY_TARGET != HWY_SCALAR
+  asm("" : "+v"(negated.raw));
+#endif
+  return negated;
+}
+
 #if HWY_TARGET == HWY_SSSE3 || HWY_TARGET == HWY_EMU128
 // These targets have no roundps, and Highway's emulated Floor returns +0 for -0 where IEEE floor
 // (std::floor, roundps) keeps the sign, so frc(-0) and expp(-0).y would differ from the reference
@@ -109,15 +121,7 @@ HWY_INLINE std::size_t LanesPerVector() { return hn::Lanes(D()); }
 HWY_INLINE VF Broadcast(float value) { return hn::Set(D(), value); }
 HWY_INLINE VF LoadLanes(const float* from) { return hn::LoadU(D(), from); }
 HWY_INLINE void StoreLanes(VF value, float* to) { hn::StoreU(value, D(), to); }
-// Flips the sign bit, as scalar -x. The empty asm keeps the compiler from folding a + (-b) into
-// a - b (clang does), which would return b's NaN unflipped where the reference engine flips it.
-HWY_INLINE VF Negate(VF value) {
-  VF negated = hn::Neg(value);
-#if HWY_ARCH_X86 && HWY_TARGET != HWY_EMU128
-  asm("" : "+v"(negated.raw));
-#endif
-  return negated;
-}
+using hn::Negate;
 #endif
 using Vec4F = semantics::Vec4<VF>;
 static_assert(kVertexGranule * sizeof(float) % HWY_MAX_BYTES == 0, "a batch must be whole vectors");
@@ -264,8 +268,10 @@ void VectorKernel(const Step& step, const Frame& frame) {
   }
 }
 
-// dest[c] = component c of c[a0.x + base] per vertex; registers outside the bank read 0 (row 0).
+// dest[c] = component c of c[a0.<address_lane> + base] per vertex; registers outside the bank read 0
+// (row 0).
 void GatherKernel(const Step& step, const Frame& frame) {
+  const std::int32_t* address = frame.address + step.address_lane * kBatchSize;
   std::array<float*, 4> out{};
   for (int c = 0; c < 4; ++c) {
     if (step.dest[c] != kNoLane) out[c] = frame.write_lanes[step.dest[c]];
@@ -273,7 +279,7 @@ void GatherKernel(const Step& step, const Frame& frame) {
 #if HWY_TARGET == HWY_SCALAR
   const auto literal = [](std::int32_t value) { return value; };
   for (std::size_t i = 0; i < frame.count; ++i) {
-    const std::int32_t offset = semantics::RelativeConstantOffset(frame.address[i], step.base, frame.constant_count,
+    const std::int32_t offset = semantics::RelativeConstantOffset(address[i], step.base, frame.constant_count,
                                                                   kFirstConstantRow, literal);
     for (int c = 0; c < 4; ++c) {
       if (out[c] != nullptr) out[c][i] = frame.constants[offset + c];
@@ -285,7 +291,7 @@ void GatherKernel(const Step& step, const Frame& frame) {
   const auto literal = [&di](std::int32_t value) { return hn::Set(di, value); };
   const auto count = literal(frame.constant_count);
   for (std::size_t i = 0; i < frame.count; i += hn::Lanes(d)) {
-    const auto offset = semantics::RelativeConstantOffset(hn::LoadU(di, frame.address + i), step.base, count,
+    const auto offset = semantics::RelativeConstantOffset(hn::LoadU(di, address + i), step.base, count,
                                                           kFirstConstantRow, literal);
     for (int c = 0; c < 4; ++c) {
       if (out[c] != nullptr) hn::StoreU(hn::GatherIndex(d, frame.constants + c, offset), d, out[c] + i);
@@ -320,6 +326,18 @@ void FillDotKernels(std::array<Kernel, 9>& row, std::index_sequence<kIndex...>) 
    ...);
 }
 
+// _sat as a componentwise kernel of one array source (the lanes it clamps in place).
+struct SaturateLanes {
+  template <class V> static V Lane(V a, V, V) { return semantics::Saturate(a); }
+};
+
+template <std::size_t... kLanesMinusOne>
+void FillSaturateKernels(std::array<Kernel, 4>& kernels, std::index_sequence<kLanesMinusOne...>) {
+  ((kernels[kLanesMinusOne] = &LaneKernel<SaturateLanes, FloatRules::kD3d9, 1, kLanesMinusOne + 1, OperandKind::kArray,
+                                          OperandKind::kBroadcast, OperandKind::kBroadcast>),
+   ...);
+}
+
 template <FloatRules kRules, int kWidth, std::size_t... kRowsMinusOne>
 void FillDotWidth(std::array<std::array<Kernel, 9>, 4>& rows, std::index_sequence<kRowsMinusOne...>) {
   (FillDotKernels<kRules, kWidth, kRowsMinusOne + 1>(rows[kRowsMinusOne], std::make_index_sequence<9>()), ...);
@@ -331,12 +349,10 @@ void FillDotWidth(std::array<std::array<Kernel, 9>, 4>& rows, std::index_sequenc
 template <class Semantics, Opcode kOpcode, FloatRules kRules>
 void FillOpcode(KernelTable& table) {
   constexpr int kIndex = static_cast<int>(kOpcode);
-  if constexpr (Info(kOpcode).since != ShaderModel::kVs11) {
-    return;  // the batch engine refuses the later models' arithmetic rows (StaticFlowRefusal): no kernels to carry
-  } else if constexpr (kRules != FloatRules::kD3d9 && !semantics::FollowsFloatRules<Semantics>) {
+  if constexpr (kRules != FloatRules::kD3d9 && !semantics::FollowsFloatRules<Semantics>) {
     return;
   } else if constexpr (semantics::HasLane<Semantics, VF>) {
-    constexpr int kArity = Info(kOpcode).source_count();
+    constexpr int kArity = KernelArity(Info(kOpcode));
     FillLaneCounts<Semantics, kRules, kArity>(table.lane[kIndex], std::make_index_sequence<4>());
   } else if constexpr (semantics::HasScalar<Semantics, VF>) {
     table.scalar[kIndex] = {&ScalarKernel<Semantics, OperandKind::kArray>,
@@ -363,6 +379,7 @@ KernelTable MakeKernelTable(KernelTable table) {
   FillDotWidth<kRules, 3>(table.dot[0], std::make_index_sequence<4>());
   FillDotWidth<kRules, 4>(table.dot[1], std::make_index_sequence<4>());
   table.gather = &GatherKernel;
+  FillSaturateKernels(table.saturate, std::make_index_sequence<4>());
   if constexpr (kRules == FloatRules::kD3d9) {  // masks and compares follow no float rules
     FillCompareKernels(table, std::make_index_sequence<6>());
     FillLaneCounts<semantics::PredicatedWriteSemantics<false>, kRules, 3>(table.predicated[0], std::make_index_sequence<4>());

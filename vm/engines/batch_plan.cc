@@ -6,6 +6,7 @@
 #include <optional>
 #include <span>
 
+#include "vm/core/operands.h"
 #include "vm/engines/reference_engine.h"
 
 namespace vs11::batch {
@@ -19,7 +20,8 @@ void CopyKernel(const Step& step, const Frame& frame) {
 // of it: floor, clamp to +-2^20, NaN to -2^20.
 void AddressKernel(const Step& step, const Frame& frame) {
   const float* value = frame.read_lanes[step.sources[0][0].index];
-  for (std::size_t i = 0; i < frame.count; ++i) frame.address[i] = AddressFromFloat(value[i]);
+  std::int32_t* address = frame.address + step.address_lane * kBatchSize;
+  for (std::size_t i = 0; i < frame.count; ++i) address[i] = AddressFromFloat(value[i]);
 }
 
 namespace {
@@ -62,11 +64,17 @@ Step CopyStep(std::uint16_t from, std::uint16_t to) {
 
 class PlanBuilder {
  public:
-  explicit PlanBuilder(const KernelTable& kernels) : kernels_(kernels) {
+  PlanBuilder(const KernelTable& kernels, const Program& program)
+      : kernels_(kernels),
+        temp_count_(semantics::TempCountOf(program)),
+        address_lanes_(semantics::AddressLaneCountOf(program)) {
     for (auto& reg : temp_lanes_) reg.fill(kNoLane);
-    for (auto& source : gather_lanes_) {
-      for (auto& row : source) row.fill(kNoLane);
+    for (auto* lanes : {&gather_lanes_, &abs_lanes_}) {
+      for (auto& source : *lanes) {
+        for (auto& row : source) row.fill(kNoLane);
+      }
     }
+    address_value_lanes_.fill(kNoLane);
   }
 
   BatchPlan Build(const Program& program) {
@@ -89,8 +97,7 @@ class PlanBuilder {
     if (lane == kNoLane) lane = NewArenaLane();
     return lane;
   }
-  std::uint16_t GatherLane(int source, int row, int component) {
-    std::uint16_t& lane = gather_lanes_[source][row][component];
+  std::uint16_t ScratchLane(std::uint16_t& lane) {
     if (lane == kNoLane) lane = NewArenaLane();
     return lane;
   }
@@ -99,20 +106,28 @@ class PlanBuilder {
     if (static_cast<std::size_t>(reg) >= predicate_lanes_.size()) {
       predicate_lanes_.resize(static_cast<std::size_t>(reg) + 1, {kNoLane, kNoLane, kNoLane, kNoLane});
     }
-    std::uint16_t& lane = predicate_lanes_[static_cast<std::size_t>(reg)][component];
-    if (lane == kNoLane) lane = NewArenaLane();
-    return lane;
+    return ScratchLane(predicate_lanes_[static_cast<std::size_t>(reg)][component]);
   }
   bool PredicateWritten(int reg, int component) const {
     return static_cast<std::size_t>(reg) < predicate_written_.size() && predicate_written_[static_cast<std::size_t>(reg)][component];
   }
-  std::uint16_t ScratchLane(int component) {
-    if (scratch_lanes_[component] == kNoLane) scratch_lanes_[component] = NewArenaLane();
-    return scratch_lanes_[component];
-  }
-  std::uint16_t AddressValueLane() {
-    if (address_value_lane_ == kNoLane) address_value_lane_ = NewArenaLane();
-    return address_value_lane_;
+
+  // Component `component` of operand `slot` (row `row` of a matrix) with its _abs applied: a step
+  // computes |value| into a scratch lane, which the instruction's step then reads (negated if the
+  // operand says so: -r0_abs), so that the kernels know only three operand kinds.
+  Operand ResolveSource(const SourceOperand& source, int slot, int row, int component) {
+    const Operand operand = Resolve(source, slot, row, component);
+    if (!source.absolute) return operand;
+    const std::uint16_t lane = ScratchLane(abs_lanes_[slot][row][component]);
+    if (!(abs_done_[slot][row] & (1 << component))) {
+      abs_done_[slot][row] |= static_cast<std::uint8_t>(1 << component);
+      Step step;
+      step.kernel = kernels_.lane[static_cast<int>(Opcode::kAbs)][0][static_cast<int>(KindOf(operand, false))];
+      step.sources[0][0] = operand;
+      step.dest[0] = lane;
+      abs_steps_.push_back(step);
+    }
+    return ArrayOperand(lane);
   }
 
   // Component `component` of register `source.reg` + `row` as the reference engine's ReadRegister
@@ -122,22 +137,25 @@ class PlanBuilder {
     const int index = reg.index + row;
     switch (reg.file) {
       case RegisterFile::kTemp:
-        if (index < 0 || index >= kTempRegisterCount || !temp_written_[index][component]) return ZeroOperand();
+        if (index < 0 || index >= temp_count_ || !temp_written_[index][component]) return ZeroOperand();
         return ArrayOperand(TempLane(index, component));
       case RegisterFile::kInput:
         if (index < 0 || index >= kInputRegisterCount) return ZeroOperand();
         inputs_read_[4 * index + component] = true;
         return ArrayOperand(InputLane(index, component));
-      case RegisterFile::kConst:
-        if (reg.relative && address_written_) {
+      case RegisterFile::kConst: {
+        const int address_lane = address_lanes_ > 1 ? reg.address.swizzle_bits & 3 : 0;  // vs_1_1: a0.x
+        if (reg.relative && address_written_[address_lane]) {
           gathers_[slot][row] |= static_cast<std::uint8_t>(1 << component);
           gather_base_[slot][row] = index;
-          return ArrayOperand(GatherLane(slot, row, component));
+          gather_address_lane_[slot][row] = static_cast<std::uint8_t>(address_lane);
+          return ArrayOperand(ScratchLane(gather_lanes_[slot][row][component]));
         }
         // Before any write to a0 a relative read uses a0 = 0 (VertexState::a0 starts at 0).
         if (index < 0) return ZeroOperand();
         plan_.max_static_constant = std::max(plan_.max_static_constant, index);
         return Operand{ConstantIndex(index, component), false};
+      }
       case RegisterFile::kPredicate:  // 0 until written, as p0 starts false
         if (index < 0 || !PredicateWritten(index, component)) return ZeroOperand();
         return ArrayOperand(PredicateLane(index, component));
@@ -146,18 +164,19 @@ class PlanBuilder {
     }
   }
 
-  // The lanes an instruction stores, by component (kNoLane where the mask, the register file or a
-  // matrix's row count leaves the component alone), as the reference engine's StoreDest.
-  std::array<std::uint16_t, 4> DestLanes(const DestOperand& dest, int lane_count) {
+  // The lanes an instruction stores, by component (kNoLane where the mask, the opcode, the register
+  // file or a matrix's row count leaves the component alone), as vm/core/operands.h's StoreDest.
+  std::array<std::uint16_t, 4> DestLanes(const Instruction& instruction) {
     std::array<std::uint16_t, 4> lanes = {kNoLane, kNoLane, kNoLane, kNoLane};
-    const RegisterRef& reg = dest.reg;
+    const RegisterRef& reg = instruction.dest.reg;
+    const WriteMask written = semantics::LanesWritten(instruction);
     std::optional<int> slot = OutputSlotOf(reg);
-    for (int c = 0; c < lane_count; ++c) {
-      if (!dest.mask.has(c)) continue;
+    for (int c = 0; c < 4; ++c) {
+      if (!written.has(c)) continue;
       if (reg.file == RegisterFile::kTemp) {
-        if (reg.index >= 0 && reg.index < kTempRegisterCount) lanes[c] = TempLane(reg.index, c);
+        if (reg.index >= 0 && reg.index < temp_count_) lanes[c] = TempLane(reg.index, c);
       } else if (reg.file == RegisterFile::kAddress) {
-        if (c == 0) lanes[c] = AddressValueLane();
+        if (c < address_lanes_) lanes[c] = ScratchLane(address_value_lanes_[c]);
       } else if (reg.file == RegisterFile::kPredicate) {
         if (reg.index >= 0) lanes[c] = PredicateLane(reg.index, c);
       } else if (slot) {
@@ -170,15 +189,15 @@ class PlanBuilder {
 
   // What a predicated write keeps where its predicate does not hold: the lane's value, or 0 for a
   // lane nothing has written yet (p#, a temporary, a0, an output: all start at 0 in a later model).
-  std::array<bool, 4> KeptValues(const Instruction& instruction, int lane_count) {
+  std::array<bool, 4> KeptValues(const Instruction& instruction) {
     std::array<bool, 4> kept{};
     const RegisterRef& reg = instruction.dest.reg;
     const std::optional<int> slot = OutputSlotOf(reg);
-    for (int c = 0; c < lane_count; ++c) {
+    for (int c = 0; c < 4; ++c) {
       bool written = false;
-      if (reg.file == RegisterFile::kTemp) written = reg.index >= 0 && reg.index < kTempRegisterCount && temp_written_[reg.index][c];
+      if (reg.file == RegisterFile::kTemp) written = reg.index >= 0 && reg.index < temp_count_ && temp_written_[reg.index][c];
       if (reg.file == RegisterFile::kPredicate) written = PredicateWritten(reg.index, c);
-      if (reg.file == RegisterFile::kAddress) written = address_written_;
+      if (reg.file == RegisterFile::kAddress) written = address_written_[c];
       if (slot) written = (plan_.stored_lanes[*slot] >> c) & 1;
       kept[c] = written;
     }
@@ -193,7 +212,7 @@ class PlanBuilder {
     for (int c = 0; c < 4; ++c) {
       if (dest[c] == kNoLane) continue;
       step.sources[0][lanes] = Resolve(instruction.predicate, 0, 0, instruction.predicate.swizzle[c]);
-      step.sources[1][lanes] = ArrayOperand(ScratchLane(c));
+      step.sources[1][lanes] = ArrayOperand(ScratchLane(predicated_lanes_[c]));
       step.sources[2][lanes] = kept[c] ? ArrayOperand(dest[c]) : ZeroOperand();
       step.dest[lanes++] = dest[c];
     }
@@ -211,19 +230,20 @@ class PlanBuilder {
   void Compile(const Instruction& instruction) {
     const OpcodeInfo& info = instruction.info();
     if (!info.is_executable() || info.kind == ResultKind::kNoResult) return;
-    const int lane_count = info.result_lanes();
-    const std::array<bool, 4> kept = instruction.predicated ? KeptValues(instruction, lane_count) : std::array<bool, 4>{};
-    const std::array<std::uint16_t, 4> stored = DestLanes(instruction.dest, lane_count);
+    const std::array<bool, 4> kept = instruction.predicated ? KeptValues(instruction) : std::array<bool, 4>{};
+    const std::array<std::uint16_t, 4> stored = DestLanes(instruction);
     if (std::all_of(stored.begin(), stored.end(), [](std::uint16_t lane) { return lane == kNoLane; })) return;
     // A predicated instruction computes into scratch lanes, then writes through its predicate.
     std::array<std::uint16_t, 4> dest = stored;
     if (instruction.predicated) {
-      for (int c = 0; c < 4; ++c) dest[c] = stored[c] == kNoLane ? kNoLane : ScratchLane(c);
+      for (int c = 0; c < 4; ++c) dest[c] = stored[c] == kNoLane ? kNoLane : ScratchLane(predicated_lanes_[c]);
       fusable_dot_ = false;
     }
 
     gathers_ = {};
+    abs_done_ = {};
     steps_.clear();
+    abs_steps_.clear();
     switch (info.kind) {
       case ResultKind::kComponentwise: CompileComponentwise(instruction, dest); break;
       case ResultKind::kScalar: CompileScalar(instruction, dest); break;
@@ -232,21 +252,27 @@ class PlanBuilder {
       case ResultKind::kVector: CompileVector(instruction, dest); break;
       case ResultKind::kNoResult: break;
     }
+    if (instruction.dest.saturate && !steps_.empty()) AddSaturate(dest);
     if (!steps_.empty()) {
       EmitGathers();
+      plan_.steps.insert(plan_.steps.end(), abs_steps_.begin(), abs_steps_.end());
       plan_.steps.insert(plan_.steps.end(), steps_.begin(), steps_.end());
-      fusable_dot_ = fusable_candidate_;
+      fusable_dot_ = fusable_candidate_ && abs_steps_.empty();
     }
     fusable_candidate_ = false;
     if (instruction.predicated) CompilePredicated(instruction, stored, kept);
 
-    if (instruction.dest.reg.file == RegisterFile::kAddress && stored[0] != kNoLane) {
-      Step step;
-      step.kernel = &AddressKernel;
-      step.sources[0][0] = ArrayOperand(stored[0]);
-      plan_.steps.push_back(step);
-      address_written_ = true;
-      fusable_dot_ = false;
+    if (instruction.dest.reg.file == RegisterFile::kAddress) {
+      for (int c = 0; c < 4; ++c) {
+        if (stored[c] == kNoLane) continue;
+        Step step;
+        step.kernel = &AddressKernel;
+        step.sources[0][0] = ArrayOperand(stored[c]);
+        step.address_lane = static_cast<std::uint8_t>(c);
+        plan_.steps.push_back(step);
+        address_written_[c] = true;
+        fusable_dot_ = false;
+      }
     }
     if (instruction.dest.reg.file == RegisterFile::kTemp) {
       for (int c = 0; c < 4; ++c) {
@@ -267,6 +293,7 @@ class PlanBuilder {
         Step step;
         step.kernel = kernels_.gather;
         step.base = gather_base_[slot][row];
+        step.address_lane = gather_address_lane_[slot][row];
         for (int c = 0; c < 4; ++c) {
           if (gathers_[slot][row] & (1 << c)) step.dest[c] = gather_lanes_[slot][row][c];
         }
@@ -276,17 +303,31 @@ class PlanBuilder {
     }
   }
 
+  // _sat: the written lanes clamped in place once the instruction's steps have stored them.
+  void AddSaturate(const std::array<std::uint16_t, 4>& dest) {
+    Step step;
+    int lanes = 0;
+    for (std::uint16_t lane : dest) {
+      if (lane == kNoLane) continue;
+      step.sources[0][lanes] = ArrayOperand(lane);
+      step.dest[lanes++] = lane;
+    }
+    step.kernel = kernels_.saturate[lanes - 1];
+    steps_.push_back(step);
+    fusable_candidate_ = false;
+  }
+
   // One step for all written lanes; its kernel loads every source of a vertex group before storing,
   // so a destination that is also a source (add r0, r0.yzwx, r0) needs no copy.
   void CompileComponentwise(const Instruction& instruction, const std::array<std::uint16_t, 4>& dest) {
-    const int arity = instruction.info().source_count();
+    const int arity = KernelArity(instruction.info());
     Step step;
     int lanes = 0;
     for (int lane = 0; lane < 4; ++lane) {
       if (dest[lane] == kNoLane) continue;
       for (int s = 0; s < arity; ++s) {
         const SourceOperand& source = instruction.sources[s];
-        step.sources[s][lanes] = Resolve(source, s, 0, source.swizzle[lane]);
+        step.sources[s][lanes] = ResolveSource(source, s, 0, source.swizzle[lane]);
       }
       step.dest[lanes++] = dest[lane];
     }
@@ -322,7 +363,7 @@ class PlanBuilder {
   void CompileScalar(const Instruction& instruction, const std::array<std::uint16_t, 4>& dest) {
     const SourceOperand& source = instruction.sources[0];
     Step step;
-    step.sources[0][0] = Resolve(source, 0, 0, source.swizzle[3]);  // §3.1: the swizzled w lane
+    step.sources[0][0] = ResolveSource(source, 0, 0, source.swizzle[3]);  // §3.1: the swizzled w lane
     step.negate[0] = source.negate;
     step.kernel = kernels_.scalar[static_cast<int>(instruction.opcode)]
                                  [static_cast<int>(KindOf(step.sources[0][0], source.negate))];
@@ -342,7 +383,7 @@ class PlanBuilder {
     Step step;
     std::array<Operand*, 4 * kMaxRows> group;
     for (int c = 0; c < width; ++c) {
-      step.sources[0][c] = Resolve(vector, 0, 0, vector.swizzle[c]);
+      step.sources[0][c] = ResolveSource(vector, 0, 0, vector.swizzle[c]);
       group[c] = &step.sources[0][c];
     }
     step.negate[0] = vector.negate;
@@ -354,7 +395,7 @@ class PlanBuilder {
       const std::uint16_t lane = is_matrix ? dest[row] : FirstLane(dest);
       if (lane == kNoLane) continue;
       for (int c = 0; c < width; ++c) {
-        step.sources[1 + rows][c] = Resolve(matrix, 1, row, matrix.swizzle[c]);
+        step.sources[1 + rows][c] = ResolveSource(matrix, 1, row, matrix.swizzle[c]);
         group[rows * width + c] = &step.sources[1 + rows][c];
       }
       step.negate[1 + rows] = matrix.negate;
@@ -364,7 +405,7 @@ class PlanBuilder {
     const int kinds = static_cast<int>(vector_kind) + kOperandKinds * static_cast<int>(row_kind);
 
     const bool single = !is_matrix && std::count(dest.begin(), dest.end(), kNoLane) == 3 &&
-                        instruction.dest.reg.file != RegisterFile::kAddress;
+                        instruction.dest.reg.file != RegisterFile::kAddress && !instruction.dest.saturate;
     if (single && TryJoinPreviousDot(step, width, kinds)) return;
     step.kernel = kernels_.dot[width - 3][rows - 1][kinds];
     steps_.push_back(step);
@@ -380,7 +421,9 @@ class PlanBuilder {
   }
 
   bool TryJoinPreviousDot(const Step& step, int width, int kinds) {
-    if (!fusable_dot_ || gathers_ != decltype(gathers_){} || fusable_rows_ >= kMaxRows) return false;
+    if (!fusable_dot_ || gathers_ != decltype(gathers_){} || !abs_steps_.empty() || fusable_rows_ >= kMaxRows) {
+      return false;
+    }
     Step& previous = plan_.steps.back();
     if (fusable_width_ != width || fusable_kinds_ != kinds || previous.negate[0] != step.negate[0]) return false;
     for (int c = 0; c < width; ++c) {
@@ -409,7 +452,7 @@ class PlanBuilder {
     Step step;
     for (int s = 0; s < instruction.info().source_count(); ++s) {
       const SourceOperand& source = instruction.sources[s];
-      for (int c = 0; c < 4; ++c) step.sources[s][c] = Resolve(source, s, 0, source.swizzle[c]);
+      for (int c = 0; c < 4; ++c) step.sources[s][c] = ResolveSource(source, s, 0, source.swizzle[c]);
       step.negate[s] = source.negate;
     }
     step.kernel = kernels_.vector[static_cast<int>(instruction.opcode)];
@@ -417,19 +460,27 @@ class PlanBuilder {
     steps_.push_back(step);
   }
 
+  using OperandLanes = std::array<std::array<std::array<std::uint16_t, 4>, kMaxRows>, kMaxSources>;
   const KernelTable& kernels_;
+  const int temp_count_;
+  const int address_lanes_;  // a0's lanes: 1 (vs_1_1's a0.x) or 4
   BatchPlan plan_;
-  std::vector<Step> steps_;  // the current instruction's steps, after its gathers
-  std::array<std::array<bool, 4>, kTempRegisterCount> temp_written_{};
-  std::array<std::array<std::uint16_t, 4>, kTempRegisterCount> temp_lanes_;
-  std::array<std::array<std::array<std::uint16_t, 4>, kMaxRows>, kMaxSources> gather_lanes_;
-  std::array<std::array<std::uint8_t, kMaxRows>, kMaxSources> gathers_{};  // components to gather
+  std::vector<Step> steps_;      // the current instruction's steps, after its gathers and _abs steps
+  std::vector<Step> abs_steps_;  // the current instruction's _abs steps, after its gathers
+  std::array<std::array<bool, 4>, semantics::kLaterModelTempCount> temp_written_{};
+  std::array<std::array<std::uint16_t, 4>, semantics::kLaterModelTempCount> temp_lanes_;
+  OperandLanes gather_lanes_;
+  OperandLanes abs_lanes_;
+  std::array<std::array<std::uint8_t, kMaxRows>, kMaxSources> gathers_{};   // components to gather
+  std::array<std::array<std::uint8_t, kMaxRows>, kMaxSources> abs_done_{};  // components with an _abs step
   std::array<std::array<int, kMaxRows>, kMaxSources> gather_base_{};
-  std::uint16_t address_value_lane_ = kNoLane;
+  std::array<std::array<std::uint8_t, kMaxRows>, kMaxSources> gather_address_lane_{};
+  std::array<std::uint16_t, 4> address_value_lanes_;
+  std::array<bool, 4> address_written_{};
   std::vector<std::array<std::uint16_t, 4>> predicate_lanes_;
   std::vector<std::array<bool, 4>> predicate_written_;
-  std::array<std::uint16_t, 4> scratch_lanes_ = {kNoLane, kNoLane, kNoLane, kNoLane};
-  bool address_written_ = false;
+  // A predicated instruction's results before its predicated write.
+  std::array<std::uint16_t, 4> predicated_lanes_ = {kNoLane, kNoLane, kNoLane, kNoLane};
   std::array<bool, 4 * kInputRegisterCount> inputs_read_{};
   // The last step is a dot step another dp may join (see CompileDot).
   bool fusable_dot_ = false;
@@ -440,7 +491,7 @@ class PlanBuilder {
 }  // namespace
 
 BatchPlan BuildBatchPlan(const Program& program, const KernelTable& kernels) {
-  return PlanBuilder(kernels).Build(program);
+  return PlanBuilder(kernels, program).Build(program);
 }
 
 }  // namespace vs11::batch

@@ -66,7 +66,7 @@ struct Frame {
   const float* const* read_lanes;  // lane table, for loads
   float* const* write_lanes;       // lane table, for stores (inputs: nullptr)
   const float* constants;          // constant table (rows as above)
-  std::int32_t* address;           // a0.x of each vertex
+  std::int32_t* address;           // a0 of each vertex: lane l (x, y, z, w) at address + l * kBatchSize
   std::int32_t constant_count;     // registers in the bank: relative reads outside [0, count) read 0
   std::size_t count;               // vertices to compute, a multiple of kVertexGranule
 };
@@ -79,8 +79,8 @@ using Kernel = void (*)(const Step& step, const Frame& frame);
 //   scalar: sources[0][0] is the swizzled w component, result to dest[0];
 //   dot: sources[0][0..width) is the vector, sources[1 + r] row r, result of row r to dest[r];
 //   vector (lit, dst, expp, logp): sources[s][c] component c of source s, result c to dest[c];
-//   copy: sources[0][0] to dest[0]; address: sources[0][0] to Frame::address;
-//   gather: component c of c[a0.x + base] to dest[c].
+//   copy: sources[0][0] to dest[0]; address: sources[0][0] to a0.<address_lane> (Frame::address);
+//   gather: component c of c[a0.<address_lane> + base] to dest[c].
 // negate[i] applies to broadcast operands of sources[i] (array kinds carry it in OperandKind).
 struct Step {
   Kernel kernel = nullptr;
@@ -88,7 +88,12 @@ struct Step {
   std::array<bool, 5> negate{};
   std::array<std::uint16_t, 4> dest = {kNoLane, kNoLane, kNoLane, kNoLane};
   std::int32_t base = 0;
+  std::uint8_t address_lane = 0;  // gather and address steps: the lane of a0 (0 for vs_1_1's a0.x)
 };
+
+// The sources a componentwise kernel reads: sgn's second and third (vs_2_0's scratch registers, which
+// its semantics leave alone) are neither loaded nor given kernels for their kinds.
+constexpr int KernelArity(const OpcodeInfo& info) { return info.opcode == Opcode::kSgn ? 1 : info.source_count(); }
 
 // The kernels of one Highway target, indexed by opcode and operand kinds.
 struct KernelTable {
@@ -106,6 +111,8 @@ struct KernelTable {
   // A predicated write (semantics::PredicatedWrite), sources (predicate, new value, old value):
   // [!p][lanes - 1][k0 + 3 k1 + 9 k2]. A predicated instruction computes into scratch lanes first.
   std::array<std::array<std::array<Kernel, 27>, 4>, 2> predicated{};
+  // _sat on a destination, in place: [lanes - 1], dest[l] = saturate(sources[0][l]) over array lanes.
+  std::array<Kernel, 4> saturate{};
 };
 
 // Target-independent kernels (memory moves and the a0 conversion, shared with the reference engine).

@@ -19,11 +19,17 @@ struct ReferenceMachine {
   const ConstantBank& constants;
   State& state;
 
-  Vec4f ReadConstant(long index, bool relative) const { return constants.Read(index + (relative ? state.a0 : 0)); }
+  // vs_1_1's a0 is a0.x alone: relative reads use it whatever the lane, writes to other lanes are lost.
+  Vec4f ReadConstant(long index, bool relative, int /*lane*/) const {
+    return constants.Read(index + (relative ? state.a0 : 0));
+  }
   Vec4f ReadInput(long index) const { return state.inputs[static_cast<std::size_t>(index)]; }
+  static int TempCount() { return kTempRegisterCount; }
   auto& Temp(long index) const { return state.temps[static_cast<std::size_t>(index)]; }
   auto& Output(int slot) const { return state.outputs[static_cast<std::size_t>(slot)]; }
-  void WriteAddress(float x) const { state.a0 = AddressFromFloat(x); }
+  void WriteAddress(int lane, float x) const {
+    if (lane == 0) state.a0 = AddressFromFloat(x);
+  }
   static Vec4f Zero() { return {}; }
 };
 

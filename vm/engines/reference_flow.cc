@@ -127,10 +127,7 @@ class FlowInterpreter {
   // The lanes an instruction writes: its mask, less what the opcode never writes (crs's w, sincos's z
   // and w, a matrix's missing rows), less the lanes a predicate turns off.
   WriteMask LanesWritten(const Instruction& instruction) const {
-    std::uint8_t lanes = instruction.dest.mask.bits();
-    if (instruction.opcode == Opcode::kCrs) lanes &= kLanesXyz;
-    if (instruction.opcode == Opcode::kSincos) lanes &= kLanesXy;
-    lanes &= static_cast<std::uint8_t>((1u << instruction.info().result_lanes()) - 1);
+    std::uint8_t lanes = semantics::LanesWritten(instruction).bits();
     if (instruction.predicated) {
       for (int lane = 0; lane < 4; ++lane) {
         const bool on = state_.p0[static_cast<std::size_t>(instruction.predicate.swizzle[lane])] !=
@@ -170,8 +167,7 @@ class FlowInterpreter {
     std::optional<Vec4f> result = ComputeAny(instruction);
     if (!result) return;
     if (instruction.dest.saturate) {
-      // [0, 1]; NaN gives 0.
-      for (float& v : *result) v = v > 0.0f ? (v < 1.0f ? v : 1.0f) : 0.0f;
+      for (float& v : *result) v = semantics::Saturate(v);
     }
     if (instruction.dest.reg.file == RegisterFile::kAddress) {
       // mova's value is already rounded; vs_1_1's mov a0 floors (AddressFromFloat), and on integers

@@ -1,8 +1,9 @@
 // The batch, jit and gl engines on a later model's program (vs_2_0 on) whose flow control is static: the
 // program is specialised for the integer and boolean constants (vm/core/static_flow.h) into straight
-// vs_1_1 code, which the engine runs as it runs any vs_1_1 program. A specialisation is built when the
-// engine is made and again in SetConstants only when i#, b# or the bank's size change; the last few are
-// kept by those values with their compiled engines, so switching back costs nothing.
+// code, which the engine runs as a vs_1_1 program with the later model's registers. A specialisation
+// is built when the engine is made and again in SetConstants only when i#, b# or the bank's size
+// change; the last few are kept by those values with their compiled engines, so switching back costs
+// nothing.
 #pragma once
 
 #include <memory>

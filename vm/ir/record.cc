@@ -16,13 +16,19 @@ class RecordingMachine {
   using Float = ir::Float;
   using Vec4 = ir::Vec4;
 
-  explicit RecordingMachine(Bindings& bindings) : bindings_(bindings) {
+  RecordingMachine(Bindings& bindings, const Program& program)
+      : bindings_(bindings),
+        temp_count_(semantics::TempCountOf(program)),
+        address_lanes_(semantics::AddressLaneCountOf(program)) {
     for (auto& temp : temps_) temp = Zero();  // temporaries start at 0, as in the engines
     for (int slot = 0; slot < kOutputSlotCount; ++slot) outputs_[slot] = bindings.InitialOutput(slot);
   }
 
-  Vec4 ReadConstant(long index, bool relative) const {
-    if (relative && address_written_) return ReadRelativeRow(address_ + LiteralInt(static_cast<std::int32_t>(index)));
+  Vec4 ReadConstant(long index, bool relative, int lane) const {
+    if (lane >= address_lanes_) lane = 0;  // vs_1_1: a0.x whatever the lane
+    if (relative && address_written_[lane]) {
+      return ReadRelativeRow(address_[lane] + LiteralInt(static_cast<std::int32_t>(index)));
+    }
     if (index < 0) return Zero();  // a0 is 0 until written
     return bindings_.ReadConstant(index);
   }
@@ -33,15 +39,17 @@ class RecordingMachine {
     return value;
   }
   Vec4 ReadInput(long index) const { return bindings_.ReadInput(index); }
+  int TempCount() const { return temp_count_; }
   Vec4& Temp(long index) { return temps_[static_cast<std::size_t>(index)]; }
   const Vec4& Temp(long index) const { return temps_[static_cast<std::size_t>(index)]; }
   Vec4& Output(int slot) { return outputs_[static_cast<std::size_t>(slot)]; }
-  void WriteAddress(Float x) {
-    address_ = semantics::AddressFromFloat(x);
-    address_value_ = x;
-    address_written_ = true;
+  void WriteAddress(int lane, Float x) {
+    if (lane >= address_lanes_) return;
+    address_[lane] = semantics::AddressFromFloat(x);
+    address_value_[lane] = x;
+    address_written_[lane] = true;
   }
-  Float AddressValue() const { return address_written_ ? address_value_ : Zero()[0]; }
+  Float AddressValue(int lane) const { return address_written_[lane] ? address_value_[lane] : Zero()[0]; }
   // Predicate registers (only the straight-line form of a later model's flow has them): 0 until written.
   Vec4& Predicate(long index) {
     if (static_cast<std::size_t>(index) >= predicates_.size()) predicates_.resize(static_cast<std::size_t>(index) + 1, Zero());
@@ -68,11 +76,13 @@ class RecordingMachine {
 
  private:
   Bindings& bindings_;
-  std::array<Vec4, kTempRegisterCount> temps_{};
+  const int temp_count_;
+  const int address_lanes_;
+  std::array<Vec4, semantics::kLaterModelTempCount> temps_{};
   std::array<Vec4, kOutputSlotCount> outputs_{};
-  Int address_;
-  Float address_value_;
-  bool address_written_ = false;
+  std::array<Int, 4> address_{};
+  std::array<Float, 4> address_value_{};
+  std::array<bool, 4> address_written_{};
   std::vector<Vec4> predicates_;
 };
 
@@ -89,7 +99,7 @@ std::vector<RecordedOutputs> RecordProgram(Graph& graph, const Program& program,
   const Recording recording_scope(graph);
   std::vector<RecordingMachine> machines;
   machines.reserve(vertices.size());
-  for (Bindings* bindings : vertices) machines.emplace_back(*bindings);
+  for (Bindings* bindings : vertices) machines.emplace_back(*bindings, program);
   for (std::size_t i = 0; i < program.instructions.size(); ++i) {
     graph.set_instruction(static_cast<int>(i));
     for (RecordingMachine& machine : machines) machine.Execute(program.instructions[i], rules);

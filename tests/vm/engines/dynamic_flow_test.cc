@@ -265,17 +265,5 @@ TEST(DynamicFlow, HandComputedValues) {
   }
 }
 
-// if_comp and break_comp read their sources as the setp they become, under its rules: a temporary
-// past the engines' r0-r11 is refused by name, not read as 0.
-TEST(DynamicFlow, AComparisonReadingWhatTheEngineLacksIsRefusedWithItsReason) {
-  const Program program = Assemble("vs_2_x\ndcl_position v0\nmov r0, v0\nif_gt r20.x, c0.x\nmov r0, c1\nendif\nmov oPos, r0\n");
-  for (const char* engine : {"batch", "jit"}) {
-    Result<std::unique_ptr<Engine>> made = MakeEngine(engine, program, ConstantBank(kBankSize), {});
-    ASSERT_FALSE(made.ok());
-    EXPECT_NE(made.message().find("(instruction 3, line 4, ifc): the engine has temporaries r0-r11 only"), std::string::npos)
-        << made.message();
-  }
-}
-
 }  // namespace
 }  // namespace vs11

@@ -213,13 +213,17 @@ TEST(StaticFlow, NewIntegerConstantsChangeTheUnrollingAndKnownOnesHitTheCache) {
   }
 }
 
-// (Dynamic flow control runs on batch and jit too: tests/vm/engines/dynamic_flow_test.cc.)
-TEST(StaticFlow, MissingKernelsAreRefusedWithTheirReason) {
+// Dynamic flow (tests/vm/engines/dynamic_flow_test.cc) and the later arithmetic rows
+// (tests/vm/engines/later_arithmetic_test.cc) run on batch and jit too.
+TEST(StaticFlow, MovaAndDynamicFlowRunOnBatchAndJit) {
+  const Program dynamic = Assemble(
+      "vs_2_x\ndcl_position v0\nmov r0, v0\nif_gt r0.x, c0.x\nadd r0, r0, c1\nendif\nmov oPos, r0\n");
   const Program mova = Assemble("vs_2_0\ndcl_position v0\nmova a0.x, v0.x\nmov oPos, c[a0.x + 1]\n");
   for (const char* engine : {"batch", "jit"}) {
-    Result<std::unique_ptr<Engine>> made = MakeEngine(engine, mova, ConstantBank(kBankSize), {});
-    ASSERT_FALSE(made.ok());
-    EXPECT_NE(made.message().find("mova): the engine has no kernel"), std::string::npos) << made.message();
+    for (const Program* program : {&dynamic, &mova}) {
+      const Result<std::unique_ptr<Engine>> made = MakeEngine(engine, *program, ConstantBank(kBankSize), {});
+      EXPECT_TRUE(made.ok()) << made.message();
+    }
   }
 }
 
