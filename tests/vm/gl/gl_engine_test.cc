@@ -143,8 +143,9 @@ TEST_P(GlEngineTest, EveryProgramOfProgramsGivesTheReferenceBitsOnOrdinaryInputs
 
 // Later models' programs run as their specialisation for i#/b# (vm/engines/static_flow_engine.h), dynamic
 // flow as execution masks, translated like any vs_1_1 program: a skinning loop over bones through c[aL],
-// nested rep/if b#/break, calls, a per-vertex if_comp and break_comp in a loop with predicated writes, and
-// vs_3_0's outputs by declaration with o[aL]; then new integer constants, a second specialisation.
+// nested rep/if b#/break, calls, a per-vertex if_comp and break_comp in a loop with predicated writes, the
+// later arithmetic rows with _sat, _abs, a0.y and r20, and vs_3_0's outputs by declaration with o[aL]; then
+// new integer constants, a second specialisation.
 TEST_P(GlEngineTest, LaterModelProgramsGiveTheReferenceBits) {
   const char* const kPrograms[] = {
       ("vs_2_0\ndcl_position v0\nmov r0, c0\nloop aL, i0\ndp4 r1.x, v0, c0[aL]\n"
@@ -157,6 +158,11 @@ TEST_P(GlEngineTest, LaterModelProgramsGiveTheReferenceBits) {
       ("vs_2_x\ndcl_position v0\ndcl_normal v1\nmov r0, v0\nmov r1, v1\nrep i1\nif_gt r0.x, c0.x\n"
        "add r0, r0, c1\nelse\nmul r0, r0, c2\nendif\nbreak_lt r0.y, c3.x\nendrep\nsetp_lt p0, v0, c1\n"
        "(p0) mov r0.yz, c1.w\n(!p0.x) add r1, r1, c4\nmov oPos, r0\nmov oD0, r1\n"),
+      ("vs_3_0\ndcl_position v0\ndcl_normal v1\ndcl_position o0\ndcl_texcoord0 o1\ndcl_texcoord1 o2\n"
+       "dcl_texcoord2 o3\nmov r20, v1\nnrm r1, r20\ncrs r2.xyz, v0, r1\nmov r2.w, c5.x\n"
+       "pow_sat r3, r20_abs.x, c6.y\nsincos r4.xy, v0.z\nmov r4.zw, c7\nlrp r5, c8, r2, r4\n"
+       "sgn r6, -r5, r7, r8\nmova a0.yw, c9\nmov r9, c[a0.y + 10]\nabs r10, -r9\nmov o0, v0\nmov o1, r5\n"
+       "mov o2, r6\nadd o3, r3, r10\n"),
       ("vs_3_0\ndcl_position v0\ndcl_position o0\ndcl_texcoord0 o1\n"
        "dcl_texcoord1 o2\nmov o0, v0\nloop aL, i2\nmul o[aL], v0, c[aL + 7]\nendloop\n"),
   };
