@@ -51,23 +51,8 @@ class ProgramWriter : later_model::Draws {
     return text;
   }
 
-  // What one instruction has read so far: the later models' read ports allow one c# and one v#.
-  struct Reads {
-    bool constant = false;
-    bool input = false;
-  };
   std::string Lane() { return std::string(1, "xyzw"[Pick(0, 3)]); }
-  // A register of the kind drawn, or a temporary where the instruction already reads one of that file.
-  std::string Register(bool in_loop, Reads& reads) {
-    const int kind = Pick(0, in_loop ? 3 : 2);
-    if (kind == 0 || (kind == 1 && reads.input) || (kind >= 2 && reads.constant)) return Temp();
-    if (kind == 1) {
-      reads.input = true;
-      return fmt::format("v{}", Pick(0, 1));
-    }
-    reads.constant = true;
-    return kind == 2 ? fmt::format("c{}", Pick(0, 7)) : fmt::format("c[aL + {}]", Pick(0, 4));
-  }
+  std::string Register(bool in_loop, Reads& reads) { return Draws::Register(in_loop, reads, 7, 4); }
   std::string Source(bool in_loop, Reads& reads) {
     const bool negate = Pick(0, 3) == 0;
     return (negate ? "-" : "") + Register(in_loop, reads) + SwizzleSuffix();

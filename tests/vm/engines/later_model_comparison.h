@@ -76,6 +76,23 @@ class Draws {
     static constexpr const char* kSwizzles[] = {"", ".x", ".yzxw", ".wwzy", ".zzzz"};
     return kSwizzles[Pick(0, 4)];
   }
+  // What one instruction has read so far: the later models' read ports allow one c# and one v#.
+  struct Reads {
+    bool constant = false;
+    bool input = false;
+  };
+  // A temporary, v0-v1, c0-c`last_constant` or (in a loop) c[aL + 0..`last_offset`]; a temporary where
+  // the instruction already reads a register of the file drawn.
+  std::string Register(bool in_loop, Reads& reads, int last_constant, int last_offset) {
+    const int kind = Pick(0, in_loop ? 3 : 2);
+    if (kind == 0 || (kind == 1 && reads.input) || (kind >= 2 && reads.constant)) return Temp();
+    if (kind == 1) {
+      reads.input = true;
+      return fmt::format("v{}", Pick(0, 1));
+    }
+    reads.constant = true;
+    return kind == 2 ? fmt::format("c{}", Pick(0, last_constant)) : fmt::format("c[aL + {}]", Pick(0, last_offset));
+  }
 
  private:
   std::mt19937 random_;

@@ -42,27 +42,15 @@ class ProgramWriter : later_model::Draws {
   }
 
  private:
-  // One source; a temporary where the instruction already reads a constant or an input (the later
-  // models' read ports: one c# and one v# per instruction).
-  std::string Source(bool in_loop, bool& reads_constant, bool& reads_input) {
-    std::string reg;
-    const int kind = Pick(0, in_loop ? 3 : 2);
-    if (kind == 0 || (kind == 1 && reads_input) || (kind >= 2 && reads_constant)) {
-      reg = Temp();
-    } else if (kind == 1) {
-      reg = fmt::format("v{}", Pick(0, 1));
-      reads_input = true;
-    } else {
-      reg = kind == 2 ? fmt::format("c{}", Pick(0, 255)) : fmt::format("c[aL + {}]", Pick(0, 8));
-      reads_constant = true;
-    }
-    return (Pick(0, 3) == 0 ? "-" : "") + reg + SwizzleSuffix();
+  std::string Source(bool in_loop, Reads& reads) {
+    std::string text = Pick(0, 3) == 0 ? "-" : "";  // (appended to: GCC 12 warns on "-" + string)
+    text += Register(in_loop, reads, 255, 8);
+    return text + SwizzleSuffix();
   }
   std::string Arithmetic(bool in_loop) {
     static constexpr const char* kTwo[] = {"add", "mul", "dp3", "dp4", "min", "max", "slt", "sge"};
-    bool constant = false;
-    bool input = false;
-    const auto source = [&] { return Source(in_loop, constant, input); };
+    Reads reads;
+    const auto source = [&] { return Source(in_loop, reads); };
     switch (Pick(0, 3)) {
       case 0: {
         const std::string dest = Temp(), s0 = source(), s1 = source(), s2 = source();
