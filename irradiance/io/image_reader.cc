@@ -17,26 +17,21 @@ namespace {
 
 namespace fs = std::filesystem;
 
-ImageReadResult ReadImageFailure(std::string message) {
-  ImageReadResult result;
-  result.error = std::move(message);
-  return result;
-}
-
 // The environment-map rules for a DDS file, beyond the container's own (dds_reader.h): a cube map
 // has six square faces.
-std::optional<std::string> DdsEnvironmentProblem(const DdsFileHeader& header) {
-  if (!header.is_cube_map) return std::nullopt;
+Status DdsEnvironmentProblem(const DdsFileHeader& header) {
+  if (!header.is_cube_map) return {};
   if (header.width != header.height) {
-    return fmt::format("DDS cube map faces are {} x {} pixels: faces must be square", header.width,
-                       header.height);
+    return Failure(DiagnosticCode::kCannotReadFile,
+                   fmt::format("DDS cube map faces are {} x {} pixels: faces must be square", header.width,
+                               header.height));
   }
   if (header.faces != kCubeFaceCount) {
-    return fmt::format("DDS cube map has {} of the six faces (cube map flags {:#x}), all six are "
-                       "needed",
-                       header.faces, header.cube_face_flags);
+    return Failure(DiagnosticCode::kCannotReadFile,
+                   fmt::format("DDS cube map has {} of the six faces (cube map flags {:#x}), all six are needed",
+                               header.faces, header.cube_face_flags));
   }
-  return std::nullopt;
+  return {};
 }
 
 // The file being read: its path and, when it could be found, its size.
@@ -76,7 +71,10 @@ DdsStage ReadDdsStage(const fs::path& path) {
     stage.error = header.error;
     return stage;
   }
-  if ((stage.error = DdsEnvironmentProblem(header.header))) return stage;
+  if (Status fits = DdsEnvironmentProblem(header.header); !fits.ok()) {
+    stage.error = fits.message();
+    return stage;
+  }
   stage.is_cube_map = header.header.is_cube_map;
   DdsReadResult pixels = ReadDdsPixels(path, header.header);
   switch (pixels.outcome) {
@@ -95,30 +93,25 @@ DdsStage ReadDdsStage(const fs::path& path) {
 
 }  // namespace
 
-ImageReadResult ReadImageFile(const fs::path& path, const ImageSizeCheck& check_size) {
-  const auto failure = [&](std::string_view message) {
-    return ReadImageFailure(fmt::format("{}: {}", path.string(), message));
+Result<ImageRead> ReadImageFile(const fs::path& path, const ImageSizeCheck& check_size) {
+  const auto failure = [&](DiagnosticCode code, std::string_view message) {
+    return Failure(code, fmt::format("{}: {}", path.string(), message));
   };
   ImageFile file;
-  if (const Status checked = CheckIsFile(path, file); !checked.ok()) return failure(checked.message());
-  DdsStage dds = ReadDdsStage(path);
-  if (dds.error) return failure(*dds.error);
-  ImageReadResult result;
-  result.is_dds_cube_map = dds.is_cube_map;
-  if (dds.read) {
-    result.image = std::move(dds.read);
-    return result;
+  if (const Status checked = CheckIsFile(path, file); !checked.ok()) {
+    return failure(checked.error().code, checked.message());
   }
+  DdsStage dds = ReadDdsStage(path);
+  if (dds.error) return failure(DiagnosticCode::kCannotReadFile, *dds.error);
+  if (dds.read) return ImageRead{std::move(*dds.read), dds.is_cube_map};
   // Every other image is OpenImageIO's, loaded here on first use (image_io_module.h).
   const Result<const ImageIoApi*> module = ImageIo();
-  if (!module) return failure(module.message());
+  if (!module) return failure(module.error().code, module.message());
   const ImageIoApi* image_io = *module;
   OiioReadRequest request{file.path, file.size, &dds.stacked_faces, dds.is_cube_map, check_size};
   OiioReadResult read = image_io->read(request);
-  if (!read.image) return failure(read.error);
-  result.is_dds_cube_map = read.dds_cube_map;
-  result.image = std::move(read.image);
-  return result;
+  if (!read.image) return failure(DiagnosticCode::kCannotReadFile, read.error);
+  return ImageRead{std::move(*read.image), read.dds_cube_map};
 }
 
 }  // namespace vs11::irradiance

@@ -31,7 +31,7 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   using vs11::translate::Target;
   for (Stage stage : {Stage::kVertex, Stage::kCompute}) {
     for (Target target : {Target::kGlsl330, Target::kGlslEs300, Target::kGlslEs310, Target::kGlslEs320, Target::kSpirv}) {
-      if (vs11::translate::StageProblem(target, stage)) continue;
+      if (!vs11::translate::StageProblem(target, stage).ok()) continue;
       vs11::translate::TranslateOptions translate_options;
       translate_options.target = target;
       translate_options.stage = stage;

@@ -587,7 +587,9 @@ std::vector<Token> Preprocessor::Substitute(const Macro& macro, const Args& args
 std::optional<std::string> ReadFileFromDisk(const std::filesystem::path& path) {
   // Only regular files: a FIFO named by an #include would block until someone writes to it.
   if (!InputFileProblem(path, /*pipes_allowed=*/false).ok()) return std::nullopt;
-  return ReadInputFile(path, kMaxProgramFileBytes).bytes;
+  Result<std::string> text = ReadInputFile(path, kMaxProgramFileBytes);
+  if (!text) return std::nullopt;
+  return std::move(*text);
 }
 
 PreprocessResult Preprocess(std::string_view text, const std::string& file_name, const PreprocessOptions& options,

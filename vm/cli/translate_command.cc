@@ -65,8 +65,8 @@ void AddTranslateCommand(CLI::App& app) {
       throw CommandFailure{kUsageErrorStatus};
     }
     options.stage = args->stage;
-    if (std::optional<std::string> problem = translate::StageProblem(options.target, options.stage)) {
-      std::fprintf(stderr, "vs11: error: --stage compute: %s\n", problem->c_str());
+    if (const Status problem = translate::StageProblem(options.target, options.stage); !problem.ok()) {
+      std::fprintf(stderr, "vs11: error: --stage compute: %s\n", problem.message().c_str());
       throw CommandFailure{kUsageErrorStatus};
     }
     if (options.stage == translate::Stage::kCompute && args->clip) {

@@ -367,10 +367,10 @@ std::string TranslateToGlsl(const Program& program, const TranslateOptions& opti
 
 Artifact Translate(const Program& program, const TranslateOptions& options) {
   const Status refusal = EngineRefusal(program, "translate");
-  std::optional<std::string> problem = refusal ? StageProblem(options.target, options.stage) : refusal.message();
-  if (problem) {
+  const Status problem = refusal ? StageProblem(options.target, options.stage) : refusal;
+  if (!problem.ok()) {
     Artifact refused;
-    refused.error = *problem;
+    refused.error = problem.message();
     return refused;
   }
   return MakeProfile(options.target)->Finish(TranslateToGlsl(program, options), options.stage);

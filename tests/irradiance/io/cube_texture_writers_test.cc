@@ -144,10 +144,10 @@ TEST_F(CubeTextureWriters, DdsReadsBackThroughVs11sDdsReader) {
 TEST_F(CubeTextureWriters, DdsLoadsAsTheSameCubeThroughTheEnvironmentLoader) {
   const CubeMap cube = MakeTestCube(kFaceSize);
   ASSERT_EQ(WriteMapFile(cube, MapFileFormat::kDds, 0, Path("irradiance.dds")).message(), "");
-  const LoadResult loaded = LoadEnvironment(Path("irradiance.dds"));
-  ASSERT_TRUE(loaded.ok()) << loaded.error;
-  EXPECT_TRUE(loaded.environment->warnings.empty());
-  ExpectCubesEqual(loaded.environment->cube, cube);
+  const Result<LoadedEnvironment> loaded = LoadEnvironment(Path("irradiance.dds"));
+  ASSERT_TRUE(loaded.ok()) << loaded.message();
+  EXPECT_TRUE(loaded->warnings.empty());
+  ExpectCubesEqual(loaded->cube, cube);
   EXPECT_EQ(FolderContents(), std::vector<std::string>{"irradiance.dds"});  // no temporary left
 }
 
@@ -157,10 +157,10 @@ TEST_F(CubeTextureWriters, ValuesBeyondHalfRangeAreClampedAndCounted) {
   cube.face(CubeFace::kPositiveY).at(0, 0) = glm::vec3(1e6f, -1e6f, 65504.0f);
   EXPECT_EQ(CountBeyondHalfRange(cube), 2u);
   ASSERT_EQ(WriteDdsCube(cube, Path("bright.dds")).message(), "");
-  const LoadResult loaded = LoadEnvironment(Path("bright.dds"));
-  ASSERT_TRUE(loaded.ok()) << loaded.error;
+  const Result<LoadedEnvironment> loaded = LoadEnvironment(Path("bright.dds"));
+  ASSERT_TRUE(loaded.ok()) << loaded.message();
   // The loader clamps negatives to 0 (radiance); the stored half is checked in the bytes instead.
-  EXPECT_EQ(loaded.environment->cube.face(CubeFace::kPositiveY).at(0, 0).r, kHalfMax);
+  EXPECT_EQ(loaded->cube.face(CubeFace::kPositiveY).at(0, 0).r, kHalfMax);
   const std::vector<std::uint8_t> bytes = FileBytes(Path("bright.dds"));
   const std::size_t texel = 148 + 2 * 4 * 8;  // +y is the third face of 2 x 2 texels
   EXPECT_EQ(DecodeHalf(static_cast<std::uint16_t>(bytes[texel + 2] | (bytes[texel + 3] << 8))), -kHalfMax);
@@ -323,13 +323,13 @@ TEST_F(CubeTextureWriters, HdrFacesLoadAsTheSameCubeThroughTheEnvironmentLoader)
   for (std::size_t file = 0; file < files.size(); ++file) {
     ASSERT_EQ(WriteMapFile(cube, MapFileFormat::kHdrFaces, file, Path(std::string(files[file]))).message(), "");
   }
-  const LoadResult loaded = LoadEnvironment(Path("irradiance_{face}.hdr"));
-  ASSERT_TRUE(loaded.ok()) << loaded.error;
+  const Result<LoadedEnvironment> loaded = LoadEnvironment(Path("irradiance_{face}.hdr"));
+  ASSERT_TRUE(loaded.ok()) << loaded.message();
   for (CubeFace face : kAllCubeFaces) {
     for (int y = 0; y < kFaceSize; ++y) {
       for (int x = 0; x < kFaceSize; ++x) {
         const glm::vec3 want = cube.face(face).at(x, y);
-        const glm::vec3 got = loaded.environment->cube.face(face).at(x, y);
+        const glm::vec3 got = loaded->cube.face(face).at(x, y);
         const float largest = std::max({want.r, want.g, want.b});
         for (int c = 0; c < 3; ++c) {
           EXPECT_NEAR(got[c], want[c], largest / 128.0f) << CubeFaceName(face) << " (" << x << ", " << y << ")";
@@ -347,9 +347,9 @@ TEST_F(CubeTextureWriters, HdrFacesWriteNegativeValuesAsZeroAndCountThem) {
   for (std::size_t file = 0; file < files.size(); ++file) {
     ASSERT_EQ(WriteMapFile(cube, MapFileFormat::kHdrFaces, file, Path(std::string(files[file]))).message(), "");
   }
-  const LoadResult loaded = LoadEnvironment(Path("irradiance_{face}.hdr"));
-  ASSERT_TRUE(loaded.ok()) << loaded.error;
-  const glm::vec3 texel = loaded.environment->cube.face(CubeFace::kNegativeZ).at(1, 0);
+  const Result<LoadedEnvironment> loaded = LoadEnvironment(Path("irradiance_{face}.hdr"));
+  ASSERT_TRUE(loaded.ok()) << loaded.message();
+  const glm::vec3 texel = loaded->cube.face(CubeFace::kNegativeZ).at(1, 0);
   EXPECT_EQ(texel.r, 0.0f);
   EXPECT_NEAR(texel.g, 2.0f, 2.0f / 128.0f);
   EXPECT_EQ(texel.b, 0.0f);

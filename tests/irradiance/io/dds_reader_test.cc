@@ -134,10 +134,10 @@ TEST_F(DdsReader, DdsFloatLatLongIsAPlainImageNotACube) {
   for (int i = 0; i < 32; ++i) image.pixels[i] = glm::vec3(0.5f * i, 1.0f, 2.0f);
   for (const glm::vec3& p : image.pixels) AppendRgba32(bytes, p);
   WriteBytes(Path("sky.dds"), bytes);
-  const ImageReadResult read = ReadImage(Path("sky.dds"));
-  ASSERT_TRUE(read.ok()) << read.error;
-  EXPECT_FALSE(read.is_dds_cube_map);
-  EXPECT_EQ(read.image->pixels, image.pixels);
+  const Result<ImageRead> read = ReadImage(Path("sky.dds"));
+  ASSERT_TRUE(read.ok()) << read.message();
+  EXPECT_FALSE(read->is_dds_cube_map);
+  EXPECT_EQ(read->image.pixels, image.pixels);
   EXPECT_EQ(Load(Path("sky.dds")).layout, EnvironmentLayout::kLatLong);
 }
 

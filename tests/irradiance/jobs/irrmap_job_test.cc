@@ -159,12 +159,12 @@ TEST_F(IrrmapJob, WritesTheFiveFilesForASmallBuiltin) {
   EXPECT_EQ(exr->spec().height, 3 * options_.map_size);
   EXPECT_EQ(exr->spec().format, OIIO::TypeDesc::FLOAT);
   exr->close();
-  LoadResult cross = LoadEnvironment(out / "irradiance.exr");
-  ASSERT_TRUE(cross.ok()) << cross.error;
+  Result<LoadedEnvironment> cross = LoadEnvironment(out / "irradiance.exr");
+  ASSERT_TRUE(cross.ok()) << cross.message();
   const int m = options_.map_size;
   const glm::dvec3 up = TexelDirection(CubeFace::kPositiveY, m / 2, m / 2, m);
   const glm::dvec3 expected = IrradianceEq6(report_.coefficients, up);
-  const glm::vec3 texel = cross.environment->cube.face(CubeFace::kPositiveY).at(m / 2, m / 2);
+  const glm::vec3 texel = cross->cube.face(CubeFace::kPositiveY).at(m / 2, m / 2);
   for (int c = 0; c < 3; ++c) EXPECT_NEAR(texel[c], expected[c], kProgramRelativeTolerance * glm::length(expected));
 
   // preview.png: 8-bit, with spheres drawn.

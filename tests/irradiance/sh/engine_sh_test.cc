@@ -326,10 +326,10 @@ Sh9Rgb ProjectLatLongFile(const Image& latlong, const std::string& file_name) {
   LoadOptions options;
   options.layout = EnvironmentLayout::kLatLong;
   options.face_size = kFaceSize;
-  const LoadResult loaded = LoadEnvironment(path, options);
+  const Result<LoadedEnvironment> loaded = LoadEnvironment(path, options);
   envtest::fs::remove(path);
-  EXPECT_TRUE(loaded.ok()) << loaded.error;
-  return loaded.ok() ? ProjectDirect(loaded.environment->cube) : Sh9Rgb{};
+  EXPECT_TRUE(loaded.ok()) << loaded.message();
+  return loaded.ok() ? ProjectDirect(loaded->cube) : Sh9Rgb{};
 }
 
 // A small bright light at the top of a lat-long image is above every engine's world.

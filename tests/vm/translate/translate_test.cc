@@ -153,7 +153,7 @@ constexpr Target kTargets[] = {Target::kGlsl330, Target::kGlslEs300, Target::kGl
 std::string CheckTranslations(const Program& program, const std::string& name, FloatRules rules) {
   for (Stage stage : {Stage::kVertex, Stage::kCompute}) {
     for (Target target : kTargets) {
-      if (StageProblem(target, stage)) continue;
+      if (!StageProblem(target, stage).ok()) continue;
       const std::string glsl =
           TranslateToGlsl(program, {.target = target, .source_name = name, .float_rules = rules, .stage = stage});
       const GlslangResult compiled = CompileWithGlslang(glsl, target, stage);
