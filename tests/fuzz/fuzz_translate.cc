@@ -36,10 +36,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
       translate_options.target = target;
       translate_options.stage = stage;
       const std::string glsl = vs11::translate::TranslateToGlsl(*assembled.program, translate_options);
-      const vs11::translate::GlslangResult compiled = vs11::translate::CompileWithGlslang(glsl, target, stage);
-      if (!compiled.ok) Report(vs11::translate::TargetName(target), compiled.log, glsl);
+      const auto compiled = vs11::translate::CompileWithGlslang(glsl, target, stage);
+      if (!compiled) Report(vs11::translate::TargetName(target), compiled.message(), glsl);
       if (target != Target::kSpirv) continue;
-      if (const vs11::Status valid = vs11::translate::ValidateSpirv(compiled.spirv); !valid.ok()) {
+      if (const vs11::Status valid = vs11::translate::ValidateSpirv(*compiled); !valid.ok()) {
         Report("spirv-val", valid.message(), glsl);
       }
     }

@@ -38,7 +38,6 @@ Status StageProblem(Target target, Stage stage);
 struct Artifact {
   std::vector<std::uint8_t> bytes;
   bool binary = false;
-  std::string error;  // set when the text could not be turned into the target (a translator bug)
 };
 
 class Profile {
@@ -59,7 +58,8 @@ class Profile {
   // Sentences for the interface comment: how outputs are matched; whether the driver may contract.
   virtual std::string_view OutputMatching() const = 0;
   virtual std::string_view Contraction() const = 0;
-  virtual Artifact Finish(const std::string& glsl, Stage stage) const = 0;
+  // The artifact, or (kGlCompile) why the text could not be turned into the target: a translator bug.
+  virtual Result<Artifact> Finish(const std::string& glsl, Stage stage) const = 0;
 };
 
 std::unique_ptr<Profile> MakeGlsl330Profile();

@@ -55,9 +55,10 @@ TEST(ComputeTranslation, TargetsWithoutComputeShadersAreRefused) {
   for (Target target : {Target::kGlsl330, Target::kGlslEs300}) {
     ASSERT_FALSE(StageProblem(target, Stage::kCompute).ok()) << TargetName(target);
     EXPECT_EQ(StageProblem(target, Stage::kCompute).error().code, DiagnosticCode::kOptionValue);
-    const Artifact artifact = Translate(WritesOnlyOD0AndOT1(), ComputeOn(target));
-    EXPECT_NE(artifact.error.find("no compute shaders"), std::string::npos) << artifact.error;
-    EXPECT_TRUE(artifact.bytes.empty());
+    const Result<Artifact> artifact = Translate(WritesOnlyOD0AndOT1(), ComputeOn(target));
+    ASSERT_FALSE(artifact.ok());
+    EXPECT_EQ(artifact.error().code, DiagnosticCode::kOptionValue);
+    EXPECT_NE(artifact.message().find("no compute shaders"), std::string::npos) << artifact.message();
   }
   EXPECT_TRUE(StageProblem(Target::kGlslEs310, Stage::kCompute).ok());
   EXPECT_TRUE(StageProblem(Target::kGlsl330, Stage::kVertex).ok());
