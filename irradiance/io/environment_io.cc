@@ -250,20 +250,19 @@ bool HasFloatExtension(const fs::path& path) {
 }
 
 // Writes `image` to a new temporary file beside `path` in `format` (an OpenImageIO format name, or
-// empty for the one `path`'s extension names). Returns the temporary's path, or sets `error`.
-std::optional<fs::path> WriteTemporary(const Image& image, const fs::path& path,
-                                       std::string_view format, std::string& error) {
+// empty for the one `path`'s extension names). Returns the temporary's path, or the error
+// (kCannotWriteFile, naming `path`).
+Result<fs::path> WriteTemporary(const Image& image, const fs::path& path, std::string_view format) {
+  const auto failure = [&](std::string_view why) {
+    return vs11::Failure(DiagnosticCode::kCannotWriteFile, fmt::format("{}: {}", path.string(), why));
+  };
   if (image.width <= 0 || image.height <= 0 ||
       image.pixels.size() != static_cast<std::size_t>(image.width) * image.height) {
-    error = fmt::format("{}: cannot write a zero-size image", path.string());
-    return std::nullopt;
+    return failure("cannot write a zero-size image");
   }
   const bool as_float = format == "openexr" || (format.empty() && HasFloatExtension(path));
   const Result<const ImageIoApi*> module = ImageIo();
-  if (!module) {
-    error = fmt::format("{}: {}", path.string(), module.message());
-    return std::nullopt;
-  }
+  if (!module) return failure(module.message());
   const ImageIoApi* image_io = *module;
 
   std::vector<float> floats;
@@ -288,19 +287,18 @@ std::optional<fs::path> WriteTemporary(const Image& image, const fs::path& path,
   const fs::path temporary = TemporaryPathBeside(path);
   const OiioWriteRequest request{format.empty() ? path.string() : std::string(format), temporary,
                                  image.width, image.height, as_float, data};
-  if (std::optional<std::string> failure = image_io->write(request)) {
-    error = fmt::format("{}: {}", path.string(), *failure);
+  // The module answers with a plain message (image_io_module.h says why); it becomes a Result here.
+  if (std::optional<std::string> refused = image_io->write(request)) {
     RemoveQuietly(temporary);
-    return std::nullopt;
+    return failure(*refused);
   }
   return temporary;
 }
 
 Status WriteAtomically(const Image& image, const fs::path& path, std::string_view format) {
   try {
-    std::string error;
-    const std::optional<fs::path> temporary = WriteTemporary(image, path, format, error);
-    if (!temporary) return vs11::Failure(DiagnosticCode::kCannotWriteFile, error);
+    const Result<fs::path> temporary = WriteTemporary(image, path, format);
+    if (!temporary) return temporary.error();
     const PendingRename rename[] = {{*temporary, path}};
     return CommitRenames(rename);
   } catch (const std::exception& e) {
@@ -487,11 +485,10 @@ Status WriteCubeMap(const CubeMap& cube, const std::filesystem::path& path, Envi
     std::vector<PendingRename> renames;
     for (CubeFace face : kAllCubeFaces) {
       const fs::path target = ReplaceToken(pattern, kFaceFileNames[static_cast<int>(face)]);
-      std::string error;
-      const std::optional<fs::path> temporary = WriteTemporary(cube.face(face), target, "", error);
+      const Result<fs::path> temporary = WriteTemporary(cube.face(face), target, "");
       if (!temporary) {
         for (const PendingRename& written : renames) RemoveQuietly(written.temporary);
-        return vs11::Failure(DiagnosticCode::kCannotWriteFile, error);
+        return temporary.error();
       }
       renames.push_back({*temporary, target});
     }

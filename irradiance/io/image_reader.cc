@@ -54,40 +54,26 @@ Status CheckIsFile(const fs::path& path, ImageFile& file) {
   return {};
 }
 
-// A DDS file, before OpenImageIO sees it: read here (`read`), refused (`error`), or left to
-// OpenImageIO, with a cube map's faces stacked into one plain image in memory (dds_reader.h).
+// A DDS file, before OpenImageIO sees it: read here (`read`), or left to OpenImageIO, with a cube
+// map's faces stacked into one plain image in memory (dds_reader.h); or refused (the error).
 struct DdsStage {
   std::optional<Image> read;
-  std::optional<std::string> error;
   bool is_cube_map = false;
   std::vector<unsigned char> stacked_faces;
 };
 
-DdsStage ReadDdsStage(const fs::path& path) {
+Result<DdsStage> ReadDdsStage(const fs::path& path) {
   DdsStage stage;
-  const DdsFileHeaderResult header = ReadDdsHeader(path, kMaxImagePixels);
-  if (header.outcome == DdsFileHeaderResult::Outcome::kNotDds) return stage;
-  if (header.outcome == DdsFileHeaderResult::Outcome::kError) {
-    stage.error = header.error;
-    return stage;
-  }
-  if (Status fits = DdsEnvironmentProblem(header.header); !fits.ok()) {
-    stage.error = fits.message();
-    return stage;
-  }
-  stage.is_cube_map = header.header.is_cube_map;
-  DdsReadResult pixels = ReadDdsPixels(path, header.header);
-  switch (pixels.outcome) {
-    case DdsReadResult::Outcome::kError:
-      stage.error = std::move(pixels.error);
-      break;
-    case DdsReadResult::Outcome::kRead:
-      stage.read = std::move(pixels.image);
-      break;
-    case DdsReadResult::Outcome::kLeaveToOpenImageIo:
-      stage.stacked_faces = std::move(pixels.stacked_faces);
-      break;
-  }
+  const Result<std::optional<DdsFileHeader>> header = ReadDdsHeader(path, kMaxImagePixels);
+  if (!header) return header.error();
+  if (!header->has_value()) return stage;  // not a DDS file
+  const DdsFileHeader& dds = **header;
+  if (Status fits = DdsEnvironmentProblem(dds); !fits.ok()) return fits.error();
+  stage.is_cube_map = dds.is_cube_map;
+  Result<DdsPixels> pixels = ReadDdsPixels(path, dds);
+  if (!pixels) return pixels.error();
+  stage.read = std::move(pixels->image);
+  stage.stacked_faces = std::move(pixels->stacked_faces);
   return stage;
 }
 
@@ -101,8 +87,9 @@ Result<ImageRead> ReadImageFile(const fs::path& path, const ImageSizeCheck& chec
   if (const Status checked = CheckIsFile(path, file); !checked.ok()) {
     return failure(checked.error().code, checked.message());
   }
-  DdsStage dds = ReadDdsStage(path);
-  if (dds.error) return failure(DiagnosticCode::kCannotReadFile, *dds.error);
+  Result<DdsStage> staged = ReadDdsStage(path);
+  if (!staged) return failure(staged.error().code, staged.message());
+  DdsStage& dds = *staged;
   if (dds.read) return ImageRead{std::move(*dds.read), dds.is_cube_map};
   // Every other image is OpenImageIO's, loaded here on first use (image_io_module.h).
   const Result<const ImageIoApi*> module = ImageIo();

@@ -118,23 +118,25 @@ TEST_F(CubeTextureWriters, DdsHeaderHoldsMicrosoftsValuesForAnRgba16fCube) {
 TEST_F(CubeTextureWriters, DdsReadsBackThroughVs11sDdsReader) {
   const CubeMap cube = MakeTestCube(kFaceSize);
   ASSERT_EQ(WriteDdsCube(cube, Path("map.dds")).message(), "");
-  const DdsFileHeaderResult header = ReadDdsHeader(Path("map.dds"), 1 << 20);
-  ASSERT_EQ(header.outcome, DdsFileHeaderResult::Outcome::kHeader) << header.error;
-  EXPECT_TRUE(header.header.is_cube_map);
-  EXPECT_EQ(header.header.faces, 6u);
-  EXPECT_EQ(header.header.width, static_cast<std::uint64_t>(kFaceSize));
-  EXPECT_EQ(header.header.height, static_cast<std::uint64_t>(kFaceSize));
-  EXPECT_EQ(header.header.mip_count, 1u);
-  ASSERT_TRUE(header.header.format.has_value());
-  EXPECT_EQ(header.header.format->name, "R16G16B16A16_FLOAT");
-  const DdsReadResult pixels = ReadDdsPixels(Path("map.dds"), header.header);
-  ASSERT_EQ(pixels.outcome, DdsReadResult::Outcome::kRead) << pixels.error;
-  ASSERT_EQ(pixels.image.width, kFaceSize);
-  ASSERT_EQ(pixels.image.height, 6 * kFaceSize);  // the faces stacked, +x first
+  const Result<std::optional<DdsFileHeader>> read_header = ReadDdsHeader(Path("map.dds"), 1 << 20);
+  ASSERT_TRUE(read_header.ok() && read_header->has_value()) << read_header.message();
+  const DdsFileHeader& header = **read_header;
+  EXPECT_TRUE(header.is_cube_map);
+  EXPECT_EQ(header.faces, 6u);
+  EXPECT_EQ(header.width, static_cast<std::uint64_t>(kFaceSize));
+  EXPECT_EQ(header.height, static_cast<std::uint64_t>(kFaceSize));
+  EXPECT_EQ(header.mip_count, 1u);
+  ASSERT_TRUE(header.format.has_value());
+  EXPECT_EQ(header.format->name, "R16G16B16A16_FLOAT");
+  const Result<DdsPixels> pixels = ReadDdsPixels(Path("map.dds"), header);
+  ASSERT_TRUE(pixels.ok() && pixels->image.has_value()) << pixels.message();
+  const Image& image = *pixels->image;
+  ASSERT_EQ(image.width, kFaceSize);
+  ASSERT_EQ(image.height, 6 * kFaceSize);  // the faces stacked, +x first
   for (CubeFace face : kAllCubeFaces) {
     for (int y = 0; y < kFaceSize; ++y) {
       for (int x = 0; x < kFaceSize; ++x) {
-        EXPECT_EQ(pixels.image.at(x, static_cast<int>(face) * kFaceSize + y), cube.face(face).at(x, y))
+        EXPECT_EQ(image.at(x, static_cast<int>(face) * kFaceSize + y), cube.face(face).at(x, y))
             << CubeFaceName(face) << " (" << x << ", " << y << ")";
       }
     }
