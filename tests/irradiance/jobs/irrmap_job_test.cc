@@ -131,9 +131,8 @@ TEST_F(IrrmapJob, WritesTheFiveFilesForASmallBuiltin) {
   EXPECT_EQ(json["face_size"], 32);
   EXPECT_EQ(json["layout"], "builtin");
   EXPECT_EQ(json["levels"].size(), 6u);
-  std::string error;
-  const std::optional<Sh9Rgb> parsed = ParseCoefficientsJson(ReadText(out / "coeffs.json"), error);
-  ASSERT_TRUE(parsed) << error;
+  const Result<Sh9Rgb> parsed = ParseCoefficientsJson(ReadText(out / "coeffs.json"));
+  ASSERT_TRUE(parsed) << parsed.message();
   const CubeMap sky = *MakeBuiltinEnvironment("sky", 32);
   const Sh9Rgb direct = ProjectDirect(sky);
   for (int i = 0; i < kSh9Coefficients; ++i) {
@@ -190,9 +189,8 @@ TEST_F(IrrmapJob, CoefficientsOnlyWritesTheSameCoefficientsAndNoMore) {
   EXPECT_EQ(report_.TimingMs("ground_truth"), 0.0);
   const nlohmann::json json = nlohmann::json::parse(ReadText(options_.out_dir / "coeffs.json"));
   EXPECT_FALSE(json["levels"][0].contains("mean_relative_error"));
-  std::string error;
-  const std::optional<Sh9Rgb> parsed = ParseCoefficientsJson(ReadText(options_.out_dir / "coeffs.json"), error);
-  ASSERT_TRUE(parsed) << error;
+  const Result<Sh9Rgb> parsed = ParseCoefficientsJson(ReadText(options_.out_dir / "coeffs.json"));
+  ASSERT_TRUE(parsed) << parsed.message();
   for (int i = 0; i < kSh9Coefficients; ++i) EXPECT_EQ(parsed->coefficients[i], full_run.coefficients[i]) << i;
 }
 
