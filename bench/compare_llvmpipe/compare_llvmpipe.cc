@@ -231,8 +231,11 @@ std::optional<Case> BuildCase(const Workload& workload, std::size_t count, std::
   options.coefficients = BenchCoefficients();
   options.samples = static_cast<int>(count);
   options.seed = kBenchSeed;
-  std::optional<vs11::ReferenceCase> reference = info->build(loaded.metadata, options, error);
-  if (!reference) return std::nullopt;
+  vs11::Result<vs11::ReferenceCase> reference = info->build(loaded.metadata, options);
+  if (!reference) {
+    error = reference.message();
+    return std::nullopt;
+  }
 
   Case c;
   c.workload = &workload;

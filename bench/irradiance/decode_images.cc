@@ -36,12 +36,12 @@ std::optional<std::size_t> DecodeWithOiio(const std::string& path) {
 }
 
 std::optional<std::size_t> DecodeWithVs11(const std::string& path) {
-  vs11::irradiance::ImageReadResult read = vs11::irradiance::ReadImage(path);
-  if (!read.ok()) {
-    fmt::print(stderr, "vs11_decode_images: {}\n", read.error);
+  const vs11::Result<vs11::irradiance::ImageRead> read = vs11::irradiance::ReadImage(path);
+  if (!read) {
+    fmt::print(stderr, "vs11_decode_images: {}\n", read.message());
     return std::nullopt;
   }
-  return read.image->pixels.size();
+  return read->image.pixels.size();
 }
 
 }  // namespace

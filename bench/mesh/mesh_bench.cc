@@ -90,12 +90,12 @@ const mesh::Mesh& CachedMesh(const BenchModel& model) {
   static std::map<std::string, mesh::Mesh> cache;
   auto it = cache.find(model.name);
   if (it == cache.end()) {
-    mesh::MeshLoadResult result = mesh::LoadMesh(ModelPath(model));
-    if (!result.ok() || result.mesh->normals.empty()) {
-      std::fprintf(stderr, "vs11_bench: %s: %s\n", model.name, result.ok() ? "no normals" : result.error.c_str());
+    Result<mesh::Mesh> result = mesh::LoadMesh(ModelPath(model));
+    if (!result.ok() || result->normals.empty()) {
+      std::fprintf(stderr, "vs11_bench: %s: %s\n", model.name, result.ok() ? "no normals" : result.message().c_str());
       std::abort();
     }
-    it = cache.emplace(model.name, std::move(*result.mesh)).first;
+    it = cache.emplace(model.name, std::move(result).value()).first;
   }
   return it->second;
 }
@@ -104,13 +104,13 @@ void BM_MeshLoad(benchmark::State& state, const BenchModel& model) {
   const fs::path path = ModelPath(model);
   std::size_t vertices = 0;
   for (auto _ : state) {
-    mesh::MeshLoadResult result = mesh::LoadMesh(path);
+    Result<mesh::Mesh> result = mesh::LoadMesh(path);
     if (!result.ok()) {
-      state.SkipWithError(result.error.c_str());
+      state.SkipWithError(result.message().c_str());
       return;
     }
-    vertices = result.mesh->vertex_count;
-    benchmark::DoNotOptimize(result.mesh->positions.data());
+    vertices = result->vertex_count;
+    benchmark::DoNotOptimize(result->positions.data());
   }
   state.counters["vertices"] = static_cast<double>(vertices);
   state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations() * vertices));
@@ -120,13 +120,13 @@ void BM_MeshLoadAllModels(benchmark::State& state) {
   std::vector<fs::path> files;
   for (const auto& entry : fs::recursive_directory_iterator(kModels)) {
     if (!entry.is_regular_file() || !mesh::IsMeshFileExtension(entry.path().extension().string())) continue;
-    mesh::MeshLoadResult result = mesh::LoadMesh(entry.path());
-    if (result.ok() && !result.mesh->normals.empty()) files.push_back(entry.path());
+    Result<mesh::Mesh> result = mesh::LoadMesh(entry.path());
+    if (result.ok() && !result->normals.empty()) files.push_back(entry.path());
   }
   std::size_t vertices = 0;
   for (auto _ : state) {
     vertices = 0;
-    for (const fs::path& file : files) vertices += mesh::LoadMesh(file).mesh->vertex_count;
+    for (const fs::path& file : files) vertices += mesh::LoadMesh(file)->vertex_count;
   }
   state.counters["models"] = static_cast<double>(files.size());
   state.counters["vertices"] = static_cast<double>(vertices);

@@ -76,8 +76,7 @@ ProgramCase CaseFor(const vs11::ProgramMetadata& metadata, int vertices) {
     options.coefficients = BenchCoefficients();
     options.samples = vertices;
     options.seed = kBenchSeed;
-    std::string error;
-    std::optional<vs11::ReferenceCase> reference = info->build(metadata, options, error);
+    vs11::Result<vs11::ReferenceCase> reference = info->build(metadata, options);
     if (reference) return {std::move(reference->constants), std::move(reference->inputs)};
   }
   return FallbackCase(vertices);

@@ -134,29 +134,17 @@ std::uint32_t Word(const Header& header, std::size_t at) {
   return value;
 }
 
-DdsReadResult Error(std::string message) {
-  DdsReadResult result;
-  result.outcome = DdsReadResult::Outcome::kError;
-  result.error = std::move(message);
-  return result;
-}
-
-DdsFileHeaderResult HeaderError(std::string message) {
-  DdsFileHeaderResult result;
-  result.outcome = DdsFileHeaderResult::Outcome::kError;
-  result.error = std::move(message);
-  return result;
-}
+// What is wrong with a DDS file (its name left to the caller).
+Diagnostic Error(std::string message) { return Failure(DiagnosticCode::kCannotReadFile, std::move(message)); }
 
 // What is wrong with an uncompressed pixel format given by a bit count and channel masks, if
 // anything. OpenImageIO 2.4 never returns from a file whose bit count is 0 or whose masks in use
 // include a 0 (it shifts the mask down until its lowest bit is set), so those are refused here.
-std::optional<std::string> MaskedFormatProblem(const Header& h) {
+Status MaskedFormatProblem(const Header& h) {
   const std::uint32_t flags = Word(h, kPixelFormatFlagsAt);
   const std::uint32_t bit_count = Word(h, kBitCountAt);
   if (bit_count != 8 && bit_count != 16 && bit_count != 24 && bit_count != 32) {
-    return fmt::format("unsupported DDS pixel format: {} bits per pixel (flags {:#x})", bit_count,
-                       flags);
+    return Error(fmt::format("unsupported DDS pixel format: {} bits per pixel (flags {:#x})", bit_count, flags));
   }
   std::vector<std::pair<std::size_t, std::string_view>> masks_in_use;
   if (flags & kPixelFormatLuminance) {
@@ -169,17 +157,11 @@ std::optional<std::string> MaskedFormatProblem(const Header& h) {
   if (flags & kPixelFormatAlphaPixels) masks_in_use.emplace_back(kAlphaMaskAt, "alpha");
   for (const auto& [at, channel] : masks_in_use) {
     if (Word(h, at) == 0) {
-      return fmt::format("corrupt DDS pixel format: the {} channel's bit mask is 0 (flags {:#x})",
-                         channel, flags);
+      return Error(
+          fmt::format("corrupt DDS pixel format: the {} channel's bit mask is 0 (flags {:#x})", channel, flags));
     }
   }
-  return std::nullopt;
-}
-
-DdsReadResult LeaveToOpenImageIo() {
-  DdsReadResult result;
-  result.outcome = DdsReadResult::Outcome::kLeaveToOpenImageIo;
-  return result;
+  return {};
 }
 
 // Bytes of one mip level.
@@ -319,16 +301,12 @@ HeaderFacts ReadFacts(const Header& header, DdsFileHeader& out) {
 
 // The pixel format, if its size is known here (nullopt: left to OpenImageIO unchecked), or the
 // reason it is refused.
-struct FormatLookup {
+Result<std::optional<Format>> FindFormat(const Header& header, bool dx10) {
   std::optional<Format> format;
-  std::optional<std::string> refused;
-};
-FormatLookup FindFormat(const Header& header, bool dx10) {
-  FormatLookup lookup;
   if (dx10) {
     const std::uint32_t code = Word(header, kDxgiFormatAt);
     for (const DxgiFormat& entry : kDxgiFormats) {
-      if (entry.code == code) lookup.format = entry.format;
+      if (entry.code == code) format = entry.format;
     }
   } else if (Word(header, kPixelFormatFlagsAt) & kPixelFormatFourCc) {
     const std::uint32_t code = Word(header, kFourCcAt);
@@ -336,44 +314,42 @@ FormatLookup FindFormat(const Header& header, bool dx10) {
       // OpenImageIO 2.4.7 undoes their premultiplied alpha by dividing by it, and a texel whose
       // alpha is 0 ends the process with SIGFPE. Nobody stores radiance premultiplied; DXT3 and
       // DXT5 hold the same blocks without the premultiplication.
-      lookup.refused = fmt::format(
+      return Error(fmt::format(
           "premultiplied-alpha DDS ({}) is not read: store the environment as DXT3/DXT5 (BC2/BC3) "
           "or another format",
-          code == FourCc("DXT2") ? "DXT2" : "DXT4");
+          code == FourCc("DXT2") ? "DXT2" : "DXT4"));
     }
     for (const FourCcFormat& entry : kFourCcFormats) {
-      if (entry.code == code) lookup.format = entry.format;
+      if (entry.code == code) format = entry.format;
     }
   } else {
-    lookup.refused = MaskedFormatProblem(header);
-    lookup.format = Format{"uncompressed", static_cast<int>(Word(header, kBitCountAt) / 8), false,
-                           Decoder::kOpenImageIo, 0};
+    if (Status masks = MaskedFormatProblem(header); !masks) return masks.error();
+    format = Format{"uncompressed", static_cast<int>(Word(header, kBitCountAt) / 8), false, Decoder::kOpenImageIo, 0};
   }
-  return lookup;
+  return format;
 }
 
 // The checks on the image's size and mip chain, from the header alone.
-std::optional<std::string> SizeProblem(const DdsFileHeader& h, const HeaderFacts& facts,
-                                       std::size_t max_pixels) {
+Status SizeProblem(const DdsFileHeader& h, const HeaderFacts& facts, std::size_t max_pixels) {
   if (h.width == 0 || h.height == 0) {
-    return fmt::format("zero-size image ({} x {} pixels in the DDS header)", h.width, h.height);
+    return Error(fmt::format("zero-size image ({} x {} pixels in the DDS header)", h.width, h.height));
   }
   if (h.width * h.height > max_pixels || h.width * h.height * h.faces > max_pixels) {
-    return fmt::format("image of {} x {} pixels ({} face(s)) is larger than the {} pixels accepted",
-                       h.width, h.height, h.faces, max_pixels);
+    return Error(fmt::format("image of {} x {} pixels ({} face(s)) is larger than the {} pixels accepted",
+                             h.width, h.height, h.faces, max_pixels));
   }
-  if (facts.array_size == 0) return "corrupt DDS header: DX10 array size 0";
+  if (facts.array_size == 0) return Error("corrupt DDS header: DX10 array size 0");
   // DirectXTex's reading: a mip count of 0 means 1. More levels than down to 1 x 1 is corrupt.
   const auto full_chain = static_cast<std::uint64_t>(std::bit_width(std::max(h.width, h.height)));
   if (h.mip_count > full_chain) {
-    return fmt::format("corrupt DDS header: {} mip levels for a {} x {} image (at most {})",
-                       h.mip_count, h.width, h.height, full_chain);
+    return Error(fmt::format("corrupt DDS header: {} mip levels for a {} x {} image (at most {})",
+                             h.mip_count, h.width, h.height, full_chain));
   }
-  return std::nullopt;
+  return {};
 }
 
 // Every face holds its whole mip chain; the last face's level 0 must be in the file.
-std::optional<std::string> TruncationProblem(DdsFileHeader& h, std::uint64_t file_size) {
+Status TruncationProblem(DdsFileHeader& h, std::uint64_t file_size) {
   h.chain_bytes = 0;
   for (std::uint64_t level = 0; level < h.mip_count; ++level) {
     h.chain_bytes += LevelBytes(*h.format, std::max<std::uint64_t>(h.width >> level, 1),
@@ -383,25 +359,25 @@ std::optional<std::string> TruncationProblem(DdsFileHeader& h, std::uint64_t fil
   // A cube map flagging no face stores nothing; it is the caller's to refuse (as having 0 faces).
   const std::uint64_t faces = std::max<std::uint64_t>(h.faces, 1);
   const std::uint64_t needed = h.data_offset + (faces - 1) * h.chain_bytes + h.level0_bytes;
-  if (file_size >= needed) return std::nullopt;
-  return fmt::format(
+  if (file_size >= needed) return {};
+  return Error(fmt::format(
       "truncated DDS file: {} bytes, but its header ({} x {} {}, {} face(s), {} mip level(s)) "
       "needs at least {}",
-      file_size, h.width, h.height, h.format->name, h.faces, h.mip_count, needed);
+      file_size, h.width, h.height, h.format->name, h.faces, h.mip_count, needed));
 }
 
-// Reads the magic and the headers into `raw`; kHeader when they are all there.
-DdsFileHeaderResult ReadRawHeader(std::ifstream& file, std::uintmax_t file_size, Header& raw) {
+// Reads the magic and the headers into `raw`: true when they are all there, false when the file is
+// not a DDS file.
+Result<bool> ReadRawHeader(std::ifstream& file, std::uintmax_t file_size, Header& raw) {
   file.read(reinterpret_cast<char*>(raw.data()), 4);
-  if (!file || Word(raw, 0) != kMagic) return {};  // not a DDS file: kNotDds
+  if (!file || Word(raw, 0) != kMagic) return false;
   file.read(reinterpret_cast<char*>(raw.data()) + 4, kLegacyDataOffset - 4);
   if (!file) {
-    return HeaderError(fmt::format("truncated DDS file: {} bytes, shorter than its {}-byte header",
+    return Error(fmt::format("truncated DDS file: {} bytes, shorter than its {}-byte header",
                                    file_size, kLegacyDataOffset));
   }
   if (Word(raw, 4) != kHeaderSize) {
-    return HeaderError(
-        fmt::format("corrupt DDS header: header size {}, not {}", Word(raw, 4), kHeaderSize));
+    return Error(fmt::format("corrupt DDS header: header size {}, not {}", Word(raw, 4), kHeaderSize));
   }
   const bool dx10 = (Word(raw, kPixelFormatFlagsAt) & kPixelFormatFourCc) != 0 &&
                     Word(raw, kFourCcAt) == FourCc("DX10");
@@ -409,78 +385,72 @@ DdsFileHeaderResult ReadRawHeader(std::ifstream& file, std::uintmax_t file_size,
     file.read(reinterpret_cast<char*>(raw.data()) + kLegacyDataOffset,
               kDx10DataOffset - kLegacyDataOffset);
     if (!file) {
-      return HeaderError(fmt::format(
+      return Error(fmt::format(
           "truncated DDS file: {} bytes, shorter than its {}-byte header", file_size, kDx10DataOffset));
     }
   }
-  DdsFileHeaderResult result;
-  result.outcome = DdsFileHeaderResult::Outcome::kHeader;
-  return result;
+  return true;
 }
 
 // Level 0 of each face, decoded here.
-DdsReadResult DecodeFaces(const DdsFileHeader& header, std::ifstream& file) {
-  DdsReadResult result;
-  result.outcome = DdsReadResult::Outcome::kRead;
+Result<DdsPixels> DecodeFaces(const DdsFileHeader& header, std::ifstream& file) {
   const int w = static_cast<int>(header.width);
   const int h = static_cast<int>(header.height);
-  result.image = Image(w, h * static_cast<int>(header.faces));
+  DdsPixels result;
+  Image& image = result.image.emplace(w, h * static_cast<int>(header.faces));
   std::vector<unsigned char> level0(header.level0_bytes);
   const std::size_t face_pixels = static_cast<std::size_t>(w) * h;
   for (std::uint64_t face = 0; face < header.faces; ++face) {
     file.seekg(static_cast<std::streamoff>(header.data_offset + face * header.chain_bytes));
     file.read(reinterpret_cast<char*>(level0.data()), static_cast<std::streamsize>(level0.size()));
     if (!file) return Error("cannot read the pixels: the file shrank or cannot be read");
-    DecodePixels(*header.format, level0.data(), face_pixels, &result.image.pixels[face * face_pixels]);
+    DecodePixels(*header.format, level0.data(), face_pixels, &image.pixels[face * face_pixels]);
   }
   return result;
 }
 
 }  // namespace
 
-DdsFileHeaderResult ReadDdsHeader(const fs::path& path, std::size_t max_pixels) {
+Result<std::optional<DdsFileHeader>> ReadDdsHeader(const fs::path& path, std::size_t max_pixels) {
   std::error_code ec;
   const std::uintmax_t file_size = fs::file_size(path, ec);
-  if (ec) return HeaderError(fmt::format("cannot read the file size ({})", ec.message()));
+  if (ec) return Error(fmt::format("cannot read the file size ({})", ec.message()));
   std::ifstream file(path, std::ios::binary);
   Header raw{};
-  DdsFileHeaderResult result = ReadRawHeader(file, file_size, raw);
-  if (result.outcome != DdsFileHeaderResult::Outcome::kHeader) return result;
-  result.header.raw = raw;
-  DdsFileHeader& header = result.header;
+  const Result<bool> is_dds = ReadRawHeader(file, file_size, raw);
+  if (!is_dds) return is_dds.error();
+  if (!*is_dds) return std::optional<DdsFileHeader>();
+  DdsFileHeader header;
+  header.raw = raw;
   const HeaderFacts facts = ReadFacts(header.raw, header);
   header.mip_count = std::max<std::uint32_t>(Word(header.raw, kMipCountAt), 1);
-  if (std::optional<std::string> problem = SizeProblem(header, facts, max_pixels)) {
-    return HeaderError(std::move(*problem));
-  }
+  if (Status size = SizeProblem(header, facts, max_pixels); !size) return size.error();
 
-  FormatLookup lookup = FindFormat(header.raw, facts.dx10);
-  if (lookup.refused) return HeaderError(std::move(*lookup.refused));
-  header.format = lookup.format;
+  Result<std::optional<Format>> format = FindFormat(header.raw, facts.dx10);
+  if (!format) return format.error();
+  header.format = *format;
   const bool decode_here = header.format && header.format->decoder != Decoder::kOpenImageIo;
   // OpenImageIO reports on volumes and arrays of the formats it decodes.
-  if (!header.format || (header.volume_or_array && !decode_here)) return result;
-  if (facts.volume) return HeaderError("a DDS volume texture is not an environment map");
+  if (!header.format || (header.volume_or_array && !decode_here)) return header;
+  if (facts.volume) return Error("a DDS volume texture is not an environment map");
   if (facts.array_size > 1) {
-    return HeaderError(fmt::format("DDS texture arrays ({} elements) are not read, only single "
+    return Error(fmt::format("DDS texture arrays ({} elements) are not read, only single "
                                    "images and single cube maps",
                                    facts.array_size));
   }
-  if (std::optional<std::string> problem = TruncationProblem(header, file_size)) {
-    return HeaderError(std::move(*problem));
-  }
+  if (Status complete = TruncationProblem(header, file_size); !complete) return complete.error();
   if (!decode_here && facts.dx10_cube &&
       (!facts.legacy_cube || (facts.caps2 & kCaps2AllFaces) != kCaps2AllFaces)) {
-    return HeaderError(fmt::format(
+    return Error(fmt::format(
         "DX10 cube map without the DDSCAPS2 cube map flags (caps2 {:#x}): OpenImageIO, which "
         "decodes {}, would read one face only",
         facts.caps2, header.format->name));
   }
-  return result;
+  return header;
 }
 
-DdsReadResult ReadDdsPixels(const fs::path& path, const DdsFileHeader& header) {
-  DdsReadResult result = LeaveToOpenImageIo();
+Result<DdsPixels> ReadDdsPixels(const fs::path& path, const DdsFileHeader& header) {
+  DdsPixels result;  // left to OpenImageIO
   if (!header.format || header.volume_or_array) return result;
   std::ifstream file(path, std::ios::binary);
   if (header.format->decoder != Decoder::kOpenImageIo) return DecodeFaces(header, file);

@@ -33,6 +33,7 @@
 #include <vector>
 
 #include "irradiance/io/cube_map.h"
+#include "vm/core/result.h"
 
 namespace vs11::irradiance {
 
@@ -69,43 +70,27 @@ struct DdsFileHeader {
   std::array<unsigned char, kDdsMaxHeaderBytes> raw{};
 };
 
-struct DdsFileHeaderResult {
-  enum class Outcome {
-    kNotDds,  // the file does not start with the DDS magic "DDS "
-    kHeader,  // `header` holds a header whose sizes, format and mip chain are consistent
-    kError,   // `error` says what is wrong
-  };
-  Outcome outcome = Outcome::kNotDds;
-  DdsFileHeader header;
-  std::string error;  // kError: the problem, without the file name
-};
-
-struct DdsReadResult {
-  enum class Outcome {
-    kLeaveToOpenImageIo,  // a DDS file in a format OpenImageIO reads, long enough if its size
-                          // is known here
-    kRead,                // `image` holds the pixels
-    kError,               // `error` says what is wrong
-  };
-  Outcome outcome = Outcome::kError;
-  Image image;               // kRead: linear RGB, the faces stacked top to bottom
-  std::string error;         // kError: the problem, without the file name
-  // kLeaveToOpenImageIo, for a cube map of six faces that stack into one plain image (a multiple
-  // of 4 texels for block-compressed formats): a DDS file in memory holding level 0 of the six
-  // faces as one image six faces high, for OpenImageIO to read in place of the file. OpenImageIO
-  // 2.4 reads a cube map by faces with process-wide state, so that two read at once swap faces
-  // (issue 18); a plain image it reads in one piece, safely beside other reads.
+// What ReadDdsPixels leaves to OpenImageIO, or the pixels it read.
+struct DdsPixels {
+  std::optional<Image> image;  // read here: linear RGB, the faces stacked top to bottom
+  // Else, for a cube map of six faces that stack into one plain image (a multiple of 4 texels for
+  // block-compressed formats): a DDS file in memory holding level 0 of the six faces as one image
+  // six faces high, for OpenImageIO to read in place of the file. OpenImageIO 2.4 reads a cube map
+  // by faces with process-wide state, so that two read at once swap faces (issue 18); a plain image
+  // it reads in one piece, safely beside other reads. Empty: OpenImageIO reads the file.
   std::vector<unsigned char> stacked_faces;
 };
 
 // Reads and checks the header of `path`: its size fields, the mip chain, the pixel format (the
 // unsupported and the crashing ones refused), volumes and arrays, and that the file is long enough
 // for level 0 of every face. `max_pixels` bounds width x height x faces; larger headers are errors,
-// nothing is allocated.
-DdsFileHeaderResult ReadDdsHeader(const std::filesystem::path& path, std::size_t max_pixels);
+// nothing is allocated. nullopt when the file does not start with the DDS magic "DDS "; errors
+// (kCannotReadFile) say what is wrong without the file name.
+Result<std::optional<DdsFileHeader>> ReadDdsHeader(const std::filesystem::path& path, std::size_t max_pixels);
 
 // Reads level 0 of every face `header` (from ReadDdsHeader on the same file) describes, or says
-// that OpenImageIO should (with the faces stacked in memory when it is a cube map of six faces).
-DdsReadResult ReadDdsPixels(const std::filesystem::path& path, const DdsFileHeader& header);
+// that OpenImageIO should (with the faces stacked in memory when it is a cube map of six faces); an
+// error (kCannotReadFile, without the file name) when the pixels cannot be read.
+Result<DdsPixels> ReadDdsPixels(const std::filesystem::path& path, const DdsFileHeader& header);
 
 }  // namespace vs11::irradiance

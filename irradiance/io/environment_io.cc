@@ -100,11 +100,8 @@ constexpr double kByteMax = 255.0;
 // the face size N: a little finer than the cube's centre texels (pi / (2 N) against 2 / N radians).
 constexpr int kExportScale = 4;
 
-LoadResult Failure(std::string message) {
-  LoadResult result;
-  result.error = std::move(message);
-  return result;
-}
+// The error of an input that cannot be read as an environment (most of the loaders' errors).
+Diagnostic Unreadable(std::string message) { return Failure(DiagnosticCode::kCannotReadFile, std::move(message)); }
 
 std::string AcceptedAspectRatios() {
   std::string text;
@@ -130,33 +127,37 @@ std::optional<Layout> DetectLayout(int width, int height) {
 
 // Whether a width x height image can hold `layout` (kAuto: any layout DetectLayout finds; kFaces:
 // one square face). Checked on the header's size before any pixel is read, and again on the image.
-std::optional<std::string> CheckLayoutSize(Layout layout, int width, int height) {
+Status CheckLayoutSize(Layout layout, int width, int height) {
   if (layout == Layout::kAuto) {
     // A square image is read, and then refused by EnvironmentFromImage with its own message.
-    if (DetectLayout(width, height) || width == height) return std::nullopt;
-    return fmt::format("cannot detect the layout of a {} x {} image: the accepted aspect ratios are {}",
-                       width, height, AcceptedAspectRatios());
+    if (DetectLayout(width, height) || width == height) return {};
+    return Unreadable(fmt::format("cannot detect the layout of a {} x {} image: the accepted aspect ratios are {}",
+                                  width, height, AcceptedAspectRatios()));
   }
   if (layout == Layout::kFaces) {
-    if (width == height) return std::nullopt;
-    return fmt::format("a cube face must be square, got {} x {}", width, height);
+    if (width == height) return {};
+    return Unreadable(fmt::format("a cube face must be square, got {} x {}", width, height));
   }
   const LayoutInfo& info = Info(layout);
   if (const CubeGrid* grid = FindCubeGrid(layout)) {
     const int size = width / grid->columns;
-    if (size > 0 && width == grid->columns * size && height == grid->rows * size) return std::nullopt;
-    return fmt::format("a {} must be {}N x {}N pixels for a face size N, got {} x {}", info.description,
-                       grid->columns, grid->rows, width, height);
+    if (size > 0 && width == grid->columns * size && height == grid->rows * size) return {};
+    return Unreadable(fmt::format("a {} must be {}N x {}N pixels for a face size N, got {} x {}", info.description,
+                                  grid->columns, grid->rows, width, height));
   }
   if (static_cast<std::int64_t>(width) * info.aspect_rows == static_cast<std::int64_t>(height) * info.aspect_columns) {
-    return std::nullopt;
+    return {};
   }
-  return fmt::format("a {} must have an aspect ratio of {}:{}, got {} x {}", info.description, info.aspect_columns,
-                     info.aspect_rows, width, height);
+  return Unreadable(fmt::format("a {} must have an aspect ratio of {}:{}, got {} x {}", info.description,
+                                info.aspect_columns, info.aspect_rows, width, height));
 }
 
+// The check as the OpenImageIO module takes it: its message, the code being kCannotReadFile either way.
 ImageSizeCheck LayoutSizeCheck(Layout layout) {
-  return [layout](int width, int height) { return CheckLayoutSize(layout, width, height); };
+  return [layout](int width, int height) -> std::optional<std::string> {
+    if (const Status fits = CheckLayoutSize(layout, width, height); !fits.ok()) return fits.message();
+    return std::nullopt;
+  };
 }
 
 // The pixel of a cross or strip image that holds texel (x, y) of the face in `cell`, faces `size`
@@ -196,10 +197,10 @@ std::string SanitizeWarning(std::size_t changed, std::size_t total, std::string_
                      changed, total);
 }
 
-LoadResult LoadFaces(const fs::path& path) {
+Result<LoadedEnvironment> LoadFaces(const fs::path& path) {
   const std::string pattern = path.string();
   if (pattern.find(kFaceToken) == std::string::npos) {
-    return Failure(
+    return Unreadable(
         fmt::format("{}: the six-face layout needs a path containing \"{}\"", pattern, kFaceToken));
   }
   LoadedEnvironment environment;
@@ -213,21 +214,21 @@ LoadResult LoadFaces(const fs::path& path) {
     std::error_code ec;
     const std::string& name = fs::exists(short_name, ec) ? short_name : signed_name;
     if (!fs::exists(name, ec)) {
-      return Failure(fmt::format("missing the {} face: neither {} nor {} exists",
+      return Failure(DiagnosticCode::kNoSuchInput, fmt::format("missing the {} face: neither {} nor {} exists",
                                  CubeFaceName(face), short_name, signed_name));
     }
-    ImageReadResult read = ReadImageFile(name, LayoutSizeCheck(Layout::kFaces));
-    if (!read.ok()) return Failure(fmt::format("{} face: {}", CubeFaceName(face), read.error));
-    Image& image = *read.image;
+    Result<ImageRead> read = ReadImageFile(name, LayoutSizeCheck(Layout::kFaces));
+    if (!read) return Failure(read.error().code, fmt::format("{} face: {}", CubeFaceName(face), read.message()));
+    Image& image = read->image;
     if (image.width != image.height) {
-      return Failure(fmt::format("{} face ({}) is {} x {} pixels: faces must be square",
+      return Unreadable(fmt::format("{} face ({}) is {} x {} pixels: faces must be square",
                                  CubeFaceName(face), name, image.width, image.height));
     }
     if (face == CubeFace::kPositiveX) {
       environment.cube = CubeMap(image.width);
       first_name = name;
     } else if (image.width != environment.cube.face_size) {
-      return Failure(fmt::format(
+      return Unreadable(fmt::format(
           "{} face ({}) is {} x {} pixels but the +x face ({}) is {} x {}: mismatched face sizes",
           CubeFaceName(face), name, image.width, image.height, first_name,
           environment.cube.face_size, environment.cube.face_size));
@@ -237,9 +238,7 @@ LoadResult LoadFaces(const fs::path& path) {
     }
     environment.cube.face(face) = std::move(image);
   }
-  LoadResult result;
-  result.environment = std::move(environment);
-  return result;
+  return environment;
 }
 
 // ---- Writing -----------------------------------------------------------------------------------
@@ -251,20 +250,19 @@ bool HasFloatExtension(const fs::path& path) {
 }
 
 // Writes `image` to a new temporary file beside `path` in `format` (an OpenImageIO format name, or
-// empty for the one `path`'s extension names). Returns the temporary's path, or sets `error`.
-std::optional<fs::path> WriteTemporary(const Image& image, const fs::path& path,
-                                       std::string_view format, std::string& error) {
+// empty for the one `path`'s extension names). Returns the temporary's path, or the error
+// (kCannotWriteFile, naming `path`).
+Result<fs::path> WriteTemporary(const Image& image, const fs::path& path, std::string_view format) {
+  const auto failure = [&](std::string_view why) {
+    return vs11::Failure(DiagnosticCode::kCannotWriteFile, fmt::format("{}: {}", path.string(), why));
+  };
   if (image.width <= 0 || image.height <= 0 ||
       image.pixels.size() != static_cast<std::size_t>(image.width) * image.height) {
-    error = fmt::format("{}: cannot write a zero-size image", path.string());
-    return std::nullopt;
+    return failure("cannot write a zero-size image");
   }
   const bool as_float = format == "openexr" || (format.empty() && HasFloatExtension(path));
   const Result<const ImageIoApi*> module = ImageIo();
-  if (!module) {
-    error = fmt::format("{}: {}", path.string(), module.message());
-    return std::nullopt;
-  }
+  if (!module) return failure(module.message());
   const ImageIoApi* image_io = *module;
 
   std::vector<float> floats;
@@ -289,19 +287,18 @@ std::optional<fs::path> WriteTemporary(const Image& image, const fs::path& path,
   const fs::path temporary = TemporaryPathBeside(path);
   const OiioWriteRequest request{format.empty() ? path.string() : std::string(format), temporary,
                                  image.width, image.height, as_float, data};
-  if (std::optional<std::string> failure = image_io->write(request)) {
-    error = fmt::format("{}: {}", path.string(), *failure);
+  // The module answers with a plain message (image_io_module.h says why); it becomes a Result here.
+  if (std::optional<std::string> refused = image_io->write(request)) {
     RemoveQuietly(temporary);
-    return std::nullopt;
+    return failure(*refused);
   }
   return temporary;
 }
 
 Status WriteAtomically(const Image& image, const fs::path& path, std::string_view format) {
   try {
-    std::string error;
-    const std::optional<fs::path> temporary = WriteTemporary(image, path, format, error);
-    if (!temporary) return vs11::Failure(DiagnosticCode::kCannotWriteFile, error);
+    const Result<fs::path> temporary = WriteTemporary(image, path, format);
+    if (!temporary) return temporary.error();
     const PendingRename rename[] = {{*temporary, path}};
     return CommitRenames(rename);
   } catch (const std::exception& e) {
@@ -367,39 +364,36 @@ Image CubeMapToImage(const CubeMap& cube, EnvironmentLayout layout) {
   return image;
 }
 
-ImageReadResult ReadImage(const std::filesystem::path& path) {
+Result<ImageRead> ReadImage(const std::filesystem::path& path) {
   try {
     return ReadImageFile(path, nullptr);
   } catch (const std::exception& e) {
-    ImageReadResult result;
-    result.error = fmt::format("{}: {}", path.string(), e.what());
-    return result;
+    return Unreadable(fmt::format("{}: {}", path.string(), e.what()));
   }
 }
 
-LoadResult EnvironmentFromImage(Image image, EnvironmentLayout layout, int face_size, bool keep_latlong) {
+Result<LoadedEnvironment> EnvironmentFromImage(Image image, EnvironmentLayout layout, int face_size,
+                                               bool keep_latlong) {
   try {
     if (image.width <= 0 || image.height <= 0 ||
         image.pixels.size() != static_cast<std::size_t>(image.width) * image.height) {
-      return Failure(fmt::format("zero-size image ({} x {} pixels)", image.width, image.height));
+      return Unreadable(fmt::format("zero-size image ({} x {} pixels)", image.width, image.height));
     }
     if (layout == Layout::kFaces) {
-      return Failure(fmt::format(
+      return Unreadable(fmt::format(
           "the six-face layout reads six files: pass a path containing \"{}\"", kFaceToken));
     }
-    if (std::optional<std::string> error = CheckLayoutSize(layout, image.width, image.height)) {
-      return Failure(std::move(*error));
-    }
+    if (Status fits = CheckLayoutSize(layout, image.width, image.height); !fits.ok()) return fits.error();
     LoadedEnvironment environment;
     environment.layout_reason = "as given";
     if (layout == Layout::kAuto) {
       if (image.width == image.height) {
-        LoadResult refused = Failure(fmt::format(
-            "cannot tell the layout of a square {} x {} image: it may be an angular map (--layout angular) or one "
-            "face of a cube (--layout faces, with \"{}\" in the path); name it with --layout",
-            image.width, image.height, kFaceToken));
-        refused.needs_layout = true;
-        return refused;
+        // The caller must name the layout: a usage error rather than a bad file.
+        return Failure(DiagnosticCode::kOptionValue,
+                       fmt::format("cannot tell the layout of a square {} x {} image: it may be an angular map "
+                                   "(--layout angular) or one face of a cube (--layout faces, with \"{}\" in the "
+                                   "path); name it with --layout",
+                                   image.width, image.height, kFaceToken));
       }
       layout = *DetectLayout(image.width, image.height);
       const LayoutInfo& info = Info(layout);
@@ -416,55 +410,51 @@ LoadResult EnvironmentFromImage(Image image, EnvironmentLayout layout, int face_
       environment.latlong = std::move(image);
     } else {
       if (face_size < 1 || face_size > kMaxFaceSize) {
-        return Failure(fmt::format("face size {} is outside [1, {}]", face_size, kMaxFaceSize));
+        return Failure(DiagnosticCode::kFaceSize,
+                       fmt::format("face size {} is outside [1, {}]", face_size, kMaxFaceSize));
       }
       environment.cube = layout == Layout::kLatLong ? ResampleLatLong(image, face_size)
                                                     : ResampleAngular(image, face_size);
     }
-    LoadResult result;
-    result.environment = std::move(environment);
-    return result;
+    return environment;
   } catch (const std::bad_alloc&) {
     const int size = FindCubeGrid(layout) != nullptr ? image.width / FindCubeGrid(layout)->columns : face_size;
-    return Failure(fmt::format("out of memory while building the cube map (faces of {} need about {} MB)", size,
+    return Failure(DiagnosticCode::kOutOfMemory,
+                   fmt::format("out of memory while building the cube map (faces of {} need about {} MB)", size,
                                (static_cast<std::size_t>(size) * size * kCubeFaceCount * sizeof(glm::vec3) >> 20) + 1));
   } catch (const std::exception& e) {
-    return Failure(fmt::format("cannot build the cube map: {}", e.what()));
+    return Unreadable(fmt::format("cannot build the cube map: {}", e.what()));
   }
 }
 
-LoadResult LoadEnvironment(const std::filesystem::path& path, const LoadOptions& options) {
+Result<LoadedEnvironment> LoadEnvironment(const std::filesystem::path& path, const LoadOptions& options) {
   try {
     const bool face_pattern = path.string().find(kFaceToken) != std::string::npos;
     if (options.layout == Layout::kFaces || (options.layout == Layout::kAuto && face_pattern)) {
       return LoadFaces(path);
     }
-    ImageReadResult read = ReadImageFile(path, LayoutSizeCheck(options.layout));
-    if (!read.ok()) return Failure(std::move(read.error));
+    Result<ImageRead> read = ReadImageFile(path, LayoutSizeCheck(options.layout));
+    if (!read) return read.error();
     Layout layout = options.layout;
-    if (read.is_dds_cube_map) {
+    if (read->is_dds_cube_map) {
       if (layout != Layout::kAuto && layout != Layout::kVerticalStrip) {
-        return Failure(fmt::format(
+        return Unreadable(fmt::format(
             "{}: a DDS cube map holds its six faces itself; its layout can only be auto or vstrip, "
             "not {}",
             path.string(), LayoutName(layout)));
       }
       layout = Layout::kVerticalStrip;
     }
-    LoadResult result = EnvironmentFromImage(std::move(*read.image), layout, options.face_size, options.keep_latlong);
-    if (result.ok() && read.is_dds_cube_map) result.environment->layout_reason = "a DDS cube map";
-    if (!result.ok()) {
-      result.error = fmt::format("{}: {}", path.string(), result.error);
-      return result;
-    }
-    for (std::string& warning : result.environment->warnings) {
-      warning = fmt::format("{}: {}", path.string(), warning);
-    }
+    Result<LoadedEnvironment> result =
+        EnvironmentFromImage(std::move(read->image), layout, options.face_size, options.keep_latlong);
+    if (!result) return Failure(result.error().code, fmt::format("{}: {}", path.string(), result.message()));
+    if (read->is_dds_cube_map) result->layout_reason = "a DDS cube map";
+    for (std::string& warning : result->warnings) warning = fmt::format("{}: {}", path.string(), warning);
     return result;
   } catch (const std::bad_alloc&) {
-    return Failure(fmt::format("{}: out of memory while reading it", path.string()));
+    return Failure(DiagnosticCode::kOutOfMemory, fmt::format("{}: out of memory while reading it", path.string()));
   } catch (const std::exception& e) {
-    return Failure(fmt::format("{}: {}", path.string(), e.what()));
+    return Unreadable(fmt::format("{}: {}", path.string(), e.what()));
   }
 }
 
@@ -495,11 +485,10 @@ Status WriteCubeMap(const CubeMap& cube, const std::filesystem::path& path, Envi
     std::vector<PendingRename> renames;
     for (CubeFace face : kAllCubeFaces) {
       const fs::path target = ReplaceToken(pattern, kFaceFileNames[static_cast<int>(face)]);
-      std::string error;
-      const std::optional<fs::path> temporary = WriteTemporary(cube.face(face), target, "", error);
+      const Result<fs::path> temporary = WriteTemporary(cube.face(face), target, "");
       if (!temporary) {
         for (const PendingRename& written : renames) RemoveQuietly(written.temporary);
-        return vs11::Failure(DiagnosticCode::kCannotWriteFile, error);
+        return temporary.error();
       }
       renames.push_back({*temporary, target});
     }

@@ -133,20 +133,11 @@ struct LoadedEnvironment {
   std::vector<std::string> warnings;                    // e.g. how many texels were sanitised
 };
 
-// Either an environment or a message saying what is wrong with the input.
-struct LoadResult {
-  std::optional<LoadedEnvironment> environment;
-  std::string error;  // empty when `environment` is set
-  // The layout cannot be told from the image (a square one with kAuto): the caller must name it, a
-  // usage error rather than a bad file.
-  bool needs_layout = false;
-  bool ok() const { return environment.has_value(); }
-};
-
 // Loads an environment map of any layout above. With LoadOptions::layout == kAuto the layout is
 // chosen in this order: a path holding "{face}" is six face files; a DDS file flagged as a cube map
 // is its six faces; otherwise the aspect ratio: 4:3 hcross, 3:4 vcross, 6:1 hstrip, 1:6 vstrip,
-// 2:1 latlong, anything else an error. A square image is refused (needs_layout): it may be an
+// 2:1 latlong, anything else an error. A square image is refused (kOptionValue: the caller must name
+// the layout, a usage error rather than a bad file): it may be an
 // angular map or a single cube face, and guessing either gives plausible wrong numbers. An explicit
 // layout must fit the image size (4N x 3N for hcross and so on, 2:1 for latlong, square for
 // angular); a DDS cube map only fits kAuto and kVerticalStrip.
@@ -162,21 +153,22 @@ struct LoadResult {
 // header implies before any pixel is read; everything else by OpenImageIO's error state after
 // reading, which it sets even where read_image succeeds (a short TIFF, DDS or BMP). A PNG cut only
 // in its closing IEND chunk keeps all its pixels and loads.
-LoadResult LoadEnvironment(const std::filesystem::path& path, const LoadOptions& options = {});
+// Codes: kNoSuchInput for a missing file or face, kOptionValue for the square image above,
+// kFaceSize for options.face_size outside [1, kMaxFaceSize], kOutOfMemory, kCannotReadFile for the rest.
+Result<LoadedEnvironment> LoadEnvironment(const std::filesystem::path& path, const LoadOptions& options = {});
 
 // An image read as linear RGB as described above (sRGB decoded, channels fitted, not sanitised).
-struct ImageReadResult {
-  std::optional<Image> image;
+struct ImageRead {
+  Image image;
   bool is_dds_cube_map = false;  // a DDS cube map with all six faces, laid out as kVerticalStrip
-  std::string error;
-  bool ok() const { return image.has_value(); }
 };
-ImageReadResult ReadImage(const std::filesystem::path& path);
+Result<ImageRead> ReadImage(const std::filesystem::path& path);
 
 // Builds the cube from an image already in memory, in `layout` (kAuto: by aspect ratio as above;
 // kFaces is an error). Sanitises the image first. `face_size` is used for kLatLong and kAngular;
 // `keep_latlong` as LoadOptions::keep_latlong.
-LoadResult EnvironmentFromImage(Image image, EnvironmentLayout layout, int face_size, bool keep_latlong = false);
+Result<LoadedEnvironment> EnvironmentFromImage(Image image, EnvironmentLayout layout, int face_size,
+                                               bool keep_latlong = false);
 
 // Replaces NaN and infinite channels by 0 and clamps negative ones to 0; returns how many pixels
 // had at least one channel changed.

@@ -41,7 +41,11 @@ struct OiioReadRequest {
 };
 
 // An image OpenImageIO read as linear RGB, or the error (without the file name, which the caller
-// adds).
+// adds). The module's answers (this struct, and the optional messages of write and render_text
+// below) stay plain values rather than vs11::Result: the module is dlopen'ed and links neither
+// vs11's core library, where Result's out-of-line parts (Failure, the abort on reading a failed
+// Result) are defined, nor anything else of vs11's. Each caller turns the answer into a Result with
+// its DiagnosticCode as soon as the call returns (ReadImageFile: kCannotReadFile).
 struct OiioReadResult {
   std::optional<Image> image;
   bool dds_cube_map = false;

@@ -17,26 +17,21 @@ namespace {
 
 namespace fs = std::filesystem;
 
-ImageReadResult ReadImageFailure(std::string message) {
-  ImageReadResult result;
-  result.error = std::move(message);
-  return result;
-}
-
 // The environment-map rules for a DDS file, beyond the container's own (dds_reader.h): a cube map
 // has six square faces.
-std::optional<std::string> DdsEnvironmentProblem(const DdsFileHeader& header) {
-  if (!header.is_cube_map) return std::nullopt;
+Status DdsEnvironmentProblem(const DdsFileHeader& header) {
+  if (!header.is_cube_map) return {};
   if (header.width != header.height) {
-    return fmt::format("DDS cube map faces are {} x {} pixels: faces must be square", header.width,
-                       header.height);
+    return Failure(DiagnosticCode::kCannotReadFile,
+                   fmt::format("DDS cube map faces are {} x {} pixels: faces must be square", header.width,
+                               header.height));
   }
   if (header.faces != kCubeFaceCount) {
-    return fmt::format("DDS cube map has {} of the six faces (cube map flags {:#x}), all six are "
-                       "needed",
-                       header.faces, header.cube_face_flags);
+    return Failure(DiagnosticCode::kCannotReadFile,
+                   fmt::format("DDS cube map has {} of the six faces (cube map flags {:#x}), all six are needed",
+                               header.faces, header.cube_face_flags));
   }
-  return std::nullopt;
+  return {};
 }
 
 // The file being read: its path and, when it could be found, its size.
@@ -59,66 +54,51 @@ Status CheckIsFile(const fs::path& path, ImageFile& file) {
   return {};
 }
 
-// A DDS file, before OpenImageIO sees it: read here (`read`), refused (`error`), or left to
-// OpenImageIO, with a cube map's faces stacked into one plain image in memory (dds_reader.h).
+// A DDS file, before OpenImageIO sees it: read here (`read`), or left to OpenImageIO, with a cube
+// map's faces stacked into one plain image in memory (dds_reader.h); or refused (the error).
 struct DdsStage {
   std::optional<Image> read;
-  std::optional<std::string> error;
   bool is_cube_map = false;
   std::vector<unsigned char> stacked_faces;
 };
 
-DdsStage ReadDdsStage(const fs::path& path) {
+Result<DdsStage> ReadDdsStage(const fs::path& path) {
   DdsStage stage;
-  const DdsFileHeaderResult header = ReadDdsHeader(path, kMaxImagePixels);
-  if (header.outcome == DdsFileHeaderResult::Outcome::kNotDds) return stage;
-  if (header.outcome == DdsFileHeaderResult::Outcome::kError) {
-    stage.error = header.error;
-    return stage;
-  }
-  if ((stage.error = DdsEnvironmentProblem(header.header))) return stage;
-  stage.is_cube_map = header.header.is_cube_map;
-  DdsReadResult pixels = ReadDdsPixels(path, header.header);
-  switch (pixels.outcome) {
-    case DdsReadResult::Outcome::kError:
-      stage.error = std::move(pixels.error);
-      break;
-    case DdsReadResult::Outcome::kRead:
-      stage.read = std::move(pixels.image);
-      break;
-    case DdsReadResult::Outcome::kLeaveToOpenImageIo:
-      stage.stacked_faces = std::move(pixels.stacked_faces);
-      break;
-  }
+  const Result<std::optional<DdsFileHeader>> header = ReadDdsHeader(path, kMaxImagePixels);
+  if (!header) return header.error();
+  if (!header->has_value()) return stage;  // not a DDS file
+  const DdsFileHeader& dds = **header;
+  if (Status fits = DdsEnvironmentProblem(dds); !fits.ok()) return fits.error();
+  stage.is_cube_map = dds.is_cube_map;
+  Result<DdsPixels> pixels = ReadDdsPixels(path, dds);
+  if (!pixels) return pixels.error();
+  stage.read = std::move(pixels->image);
+  stage.stacked_faces = std::move(pixels->stacked_faces);
   return stage;
 }
 
 }  // namespace
 
-ImageReadResult ReadImageFile(const fs::path& path, const ImageSizeCheck& check_size) {
-  const auto failure = [&](std::string_view message) {
-    return ReadImageFailure(fmt::format("{}: {}", path.string(), message));
+Result<ImageRead> ReadImageFile(const fs::path& path, const ImageSizeCheck& check_size) {
+  const auto failure = [&](DiagnosticCode code, std::string_view message) {
+    return Failure(code, fmt::format("{}: {}", path.string(), message));
   };
   ImageFile file;
-  if (const Status checked = CheckIsFile(path, file); !checked.ok()) return failure(checked.message());
-  DdsStage dds = ReadDdsStage(path);
-  if (dds.error) return failure(*dds.error);
-  ImageReadResult result;
-  result.is_dds_cube_map = dds.is_cube_map;
-  if (dds.read) {
-    result.image = std::move(dds.read);
-    return result;
+  if (const Status checked = CheckIsFile(path, file); !checked.ok()) {
+    return failure(checked.error().code, checked.message());
   }
+  Result<DdsStage> staged = ReadDdsStage(path);
+  if (!staged) return failure(staged.error().code, staged.message());
+  DdsStage& dds = *staged;
+  if (dds.read) return ImageRead{std::move(*dds.read), dds.is_cube_map};
   // Every other image is OpenImageIO's, loaded here on first use (image_io_module.h).
   const Result<const ImageIoApi*> module = ImageIo();
-  if (!module) return failure(module.message());
+  if (!module) return failure(module.error().code, module.message());
   const ImageIoApi* image_io = *module;
   OiioReadRequest request{file.path, file.size, &dds.stacked_faces, dds.is_cube_map, check_size};
   OiioReadResult read = image_io->read(request);
-  if (!read.image) return failure(read.error);
-  result.is_dds_cube_map = read.dds_cube_map;
-  result.image = std::move(read.image);
-  return result;
+  if (!read.image) return failure(DiagnosticCode::kCannotReadFile, read.error);
+  return ImageRead{std::move(*read.image), read.dds_cube_map};
 }
 
 }  // namespace vs11::irradiance

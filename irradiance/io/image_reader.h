@@ -19,8 +19,9 @@ namespace vs11::irradiance {
 using ImageSizeCheck = std::function<std::optional<std::string>(int width, int height)>;
 
 // Reads `path`. `check_size` (when set) applies to every image but a DDS cube map, which is always
-// read as a vertical strip of six square faces. Errors name the file.
-ImageReadResult ReadImageFile(const std::filesystem::path& path, const ImageSizeCheck& check_size);
+// read as a vertical strip of six square faces. Errors name the file: kNoSuchInput for a missing
+// one, kImageIoModule when OpenImageIO cannot be loaded, kCannotReadFile for the rest.
+Result<ImageRead> ReadImageFile(const std::filesystem::path& path, const ImageSizeCheck& check_size);
 
 // sRGB-encoded 8- and 16-bit code values to linear: the bits of
 // float(SrgbToLinear(v)) for v the code as OpenImageIO converts it to float (code / 255 or

@@ -125,20 +125,19 @@ Status LoadCube(const IrrmapOptions& options, const CheckedOptions& checked, Irr
   load.layout = options.layout;
   load.face_size = options.face_size;
   load.keep_latlong = true;
-  LoadResult loaded = LoadEnvironment(options.environment, load);
-  report.usage_error = loaded.needs_layout;
-  if (!loaded.ok()) {
-    return Failure(loaded.needs_layout ? DiagnosticCode::kOptionValue : DiagnosticCode::kCannotReadFile, loaded.error);
+  Result<LoadedEnvironment> loaded = LoadEnvironment(options.environment, load);
+  if (!loaded) {
+    report.usage_error = loaded.error().code == DiagnosticCode::kOptionValue;
+    return loaded.error();
   }
-  for (std::string& warning : loaded.environment->warnings) report.warnings.push_back(std::move(warning));
-  cube = std::move(loaded.environment->cube);
-  latlong = std::move(loaded.environment->latlong);
+  for (std::string& warning : loaded->warnings) report.warnings.push_back(std::move(warning));
+  cube = std::move(loaded->cube);
+  latlong = std::move(loaded->latlong);
   report.environment = options.environment;
-  report.layout = std::string(LayoutName(loaded.environment->layout));
-  report.layout_reason = loaded.environment->layout_reason;
-  report.sh_source = ShSourceKindOf(loaded.environment->layout);
-  const bool resampled = loaded.environment->layout == EnvironmentLayout::kLatLong ||
-                         loaded.environment->layout == EnvironmentLayout::kAngular;
+  report.layout = std::string(LayoutName(loaded->layout));
+  report.layout_reason = loaded->layout_reason;
+  report.sh_source = ShSourceKindOf(loaded->layout);
+  const bool resampled = loaded->layout == EnvironmentLayout::kLatLong || loaded->layout == EnvironmentLayout::kAngular;
   if (options.face_size_given && !resampled && cube.face_size != options.face_size) {
     report.warnings.push_back(fmt::format("{} ignored: {} is a cube map ({}) with faces of {}x{}; only "
                                           "lat-long and angular maps are resampled",

@@ -15,9 +15,9 @@ Status LoadMeshGeometry(const std::string& path, MeshGeometry& geometry, std::ve
   options.timeout_seconds = timeout_seconds;
   options.repair_normals = true;
   options.compute_normals = compute_normals;
-  mesh::MeshLoadResult loaded = mesh::LoadMesh(path, options);
-  if (!loaded.ok()) return Failure(DiagnosticCode::kCannotReadFile, loaded.error);
-  auto source = std::make_shared<const mesh::Mesh>(std::move(*loaded.mesh));
+  Result<mesh::Mesh> loaded = mesh::LoadMesh(path, options);
+  if (!loaded) return loaded.error();
+  auto source = std::make_shared<const mesh::Mesh>(std::move(loaded).value());
   for (const std::string& warning : source->warnings) warnings.push_back(fmt::format("{}: {}", path, warning));
   if (source->indices.empty()) {
     return Failure(DiagnosticCode::kMeshAttributeMissing,

@@ -51,12 +51,10 @@ Status LoadSweepEnvironment(const std::string& name, const SpeedAccuracyOptions&
   LoadOptions load;
   load.layout = layout;
   load.face_size = options.face_size;
-  LoadResult loaded = LoadEnvironment(name, load);
-  if (!loaded.ok()) {
-    return Failure(loaded.needs_layout ? DiagnosticCode::kOptionValue : DiagnosticCode::kCannotReadFile, loaded.error);
-  }
-  for (std::string& warning : loaded.environment->warnings) warnings.push_back(name + ": " + warning);
-  cube = std::move(loaded.environment->cube);
+  Result<LoadedEnvironment> loaded = LoadEnvironment(name, load);
+  if (!loaded) return loaded.error();
+  for (std::string& warning : loaded->warnings) warnings.push_back(name + ": " + warning);
+  cube = std::move(loaded->cube);
   return CheckPyramidFaceSize(name, cube.face_size);
 }
 

@@ -28,7 +28,8 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   }
   vs11::irradiance::LoadOptions options;
   options.face_size = 4;  // lat-long and angular maps resample to a tiny cube: the reading is what is fuzzed
-  vs11::irradiance::LoadResult result = vs11::irradiance::LoadEnvironment(ScratchFile(), options);
+  const vs11::Result<vs11::irradiance::LoadedEnvironment> result =
+      vs11::irradiance::LoadEnvironment(ScratchFile(), options);
   (void)result;
   return 0;
 }

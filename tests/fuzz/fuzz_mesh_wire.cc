@@ -10,10 +10,10 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   vs11::mesh::ChildReply reply = vs11::mesh::DecodeChildReply({data, size});
   if (!reply.complete) return 0;
   if (!reply.result.ok()) {
-    if (reply.result.error.empty()) __builtin_trap();
+    if (reply.result.message().empty()) __builtin_trap();
     return 0;
   }
-  const vs11::mesh::Mesh& mesh = *reply.result.mesh;
+  const vs11::mesh::Mesh& mesh = *reply.result;
   if (mesh.positions.size() != mesh.vertex_count) __builtin_trap();
   for (std::uint32_t index : mesh.indices) {
     if (index >= mesh.vertex_count) __builtin_trap();

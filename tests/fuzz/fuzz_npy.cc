@@ -9,11 +9,11 @@
 
 extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size) {
   const std::span<const std::uint8_t> bytes(data, size);
-  vs11::mesh::NpyResult npy = vs11::mesh::ParseNpy(bytes, "fuzz.npy");
+  vs11::Result<vs11::mesh::NpyArray> npy = vs11::mesh::ParseNpy(bytes, "fuzz.npy");
   if (npy.ok()) {
     // What parsed writes back and parses to the same values.
-    vs11::mesh::NpyResult again = vs11::mesh::ParseNpy(vs11::mesh::FormatNpy(*npy.array), "again.npy");
-    if (!again.ok() || again.array->rows != npy.array->rows || again.array->columns != npy.array->columns) __builtin_trap();
+    vs11::Result<vs11::mesh::NpyArray> again = vs11::mesh::ParseNpy(vs11::mesh::FormatNpy(*npy), "again.npy");
+    if (!again.ok() || again->rows != npy->rows || again->columns != npy->columns) __builtin_trap();
   }
   if (size > 0) {
     const std::size_t stride = 1 + data[0] % 64;

@@ -31,15 +31,15 @@ extern "C" int LLVMFuzzerTestOneInput(const std::uint8_t* data, std::size_t size
   using vs11::translate::Target;
   for (Stage stage : {Stage::kVertex, Stage::kCompute}) {
     for (Target target : {Target::kGlsl330, Target::kGlslEs300, Target::kGlslEs310, Target::kGlslEs320, Target::kSpirv}) {
-      if (vs11::translate::StageProblem(target, stage)) continue;
+      if (!vs11::translate::StageProblem(target, stage).ok()) continue;
       vs11::translate::TranslateOptions translate_options;
       translate_options.target = target;
       translate_options.stage = stage;
       const std::string glsl = vs11::translate::TranslateToGlsl(*assembled.program, translate_options);
-      const vs11::translate::GlslangResult compiled = vs11::translate::CompileWithGlslang(glsl, target, stage);
-      if (!compiled.ok) Report(vs11::translate::TargetName(target), compiled.log, glsl);
+      const auto compiled = vs11::translate::CompileWithGlslang(glsl, target, stage);
+      if (!compiled) Report(vs11::translate::TargetName(target), compiled.message(), glsl);
       if (target != Target::kSpirv) continue;
-      if (const vs11::Status valid = vs11::translate::ValidateSpirv(compiled.spirv); !valid.ok()) {
+      if (const vs11::Status valid = vs11::translate::ValidateSpirv(*compiled); !valid.ok()) {
         Report("spirv-val", valid.message(), glsl);
       }
     }

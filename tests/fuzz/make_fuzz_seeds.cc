@@ -121,12 +121,13 @@ bool WriteMeshReplySeeds(const fs::path& mesh_seeds, const fs::path& dir) {
   int count = 0;
   for (const auto& entry : fs::directory_iterator(mesh_seeds)) {
     if (count == 24) break;
-    vs11::mesh::MeshLoadResult loaded = vs11::mesh::LoadMesh(entry.path());
+    vs11::Result<vs11::mesh::Mesh> loaded = vs11::mesh::LoadMesh(entry.path());
     if (!loaded.ok()) continue;
     const std::string reply = "AVAV" + vs11::mesh::EncodeReplyRecord(loaded);
     if (!WriteOrComplain(dir / ("reply" + std::to_string(count++) + ".bin"), AsBytes(reply))) return false;
   }
-  const std::string error = "AV" + vs11::mesh::EncodeReplyRecord({std::nullopt, "the scene holds no mesh with vertices"});
+  const std::string error = "AV" + vs11::mesh::EncodeReplyRecord(
+      vs11::Failure(vs11::DiagnosticCode::kCannotReadFile, "the scene holds no mesh with vertices"));
   return count > 0 && WriteOrComplain(dir / "error.bin", AsBytes(error));
 }
 

@@ -795,13 +795,13 @@ AssembleResult AssembleSource(std::string_view text, const std::string& file_nam
 }
 
 AssembleResult AssembleFile(const std::filesystem::path& path, const AssembleOptions& options) {
-  InputBytes text = ReadInputFile(path, kMaxProgramFileBytes);
-  if (!text.bytes) {
+  Result<std::string> text = ReadInputFile(path, kMaxProgramFileBytes);
+  if (!text) {
     AssembleResult result;
-    result.diagnostics.Error(SourceLoc{InputDisplayName(path), 0, 0}, DiagnosticCode::kCannotReadFile, text.error);
+    result.diagnostics.Error(SourceLoc{InputDisplayName(path), 0, 0}, text.error().code, text.message());
     return result;
   }
-  return AssembleSource(*text.bytes, InputDisplayName(path), options, ReadFileFromDisk);
+  return AssembleSource(*text, InputDisplayName(path), options, ReadFileFromDisk);
 }
 
 }  // namespace vs11

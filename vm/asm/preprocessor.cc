@@ -274,9 +274,12 @@ bool Preprocessor::EvaluateCondition(const std::vector<Token>& rest, int column)
   for (Token& token : Expand(std::move(replaced), 0)) {
     if (token.kind != TokenKind::kSpace) significant.push_back(std::move(token));
   }
-  const ExpressionResult result = EvaluateExpression(std::move(significant), column);
-  if (!result.value) Error(result.error_column, DiagnosticCode::kConditionExpression, result.error_message);
-  return result.value.value_or(0) != 0;
+  const Result<std::int64_t> value = EvaluateExpression(std::move(significant), column);
+  if (!value) {
+    Error(value.error().loc.column, value.error().code, value.message());
+    return false;
+  }
+  return *value != 0;
 }
 
 // `defined X` must be answered before expansion, or X would be replaced by its body.
@@ -587,7 +590,9 @@ std::vector<Token> Preprocessor::Substitute(const Macro& macro, const Args& args
 std::optional<std::string> ReadFileFromDisk(const std::filesystem::path& path) {
   // Only regular files: a FIFO named by an #include would block until someone writes to it.
   if (!InputFileProblem(path, /*pipes_allowed=*/false).ok()) return std::nullopt;
-  return ReadInputFile(path, kMaxProgramFileBytes).bytes;
+  Result<std::string> text = ReadInputFile(path, kMaxProgramFileBytes);
+  if (!text) return std::nullopt;
+  return std::move(*text);
 }
 
 PreprocessResult Preprocess(std::string_view text, const std::string& file_name, const PreprocessOptions& options,

@@ -4,6 +4,8 @@
 #include <fmt/format.h>
 
 #include <charconv>
+#include <optional>
+#include <string>
 #include <string_view>
 #include <utility>
 
@@ -158,13 +160,11 @@ class ExpressionParser {
 
 }  // namespace
 
-ExpressionResult EvaluateExpression(std::vector<Token> tokens, int end_column) {
+Result<std::int64_t> EvaluateExpression(std::vector<Token> tokens, int end_column) {
   ExpressionParser parser(std::move(tokens), end_column);
-  ExpressionResult result;
-  result.value = parser.Evaluate();
-  result.error_column = parser.error_column();
-  result.error_message = parser.error_message();
-  return result;
+  const std::optional<std::int64_t> value = parser.Evaluate();
+  if (value) return *value;
+  return Failure(DiagnosticCode::kConditionExpression, parser.error_message(), SourceLoc{"", 0, parser.error_column()});
 }
 
 }  // namespace vs11::preprocessing

@@ -3,22 +3,16 @@
 #pragma once
 
 #include <cstdint>
-#include <optional>
-#include <string>
 #include <vector>
 
 #include "vm/asm/preprocessor_tokens.h"
+#include "vm/core/result.h"
 
 namespace vs11::preprocessing {
 
-struct ExpressionResult {
-  std::optional<std::int64_t> value;  // empty when the expression is bad
-  int error_column = 0;               // of the first problem
-  std::string error_message;
-};
-
 // `tokens`: the expression with macros already expanded, `defined` already replaced and no spaces;
-// `end_column` is reported for problems at its end.
-ExpressionResult EvaluateExpression(std::vector<Token> tokens, int end_column);
+// `end_column` is reported for problems at its end. The value, or the first problem
+// (kConditionExpression) with its column in the error's loc (the caller knows the file and line).
+Result<std::int64_t> EvaluateExpression(std::vector<Token> tokens, int end_column);
 
 }  // namespace vs11::preprocessing

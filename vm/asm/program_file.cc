@@ -56,7 +56,9 @@ LoadedProgram LoadBytecode(const std::filesystem::path& path, std::string_view b
 }  // namespace
 
 std::optional<std::string> ReadWholeFile(const std::filesystem::path& path) {
-  return ReadInputFile(path, kMaxInputFileBytes).bytes;
+  Result<std::string> bytes = ReadInputFile(path, kMaxInputFileBytes);
+  if (!bytes) return std::nullopt;
+  return std::move(*bytes);
 }
 
 LoadedProgram LoadProgramBytes(std::string_view bytes, const std::string& name, const LoadProgramOptions& options) {
@@ -69,13 +71,13 @@ LoadedProgram LoadProgramBytes(std::string_view bytes, const std::string& name, 
 }
 
 LoadedProgram LoadProgram(const std::filesystem::path& path, const LoadProgramOptions& options) {
-  InputBytes bytes = ReadInputFile(path, kMaxProgramFileBytes);
-  if (!bytes.bytes) {
+  Result<std::string> bytes = ReadInputFile(path, kMaxProgramFileBytes);
+  if (!bytes) {
     LoadedProgram loaded;
-    loaded.diagnostics.Error({InputDisplayName(path)}, DiagnosticCode::kCannotReadFile, bytes.error);
+    loaded.diagnostics.Error({InputDisplayName(path)}, bytes.error().code, bytes.message());
     return loaded;
   }
-  return LoadProgramBytes(*bytes.bytes, InputDisplayName(path), options);
+  return LoadProgramBytes(*bytes, InputDisplayName(path), options);
 }
 
 }  // namespace vs11

@@ -166,9 +166,9 @@ void Fail(const std::string& message) {
 }
 
 std::string ReadInputOrFail(const std::string& path, std::size_t max_bytes) {
-  InputBytes input = ReadInputFile(path, max_bytes);
-  if (!input.bytes) Fail(fmt::format("{}: {}", InputDisplayName(path), input.error));
-  return std::move(*input.bytes);
+  Result<std::string> input = ReadInputFile(path, max_bytes);
+  if (!input) Fail(fmt::format("{}: {}", InputDisplayName(path), input.message()));
+  return std::move(*input);
 }
 
 void FailUsage(const std::string& message) {

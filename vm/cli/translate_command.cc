@@ -65,8 +65,8 @@ void AddTranslateCommand(CLI::App& app) {
       throw CommandFailure{kUsageErrorStatus};
     }
     options.stage = args->stage;
-    if (std::optional<std::string> problem = translate::StageProblem(options.target, options.stage)) {
-      std::fprintf(stderr, "vs11: error: --stage compute: %s\n", problem->c_str());
+    if (const Status problem = translate::StageProblem(options.target, options.stage); !problem.ok()) {
+      std::fprintf(stderr, "vs11: error: --stage compute: %s\n", problem.message().c_str());
       throw CommandFailure{kUsageErrorStatus};
     }
     if (options.stage == translate::Stage::kCompute && args->clip) {
@@ -79,11 +79,11 @@ void AddTranslateCommand(CLI::App& app) {
     if (args->clip) options.clip = *args->clip;
     options.float_rules = args->float_rules.Rules();
     options.source_name = args->input;
-    translate::Artifact artifact = translate::Translate(program, options);
-    if (!artifact.error.empty()) Fail(artifact.error);
+    const Result<translate::Artifact> artifact = translate::Translate(program, options);
+    if (!artifact) Fail(artifact.message());
     if (args->output == "-") {
-      std::fwrite(artifact.bytes.data(), 1, artifact.bytes.size(), stdout);
-    } else if (const Status written = WriteFileAtomically(args->output, artifact.bytes); !written) {
+      std::fwrite(artifact->bytes.data(), 1, artifact->bytes.size(), stdout);
+    } else if (const Status written = WriteFileAtomically(args->output, artifact->bytes); !written) {
       Fail(written.message());
     }
   });

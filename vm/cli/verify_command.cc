@@ -68,9 +68,9 @@ void RunVerify(const VerifyFlags& flags) {
   options.tolerance = flags.tolerance;
   options.constant_count = flags.program_flags.constant_count;
   if (!flags.coeffs.empty()) {
-    std::string error;
-    options.coefficients = LoadCoefficientsJson(flags.coeffs, error);
-    if (!options.coefficients) Fail(error);
+    Result<Sh9Rgb> coefficients = LoadCoefficientsJson(flags.coeffs);
+    if (!coefficients) Fail(coefficients.message());
+    options.coefficients = *coefficients;
   }
 
   if (!flags.against_engine.empty()) {

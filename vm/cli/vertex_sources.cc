@@ -54,9 +54,9 @@ std::optional<mesh::Mesh> LoadBoundMesh(const VertexSourceFlags& flags, const Pr
   options.compute_normals = flags.compute_normals;
   options.compute_tangents = flags.compute_tangents;
   options.timeout_seconds = flags.mesh_timeout;
-  mesh::MeshLoadResult loaded = mesh::LoadMesh(flags.mesh, options);
-  if (!loaded.ok()) Fail(loaded.error);
-  for (const std::string& warning : loaded.mesh->warnings) Warn(fmt::format("{}: {}", flags.mesh, warning));
+  Result<mesh::Mesh> loaded = mesh::LoadMesh(flags.mesh, options);
+  if (!loaded) Fail(loaded.message());
+  for (const std::string& warning : loaded->warnings) Warn(fmt::format("{}: {}", flags.mesh, warning));
 
   std::vector<mesh::RegisterBinding> overrides, bindings;
   for (const std::string& bind : flags.binds) {
@@ -70,16 +70,16 @@ std::optional<mesh::Mesh> LoadBoundMesh(const VertexSourceFlags& flags, const Pr
   mesh::BindOptions bind_options;
   bind_options.blend_index_scale = flags.blend_index_scale;
   bind_options.mesh_name = flags.mesh;
-  if (const Status bound = mesh::BindMesh(*loaded.mesh, bindings, bind_options, supplied); !bound) {
+  if (const Status bound = mesh::BindMesh(*loaded, bindings, bind_options, supplied); !bound) {
     Fail(bound.message());
   }
   if (!flags.bone_palette.empty()) {
     const int base = ConstantRegisterFromName(flags.bone_palette);
-    if (const Status written = mesh::WriteBonePalette(*loaded.mesh, base, constants); !written) {
+    if (const Status written = mesh::WriteBonePalette(*loaded, base, constants); !written) {
       Fail(fmt::format("--bone-palette {}: {}", flags.bone_palette, written.message()));
     }
   }
-  return std::move(loaded.mesh);
+  return std::move(loaded).value();
 }
 
 void ReadNpyInputs(const VertexSourceFlags& flags, mesh::RegisterData& supplied) {
@@ -87,10 +87,10 @@ void ReadNpyInputs(const VertexSourceFlags& flags, mesh::RegisterData& supplied)
   for (const std::string& flag : flags.npy_inputs) NoteRegisterOnce("--npy", 'v', SplitRegisterAssignment(flag).first, given);
   for (const std::string& flag : flags.npy_inputs) {
     auto [reg, file] = SplitRegisterAssignment(flag);
-    mesh::NpyResult result = mesh::ReadNpy(file);
-    if (!result.ok()) Fail(result.error);
-    std::vector<Vec4f> rows(result.array->rows);
-    for (std::size_t i = 0; i < rows.size(); ++i) rows[i] = result.array->Row(i);
+    const Result<mesh::NpyArray> array = mesh::ReadNpy(file);
+    if (!array) Fail(array.message());
+    std::vector<Vec4f> rows(array->rows);
+    for (std::size_t i = 0; i < rows.size(); ++i) rows[i] = array->Row(i);
     WarnNonFinite(file, rows);
     // A structured binding cannot be captured before C++20's P1091 (clang 14 lacks it).
     const auto& target = reg;

@@ -20,13 +20,16 @@ constexpr std::size_t kReadChunkBytes = std::size_t{1} << 16;
 
 bool IsStandardInput(const fs::path& path) { return path.native() == kStandardInputName; }
 
-// What is wrong with a file of this mode, or nullopt. A terminal is accepted: `vs11 validate -`
+// The error of an input file that cannot be read (every error here).
+Diagnostic Unreadable(std::string message) { return Failure(DiagnosticCode::kCannotReadFile, std::move(message)); }
+
+// What is wrong with a file of this mode, or success. A terminal is accepted: `vs11 validate -`
 // typed at the keyboard ends at Ctrl-D.
-std::optional<std::string> ModeProblem(mode_t mode, bool is_terminal, bool pipes_allowed) {
+Status ModeProblem(mode_t mode, bool is_terminal, bool pipes_allowed) {
   const char* kind = nullptr;
-  if (S_ISREG(mode)) return std::nullopt;
+  if (S_ISREG(mode)) return {};
   if (S_ISFIFO(mode) || (S_ISCHR(mode) && is_terminal)) {
-    if (pipes_allowed) return std::nullopt;
+    if (pipes_allowed) return {};
     kind = "is a named pipe (FIFO)";
   } else if (S_ISDIR(mode)) {
     kind = "is a folder";
@@ -37,35 +40,36 @@ std::optional<std::string> ModeProblem(mode_t mode, bool is_terminal, bool pipes
   } else {
     kind = "is of an unknown kind";
   }
-  return fmt::format("{}, not a {}", kind, pipes_allowed ? "file or a pipe" : "regular file");
+  return Unreadable(fmt::format("{}, not a {}", kind, pipes_allowed ? "file or a pipe" : "regular file"));
 }
 
-std::string TooLarge(std::size_t max_bytes) {
-  return fmt::format("larger than the limit of {} MiB for this kind of file", max_bytes >> 20);
+Diagnostic TooLarge(std::size_t max_bytes) {
+  return Unreadable(fmt::format("larger than the limit of {} MiB for this kind of file", max_bytes >> 20));
 }
 
 // Reads `fd` to its end, failing past `max_bytes`.
-InputBytes ReadDescriptor(int fd, std::size_t max_bytes, std::size_t expected_size) {
-  InputBytes result;
+Result<std::string> ReadDescriptor(int fd, std::size_t max_bytes, std::size_t expected_size) {
   std::string bytes;
   bytes.reserve(std::min(expected_size, max_bytes) + 1);
   char chunk[kReadChunkBytes];
   for (;;) {
     const ssize_t got = ::read(fd, chunk, sizeof chunk);
     if (got < 0 && errno == EINTR) continue;
-    if (got < 0) {
-      result.error = fmt::format("read failed ({})", std::strerror(errno));
-      return result;
-    }
+    if (got < 0) return Unreadable(fmt::format("read failed ({})", std::strerror(errno)));
     if (got == 0) break;
-    if (bytes.size() + static_cast<std::size_t>(got) > max_bytes) {
-      result.error = TooLarge(max_bytes);
-      return result;
-    }
+    if (bytes.size() + static_cast<std::size_t>(got) > max_bytes) return TooLarge(max_bytes);
     bytes.append(chunk, static_cast<std::size_t>(got));
   }
-  result.bytes = std::move(bytes);
-  return result;
+  return bytes;
+}
+
+// Reads the open `fd` once its kind and size are checked.
+Result<std::string> ReadOpened(int fd, std::size_t max_bytes) {
+  struct stat status {};
+  if (::fstat(fd, &status) != 0) return Unreadable(fmt::format("cannot read the file ({})", std::strerror(errno)));
+  if (Status problem = ModeProblem(status.st_mode, ::isatty(fd) == 1, true); !problem.ok()) return problem.error();
+  if (S_ISREG(status.st_mode) && static_cast<std::uintmax_t>(status.st_size) > max_bytes) return TooLarge(max_bytes);
+  return ReadDescriptor(fd, max_bytes, S_ISREG(status.st_mode) ? static_cast<std::size_t>(status.st_size) : 0);
 }
 
 }  // namespace
@@ -77,42 +81,25 @@ Status InputFileProblem(const fs::path& path, bool pipes_allowed) {
   if (::stat(path.c_str(), &status) != 0) {
     return Failure(DiagnosticCode::kCannotReadFile, errno == ENOENT ? "no such file" : std::strerror(errno));
   }
-  if (std::optional<std::string> problem = ModeProblem(status.st_mode, false, pipes_allowed)) {
-    return Failure(DiagnosticCode::kCannotReadFile, std::move(*problem));
-  }
-  return {};
+  return ModeProblem(status.st_mode, false, pipes_allowed);
 }
 
-InputBytes ReadInputFile(const fs::path& path, std::size_t max_bytes) {
+Result<std::string> ReadInputFile(const fs::path& path, std::size_t max_bytes) {
   const bool standard_input = IsStandardInput(path);
-  InputBytes result;
   // Opening a device can have effects (a tape rewinds); a path is looked at before it is opened.
   if (!standard_input) {
     struct stat status {};
     if (::stat(path.c_str(), &status) != 0) {
-      result.error = fmt::format("cannot read the file ({})", errno == ENOENT ? "no such file" : std::strerror(errno));
-      return result;
+      return Unreadable(
+          fmt::format("cannot read the file ({})", errno == ENOENT ? "no such file" : std::strerror(errno)));
     }
     if (S_ISBLK(status.st_mode) || S_ISDIR(status.st_mode) || S_ISSOCK(status.st_mode)) {
-      result.error = *ModeProblem(status.st_mode, false, true);
-      return result;
+      return ModeProblem(status.st_mode, false, true).error();
     }
   }
   const int fd = standard_input ? STDIN_FILENO : ::open(path.c_str(), O_RDONLY | O_CLOEXEC | O_NOCTTY);
-  if (fd < 0) {
-    result.error = fmt::format("cannot read the file ({})", std::strerror(errno));
-    return result;
-  }
-  struct stat status {};
-  if (::fstat(fd, &status) != 0) {
-    result.error = fmt::format("cannot read the file ({})", std::strerror(errno));
-  } else if (std::optional<std::string> problem = ModeProblem(status.st_mode, ::isatty(fd) == 1, true)) {
-    result.error = *problem;
-  } else if (S_ISREG(status.st_mode) && static_cast<std::uintmax_t>(status.st_size) > max_bytes) {
-    result.error = TooLarge(max_bytes);
-  } else {
-    result = ReadDescriptor(fd, max_bytes, S_ISREG(status.st_mode) ? static_cast<std::size_t>(status.st_size) : 0);
-  }
+  if (fd < 0) return Unreadable(fmt::format("cannot read the file ({})", std::strerror(errno)));
+  Result<std::string> result = ReadOpened(fd, max_bytes);
   if (!standard_input) ::close(fd);
   return result;
 }

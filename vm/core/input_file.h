@@ -41,14 +41,10 @@ std::string InputDisplayName(const std::filesystem::path& path);
 // file".
 Status InputFileProblem(const std::filesystem::path& path, bool pipes_allowed);
 
-struct InputBytes {
-  std::optional<std::string> bytes;  // the whole file, read once
-  std::string error;                 // why not, when bytes is empty (without the name)
-};
-
-// Reads all of `path` ("-": standard input) with one open, at most `max_bytes` of it; a larger file
-// or a longer stream is an error that names the limit. Devices, folders and sockets are refused.
-InputBytes ReadInputFile(const std::filesystem::path& path, std::size_t max_bytes);
+// Reads all of `path` ("-": standard input) with one open, at most `max_bytes` of it: the whole
+// file, read once, or why not (kCannotReadFile, the message without the name). A larger file or a
+// longer stream is an error that names the limit. Devices, folders and sockets are refused.
+Result<std::string> ReadInputFile(const std::filesystem::path& path, std::size_t max_bytes);
 
 // The first of `inputs` that is the same file as `output` (same device and inode: through links,
 // "./" and any other spelling), as "OUTPUT is the input INPUT: refusing to overwrite it"

@@ -68,43 +68,39 @@ std::vector<std::string_view> SplitLines(std::string_view text) {
   return lines;
 }
 
-// Parses "c12" at the cursor; returns the index or an error text ("expected ..." where the text is
-// no register).
-std::optional<int> ConstantRegister(Cursor& cursor, std::string& error) {
+// Parses "c12" at the cursor; returns the index, or the error: kConstantLine where the text is no
+// register, kConstantRegisterRange for a number beyond int.
+Result<int> ConstantRegister(Cursor& cursor) {
   cursor.SkipSeparators();
   const std::size_t prefix = NumberedRegisterPrefix(cursor.line.substr(cursor.pos), RegisterFile::kConst);
-  if (prefix == 0) {
-    error = "expected a constant register such as c12";
-    return std::nullopt;
-  }
+  if (prefix == 0) return Failure(DiagnosticCode::kConstantLine, "expected a constant register such as c12");
   cursor.pos += prefix;
   int index = 0;
   auto [ptr, ec] = std::from_chars(cursor.line.data() + cursor.pos, cursor.line.data() + cursor.line.size(), index);
   if (ec == std::errc::result_out_of_range) {
-    error = fmt::format("c{} is beyond every constant register",
-                        cursor.line.substr(cursor.pos, static_cast<std::size_t>(ptr - cursor.line.data()) - cursor.pos));
-    return std::nullopt;
+    const std::size_t digits = static_cast<std::size_t>(ptr - cursor.line.data()) - cursor.pos;
+    return Failure(DiagnosticCode::kConstantRegisterRange,
+                   fmt::format("c{} is beyond every constant register", cursor.line.substr(cursor.pos, digits)));
   }
   if (ec != std::errc() || ptr == cursor.line.data() + cursor.pos) {
-    error = "expected a register number after 'c'";
-    return std::nullopt;
+    return Failure(DiagnosticCode::kConstantLine, "expected a register number after 'c'");
   }
   cursor.pos = static_cast<std::size_t>(ptr - cursor.line.data());
   return index;
 }
 
-// Reads up to four numbers into `values`; returns an error text on failure.
-std::optional<std::string> ReadValues(Cursor& cursor, Vec4f& values, int& column) {
+// Reads up to four numbers into `values`, or says what is wrong (kConstantValue) at `column`.
+Status ReadValues(Cursor& cursor, Vec4f& values, int& column) {
   values = {};
   for (int i = 0; i < 4 && !cursor.AtEnd(); ++i) {
     column = cursor.column();
     std::optional<float> number = cursor.Number();
-    if (!number) return "expected a number";
+    if (!number) return Failure(DiagnosticCode::kConstantValue, "expected a number");
     values[i] = *number;
   }
   column = cursor.column();
-  if (!cursor.AtEnd()) return "more than four values";
-  return std::nullopt;
+  if (!cursor.AtEnd()) return Failure(DiagnosticCode::kConstantValue, "more than four values");
+  return {};
 }
 
 }  // namespace
@@ -123,13 +119,12 @@ void ParseConstantsText(std::string_view text, const std::string& file_name, Con
     bool is_def = rest.size() > 3 && (rest.substr(0, 3) == "def" || rest.substr(0, 3) == "DEF") &&
                   std::isspace(static_cast<unsigned char>(rest[3]));
     if (is_def) cursor.pos += 3;
-    std::string error;
     int register_column = (cursor.SkipSeparators(), cursor.column());
-    std::optional<int> index = ConstantRegister(cursor, error);
+    const Result<int> index = ConstantRegister(cursor);
     if (!index) {
-      const bool syntax = error.starts_with("expected");
-      error_at(register_column, syntax ? DiagnosticCode::kConstantLine : DiagnosticCode::kConstantRegisterRange,
-               error + (is_def || !syntax ? "" : " (lines are `def c#, x, y, z, w` or `c# = x y z w`)"));
+      const bool syntax = index.error().code == DiagnosticCode::kConstantLine;
+      error_at(register_column, index.error().code,
+               index.message() + (is_def || !syntax ? "" : " (lines are `def c#, x, y, z, w` or `c# = x y z w`)"));
       continue;
     }
     cursor.SkipSeparators();
@@ -142,8 +137,8 @@ void ParseConstantsText(std::string_view text, const std::string& file_name, Con
     }
     Vec4f values;
     int column = 0;
-    if (std::optional<std::string> value_error = ReadValues(cursor, values, column)) {
-      error_at(column, DiagnosticCode::kConstantValue, *value_error);
+    if (const Status read = ReadValues(cursor, values, column); !read) {
+      error_at(column, read.error().code, read.message());
       continue;
     }
     if (*index < 0 || *index >= bank.size()) {
@@ -240,12 +235,12 @@ struct ColumnChoice {
   std::vector<std::pair<std::size_t, int>> cell_to_lane;  // (index of the cell in a row, lane)
 };
 
-std::optional<ColumnChoice> ChooseColumns(const std::vector<std::string>& header, std::string_view wanted,
-                                          std::string& error) {
+// The lanes the columns `wanted` names fill, or why they cannot (kCsvColumns).
+Result<ColumnChoice> ChooseColumns(const std::vector<std::string>& header, std::string_view wanted) {
   auto names = [&header] { return fmt::format("{}", fmt::join(header, ", ")); };
+  auto wrong = [](std::string message) { return Failure(DiagnosticCode::kCsvColumns, std::move(message)); };
   if (header.empty()) {
-    error = fmt::format("columns '{}' asked for, but the file has no header row naming its columns", wanted);
-    return std::nullopt;
+    return wrong(fmt::format("columns '{}' asked for, but the file has no header row naming its columns", wanted));
   }
   ColumnChoice choice;
   bool is_list = wanted.find(',') != std::string_view::npos || wanted.find('.') != std::string_view::npos;
@@ -256,10 +251,10 @@ std::optional<ColumnChoice> ChooseColumns(const std::vector<std::string>& header
       }
     }
     if (choice.cell_to_lane.empty()) {
-      error = fmt::format("no column is named {}.x, {}.y, {}.z or {}.w (columns: {})", wanted, wanted, wanted, wanted,
-                          names());
+      return wrong(fmt::format("no column is named {}.x, {}.y, {}.z or {}.w (columns: {})", wanted, wanted, wanted,
+                               wanted, names()));
     }
-    return choice.cell_to_lane.empty() ? std::nullopt : std::optional(choice);
+    return choice;
   }
   std::size_t start = 0;
   while (start <= wanted.size()) {
@@ -267,12 +262,10 @@ std::optional<ColumnChoice> ChooseColumns(const std::vector<std::string>& header
     std::string_view name = wanted.substr(start, comma - start);
     auto found = std::find(header.begin(), header.end(), name);
     if (found == header.end()) {
-      error = fmt::format("no column is named '{}' (columns: {})", name, names());
-      return std::nullopt;
+      return wrong(fmt::format("no column is named '{}' (columns: {})", name, names()));
     }
     if (choice.cell_to_lane.size() == 4) {
-      error = fmt::format("more than four columns in '{}': a vertex register has four lanes", wanted);
-      return std::nullopt;
+      return wrong(fmt::format("more than four columns in '{}': a vertex register has four lanes", wanted));
     }
     choice.cell_to_lane.emplace_back(static_cast<std::size_t>(found - header.begin()),
                                      static_cast<int>(choice.cell_to_lane.size()));
@@ -362,12 +355,12 @@ std::vector<Vec4f> ParseVertexCsv(std::string_view text, const std::string& file
       if (numbers == 0) {  // a header: names only
         for (const Cell& cell : cells) header.emplace_back(cell.text);
         if (!columns.empty()) {
-          std::string error;
-          choice = ChooseColumns(header, columns, error);
-          if (!choice) {
-            diagnostics.Error({file_name, line_number, 1}, DiagnosticCode::kCsvColumns, error);
+          Result<ColumnChoice> chosen = ChooseColumns(header, columns);
+          if (!chosen) {
+            diagnostics.Error({file_name, line_number, 1}, chosen.error().code, chosen.message());
             return {};
           }
+          choice = std::move(chosen).value();
         }
         continue;
       }

@@ -138,6 +138,14 @@ std::vector<PlacedMesh> PlaceMeshes(const aiScene& scene) {
   return placed;
 }
 
+// What is wrong with a file vs11 or Assimp cannot read as a mesh.
+Diagnostic Unreadable(std::string message) { return Failure(DiagnosticCode::kCannotReadFile, std::move(message)); }
+
+// `error` with the input's name in front.
+Diagnostic Named(const std::string& name, const Diagnostic& error) {
+  return Failure(error.code, fmt::format("{}: {}", name, error.message));
+}
+
 bool IsFinite(const Vec4f& v) {
   return std::isfinite(v[0]) && std::isfinite(v[1]) && std::isfinite(v[2]) && std::isfinite(v[3]);
 }
@@ -146,30 +154,28 @@ class MeshBuilder {
  public:
   MeshBuilder(const aiScene& scene, const MeshLoadOptions& options) : scene_(scene), options_(options) {}
 
-  MeshLoadResult Build() {
+  Result<Mesh> Build() {
     const std::vector<PlacedMesh> placed = PlaceMeshes(scene_);
     std::size_t vertices = 0, triangles = 0;
     for (const PlacedMesh& p : placed) {
       vertices += p.mesh->mNumVertices;
       triangles += p.mesh->mNumFaces;  // an upper bound: points and lines add none
       if (vertices > kMaxMeshVertices || triangles > kMaxMeshTriangles) {
-        return Error(fmt::format("more than {} vertices or {} triangles (the limit)", kMaxMeshVertices,
+        return Unreadable(fmt::format("more than {} vertices or {} triangles (the limit)", kMaxMeshVertices,
                                  kMaxMeshTriangles));
       }
     }
-    if (vertices == 0) return Error("the scene holds no mesh with vertices");
+    if (vertices == 0) return Unreadable("the scene holds no mesh with vertices");
     mesh_.vertex_count = vertices;
     Allocate(placed);
     for (const PlacedMesh& p : placed) {
-      if (std::optional<std::string> error = AddPart(p)) return Error(*error);
+      if (Status added = AddPart(p); !added) return added.error();
     }
     CountNonFinite();
-    return {std::move(mesh_), ""};
+    return std::move(mesh_);
   }
 
  private:
-  static MeshLoadResult Error(std::string message) { return {std::nullopt, std::move(message)}; }
-
   void Allocate(const std::vector<PlacedMesh>& placed) {
     const std::size_t n = mesh_.vertex_count;
     auto any = [&](auto has) { return std::any_of(placed.begin(), placed.end(), [&](const PlacedMesh& p) { return has(*p.mesh); }); };
@@ -194,7 +200,7 @@ class MeshBuilder {
     }
   }
 
-  std::optional<std::string> AddPart(const PlacedMesh& placed) {
+  Status AddPart(const PlacedMesh& placed) {
     const aiMesh& m = *placed.mesh;
     MeshPart part;
     part.mesh_name = m.mName.C_Str();
@@ -206,7 +212,7 @@ class MeshBuilder {
     part.vertex_count = m.mNumVertices;
     part.first_index = mesh_.indices.size();
     std::vector<std::uint32_t> triangles;
-    if (std::optional<std::string> error = PartTriangles(m, part.mesh_name, triangles)) return error;
+    if (Status read = PartTriangles(m, part.mesh_name, triangles); !read) return read;
     const PartTransform transform(part.transformed ? part.transform : IdentityMatrix());
     const std::size_t base = next_vertex_;
     std::vector<Vec4f> normals = PartNormals(m, triangles, transform, part.transformed);
@@ -239,28 +245,28 @@ class MeshBuilder {
     for (const std::uint32_t index : triangles) mesh_.indices.push_back(static_cast<std::uint32_t>(base + index));
     part.index_count = mesh_.indices.size() - part.first_index;
     if (part.skinned) {
-      if (std::optional<std::string> error = AddBones(m, base)) return error;
+      if (Status added = AddBones(m, base); !added) return added;
     }
     next_vertex_ += m.mNumVertices;
     mesh_.parts.push_back(std::move(part));
-    return std::nullopt;
+    return {};
   }
 
   // The part's triangles, three vertex indices of its own each; points and lines add none
   // (triangulation leaves nothing larger).
-  static std::optional<std::string> PartTriangles(const aiMesh& m, const std::string& name,
-                                                  std::vector<std::uint32_t>& triangles) {
+  static Status PartTriangles(const aiMesh& m, const std::string& name, std::vector<std::uint32_t>& triangles) {
     for (unsigned f = 0; m.mFaces != nullptr && f < m.mNumFaces; ++f) {
       const aiFace& face = m.mFaces[f];
       if (face.mNumIndices != 3 || face.mIndices == nullptr) continue;
       for (int k = 0; k < 3; ++k) {
         if (face.mIndices[k] >= m.mNumVertices) {
-          return fmt::format("mesh '{}': face {} refers to vertex {} of {}", name, f, face.mIndices[k], m.mNumVertices);
+          return Unreadable(
+              fmt::format("mesh '{}': face {} refers to vertex {} of {}", name, f, face.mIndices[k], m.mNumVertices));
         }
         triangles.push_back(face.mIndices[k]);
       }
     }
-    return std::nullopt;
+    return {};
   }
 
   // The normals the part's vertices get (empty: the part has none): the file's, or computed ones
@@ -316,7 +322,7 @@ class MeshBuilder {
     return it->second;
   }
 
-  std::optional<std::string> AddBones(const aiMesh& m, std::size_t base) {
+  Status AddBones(const aiMesh& m, std::size_t base) {
     std::vector<std::vector<std::pair<float, int>>> influences(m.mNumVertices);
     for (unsigned b = 0; b < m.mNumBones; ++b) {
       const aiBone* bone = m.mBones[b];
@@ -325,8 +331,8 @@ class MeshBuilder {
       for (unsigned w = 0; w < bone->mNumWeights; ++w) {
         const aiVertexWeight& weight = bone->mWeights[w];
         if (weight.mVertexId >= m.mNumVertices) {
-          return fmt::format("mesh '{}': bone '{}' weights vertex {} of {}", m.mName.C_Str(), bone->mName.C_Str(),
-                             weight.mVertexId, m.mNumVertices);
+          return Unreadable(fmt::format("mesh '{}': bone '{}' weights vertex {} of {}", m.mName.C_Str(),
+                                   bone->mName.C_Str(), weight.mVertexId, m.mNumVertices));
         }
         if (weight.mWeight != 0.0f) influences[weight.mVertexId].emplace_back(weight.mWeight, index);
       }
@@ -346,7 +352,7 @@ class MeshBuilder {
         mesh_.blend_indices[base + v][i] = static_cast<float>(list[i].second);
       }
     }
-    return std::nullopt;
+    return {};
   }
 
   void CountNonFinite() {
@@ -448,7 +454,7 @@ constexpr std::size_t kHeaderBytes = 65536;
 // Assimp 5.2's PLY reader loops without end on some malformed headers (fuzz_mesh: an element with
 // no property and no end_header). The header is checked first: every element with a property and
 // a count the file can hold, end_header within `head`.
-std::optional<std::string> CheckPlyHeader(std::string_view head, std::uintmax_t file_size) {
+Status CheckPlyHeader(std::string_view head, std::uintmax_t file_size) {
   std::size_t line_start = 0;
   bool element_open = false, element_has_property = true;
   while (line_start < head.size()) {
@@ -459,34 +465,36 @@ std::optional<std::string> CheckPlyHeader(std::string_view head, std::uintmax_t 
     line_start = line_end + 1;
     const std::string_view keyword = line.substr(0, line.find(' '));
     if (keyword == "end_header") {
-      if (element_open && !element_has_property) return "a PLY element has no property";
-      return std::nullopt;
+      if (element_open && !element_has_property) return Unreadable("a PLY element has no property");
+      return {};
     }
     if (keyword == "element") {
-      if (element_open && !element_has_property) return "a PLY element has no property";
+      if (element_open && !element_has_property) return Unreadable("a PLY element has no property");
       element_open = true;
       element_has_property = false;
       const std::size_t count_at = line.rfind(' ');
-      const auto no_count = [&] { return fmt::format("PLY header line '{}' has no element count", line); };
+      const auto no_count = [&] { return Unreadable(fmt::format("PLY header line '{}' has no element count", line)); };
       if (count_at == std::string_view::npos) return no_count();  // before pointing past it
       std::uintmax_t count = 0;
       auto [ptr, ec] = std::from_chars(line.data() + count_at + 1, line.data() + line.size(), count);
       if (ec != std::errc() || ptr != line.data() + line.size()) return no_count();
       if (count > file_size) {
-        return fmt::format("the header declares {} elements, more than a {}-byte file can hold", count, file_size);
+        return Unreadable(
+            fmt::format("the header declares {} elements, more than a {}-byte file can hold", count, file_size));
       }
     } else if (keyword == "property") {
-      if (!element_open) return "a PLY property comes before any element";
+      if (!element_open) return Unreadable("a PLY property comes before any element");
       element_has_property = true;
     }  // other lines (comments without the keyword, as some exporters write) are skipped, as Assimp does
   }
-  return "no PLY end_header in the first 64 KB";
+  return Unreadable("no PLY end_header in the first 64 KB");
 }
 
-std::optional<std::string> CheckHeaderCounts(std::string_view head, std::uintmax_t file_size) {
-  auto too_many = [&](std::uintmax_t count, const char* what) -> std::optional<std::string> {
-    if (count <= file_size) return std::nullopt;
-    return fmt::format("the header declares {} {}, more than a {}-byte file can hold", count, what, file_size);
+Status CheckHeaderCounts(std::string_view head, std::uintmax_t file_size) {
+  auto too_many = [&](std::uintmax_t count, const char* what) -> Status {
+    if (count <= file_size) return {};
+    return Unreadable(
+        fmt::format("the header declares {} {}, more than a {}-byte file can hold", count, what, file_size));
   };
   auto number_at = [&](std::size_t& at) -> std::optional<std::uintmax_t> {
     while (at < head.size() && (head[at] == ' ' || head[at] == '\t' || head[at] == '\r' || head[at] == '\n')) ++at;
@@ -498,16 +506,16 @@ std::optional<std::string> CheckHeaderCounts(std::string_view head, std::uintmax
   };
   if (head.starts_with("OFF") || head.starts_with("NOFF") || head.starts_with("COFF") || head.starts_with("STOFF")) {
     std::size_t at = head.find_first_of(" \t\r\n");
-    if (at == std::string_view::npos) return std::nullopt;
+    if (at == std::string_view::npos) return {};
     std::optional<std::uintmax_t> vertices = number_at(at), faces = number_at(at);
     if (vertices) {
-      if (auto error = too_many(*vertices, "vertices")) return error;
+      if (Status counted = too_many(*vertices, "vertices"); !counted) return counted;
     }
     if (faces) return too_many(*faces, "faces");
-    return std::nullopt;
+    return {};
   }
   if (head.starts_with("ply")) return CheckPlyHeader(head, file_size);
-  return std::nullopt;
+  return {};
 }
 
 // Normals are vs11's (smooth_normals.h), computed after post-processing from its final triangles.
@@ -528,49 +536,54 @@ unsigned PostProcessFlags(const MeshLoadOptions& options) {
 // crashes aiProcess_Triangulate).
 // Also rewrites each mesh's mPrimitiveTypes from its faces: aiProcess_Triangulate trusts the
 // POLYGON bit and aborts (an ai_assert in Debian's build) when no face is a polygon after all.
-std::optional<std::string> CheckSceneIndices(aiScene& scene) {
-  if (scene.mNumMeshes > 0 && scene.mMeshes == nullptr) return "the scene lists meshes it does not hold";
+Status CheckSceneIndices(aiScene& scene) {
+  if (scene.mNumMeshes > 0 && scene.mMeshes == nullptr) return Unreadable("the scene lists meshes it does not hold");
   for (unsigned i = 0; i < scene.mNumMeshes; ++i) {
     aiMesh* m = scene.mMeshes[i];
-    if (m == nullptr) return fmt::format("mesh {} is missing", i);
-    if (m->mNumVertices > 0 && m->mVertices == nullptr) return fmt::format("mesh '{}' has no vertex positions", m->mName.C_Str());
-    if (m->mNumFaces > 0 && m->mFaces == nullptr) return fmt::format("mesh '{}' lists faces it does not hold", m->mName.C_Str());
+    if (m == nullptr) return Unreadable(fmt::format("mesh {} is missing", i));
+    const char* name = m->mName.C_Str();
+    if (m->mNumVertices > 0 && m->mVertices == nullptr) {
+      return Unreadable(fmt::format("mesh '{}' has no vertex positions", name));
+    }
+    if (m->mNumFaces > 0 && m->mFaces == nullptr) return Unreadable(fmt::format("mesh '{}' lists faces it does not hold", name));
     unsigned primitive_types = 0;
     for (unsigned f = 0; f < m->mNumFaces; ++f) {
       const aiFace& face = m->mFaces[f];
-      if (face.mNumIndices == 0 || face.mIndices == nullptr) return fmt::format("mesh '{}': face {} has no indices", m->mName.C_Str(), f);
+      if (face.mNumIndices == 0 || face.mIndices == nullptr) {
+        return Unreadable(fmt::format("mesh '{}': face {} has no indices", name, f));
+      }
       primitive_types |= face.mNumIndices == 1   ? aiPrimitiveType_POINT
                          : face.mNumIndices == 2 ? aiPrimitiveType_LINE
                          : face.mNumIndices == 3 ? aiPrimitiveType_TRIANGLE
                                                  : aiPrimitiveType_POLYGON;
       for (unsigned k = 0; k < face.mNumIndices; ++k) {
         if (face.mIndices[k] >= m->mNumVertices) {
-          return fmt::format("mesh '{}': face {} refers to vertex {} of {}", m->mName.C_Str(), f, face.mIndices[k],
-                             m->mNumVertices);
+          return Unreadable(fmt::format("mesh '{}': face {} refers to vertex {} of {}", name, f, face.mIndices[k],
+                             m->mNumVertices));
         }
       }
     }
     m->mPrimitiveTypes = primitive_types;
-    if (m->mNumBones > 0 && m->mBones == nullptr) return fmt::format("mesh '{}' lists bones it does not hold", m->mName.C_Str());
+    if (m->mNumBones > 0 && m->mBones == nullptr) return Unreadable(fmt::format("mesh '{}' lists bones it does not hold", name));
     for (unsigned b = 0; b < m->mNumBones; ++b) {
       const aiBone* bone = m->mBones[b];
       if (bone == nullptr || (bone->mNumWeights > 0 && bone->mWeights == nullptr)) {
-        return fmt::format("mesh '{}': bone {} is missing its weights", m->mName.C_Str(), b);
+        return Unreadable(fmt::format("mesh '{}': bone {} is missing its weights", name, b));
       }
       for (unsigned w = 0; w < bone->mNumWeights; ++w) {
         if (bone->mWeights[w].mVertexId >= m->mNumVertices) {
-          return fmt::format("mesh '{}': bone '{}' weights vertex {} of {}", m->mName.C_Str(), bone->mName.C_Str(),
-                             bone->mWeights[w].mVertexId, m->mNumVertices);
+          return Unreadable(fmt::format("mesh '{}': bone '{}' weights vertex {} of {}", name, bone->mName.C_Str(),
+                             bone->mWeights[w].mVertexId, m->mNumVertices));
         }
       }
     }
   }
-  return std::nullopt;
+  return {};
 }
 
 // `scene` as read with no post-processing.
-MeshLoadResult FromScene(const aiScene* scene, Assimp::Importer& importer, const std::string& name,
-                         const MeshLoadOptions& options, AssimpMessages& messages, const internal::StageReporter& report) {
+Result<Mesh> FromScene(const aiScene* scene, Assimp::Importer& importer, const std::string& name,
+                       const MeshLoadOptions& options, AssimpMessages& messages, const internal::StageReporter& report) {
   auto assimp_error = [&] {
     std::string reason = importer.GetErrorString();
     if (reason.empty()) reason = "Assimp could not read it";
@@ -580,30 +593,29 @@ MeshLoadResult FromScene(const aiScene* scene, Assimp::Importer& importer, const
       reason = "Assimp ran out of memory reading it (std::bad_alloc): the file is corrupt, or needs more than "
                "the loader's memory limit";
     }
-    return MeshLoadResult{std::nullopt, fmt::format("{}: {}", name, reason)};
+    return Unreadable(fmt::format("{}: {}", name, reason));
   };
   if (scene == nullptr) return assimp_error();
   report(internal::LoadStage::kVs11);
   // The importer owns the scene and hands it out as const; the check repairs its primitive flags.
-  if (std::optional<std::string> error = CheckSceneIndices(*const_cast<aiScene*>(scene))) return {std::nullopt, fmt::format("{}: {}", name, *error)};
+  if (Status checked = CheckSceneIndices(*const_cast<aiScene*>(scene)); !checked) return Named(name, checked.error());
   report(internal::LoadStage::kAssimp);
   scene = importer.ApplyPostProcessing(PostProcessFlags(options));
   if (scene == nullptr) return assimp_error();
   report(internal::LoadStage::kVs11);
-  MeshLoadResult result = MeshBuilder(*scene, options).Build();
-  if (!result.ok()) {
-    result.error = fmt::format("{}: {}", name, result.error);
-  } else {
-    std::vector<std::string>& warnings = result.mesh->warnings;
-    warnings.insert(warnings.begin(), messages.messages.begin(), messages.messages.end());
-  }
+  Result<Mesh> result = MeshBuilder(*scene, options).Build();
+  if (!result) return Named(name, result.error());
+  std::vector<std::string>& warnings = result->warnings;
+  warnings.insert(warnings.begin(), messages.messages.begin(), messages.messages.end());
   return result;
 }
 
 // What is checked before Assimp sees a file: its size and the header counts above.
-std::optional<std::string> CheckBeforeAssimp(std::span<const std::uint8_t> head, std::uintmax_t size) {
-  if (size == 0) return "the file is empty";
-  if (size > kMaxMeshFileBytes) return fmt::format("{} bytes, over the {}-byte limit for mesh files", size, kMaxMeshFileBytes);
+Status CheckBeforeAssimp(std::span<const std::uint8_t> head, std::uintmax_t size) {
+  if (size == 0) return Unreadable("the file is empty");
+  if (size > kMaxMeshFileBytes) {
+    return Unreadable(fmt::format("{} bytes, over the {}-byte limit for mesh files", size, kMaxMeshFileBytes));
+  }
   return CheckHeaderCounts({reinterpret_cast<const char*>(head.data()), head.size()}, size);
 }
 
@@ -631,32 +643,29 @@ bool IsMeshFileExtension(const std::string& extension) {
   return Assimp::Importer().IsExtensionSupported(extension[0] == '.' ? extension : "." + extension);
 }
 
-MeshLoadResult LoadMesh(const std::filesystem::path& path, const MeshLoadOptions& options) {
+Result<Mesh> LoadMesh(const std::filesystem::path& path, const MeshLoadOptions& options) {
   const std::string name = path.string();
   std::error_code error;
-  if (const Status why = InputFileProblem(path, /*pipes_allowed=*/false); !why.ok()) {
-    return {std::nullopt, name + ": " + why.message()};
-  }
+  if (const Status why = InputFileProblem(path, /*pipes_allowed=*/false); !why.ok()) return Named(name, why.error());
   const std::uintmax_t size = std::filesystem::file_size(path, error);
-  if (error) return {std::nullopt, fmt::format("{}: cannot read its size ({})", name, error.message())};
+  if (error) return Unreadable(fmt::format("{}: cannot read its size ({})", name, error.message()));
   std::vector<std::uint8_t> head(std::min<std::uintmax_t>(size, kHeaderBytes));
   {
     std::ifstream in(path, std::ios::binary);
     in.read(reinterpret_cast<char*>(head.data()), static_cast<std::streamsize>(head.size()));
     head.resize(static_cast<std::size_t>(in.gcount()));
   }
-  if (std::optional<std::string> message = CheckBeforeAssimp(head, size)) return {std::nullopt, name + ": " + *message};
+  if (const Status checked = CheckBeforeAssimp(head, size); !checked) return Named(name, checked.error());
   return internal::RunSandboxed(name, size, options, [&](const internal::StageReporter& report) {
     return internal::LoadMeshInProcess(path, options, report);
   });
 }
 
-MeshLoadResult LoadMeshFromMemory(std::span<const std::uint8_t> bytes, const std::string& format_hint,
-                                  const MeshLoadOptions& options) {
-  if (bytes.empty()) return {std::nullopt, "<memory>: no bytes"};
-  if (std::optional<std::string> message = CheckBeforeAssimp(bytes.first(std::min(bytes.size(), kHeaderBytes)), bytes.size())) {
-    return {std::nullopt, "<memory>: " + *message};
-  }
+Result<Mesh> LoadMeshFromMemory(std::span<const std::uint8_t> bytes, const std::string& format_hint,
+                                const MeshLoadOptions& options) {
+  if (bytes.empty()) return Unreadable("<memory>: no bytes");
+  const Status checked = CheckBeforeAssimp(bytes.first(std::min(bytes.size(), kHeaderBytes)), bytes.size());
+  if (!checked) return Named("<memory>", checked.error());
   return internal::RunSandboxed("<memory>", bytes.size(), options, [&](const internal::StageReporter& report) {
     return internal::LoadMeshFromMemoryInProcess(bytes, format_hint, options, report);
   });
@@ -665,8 +674,8 @@ MeshLoadResult LoadMeshFromMemory(std::span<const std::uint8_t> bytes, const std
 namespace internal {
 
 // In the sandbox's child a single thread runs; the lock serves in-process callers (the fuzz target).
-MeshLoadResult LoadMeshInProcess(const std::filesystem::path& path, const MeshLoadOptions& options,
-                                 const StageReporter& report) {
+Result<Mesh> LoadMeshInProcess(const std::filesystem::path& path, const MeshLoadOptions& options,
+                               const StageReporter& report) {
   std::lock_guard lock(assimp_logger_mutex);
   report(LoadStage::kAssimp);
   AssimpMessages messages;
@@ -675,8 +684,8 @@ MeshLoadResult LoadMeshInProcess(const std::filesystem::path& path, const MeshLo
   return FromScene(scene, importer, path.string(), options, messages, report);
 }
 
-MeshLoadResult LoadMeshFromMemoryInProcess(std::span<const std::uint8_t> bytes, const std::string& format_hint,
-                                           const MeshLoadOptions& options, const StageReporter& report) {
+Result<Mesh> LoadMeshFromMemoryInProcess(std::span<const std::uint8_t> bytes, const std::string& format_hint,
+                                         const MeshLoadOptions& options, const StageReporter& report) {
   std::lock_guard lock(assimp_logger_mutex);
   report(LoadStage::kAssimp);
   AssimpMessages messages;

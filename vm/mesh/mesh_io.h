@@ -21,12 +21,12 @@
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
-#include <optional>
 #include <span>
 #include <string>
 #include <vector>
 
 #include "vm/core/machine.h"
+#include "vm/core/result.h"
 
 namespace vs11::mesh {
 
@@ -118,16 +118,6 @@ struct MeshLoadOptions {
   std::uintmax_t memory_limit_bytes = 0;
 };
 
-// Either a mesh or a message that names the file and says what is wrong.
-struct MeshLoadResult {
-  std::optional<Mesh> mesh;
-  std::string error;
-  // The child process died in vs11's own checks or conversion, not in Assimp: a bug in vs11 (the
-  // fuzz target fails on it).
-  bool converter_crashed = false;
-  bool ok() const { return mesh.has_value(); }
-};
-
 // Loads any format Assimp 5.2 reads (OBJ, PLY, glTF/GLB, FBX, Collada, 3DS, STL, ...). Polygons are
 // triangulated; points and lines keep their vertices but add no triangles. Vertices are not merged
 // or reordered: each part's vertices appear in the order Assimp gives them (the file's order for
@@ -142,14 +132,19 @@ struct MeshLoadResult {
 // FILE (SIGSEGV); the file is corrupt or unsupported", a hang is stopped at the time limit. Faces
 // and headers that crashed or hung Assimp elsewhere are checked first (CheckSceneIndices, the OFF
 // and PLY header checks in mesh_io.cc), which gives those files a precise error.
-MeshLoadResult LoadMesh(const std::filesystem::path& path, const MeshLoadOptions& options = {});
+// Every error names the file and says what is wrong. Codes: kOutOfMemory when the reading process
+// ran out of memory, kMeshWire when it sent bytes that are no mesh, kMeshConverterCrashed when it
+// died in vs11's own checks or conversion rather than in Assimp (a bug in vs11: the fuzz target fails
+// on it), kCannotReadFile for the rest (missing, unreadable, oversized, corrupt or unsupported files,
+// Assimp's errors, crashes and time-outs).
+Result<Mesh> LoadMesh(const std::filesystem::path& path, const MeshLoadOptions& options = {});
 
 // Whether Assimp has an importer for files with this extension (".obj", "glb"; case-insensitive).
 bool IsMeshFileExtension(const std::string& extension);
 
 // The same from memory (the fuzz target's entry); `format_hint` is an extension such as "obj" or
 // "glb" (Assimp's pHint), or empty to let Assimp guess from the content.
-MeshLoadResult LoadMeshFromMemory(std::span<const std::uint8_t> bytes, const std::string& format_hint,
-                                  const MeshLoadOptions& options = {});
+Result<Mesh> LoadMeshFromMemory(std::span<const std::uint8_t> bytes, const std::string& format_hint,
+                                const MeshLoadOptions& options = {});
 
 }  // namespace vs11::mesh

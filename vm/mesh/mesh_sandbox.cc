@@ -105,30 +105,35 @@ void PrepareChild(int write_fd, std::uintmax_t memory_limit) {
 #endif
 }
 
-std::string OutOfMemory(std::uintmax_t memory_limit) {
-  return fmt::format("out of memory while reading it (the reading process may use {} MiB more than the tool)",
-                     memory_limit >> 20);
+Diagnostic OutOfMemory(std::uintmax_t memory_limit) {
+  return Failure(DiagnosticCode::kOutOfMemory,
+                 fmt::format("out of memory while reading it (the reading process may use {} MiB more than the tool)",
+                             memory_limit >> 20));
 }
 
-[[noreturn]] void RunChild(int write_fd, std::uintmax_t memory_limit,
-                           const std::function<MeshLoadResult(const StageReporter&)>& load) {
-  PrepareChild(write_fd, memory_limit);
-  MeshLoadResult result;
+// The load's mesh or error, with its exceptions as errors.
+Result<Mesh> LoadCatching(std::uintmax_t memory_limit, const std::function<Result<Mesh>(const StageReporter&)>& load) {
   try {
-    result = load([](LoadStage stage) {
+    return load([](LoadStage stage) {
       const char byte = static_cast<char>(stage);
       WriteAll(&byte, 1);
     });
   } catch (const std::bad_alloc&) {
-    result = {std::nullopt, OutOfMemory(memory_limit)};
+    return OutOfMemory(memory_limit);
   } catch (const std::exception& e) {
-    result = {std::nullopt, fmt::format("reading it failed: {}", e.what())};
+    return Failure(DiagnosticCode::kCannotReadFile, fmt::format("reading it failed: {}", e.what()));
   }
+}
+
+[[noreturn]] void RunChild(int write_fd, std::uintmax_t memory_limit,
+                           const std::function<Result<Mesh>(const StageReporter&)>& load) {
+  PrepareChild(write_fd, memory_limit);
+  const Result<Mesh> result = LoadCatching(memory_limit, load);
   std::string record;
   try {
     record = EncodeReplyRecord(result);
   } catch (const std::bad_alloc&) {
-    record = EncodeReplyRecord({std::nullopt, OutOfMemory(memory_limit)});
+    record = EncodeReplyRecord(OutOfMemory(memory_limit));
   }
   WriteAll(record.data(), record.size());
   _exit(0);
@@ -158,19 +163,21 @@ void KillChild(pid_t pid) {
   }
 }
 
-std::string DeathMessage(const std::string& name, int status, char last_stage, bool* converter_crashed) {
+Diagnostic DeathError(const std::string& name, int status, char last_stage) {
   const std::string how = WIFSIGNALED(status) ? SignalName(WTERMSIG(status))
                           : WIFEXITED(status) ? fmt::format("exit status {}", WEXITSTATUS(status))
                                               : fmt::format("wait status {}", status);
   if (last_stage == static_cast<char>(LoadStage::kVs11)) {
-    *converter_crashed = true;
-    return fmt::format("vs11 crashed converting {} after Assimp read it ({}): a bug in vs11; please report it "
-                       "with the file", name, how);
+    return Failure(DiagnosticCode::kMeshConverterCrashed,
+                   fmt::format("vs11 crashed converting {} after Assimp read it ({}): a bug in vs11; please report "
+                               "it with the file", name, how));
   }
   if (last_stage == static_cast<char>(LoadStage::kAssimp)) {
-    return fmt::format("Assimp crashed reading {} ({}); the file is corrupt or unsupported", name, how);
+    return Failure(DiagnosticCode::kCannotReadFile,
+                   fmt::format("Assimp crashed reading {} ({}); the file is corrupt or unsupported", name, how));
   }
-  return fmt::format("the process that reads {} ended before reading it ({})", name, how);
+  return Failure(DiagnosticCode::kCannotReadFile,
+                 fmt::format("the process that reads {} ended before reading it ({})", name, how));
 }
 
 // Once `reply` holds the stage bytes and a record's header: reserves room for the whole record and
@@ -195,10 +202,10 @@ std::optional<bool> ReserveForRecord(std::vector<std::uint8_t>& reply) {
   return true;
 }
 
-// Reads the child's reply from `fd` into `reply` until the child closes its end: "" then, or why the
-// reading stopped before (the deadline passed, the reply outgrew the limits, the wait failed).
-std::string ReceiveReply(int fd, Clock::time_point deadline, double seconds, const std::string& name,
-                         std::vector<std::uint8_t>& reply) {
+// Reads the child's reply from `fd` into `reply` until the child closes its end: success then, or why
+// the reading stopped before (the deadline passed, the reply outgrew the limits, the wait failed).
+Status ReceiveReply(int fd, Clock::time_point deadline, double seconds, const std::string& name,
+                    std::vector<std::uint8_t>& reply) {
   // A larger pipe means fewer turns between the processes (the default 64 KiB is kept on failure).
   fcntl(fd, F_SETPIPE_SZ, 1 << 20);
   std::array<std::uint8_t, 1 << 16> chunk;  // on the stack: a fresh heap buffer per load costs page faults
@@ -207,21 +214,24 @@ std::string ReceiveReply(int fd, Clock::time_point deadline, double seconds, con
     const auto left = std::chrono::duration_cast<std::chrono::milliseconds>(deadline - Clock::now()).count();
     if (left <= 0) {
       const bool in_vs11 = DecodeChildReply(reply).last_stage == static_cast<char>(LoadStage::kVs11);
-      return fmt::format("reading {} did not finish within {} s ({}; the file may be corrupt, or raise the "
-                         "time limit with --mesh-timeout)", name, seconds,
-                         in_vs11 ? "in vs11's conversion, after Assimp read it" : "in Assimp's reader");
+      return Failure(DiagnosticCode::kCannotReadFile,
+                     fmt::format("reading {} did not finish within {} s ({}; the file may be corrupt, or raise the "
+                                 "time limit with --mesh-timeout)", name, seconds,
+                                 in_vs11 ? "in vs11's conversion, after Assimp read it" : "in Assimp's reader"));
     }
     pollfd wait_for = {fd, POLLIN, 0};
     const int ready = poll(&wait_for, 1, static_cast<int>(std::min<long long>(left, 1000)));
     if (ready < 0 && errno != EINTR) {
-      return fmt::format("{}: waiting for the process that reads it failed ({})", name, std::strerror(errno));
+      return Failure(DiagnosticCode::kCannotReadFile,
+                     fmt::format("{}: waiting for the process that reads it failed ({})", name, std::strerror(errno)));
     }
     if (ready <= 0) continue;
     const ssize_t got = read(fd, chunk.data(), chunk.size());
     if (got < 0 && errno == EINTR) continue;
-    if (got <= 0) return "";  // end of file: the child has exited (or failed to read)
+    if (got <= 0) return {};  // end of file: the child has exited (or failed to read)
     if (reply.size() + static_cast<std::size_t>(got) > kMaxReplyBytes + 16) {
-      return fmt::format("{}: the mesh is larger than the loader's limits", name);
+      return Failure(DiagnosticCode::kCannotReadFile,
+                     fmt::format("{}: the mesh is larger than the loader's limits", name));
     }
     reply.insert(reply.end(), chunk.begin(), chunk.begin() + got);
     if (!reserved) {
@@ -229,7 +239,8 @@ std::string ReceiveReply(int fd, Clock::time_point deadline, double seconds, con
       // the copies (and on a virtual machine, the page faults) of a growing buffer.
       reserved = ReserveForRecord(reply);
       if (reserved.has_value() && !*reserved) {
-        return fmt::format("{}: the mesh is larger than the loader's limits or the memory", name);
+        return Failure(DiagnosticCode::kCannotReadFile,
+                       fmt::format("{}: the mesh is larger than the loader's limits or the memory", name));
       }
     }
   }
@@ -247,12 +258,15 @@ std::uintmax_t MemoryLimitBytes(const MeshLoadOptions& options, std::uintmax_t i
   return (std::uintmax_t{8} << 30) + 32 * input_bytes;  // 8 GiB, plus 32 bytes per byte of input
 }
 
-MeshLoadResult RunSandboxed(const std::string& name, std::uintmax_t input_bytes, const MeshLoadOptions& options,
-                            const std::function<MeshLoadResult(const StageReporter&)>& load) {
+Result<Mesh> RunSandboxed(const std::string& name, std::uintmax_t input_bytes, const MeshLoadOptions& options,
+                          const std::function<Result<Mesh>(const StageReporter&)>& load) {
   const double seconds = TimeLimitSeconds(options, input_bytes);
   const auto deadline = Clock::now() + std::chrono::duration_cast<Clock::duration>(std::chrono::duration<double>(seconds));
   int fds[2];
-  if (pipe2(fds, O_CLOEXEC) != 0) return {std::nullopt, fmt::format("{}: cannot make a pipe ({})", name, std::strerror(errno))};
+  if (pipe2(fds, O_CLOEXEC) != 0) {
+    return Failure(DiagnosticCode::kCannotReadFile,
+                   fmt::format("{}: cannot make a pipe ({})", name, std::strerror(errno)));
+  }
   // The child allocates (the loader, the reply), which after fork is safe in a single-threaded
   // parent; a parent with threads (irrmap batch --threads) is safe too as far as the heap goes,
   // because glibc's fork takes every malloc arena lock around the fork and the child starts with
@@ -265,7 +279,8 @@ MeshLoadResult RunSandboxed(const std::string& name, std::uintmax_t input_bytes,
     const int error = errno;
     close(fds[0]);
     close(fds[1]);
-    return {std::nullopt, fmt::format("{}: cannot start the process that reads it ({})", name, std::strerror(error))};
+    return Failure(DiagnosticCode::kCannotReadFile,
+                   fmt::format("{}: cannot start the process that reads it ({})", name, std::strerror(error)));
   }
   if (pid == 0) {
     close(fds[0]);
@@ -274,27 +289,26 @@ MeshLoadResult RunSandboxed(const std::string& name, std::uintmax_t input_bytes,
   close(fds[1]);
 
   std::vector<std::uint8_t> reply;
-  const std::string refusal = ReceiveReply(fds[0], deadline, seconds, name, reply);
+  const Status received = ReceiveReply(fds[0], deadline, seconds, name, reply);
   close(fds[0]);
-  if (!refusal.empty()) {
+  if (!received) {
     KillChild(pid);
-    return {std::nullopt, refusal};
+    return received.error();
   }
   const int status = WaitForChild(pid, std::max(deadline, Clock::now() + std::chrono::seconds(5)));
   ChildReply decoded = DecodeChildReply(reply);
   reply = {};  // the mesh is held twice only while it is decoded
   if (decoded.complete && !decoded.malformed) {
-    if (!decoded.result.ok() && decoded.result.error.find(name) == std::string::npos) {
-      decoded.result.error = fmt::format("{}: {}", name, decoded.result.error);
+    if (!decoded.result.ok() && decoded.result.error().message.find(name) == std::string::npos) {
+      return Failure(decoded.result.error().code, fmt::format("{}: {}", name, decoded.result.error().message));
     }
     return std::move(decoded.result);
   }
   if (decoded.malformed) {
-    return {std::nullopt, fmt::format("{}: the process that reads it sent {}", name, decoded.result.error)};
+    return Failure(DiagnosticCode::kMeshWire,
+                   fmt::format("{}: the process that reads it sent {}", name, decoded.result.error().message));
   }
-  MeshLoadResult crashed;
-  crashed.error = DeathMessage(name, status, decoded.last_stage, &crashed.converter_crashed);
-  return crashed;
+  return DeathError(name, status, decoded.last_stage);
 }
 
 }  // namespace vs11::mesh::internal

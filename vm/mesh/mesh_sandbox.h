@@ -7,7 +7,7 @@
 // (DecodeMesh) and names a fatal signal: "Assimp crashed reading FILE (SIGSEGV); ...".
 //
 // The child reports which code it is running (Assimp's or vs11's own checks and conversion), so that
-// a death in vs11's code is told apart and reported as vs11's bug (MeshLoadResult::converter_crashed).
+// a death in vs11's code is told apart and reported as vs11's bug (DiagnosticCode::kMeshConverterCrashed).
 //
 // The child of a threaded process holds only the forking thread: it calls nothing but the loader
 // (Assimp makes no threads of its own in 5.2, and glibc's malloc and ASan's allocator stay usable
@@ -35,15 +35,15 @@ using StageReporter = std::function<void(LoadStage)>;
 
 // Runs `load` in a child process as described above. `name` names the input in errors;
 // `input_bytes` (the file's size) scales the default time and memory limits.
-MeshLoadResult RunSandboxed(const std::string& name, std::uintmax_t input_bytes, const MeshLoadOptions& options,
-                            const std::function<MeshLoadResult(const StageReporter&)>& load);
+Result<Mesh> RunSandboxed(const std::string& name, std::uintmax_t input_bytes, const MeshLoadOptions& options,
+                          const std::function<Result<Mesh>(const StageReporter&)>& load);
 
 // The loads themselves, in this process: the sandbox's child runs them, reporting each stage; the
 // fuzz target reruns one that crashed in vs11's code to get its stack under ASan.
-MeshLoadResult LoadMeshInProcess(const std::filesystem::path& path, const MeshLoadOptions& options,
-                                 const StageReporter& report);
-MeshLoadResult LoadMeshFromMemoryInProcess(std::span<const std::uint8_t> bytes, const std::string& format_hint,
-                                           const MeshLoadOptions& options, const StageReporter& report);
+Result<Mesh> LoadMeshInProcess(const std::filesystem::path& path, const MeshLoadOptions& options,
+                               const StageReporter& report);
+Result<Mesh> LoadMeshFromMemoryInProcess(std::span<const std::uint8_t> bytes, const std::string& format_hint,
+                                         const MeshLoadOptions& options, const StageReporter& report);
 
 // The limits RunSandboxed applies for these options and this input size.
 double TimeLimitSeconds(const MeshLoadOptions& options, std::uintmax_t input_bytes);

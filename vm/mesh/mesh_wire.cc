@@ -20,6 +20,11 @@ namespace {
 constexpr std::string_view kMagic = "vs11mesh";
 constexpr std::uint32_t kVersion = 1;
 
+// How many DiagnosticCodes there are: an error record's code must be one of them.
+#define VS11_COUNT_DIAGNOSTIC_CODE(code, name) +1
+constexpr std::uint32_t kDiagnosticCodeCount = 0 VS11_DIAGNOSTIC_CODES(VS11_COUNT_DIAGNOSTIC_CODE);
+#undef VS11_COUNT_DIAGNOSTIC_CODE
+
 // The optional per-vertex arrays in mask-bit order.
 template <typename MeshType>
 auto OptionalArrays(MeshType& mesh) {
@@ -243,8 +248,15 @@ Result<Mesh> DecodeMesh(std::span<const std::uint8_t> bytes) {
   return mesh;
 }
 
-std::string EncodeReplyRecord(const MeshLoadResult& result) {
-  std::string body = result.ok() ? EncodeMesh(*result.mesh) : result.error.substr(0, kMaxWireStringBytes);
+std::string EncodeReplyRecord(const Result<Mesh>& result) {
+  std::string body;
+  if (result.ok()) {
+    body = EncodeMesh(*result);
+  } else {
+    Writer error;
+    error.Value(static_cast<std::uint32_t>(result.error().code));
+    body = error.Take() + result.error().message.substr(0, kMaxWireStringBytes);
+  }
   Writer out;
   out.Value(result.ok() ? 'M' : 'E');
   out.Count(body.size());
@@ -265,7 +277,7 @@ ChildReply DecodeChildReply(std::span<const std::uint8_t> bytes) {
   auto malformed = [&](std::string message) {
     reply.complete = true;
     reply.malformed = true;
-    reply.result.error = std::move(message);
+    reply.result = Failure(DiagnosticCode::kMeshWire, std::move(message));
     return reply;
   };
   if (tag != 'M' && tag != 'E') return malformed(fmt::format("an unknown record {:#04x}", static_cast<unsigned>(bytes[at])));
@@ -274,14 +286,19 @@ ChildReply DecodeChildReply(std::span<const std::uint8_t> bytes) {
   if (body.size() > length) return malformed("bytes after the reply");
   reply.complete = true;
   if (tag == 'E') {
-    if (length > kMaxWireStringBytes) return malformed("an error message over the length limit");
-    reply.result.error.assign(reinterpret_cast<const char*>(body.data()), body.size());
-    if (reply.result.error.empty()) return malformed("an empty error message");
+    std::uint32_t code = 0;
+    if (length < sizeof code) return malformed("an error without its code");
+    if (length > sizeof code + kMaxWireStringBytes) return malformed("an error message over the length limit");
+    std::memcpy(&code, body.data(), sizeof code);
+    if (code >= kDiagnosticCodeCount) return malformed(fmt::format("an unknown error code {}", code));
+    std::string message(reinterpret_cast<const char*>(body.data()) + sizeof code, body.size() - sizeof code);
+    if (message.empty()) return malformed("an empty error message");
+    reply.result = Failure(static_cast<DiagnosticCode>(code), std::move(message));
     return reply;
   }
   Result<Mesh> mesh = DecodeMesh(body);
   if (!mesh) return malformed("an unreadable mesh: " + mesh.message());
-  reply.result.mesh = std::move(mesh).value();
+  reply.result = std::move(mesh);
   return reply;
 }
 

@@ -8,7 +8,6 @@
 #pragma once
 
 #include <cstdint>
-#include <optional>
 #include <span>
 #include <string>
 
@@ -26,8 +25,8 @@ std::string EncodeMesh(const Mesh& mesh);
 Result<Mesh> DecodeMesh(std::span<const std::uint8_t> bytes);
 
 // The sandboxed child's whole output: stage bytes (mesh_sandbox.h's LoadStage), then one record,
-// 'M' u64 length + EncodeMesh's bytes or 'E' u64 length + an error message.
-std::string EncodeReplyRecord(const MeshLoadResult& result);
+// 'M' u64 length + EncodeMesh's bytes or 'E' u64 length + the error's u32 DiagnosticCode and message.
+std::string EncodeReplyRecord(const Result<Mesh>& result);
 
 // The largest reply the parent reads: the encoded size of a mesh at the loader's limits, with every
 // attribute, plus 1 GiB for names and warnings. A longer reply is refused as it arrives.
@@ -37,7 +36,8 @@ inline constexpr std::uint64_t kMaxReplyBytes =
 struct ChildReply {
   char last_stage = 0;    // the last stage byte (0: none arrived)
   bool complete = false;  // a whole record arrived; then `result` holds it
-  MeshLoadResult result;  // the mesh, the child's error, or (when `malformed`) what is wrong with the bytes
+  // The mesh, the child's error, or (when `malformed`, code kMeshWire) what is wrong with the bytes.
+  Result<Mesh> result = Failure(DiagnosticCode::kMeshWire, "no whole record arrived");
   bool malformed = false;
 };
 ChildReply DecodeChildReply(std::span<const std::uint8_t> bytes);

@@ -3,6 +3,7 @@
 #include <bit>
 #include <charconv>
 #include <cstring>
+#include <optional>
 
 #include <fmt/format.h>
 
@@ -17,46 +18,49 @@ static_assert(std::endian::native == std::endian::little, "the .npy reader and w
 constexpr char kMagic[] = "\x93NUMPY";
 constexpr std::size_t kMagicSize = 6;
 
+// What is wrong with a file that is no .npy array of vertices vs11 reads.
+Diagnostic Malformed(std::string message) { return Failure(DiagnosticCode::kCannotReadFile, std::move(message)); }
+
 // A cursor over the header's Python dict literal: {'descr': '<f4', 'fortran_order': False, 'shape': (3, 4), }
 class HeaderParser {
  public:
   explicit HeaderParser(std::string_view text) : text_(text) {}
 
-  std::optional<std::string> Parse(std::string& descr, bool& fortran_order, std::vector<std::size_t>& shape) {
+  Status Parse(std::string& descr, bool& fortran_order, std::vector<std::size_t>& shape) {
     bool seen_descr = false, seen_order = false, seen_shape = false;
-    if (!Take('{')) return "the header is not a dict";
+    if (!Take('{')) return Malformed("the header is not a dict");
     while (true) {
       SkipSpace();
       if (Take('}')) break;
       std::optional<std::string> key = String();
-      if (!key) return "expected a quoted key in the header";
-      if (!Take(':')) return fmt::format("expected ':' after '{}'", *key);
+      if (!key) return Malformed("expected a quoted key in the header");
+      if (!Take(':')) return Malformed(fmt::format("expected ':' after '{}'", *key));
       if (*key == "descr") {
         std::optional<std::string> value = String();
-        if (!value) return "'descr' is not a string";
+        if (!value) return Malformed("'descr' is not a string");
         descr = *value;
         seen_descr = true;
       } else if (*key == "fortran_order") {
         SkipSpace();
         if (Word("True")) fortran_order = true;
         else if (Word("False")) fortran_order = false;
-        else return "'fortran_order' is neither True nor False";
+        else return Malformed("'fortran_order' is neither True nor False");
         seen_order = true;
       } else if (*key == "shape") {
-        if (std::optional<std::string> error = Tuple(shape)) return error;
+        if (Status parsed = Tuple(shape); !parsed) return parsed;
         seen_shape = true;
       } else {
-        return fmt::format("unknown header key '{}'", *key);
+        return Malformed(fmt::format("unknown header key '{}'", *key));
       }
       SkipSpace();
       if (Take(',')) continue;
       if (Take('}')) break;
-      return "expected ',' or '}' in the header";
+      return Malformed("expected ',' or '}' in the header");
     }
     SkipSpace();
-    if (pos_ != text_.size()) return "text after the header's dict";
-    if (!seen_descr || !seen_order || !seen_shape) return "the header lacks descr, fortran_order or shape";
-    return std::nullopt;
+    if (pos_ != text_.size()) return Malformed("text after the header's dict");
+    if (!seen_descr || !seen_order || !seen_shape) return Malformed("the header lacks descr, fortran_order or shape");
+    return {};
   }
 
  private:
@@ -86,21 +90,21 @@ class HeaderParser {
     pos_ = end + 1;
     return value;
   }
-  std::optional<std::string> Tuple(std::vector<std::size_t>& shape) {
+  Status Tuple(std::vector<std::size_t>& shape) {
     shape.clear();
-    if (!Take('(')) return "'shape' is not a tuple";
+    if (!Take('(')) return Malformed("'shape' is not a tuple");
     while (true) {
       SkipSpace();
-      if (Take(')')) return std::nullopt;
+      if (Take(')')) return {};
       std::size_t value = 0;
       auto [ptr, ec] = std::from_chars(text_.data() + pos_, text_.data() + text_.size(), value);
-      if (ec != std::errc()) return "'shape' holds something other than a non-negative integer";
+      if (ec != std::errc()) return Malformed("'shape' holds something other than a non-negative integer");
       pos_ = static_cast<std::size_t>(ptr - text_.data());
       shape.push_back(value);
-      if (shape.size() > 2) return "'shape' has more than two dimensions";
+      if (shape.size() > 2) return Malformed("'shape' has more than two dimensions");
       if (Take(',')) continue;
-      if (Take(')')) return std::nullopt;
-      return "expected ',' or ')' in 'shape'";
+      if (Take(')')) return {};
+      return Malformed("expected ',' or ')' in 'shape'");
     }
   }
 
@@ -122,8 +126,8 @@ Vec4f NpyArray::Row(std::size_t row) const {
   return out;
 }
 
-NpyResult ParseNpy(std::span<const std::uint8_t> bytes, const std::string& name) {
-  auto fail = [&](const std::string& message) { return NpyResult{std::nullopt, fmt::format("{}: {}", name, message)}; };
+Result<NpyArray> ParseNpy(std::span<const std::uint8_t> bytes, const std::string& name) {
+  auto fail = [&](const std::string& message) { return Malformed(fmt::format("{}: {}", name, message)); };
   if (bytes.size() < kMagicSize + 4 || std::memcmp(bytes.data(), kMagic, kMagicSize) != 0) {
     return fail("not a .npy file (no \\x93NUMPY magic)");
   }
@@ -138,7 +142,7 @@ NpyResult ParseNpy(std::span<const std::uint8_t> bytes, const std::string& name)
   std::string descr;
   bool fortran_order = false;
   std::vector<std::size_t> shape;
-  if (std::optional<std::string> error = HeaderParser(header).Parse(descr, fortran_order, shape)) return fail(*error);
+  if (Status parsed = HeaderParser(header).Parse(descr, fortran_order, shape); !parsed) return fail(parsed.message());
   if (descr != "<f4") return fail(fmt::format("dtype '{}' is not float32 ('<f4'): convert with .astype('<f4')", descr));
   if (shape.empty()) return fail("a scalar, not an array of vertices");
   const std::size_t rows = shape[0];
@@ -164,21 +168,21 @@ NpyResult ParseNpy(std::span<const std::uint8_t> bytes, const std::string& name)
       }
     }
   }
-  return {std::move(array), ""};
+  return array;
 }
 
-NpyResult ReadNpy(const std::filesystem::path& path) {
+Result<NpyArray> ReadNpy(const std::filesystem::path& path) {
   if (const Status why = InputFileProblem(path, /*pipes_allowed=*/false); !why.ok()) {
-    return {std::nullopt, fmt::format("{}: {}", path.string(), why.message())};
+    return Failure(why.error().code, fmt::format("{}: {}", path.string(), why.message()));
   }
   std::error_code error;
   const std::uintmax_t size = std::filesystem::file_size(path, error);
-  if (error) return {std::nullopt, fmt::format("{}: cannot read the file", path.string())};
+  if (error) return Malformed(fmt::format("{}: cannot read the file", path.string()));
   if (size > kMaxNpyHeaderBytes + 16 + kMaxNpyRows * 16) {
-    return {std::nullopt, fmt::format("{}: {} bytes, larger than any array within the row limit", path.string(), size)};
+    return Malformed(fmt::format("{}: {} bytes, larger than any array within the row limit", path.string(), size));
   }
   std::optional<std::string> text = ReadWholeFile(path);
-  if (!text) return {std::nullopt, fmt::format("{}: cannot read the file", path.string())};
+  if (!text) return Malformed(fmt::format("{}: cannot read the file", path.string()));
   return ParseNpy({reinterpret_cast<const std::uint8_t*>(text->data()), text->size()}, path.string());
 }
 

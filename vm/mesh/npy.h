@@ -8,12 +8,12 @@
 #include <cstddef>
 #include <cstdint>
 #include <filesystem>
-#include <optional>
 #include <span>
 #include <string>
 #include <vector>
 
 #include "vm/core/machine.h"
+#include "vm/core/result.h"
 
 namespace vs11::mesh {
 
@@ -27,14 +27,9 @@ struct NpyArray {
   Vec4f Row(std::size_t row) const;  // missing components from kDefaultInput (0, 0, 0, 1)
 };
 
-struct NpyResult {
-  std::optional<NpyArray> array;
-  std::string error;
-  bool ok() const { return array.has_value(); }
-};
-
-NpyResult ParseNpy(std::span<const std::uint8_t> bytes, const std::string& name);
-NpyResult ReadNpy(const std::filesystem::path& path);
+// The array, or an error (kCannotReadFile) naming the file (`name`) and what is wrong.
+Result<NpyArray> ParseNpy(std::span<const std::uint8_t> bytes, const std::string& name);
+Result<NpyArray> ReadNpy(const std::filesystem::path& path);
 
 // Version 1.0, '<f4', C order, shape (rows, columns), header padded to 64 bytes.
 std::vector<std::uint8_t> FormatNpy(const NpyArray& array);

@@ -162,19 +162,19 @@ ProgramForVerify LoadProgramForVerify(const std::filesystem::path& path, const L
   ProgramForVerify result;
   // Read once: a pipe (/dev/stdin, "-") cannot be read a second time.
   const std::string name = InputDisplayName(path);
-  InputBytes text = ReadInputFile(path, kMaxProgramFileBytes);
-  if (!text.bytes) {
-    result.diagnostics.Error({name}, DiagnosticCode::kCannotReadFile, text.error);
+  Result<std::string> text = ReadInputFile(path, kMaxProgramFileBytes);
+  if (!text) {
+    result.diagnostics.Error({name}, text.error().code, text.message());
     return result;
   }
-  MetadataResult metadata = ParseProgramMetadata(*text.bytes, name);
+  MetadataResult metadata = ParseProgramMetadata(*text, name);
   LoadProgramOptions load_options = options;
   if (fragment) {
     load_options.assemble.require_position = !*fragment;
   } else if (metadata.metadata.fragment) {
     load_options.assemble.require_position = false;
   }
-  LoadedProgram loaded = LoadProgramBytes(*text.bytes, name, load_options);
+  LoadedProgram loaded = LoadProgramBytes(*text, name, load_options);
   if (!loaded.from_bytecode) {
     result.diagnostics.Append(metadata.diagnostics);
     result.metadata = std::move(metadata.metadata);

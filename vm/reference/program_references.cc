@@ -148,29 +148,28 @@ struct Setup {
   int base = 0;
 };
 
-std::optional<Setup> Begin(const ProgramMetadata& meta, const ReferenceOptions& options, int constant_registers,
-                           std::vector<int> input_registers, std::size_t vertices, std::string& error) {
+// What is wrong with the metadata for this reference.
+Diagnostic Unfit(std::string message) { return Failure(DiagnosticCode::kMetadataValue, std::move(message)); }
+
+Result<Setup> Begin(const ProgramMetadata& meta, const ReferenceOptions& options, int constant_registers,
+                    std::vector<int> input_registers, std::size_t vertices) {
   Setup setup;
   setup.base = meta.constants.value_or(0);
   if (setup.base < 0 || setup.base + constant_registers > options.constant_count) {
-    error = fmt::format("the reference needs constants c{}..c{}, beyond the {} constant registers", setup.base,
-                        setup.base + constant_registers - 1, options.constant_count);
-    return std::nullopt;
+    return Unfit(fmt::format("the reference needs constants c{}..c{}, beyond the {} constant registers", setup.base,
+                             setup.base + constant_registers - 1, options.constant_count));
   }
   std::sort(input_registers.begin(), input_registers.end());
   if (std::adjacent_find(input_registers.begin(), input_registers.end()) != input_registers.end()) {
-    error = "two inputs of the reference name the same register";
-    return std::nullopt;
+    return Unfit("two inputs of the reference name the same register");
   }
   for (int reg : input_registers) {
     if (reg < 0 || reg >= kInputRegisterCount) {
-      error = fmt::format("input register v{} does not exist", reg);
-      return std::nullopt;
+      return Unfit(fmt::format("input register v{} does not exist", reg));
     }
   }
   if (options.samples < 1) {
-    error = "the sample count must be at least 1";
-    return std::nullopt;
+    return Unfit("the sample count must be at least 1");
   }
   setup.rc.constants = ConstantBank(options.constant_count);
   // Builders hold references to several ExpectedOutputs at once: no reallocation may move them.
@@ -221,15 +220,14 @@ std::string RegisterList(const ProgramMetadata& meta, int base) {
 // body that draws the constants, inputs and expected outputs, then the inputs named, the case
 // described as `name`, and `primary_slot` (unless the metadata names another output) put first.
 template <class Body>
-std::optional<ReferenceCase> BuildLitCase(const ProgramMetadata& meta, const ReferenceOptions& options,
-                                          std::string_view name, int constant_registers,
-                                          std::vector<NamedInput> inputs, int primary_slot, std::string& error,
-                                          Body body) {
+Result<ReferenceCase> BuildLitCase(const ProgramMetadata& meta, const ReferenceOptions& options,
+                                   std::string_view name, int constant_registers, std::vector<NamedInput> inputs,
+                                   int primary_slot, Body body) {
   const std::size_t count = static_cast<std::size_t>(std::max(options.samples, 1));
   std::vector<int> input_registers;
   for (const NamedInput& input : inputs) input_registers.push_back(input.reg);
-  std::optional<Setup> setup = Begin(meta, options, constant_registers, std::move(input_registers), count, error);
-  if (!setup) return std::nullopt;
+  Result<Setup> setup = Begin(meta, options, constant_registers, std::move(input_registers), count);
+  if (!setup) return setup.error();
   Random random(options.seed);
   ReferenceCase& rc = setup->rc;
   LitCase lit{rc, CaseWriter(rc, setup->base), count, meta.tolerance.value_or(kDefaultTolerance), random};
@@ -269,14 +267,12 @@ std::vector<glm::vec4> PackSh9(Sh9Packing packing, const Sh9Rgb& sh) {
   }
 }
 
-std::optional<ReferenceCase> BuildSh9(const ProgramMetadata& meta, const ReferenceOptions& options,
-                                      std::string& error) {
+Result<ReferenceCase> BuildSh9(const ProgramMetadata& meta, const ReferenceOptions& options) {
   Sh9Packing packing = Sh9Packing::kTable1;
   if (!meta.packing.empty()) {
     std::optional<Sh9Packing> parsed = kSh9PackingNames.Find(meta.packing);
     if (!parsed) {
-      error = kSh9PackingNames.UnknownName(meta.packing);
-      return std::nullopt;
+      return Unfit(kSh9PackingNames.UnknownName(meta.packing));
     }
     packing = *parsed;
   }
@@ -289,14 +285,13 @@ std::optional<ReferenceCase> BuildSh9(const ProgramMetadata& meta, const Referen
   std::vector<int> registers = {normal_reg};
   if (meta.transform) {
     if (!meta.position) {
-      error = "sh9 with transform= also needs position= (the input register of the position)";
-      return std::nullopt;
+      return Unfit("sh9 with transform= also needs position= (the input register of the position)");
     }
     registers.push_back(*meta.position);
   }
   const std::vector<glm::vec4> packed = PackSh9(packing, options.coefficients);
-  std::optional<Setup> setup = Begin(meta, options, static_cast<int>(packed.size()), registers, count, error);
-  if (!setup) return std::nullopt;
+  Result<Setup> setup = Begin(meta, options, static_cast<int>(packed.size()), registers, count);
+  if (!setup) return setup.error();
   ReferenceCase& rc = setup->rc;
   CaseWriter writer(rc, setup->base);
   for (std::size_t i = 0; i < packed.size(); ++i) writer.SetConstant(static_cast<int>(i), glm::dvec4(packed[i]));
@@ -315,9 +310,8 @@ std::optional<ReferenceCase> BuildSh9(const ProgramMetadata& meta, const Referen
   if (meta.transform) {
     const int transform = *meta.transform;
     if (transform < 0 || transform + 4 > options.constant_count) {
-      error = fmt::format("transform=c{} needs c{}..c{}, beyond the {} constant registers", transform, transform,
-                          transform + 3, options.constant_count);
-      return std::nullopt;
+      return Unfit(fmt::format("transform=c{} needs c{}..c{}, beyond the {} constant registers", transform,
+                               transform, transform + 3, options.constant_count));
     }
     CaseWriter absolute(rc, 0);
     Random random(options.seed ^ 0x5E11F00Dull);
@@ -336,11 +330,10 @@ std::optional<ReferenceCase> BuildSh9(const ProgramMetadata& meta, const Referen
 
 // ---- directional_light --------------------------------------------------------------------------------
 
-std::optional<ReferenceCase> BuildDirectionalLight(const ProgramMetadata& meta, const ReferenceOptions& options,
-                                                   std::string& error) {
+Result<ReferenceCase> BuildDirectionalLight(const ProgramMetadata& meta, const ReferenceOptions& options) {
   const int position_reg = meta.position.value_or(0), normal_reg = meta.normal.value_or(1);
   return BuildLitCase(meta, options, "directional_light", 13,
-                      {{position_reg, "position"}, {normal_reg, "normal"}}, kDiffuseSlot, error, [&](LitCase& frame) {
+                      {{position_reg, "position"}, {normal_reg, "normal"}}, kDiffuseSlot, [&](LitCase& frame) {
     auto& [rc, w, count, tolerance, random] = frame;
     const std::array<glm::dvec4, 4> wvp = w.RandomMatrix4(0, random);
     const std::array<glm::dvec4, 3> world = w.RandomWorld(4, random);
@@ -379,11 +372,10 @@ std::optional<ReferenceCase> BuildDirectionalLight(const ProgramMetadata& meta, 
 
 // ---- point_light ------------------------------------------------------------------------------------
 
-std::optional<ReferenceCase> BuildPointLight(const ProgramMetadata& meta, const ReferenceOptions& options,
-                                             std::string& error) {
+Result<ReferenceCase> BuildPointLight(const ProgramMetadata& meta, const ReferenceOptions& options) {
   const int position_reg = meta.position.value_or(0), normal_reg = meta.normal.value_or(1);
   return BuildLitCase(meta, options, "point_light", 11,
-                      {{position_reg, "position"}, {normal_reg, "normal"}}, kDiffuseSlot, error, [&](LitCase& frame) {
+                      {{position_reg, "position"}, {normal_reg, "normal"}}, kDiffuseSlot, [&](LitCase& frame) {
     auto& [rc, w, count, tolerance, random] = frame;
     const std::array<glm::dvec4, 4> wvp = w.RandomMatrix4(0, random);
     const std::array<glm::dvec4, 3> world = w.RandomWorld(4, random);
@@ -413,10 +405,9 @@ std::optional<ReferenceCase> BuildPointLight(const ProgramMetadata& meta, const 
 
 // ---- fog --------------------------------------------------------------------------------------------
 
-std::optional<ReferenceCase> BuildFog(const ProgramMetadata& meta, const ReferenceOptions& options,
-                                      std::string& error) {
+Result<ReferenceCase> BuildFog(const ProgramMetadata& meta, const ReferenceOptions& options) {
   const int position_reg = meta.position.value_or(0);
-  return BuildLitCase(meta, options, "fog", 8, {{position_reg, "position"}}, kFogSlot, error, [&](LitCase& frame) {
+  return BuildLitCase(meta, options, "fog", 8, {{position_reg, "position"}}, kFogSlot, [&](LitCase& frame) {
     auto& [rc, w, count, tolerance, random] = frame;
     const std::array<glm::dvec4, 4> wvp = w.RandomMatrix4(0, random);
     std::array<glm::dvec4, 3> world_view = w.RandomWorld(4, random);
@@ -443,14 +434,13 @@ std::optional<ReferenceCase> BuildFog(const ProgramMetadata& meta, const Referen
 constexpr int kSkinningBones = 8;
 constexpr int kSkinningPaletteOffset = 6;  // palette at c[base + 6], 3 registers per bone
 
-std::optional<ReferenceCase> BuildSkinning(const ProgramMetadata& meta, const ReferenceOptions& options,
-                                           std::string& error) {
+Result<ReferenceCase> BuildSkinning(const ProgramMetadata& meta, const ReferenceOptions& options) {
   const int position_reg = meta.position.value_or(0), weights_reg = meta.weights.value_or(1),
             indices_reg = meta.indices.value_or(2), normal_reg = meta.normal.value_or(3);
   return BuildLitCase(meta, options, "skinning", kSkinningPaletteOffset + 3 * kSkinningBones,
                       {{position_reg, "position"}, {weights_reg, "weights"}, {indices_reg, "indices"},
                        {normal_reg, "normal"}},
-                      kDiffuseSlot, error, [&](LitCase& frame) {
+                      kDiffuseSlot, [&](LitCase& frame) {
     auto& [rc, w, count, tolerance, random] = frame;
     const std::array<glm::dvec4, 4> view_proj = w.RandomMatrix4(0, random);
     const glm::dvec3 light = glm::dvec3(w.SetConstant(4, glm::dvec4(random.UnitVector(), 0.0)));
@@ -493,13 +483,12 @@ glm::dvec4 Logp(double v) {
   return {static_cast<double>(exponent - 1), mantissa, std::log2(v), 1.0};
 }
 
-std::optional<ReferenceCase> BuildAllInstructions(const ProgramMetadata& meta, const ReferenceOptions& options,
-                                                  std::string& error) {
+Result<ReferenceCase> BuildAllInstructions(const ProgramMetadata& meta, const ReferenceOptions& options) {
   const int position_reg = meta.position.value_or(0), normal_reg = meta.normal.value_or(1),
             texcoord_reg = meta.texcoord.value_or(2);
   return BuildLitCase(meta, options, "all_instructions", 19,
                       {{position_reg, "position"}, {normal_reg, "normal"}, {texcoord_reg, "texcoord"}}, kDiffuseSlot,
-                      error, [&](LitCase& frame) {
+                      [&](LitCase& frame) {
     auto& [rc, w, count, tolerance, random] = frame;
     const std::array<glm::dvec4, 4> wvp = w.RandomMatrix4(0, random);
     const std::array<glm::dvec4, 3> world = w.RandomWorld(4, random);
@@ -614,37 +603,34 @@ Sh9Rgb RandomCoefficients(std::uint64_t seed) {
   return sh;
 }
 
-std::optional<Sh9Rgb> ParseCoefficientsJson(std::string_view text, std::string& error) {
+Result<Sh9Rgb> ParseCoefficientsJson(std::string_view text) {
+  const auto wrong = [](std::string message) { return Failure(DiagnosticCode::kCannotReadFile, std::move(message)); };
   nlohmann::json json;
   try {
     json = nlohmann::json::parse(text);
   } catch (const nlohmann::json::parse_error& e) {
-    error = fmt::format("not valid JSON: {}", e.what());
-    return std::nullopt;
+    return wrong(fmt::format("not valid JSON: {}", e.what()));
   }
   if (!json.is_object() || !json.contains("coefficients")) {
-    error = "expected an object with a \"coefficients\" member";
-    return std::nullopt;
+    return wrong("expected an object with a \"coefficients\" member");
   }
   const nlohmann::json& rows = json["coefficients"];
   if (!rows.is_array() || rows.size() != kSh9Coefficients) {
-    error = fmt::format("\"coefficients\" must be an array of 9 [r, g, b] rows (L00, L1-1, L10, L11, L2-2, "
-                        "L2-1, L20, L21, L22), got {}",
-                        rows.is_array() ? fmt::format("{} rows", rows.size()) : std::string(rows.type_name()));
-    return std::nullopt;
+    return wrong(fmt::format("\"coefficients\" must be an array of 9 [r, g, b] rows (L00, L1-1, L10, L11, L2-2, "
+                             "L2-1, L20, L21, L22), got {}",
+                             rows.is_array() ? fmt::format("{} rows", rows.size()) : std::string(rows.type_name())));
   }
   Sh9Rgb sh;
   for (int i = 0; i < kSh9Coefficients; ++i) {
     const nlohmann::json& row = rows[static_cast<std::size_t>(i)];
     if (!row.is_array() || row.size() != 3) {
-      error = fmt::format("coefficient row {} must be an array of 3 numbers [r, g, b]", i);
-      return std::nullopt;
+      return wrong(fmt::format("coefficient row {} must be an array of 3 numbers [r, g, b]", i));
     }
     for (int c = 0; c < 3; ++c) {
       const nlohmann::json& value = row[static_cast<std::size_t>(c)];
       if (!value.is_number() || !std::isfinite(value.get<double>())) {
-        error = fmt::format("coefficient row {}, channel {}: expected a finite number, got {}", i, c, value.dump());
-        return std::nullopt;
+        return wrong(
+            fmt::format("coefficient row {}, channel {}: expected a finite number, got {}", i, c, value.dump()));
       }
       sh.coefficients[i][c] = value.get<double>();
     }
@@ -652,14 +638,13 @@ std::optional<Sh9Rgb> ParseCoefficientsJson(std::string_view text, std::string& 
   return sh;
 }
 
-std::optional<Sh9Rgb> LoadCoefficientsJson(const std::filesystem::path& path, std::string& error) {
+Result<Sh9Rgb> LoadCoefficientsJson(const std::filesystem::path& path) {
   std::optional<std::string> text = ReadWholeFile(path);
   if (!text) {
-    error = fmt::format("{}: cannot read the coefficient file", path.string());
-    return std::nullopt;
+    return Failure(DiagnosticCode::kCannotReadFile, fmt::format("{}: cannot read the coefficient file", path.string()));
   }
-  std::optional<Sh9Rgb> sh = ParseCoefficientsJson(*text, error);
-  if (!sh) error = fmt::format("{}: {}", path.string(), error);
+  Result<Sh9Rgb> sh = ParseCoefficientsJson(*text);
+  if (!sh) return Failure(sh.error().code, fmt::format("{}: {}", path.string(), sh.message()));
   return sh;
 }
 

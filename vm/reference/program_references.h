@@ -18,6 +18,7 @@
 #include <glm/glm.hpp>
 
 #include "vm/core/machine.h"
+#include "vm/core/result.h"
 #include "vm/core/name_table.h"
 #include "vm/reference/program_metadata.h"
 #include "vm/reference/sh9.h"
@@ -65,10 +66,10 @@ std::array<glm::vec4, 9> PackBasis(const Sh9Rgb& sh);
 Sh9Rgb RandomCoefficients(std::uint64_t seed);
 
 // Parses {"coefficients": [[r, g, b] x 9]} in the order L00, L1-1, L10, L11, L2-2, L2-1, L20, L21,
-// L22 (ShIndex order). Other members are ignored. On failure returns nullopt and sets `error`.
-std::optional<Sh9Rgb> ParseCoefficientsJson(std::string_view text, std::string& error);
-// Reads and parses a file; errors name the file.
-std::optional<Sh9Rgb> LoadCoefficientsJson(const std::filesystem::path& path, std::string& error);
+// L22 (ShIndex order). Other members are ignored. Errors (kCannotReadFile) say what is wrong.
+Result<Sh9Rgb> ParseCoefficientsJson(std::string_view text);
+// Reads and parses a file; errors (kCannotReadFile) name the file.
+Result<Sh9Rgb> LoadCoefficientsJson(const std::filesystem::path& path);
 
 // The values one output register must hold, per vertex, in double.
 struct ExpectedOutput {
@@ -103,8 +104,8 @@ struct ReferenceOptions {
 struct ReferenceInfo {
   std::string_view name;
   std::string_view summary;  // one line for --help and errors
-  // Builds the case; nullopt with `error` set when the metadata does not fit the reference.
-  std::optional<ReferenceCase> (*build)(const ProgramMetadata&, const ReferenceOptions&, std::string& error);
+  // Builds the case, or says why the metadata does not fit the reference (kMetadataValue).
+  Result<ReferenceCase> (*build)(const ProgramMetadata&, const ReferenceOptions&);
 };
 
 // Every reference, in a fixed order.

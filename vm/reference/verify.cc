@@ -164,10 +164,9 @@ VerifyReport Verify(const Program& program, const ProgramMetadata& metadata, con
   reference_options.samples = options.samples;
   reference_options.seed = options.seed;
   reference_options.constant_count = options.constant_count;
-  std::string error;
-  std::optional<ReferenceCase> rc = info->build(metadata, reference_options, error);
+  Result<ReferenceCase> rc = info->build(metadata, reference_options);
   if (!rc) {
-    report.error = fmt::format("reference '{}': {}", metadata.reference, error);
+    report.error = fmt::format("reference '{}': {}", metadata.reference, rc.message());
     return report;
   }
   report.description = rc->description;
@@ -328,9 +327,9 @@ EngineComparison VerifyEngines(const Program& program, const ProgramMetadata& me
   reference_options.samples = options.samples;
   reference_options.seed = options.seed;
   reference_options.constant_count = options.constant_count;
-  std::optional<ReferenceCase> rc = info->build(metadata, reference_options, failed.error);
+  Result<ReferenceCase> rc = info->build(metadata, reference_options);
   if (!rc) {
-    failed.error = fmt::format("reference '{}': {}", metadata.reference, failed.error);
+    failed.error = fmt::format("reference '{}': {}", metadata.reference, rc.message());
     return failed;
   }
   EngineComparison comparison = CompareEngines(program, a, b, rc->constants, rc->inputs, options.engine_options);

@@ -26,25 +26,23 @@ void SetVulkanEnvironment(glslang::TShader& shader, glslang::EShSource source, E
   shader.setEnvTarget(glslang::EShTargetSpv, glslang::EShTargetSpv_1_0);
 }
 
-// Parses `shader` and links it, alone, into `program`; where either fails, `log` says why.
-bool ParseAndLink(glslang::TShader& shader, EShMessages messages, glslang::TProgram& program, std::string& log) {
+// glslang's messages about a shader it refused.
+Diagnostic Refused(std::string log) { return Failure(DiagnosticCode::kGlCompile, std::move(log)); }
+
+// Parses `shader` and links it, alone, into `program`; where either fails, glslang's messages.
+Status ParseAndLink(glslang::TShader& shader, EShMessages messages, glslang::TProgram& program) {
   if (!shader.parse(GetDefaultResources(), kDefaultGlslVersion, false, messages)) {
-    log = std::string(shader.getInfoLog()) + shader.getInfoDebugLog();
-    return false;
+    return Refused(std::string(shader.getInfoLog()) + shader.getInfoDebugLog());
   }
   program.addShader(&shader);
-  if (!program.link(messages)) {
-    log = std::string(program.getInfoLog()) + program.getInfoDebugLog();
-    return false;
-  }
-  return true;
+  if (!program.link(messages)) return Refused(std::string(program.getInfoLog()) + program.getInfoDebugLog());
+  return {};
 }
 
 }  // namespace
 
-GlslangResult CompileWithGlslang(const std::string& glsl, Target target, Stage stage) {
+Result<std::vector<std::uint32_t>> CompileWithGlslang(const std::string& glsl, Target target, Stage stage) {
   InitializeGlslangOnce();
-  GlslangResult result;
   const EShLanguage language = stage == Stage::kCompute ? EShLangCompute : EShLangVertex;
   glslang::TShader shader(language);
   const char* text = glsl.c_str();
@@ -57,25 +55,21 @@ GlslangResult CompileWithGlslang(const std::string& glsl, Target target, Stage s
     messages = static_cast<EShMessages>(EShMsgSpvRules | EShMsgVulkanRules | EShMsgDebugInfo);
   }
   glslang::TProgram program;
-  if (!ParseAndLink(shader, messages, program, result.log)) return result;
+  if (Status linked = ParseAndLink(shader, messages, program); !linked) return linked.error();
+  std::vector<std::uint32_t> spirv;
   if (target == Target::kSpirv) {
     glslang::SpvOptions options;
     options.generateDebugInfo = true;
     options.validate = false;  // ValidateSpirv does it, with SPIRV-Tools' own messages
     spv::SpvBuildLogger logger;
-    glslang::GlslangToSpv(*program.getIntermediate(language), result.spirv, &logger, &options);
-    if (result.spirv.empty()) {
-      result.log = logger.getAllMessages();
-      return result;
-    }
+    glslang::GlslangToSpv(*program.getIntermediate(language), spirv, &logger, &options);
+    if (spirv.empty()) return Refused(logger.getAllMessages());
   }
-  result.ok = true;
-  return result;
+  return spirv;
 }
 
-GlslangResult CompileHlslWithGlslang(const std::string& hlsl, const std::string& entry_point) {
+Status CompileHlslWithGlslang(const std::string& hlsl, const std::string& entry_point) {
   InitializeGlslangOnce();
-  GlslangResult result;
   glslang::TShader shader(EShLangVertex);
   const char* text = hlsl.c_str();
   const char* name = "hlsl";
@@ -84,9 +78,7 @@ GlslangResult CompileHlslWithGlslang(const std::string& hlsl, const std::string&
   SetVulkanEnvironment(shader, glslang::EShSourceHlsl);
   const auto messages = static_cast<EShMessages>(EShMsgSpvRules | EShMsgVulkanRules | EShMsgReadHlsl);
   glslang::TProgram program;
-  if (!ParseAndLink(shader, messages, program, result.log)) return result;
-  result.ok = true;
-  return result;
+  return ParseAndLink(shader, messages, program);
 }
 
 Status ValidateSpirv(const std::vector<std::uint32_t>& words) {

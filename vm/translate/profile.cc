@@ -13,12 +13,13 @@ std::unique_ptr<Profile> MakeProfile(Target target) {
   return MakeGlsl330Profile();
 }
 
-std::optional<std::string> StageProblem(Target target, Stage stage) {
+Status StageProblem(Target target, Stage stage) {
   if (stage == Stage::kCompute && (target == Target::kGlsl330 || target == Target::kGlslEs300)) {
-    return std::string(TargetName(target)) +
-           " has no compute shaders (they need GLSL ES 3.10 or later): use glsles310, glsles320 or spirv";
+    return Failure(DiagnosticCode::kOptionValue,
+                   std::string(TargetName(target)) +
+                       " has no compute shaders (they need GLSL ES 3.10 or later): use glsles310, glsles320 or spirv");
   }
-  return std::nullopt;
+  return {};
 }
 
 Artifact TextArtifact(const std::string& glsl) {

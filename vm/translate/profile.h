@@ -6,12 +6,12 @@
 
 #include <cstdint>
 #include <memory>
-#include <optional>
 #include <string>
 #include <string_view>
 #include <vector>
 
 #include "vm/core/name_table.h"
+#include "vm/core/result.h"
 
 namespace vs11::translate {
 
@@ -30,15 +30,14 @@ inline constexpr NameTable kStageNames("stage", {
     Choice(Stage::kVertex, "vertex", "a vertex shader"),
     Choice(Stage::kCompute, "compute", "a compute shader over storage buffers; glsles310, glsles320 or spirv")});
 inline std::string_view StageName(Stage stage) { return kStageNames.Name(stage); }
-// Why `target` cannot hold a shader of `stage` (GLSL 3.30 and GLSL ES 3.00 have no compute shaders);
-// nullopt where it can.
-std::optional<std::string> StageProblem(Target target, Stage stage);
+// Why `target` cannot hold a shader of `stage` (GLSL 3.30 and GLSL ES 3.00 have no compute shaders:
+// kOptionValue, the options naming them being wrong); success where it can.
+Status StageProblem(Target target, Stage stage);
 
 // What a profile makes of the GLSL: the text itself, or a binary compiled from it.
 struct Artifact {
   std::vector<std::uint8_t> bytes;
   bool binary = false;
-  std::string error;  // set when the text could not be turned into the target (a translator bug)
 };
 
 class Profile {
@@ -59,7 +58,8 @@ class Profile {
   // Sentences for the interface comment: how outputs are matched; whether the driver may contract.
   virtual std::string_view OutputMatching() const = 0;
   virtual std::string_view Contraction() const = 0;
-  virtual Artifact Finish(const std::string& glsl, Stage stage) const = 0;
+  // The artifact, or (kGlCompile) why the text could not be turned into the target: a translator bug.
+  virtual Result<Artifact> Finish(const std::string& glsl, Stage stage) const = 0;
 };
 
 std::unique_ptr<Profile> MakeGlsl330Profile();

@@ -24,7 +24,7 @@ class Glsl330Profile final : public Profile {
            "//   dp3, dp4 and the matrices into one fused multiply-add, which rounds once instead of twice.\n"
            "//   Where that matters, use the SPIR-V target, whose operations are all precise.";
   }
-  Artifact Finish(const std::string& glsl, Stage) const override { return TextArtifact(glsl); }
+  Result<Artifact> Finish(const std::string& glsl, Stage) const override { return TextArtifact(glsl); }
 };
 
 }  // namespace

@@ -39,7 +39,7 @@ class GlslEsProfile final : public Profile {
            "//   dp3, dp4 and the matrices into one fused multiply-add, which rounds once instead of twice.\n"
            "//   Where that matters, use the glsles320 or SPIR-V target, whose outputs are precise.";
   }
-  Artifact Finish(const std::string& glsl, Stage) const override { return TextArtifact(glsl); }
+  Result<Artifact> Finish(const std::string& glsl, Stage) const override { return TextArtifact(glsl); }
 
  private:
   bool Precise() const { return target_ == Target::kGlslEs320; }

@@ -29,15 +29,16 @@ class SpirvProfile final : public Profile {
     return "every output is `precise`, which glslang carries to each operation it depends on as NoContraction:\n"
            "//   no fused multiply-add, no reordering.";
   }
-  Artifact Finish(const std::string& glsl, Stage stage) const override {
+  Result<Artifact> Finish(const std::string& glsl, Stage stage) const override {
     Artifact artifact;
     artifact.binary = true;
-    GlslangResult compiled = CompileWithGlslang(glsl, Target::kSpirv, stage);
-    if (!compiled.ok) {
-      artifact.error = "glslang rejected the translation (a vs11 bug; please report it with the program):\n" + compiled.log;
-      return artifact;
+    const Result<std::vector<std::uint32_t>> compiled = CompileWithGlslang(glsl, Target::kSpirv, stage);
+    if (!compiled) {
+      return Failure(compiled.error().code,
+                     "glslang rejected the translation (a vs11 bug; please report it with the program):\n" +
+                         compiled.message());
     }
-    for (std::uint32_t word : compiled.spirv) {
+    for (std::uint32_t word : *compiled) {
       for (int byte = 0; byte < 4; ++byte) artifact.bytes.push_back(static_cast<std::uint8_t>(word >> (8 * byte)));
     }
     return artifact;

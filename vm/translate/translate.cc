@@ -365,14 +365,10 @@ std::string TranslateToGlsl(const Program& program, const TranslateOptions& opti
   return Writer(program, shader, *profile, options).Write();
 }
 
-Artifact Translate(const Program& program, const TranslateOptions& options) {
+Result<Artifact> Translate(const Program& program, const TranslateOptions& options) {
   const Status refusal = EngineRefusal(program, "translate");
-  std::optional<std::string> problem = refusal ? StageProblem(options.target, options.stage) : refusal.message();
-  if (problem) {
-    Artifact refused;
-    refused.error = *problem;
-    return refused;
-  }
+  const Status problem = refusal ? StageProblem(options.target, options.stage) : refusal;
+  if (!problem.ok()) return problem.error();
   return MakeProfile(options.target)->Finish(TranslateToGlsl(program, options), options.stage);
 }
 

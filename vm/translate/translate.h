@@ -62,8 +62,9 @@ OutputVariable OutputVariableOf(int slot, bool exact_on_driver = false);
 // fails: every program the engines run has a translation.
 std::string TranslateToGlsl(const Program& program, const TranslateOptions& options);
 
-// The target's output: GLSL text, or SPIR-V words (little-endian bytes) compiled by glslang; an
-// Artifact with `error` for a stage the target cannot hold (StageProblem).
-Artifact Translate(const Program& program, const TranslateOptions& options);
+// The target's output: GLSL text, or SPIR-V words (little-endian bytes) compiled by glslang; or the
+// error: a program no engine of this model translates (EngineRefusal), a stage the target cannot
+// hold (StageProblem, kOptionValue), glslang refusing the translation (kGlCompile, a vs11 bug).
+Result<Artifact> Translate(const Program& program, const TranslateOptions& options);
 
 }  // namespace vs11::translate

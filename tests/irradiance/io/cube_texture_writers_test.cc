@@ -118,23 +118,25 @@ TEST_F(CubeTextureWriters, DdsHeaderHoldsMicrosoftsValuesForAnRgba16fCube) {
 TEST_F(CubeTextureWriters, DdsReadsBackThroughVs11sDdsReader) {
   const CubeMap cube = MakeTestCube(kFaceSize);
   ASSERT_EQ(WriteDdsCube(cube, Path("map.dds")).message(), "");
-  const DdsFileHeaderResult header = ReadDdsHeader(Path("map.dds"), 1 << 20);
-  ASSERT_EQ(header.outcome, DdsFileHeaderResult::Outcome::kHeader) << header.error;
-  EXPECT_TRUE(header.header.is_cube_map);
-  EXPECT_EQ(header.header.faces, 6u);
-  EXPECT_EQ(header.header.width, static_cast<std::uint64_t>(kFaceSize));
-  EXPECT_EQ(header.header.height, static_cast<std::uint64_t>(kFaceSize));
-  EXPECT_EQ(header.header.mip_count, 1u);
-  ASSERT_TRUE(header.header.format.has_value());
-  EXPECT_EQ(header.header.format->name, "R16G16B16A16_FLOAT");
-  const DdsReadResult pixels = ReadDdsPixels(Path("map.dds"), header.header);
-  ASSERT_EQ(pixels.outcome, DdsReadResult::Outcome::kRead) << pixels.error;
-  ASSERT_EQ(pixels.image.width, kFaceSize);
-  ASSERT_EQ(pixels.image.height, 6 * kFaceSize);  // the faces stacked, +x first
+  const Result<std::optional<DdsFileHeader>> read_header = ReadDdsHeader(Path("map.dds"), 1 << 20);
+  ASSERT_TRUE(read_header.ok() && read_header->has_value()) << read_header.message();
+  const DdsFileHeader& header = **read_header;
+  EXPECT_TRUE(header.is_cube_map);
+  EXPECT_EQ(header.faces, 6u);
+  EXPECT_EQ(header.width, static_cast<std::uint64_t>(kFaceSize));
+  EXPECT_EQ(header.height, static_cast<std::uint64_t>(kFaceSize));
+  EXPECT_EQ(header.mip_count, 1u);
+  ASSERT_TRUE(header.format.has_value());
+  EXPECT_EQ(header.format->name, "R16G16B16A16_FLOAT");
+  const Result<DdsPixels> pixels = ReadDdsPixels(Path("map.dds"), header);
+  ASSERT_TRUE(pixels.ok() && pixels->image.has_value()) << pixels.message();
+  const Image& image = *pixels->image;
+  ASSERT_EQ(image.width, kFaceSize);
+  ASSERT_EQ(image.height, 6 * kFaceSize);  // the faces stacked, +x first
   for (CubeFace face : kAllCubeFaces) {
     for (int y = 0; y < kFaceSize; ++y) {
       for (int x = 0; x < kFaceSize; ++x) {
-        EXPECT_EQ(pixels.image.at(x, static_cast<int>(face) * kFaceSize + y), cube.face(face).at(x, y))
+        EXPECT_EQ(image.at(x, static_cast<int>(face) * kFaceSize + y), cube.face(face).at(x, y))
             << CubeFaceName(face) << " (" << x << ", " << y << ")";
       }
     }
@@ -144,10 +146,10 @@ TEST_F(CubeTextureWriters, DdsReadsBackThroughVs11sDdsReader) {
 TEST_F(CubeTextureWriters, DdsLoadsAsTheSameCubeThroughTheEnvironmentLoader) {
   const CubeMap cube = MakeTestCube(kFaceSize);
   ASSERT_EQ(WriteMapFile(cube, MapFileFormat::kDds, 0, Path("irradiance.dds")).message(), "");
-  const LoadResult loaded = LoadEnvironment(Path("irradiance.dds"));
-  ASSERT_TRUE(loaded.ok()) << loaded.error;
-  EXPECT_TRUE(loaded.environment->warnings.empty());
-  ExpectCubesEqual(loaded.environment->cube, cube);
+  const Result<LoadedEnvironment> loaded = LoadEnvironment(Path("irradiance.dds"));
+  ASSERT_TRUE(loaded.ok()) << loaded.message();
+  EXPECT_TRUE(loaded->warnings.empty());
+  ExpectCubesEqual(loaded->cube, cube);
   EXPECT_EQ(FolderContents(), std::vector<std::string>{"irradiance.dds"});  // no temporary left
 }
 
@@ -157,10 +159,10 @@ TEST_F(CubeTextureWriters, ValuesBeyondHalfRangeAreClampedAndCounted) {
   cube.face(CubeFace::kPositiveY).at(0, 0) = glm::vec3(1e6f, -1e6f, 65504.0f);
   EXPECT_EQ(CountBeyondHalfRange(cube), 2u);
   ASSERT_EQ(WriteDdsCube(cube, Path("bright.dds")).message(), "");
-  const LoadResult loaded = LoadEnvironment(Path("bright.dds"));
-  ASSERT_TRUE(loaded.ok()) << loaded.error;
+  const Result<LoadedEnvironment> loaded = LoadEnvironment(Path("bright.dds"));
+  ASSERT_TRUE(loaded.ok()) << loaded.message();
   // The loader clamps negatives to 0 (radiance); the stored half is checked in the bytes instead.
-  EXPECT_EQ(loaded.environment->cube.face(CubeFace::kPositiveY).at(0, 0).r, kHalfMax);
+  EXPECT_EQ(loaded->cube.face(CubeFace::kPositiveY).at(0, 0).r, kHalfMax);
   const std::vector<std::uint8_t> bytes = FileBytes(Path("bright.dds"));
   const std::size_t texel = 148 + 2 * 4 * 8;  // +y is the third face of 2 x 2 texels
   EXPECT_EQ(DecodeHalf(static_cast<std::uint16_t>(bytes[texel + 2] | (bytes[texel + 3] << 8))), -kHalfMax);
@@ -323,13 +325,13 @@ TEST_F(CubeTextureWriters, HdrFacesLoadAsTheSameCubeThroughTheEnvironmentLoader)
   for (std::size_t file = 0; file < files.size(); ++file) {
     ASSERT_EQ(WriteMapFile(cube, MapFileFormat::kHdrFaces, file, Path(std::string(files[file]))).message(), "");
   }
-  const LoadResult loaded = LoadEnvironment(Path("irradiance_{face}.hdr"));
-  ASSERT_TRUE(loaded.ok()) << loaded.error;
+  const Result<LoadedEnvironment> loaded = LoadEnvironment(Path("irradiance_{face}.hdr"));
+  ASSERT_TRUE(loaded.ok()) << loaded.message();
   for (CubeFace face : kAllCubeFaces) {
     for (int y = 0; y < kFaceSize; ++y) {
       for (int x = 0; x < kFaceSize; ++x) {
         const glm::vec3 want = cube.face(face).at(x, y);
-        const glm::vec3 got = loaded.environment->cube.face(face).at(x, y);
+        const glm::vec3 got = loaded->cube.face(face).at(x, y);
         const float largest = std::max({want.r, want.g, want.b});
         for (int c = 0; c < 3; ++c) {
           EXPECT_NEAR(got[c], want[c], largest / 128.0f) << CubeFaceName(face) << " (" << x << ", " << y << ")";
@@ -347,9 +349,9 @@ TEST_F(CubeTextureWriters, HdrFacesWriteNegativeValuesAsZeroAndCountThem) {
   for (std::size_t file = 0; file < files.size(); ++file) {
     ASSERT_EQ(WriteMapFile(cube, MapFileFormat::kHdrFaces, file, Path(std::string(files[file]))).message(), "");
   }
-  const LoadResult loaded = LoadEnvironment(Path("irradiance_{face}.hdr"));
-  ASSERT_TRUE(loaded.ok()) << loaded.error;
-  const glm::vec3 texel = loaded.environment->cube.face(CubeFace::kNegativeZ).at(1, 0);
+  const Result<LoadedEnvironment> loaded = LoadEnvironment(Path("irradiance_{face}.hdr"));
+  ASSERT_TRUE(loaded.ok()) << loaded.message();
+  const glm::vec3 texel = loaded->cube.face(CubeFace::kNegativeZ).at(1, 0);
   EXPECT_EQ(texel.r, 0.0f);
   EXPECT_NEAR(texel.g, 2.0f, 2.0f / 128.0f);
   EXPECT_EQ(texel.b, 0.0f);

@@ -134,10 +134,10 @@ TEST_F(DdsReader, DdsFloatLatLongIsAPlainImageNotACube) {
   for (int i = 0; i < 32; ++i) image.pixels[i] = glm::vec3(0.5f * i, 1.0f, 2.0f);
   for (const glm::vec3& p : image.pixels) AppendRgba32(bytes, p);
   WriteBytes(Path("sky.dds"), bytes);
-  const ImageReadResult read = ReadImage(Path("sky.dds"));
-  ASSERT_TRUE(read.ok()) << read.error;
-  EXPECT_FALSE(read.is_dds_cube_map);
-  EXPECT_EQ(read.image->pixels, image.pixels);
+  const Result<ImageRead> read = ReadImage(Path("sky.dds"));
+  ASSERT_TRUE(read.ok()) << read.message();
+  EXPECT_FALSE(read->is_dds_cube_map);
+  EXPECT_EQ(read->image.pixels, image.pixels);
   EXPECT_EQ(Load(Path("sky.dds")).layout, EnvironmentLayout::kLatLong);
 }
 
@@ -442,15 +442,25 @@ TEST_F(DdsReader, EightBitDdsCutShortIsReportedAsTruncated) {
 
 TEST_F(DdsReader, ReadDdsHeaderLeavesOtherFilesAlone) {
   ASSERT_TRUE(WriteFloatImage(Path("cross.exr"), Image(8, 6, glm::vec3(1.0f))));
-  EXPECT_EQ(ReadDdsHeader(Path("cross.exr"), kMaxImagePixels).outcome,
-            DdsFileHeaderResult::Outcome::kNotDds);
+  const Result<std::optional<DdsFileHeader>> not_dds = ReadDdsHeader(Path("cross.exr"), kMaxImagePixels);
+  ASSERT_TRUE(not_dds.ok()) << not_dds.message();
+  EXPECT_FALSE(not_dds->has_value());
   WriteBytes(Path("cube.dds"),
              Dds8BitCube(4, {kAllCubeFaces.begin(), kAllCubeFaces.end()}, DdsTestBytes));
-  const DdsFileHeaderResult header = ReadDdsHeader(Path("cube.dds"), kMaxImagePixels);
-  ASSERT_EQ(header.outcome, DdsFileHeaderResult::Outcome::kHeader) << header.error;
-  const DdsReadResult pixels = ReadDdsPixels(Path("cube.dds"), header.header);
-  EXPECT_EQ(pixels.outcome, DdsReadResult::Outcome::kLeaveToOpenImageIo);
-  EXPECT_FALSE(pixels.stacked_faces.empty());
+  const Result<std::optional<DdsFileHeader>> header = ReadDdsHeader(Path("cube.dds"), kMaxImagePixels);
+  ASSERT_TRUE(header.ok() && header->has_value()) << header.message();
+  const Result<DdsPixels> pixels = ReadDdsPixels(Path("cube.dds"), **header);
+  ASSERT_TRUE(pixels.ok()) << pixels.message();
+  EXPECT_FALSE(pixels->image.has_value());  // left to OpenImageIO
+  EXPECT_FALSE(pixels->stacked_faces.empty());
+}
+
+TEST_F(DdsReader, ReadDdsHeaderSaysWhatIsWrongWithoutTheFileName) {
+  WriteBytes(Path("short.dds"), std::string("DDS ") + std::string(10, '\0'));
+  const Result<std::optional<DdsFileHeader>> header = ReadDdsHeader(Path("short.dds"), kMaxImagePixels);
+  ASSERT_FALSE(header.ok());
+  EXPECT_EQ(header.error().code, DiagnosticCode::kCannotReadFile);
+  EXPECT_EQ(header.message(), "truncated DDS file: 14 bytes, shorter than its 128-byte header");
 }
 
 // The container reader reports what a cube map holds; refusing a cube map of two faces or of
@@ -459,22 +469,22 @@ TEST_F(DdsReader, ReadDdsHeaderLeavesCubeMapRulesToTheCaller) {
   DdsFields fields = LegacyCube(4, kD3dFmtA32B32G32R32F);
   fields.caps2 = kDdsCaps2Cubemap | 0x400 | 0x800;
   WriteBytes(Path("two.dds"), DdsBytes(fields) + std::string(4096, '\0'));
-  DdsFileHeaderResult header = ReadDdsHeader(Path("two.dds"), kMaxImagePixels);
-  ASSERT_EQ(header.outcome, DdsFileHeaderResult::Outcome::kHeader) << header.error;
-  EXPECT_TRUE(header.header.is_cube_map);
-  EXPECT_EQ(header.header.faces, 2u);
-  DdsReadResult pixels = ReadDdsPixels(Path("two.dds"), header.header);
-  ASSERT_EQ(pixels.outcome, DdsReadResult::Outcome::kRead);
-  EXPECT_EQ(pixels.image.height, 2 * 4);
+  Result<std::optional<DdsFileHeader>> header = ReadDdsHeader(Path("two.dds"), kMaxImagePixels);
+  ASSERT_TRUE(header.ok() && header->has_value()) << header.message();
+  EXPECT_TRUE((*header)->is_cube_map);
+  EXPECT_EQ((*header)->faces, 2u);
+  const Result<DdsPixels> pixels = ReadDdsPixels(Path("two.dds"), **header);
+  ASSERT_TRUE(pixels.ok() && pixels->image.has_value()) << pixels.message();
+  EXPECT_EQ(pixels->image->height, 2 * 4);
 
   fields = Dx10Cube(4, kDxgiRgba16Float);
   fields.height = 2;
   WriteBytes(Path("oblong.dds"), DdsBytes(fields) + std::string(4096, '\0'));
   header = ReadDdsHeader(Path("oblong.dds"), kMaxImagePixels);
-  ASSERT_EQ(header.outcome, DdsFileHeaderResult::Outcome::kHeader) << header.error;
-  EXPECT_EQ(header.header.width, 4u);
-  EXPECT_EQ(header.header.height, 2u);
-  EXPECT_EQ(header.header.faces, 6u);
+  ASSERT_TRUE(header.ok() && header->has_value()) << header.message();
+  EXPECT_EQ((*header)->width, 4u);
+  EXPECT_EQ((*header)->height, 2u);
+  EXPECT_EQ((*header)->faces, 6u);
 }
 
 }  // namespace

@@ -7,6 +7,7 @@
 #include <cstring>
 #include <functional>
 #include <latch>
+#include <optional>
 #include <random>
 #include <string>
 #include <thread>
@@ -122,13 +123,13 @@ class ConcurrentRead : public TempFolderTest, public testing::WithParamInterface
 TEST_P(ConcurrentRead, EveryThreadGetsTheSerialReadsPixels) {
   const fs::path path = Path(GetParam().file);
   GetParam().write(path);
-  const ImageReadResult serial = ReadImage(path);
-  ASSERT_TRUE(serial.ok()) << serial.error;
-  const std::vector<glm::vec3>& expected = serial.image->pixels;
+  const Result<ImageRead> serial = ReadImage(path);
+  ASSERT_TRUE(serial.ok()) << serial.message();
+  const std::vector<glm::vec3>& expected = serial->image.pixels;
 
   int wrong = 0;
   for (int round = 0; round < kRounds; ++round) {
-    std::vector<ImageReadResult> reads(kThreads);
+    std::vector<std::optional<Result<ImageRead>>> reads(kThreads);
     std::latch start(kThreads);  // all threads read at once
     std::vector<std::thread> threads;
     for (int t = 0; t < kThreads; ++t) {
@@ -138,9 +139,9 @@ TEST_P(ConcurrentRead, EveryThreadGetsTheSerialReadsPixels) {
       });
     }
     for (std::thread& thread : threads) thread.join();
-    for (const ImageReadResult& read : reads) {
-      ASSERT_TRUE(read.ok()) << read.error;
-      const std::vector<glm::vec3>& pixels = read.image->pixels;
+    for (const std::optional<Result<ImageRead>>& read : reads) {
+      ASSERT_TRUE(read->ok()) << read->message();
+      const std::vector<glm::vec3>& pixels = (*read)->image.pixels;
       if (pixels.size() != expected.size() ||
           std::memcmp(pixels.data(), expected.data(), expected.size() * sizeof(glm::vec3)) != 0) {
         ++wrong;

@@ -55,20 +55,20 @@ std::string FromHex(std::string_view hex) {
 TEST(EnvironmentFuzzRegression, CorruptPngWithABrokenChunkIsRefused) {
   std::filesystem::path path = std::filesystem::path(::testing::TempDir()) / "vs11_fuzz_corrupt_png.img";
   std::ofstream(path, std::ios::binary) << FromHex(kCorruptPngHex);
-  LoadResult result = LoadEnvironment(path);
+  Result<LoadedEnvironment> result = LoadEnvironment(path);
   std::filesystem::remove(path);
   EXPECT_FALSE(result.ok());
-  EXPECT_NE(result.error.find(path.string()), std::string::npos) << result.error;
+  EXPECT_NE(result.message().find(path.string()), std::string::npos) << result.message();
 }
 
 TEST(EnvironmentFuzzRegression, ExrClaimingAHugeImageOfNoLayoutIsRefusedFromItsHeader) {
   std::filesystem::path path = std::filesystem::path(::testing::TempDir()) / "vs11_fuzz_huge_header.exr";
   std::ofstream(path, std::ios::binary) << FromHex(kHugeHeaderExrHex);
-  LoadResult result = LoadEnvironment(path);
+  Result<LoadedEnvironment> result = LoadEnvironment(path);
   std::filesystem::remove(path);
   EXPECT_FALSE(result.ok());
-  EXPECT_NE(result.error.find("8257538 x 12"), std::string::npos) << result.error;
-  EXPECT_NE(result.error.find("cannot detect the layout"), std::string::npos) << result.error;
+  EXPECT_NE(result.message().find("8257538 x 12"), std::string::npos) << result.message();
+  EXPECT_NE(result.message().find("cannot detect the layout"), std::string::npos) << result.message();
 }
 
 // ---- Compressed files too small for the image their header declares (CheckCompressionRatio) --------
@@ -82,12 +82,12 @@ std::filesystem::path WriteScratch(const std::string& name, const std::string& b
 }
 
 void ExpectRefusedAsTooSmall(const std::filesystem::path& path, const std::string& size) {
-  LoadResult result = LoadEnvironment(path);
+  Result<LoadedEnvironment> result = LoadEnvironment(path);
   std::filesystem::remove(path);
   EXPECT_FALSE(result.ok());
-  EXPECT_NE(result.error.find(path.string()), std::string::npos) << result.error;
-  EXPECT_NE(result.error.find("declares a " + size + " image"), std::string::npos) << result.error;
-  EXPECT_NE(result.error.find("cannot hold"), std::string::npos) << result.error;
+  EXPECT_NE(result.message().find(path.string()), std::string::npos) << result.message();
+  EXPECT_NE(result.message().find("declares a " + size + " image"), std::string::npos) << result.message();
+  EXPECT_NE(result.message().find("cannot hold"), std::string::npos) << result.message();
 }
 
 // A real 8 x 4 file written by OpenImageIO, read back as bytes.

@@ -53,10 +53,10 @@ TEST_F(EnvironmentHostile, FilesCutShortAtSeveralPointsAreReportedAsTruncated) {
                                bytes.size() - trailer - 2}) {
       const std::string short_name = "short_" + name;
       WriteBytes(Path(short_name), bytes.substr(0, length));
-      const LoadResult result = LoadEnvironment(Path(short_name));
+      const Result<LoadedEnvironment> result = LoadEnvironment(Path(short_name));
       ASSERT_FALSE(result.ok()) << name << " cut to " << length << " of " << bytes.size();
-      EXPECT_THAT(result.error, HasSubstr(short_name));
-      EXPECT_THAT(result.error, HasSubstr("truncated")) << length;
+      EXPECT_THAT(result.message(), HasSubstr(short_name));
+      EXPECT_THAT(result.message(), HasSubstr("truncated")) << length;
     }
   }
 }
@@ -109,10 +109,10 @@ TEST_F(EnvironmentHostile, HeadersClaimingHugeImagesAreRefusedBeforeAllocating) 
   };
   for (const auto& [name, bytes, problem] : files) {
     WriteBytes(Path(name), bytes);
-    const LoadResult result = LoadEnvironment(Path(name));
+    const Result<LoadedEnvironment> result = LoadEnvironment(Path(name));
     ASSERT_FALSE(result.ok()) << name;
-    EXPECT_THAT(result.error, HasSubstr(name));
-    EXPECT_THAT(result.error, HasSubstr(problem));
+    EXPECT_THAT(result.message(), HasSubstr(name));
+    EXPECT_THAT(result.message(), HasSubstr(problem));
   }
 }
 
@@ -169,10 +169,10 @@ TEST_F(EnvironmentHostile, EveryRefusalNamesTheFileAndTheProblem) {
       {"square.exr", cross, "4N x 3N"},
   };
   for (const auto& [name, options, problem] : cases) {
-    const LoadResult result = LoadEnvironment(Path(name), options);
+    const Result<LoadedEnvironment> result = LoadEnvironment(Path(name), options);
     ASSERT_FALSE(result.ok()) << name;
-    EXPECT_THAT(result.error, HasSubstr(Path(name).string()));
-    EXPECT_THAT(result.error, HasSubstr(problem));
+    EXPECT_THAT(result.message(), HasSubstr(Path(name).string()));
+    EXPECT_THAT(result.message(), HasSubstr(problem));
   }
 }
 
@@ -238,10 +238,10 @@ TEST_F(EnvironmentHostile, CorruptedBytesInEveryFormatAreLoadedOrRefusedNeverFat
       }
       const std::string damaged_name = "damaged_" + name;
       WriteBytes(Path(damaged_name), damaged);
-      const LoadResult result = LoadEnvironment(Path(damaged_name));
+      const Result<LoadedEnvironment> result = LoadEnvironment(Path(damaged_name));
       if (!result.ok()) {
         ++refused;
-        EXPECT_THAT(result.error, HasSubstr(damaged_name));
+        EXPECT_THAT(result.message(), HasSubstr(damaged_name));
       }
     }
   }

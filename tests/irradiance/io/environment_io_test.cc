@@ -470,12 +470,12 @@ TEST_F(EnvironmentIoResample, ASquareImageIsNeverGuessedAndAsksForTheLayout) {
   // plausible wrong numbers, so auto names neither.
   for (int size : {1, 16, 128}) {
     ASSERT_TRUE(WriteFloatImage(Path("cube_px.exr"), Image(size, size, glm::vec3(1.0f))));
-    const LoadResult result = LoadEnvironment(Path("cube_px.exr"), LoadOptions{});
+    const Result<LoadedEnvironment> result = LoadEnvironment(Path("cube_px.exr"), LoadOptions{});
     ASSERT_FALSE(result.ok());
-    EXPECT_TRUE(result.needs_layout);
-    EXPECT_THAT(result.error, HasSubstr(fmt::format("cube_px.exr: cannot tell the layout of a square {} x {} image",
+    EXPECT_EQ(result.error().code, DiagnosticCode::kOptionValue);
+    EXPECT_THAT(result.message(), HasSubstr(fmt::format("cube_px.exr: cannot tell the layout of a square {} x {} image",
                                                     size, size)));
-    EXPECT_THAT(result.error, HasSubstr("--layout angular"));
+    EXPECT_THAT(result.message(), HasSubstr("--layout angular"));
   }
 }
 
@@ -553,6 +553,7 @@ using EnvironmentIoErrors = TempFolderTest;
 
 TEST_F(EnvironmentIoErrors, MissingFileIsReported) {
   EXPECT_THAT(LoadError(Path("nothing.exr")), HasSubstr("not found"));
+  EXPECT_EQ(LoadFailure(Path("nothing.exr")).code, DiagnosticCode::kNoSuchInput);
 }
 
 TEST_F(EnvironmentIoErrors, EmptyFileIsReported) {
@@ -565,6 +566,7 @@ TEST_F(EnvironmentIoErrors, TruncatedExrIsReported) {
   const std::string bytes = ReadBytes(Path("full.exr"));
   WriteBytes(Path("truncated.exr"), bytes.substr(0, bytes.size() / 2));
   EXPECT_THAT(LoadError(Path("truncated.exr")), HasSubstr("truncated"));
+  EXPECT_EQ(LoadFailure(Path("truncated.exr")).code, DiagnosticCode::kCannotReadFile);
 }
 
 TEST_F(EnvironmentIoErrors, CorruptFileIsReported) {
@@ -580,7 +582,7 @@ TEST_F(EnvironmentIoErrors, UnsupportedFormatIsReported) {
 TEST_F(EnvironmentIoErrors, ZeroSizeImageIsReported) {
   WriteBytes(Path("zero.pfm"), "PF\n0 0\n-1.0\n");
   EXPECT_THAT(LoadError(Path("zero.pfm")), HasSubstr("zero-size"));
-  EXPECT_THAT(EnvironmentFromImage(Image(), EnvironmentLayout::kAuto, 8).error,
+  EXPECT_THAT(EnvironmentFromImage(Image(), EnvironmentLayout::kAuto, 8).message(),
               HasSubstr("zero-size"));
 }
 
@@ -597,6 +599,7 @@ TEST_F(EnvironmentIoErrors, CrossOfTheWrongSizeIsReported) {
   LoadOptions options;
   options.layout = EnvironmentLayout::kHorizontalCross;
   EXPECT_THAT(LoadError(Path("cross.exr"), options), HasSubstr("4N x 3N"));
+  EXPECT_EQ(LoadFailure(Path("cross.exr"), options).code, DiagnosticCode::kCannotReadFile);
   options.layout = EnvironmentLayout::kVerticalStrip;
   EXPECT_THAT(LoadError(Path("cross.exr"), options), HasSubstr("1N x 6N"));
 }
@@ -615,6 +618,7 @@ TEST_F(EnvironmentIoErrors, InvalidFaceSizeForResamplingIsReported) {
   LoadOptions options;
   options.face_size = 0;
   EXPECT_THAT(LoadError(Path("sky.exr"), options), HasSubstr("face size 0"));
+  EXPECT_EQ(LoadFailure(Path("sky.exr"), options).code, DiagnosticCode::kFaceSize);
 }
 
 TEST_F(EnvironmentIoErrors, NonSquareFaceFilesAreReported) {
@@ -644,6 +648,7 @@ TEST_F(EnvironmentIoErrors, MissingFaceFileIsReported) {
   EXPECT_THAT(error, HasSubstr("missing the -z face"));
   EXPECT_THAT(error, HasSubstr("f_nz.exr"));
   EXPECT_THAT(error, HasSubstr("f_-z.exr"));
+  EXPECT_EQ(LoadFailure(Path("f_{face}.exr")).code, DiagnosticCode::kNoSuchInput);
 }
 
 TEST_F(EnvironmentIoErrors, CorruptFaceFileIsReportedWithItsFace) {
@@ -703,15 +708,15 @@ TEST_F(EnvironmentIoWrite, PngIsEncodedToSrgbBytesWithClamping) {
   ASSERT_TRUE(input->read_image(0, 0, 0, 3, OIIO::TypeDesc::UINT8, bytes.data()));
   EXPECT_THAT(bytes, testing::ElementsAre(128, 0, 255, 0, 255, 0, 200, 7, 188));
   // And it loads back as linear.
-  EXPECT_NEAR(ReadImage(Path("out.png")).image->at(0, 0).r, kSrgb128, kSrgbDecodeError);
+  EXPECT_NEAR(ReadImage(Path("out.png"))->image.at(0, 0).r, kSrgb128, kSrgbDecodeError);
 }
 
 TEST_F(EnvironmentIoWrite, ExrKeepsFloatsExactly) {
   const Image image = CubeMapToImage(MakeTestCube(3), EnvironmentLayout::kHorizontalStrip);
   ASSERT_EQ(WriteImage(image, Path("strip.exr")).message(), "");
-  const ImageReadResult read = ReadImage(Path("strip.exr"));
-  ASSERT_TRUE(read.ok()) << read.error;
-  EXPECT_EQ(read.image->pixels, image.pixels);
+  const Result<ImageRead> read = ReadImage(Path("strip.exr"));
+  ASSERT_TRUE(read.ok()) << read.message();
+  EXPECT_EQ(read->image.pixels, image.pixels);
 }
 
 TEST_F(EnvironmentIoWrite, FailureLeavesNoFileBehind) {
@@ -755,12 +760,12 @@ TEST_F(EnvironmentIoWrite, CrossExrIsOpenExrWhateverTheExtension) {
 
 TEST_F(EnvironmentIoWrite, CrossExrUnusedCellsAreBlack) {
   ASSERT_EQ(WriteCrossExr(MakeTestCube(2), Path("cross.exr")).message(), "");
-  const ImageReadResult read = ReadImage(Path("cross.exr"));
-  ASSERT_TRUE(read.ok()) << read.error;
-  EXPECT_EQ(read.image->width, 8);
-  EXPECT_EQ(read.image->height, 6);
+  const Result<ImageRead> read = ReadImage(Path("cross.exr"));
+  ASSERT_TRUE(read.ok()) << read.message();
+  EXPECT_EQ(read->image.width, 8);
+  EXPECT_EQ(read->image.height, 6);
   for (auto [x, y] : {std::pair{0, 0}, {1, 1}, {4, 0}, {7, 1}, {0, 5}, {7, 4}}) {
-    EXPECT_EQ(read.image->at(x, y), glm::vec3(0.0f)) << x << ", " << y;
+    EXPECT_EQ(read->image.at(x, y), glm::vec3(0.0f)) << x << ", " << y;
   }
 }
 

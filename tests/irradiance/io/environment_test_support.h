@@ -250,19 +250,21 @@ class TempFolderTest : public testing::Test {
     return names;
   }
   const LoadedEnvironment& Load(const fs::path& path, LoadOptions options = {}) {
-    result_ = LoadEnvironment(path, options);
-    EXPECT_TRUE(result_.ok()) << result_.error;
-    if (!result_.ok()) result_.environment.emplace();
-    return *result_.environment;
+    Result<LoadedEnvironment> result = LoadEnvironment(path, options);
+    EXPECT_TRUE(result.ok()) << result.message();
+    environment_ = result ? std::move(*result) : LoadedEnvironment{};
+    return environment_;
   }
-  std::string LoadError(const fs::path& path, LoadOptions options = {}) {
-    const LoadResult result = LoadEnvironment(path, options);
+  // The error loading `path` (its message; its code is `LoadFailure(...).code`).
+  Diagnostic LoadFailure(const fs::path& path, LoadOptions options = {}) {
+    const Result<LoadedEnvironment> result = LoadEnvironment(path, options);
     EXPECT_FALSE(result.ok()) << "loaded " << path;
-    return result.error;
+    return result ? Diagnostic{} : result.error();
   }
+  std::string LoadError(const fs::path& path, LoadOptions options = {}) { return LoadFailure(path, options).message; }
 
   fs::path folder_;
-  LoadResult result_;
+  LoadedEnvironment environment_;
 };
 
 }  // namespace vs11::irradiance::envtest

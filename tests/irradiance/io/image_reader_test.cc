@@ -60,8 +60,8 @@ void ExpectTableReadMatchesFloatRead(const std::filesystem::path& path, OIIO::Ty
   ASSERT_TRUE(output->write_image(type, samples.data()));
   ASSERT_TRUE(output->close());
 
-  const ImageReadResult read = ReadImage(path);
-  ASSERT_TRUE(read.ok()) << read.error;
+  const Result<ImageRead> read = ReadImage(path);
+  ASSERT_TRUE(read.ok()) << read.message();
   auto input = OIIO::ImageInput::open(path.string());
   ASSERT_TRUE(input);
   ASSERT_EQ(input->spec().format, type);
@@ -69,7 +69,7 @@ void ExpectTableReadMatchesFloatRead(const std::filesystem::path& path, OIIO::Ty
   ASSERT_TRUE(input->read_image(0, 0, 0, 3, OIIO::TypeDesc::FLOAT, floats.data()));
   for (std::size_t i = 0; i < floats.size(); ++i) {
     const float expected = static_cast<float>(SrgbToLinear(floats[i]));
-    ASSERT_EQ(std::bit_cast<std::uint32_t>(read.image->pixels[i / 3][static_cast<int>(i % 3)]),
+    ASSERT_EQ(std::bit_cast<std::uint32_t>(read->image.pixels[i / 3][static_cast<int>(i % 3)]),
               std::bit_cast<std::uint32_t>(expected))
         << "sample " << i << ", code " << samples[i];
   }

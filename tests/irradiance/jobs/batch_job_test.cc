@@ -101,9 +101,9 @@ TEST_F(BatchJob, AGoodFileGetsItsCoefficientsConstantsLevelAndError) {
   EXPECT_EQ(record["face_size"], kFace);
   EXPECT_EQ(record["layout"], "hcross");
   // The same level choice and coefficients as computing them here.
-  LoadResult loaded = LoadEnvironment(sky);
+  Result<LoadedEnvironment> loaded = LoadEnvironment(sky);
   ASSERT_TRUE(loaded.ok());
-  std::optional<CubeMipChain> mips = BuildEnvironmentMips(loaded.environment->cube);
+  std::optional<CubeMipChain> mips = BuildEnvironmentMips(loaded->cube);
   std::optional<BasisPyramid> basis = BuildBasisPyramid(kFace);
   std::vector<Sh9Rgb> levels;
   for (int level = 0; level < LevelCount(kFace); ++level) levels.push_back(ProjectLevel(*mips, *basis, level));

@@ -79,18 +79,19 @@ TEST_F(IrrmapExports, DdsMapReadsBackAsTheIrradianceMap) {
   ASSERT_EQ(RunIrrmap(options_, report_).message(), "");
   EXPECT_FALSE(fs::exists(options_.out_dir / "irradiance.exr"));
   const fs::path file = options_.out_dir / "irradiance.dds";
-  const DdsFileHeaderResult header = ReadDdsHeader(file, 1 << 20);
-  ASSERT_EQ(header.outcome, DdsFileHeaderResult::Outcome::kHeader) << header.error;
-  const DdsReadResult read = ReadDdsPixels(file, header.header);
-  ASSERT_EQ(read.outcome, DdsReadResult::Outcome::kRead) << read.error;
+  const Result<std::optional<DdsFileHeader>> header = ReadDdsHeader(file, 1 << 20);
+  ASSERT_TRUE(header.ok() && header->has_value()) << header.message();
+  const Result<DdsPixels> pixels = ReadDdsPixels(file, **header);
+  ASSERT_TRUE(pixels.ok() && pixels->image.has_value()) << pixels.message();
+  const Image& image = *pixels->image;
   const CubeMap& map = report_.irradiance_map;
-  ASSERT_EQ(read.image.height, 6 * map.face_size);
+  ASSERT_EQ(image.height, 6 * map.face_size);
   int negative = 0;
   for (CubeFace face : kAllCubeFaces) {
     for (int y = 0; y < map.face_size; ++y) {
       for (int x = 0; x < map.face_size; ++x) {
         const glm::vec3 expected = map.face(face).at(x, y);
-        const glm::vec3 actual = read.image.at(x, static_cast<int>(face) * map.face_size + y);
+        const glm::vec3 actual = image.at(x, static_cast<int>(face) * map.face_size + y);
         for (int c = 0; c < 3; ++c) {
           negative += expected[c] < 0.0f ? 1 : 0;
           EXPECT_LE(std::abs(actual[c] - expected[c]), kHalfRelativeError * std::abs(expected[c]))

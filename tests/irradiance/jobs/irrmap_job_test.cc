@@ -131,9 +131,8 @@ TEST_F(IrrmapJob, WritesTheFiveFilesForASmallBuiltin) {
   EXPECT_EQ(json["face_size"], 32);
   EXPECT_EQ(json["layout"], "builtin");
   EXPECT_EQ(json["levels"].size(), 6u);
-  std::string error;
-  const std::optional<Sh9Rgb> parsed = ParseCoefficientsJson(ReadText(out / "coeffs.json"), error);
-  ASSERT_TRUE(parsed) << error;
+  const Result<Sh9Rgb> parsed = ParseCoefficientsJson(ReadText(out / "coeffs.json"));
+  ASSERT_TRUE(parsed) << parsed.message();
   const CubeMap sky = *MakeBuiltinEnvironment("sky", 32);
   const Sh9Rgb direct = ProjectDirect(sky);
   for (int i = 0; i < kSh9Coefficients; ++i) {
@@ -159,12 +158,12 @@ TEST_F(IrrmapJob, WritesTheFiveFilesForASmallBuiltin) {
   EXPECT_EQ(exr->spec().height, 3 * options_.map_size);
   EXPECT_EQ(exr->spec().format, OIIO::TypeDesc::FLOAT);
   exr->close();
-  LoadResult cross = LoadEnvironment(out / "irradiance.exr");
-  ASSERT_TRUE(cross.ok()) << cross.error;
+  Result<LoadedEnvironment> cross = LoadEnvironment(out / "irradiance.exr");
+  ASSERT_TRUE(cross.ok()) << cross.message();
   const int m = options_.map_size;
   const glm::dvec3 up = TexelDirection(CubeFace::kPositiveY, m / 2, m / 2, m);
   const glm::dvec3 expected = IrradianceEq6(report_.coefficients, up);
-  const glm::vec3 texel = cross.environment->cube.face(CubeFace::kPositiveY).at(m / 2, m / 2);
+  const glm::vec3 texel = cross->cube.face(CubeFace::kPositiveY).at(m / 2, m / 2);
   for (int c = 0; c < 3; ++c) EXPECT_NEAR(texel[c], expected[c], kProgramRelativeTolerance * glm::length(expected));
 
   // preview.png: 8-bit, with spheres drawn.
@@ -190,9 +189,8 @@ TEST_F(IrrmapJob, CoefficientsOnlyWritesTheSameCoefficientsAndNoMore) {
   EXPECT_EQ(report_.TimingMs("ground_truth"), 0.0);
   const nlohmann::json json = nlohmann::json::parse(ReadText(options_.out_dir / "coeffs.json"));
   EXPECT_FALSE(json["levels"][0].contains("mean_relative_error"));
-  std::string error;
-  const std::optional<Sh9Rgb> parsed = ParseCoefficientsJson(ReadText(options_.out_dir / "coeffs.json"), error);
-  ASSERT_TRUE(parsed) << error;
+  const Result<Sh9Rgb> parsed = ParseCoefficientsJson(ReadText(options_.out_dir / "coeffs.json"));
+  ASSERT_TRUE(parsed) << parsed.message();
   for (int i = 0; i < kSh9Coefficients; ++i) EXPECT_EQ(parsed->coefficients[i], full_run.coefficients[i]) << i;
 }
 

@@ -148,10 +148,10 @@ TEST_F(MeshLightingTest, IrrmapWritesMeshFilesAndStatistics) {
   EXPECT_GT(mesh["ms_per_evaluation"].get<double>(), 0.0);
   EXPECT_GT(mesh["max_relative_error"].get<double>(), mesh["mean_relative_error"].get<double>());
   EXPECT_LT(mesh["mean_relative_error"].get<double>(), 0.5);
-  mesh::MeshLoadResult ply = mesh::LoadMesh(out / "mesh.ply");
-  ASSERT_TRUE(ply.ok()) << ply.error;
-  EXPECT_EQ(ply.mesh->vertex_count, 11184u);
-  ASSERT_NE(ply.mesh->Find(mesh::Attribute::kColor), nullptr);
+  Result<mesh::Mesh> ply = mesh::LoadMesh(out / "mesh.ply");
+  ASSERT_TRUE(ply.ok()) << ply.message();
+  EXPECT_EQ(ply->vertex_count, 11184u);
+  ASSERT_NE(ply->Find(mesh::Attribute::kColor), nullptr);
   EXPECT_TRUE(fs::exists(out / "mesh.png"));
 }
 

@@ -88,12 +88,12 @@ TEST(LoadMeshGeometry, OnlyUnusableNormalsAreReplaced) {
   MeshGeometry geometry;
   std::vector<std::string> warnings;
   ASSERT_EQ(LoadMeshGeometry(file.string(), geometry, warnings).message(), "");
-  const mesh::MeshLoadResult plain = mesh::LoadMesh(file);
-  ASSERT_TRUE(plain.ok()) << plain.error;
-  ASSERT_EQ(geometry.normals.size(), plain.mesh->vertex_count);
+  const Result<mesh::Mesh> plain = mesh::LoadMesh(file);
+  ASSERT_TRUE(plain.ok()) << plain.message();
+  ASSERT_EQ(geometry.normals.size(), plain->vertex_count);
   int replaced = 0;
   for (std::size_t i = 0; i < geometry.normals.size(); ++i) {
-    const Vec4f& from_file = plain.mesh->normals[i];
+    const Vec4f& from_file = plain->normals[i];
     ASSERT_NEAR(glm::length(glm::dvec3(geometry.normals[i])), 1.0, kUnitTolerance) << "vertex " << i;
     if (from_file[0] == 0 && from_file[1] == 0 && from_file[2] == 0) {
       ++replaced;
@@ -110,11 +110,11 @@ TEST(LoadMeshGeometry, GoodNormalsKeepTheirBitsAndGiveNoWarning) {
   MeshGeometry geometry;
   std::vector<std::string> warnings;
   ASSERT_EQ(LoadMeshGeometry(kWusonPly, geometry, warnings).message(), "");
-  const mesh::MeshLoadResult plain = mesh::LoadMesh(kWusonPly);
-  ASSERT_TRUE(plain.ok()) << plain.error;
-  ASSERT_EQ(geometry.normals.size(), plain.mesh->vertex_count);
+  const Result<mesh::Mesh> plain = mesh::LoadMesh(kWusonPly);
+  ASSERT_TRUE(plain.ok()) << plain.message();
+  ASSERT_EQ(geometry.normals.size(), plain->vertex_count);
   for (std::size_t i = 0; i < geometry.normals.size(); ++i) {
-    ASSERT_EQ(std::memcmp(&geometry.normals[i][0], &plain.mesh->normals[i][0], 3 * sizeof(float)), 0) << "vertex " << i;
+    ASSERT_EQ(std::memcmp(&geometry.normals[i][0], &plain->normals[i][0], 3 * sizeof(float)), 0) << "vertex " << i;
   }
   EXPECT_THAT(AllWarnings(warnings), ::testing::Not(HasSubstr("computed")));
 }

@@ -326,10 +326,10 @@ Sh9Rgb ProjectLatLongFile(const Image& latlong, const std::string& file_name) {
   LoadOptions options;
   options.layout = EnvironmentLayout::kLatLong;
   options.face_size = kFaceSize;
-  const LoadResult loaded = LoadEnvironment(path, options);
+  const Result<LoadedEnvironment> loaded = LoadEnvironment(path, options);
   envtest::fs::remove(path);
-  EXPECT_TRUE(loaded.ok()) << loaded.error;
-  return loaded.ok() ? ProjectDirect(loaded.environment->cube) : Sh9Rgb{};
+  EXPECT_TRUE(loaded.ok()) << loaded.message();
+  return loaded.ok() ? ProjectDirect(loaded->cube) : Sh9Rgb{};
 }
 
 // A small bright light at the top of a lat-long image is above every engine's world.
@@ -493,11 +493,11 @@ TEST(EngineExportShaders, GlslFunctionCompilesInGlslang) {
       "void main() { irradiance = vs11Irradiance(normalize(normal)); gl_Position = vec4(normal, 1.0); }\n";
   for (auto [version, target] : {std::pair{"#version 330\n", translate::Target::kGlsl330},
                                  std::pair{"#version 300 es\n", translate::Target::kGlslEs300}}) {
-    const translate::GlslangResult result = translate::CompileWithGlslang(version + function + main_body, target);
-    EXPECT_TRUE(result.ok) << version << result.log;
+    const auto result = translate::CompileWithGlslang(version + function + main_body, target);
+    EXPECT_TRUE(result.ok()) << version << result.message();
     std::string broken = version + function + main_body;  // glslang does read it: a type error is refused
     broken.replace(broken.find("vec4 n1 = vec4(n, 1.0);"), 23, "vec4 n1 = vec3(n);     ");
-    EXPECT_FALSE(translate::CompileWithGlslang(broken, target).ok) << version;
+    EXPECT_FALSE(translate::CompileWithGlslang(broken, target).ok()) << version;
   }
 }
 
@@ -508,11 +508,11 @@ TEST(EngineExportShaders, HlslFunctionCompilesInGlslangsHlslFrontEnd) {
   const std::string entry =
       "\nfloat4 main(float3 normal : NORMAL) : SV_Position {\n"
       "  return float4(vs11Irradiance(normalize(normal)), 1.0);\n}\n";
-  const translate::GlslangResult result = translate::CompileHlslWithGlslang(function + entry, "main");
-  EXPECT_TRUE(result.ok) << result.log;
+  const Status result = translate::CompileHlslWithGlslang(function + entry, "main");
+  EXPECT_TRUE(result.ok()) << result.message();
   std::string misspelt = function + entry;
   misspelt.replace(misspelt.rfind("vs11Irradiance"), 14, "vs11Irradiancx");
-  EXPECT_FALSE(translate::CompileHlslWithGlslang(misspelt, "main").ok);
+  EXPECT_FALSE(translate::CompileHlslWithGlslang(misspelt, "main").ok());
 }
 
 TEST(EngineExportFormats, ParsesTheirNamesAndRefusesOthers) {

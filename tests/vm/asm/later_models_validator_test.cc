@@ -121,9 +121,10 @@ TEST(LaterModelEngines, EveryEngineButRefBatchAndJitRefusesALaterModelsProgram) 
       EXPECT_NE(made.message().find(model), std::string::npos) << engine.name << ": " << made.message();
       EXPECT_NE(made.message().find(std::string(engine.name)), std::string::npos) << made.message();
     }
-    const translate::Artifact artifact = translate::Translate(*result.program, {});
-    EXPECT_NE(artifact.error.find(model), std::string::npos) << artifact.error;
-    EXPECT_NE(artifact.error.find("translate"), std::string::npos) << artifact.error;
+    const Result<translate::Artifact> artifact = translate::Translate(*result.program, {});
+    EXPECT_FALSE(artifact.ok());
+    EXPECT_NE(artifact.message().find(model), std::string::npos) << artifact.message();
+    EXPECT_NE(artifact.message().find("translate"), std::string::npos) << artifact.message();
   }
   const AssembleResult vs11 = AssembleValidated("vs_1_1\ndcl_position v0\nmov oPos, v0\n");
   ASSERT_TRUE(vs11.program);

@@ -29,7 +29,7 @@ TEST_F(TranslateCommand, WritesGlslToStdoutWithItsInterface) {
   EXPECT_EQ(glsl.output.rfind("#version 300 es\n", 0), 0u) << glsl.output;
   EXPECT_LT(glsl.output.find("// vs_1_1 program"), glsl.output.find("in vec4")) << glsl.output;
   EXPECT_NE(glsl.output.find("layout(location = 1) in vec4 v1;  // dcl_normal"), std::string::npos) << glsl.output;
-  EXPECT_TRUE(translate::CompileWithGlslang(glsl.output, translate::Target::kGlslEs300).ok);
+  EXPECT_TRUE(translate::CompileWithGlslang(glsl.output, translate::Target::kGlslEs300).ok());
 }
 
 // --to and --clip parse with their name tables: an unknown name is a usage error
@@ -74,7 +74,8 @@ TEST_F(TranslateCommand, StageComputeWritesACompileableComputeShader) {
   ASSERT_EQ(glsl.status, 0) << glsl.output;
   EXPECT_EQ(glsl.output.rfind("#version 310 es\n", 0), 0u) << glsl.output;
   EXPECT_NE(glsl.output.find("vec4 v1 = vs11_input(1, vs11_vertex);  // dcl_normal"), std::string::npos) << glsl.output;
-  EXPECT_TRUE(translate::CompileWithGlslang(glsl.output, translate::Target::kGlslEs310, translate::Stage::kCompute).ok);
+  EXPECT_TRUE(
+      translate::CompileWithGlslang(glsl.output, translate::Target::kGlslEs310, translate::Stage::kCompute).ok());
   const fs::path spirv = dir_ / "p_comp.spv";
   const testing::CommandResult written = RunVs11("translate " + input + " --to spirv --stage compute -o " + spirv.string());
   ASSERT_EQ(written.status, 0) << written.output;

@@ -48,38 +48,41 @@ class FilledPipe {
 };
 
 TEST_F(InputFileTest, ReadsARegularFileWhole) {
-  const InputBytes read = ReadInputFile(Write("p.vsh", "vs.1.1\nmov oPos, v0\n"), kMaxProgramFileBytes);
-  ASSERT_TRUE(read.bytes) << read.error;
-  EXPECT_EQ(*read.bytes, "vs.1.1\nmov oPos, v0\n");
+  const Result<std::string> read = ReadInputFile(Write("p.vsh", "vs.1.1\nmov oPos, v0\n"), kMaxProgramFileBytes);
+  ASSERT_TRUE(read.ok()) << read.message();
+  EXPECT_EQ(*read, "vs.1.1\nmov oPos, v0\n");
 }
 
 TEST_F(InputFileTest, ReadsAPipeGivenByPath) {
   FilledPipe pipe("vs_1_1\n");
-  const InputBytes read = ReadInputFile(pipe.path(), kMaxProgramFileBytes);
-  ASSERT_TRUE(read.bytes) << read.error;
-  EXPECT_EQ(*read.bytes, "vs_1_1\n");
+  const Result<std::string> read = ReadInputFile(pipe.path(), kMaxProgramFileBytes);
+  ASSERT_TRUE(read.ok()) << read.message();
+  EXPECT_EQ(*read, "vs_1_1\n");
 }
 
 TEST_F(InputFileTest, AStreamLongerThanTheLimitIsAnErrorNamingTheLimit) {
   FilledPipe pipe(std::string(3 << 10, 'x'));
-  const InputBytes read = ReadInputFile(pipe.path(), 1 << 10);
-  EXPECT_FALSE(read.bytes);
-  EXPECT_NE(read.error.find("larger than the limit"), std::string::npos) << read.error;
+  const Result<std::string> read = ReadInputFile(pipe.path(), 1 << 10);
+  ASSERT_FALSE(read.ok());
+  EXPECT_EQ(read.error().code, DiagnosticCode::kCannotReadFile);
+  EXPECT_NE(read.message().find("larger than the limit"), std::string::npos) << read.message();
 }
 
 TEST_F(InputFileTest, AFileLargerThanTheLimitIsRefusedBeforeItIsRead) {
-  const InputBytes read = ReadInputFile(Write("big.csv", std::string(2 << 20, '1')), 1 << 20);
-  EXPECT_FALSE(read.bytes);
-  EXPECT_NE(read.error.find("limit of 1 MiB"), std::string::npos) << read.error;
+  const Result<std::string> read = ReadInputFile(Write("big.csv", std::string(2 << 20, '1')), 1 << 20);
+  ASSERT_FALSE(read.ok());
+  EXPECT_EQ(read.error().code, DiagnosticCode::kCannotReadFile);
+  EXPECT_NE(read.message().find("limit of 1 MiB"), std::string::npos) << read.message();
 }
 
 TEST_F(InputFileTest, DevicesFoldersAndMissingFilesAreRefusedWithTheReason) {
   const std::vector<std::pair<fs::path, std::string>> cases = {
       {"/dev/zero", "is a device"}, {"/dev/null", "is a device"}, {dir_, "is a folder"}, {dir_ / "no", "no such file"}};
   for (const auto& [path, reason] : cases) {
-    const InputBytes read = ReadInputFile(path, kMaxProgramFileBytes);
-    EXPECT_FALSE(read.bytes) << path;
-    EXPECT_NE(read.error.find(reason), std::string::npos) << path << ": " << read.error;
+    const Result<std::string> read = ReadInputFile(path, kMaxProgramFileBytes);
+    ASSERT_FALSE(read.ok()) << path;
+    EXPECT_EQ(read.error().code, DiagnosticCode::kCannotReadFile);
+    EXPECT_NE(read.message().find(reason), std::string::npos) << path << ": " << read.message();
   }
 }
 

@@ -52,11 +52,11 @@ void Dump(const std::filesystem::path& dir, const std::string& name, const Progr
         options.exact_on_driver = exact;
         options.source_name = name;
         options.constant_count = name.starts_with("random") ? 256 : kDefaultConstantCount;
-        const translate::Artifact artifact = translate::Translate(program, options);
-        ASSERT_TRUE(artifact.error.empty()) << artifact.error;
+        const Result<translate::Artifact> artifact = translate::Translate(program, options);
+        ASSERT_TRUE(artifact.ok()) << artifact.message();
         WriteFile(dir / ("translate_" + name + "_" + std::string(translate::TargetName(target)) + "_" + rule_name +
                          (exact ? "_exact" : "") + ".out"),
-                  artifact.bytes.data(), artifact.bytes.size());
+                  artifact->bytes.data(), artifact->bytes.size());
       }
     }
   }

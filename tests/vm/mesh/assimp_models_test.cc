@@ -50,7 +50,7 @@ std::size_t ToolRunStride() {
 
 TEST_P(AssimpModel, RunsOrIsRefusedClearly) {
   const std::string file = GetParam();
-  const MeshLoadResult loaded = LoadMesh(file);
+  const Result<Mesh> loaded = LoadMesh(file);
   static const std::vector<std::string> files = ModelFiles();
   const std::size_t index = static_cast<std::size_t>(std::find(files.begin(), files.end(), file) - files.begin());
   if (index % ToolRunStride() != 0) return;
@@ -62,14 +62,14 @@ TEST_P(AssimpModel, RunsOrIsRefusedClearly) {
   if (!loaded.ok()) {
     EXPECT_EQ(result.status, 1);
     EXPECT_NE(result.output.find("error: " + file), std::string::npos) << result.output;
-  } else if (loaded.mesh->normals.empty()) {
+  } else if (loaded->normals.empty()) {
     EXPECT_EQ(result.status, 1);
     EXPECT_NE(result.output.find("--compute-normals"), std::string::npos) << result.output;
   } else {
     ASSERT_EQ(result.status, 0) << result.output;
-    const NpyResult od0 = ReadNpy(out / "oD0.npy");
-    ASSERT_TRUE(od0.ok()) << od0.error;
-    EXPECT_EQ(od0.array->rows, loaded.mesh->vertex_count);
+    const Result<NpyArray> od0 = ReadNpy(out / "oD0.npy");
+    ASSERT_TRUE(od0.ok()) << od0.message();
+    EXPECT_EQ(od0->rows, loaded->vertex_count);
   }
   fs::remove_all(out);
 }

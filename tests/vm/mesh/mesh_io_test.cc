@@ -30,9 +30,9 @@ fs::path TempDir(const std::string& name) {
 TEST(LoadMesh, NodeTransformMovesPositionsAndNormalsByItsInverseTranspose) {
   const float normal[3] = {0.70710678f, 0.70710678f, 0.0f};
   fs::path file = vs11::testing::WriteGltfTriangle(TempDir("transform"), normal, "[2, 1, 1]", "[1, 2, 3]");
-  MeshLoadResult result = LoadMesh(file);
-  ASSERT_TRUE(result.ok()) << result.error;
-  const Mesh& mesh = *result.mesh;
+  Result<Mesh> result = LoadMesh(file);
+  ASSERT_TRUE(result.ok()) << result.message();
+  const Mesh& mesh = *result;
   ASSERT_EQ(mesh.vertex_count, 3u);
   EXPECT_EQ(mesh.indices, (std::vector<std::uint32_t>{0, 1, 2}));
   EXPECT_EQ(mesh.positions[1], (Vec4f{3, 2, 3, 1}));
@@ -48,29 +48,29 @@ TEST(LoadMesh, NodeTransformMovesPositionsAndNormalsByItsInverseTranspose) {
   MeshLoadOptions raw;
   raw.transform_to_world = false;
   result = LoadMesh(file, raw);
-  ASSERT_TRUE(result.ok()) << result.error;
-  EXPECT_EQ(result.mesh->positions[1], (Vec4f{1, 0, 0, 1}));
-  EXPECT_FALSE(result.mesh->parts[0].transformed);
+  ASSERT_TRUE(result.ok()) << result.message();
+  EXPECT_EQ(result->positions[1], (Vec4f{1, 0, 0, 1}));
+  EXPECT_FALSE(result->parts[0].transformed);
 }
 
 TEST(LoadMesh, MirroringTransformKeepsNormalsOutward) {
   const float normal[3] = {0, 0, 1};
   fs::path file = vs11::testing::WriteGltfTriangle(TempDir("mirror"), normal, "[1, 1, -1]", "[0, 0, 0]");
-  MeshLoadResult result = LoadMesh(file);
-  ASSERT_TRUE(result.ok()) << result.error;
-  EXPECT_EQ(result.mesh->normals[0], (Vec4f{0, 0, -1, 1}));
+  Result<Mesh> result = LoadMesh(file);
+  ASSERT_TRUE(result.ok()) << result.message();
+  EXPECT_EQ(result->normals[0], (Vec4f{0, 0, -1, 1}));
 }
 
 TEST(LoadMesh, SkinnedGltfHasBonesWeightsAndComputedNormals) {
   const fs::path file = fs::path(kAssimpModels) / "glTF2/simple_skin/simple_skin.gltf";
-  MeshLoadResult plain = LoadMesh(file);
-  ASSERT_TRUE(plain.ok()) << plain.error;
-  EXPECT_TRUE(plain.mesh->normals.empty());
+  Result<Mesh> plain = LoadMesh(file);
+  ASSERT_TRUE(plain.ok()) << plain.message();
+  EXPECT_TRUE(plain->normals.empty());
   MeshLoadOptions options;
   options.compute_normals = true;
-  MeshLoadResult result = LoadMesh(file, options);
-  ASSERT_TRUE(result.ok()) << result.error;
-  const Mesh& mesh = *result.mesh;
+  Result<Mesh> result = LoadMesh(file, options);
+  ASSERT_TRUE(result.ok()) << result.message();
+  const Mesh& mesh = *result;
   EXPECT_EQ(mesh.vertex_count, 10u);
   EXPECT_EQ(mesh.indices.size(), 24u);
   EXPECT_EQ(mesh.normals.size(), 10u);
@@ -88,9 +88,9 @@ TEST(LoadMesh, SkinnedGltfHasBonesWeightsAndComputedNormals) {
 }
 
 TEST(LoadMesh, JoinsTheMeshesOfAScene) {
-  MeshLoadResult result = LoadMesh(fs::path(kAssimpModels) / "glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb");
-  ASSERT_TRUE(result.ok()) << result.error;
-  const Mesh& mesh = *result.mesh;
+  Result<Mesh> result = LoadMesh(fs::path(kAssimpModels) / "glTF2/2CylinderEngine-glTF-Binary/2CylinderEngine.glb");
+  ASSERT_TRUE(result.ok()) << result.message();
+  const Mesh& mesh = *result;
   ASSERT_GT(mesh.parts.size(), 1u);
   std::size_t vertices = 0, indices = 0;
   for (const MeshPart& part : mesh.parts) {
@@ -108,34 +108,34 @@ TEST(LoadMesh, JoinsTheMeshesOfAScene) {
 }
 
 TEST(LoadMesh, InfinitePositionsAreCountedInAWarning) {
-  MeshLoadResult result = LoadMesh(fs::path(kAssimpModels) / "glTF2/BoxWithInfinites-glTF-Binary/BoxWithInfinites.glb");
-  ASSERT_TRUE(result.ok()) << result.error;
-  EXPECT_GT(result.mesh->nonfinite_vertex_count, 0u);
-  ASSERT_FALSE(result.mesh->warnings.empty());
-  EXPECT_NE(result.mesh->warnings[0].find("NaN or infinite"), std::string::npos) << result.mesh->warnings[0];
+  Result<Mesh> result = LoadMesh(fs::path(kAssimpModels) / "glTF2/BoxWithInfinites-glTF-Binary/BoxWithInfinites.glb");
+  ASSERT_TRUE(result.ok()) << result.message();
+  EXPECT_GT(result->nonfinite_vertex_count, 0u);
+  ASSERT_FALSE(result->warnings.empty());
+  EXPECT_NE(result->warnings[0].find("NaN or infinite"), std::string::npos) << result->warnings[0];
 }
 
 TEST(LoadMesh, IndicesOutOfRangeDropTrianglesWithAWarningOrFailWhenNoneIsLeft) {
   const fs::path dir = fs::path(kAssimpModels) / "glTF2/IndexOutOfRange";
-  MeshLoadResult some = LoadMesh(dir / "IndexOutOfRange.gltf");
-  ASSERT_TRUE(some.ok()) << some.error;
-  EXPECT_EQ(some.mesh->indices.size(), 33u);  // 12 triangles in the file, one refers past the 24 vertices
-  ASSERT_FALSE(some.mesh->warnings.empty());
-  EXPECT_NE(some.mesh->warnings[0].find("out-of-range indices"), std::string::npos) << some.mesh->warnings[0];
+  Result<Mesh> some = LoadMesh(dir / "IndexOutOfRange.gltf");
+  ASSERT_TRUE(some.ok()) << some.message();
+  EXPECT_EQ(some->indices.size(), 33u);  // 12 triangles in the file, one refers past the 24 vertices
+  ASSERT_FALSE(some->warnings.empty());
+  EXPECT_NE(some->warnings[0].find("out-of-range indices"), std::string::npos) << some->warnings[0];
   const fs::path all = dir / "AllIndicesOutOfRange.gltf";
-  MeshLoadResult none = LoadMesh(all);
+  Result<Mesh> none = LoadMesh(all);
   EXPECT_FALSE(none.ok());
-  EXPECT_NE(none.error.find(all.string()), std::string::npos) << none.error;
+  EXPECT_NE(none.message().find(all.string()), std::string::npos) << none.message();
 }
 
 TEST(LoadMesh, BadNormalsAreCountedInAWarning) {
-  MeshLoadResult result = LoadMesh(fs::path(kAssimpModels) / "glTF2/BoxBadNormals-glTF-Binary/BoxBadNormals.glb");
-  ASSERT_TRUE(result.ok()) << result.error;
-  ASSERT_EQ(result.mesh->warnings.size(), 1u);
-  EXPECT_EQ(result.mesh->warnings[0].rfind("8 normals are not of unit length (4 of them zero)", 0), 0u)
-      << result.mesh->warnings[0];
-  EXPECT_EQ(result.mesh->normals[0], (Vec4f{0, 0, 0, 1}));  // zero stays zero, never NaN
-  const Vec4f& short_normal = result.mesh->normals[4];  // (0, -0.1, 0) in the file, under a rotation
+  Result<Mesh> result = LoadMesh(fs::path(kAssimpModels) / "glTF2/BoxBadNormals-glTF-Binary/BoxBadNormals.glb");
+  ASSERT_TRUE(result.ok()) << result.message();
+  ASSERT_EQ(result->warnings.size(), 1u);
+  EXPECT_EQ(result->warnings[0].rfind("8 normals are not of unit length (4 of them zero)", 0), 0u)
+      << result->warnings[0];
+  EXPECT_EQ(result->normals[0], (Vec4f{0, 0, 0, 1}));  // zero stays zero, never NaN
+  const Vec4f& short_normal = result->normals[4];  // (0, -0.1, 0) in the file, under a rotation
   EXPECT_NEAR(std::hypot(short_normal[0], short_normal[1], short_normal[2]), 1.0, 1e-6);
 }
 
@@ -143,11 +143,11 @@ TEST(LoadMesh, BadNormalsAreCountedInAWarning) {
 TEST(LoadMesh, ComputeNormalsReplacesZeroNormalsOfTheFile) {
   MeshLoadOptions options;
   options.compute_normals = true;
-  MeshLoadResult result = LoadMesh(fs::path(kAssimpModels) / "STL/Wuson.stl", options);
-  ASSERT_TRUE(result.ok()) << result.error;
-  ASSERT_EQ(result.mesh->normals.size(), 11196u);
-  for (std::size_t i = 0; i < result.mesh->normals.size(); ++i) {
-    const Vec4f& n = result.mesh->normals[i];
+  Result<Mesh> result = LoadMesh(fs::path(kAssimpModels) / "STL/Wuson.stl", options);
+  ASSERT_TRUE(result.ok()) << result.message();
+  ASSERT_EQ(result->normals.size(), 11196u);
+  for (std::size_t i = 0; i < result->normals.size(); ++i) {
+    const Vec4f& n = result->normals[i];
     ASSERT_NEAR(std::hypot(n[0], n[1], n[2]), 1.0, 1e-6) << "vertex " << i;
   }
 }
@@ -158,21 +158,21 @@ TEST(LoadMesh, ComputeNormalsReplacesZeroNormalsOfTheFile) {
 // seed). Loaded in this process too, so that AddressSanitizer sees any read of Assimp's arrays.
 TEST(LoadMesh, ComputeNormalsKeepsThePointNormalsOfAPointCloud) {
   const fs::path file = fs::path(kAssimpModels) / "OBJ/point_cloud.obj";
-  const MeshLoadResult plain = LoadMesh(file);
-  ASSERT_TRUE(plain.ok()) << plain.error;
-  ASSERT_EQ(plain.mesh->normals.size(), 3u);
-  EXPECT_TRUE(plain.mesh->indices.empty());
+  const Result<Mesh> plain = LoadMesh(file);
+  ASSERT_TRUE(plain.ok()) << plain.message();
+  ASSERT_EQ(plain->normals.size(), 3u);
+  EXPECT_TRUE(plain->indices.empty());
   std::ifstream in(file, std::ios::binary);
   const std::vector<std::uint8_t> bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   for (const bool repair : {false, true}) {
     MeshLoadOptions options;
     options.compute_normals = true;
     options.repair_normals = repair;
-    const MeshLoadResult sandboxed = LoadMesh(file, options);
-    const MeshLoadResult in_process = internal::LoadMeshFromMemoryInProcess(bytes, "obj", options, [](internal::LoadStage) {});
-    for (const MeshLoadResult* result : {&sandboxed, &in_process}) {
-      ASSERT_TRUE(result->ok()) << result->error;
-      EXPECT_EQ(result->mesh->normals, plain.mesh->normals);  // points have no normal to compute
+    const Result<Mesh> sandboxed = LoadMesh(file, options);
+    const Result<Mesh> in_process = internal::LoadMeshFromMemoryInProcess(bytes, "obj", options, [](internal::LoadStage) {});
+    for (const Result<Mesh>* result : {&sandboxed, &in_process}) {
+      ASSERT_TRUE(result->ok()) << result->message();
+      EXPECT_EQ((*result)->normals, plain->normals);  // points have no normal to compute
     }
   }
 }
@@ -183,52 +183,54 @@ TEST(LoadMesh, ComputedNormalsFollowTheNodeTransformAsTheFilesDo) {
   const float file_normal[3] = {0, 0, 1};  // the triangle's counter-clockwise side
   const float zero[3] = {0, 0, 0};
   for (const char* scale : {"[1, 1, 1]", "[1, 1, -1]", "[2, 0.5, 3]"}) {
-    const MeshLoadResult from_file = LoadMesh(vs11::testing::WriteGltfTriangle(TempDir("file"), file_normal, scale, "[0, 0, 0]"));
+    const Result<Mesh> from_file = LoadMesh(vs11::testing::WriteGltfTriangle(TempDir("file"), file_normal, scale, "[0, 0, 0]"));
     MeshLoadOptions options;
     options.repair_normals = true;
-    const MeshLoadResult computed =
+    const Result<Mesh> computed =
         LoadMesh(vs11::testing::WriteGltfTriangle(TempDir("zero"), zero, scale, "[0, 0, 0]"), options);
-    ASSERT_TRUE(from_file.ok() && computed.ok()) << from_file.error << computed.error;
-    EXPECT_EQ(computed.mesh->normals, from_file.mesh->normals) << scale;
-    ASSERT_EQ(computed.mesh->warnings.size(), 1u);
-    EXPECT_EQ(computed.mesh->warnings[0].rfind("3 of 3 vertices have no usable normal", 0), 0u) << computed.mesh->warnings[0];
+    ASSERT_TRUE(from_file.ok() && computed.ok()) << from_file.message() << computed.message();
+    EXPECT_EQ(computed->normals, from_file->normals) << scale;
+    ASSERT_EQ(computed->warnings.size(), 1u);
+    EXPECT_EQ(computed->warnings[0].rfind("3 of 3 vertices have no usable normal", 0), 0u) << computed->warnings[0];
   }
 }
 
 TEST(LoadMesh, WrongJsonTypesAreErrors) {
   for (const char* name : {"badArray", "badNumber", "badObject", "badString", "badUint", "badExtension"}) {
     const fs::path file = fs::path(kAssimpModels) / "glTF2/wrongTypes" / (std::string(name) + ".gltf");
-    MeshLoadResult result = LoadMesh(file);
+    Result<Mesh> result = LoadMesh(file);
     EXPECT_FALSE(result.ok()) << name;
-    EXPECT_NE(result.error.find("was not of type"), std::string::npos) << result.error;
+    EXPECT_NE(result.message().find("was not of type"), std::string::npos) << result.message();
   }
 }
 
 TEST(LoadMesh, MissingEmptyAndOversizedFilesAreRefused) {
   const fs::path dir = TempDir("refused");
-  MeshLoadResult missing = LoadMesh(dir / "none.obj");
-  EXPECT_FALSE(missing.ok());
-  EXPECT_NE(missing.error.find("no such file"), std::string::npos);
+  Result<Mesh> missing = LoadMesh(dir / "none.obj");
+  ASSERT_FALSE(missing.ok());
+  EXPECT_EQ(missing.error().code, DiagnosticCode::kCannotReadFile);
+  EXPECT_EQ(missing.message(), (dir / "none.obj").string() + ": no such file");
   vs11::testing::WriteText(dir / "empty.obj", "");
-  EXPECT_NE(LoadMesh(dir / "empty.obj").error.find("empty"), std::string::npos);
+  EXPECT_EQ(LoadMesh(dir / "empty.obj").message(), (dir / "empty.obj").string() + ": the file is empty");
   // A sparse file one byte over the limit: refused from its size, never read.
   const fs::path big = dir / "big.obj";
   vs11::testing::WriteText(big, "v 0 0 0\n");
   fs::resize_file(big, kMaxMeshFileBytes + 1);
-  MeshLoadResult oversized = LoadMesh(big);
-  EXPECT_FALSE(oversized.ok());
-  EXPECT_NE(oversized.error.find("limit"), std::string::npos) << oversized.error;
+  Result<Mesh> oversized = LoadMesh(big);
+  ASSERT_FALSE(oversized.ok());
+  EXPECT_EQ(oversized.error().code, DiagnosticCode::kCannotReadFile);
+  EXPECT_NE(oversized.message().find("limit"), std::string::npos) << oversized.message();
   vs11::testing::WriteText(dir / "garbage.obj", "this is not a mesh\n");
   EXPECT_FALSE(LoadMesh(dir / "garbage.obj").ok());
 }
 
 TEST(LoadMesh, FromMemoryReadsAnObj) {
   const std::string obj = "v 0 0 0\nv 1 0 0\nv 1 1 0\nv 0 1 0\nvn 0 0 1\nf 1//1 2//1 3//1 4//1\n";
-  MeshLoadResult result = LoadMeshFromMemory(
+  Result<Mesh> result = LoadMeshFromMemory(
       {reinterpret_cast<const std::uint8_t*>(obj.data()), obj.size()}, "obj");
-  ASSERT_TRUE(result.ok()) << result.error;
-  EXPECT_EQ(result.mesh->indices.size(), 6u);  // the quad triangulated
-  EXPECT_EQ(result.mesh->normals.size(), result.mesh->vertex_count);
+  ASSERT_TRUE(result.ok()) << result.message();
+  EXPECT_EQ(result->indices.size(), 6u);  // the quad triangulated
+  EXPECT_EQ(result->normals.size(), result->vertex_count);
 }
 
 
@@ -241,11 +243,11 @@ TEST(LoadMesh, FuzzerFoundOffWithAPolygonFlagAndNoPolygonLoads) {
   std::ifstream in(file, std::ios::binary);
   const std::string bytes((std::istreambuf_iterator<char>(in)), std::istreambuf_iterator<char>());
   ASSERT_FALSE(bytes.empty());
-  MeshLoadResult result = LoadMeshFromMemory({reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size()}, "");
+  Result<Mesh> result = LoadMeshFromMemory({reinterpret_cast<const std::uint8_t*>(bytes.data()), bytes.size()}, "");
   if (result.ok()) {
-    for (std::uint32_t index : result.mesh->indices) EXPECT_LT(index, result.mesh->vertex_count);
+    for (std::uint32_t index : result->indices) EXPECT_LT(index, result->vertex_count);
   } else {
-    EXPECT_FALSE(result.error.empty());
+    EXPECT_FALSE(result.message().empty());
   }
 }
 
@@ -258,9 +260,9 @@ TEST(LoadMesh, FuzzerFoundPlyHeadersAreRefusedAtOnce) {
       {"ply_element_without_property.ply", "no PLY end_header"},
       {"ply_element_without_count.ply", "PLY header line 'element' has no element count"}};
   for (const auto& [name, reason] : cases) {
-    MeshLoadResult result = LoadMesh(std::filesystem::path(VS11_SOURCE_DIR) / "tests/fuzz/seeds/fuzz_mesh" / name);
+    Result<Mesh> result = LoadMesh(std::filesystem::path(VS11_SOURCE_DIR) / "tests/fuzz/seeds/fuzz_mesh" / name);
     EXPECT_FALSE(result.ok()) << name;
-    EXPECT_NE(result.error.find(reason), std::string::npos) << result.error;
+    EXPECT_NE(result.message().find(reason), std::string::npos) << result.message();
   }
 }
 

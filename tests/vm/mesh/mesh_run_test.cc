@@ -36,9 +36,9 @@ fs::path TempDir(const std::string& name) {
 }
 
 NpyArray ReadOutput(const fs::path& file) {
-  NpyResult result = ReadNpy(file);
-  EXPECT_TRUE(result.ok()) << result.error;
-  return result.ok() ? *result.array : NpyArray{};
+  Result<NpyArray> result = ReadNpy(file);
+  EXPECT_TRUE(result.ok()) << result.message();
+  return result.ok() ? *result : NpyArray{};
 }
 
 // Constants as --const flags: c0..c3 a view-projection, c4 the light, c5 the diffuse colour.
@@ -90,15 +90,15 @@ void ExpectSkinnedOutputs(const Mesh& mesh, const std::vector<Matrix3x4>& palett
   }
 }
 
-MeshLoadResult LoadSkin() {
+Result<Mesh> LoadSkin() {
   MeshLoadOptions options;
   options.compute_normals = true;
   return LoadMesh(kSimpleSkin, options);
 }
 
 TEST(MeshRun, SkinningAtRestPoseMatchesDoublePrecisionSkinning) {
-  MeshLoadResult loaded = LoadSkin();
-  ASSERT_TRUE(loaded.ok()) << loaded.error;
+  Result<Mesh> loaded = LoadSkin();
+  ASSERT_TRUE(loaded.ok()) << loaded.message();
   const fs::path out = TempDir("skin_rest");
   for (const char* engine : {"ref", "batch", "jit"}) {
     auto result = Vs11Run(kPrograms + "skinning.vsh --mesh " + kSimpleSkin +
@@ -106,21 +106,21 @@ TEST(MeshRun, SkinningAtRestPoseMatchesDoublePrecisionSkinning) {
                           " --engine " + engine + " --out-npy " + out.string());
     ASSERT_EQ(result.status, 0) << result.output;
     std::vector<Matrix3x4> palette;
-    for (const Bone& bone : loaded.mesh->bones) {
+    for (const Bone& bone : loaded->bones) {
       Matrix3x4 m;
       for (int r = 0; r < 3; ++r) {
         for (int c = 0; c < 4; ++c) m[r][c] = static_cast<float>(bone.skin[r][c]);
       }
       palette.push_back(m);
     }
-    ExpectSkinnedOutputs(*loaded.mesh, palette, out);
+    ExpectSkinnedOutputs(*loaded, palette, out);
   }
 }
 
 TEST(MeshRun, SkinningABentPoseMatchesDoublePrecisionSkinning) {
-  MeshLoadResult loaded = LoadSkin();
-  ASSERT_TRUE(loaded.ok()) << loaded.error;
-  ASSERT_EQ(loaded.mesh->bones.size(), 2u);
+  Result<Mesh> loaded = LoadSkin();
+  ASSERT_TRUE(loaded.ok()) << loaded.message();
+  ASSERT_EQ(loaded->bones.size(), 2u);
   // Bone 0 a small shift, bone 1 bent 40 degrees about z around the joint at (0, 1, 0).
   const double angle = 40.0 * std::acos(-1.0) / 180.0, c = std::cos(angle), s = std::sin(angle);
   std::vector<Matrix3x4> palette = {
@@ -138,7 +138,7 @@ TEST(MeshRun, SkinningABentPoseMatchesDoublePrecisionSkinning) {
   auto result = Vs11Run(kPrograms + "skinning.vsh --mesh " + kSimpleSkin + " --compute-normals --blend-index-scale 3" +
                         SkinningConstants() + flags + " --out-npy " + out.string());
   ASSERT_EQ(result.status, 0) << result.output;
-  ExpectSkinnedOutputs(*loaded.mesh, palette, out);
+  ExpectSkinnedOutputs(*loaded, palette, out);
 }
 
 TEST(MeshRun, MissingAttributeNamesTheDeclarationTheMeshAndAHint) {
@@ -161,15 +161,15 @@ TEST(MeshRun, Dx8ProgramTakesAnExplicitBinding) {
   auto result = Vs11Run((dir / "dx8.vsh").string() + " --mesh " + kBox +
                         " --bind v0=position,v3=normal --bind v7=texcoord0 --out-npy " + (dir / "out").string());
   ASSERT_EQ(result.status, 0) << result.output;
-  MeshLoadResult mesh = LoadMesh(kBox);
+  Result<Mesh> mesh = LoadMesh(kBox);
   ASSERT_TRUE(mesh.ok());
   const NpyArray pos = ReadOutput(dir / "out/oPos.npy"), d0 = ReadOutput(dir / "out/oD0.npy"), t0 = ReadOutput(dir / "out/oT0.npy");
-  ASSERT_EQ(pos.rows, mesh.mesh->vertex_count);
+  ASSERT_EQ(pos.rows, mesh->vertex_count);
   for (std::size_t v = 0; v < pos.rows; ++v) {
     for (int c = 0; c < 4; ++c) {
-      EXPECT_EQ(pos.values[4 * v + c], mesh.mesh->positions[v][c]);
-      EXPECT_EQ(d0.values[4 * v + c], mesh.mesh->normals[v][c]);
-      EXPECT_EQ(t0.values[4 * v + c], mesh.mesh->texcoords[0][v][c]);
+      EXPECT_EQ(pos.values[4 * v + c], mesh->positions[v][c]);
+      EXPECT_EQ(d0.values[4 * v + c], mesh->normals[v][c]);
+      EXPECT_EQ(t0.values[4 * v + c], mesh->texcoords[0][v][c]);
     }
   }
 }
@@ -277,22 +277,22 @@ TEST(MeshRun, OutMeshGlbCarriesOutputsAndKeepsInputPositions) {
   auto result = Vs11Run((dir / "uv.vsh").string() + " --mesh " + kBox + " --out-mesh " + (dir / "out.glb").string() +
                         " --out-npy " + (dir / "npy").string());
   ASSERT_EQ(result.status, 0) << result.output;
-  MeshLoadResult input = LoadMesh(kBox);
+  Result<Mesh> input = LoadMesh(kBox);
   MeshLoadOptions raw;
   raw.transform_to_world = false;
-  MeshLoadResult output = LoadMesh(dir / "out.glb", raw);
-  ASSERT_TRUE(input.ok() && output.ok()) << output.error;
+  Result<Mesh> output = LoadMesh(dir / "out.glb", raw);
+  ASSERT_TRUE(input.ok() && output.ok()) << output.message();
   const NpyArray d0 = ReadOutput(dir / "npy/oD0.npy"), t1 = ReadOutput(dir / "npy/oT1.npy");
-  ASSERT_EQ(output.mesh->vertex_count, input.mesh->vertex_count);
-  EXPECT_EQ(output.mesh->indices, input.mesh->indices);
-  ASSERT_FALSE(output.mesh->colors[0].empty());
-  ASSERT_FALSE(output.mesh->texcoords[0].empty());
-  for (std::size_t v = 0; v < output.mesh->vertex_count; ++v) {
-    for (int c = 0; c < 3; ++c) EXPECT_EQ(output.mesh->positions[v][c], input.mesh->positions[v][c]);
-    for (int c = 0; c < 4; ++c) EXPECT_EQ(output.mesh->colors[0][v][c], d0.values[4 * v + c]);
+  ASSERT_EQ(output->vertex_count, input->vertex_count);
+  EXPECT_EQ(output->indices, input->indices);
+  ASSERT_FALSE(output->colors[0].empty());
+  ASSERT_FALSE(output->texcoords[0].empty());
+  for (std::size_t v = 0; v < output->vertex_count; ++v) {
+    for (int c = 0; c < 3; ++c) EXPECT_EQ(output->positions[v][c], input->positions[v][c]);
+    for (int c = 0; c < 4; ++c) EXPECT_EQ(output->colors[0][v][c], d0.values[4 * v + c]);
     // glTF flips v (Assimp reads v' = 1 - v and writes it back); both ways are exact for these values.
-    EXPECT_EQ(output.mesh->texcoords[0][v][0], t1.values[4 * v]);
-    EXPECT_FLOAT_EQ(output.mesh->texcoords[0][v][1], t1.values[4 * v + 1]);
+    EXPECT_EQ(output->texcoords[0][v][0], t1.values[4 * v]);
+    EXPECT_FLOAT_EQ(output->texcoords[0][v][1], t1.values[4 * v + 1]);
   }
   const std::optional<std::string> bytes = ReadWholeFile(dir / "out.glb");
   ASSERT_TRUE(bytes);
@@ -316,14 +316,14 @@ TEST(MeshRun, OutMeshPlyCarriesClampedColoursAndSaysSo) {
   EXPECT_NE(bytes->find("comment vs11: PLY colours: clamped to [0, 1], 8-bit"), std::string::npos);
   MeshLoadOptions raw;
   raw.transform_to_world = false;
-  MeshLoadResult output = LoadMesh(dir / "lit.ply", raw);
-  ASSERT_TRUE(output.ok()) << output.error;
+  Result<Mesh> output = LoadMesh(dir / "lit.ply", raw);
+  ASSERT_TRUE(output.ok()) << output.message();
   const NpyArray d0 = ReadOutput(dir / "npy/oD0.npy");
-  ASSERT_EQ(output.mesh->vertex_count, d0.rows);
-  ASSERT_FALSE(output.mesh->colors[0].empty());
+  ASSERT_EQ(output->vertex_count, d0.rows);
+  ASSERT_FALSE(output->colors[0].empty());
   for (std::size_t v = 0; v < d0.rows; ++v) {
     for (int c = 0; c < 4; ++c) {
-      EXPECT_NEAR(output.mesh->colors[0][v][c], std::clamp(d0.values[4 * v + c], 0.0f, 1.0f), 1.0 / 255) << v;
+      EXPECT_NEAR(output->colors[0][v][c], std::clamp(d0.values[4 * v + c], 0.0f, 1.0f), 1.0 / 255) << v;
     }
   }
 }

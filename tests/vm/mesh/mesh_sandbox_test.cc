@@ -48,14 +48,14 @@ double SecondsSince(Clock::time_point start) { return std::chrono::duration<doub
 TEST(MeshSandbox, FilesThatMadeAssimpAllocateTensOfGigabytesGiveAnError) {
   for (const char* name : {"3ds_allocates_45gb.3ds", "3ds_allocates_46gb.3ds", "x_text_allocates_26gb.x"}) {
     const fs::path file = kFound / name;
-    MeshLoadResult result = LoadMesh(file);
-    EXPECT_FALSE(result.ok()) << name;
-    EXPECT_FALSE(result.converter_crashed) << result.error;
-    const bool out_of_memory = result.error == file.string() + ": Assimp ran out of memory reading it "
+    Result<Mesh> result = LoadMesh(file);
+    ASSERT_FALSE(result.ok()) << name;
+    EXPECT_NE(result.error().code, DiagnosticCode::kMeshConverterCrashed) << result.message();
+    const bool out_of_memory = result.message() == file.string() + ": Assimp ran out of memory reading it "
                                                "(std::bad_alloc): the file is corrupt, or needs more than the "
                                                "loader's memory limit";
-    const bool crashed = result.error.starts_with("Assimp crashed reading " + file.string() + " (SIG");
-    EXPECT_TRUE(out_of_memory || crashed) << result.error;
+    const bool crashed = result.message().starts_with("Assimp crashed reading " + file.string() + " (SIG");
+    EXPECT_TRUE(out_of_memory || crashed) << result.message();
   }
 }
 
@@ -68,10 +68,10 @@ TEST(MeshSandbox, FilesThatHangAssimpStopAtTheTimeLimit) {
     MeshLoadOptions options;
     options.timeout_seconds = 1.5;
     const auto start = Clock::now();
-    MeshLoadResult result = LoadMesh(file, options);
+    Result<Mesh> result = LoadMesh(file, options);
     EXPECT_FALSE(result.ok());
-    EXPECT_NE(result.error.find("reading " + file.string() + " did not finish within 1.5 s (in Assimp's reader"),
-              std::string::npos) << result.error;
+    EXPECT_NE(result.message().find("reading " + file.string() + " did not finish within 1.5 s (in Assimp's reader"),
+              std::string::npos) << result.message();
     EXPECT_LT(SecondsSince(start), 30.0);
   }
 }
@@ -101,24 +101,24 @@ TEST(MeshSandbox, IrrmapExitsWithCode1AndTheTimeoutError) {
   fs::remove_all(out);
 }
 
-MeshLoadResult RaiseIn(LoadStage stage, int signal) {
-  return internal::RunSandboxed("test.obj", 100, {}, [&](const internal::StageReporter& report) {
+Result<Mesh> RaiseIn(LoadStage stage, int signal) {
+  return internal::RunSandboxed("test.obj", 100, {}, [&](const internal::StageReporter& report) -> Result<Mesh> {
     report(stage);
     raise(signal);
-    return MeshLoadResult{std::nullopt, "not reached"};
+    return Failure(DiagnosticCode::kCannotReadFile, "not reached");
   });
 }
 
 TEST(MeshSandbox, SignalDeathNamesTheFileAndTheSignal) {
-  MeshLoadResult result = RaiseIn(LoadStage::kAssimp, SIGSEGV);
-  EXPECT_EQ(result.error, "Assimp crashed reading test.obj (SIGSEGV); the file is corrupt or unsupported");
-  EXPECT_FALSE(result.converter_crashed);
+  Result<Mesh> result = RaiseIn(LoadStage::kAssimp, SIGSEGV);
+  EXPECT_EQ(result.message(), "Assimp crashed reading test.obj (SIGSEGV); the file is corrupt or unsupported");
+  EXPECT_EQ(result.error().code, DiagnosticCode::kCannotReadFile);
   result = RaiseIn(LoadStage::kAssimp, SIGBUS);
-  EXPECT_NE(result.error.find("(SIGBUS)"), std::string::npos) << result.error;
+  EXPECT_NE(result.message().find("(SIGBUS)"), std::string::npos) << result.message();
   // A death in vs11's own code is vs11's bug, and says so.
   result = RaiseIn(LoadStage::kVs11, SIGSEGV);
-  EXPECT_TRUE(result.converter_crashed);
-  EXPECT_NE(result.error.find("vs11 crashed converting test.obj"), std::string::npos) << result.error;
+  EXPECT_EQ(result.error().code, DiagnosticCode::kMeshConverterCrashed);
+  EXPECT_NE(result.message().find("vs11 crashed converting test.obj"), std::string::npos) << result.message();
 }
 
 #if defined(__has_feature)
@@ -132,36 +132,40 @@ fs::path DeathCallbackMarker() { return fs::path(::testing::TempDir()) / "mesh_s
 TEST(MeshSandbox, ChildDiesWithoutTheParentsSanitizerDeathCallback) {
   fs::remove(DeathCallbackMarker());
   __sanitizer_set_death_callback([] { std::ofstream(DeathCallbackMarker()) << "the child ran it\n"; });
-  const MeshLoadResult result = internal::RunSandboxed("test.obj", 100, {}, [](const internal::StageReporter& report) {
+  const Result<Mesh> result =
+      internal::RunSandboxed("test.obj", 100, {}, [](const internal::StageReporter& report) -> Result<Mesh> {
     report(LoadStage::kAssimp);
     volatile std::size_t beyond_asan = std::size_t{1} << 50;
     void* volatile memory = std::malloc(beyond_asan);
     std::free(memory);
-    return MeshLoadResult{std::nullopt, "not reached: ASan refuses the allocation"};
+    return Failure(DiagnosticCode::kCannotReadFile, "not reached: ASan refuses the allocation");
   });
   __sanitizer_set_death_callback(nullptr);
-  EXPECT_NE(result.error.find("Assimp crashed reading test.obj"), std::string::npos) << result.error;
+  EXPECT_NE(result.message().find("Assimp crashed reading test.obj"), std::string::npos) << result.message();
   EXPECT_FALSE(fs::exists(DeathCallbackMarker()));
 }
 #endif
 #endif
 
 TEST(MeshSandbox, ChildErrorsAndExceptionsComeBackNamingTheFile) {
-  MeshLoadResult result = internal::RunSandboxed("a.obj", 10, {}, [](const internal::StageReporter&) {
-    return MeshLoadResult{std::nullopt, "no vertices"};
+  Result<Mesh> result = internal::RunSandboxed("a.obj", 10, {}, [](const internal::StageReporter&) -> Result<Mesh> {
+    return Failure(DiagnosticCode::kCannotReadFile, "no vertices");
   });
-  EXPECT_EQ(result.error, "a.obj: no vertices");
-  result = internal::RunSandboxed("a.obj", 10, {}, [](const internal::StageReporter&) -> MeshLoadResult {
+  EXPECT_EQ(result.message(), "a.obj: no vertices");
+  EXPECT_EQ(result.error().code, DiagnosticCode::kCannotReadFile);
+  result = internal::RunSandboxed("a.obj", 10, {}, [](const internal::StageReporter&) -> Result<Mesh> {
     throw std::bad_alloc();
   });
-  EXPECT_NE(result.error.find("a.obj: out of memory"), std::string::npos) << result.error;
+  EXPECT_NE(result.message().find("a.obj: out of memory"), std::string::npos) << result.message();
+  // The code crosses the pipe with the message.
+  EXPECT_EQ(result.error().code, DiagnosticCode::kOutOfMemory);
 }
 
 // 1 Mi vertices with normals (~36 MB through the pipe, far more than its buffer): the parent reads
 // while the child writes, and gets every value back.
 TEST(MeshSandbox, LargeMeshCrossesThePipeIntact) {
   constexpr std::size_t kVertices = std::size_t{1} << 20;
-  MeshLoadResult result = internal::RunSandboxed("big", 10, {}, [](const internal::StageReporter& report) {
+  Result<Mesh> result = internal::RunSandboxed("big", 10, {}, [](const internal::StageReporter& report) {
     report(LoadStage::kVs11);
     Mesh mesh;
     mesh.vertex_count = kVertices;
@@ -172,20 +176,20 @@ TEST(MeshSandbox, LargeMeshCrossesThePipeIntact) {
     }
     for (std::uint32_t i = 0; i + 2 < kVertices; i += 3) mesh.indices.insert(mesh.indices.end(), {i, i + 1, i + 2});
     mesh.parts.push_back({"m", "n", IdentityMatrix(), true, false, 0, kVertices, 0, mesh.indices.size()});
-    return MeshLoadResult{std::move(mesh), ""};
+    return mesh;
   });
-  ASSERT_TRUE(result.ok()) << result.error;
-  ASSERT_EQ(result.mesh->vertex_count, kVertices);
-  ASSERT_EQ(result.mesh->positions.size(), kVertices);
-  EXPECT_EQ(result.mesh->positions[kVertices - 1][1], -static_cast<float>(kVertices - 1));
-  EXPECT_EQ(result.mesh->indices.back(), kVertices - 2);
-  EXPECT_TRUE(result.mesh->tangents.empty());
+  ASSERT_TRUE(result.ok()) << result.message();
+  ASSERT_EQ(result->vertex_count, kVertices);
+  ASSERT_EQ(result->positions.size(), kVertices);
+  EXPECT_EQ(result->positions[kVertices - 1][1], -static_cast<float>(kVertices - 1));
+  EXPECT_EQ(result->indices.back(), kVertices - 2);
+  EXPECT_TRUE(result->tangents.empty());
 }
 
 Mesh LoadWuson() {
-  MeshLoadResult result = LoadMesh(kWuson);
-  EXPECT_TRUE(result.ok()) << result.error;
-  return result.ok() ? *result.mesh : Mesh{};
+  Result<Mesh> result = LoadMesh(kWuson);
+  EXPECT_TRUE(result.ok()) << result.message();
+  return result.ok() ? *result : Mesh{};
 }
 
 std::span<const std::uint8_t> Bytes(const std::string& text) {
@@ -228,14 +232,30 @@ TEST(MeshWire, DamagedBytesAreRefused) {
 }
 
 TEST(MeshWire, ChildReplyNeedsAWholeRecord) {
-  const std::string record = EncodeReplyRecord({LoadWuson(), ""});
+  const std::string record = EncodeReplyRecord(LoadWuson());
   ChildReply reply = DecodeChildReply(Bytes("AVA" + record.substr(0, 20)));
   EXPECT_FALSE(reply.complete);
   EXPECT_EQ(reply.last_stage, 'A');
   reply = DecodeChildReply(Bytes("AV" + record));
-  EXPECT_TRUE(reply.complete && reply.result.ok()) << reply.result.error;
+  EXPECT_TRUE(reply.complete && reply.result.ok()) << reply.result.message();
   reply = DecodeChildReply(Bytes("AVQ" + record));
   EXPECT_TRUE(reply.malformed);
+  EXPECT_EQ(reply.result.error().code, DiagnosticCode::kMeshWire);
+}
+
+TEST(MeshWire, AnErrorRecordKeepsItsCodeAndMessage) {
+  const std::string record = EncodeReplyRecord(Failure(DiagnosticCode::kOutOfMemory, "out of memory"));
+  ChildReply reply = DecodeChildReply(Bytes("A" + record));
+  ASSERT_TRUE(reply.complete && !reply.malformed) << reply.result.message();
+  EXPECT_EQ(reply.result.error().code, DiagnosticCode::kOutOfMemory);
+  EXPECT_EQ(reply.result.message(), "out of memory");
+  // A code no DiagnosticCode has is refused.
+  std::string unknown = record;
+  const std::uint32_t code = 100000;
+  std::memcpy(unknown.data() + 9, &code, sizeof code);
+  reply = DecodeChildReply(Bytes(unknown));
+  EXPECT_TRUE(reply.malformed);
+  EXPECT_NE(reply.result.message().find("an unknown error code 100000"), std::string::npos) << reply.result.message();
 }
 
 }  // namespace

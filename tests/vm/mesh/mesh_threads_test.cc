@@ -34,9 +34,9 @@ bool SameBits(const std::vector<Vec4f>& a, const std::vector<Vec4f>& b) {
   return a.size() == b.size() && (a.empty() || std::memcmp(a.data(), b.data(), a.size() * sizeof(Vec4f)) == 0);
 }
 
-void ExpectSameMesh(const MeshLoadResult& loaded, const Mesh& alone, const std::string& context) {
-  ASSERT_TRUE(loaded.ok()) << context << ": " << loaded.error;
-  const Mesh& mesh = *loaded.mesh;
+void ExpectSameMesh(const Result<Mesh>& loaded, const Mesh& alone, const std::string& context) {
+  ASSERT_TRUE(loaded.ok()) << context << ": " << loaded.message();
+  const Mesh& mesh = *loaded;
   EXPECT_EQ(mesh.vertex_count, alone.vertex_count) << context;
   EXPECT_TRUE(SameBits(mesh.positions, alone.positions)) << context;
   EXPECT_TRUE(SameBits(mesh.normals, alone.normals)) << context;
@@ -73,28 +73,28 @@ std::vector<float> LightBox(const Mesh& box, const Program& program, std::string
 }
 
 TEST(MeshConcurrent, LoadsFromSeveralThreadsBesideEngineRunsMatchOneThread) {
-  const MeshLoadResult box = LoadMesh(kBox);
-  const MeshLoadResult skin = LoadMesh(kSkin);
-  ASSERT_TRUE(box.ok()) << box.error;
-  ASSERT_TRUE(skin.ok()) << skin.error;
+  const Result<Mesh> box = LoadMesh(kBox);
+  const Result<Mesh> skin = LoadMesh(kSkin);
+  ASSERT_TRUE(box.ok()) << box.message();
+  ASSERT_TRUE(skin.ok()) << skin.message();
   const std::optional<std::string> glb_bytes = ReadWholeFile(kBox);
   ASSERT_TRUE(glb_bytes);
   const std::vector<std::uint8_t> glb(glb_bytes->begin(), glb_bytes->end());
   LoadedProgram light = LoadProgram(fs::path(VS11_SOURCE_DIR) / "programs/directional_light.vsh");
   ASSERT_TRUE(light.program) << light.diagnostics.ToString();
-  const std::vector<float> lit = LightBox(*box.mesh, *light.program, "jit");
+  const std::vector<float> lit = LightBox(*box, *light.program, "jit");
 
   // Threads 0-2 load (files, and bytes), threads 3-4 run engines on the mesh loaded above.
   constexpr int kRounds = 3;
   RunOnThreads(5, [&](int t) {
     for (int round = 0; round < kRounds; ++round) {
       const std::string context = "thread " + std::to_string(t) + " round " + std::to_string(round);
-      if (t == 0) ExpectSameMesh(LoadMesh(kBox), *box.mesh, "box, " + context);
-      if (t == 1) ExpectSameMesh(LoadMesh(kSkin), *skin.mesh, "skin, " + context);
-      if (t == 2) ExpectSameMesh(LoadMeshFromMemory(glb, "glb"), *box.mesh, "box bytes, " + context);
+      if (t == 0) ExpectSameMesh(LoadMesh(kBox), *box, "box, " + context);
+      if (t == 1) ExpectSameMesh(LoadMesh(kSkin), *skin, "skin, " + context);
+      if (t == 2) ExpectSameMesh(LoadMeshFromMemory(glb, "glb"), *box, "box bytes, " + context);
       if (t >= 3) {
         const std::string kind = t == 3 ? "jit" : "batch";
-        EXPECT_EQ(LightBox(*box.mesh, *light.program, kind), lit) << kind << ", " << context;
+        EXPECT_EQ(LightBox(*box, *light.program, kind), lit) << kind << ", " << context;
       }
     }
   });

@@ -33,29 +33,29 @@ TEST(Npy, FormatThenParseIsExactForEveryFloat) {
                   std::numeric_limits<float>::quiet_NaN(), 5.0f, 6.0f};
   std::vector<std::uint8_t> bytes = FormatNpy(array);
   ASSERT_EQ(bytes.size() % 64, (array.values.size() * 4) % 64);  // header padded to 64 bytes
-  NpyResult parsed = ParseNpy(bytes, "a.npy");
-  ASSERT_TRUE(parsed.ok()) << parsed.error;
-  EXPECT_EQ(parsed.array->rows, 5u);
-  EXPECT_EQ(parsed.array->columns, 3);
-  ASSERT_EQ(parsed.array->values.size(), array.values.size());
-  EXPECT_EQ(std::memcmp(parsed.array->values.data(), array.values.data(), array.values.size() * 4), 0);
-  EXPECT_EQ(parsed.array->Row(1), (Vec4f{std::numeric_limits<float>::denorm_min(), std::numeric_limits<float>::max(),
+  Result<NpyArray> parsed = ParseNpy(bytes, "a.npy");
+  ASSERT_TRUE(parsed.ok()) << parsed.message();
+  EXPECT_EQ(parsed->rows, 5u);
+  EXPECT_EQ(parsed->columns, 3);
+  ASSERT_EQ(parsed->values.size(), array.values.size());
+  EXPECT_EQ(std::memcmp(parsed->values.data(), array.values.data(), array.values.size() * 4), 0);
+  EXPECT_EQ(parsed->Row(1), (Vec4f{std::numeric_limits<float>::denorm_min(), std::numeric_limits<float>::max(),
                                          -1e-30f, 1.0f}));  // the fourth component from (0, 0, 0, 1)
 }
 
 TEST(Npy, ReadsVectorsFortranOrderAndLaterVersions) {
   std::vector<std::uint8_t> vector = NpyWithHeader("{'descr': '<f4', 'fortran_order': False, 'shape': (2,), }", 8);
-  NpyResult one = ParseNpy(vector, "v.npy");
-  ASSERT_TRUE(one.ok()) << one.error;
-  EXPECT_EQ(one.array->columns, 1);
-  EXPECT_EQ(one.array->Row(0), (Vec4f{0, 0, 0, 1}));
+  Result<NpyArray> one = ParseNpy(vector, "v.npy");
+  ASSERT_TRUE(one.ok()) << one.message();
+  EXPECT_EQ(one->columns, 1);
+  EXPECT_EQ(one->Row(0), (Vec4f{0, 0, 0, 1}));
 
   std::vector<std::uint8_t> fortran = NpyWithHeader("{'shape': (2, 2), 'fortran_order': True, 'descr': '<f4'}", 16, 2);
   const float column_major[4] = {1, 2, 3, 4};  // columns (1, 2) and (3, 4)
   std::memcpy(fortran.data() + fortran.size() - 16, column_major, 16);
-  NpyResult f = ParseNpy(fortran, "f.npy");
-  ASSERT_TRUE(f.ok()) << f.error;
-  EXPECT_EQ(f.array->values, (std::vector<float>{1, 3, 2, 4}));
+  Result<NpyArray> f = ParseNpy(fortran, "f.npy");
+  ASSERT_TRUE(f.ok()) << f.message();
+  EXPECT_EQ(f->values, (std::vector<float>{1, 3, 2, 4}));
 }
 
 TEST(Npy, RefusesAnythingButFloat32RowsOfOneToFour) {
@@ -84,10 +84,11 @@ TEST(Npy, RefusesAnythingButFloat32RowsOfOneToFour) {
       {NpyWithHeader("{'descr': '<f4', 'fortran_order': False, 'shape': (2, 3), }", 24, 4), "version 4"},
   };
   for (const auto& c : cases) {
-    NpyResult result = ParseNpy(c.bytes, "bad.npy");
-    EXPECT_FALSE(result.ok()) << c.message;
-    EXPECT_NE(result.error.find(c.message), std::string::npos) << result.error;
-    EXPECT_EQ(result.error.rfind("bad.npy: ", 0), 0u) << result.error;
+    Result<NpyArray> result = ParseNpy(c.bytes, "bad.npy");
+    ASSERT_FALSE(result.ok()) << c.message;
+    EXPECT_EQ(result.error().code, DiagnosticCode::kCannotReadFile) << c.message;
+    EXPECT_NE(result.message().find(c.message), std::string::npos) << result.message();
+    EXPECT_EQ(result.message().rfind("bad.npy: ", 0), 0u) << result.message();
   }
   std::vector<std::uint8_t> truncated = NpyWithHeader("{'descr': '<f4', 'fortran_order': False, 'shape': (2, 3), }", 24);
   for (std::size_t size = 0; size < 20; ++size) {

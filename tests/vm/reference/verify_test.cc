@@ -130,12 +130,10 @@ TEST(VerifyMetadata, RepeatedKeyWarnsAndTheLastWins) {
 // ---- coefficients ---------------------------------------------------------------------------------
 
 TEST(VerifyCoefficients, ParsesNineRgbRowsInShIndexOrder) {
-  std::string error;
-  std::optional<Sh9Rgb> sh = ParseCoefficientsJson(
+  Result<Sh9Rgb> sh = ParseCoefficientsJson(
       R"({"name": "test", "coefficients": [[1,2,3],[4,5,6],[7,8,9],[10,11,12],[13,14,15],
-          [16,17,18],[19,20,21],[22,23,24],[25,26,-27.5]]})",
-      error);
-  ASSERT_TRUE(sh) << error;
+          [16,17,18],[19,20,21],[22,23,24],[25,26,-27.5]]})");
+  ASSERT_TRUE(sh) << sh.message();
   EXPECT_EQ(sh->at(0, 0), glm::dvec3(1, 2, 3));
   EXPECT_EQ(sh->at(1, -1), glm::dvec3(4, 5, 6));
   EXPECT_EQ(sh->at(2, 0), glm::dvec3(19, 20, 21));
@@ -154,19 +152,19 @@ TEST(VerifyCoefficients, RejectsMalformedJsonWithAReason) {
        "row 1, channel 1"},
   }};
   for (const auto& [text, reason] : cases) {
-    std::string error;
-    EXPECT_FALSE(ParseCoefficientsJson(text, error)) << text;
-    EXPECT_NE(error.find(reason), std::string::npos) << text << " -> " << error;
+    const Result<Sh9Rgb> parsed = ParseCoefficientsJson(text);
+    ASSERT_FALSE(parsed) << text;
+    EXPECT_EQ(parsed.error().code, DiagnosticCode::kCannotReadFile) << text;
+    EXPECT_NE(parsed.message().find(reason), std::string::npos) << text << " -> " << parsed.message();
   }
 }
 
 TEST(VerifyCoefficients, FileErrorsNameTheFile) {
-  std::string error;
-  EXPECT_FALSE(LoadCoefficientsJson("/nonexistent/dir/coeffs.json", error));
+  std::string error = LoadCoefficientsJson("/nonexistent/dir/coeffs.json").message();
   EXPECT_NE(error.find("/nonexistent/dir/coeffs.json"), std::string::npos) << error;
   const std::filesystem::path bad = std::filesystem::temp_directory_path() / "vs11_verify_test_bad.json";
   std::ofstream(bad) << "{\"coefficients\": [[1, 2]]}";
-  EXPECT_FALSE(LoadCoefficientsJson(bad, error));
+  error = LoadCoefficientsJson(bad).message();
   EXPECT_NE(error.find(bad.string()), std::string::npos) << error;
   std::filesystem::remove(bad);
 }

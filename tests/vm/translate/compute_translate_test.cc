@@ -53,13 +53,15 @@ TEST(ComputeTranslation, OutputsArePreciseWhereTheDialectHasIt) {
 
 TEST(ComputeTranslation, TargetsWithoutComputeShadersAreRefused) {
   for (Target target : {Target::kGlsl330, Target::kGlslEs300}) {
-    ASSERT_TRUE(StageProblem(target, Stage::kCompute)) << TargetName(target);
-    const Artifact artifact = Translate(WritesOnlyOD0AndOT1(), ComputeOn(target));
-    EXPECT_NE(artifact.error.find("no compute shaders"), std::string::npos) << artifact.error;
-    EXPECT_TRUE(artifact.bytes.empty());
+    ASSERT_FALSE(StageProblem(target, Stage::kCompute).ok()) << TargetName(target);
+    EXPECT_EQ(StageProblem(target, Stage::kCompute).error().code, DiagnosticCode::kOptionValue);
+    const Result<Artifact> artifact = Translate(WritesOnlyOD0AndOT1(), ComputeOn(target));
+    ASSERT_FALSE(artifact.ok());
+    EXPECT_EQ(artifact.error().code, DiagnosticCode::kOptionValue);
+    EXPECT_NE(artifact.message().find("no compute shaders"), std::string::npos) << artifact.message();
   }
-  EXPECT_FALSE(StageProblem(Target::kGlslEs310, Stage::kCompute));
-  EXPECT_FALSE(StageProblem(Target::kGlsl330, Stage::kVertex));
+  EXPECT_TRUE(StageProblem(Target::kGlslEs310, Stage::kCompute).ok());
+  EXPECT_TRUE(StageProblem(Target::kGlsl330, Stage::kVertex).ok());
   EXPECT_EQ(kStageNames.Find("compute"), Stage::kCompute);
   EXPECT_EQ(kStageNames.Find("fragment"), std::nullopt);
 }

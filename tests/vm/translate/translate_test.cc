@@ -153,14 +153,14 @@ constexpr Target kTargets[] = {Target::kGlsl330, Target::kGlslEs300, Target::kGl
 std::string CheckTranslations(const Program& program, const std::string& name, FloatRules rules) {
   for (Stage stage : {Stage::kVertex, Stage::kCompute}) {
     for (Target target : kTargets) {
-      if (StageProblem(target, stage)) continue;
+      if (!StageProblem(target, stage).ok()) continue;
       const std::string glsl =
           TranslateToGlsl(program, {.target = target, .source_name = name, .float_rules = rules, .stage = stage});
-      const GlslangResult compiled = CompileWithGlslang(glsl, target, stage);
+      const Result<std::vector<std::uint32_t>> compiled = CompileWithGlslang(glsl, target, stage);
       const std::string what = fmt::format("{} {}", TargetName(target), StageName(stage));
-      if (!compiled.ok) return what + ": " + compiled.log + "\n" + glsl;
+      if (!compiled) return what + ": " + compiled.message() + "\n" + glsl;
       if (target != Target::kSpirv) continue;
-      if (const Status valid = ValidateSpirv(compiled.spirv); !valid.ok()) {
+      if (const Status valid = ValidateSpirv(*compiled); !valid.ok()) {
         return what + ": spirv-val: " + valid.message() + "\n" + glsl;
       }
     }
