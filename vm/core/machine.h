@@ -66,7 +66,7 @@ class ConstantBank {
 // with its program counter (vm/engines/reference_flow.cc).
 inline constexpr std::string_view kLaterModelEngine = "ref";
 // The engines that run a later model's program specialised for its integer and boolean constants
-// (vm/core/static_flow.h) when its flow control is static and they have a kernel for every instruction.
+// (vm/core/static_flow.h: static flow resolved, dynamic flow as per-vertex execution masks).
 inline constexpr std::array<std::string_view, 3> kStaticFlowEngines = {"batch", "jit", "gl"};
 
 // Success, or why `engine` ("ref", "batch", "jit", "gl", "translate") cannot run `program`

@@ -1,8 +1,9 @@
 // The D3D9 vertex shader models and what each allows: the one place the assembler, validator,
 // disassembler and bytecode ask whether an opcode or a register exists in a program's model, and what
 // its limits are (vm/core/isa.h's opcode table names each opcode's first model). Every model assembles,
-// decodes, disassembles and validates; vs_1_1 runs on every engine, the others only on the reference
-// engine (the rest refuse them by name: EngineRefusal in vm/core/machine.h).
+// decodes, disassembles and validates; vs_1_1 runs on every engine, the others on the reference engine
+// and, specialised for their i#/b#, on batch, jit and gl (the rest refuse them by name: EngineRefusal in
+// vm/core/machine.h).
 // Sources: ../shared/spec/vs_1_1.md §1.1, §4.2 (version tokens), §4.6 (register types), §4.7; the
 // later models' register counts and limits from the D3D9 reference (D3DVS20CAPS / vs_3_0's fixed
 // counts) and the register types and numbers Microsoft's assembler writes (Wine's tests; spec sections
@@ -24,7 +25,7 @@ struct ShaderModelInfo {
   std::string_view name;        // as a version statement spells it
   std::uint32_t version_token;  // §4.2: 0xFFFE, major, minor (vs_2_x is minor 1)
   bool enabled;                 // programs of this model assemble, decode and validate
-  bool runs;                    // every engine runs programs of this model (the later ones: ref; batch, jit and gl when static)
+  bool runs;                    // every engine runs programs of this model (the later ones: ref; batch, jit and gl specialised)
   // Instruction slots (vs_3_0: the minimum a device offers), and nesting depths: static flow control
   // (if on b#, call), loop/rep, call, and dynamic flow control (if_comp, predicated if, break_comp).
   // vs_2_x: the maximal D3DVS20CAPS (DynamicFlowControlDepth 24, NumTemps 32, StaticFlowControlDepth 4,
