@@ -25,6 +25,7 @@
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
+#include "tests/vm/engines/later_model_comparison.h"
 #include "tests/vm/engines/random_program.h"
 #include "tests/vm/gl/gl_test_cases.h"
 #include "vm/asm/assembler.h"
@@ -168,11 +169,8 @@ TEST_P(GlEngineTest, LaterModelProgramsGiveTheReferenceBits) {
   };
   std::mt19937 rng(33);
   for (const char* source : kPrograms) {
-    const AssembleResult assembled = AssembleSource(source, "later.vsh", {}, [](const fs::path&) -> std::optional<std::string> {
-      return std::nullopt;
-    });
-    ASSERT_TRUE(assembled.program) << assembled.diagnostics.ToString() << source;
-    const Program& program = *assembled.program;
+    const Program program = later_model::Assemble(source);
+    ASSERT_FALSE(program.instructions.empty()) << source;
     ConstantBank bank = OrdinaryConstants(rng);
     bank.integer(0) = {3, 10, 4, 0};
     bank.integer(1) = {4, 0, 0, 0};
@@ -187,19 +185,10 @@ TEST_P(GlEngineTest, LaterModelProgramsGiveTheReferenceBits) {
     bank.integer(0) = {2, 12, 4, 0};
     bank.integer(1) = {2, 0, 0, 0};
     bank.integer(2) = {1, 2, 1, 0};
-    const EngineOptions options = OnPath(GetParam());
-    std::unique_ptr<Engine> gl = MakeGl(program, bank, options);
-    ASSERT_NE(gl, nullptr);
-    VertexArrays expected = MakeOutputArrays(inputs.count(), program), actual = MakeOutputArrays(inputs.count(), program);
-    MakeEngine("ref", program, bank, options).value()->Run(inputs, expected);
-    gl->Run(inputs, actual);
-    for (int slot : expected.registers()) {
-      for (int c = 0; c < 4; ++c) {
-        for (std::size_t v = 0; v < inputs.count(); ++v) {
-          ASSERT_EQ(Bits(expected.lane(slot, c)[v]), Bits(actual.lane(slot, c)[v])) << OutputSlotName(slot) << source;
-        }
-      }
-    }
+    const Comparison again = CompareWithReference(GetParam(), program, bank, inputs);
+    ASSERT_EQ(again.error, "") << source;
+    EXPECT_EQ(again.differing, 0) << source << again.first;
+    EXPECT_EQ(again.flushed, 0) << source;
   }
 }
 
