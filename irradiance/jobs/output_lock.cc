@@ -8,8 +8,10 @@
 #include <unistd.h>
 
 #include <cerrno>
+#include <chrono>
 #include <cstring>
 #include <ctime>
+#include <thread>
 #include <utility>
 
 #include <fmt/chrono.h>
@@ -23,6 +25,10 @@ constexpr std::size_t kMaxHolderBytes = 512;
 // A lock file replaced again and again between our open and our lock (each holder removes it when it
 // ends) is retried this often before giving up.
 constexpr int kLockAttempts = 100;
+// The holder writes its line right after it locks: a reader that finds the file still empty waits this
+// long, in steps, before it says so instead of naming the holder.
+constexpr int kHolderReadAttempts = 20;
+constexpr std::chrono::milliseconds kHolderReadStep{5};
 
 std::string Holder() {
   char host[HOST_NAME_MAX + 1] = {};
@@ -39,6 +45,15 @@ std::string ReadHolder(int fd) {
   std::string text(buffer, size > 0 ? static_cast<std::size_t>(size) : 0);
   while (!text.empty() && (text.back() == '\n' || text.back() == '\0')) text.pop_back();
   return text;
+}
+
+std::string AwaitHolder(int fd) {
+  std::string holder = ReadHolder(fd);
+  for (int attempt = 1; holder.empty() && attempt < kHolderReadAttempts; ++attempt) {
+    std::this_thread::sleep_for(kHolderReadStep);
+    holder = ReadHolder(fd);
+  }
+  return holder;
 }
 
 // Whether `fd` is still the file at `path`: a holder that ended removed it after we opened it, and
@@ -60,7 +75,7 @@ Result<OutputLock> OutputLock::Take(const std::filesystem::path& lock_file, cons
     }
     if (flock(fd, LOCK_EX | LOCK_NB) != 0) {
       const int code = errno;
-      const std::string holder = ReadHolder(fd);
+      const std::string holder = code == EWOULDBLOCK ? AwaitHolder(fd) : std::string();
       close(fd);
       if (code != EWOULDBLOCK) {
         return Failure(DiagnosticCode::kCannotWriteFile,
