@@ -35,7 +35,7 @@ int DeclaredNormalRegister(const Program& program) {
 }
 
 ConstantBank LoadConstants(const std::vector<std::string>& files, const std::vector<std::string>& assignments,
-                           int count, std::vector<int>& assigned) {
+                           int count, AssignedConstants& assigned) {
   ConstantBank bank(count);
   for (const std::string& file : files) {
     const std::string text = ReadInputOrFail(file, kMaxConstantsFileBytes);
@@ -44,15 +44,25 @@ ConstantBank LoadConstants(const std::vector<std::string>& files, const std::vec
     std::fputs(diagnostics.ToString().c_str(), stderr);
     if (diagnostics.HasErrors()) throw CommandFailure{1};
   }
-  std::vector<int> flagged, once;
+  // Each register once across the flags (a second value would silently win), then after the files'.
+  AssignedConstants flagged;
+  std::vector<int> once_c, once_i, once_b;
+  auto note_new = [](char letter, const std::vector<int>& list, std::size_t from, std::vector<int>& once) {
+    for (std::size_t i = from; i < list.size(); ++i) NoteRegisterOnce("--const", letter, list[i], once);
+  };
   for (const std::string& assignment : assignments) {
-    const std::size_t before = flagged.size();
+    const AssignedConstants before = flagged;
     if (const Status parsed = ParseConstantAssignment(assignment, bank, &flagged); !parsed) {
       FailUsage("--const: " + parsed.message());
     }
-    for (std::size_t i = before; i < flagged.size(); ++i) NoteRegisterOnce("--const", 'c', flagged[i], once);
+    note_new('c', flagged.floats, before.floats.size(), once_c);
+    note_new('i', flagged.integers, before.integers.size(), once_i);
+    note_new('b', flagged.booleans, before.booleans.size(), once_b);
   }
-  assigned.insert(assigned.end(), flagged.begin(), flagged.end());
+  auto append = [](std::vector<int>& to, const std::vector<int>& from) { to.insert(to.end(), from.begin(), from.end()); };
+  append(assigned.floats, flagged.floats);
+  append(assigned.integers, flagged.integers);
+  append(assigned.booleans, flagged.booleans);
   return bank;
 }
 
@@ -154,9 +164,8 @@ void RunProgram(const RunArgs& args) {
   if (args.engine.ListGlDevicesIfAsked("")) return;
   CheckInputsAndOutputs(RunInputFiles(args), RunOutputFiles(args));
   Program program = LoadProgramOrFail(args.program, args.flags);
-  std::vector<int> constants_given;
-  ConstantBank constants =
-      LoadConstants(args.consts_files, args.const_flags, args.flags.constant_count, constants_given);
+  AssignedConstants constants_set;
+  ConstantBank constants = LoadConstants(args.consts_files, args.const_flags, args.flags.constant_count, constants_set);
   SuppliedInputs supplied = ReadCsvInputs(args.input_flags);
   CsvColumns prefix;
   if (args.sphere > 0) AddSphereInput(args, program, supplied, prefix);
@@ -164,13 +173,14 @@ void RunProgram(const RunArgs& args) {
   const std::size_t count = CommonVertexCount(supplied);
   std::vector<int> registers;
   for (const auto& entry : supplied) registers.push_back(entry.first);
+  const UnsetRegisters unset = FindUnsetRegisters(program, constants_set, registers);
   if (args.missing == "error") {
     const Status set = CheckNoUnsetRegisters(
-        FindUnsetRegisters(program, constants_given, registers), registers,
+        unset, registers,
         {"a def, --consts nor --const", "--input, --sphere, --mesh, --npy or --buffer", "--missing zeros"});
     if (!set) FailUsage(fmt::format("{}: {}", args.program, set.message()));
   }
-  for (const std::string& warning : UnsetRegisterWarnings(program, constants_given, registers)) {
+  for (const std::string& warning : UnsetRegisterWarnings(unset)) {
     std::fprintf(stderr, "%s: warning: %s\n", args.program.c_str(), warning.c_str());
   }
   VertexArrays inputs = FillInputArrays(supplied, count, registers);
@@ -195,9 +205,13 @@ void RunProgram(const RunArgs& args) {
 
 constexpr const char* kRunFooter =
     "Constants: def lines in the program win over --const flags, which win over --consts files (a\n"
-    "warning names every register a def overrides). A constant the program reads that nobody sets, or\n"
-    "an input register it reads that nothing supplies, is an error naming it (exit 2); --missing zeros\n"
-    "runs anyway with a warning, constants reading 0, 0, 0, 0 and inputs 0, 0, 0, 1.\n"
+    "warning names every register a def overrides). The later models' integer and boolean constants\n"
+    "are set the same ways: --const i0=3,0,1,0 --const b2=true, or defi/defb and `i0 = 3 0 1 0` lines\n"
+    "in a --consts file; an i# is x the rep or loop count 0-255, y aL's first value 0-255, z aL's step\n"
+    "-128-127, w 0 (D3D9's loop), and a value outside is an error. A constant the program reads that\n"
+    "nobody sets, or an input register it reads that nothing supplies, is an error naming it (exit 2);\n"
+    "--missing zeros runs anyway with a warning, constants reading 0, 0, 0, 0 (i# 0: no iteration; b#\n"
+    "false) and inputs 0, 0, 0, 1.\n"
     "Inputs: --input v1=FILE.csv (a vertex a row, 1-4 numbers separated by ',' or blanks, or by ';';\n"
     "inf, -inf and nan are numbers; missing components read 0,0,0,1; a first row of names is a\n"
     "header), or columns by header name: --input v0=out.csv:oPos reads oPos.x..oPos.w into their\n"
@@ -233,11 +247,11 @@ constexpr const char* kRunFooter =
 
 void AddRunCommand(CLI::App& app) {
   auto args = std::make_shared<RunArgs>();
-  CLI::App* command = app.add_subcommand("run", "Run a vs_1_1 program over vertices and print its outputs as CSV");
+  CLI::App* command = app.add_subcommand("run", "Run a program (vs_1_1, vs_2_0, vs_2_x, vs_3_0) over vertices and print its outputs as CSV");
   command->footer(kRunFooter);
   command->add_option("program", args->program, "Program (.vsh or .vso; - reads standard input, once per command line)")->required();
-  command->add_option("--const", args->const_flags, "Constant register value, e.g. c4=1,0,0,1");
-  command->add_option("--consts", args->consts_files, "File of `def c#, x, y, z, w` or `c# = x y z w` lines (- reads standard input)");
+  command->add_option("--const", args->const_flags, "Constant register value, e.g. c4=1,0,0,1; i0=3,0,1,0 or b2=true for the later models");
+  command->add_option("--consts", args->consts_files, "File of `def c#, x, y, z, w` or `c# = x y z w` lines, defi/defb or `i# = ...`, `b# = true` for the later models (- reads standard input)");
   command->add_option("--input", args->input_flags,
                       "Input register from a CSV file, e.g. v1=normals.csv or v0=out.csv:oPos (columns by name); v1=- reads standard input");
   command->add_option("--sphere", args->sphere, "Run over N unit normals spread over the sphere")->check(CLI::Range(1, 100000000));

@@ -1,6 +1,7 @@
 #include "vm/io/vertex_io.h"
 
 #include <algorithm>
+#include <array>
 #include <cctype>
 #include <charconv>
 #include <cmath>
@@ -11,6 +12,7 @@
 #include <fmt/format.h>
 
 #include "vm/core/register_names.h"
+#include "vm/core/static_flow.h"
 
 namespace vs11 {
 namespace {
@@ -68,25 +70,67 @@ std::vector<std::string_view> SplitLines(std::string_view text) {
   return lines;
 }
 
-// Parses "c12" at the cursor; returns the index, or the error: kConstantLine where the text is no
-// register, kConstantRegisterRange for a number beyond int.
-Result<int> ConstantRegister(Cursor& cursor) {
+// The register files a constants line may set, with the def keyword that sets each.
+struct ConstantFile {
+  RegisterFile file;
+  char letter;
+  std::string_view keyword;
+  int count;  // registers in the bank; 0: the bank's own size (c#)
+  std::string_view noun;
+};
+constexpr std::array kConstantFiles = {
+    ConstantFile{RegisterFile::kConst, 'c', "def", 0, "constant"},
+    ConstantFile{RegisterFile::kConstInt, 'i', "defi", kIntegerConstantCount, "integer constant"},
+    ConstantFile{RegisterFile::kConstBool, 'b', "defb", kBooleanConstantCount, "boolean constant"},
+};
+
+// The def keyword ("def", "defi", "defb", any case, then a blank) at the start of `rest`.
+const ConstantFile* DefKeyword(std::string_view rest) {
+  for (const ConstantFile& file : kConstantFiles) {
+    const std::size_t n = file.keyword.size();
+    if (rest.size() > n && std::isspace(static_cast<unsigned char>(rest[n])) &&
+        std::equal(file.keyword.begin(), file.keyword.end(), rest.begin(),
+                   [](char a, char b) { return a == std::tolower(static_cast<unsigned char>(b)); })) {
+      return &file;
+    }
+  }
+  return nullptr;
+}
+
+struct NamedConstant {
+  const ConstantFile* file;
+  int index;
+};
+
+// Parses "c12", "i3" or "b0" at the cursor; returns it, or the error: kConstantLine where the text
+// is no such register, kConstantRegisterRange for a number beyond int.
+Result<NamedConstant> ConstantRegister(Cursor& cursor) {
   cursor.SkipSeparators();
-  const std::size_t prefix = NumberedRegisterPrefix(cursor.line.substr(cursor.pos), RegisterFile::kConst);
-  if (prefix == 0) return Failure(DiagnosticCode::kConstantLine, "expected a constant register such as c12");
+  const std::string_view rest = cursor.line.substr(cursor.pos);
+  const ConstantFile* file = nullptr;
+  std::size_t prefix = 0;
+  for (const ConstantFile& candidate : kConstantFiles) {
+    if ((prefix = NumberedRegisterPrefix(rest, candidate.file)) != 0) {
+      file = &candidate;
+      break;
+    }
+  }
+  if (file == nullptr) {
+    return Failure(DiagnosticCode::kConstantLine, "expected a constant register such as c12 (or i# or b#)");
+  }
   cursor.pos += prefix;
   int index = 0;
   auto [ptr, ec] = std::from_chars(cursor.line.data() + cursor.pos, cursor.line.data() + cursor.line.size(), index);
   if (ec == std::errc::result_out_of_range) {
     const std::size_t digits = static_cast<std::size_t>(ptr - cursor.line.data()) - cursor.pos;
-    return Failure(DiagnosticCode::kConstantRegisterRange,
-                   fmt::format("c{} is beyond every constant register", cursor.line.substr(cursor.pos, digits)));
+    return Failure(DiagnosticCode::kConstantRegisterRange, fmt::format("{}{} is beyond every constant register",
+                                                                       file->letter, cursor.line.substr(cursor.pos, digits)));
   }
   if (ec != std::errc() || ptr == cursor.line.data() + cursor.pos) {
-    return Failure(DiagnosticCode::kConstantLine, "expected a register number after 'c'");
+    return Failure(DiagnosticCode::kConstantLine, fmt::format("expected a register number after '{}'", file->letter));
   }
   cursor.pos = static_cast<std::size_t>(ptr - cursor.line.data());
-  return index;
+  return NamedConstant{file, index};
 }
 
 // Reads up to four numbers into `values`, or says what is wrong (kConstantValue) at `column`.
@@ -103,10 +147,111 @@ Status ReadValues(Cursor& cursor, Vec4f& values, int& column) {
   return {};
 }
 
+// The range of each component of an integer constant, as D3D9's loop instruction reads it (asm
+// reference, "loop - vs"): x the iteration count, y aL's first value, z aL's step, w reserved (0).
+// rep reads only x, with the same range. The reference engine would clamp the count to [0, 255]
+// (vm/core/static_flow.h), so a value outside is refused rather than silently changed.
+struct IntegerRange {
+  int low, high;
+  std::string_view role;
+};
+constexpr std::array<IntegerRange, 4> kIntegerConstantRanges = {
+    IntegerRange{0, kMaxLoopCount, "the loop or rep count"},
+    IntegerRange{0, 255, "aL's first value"},
+    IntegerRange{-128, 127, "aL's step"},
+    IntegerRange{0, 0, "reserved"},
+};
+
+// Reads up to four integers into `values` (the rest 0), each in its kIntegerConstantRanges.
+Status ReadIntegers(Cursor& cursor, Vec4i& values, int& column) {
+  values = {};
+  for (int i = 0; i < 4 && !cursor.AtEnd(); ++i) {
+    column = cursor.column();
+    std::size_t end = cursor.pos;
+    while (end < cursor.line.size() && !std::isspace(static_cast<unsigned char>(cursor.line[end])) &&
+           cursor.line[end] != ',') {
+      ++end;
+    }
+    std::string_view token = cursor.line.substr(cursor.pos, end - cursor.pos);
+    if (!token.empty() && token.front() == '+') token.remove_prefix(1);
+    long long value = 0;
+    auto [ptr, ec] = std::from_chars(token.data(), token.data() + token.size(), value);
+    if (token.empty() || ec != std::errc() || ptr != token.data() + token.size()) {
+      return Failure(DiagnosticCode::kConstantValue, "expected an integer");
+    }
+    const IntegerRange& range = kIntegerConstantRanges[static_cast<std::size_t>(i)];
+    if (value < range.low || value > range.high) {
+      return Failure(DiagnosticCode::kConstantValue,
+                     fmt::format("{} ({}) must be {} to {}, not {}", "xyzw"[i], range.role, range.low, range.high,
+                                 cursor.line.substr(cursor.pos, end - cursor.pos)));
+    }
+    values[static_cast<std::size_t>(i)] = static_cast<int>(value);
+    cursor.pos = end;
+  }
+  column = cursor.column();
+  if (!cursor.AtEnd()) return Failure(DiagnosticCode::kConstantValue, "more than four values");
+  return {};
+}
+
+// Reads one boolean: true or false (any case), or 1 or 0.
+Status ReadBoolean(Cursor& cursor, bool& value, int& column) {
+  cursor.SkipSeparators();
+  column = cursor.column();
+  std::size_t end = cursor.pos;
+  while (end < cursor.line.size() && !std::isspace(static_cast<unsigned char>(cursor.line[end])) &&
+         cursor.line[end] != ',') {
+    ++end;
+  }
+  std::string word(cursor.line.substr(cursor.pos, end - cursor.pos));
+  std::transform(word.begin(), word.end(), word.begin(), [](unsigned char ch) { return std::tolower(ch); });
+  if (word == "true" || word == "1") {
+    value = true;
+  } else if (word == "false" || word == "0") {
+    value = false;
+  } else {
+    return Failure(DiagnosticCode::kConstantValue, "expected true or false (or 1 or 0)");
+  }
+  cursor.pos = end;
+  column = cursor.column();
+  if (!cursor.AtEnd()) return Failure(DiagnosticCode::kConstantValue, "a boolean constant takes one value");
+  return {};
+}
+
+// Reads the values of `reg` and stores them in `bank`.
+Status ReadAndStore(Cursor& cursor, const NamedConstant& reg, ConstantBank& bank, int& column) {
+  switch (reg.file->file) {
+    case RegisterFile::kConstInt: {
+      Vec4i values;
+      if (const Status read = ReadIntegers(cursor, values, column); !read) return read;
+      bank.integer(reg.index) = values;
+      return {};
+    }
+    case RegisterFile::kConstBool: {
+      bool value = false;
+      if (const Status read = ReadBoolean(cursor, value, column); !read) return read;
+      bank.SetBoolean(reg.index, value);
+      return {};
+    }
+    default: {
+      Vec4f values;
+      if (const Status read = ReadValues(cursor, values, column); !read) return read;
+      bank[reg.index] = values;
+      return {};
+    }
+  }
+}
+
+std::vector<int>* AssignedList(AssignedConstants* assigned, RegisterFile file) {
+  if (assigned == nullptr) return nullptr;
+  if (file == RegisterFile::kConstInt) return &assigned->integers;
+  if (file == RegisterFile::kConstBool) return &assigned->booleans;
+  return &assigned->floats;
+}
+
 }  // namespace
 
 void ParseConstantsText(std::string_view text, const std::string& file_name, ConstantBank& bank,
-                        Diagnostics& diagnostics, std::vector<int>* assigned) {
+                        Diagnostics& diagnostics, AssignedConstants* assigned) {
   std::vector<std::string_view> lines = SplitLines(text);
   for (std::size_t n = 0; n < lines.size(); ++n) {
     Cursor cursor{StripComment(lines[n])};
@@ -115,43 +260,49 @@ void ParseConstantsText(std::string_view text, const std::string& file_name, Con
     auto error_at = [&](int column, DiagnosticCode code, std::string message) {
       diagnostics.Error({file_name, line_number, column}, code, std::move(message));
     };
-    std::string_view rest = cursor.line.substr(cursor.pos);
-    bool is_def = rest.size() > 3 && (rest.substr(0, 3) == "def" || rest.substr(0, 3) == "DEF") &&
-                  std::isspace(static_cast<unsigned char>(rest[3]));
-    if (is_def) cursor.pos += 3;
+    const ConstantFile* keyword = DefKeyword(cursor.line.substr(cursor.pos));
+    if (keyword != nullptr) cursor.pos += keyword->keyword.size();
     int register_column = (cursor.SkipSeparators(), cursor.column());
-    const Result<int> index = ConstantRegister(cursor);
-    if (!index) {
-      const bool syntax = index.error().code == DiagnosticCode::kConstantLine;
-      error_at(register_column, index.error().code,
-               index.message() + (is_def || !syntax ? "" : " (lines are `def c#, x, y, z, w` or `c# = x y z w`)"));
+    const Result<NamedConstant> reg = ConstantRegister(cursor);
+    if (!reg) {
+      const bool syntax = reg.error().code == DiagnosticCode::kConstantLine;
+      error_at(register_column, reg.error().code,
+               reg.message() + (keyword != nullptr || !syntax
+                                    ? ""
+                                    : " (lines are `def c#, x, y, z, w` or `c# = x y z w`, and defi/defb or "
+                                      "`i# = x y z w`, `b# = true`)"));
+      continue;
+    }
+    if (keyword != nullptr && keyword != reg->file) {
+      error_at(register_column, DiagnosticCode::kConstantLine,
+               fmt::format("{} sets {}# registers, not {}{}", keyword->keyword, keyword->letter, reg->file->letter,
+                           reg->index));
       continue;
     }
     cursor.SkipSeparators();
-    if (!is_def) {
+    if (keyword == nullptr) {
       if (cursor.pos >= cursor.line.size() || cursor.line[cursor.pos] != '=') {
         error_at(cursor.column(), DiagnosticCode::kConstantLine, "expected '=' after the register");
         continue;
       }
       ++cursor.pos;
     }
-    Vec4f values;
+    const int count = reg->file->count != 0 ? reg->file->count : bank.size();
+    if (reg->index < 0 || reg->index >= count) {
+      error_at(register_column, DiagnosticCode::kConstantRegisterRange,
+               fmt::format("{}{} is beyond the {} {} registers", reg->file->letter, reg->index, count, reg->file->noun));
+      continue;
+    }
     int column = 0;
-    if (const Status read = ReadValues(cursor, values, column); !read) {
+    if (const Status read = ReadAndStore(cursor, *reg, bank, column); !read) {
       error_at(column, read.error().code, read.message());
       continue;
     }
-    if (*index < 0 || *index >= bank.size()) {
-      error_at(register_column, DiagnosticCode::kConstantRegisterRange,
-               fmt::format("c{} is beyond the {} constant registers", *index, bank.size()));
-      continue;
-    }
-    bank[*index] = values;
-    if (assigned) assigned->push_back(*index);
+    if (std::vector<int>* list = AssignedList(assigned, reg->file->file)) list->push_back(reg->index);
   }
 }
 
-Status ParseConstantAssignment(std::string_view text, ConstantBank& bank, std::vector<int>* assigned) {
+Status ParseConstantAssignment(std::string_view text, ConstantBank& bank, AssignedConstants* assigned) {
   Diagnostics diagnostics;
   ParseConstantsText(text, "--const", bank, diagnostics, assigned);
   if (!diagnostics.HasErrors()) return {};
@@ -424,11 +575,21 @@ std::string RegisterNames(char letter, const std::vector<int>& registers) {
 
 UnsetRegisters FindUnsetRegisters(const Program& program, const std::vector<int>& constants_given,
                                   const std::vector<int>& inputs_given) {
-  std::set<int> defined, constants_read, inputs_read;
+  UnsetRegisters out = FindUnsetRegisters(program, AssignedConstants{constants_given, {}, {}}, inputs_given);
+  out.integers.clear();
+  out.booleans.clear();
+  return out;
+}
+
+UnsetRegisters FindUnsetRegisters(const Program& program, const AssignedConstants& constants_given,
+                                  const std::vector<int>& inputs_given) {
+  std::set<int> defined, constants_read, inputs_read, integers_read, booleans_read, integers_defined, booleans_defined;
   bool relative = false;  // a0.x-relative reads: any constant may be read
   for (const Instruction& instruction : program.instructions) {
     const OpcodeInfo& info = instruction.info();
     if (instruction.opcode == Opcode::kDef) defined.insert(instruction.dest.reg.index);
+    if (instruction.opcode == Opcode::kDefi) integers_defined.insert(instruction.dest.reg.index);
+    if (instruction.opcode == Opcode::kDefb) booleans_defined.insert(instruction.dest.reg.index);
     if (!info.is_executable()) continue;
     for (int s = 0; s < info.source_count(); ++s) {
       const RegisterRef& reg = instruction.sources[s].reg;
@@ -438,10 +599,24 @@ UnsetRegisters FindUnsetRegisters(const Program& program, const std::vector<int>
         if (reg.file == RegisterFile::kConst && !reg.relative) constants_read.insert(reg.index + row);
         if (reg.file == RegisterFile::kInput) inputs_read.insert(reg.index + row);
       }
+      if (reg.file == RegisterFile::kConstInt) integers_read.insert(reg.index);
+      if (reg.file == RegisterFile::kConstBool) booleans_read.insert(reg.index);
     }
   }
-  const std::set<int> given(constants_given.begin(), constants_given.end());
+  const std::set<int> given(constants_given.floats.begin(), constants_given.floats.end());
   UnsetRegisters out;
+  // i#/b# read that neither a defi/defb (definitions apply before the program runs) nor the caller sets.
+  auto unset_flow = [](const std::set<int>& read, const std::set<int>& defined_here, const std::vector<int>& given_here,
+                       std::vector<int>& unset, std::vector<int>& overridden) {
+    for (int r : read) {
+      if (!defined_here.contains(r) && std::find(given_here.begin(), given_here.end(), r) == given_here.end()) unset.push_back(r);
+    }
+    for (int r : std::set<int>(given_here.begin(), given_here.end())) {
+      if (defined_here.contains(r)) overridden.push_back(r);
+    }
+  };
+  unset_flow(integers_read, integers_defined, constants_given.integers, out.integers, out.integers_overridden);
+  unset_flow(booleans_read, booleans_defined, constants_given.booleans, out.booleans, out.booleans_overridden);
   for (int c : constants_read) {
     if (!defined.contains(c) && !given.contains(c)) out.constants.push_back(c);
   }
@@ -457,12 +632,18 @@ UnsetRegisters FindUnsetRegisters(const Program& program, const std::vector<int>
 
 Status CheckNoUnsetRegisters(const UnsetRegisters& unset, const std::vector<int>& inputs_given,
                              const RegisterSources& sources) {
-  if (unset.constants.empty() && unset.inputs.empty()) return {};
+  if (unset.constants.empty() && unset.inputs.empty() && unset.integers.empty() && unset.booleans.empty()) return {};
   std::vector<std::string> problems;
   if (!unset.constants.empty()) {
     problems.push_back(fmt::format("the program reads {}, which neither {} sets", RegisterNames('c', unset.constants),
                                    sources.constants));
     if (!unset.unread.empty()) problems.back() += fmt::format(" (they set {}, which it never reads)", RegisterNames('c', unset.unread));
+  }
+  for (const auto& [letter, registers] : {std::pair{'i', &unset.integers}, std::pair{'b', &unset.booleans}}) {
+    if (!registers->empty()) {
+      problems.push_back(fmt::format("the program reads {}, which neither {} sets", RegisterNames(letter, *registers),
+                                     sources.constants));
+    }
   }
   if (!unset.inputs.empty()) {
     problems.push_back(fmt::format("the program reads {}, which no {} supplies", RegisterNames('v', unset.inputs), sources.inputs));
@@ -474,7 +655,10 @@ Status CheckNoUnsetRegisters(const UnsetRegisters& unset, const std::vector<int>
 
 std::vector<std::string> UnsetRegisterWarnings(const Program& program, const std::vector<int>& constants_given,
                                                const std::vector<int>& inputs_given) {
-  const UnsetRegisters registers = FindUnsetRegisters(program, constants_given, inputs_given);
+  return UnsetRegisterWarnings(FindUnsetRegisters(program, constants_given, inputs_given));
+}
+
+std::vector<std::string> UnsetRegisterWarnings(const UnsetRegisters& registers) {
   const std::vector<int>& unset = registers.constants;
   const std::vector<int>& overridden = registers.overridden;
   const std::vector<int>& missing = registers.inputs;
@@ -483,10 +667,26 @@ std::vector<std::string> UnsetRegisterWarnings(const Program& program, const std
     warnings.push_back(fmt::format("the program reads {}, which no def, --consts or --const sets: {} 0, 0, 0, 0",
                                    RegisterNames('c', unset), unset.size() == 1 ? "it reads" : "they read"));
   }
+  if (!registers.integers.empty()) {
+    warnings.push_back(fmt::format("the program reads {}, which no defi, --consts or --const sets: {} 0, 0, 0, 0 "
+                                   "(a rep or loop over it runs no iteration)",
+                                   RegisterNames('i', registers.integers), registers.integers.size() == 1 ? "it reads" : "they read"));
+  }
+  if (!registers.booleans.empty()) {
+    warnings.push_back(fmt::format("the program reads {}, which no defb, --consts or --const sets: {} false",
+                                   RegisterNames('b', registers.booleans), registers.booleans.size() == 1 ? "it reads" : "they read"));
+  }
   if (!overridden.empty()) {
     warnings.push_back(fmt::format("the program's def of {} overrides the value given by --consts or --const "
                                    "(def lines win)",
                                    RegisterNames('c', overridden)));
+  }
+  for (const auto& [letter, list] : {std::pair{'i', &registers.integers_overridden}, std::pair{'b', &registers.booleans_overridden}}) {
+    if (!list->empty()) {
+      warnings.push_back(fmt::format("the program's def{} of {} overrides the value given by --consts or --const "
+                                     "(def lines win)",
+                                     letter, RegisterNames(letter, *list)));
+    }
   }
   if (!missing.empty()) {
     warnings.push_back(fmt::format("the program reads {}, which no --input or --sphere supplies: {} 0, 0, 0, 1",

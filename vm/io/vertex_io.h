@@ -13,16 +13,26 @@
 
 namespace vs11 {
 
+// The registers a constants text set, by file, in the order its lines set them.
+struct AssignedConstants {
+  std::vector<int> floats;    // c#
+  std::vector<int> integers;  // i#
+  std::vector<int> booleans;  // b#
+};
+
 // Constant files hold one register per line, either as a def line (`def c12, 1, 0, 0, 1`) or as
 // `c12 = 1 0 0 1` (commas optional). Blank lines and ; // # comments are skipped. Fewer than four
-// values leave the rest 0. Errors carry file:line:column; values land in `bank`.
+// values leave the rest 0. The later models' integer and boolean constants are written the same
+// ways: `defi i0, 3, 0, 1, 0` or `i0 = 3 0 1 0` (integers: x the loop or rep count 0-255, y aL's
+// first value 0-255, z aL's step -128-127, w 0, as D3D9's loop reads them), `defb b2, true` or
+// `b2 = true` (true/false or 1/0). Errors carry file:line:column; values land in `bank`.
 // `assigned`, when given, receives the index of every register a line set.
 void ParseConstantsText(std::string_view text, const std::string& file_name, ConstantBank& bank,
-                        Diagnostics& diagnostics, std::vector<int>* assigned = nullptr);
+                        Diagnostics& diagnostics, AssignedConstants* assigned = nullptr);
 
-// `c4=1,0,0,1` (the --const flag). The error is the first problem ParseConstantsText finds, its
-// message ending "in 'TEXT'", its place "--const:1:COLUMN".
-Status ParseConstantAssignment(std::string_view text, ConstantBank& bank, std::vector<int>* assigned = nullptr);
+// `c4=1,0,0,1`, `i0=3,0,1` or `b2=true` (the --const flag). The error is the first problem
+// ParseConstantsText finds, its message ending "in 'TEXT'", its place "--const:1:COLUMN".
+Status ParseConstantAssignment(std::string_view text, ConstantBank& bank, AssignedConstants* assigned = nullptr);
 
 // What a run should warn about before it starts, one message each: constant registers the program
 // reads (by absolute address; matrix rows included) that neither a def nor `constants_given` set
@@ -37,9 +47,19 @@ struct UnsetRegisters {
   std::vector<int> overridden;  // in constants_given, and defined by a def (which wins)
   std::vector<int> inputs;      // read, not in inputs_given
   std::vector<int> unread;      // in constants_given but never read (relative addressing aside)
+  std::vector<int> integers;    // i# read (rep, loop), set by neither a defi nor the given ones
+  std::vector<int> booleans;    // b# read (if, callnz), set by neither a defb nor the given ones
+  std::vector<int> integers_overridden;  // given, and defined by a defi (which wins)
+  std::vector<int> booleans_overridden;  // given, and defined by a defb (which wins)
 };
+// Checks c# and v# only: for callers that have no way to set i# and b#.
 UnsetRegisters FindUnsetRegisters(const Program& program, const std::vector<int>& constants_given,
                                   const std::vector<int>& inputs_given);
+// Checks i# and b# too (`vs11 run`, whose --const and --consts set them).
+UnsetRegisters FindUnsetRegisters(const Program& program, const AssignedConstants& constants_given,
+                                  const std::vector<int>& inputs_given);
+// The warnings for registers already found (i# and b# included where they were looked for).
+std::vector<std::string> UnsetRegisterWarnings(const UnsetRegisters& unset);
 
 // How a caller names what sets registers, for CheckNoUnsetRegisters: `vs11 run`'s flags or Python's
 // arguments.

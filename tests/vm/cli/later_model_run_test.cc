@@ -1,6 +1,6 @@
 // `vs11 run` on a vs_2_0 program end to end: the ref engine runs a skinning loop over bones with
 // c#[aL], and batch and jit run it specialised for its i0 with the same numbers; a program with dynamic
-// flow control they refuse by name.
+// flow control they refuse by name; --const and --consts set i# and b#.
 #include <string>
 
 #include <gmock/gmock.h>
@@ -70,6 +70,59 @@ TEST_F(LaterModelRun, BatchAndJitRunDynamicFlowWithTheRefEnginesNumbers) {
     ASSERT_EQ(r.status, 0) << engine << ": " << r.output;
     EXPECT_THAT(r.output, EndsWith("oPos.x,oPos.y,oPos.z,oPos.w\n1.5,3,5,4\n0,0,0,1\n")) << engine;
   }
+}
+
+// rep i0 adds c0 i0.x times, loop aL, i1 adds c2[aL] (c6 = y 10, c7 = z 100 at aL 4, 5), if b0 doubles.
+const std::string kFlowConstants =
+    "vs_2_0\ndef c0, 1, 0, 0, 0\ndef c1, 2, 2, 2, 1\ndef c6, 0, 10, 0, 0\ndef c7, 0, 0, 100, 0\n"
+    "dcl_position v0\nmov r0, v0\nrep i0\nadd r0, r0, c0\nendrep\nloop aL, i1\nadd r0, r0, c2[aL]\nendloop\n"
+    "if b0\nmul r0, r0, c1\nendif\nmov oPos, r0\n";
+
+TEST_F(LaterModelRun, ConstFlagsSetIntegerAndBooleanConstantsOnEveryEngine) {
+  const std::string program = Write("flow.vsh", kFlowConstants);
+  for (const char* engine : {"ref", "batch", "jit"}) {
+    CommandResult r = RunVs11("run " + program + " --input v0=" + positions_ +
+                              " --const i0=3 --const i1=2,4,1 --const b0=false --engine " + engine);
+    ASSERT_EQ(r.status, 0) << engine << ": " << r.output;
+    EXPECT_THAT(r.output, EndsWith("oPos.x,oPos.y,oPos.z,oPos.w\n4,12,103,1\n3,10,100,1\n")) << engine;
+    r = RunVs11("run " + program + " --input v0=" + positions_ + " --const i0=0 --const i1=1,5,1,0 --const b0=true --engine " +
+                engine);
+    ASSERT_EQ(r.status, 0) << engine << ": " << r.output;
+    EXPECT_THAT(r.output, EndsWith("oPos.x,oPos.y,oPos.z,oPos.w\n2,4,206,1\n0,0,200,1\n")) << engine;
+  }
+}
+
+TEST_F(LaterModelRun, ConstsFilesSetIntegerAndBooleanConstants) {
+  const std::string program = Write("flow.vsh", kFlowConstants);
+  const std::string constants = Write("k.vsh", "defi i0, 2, 0, 0, 0\ni1 = 0 0 0 0\ndefb b0, true\n");
+  const CommandResult r = RunVs11("run " + program + " --input v0=" + positions_ + " --consts " + constants);
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_THAT(r.output, EndsWith("oPos.x,oPos.y,oPos.z,oPos.w\n6,4,6,1\n4,0,0,1\n"));
+}
+
+TEST_F(LaterModelRun, IntegerAndBooleanConstantsNobodySetsAreUsageErrors) {
+  const std::string program = Write("flow.vsh", kFlowConstants);
+  CommandResult r = RunVs11("run " + program + " --input v0=" + positions_ + " --const i0=1");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_THAT(r.output, HasSubstr("the program reads i1, which neither"));
+  EXPECT_THAT(r.output, HasSubstr("the program reads b0, which neither"));
+  r = RunVs11("run " + program + " --input v0=" + positions_ + " --const i0=1 --missing zeros");
+  ASSERT_EQ(r.status, 0) << r.output;
+  EXPECT_THAT(r.output, HasSubstr("warning: the program reads i1, which no defi, --consts or --const sets"));
+  EXPECT_THAT(r.output, EndsWith("2,2,3,1\n1,0,0,1\n"));
+}
+
+TEST_F(LaterModelRun, IntegerConstantsOutOfRangeAreUsageErrorsNamingTheFlag) {
+  const std::string program = Write("flow.vsh", kFlowConstants);
+  for (const char* flag : {"i0=256", "i0=1,-1", "i0=1,0,128", "i0=1,0,0,1", "i16=1", "b0=maybe"}) {
+    const CommandResult r = RunVs11("run " + program + " --input v0=" + positions_ + " --missing zeros --const " + flag);
+    EXPECT_EQ(r.status, 2) << flag;
+    EXPECT_THAT(r.output, HasSubstr("--const: ")) << flag;
+    EXPECT_THAT(r.output, HasSubstr(std::string("in '") + flag + "'")) << flag;
+  }
+  const CommandResult r = RunVs11("run " + program + " --input v0=" + positions_ + " --const i0=1 --const i0=2");
+  EXPECT_EQ(r.status, 2);
+  EXPECT_THAT(r.output, HasSubstr("--const i0 is given twice"));
 }
 
 TEST_F(LaterModelRun, TraceSaysItRunsOnlyVs11) {

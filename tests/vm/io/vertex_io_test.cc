@@ -55,6 +55,72 @@ TEST(VertexIo, ConstantAssignmentFlag) {
   EXPECT_EQ(error.error().loc.line, 1);
 }
 
+TEST(VertexIo, ParsesIntegerAndBooleanConstantsBothWays) {
+  ConstantBank bank;
+  Diagnostics diagnostics;
+  AssignedConstants assigned;
+  ParseConstantsText("defi i0, 3, 10, -4, 0\ni15 = 255 255 127\nDEFB b2, true\nb3 = 1\nb2 = FALSE\ndef c1, 1\n", "k.txt",
+                     bank, diagnostics, &assigned);
+  ASSERT_FALSE(diagnostics.HasErrors()) << diagnostics.ToString();
+  EXPECT_EQ(bank.ReadInteger(0), (Vec4i{3, 10, -4, 0}));
+  EXPECT_EQ(bank.ReadInteger(15), (Vec4i{255, 255, 127, 0}));
+  EXPECT_FALSE(bank.ReadBoolean(2));  // the later line wins
+  EXPECT_TRUE(bank.ReadBoolean(3));
+  EXPECT_EQ(assigned.integers, (std::vector<int>{0, 15}));
+  EXPECT_EQ(assigned.booleans, (std::vector<int>{2, 3, 2}));
+  EXPECT_EQ(assigned.floats, (std::vector<int>{1}));
+}
+
+TEST(VertexIo, RefusesIntegerConstantsOutsideTheLoopRanges) {
+  // x the count 0-255, y aL's start 0-255, z the step -128-127, w reserved 0 (D3D9 loop - vs).
+  for (const char* line : {"i0 = 256", "i0 = -1", "i0 = 1 256", "i0 = 1 -1", "i0 = 1 0 128", "i0 = 1 0 -129",
+                           "i0 = 1 0 0 1", "defi i0, 1.5", "i0 = 99999999999999999999"}) {
+    ConstantBank bank;
+    Diagnostics diagnostics;
+    ParseConstantsText(line, "k.txt", bank, diagnostics);
+    ASSERT_EQ(diagnostics.error_count(), 1) << line;
+    EXPECT_EQ(diagnostics.all()[0].code, DiagnosticCode::kConstantValue) << line;
+    EXPECT_EQ(bank.ReadInteger(0), Vec4i{}) << line;
+  }
+  ConstantBank bank;
+  Diagnostics diagnostics;
+  ParseConstantsText("i0 = 0 0 -128 0\ni1 = 255 255 127 0", "k.txt", bank, diagnostics);
+  EXPECT_FALSE(diagnostics.HasErrors()) << diagnostics.ToString();
+  EXPECT_EQ(bank.ReadInteger(0), (Vec4i{0, 0, -128, 0}));
+}
+
+TEST(VertexIo, RefusesBadIntegerAndBooleanLines) {
+  ConstantBank bank;
+  Diagnostics diagnostics;
+  ParseConstantsText("i16 = 1\nb16 = true\nb0 = yes\nb1 = true false\ndefi c0, 1\ndef i0, 1\ndefb b1 true\n", "k.txt",
+                     bank, diagnostics);
+  ASSERT_EQ(diagnostics.error_count(), 6) << diagnostics.ToString();
+  const auto& all = diagnostics.all();
+  EXPECT_EQ(all[0].code, DiagnosticCode::kConstantRegisterRange);
+  EXPECT_THAT(all[0].message, HasSubstr("16 integer constant"));
+  EXPECT_EQ(all[1].code, DiagnosticCode::kConstantRegisterRange);
+  EXPECT_THAT(all[1].message, HasSubstr("16 boolean constant"));
+  EXPECT_EQ(all[2].code, DiagnosticCode::kConstantValue);
+  EXPECT_THAT(all[2].message, HasSubstr("true or false"));
+  EXPECT_EQ(all[3].code, DiagnosticCode::kConstantValue);
+  EXPECT_EQ(all[4].code, DiagnosticCode::kConstantLine);
+  EXPECT_THAT(all[4].message, HasSubstr("defi sets i# registers, not c0"));
+  EXPECT_EQ(all[5].code, DiagnosticCode::kConstantLine);
+  EXPECT_TRUE(bank.ReadBoolean(1));  // `defb b1 true` (commas optional)
+}
+
+TEST(VertexIo, ConstantAssignmentFlagSetsIntegerAndBooleanConstants) {
+  ConstantBank bank;
+  EXPECT_TRUE(ParseConstantAssignment("i0=3,0,1,0", bank).ok());
+  EXPECT_TRUE(ParseConstantAssignment("b2=true", bank).ok());
+  EXPECT_EQ(bank.ReadInteger(0), (Vec4i{3, 0, 1, 0}));
+  EXPECT_TRUE(bank.ReadBoolean(2));
+  const Status error = ParseConstantAssignment("i0=300", bank);
+  ASSERT_FALSE(error.ok());
+  EXPECT_THAT(error.message(), HasSubstr("x (the loop or rep count) must be 0 to 255, not 300 in 'i0=300'"));
+  EXPECT_EQ(error.error().loc.file, "--const");
+}
+
 TEST(VertexIo, CsvRowsFillMissingComponentsFromZeroZeroZeroOne) {
   Diagnostics diagnostics;
   std::vector<Vec4f> rows = ParseVertexCsv("x,y,z\n1,2\r\n3 4 5 6\n\n7\n", "in.csv", diagnostics);
@@ -200,6 +266,27 @@ TEST(VertexIo, WarnsAboutRegistersNobodySetsAndDefsThatOverride) {
   EXPECT_THAT(warnings[1], HasSubstr("def of c5 overrides"));
   EXPECT_THAT(warnings[2], HasSubstr("reads v1,"));
   EXPECT_TRUE(UnsetRegisterWarnings(*assembled.program, {0, 1, 2, 3, 9}, {0, 1}).empty());
+}
+
+TEST(VertexIo, FindsIntegerAndBooleanConstantsNobodySets) {
+  AssembleResult assembled = AssembleSource(
+      "vs_2_0\ndefi i0, 1, 0, 0, 0\ndcl_position v0\nmov r0, v0\nrep i0\nadd r0, r0, r0\nendrep\n"
+      "rep i1\nadd r0, r0, r0\nendrep\nif b0\nadd r0, r0, r0\nendif\nmov oPos, r0\n",
+      "t.vsh", {});
+  ASSERT_TRUE(assembled.program) << assembled.diagnostics.ToString();
+  const UnsetRegisters unset = FindUnsetRegisters(*assembled.program, AssignedConstants{{}, {0, 3}, {}}, {0});
+  EXPECT_EQ(unset.integers, (std::vector<int>{1}));  // i0: a defi; i3 given, unread
+  EXPECT_EQ(unset.booleans, (std::vector<int>{0}));
+  EXPECT_EQ(unset.integers_overridden, (std::vector<int>{0}));
+  const std::vector<std::string> warnings = UnsetRegisterWarnings(unset);
+  ASSERT_EQ(warnings.size(), 3u);
+  EXPECT_THAT(warnings[0], HasSubstr("reads i1, which no defi"));
+  EXPECT_THAT(warnings[1], HasSubstr("reads b0, which no defb"));
+  EXPECT_THAT(warnings[2], HasSubstr("defi of i0 overrides"));
+  const Status refused = CheckNoUnsetRegisters(unset, {0}, {"a def", "--input", "--missing zeros"});
+  EXPECT_THAT(refused.message(), HasSubstr("reads i1, which neither a def sets; the program reads b0"));
+  // Callers that cannot set i# or b# (Python's arguments) are not told about them.
+  EXPECT_TRUE(FindUnsetRegisters(*assembled.program, std::vector<int>{}, {0}).integers.empty());
 }
 
 TEST(VertexIo, OutputCsvNamesWrittenLanes) {
