@@ -32,11 +32,6 @@ void TraceFlags::AddTo(CLI::App& command) {
 void ReportTraces(const TraceFlags& flags, const std::string& program_path, const Program& program,
                   const ConstantBank& constants, const VertexArrays& inputs, const VertexArrays& engine_outputs,
                   std::string_view engine_name, FloatRules rules) {
-  if (program.model() != ShaderModel::kVs11) {
-    // The tracer steps vs_1_1's straight-line code; it has no program counter for flow control yet.
-    Fail(fmt::format("{}: --trace runs only vs_1_1 programs yet; this is a {} program", program_path,
-                     ShaderModelName(program.model())));
-  }
   for (std::size_t vertex : flags.vertices) {
     if (vertex >= inputs.count()) {
       Fail(fmt::format("--trace {}: there are {} vertices (0 to {})", vertex, inputs.count(), inputs.count() - 1));

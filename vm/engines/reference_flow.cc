@@ -12,18 +12,8 @@
 namespace vs11 {
 namespace {
 
-constexpr int kTemps = RegisterCount(RegisterFile::kTemp, ShaderModel::kVs30);
-constexpr int kInputs = RegisterCount(RegisterFile::kInput, ShaderModel::kVs30);
-
-// One vertex's registers in the later models: 32 temporaries, a0 as four lanes, aL and p0.
-struct FlowState {
-  std::array<Vec4f, kInputs> inputs{};
-  std::array<Vec4f, kTemps> temps{};
-  std::array<Vec4f, kOutputSlotCount> outputs{};
-  std::array<int, 4> a0{};
-  int aL = 0;
-  std::array<bool, 4> p0{};
-};
+constexpr int kTemps = kFlowTempCount;
+constexpr int kInputs = kFlowInputCount;
 
 template <FloatRules kRules>
 class FlowInterpreter {
@@ -33,11 +23,20 @@ class FlowInterpreter {
       : program_(program), control_(control), constants_(constants), declared_outputs_(declared_outputs),
         state_(state), model_(program.model()) {}
 
-  void Run() {
+  void Run(FlowObserver* observer = nullptr) {
     const int n = static_cast<int>(program_.instructions.size());
     FlowWalk<FlowInterpreter> walk(program_, control_, *this, state_.aL);
     int pc = 0;
-    while (pc >= 0 && pc < n) pc = walk.Step(pc);
+    while (pc >= 0 && pc < n) {
+      if (observer == nullptr) {
+        pc = walk.Step(pc);
+        continue;
+      }
+      observer->Before(pc, state_);
+      const int next = walk.Step(pc);
+      observer->After(pc, next >= 0 && next < n ? next : -1, state_);
+      pc = next;
+    }
   }
 
  private:
@@ -45,13 +44,7 @@ class FlowInterpreter {
 
   Vec4i Integer(int index) const { return constants_.ReadInteger(index); }
 
-  // if b#, callnz l#, b#, breakp p0.c, if p0.c: a boolean constant or one predicate lane, `!` applied.
-  bool Condition(const SourceOperand& source) const {
-    bool value = false;
-    if (source.reg.file == RegisterFile::kConstBool) value = constants_.ReadBoolean(source.reg.index);
-    if (source.reg.file == RegisterFile::kPredicate) value = state_.p0[static_cast<std::size_t>(source.swizzle[0])];
-    return value != source.logical_not;
-  }
+  bool Condition(const SourceOperand& source) const { return FlowCondition(source, constants_, state_); }
 
   // if_comp, break_comp: the x lanes of the two (replicate-swizzled) sources.
   bool Comparison(const Instruction& instruction) const {
@@ -59,33 +52,8 @@ class FlowInterpreter {
                               Fetch(instruction.sources[1], 0)[0]) != 0.0f;
   }
 
-  long AddressOf(const RegisterRef& reg) const {
-    if (!reg.relative) return reg.index;
-    const int offset = reg.address.file == RegisterFile::kLoop ? state_.aL : state_.a0[reg.address.swizzle_bits & 3];
-    return static_cast<long>(reg.index) + offset;
-  }
-
-  Vec4f ReadRegister(const RegisterRef& reg, int row) const {
-    const long index = AddressOf(reg) + row;
-    switch (reg.file) {
-      case RegisterFile::kConst: return constants_.Read(index);
-      case RegisterFile::kTemp: return index >= 0 && index < kTemps ? state_.temps[static_cast<std::size_t>(index)] : Vec4f{};
-      case RegisterFile::kInput: return index >= 0 && index < kInputs ? state_.inputs[static_cast<std::size_t>(index)] : Vec4f{};
-      default: return {};
-    }
-  }
-
-  // The register, swizzled, then _abs, then negated (§3.1's order, with vs_3_0's _abs before the sign).
-  Vec4f Fetch(const SourceOperand& source, int row) const {
-    const Vec4f base = ReadRegister(source.reg, row);
-    Vec4f value;
-    for (int lane = 0; lane < 4; ++lane) {
-      float v = base[static_cast<std::size_t>(source.swizzle[lane])];
-      if (source.absolute) v = semantics::Abs(v);
-      value[static_cast<std::size_t>(lane)] = source.negate ? semantics::Negate(v) : v;
-    }
-    return value;
-  }
+  long AddressOf(const RegisterRef& reg) const { return FlowAddress(reg, state_); }
+  Vec4f Fetch(const SourceOperand& source, int row) const { return FlowFetch(source, row, constants_, state_); }
 
   template <class Semantics>
   std::optional<Vec4f> Compute(const Instruction& instruction) const {
@@ -130,29 +98,13 @@ class FlowInterpreter {
     std::uint8_t lanes = semantics::LanesWritten(instruction).bits();
     if (instruction.predicated) {
       for (int lane = 0; lane < 4; ++lane) {
-        const bool on = state_.p0[static_cast<std::size_t>(instruction.predicate.swizzle[lane])] !=
-                        instruction.predicate.logical_not;
-        if (!on) lanes &= static_cast<std::uint8_t>(~(1u << lane));
+        if (!FlowPredicateLane(instruction, lane, state_)) lanes &= static_cast<std::uint8_t>(~(1u << lane));
       }
     }
     return WriteMask(lanes);
   }
 
-  Vec4f* Target(const RegisterRef& reg) {
-    const long index = AddressOf(reg);
-    if (reg.file == RegisterFile::kTemp) {
-      return index >= 0 && index < kTemps ? &state_.temps[static_cast<std::size_t>(index)] : nullptr;
-    }
-    std::optional<int> slot;
-    if (model_ == ShaderModel::kVs30) {
-      if (reg.file == RegisterFile::kTexCoordOut && index >= 0 && index < kOutputRegisterCountVs30) {
-        slot = declared_outputs_[static_cast<std::size_t>(index)];
-      }
-    } else {
-      slot = OutputSlotOf(reg);
-    }
-    return slot ? &state_.outputs[static_cast<std::size_t>(*slot)] : nullptr;
-  }
+  Vec4f* Target(const RegisterRef& reg) { return FlowTarget(reg, model_, declared_outputs_, state_); }
 
   void Execute(const Instruction& instruction) {
     if (!instruction.info().is_executable()) return;
@@ -203,19 +155,10 @@ class FlowReferenceEngine final : public Engine {
   }
 
   void Run(const VertexArrays& inputs, VertexArrays& outputs) override {
-    const std::vector<int> input_registers = inputs.registers();
     const std::vector<int> output_slots = outputs.registers();
     FlowState state;
     for (std::size_t i = 0; i < inputs.count(); ++i) {
-      state = FlowState{};
-      state.inputs.fill(kDefaultInput);
-      for (int reg : input_registers) {
-        if (reg >= kInputs) continue;
-        for (int c = 0; c < 4; ++c) state.inputs[static_cast<std::size_t>(reg)][c] = inputs.view(reg, c)[i];
-      }
-      for (int slot = 0; slot < kOutputSlotCount; ++slot) {
-        state.outputs[static_cast<std::size_t>(slot)] = written_[slot].bits() ? Vec4f{} : UnwrittenOutputValue(slot);
-      }
+      StartFlowVertex(inputs, i, written_, state);
       if (rules_ == FloatRules::kLegacy) {
         FlowInterpreter<FloatRules::kLegacy>(program_, control_, constants_, declared_outputs_, state).Run();
       } else {
@@ -237,6 +180,69 @@ class FlowReferenceEngine final : public Engine {
 };
 
 }  // namespace
+
+void StartFlowVertex(const VertexArrays& inputs, std::size_t vertex,
+                     const std::array<WriteMask, kOutputSlotCount>& written, FlowState& state) {
+  state = FlowState{};
+  state.inputs.fill(kDefaultInput);
+  for (int reg : inputs.registers()) {
+    if (reg >= kInputs) continue;
+    for (int c = 0; c < 4; ++c) state.inputs[static_cast<std::size_t>(reg)][c] = inputs.view(reg, c)[vertex];
+  }
+  for (int slot = 0; slot < kOutputSlotCount; ++slot) {
+    state.outputs[static_cast<std::size_t>(slot)] = written[slot].bits() ? Vec4f{} : UnwrittenOutputValue(slot);
+  }
+}
+
+long FlowAddress(const RegisterRef& reg, const FlowState& state) {
+  if (!reg.relative) return reg.index;
+  const int offset = reg.address.file == RegisterFile::kLoop ? state.aL : state.a0[reg.address.swizzle_bits & 3];
+  return static_cast<long>(reg.index) + offset;
+}
+
+Vec4f FlowReadRegister(const RegisterRef& reg, int row, const ConstantBank& constants, const FlowState& state) {
+  const long index = FlowAddress(reg, state) + row;
+  switch (reg.file) {
+    case RegisterFile::kConst: return constants.Read(index);
+    case RegisterFile::kTemp: return index >= 0 && index < kTemps ? state.temps[static_cast<std::size_t>(index)] : Vec4f{};
+    case RegisterFile::kInput: return index >= 0 && index < kInputs ? state.inputs[static_cast<std::size_t>(index)] : Vec4f{};
+    default: return {};
+  }
+}
+
+// The register, swizzled, then _abs, then negated (§3.1's order, with vs_3_0's _abs before the sign).
+Vec4f FlowFetch(const SourceOperand& source, int row, const ConstantBank& constants, const FlowState& state) {
+  const Vec4f base = FlowReadRegister(source.reg, row, constants, state);
+  Vec4f value;
+  for (int lane = 0; lane < 4; ++lane) {
+    float v = base[static_cast<std::size_t>(source.swizzle[lane])];
+    if (source.absolute) v = semantics::Abs(v);
+    value[static_cast<std::size_t>(lane)] = source.negate ? semantics::Negate(v) : v;
+  }
+  return value;
+}
+
+bool FlowPredicateLane(const Instruction& instruction, int lane, const FlowState& state) {
+  return state.p0[static_cast<std::size_t>(instruction.predicate.swizzle[lane])] != instruction.predicate.logical_not;
+}
+
+bool FlowCondition(const SourceOperand& source, const ConstantBank& constants, const FlowState& state) {
+  bool value = false;
+  if (source.reg.file == RegisterFile::kConstBool) value = constants.ReadBoolean(source.reg.index);
+  if (source.reg.file == RegisterFile::kPredicate) value = state.p0[static_cast<std::size_t>(source.swizzle[0])];
+  return value != source.logical_not;
+}
+
+void RunFlowVertex(const Program& program, const ConstantBank& constants, FlowState& state, FlowObserver* observer,
+                   FloatRules rules) {
+  const ControlTable control = BuildControlTable(program);
+  const auto declared_outputs = DeclaredOutputSlots(program);
+  if (rules == FloatRules::kLegacy) {
+    FlowInterpreter<FloatRules::kLegacy>(program, control, constants, declared_outputs, state).Run(observer);
+  } else {
+    FlowInterpreter<FloatRules::kD3d9>(program, control, constants, declared_outputs, state).Run(observer);
+  }
+}
 
 std::unique_ptr<Engine> MakeFlowReferenceEngine(const Program& program, const ConstantBank& api_constants,
                                                 FloatRules rules) {

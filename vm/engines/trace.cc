@@ -12,6 +12,7 @@
 #include "vm/asm/lexer.h"
 #include "vm/asm/program_file.h"
 #include "vm/core/input_file.h"
+#include "vm/engines/flow_trace.h"
 #include "vm/io/vertex_io.h"
 
 namespace vs11 {
@@ -55,7 +56,7 @@ class TraceRecorder final : public InstructionObserver {
     if (info.kind != ResultKind::kNoResult) {
       std::uint8_t reachable = static_cast<std::uint8_t>((1u << info.result_lanes()) - 1);
       step.write = TracedWrite{WriteMask(instruction.dest.mask.bits() & reachable),
-                               DestinationValue(instruction.dest.reg, state), {}};
+                               DestinationValue(instruction.dest.reg, state), {}, WriteMask(0)};
     }
     steps_.push_back(std::move(step));
   }
@@ -87,18 +88,61 @@ std::string Collapse(std::string_view text) {
   return out;
 }
 
+std::string FormatBool(float lane) { return lane != 0.0f ? "true" : "false"; }
+
+// "(true, false, true, true)": p0's lanes, or a predicate's.
+std::string FormatBools(const Vec4f& lanes) {
+  return fmt::format("({}, {}, {}, {})", FormatBool(lanes[0]), FormatBool(lanes[1]), FormatBool(lanes[2]),
+                     FormatBool(lanes[3]));
+}
+
 // "r1.x -> r1 = (0.5, kept 0, kept 0, kept 0)": the destination as written, then the whole register.
-std::string FormatWrite(const DestOperand& dest, const TracedWrite& write) {
+// Later models: a0's four lanes as integers, p0's as true/false, and "off 2" for a lane the predicate
+// turned off.
+std::string FormatWrite(const DestOperand& dest, const TracedWrite& write, ShaderModel model) {
   const RegisterRef& reg = dest.reg;
-  if (reg.file == RegisterFile::kAddress) {
+  if (reg.file == RegisterFile::kAddress && model == ShaderModel::kVs11) {
     return write.written.has(0) ? fmt::format("a0.x -> a0.x = {}", static_cast<int>(write.after[0])) : "a0 kept";
   }
+  auto format_lane = [&](float value) {
+    if (reg.file == RegisterFile::kPredicate) return FormatBool(value);
+    if (reg.file == RegisterFile::kAddress) return fmt::format("{}", static_cast<int>(value));
+    return FormatFloat(value);
+  };
   std::string lanes;
   for (int lane = 0; lane < 4; ++lane) {
     if (lane > 0) lanes += ", ";
-    lanes += write.written.has(lane) ? FormatFloat(write.after[lane]) : "kept " + FormatFloat(write.before[lane]);
+    if (write.written.has(lane)) {
+      lanes += format_lane(write.after[lane]);
+    } else {
+      lanes += (write.predicated_off.has(lane) ? "off " : "kept ") + format_lane(write.before[lane]);
+    }
   }
-  return fmt::format("{} -> {} = ({})", FormatDest(dest), RegisterName(reg.file, reg.index), lanes);
+  return fmt::format("{} -> {} = ({})", FormatDest(dest, model), RegisterName(reg.file, reg.index, model), lanes);
+}
+
+// "        read  r0.x = (...)   from r0 = (...)" for one read.
+std::string FormatRead(const Instruction& instruction, const TracedRead& read, ShaderModel model) {
+  if (read.source == TracedRead::kPredicateOperand) {  // (!p0.x) add ...: on or off per lane
+    return fmt::format("        read  ({}) = {}   from p0 = {}\n", FormatSource(instruction.predicate, Syntax::kDx9, model),
+                       FormatBools(read.value), FormatBools(read.raw));
+  }
+  const SourceOperand& source = instruction.sources[read.source];
+  std::string operand = read.row == 0 ? FormatSource(source, Syntax::kDx9, model)
+                                      : fmt::format("{} row {}", FormatSource(source, Syntax::kDx9, model), read.row);
+  if (read.boolean) {
+    std::string out = fmt::format("        read  {} = {}", operand, FormatBool(read.value[0]));
+    if (source.reg.file == RegisterFile::kPredicate) out += fmt::format("   from p0 = {}", FormatBools(read.raw));
+    return out + "\n";
+  }
+  std::string out = fmt::format("        read  {} = {}", operand, FormatVec4(read.value));
+  // A plain read is its register; otherwise name the register and show it as stored.
+  if (source.negate || !source.swizzle.is_identity() || source.reg.relative || read.row > 0 || source.absolute) {
+    out += fmt::format("   from {} = {}", RegisterName(read.register_read.file, read.register_read.index, model),
+                       FormatVec4(read.raw));
+  }
+  if (!read.address.empty()) out += fmt::format(" ({})", read.address);
+  return out + "\n";
 }
 
 }  // namespace
@@ -111,6 +155,7 @@ bool VertexTrace::identical() const {
 
 VertexTrace TraceVertex(const Program& program, const ConstantBank& api_constants, const VertexArrays& inputs,
                         std::size_t vertex, FloatRules rules) {
+  if (program.model() != ShaderModel::kVs11) return TraceFlowVertex(program, api_constants, inputs, vertex, rules);
   VertexTrace trace;
   trace.vertex = vertex;
   trace.input_registers = inputs.registers();
@@ -184,7 +229,7 @@ std::string FormatTraceText(const Program& program, const VertexTrace& trace, st
   int step_number = 0;
   for (const TraceStep& step : trace.steps) {
     const Instruction& instruction = program.instructions[step.instruction_index];
-    std::string disassembly = FormatInstruction(instruction);
+    std::string disassembly = FormatInstruction(instruction, Syntax::kDx9, program.model());
     SourceLoc loc = program.LocOf(step.instruction_index);
     std::optional<std::string> line = sources.Line(loc);
     ++step_number;
@@ -197,18 +242,9 @@ std::string FormatTraceText(const Program& program, const VertexTrace& trace, st
     } else {
       out += fmt::format("  [{}] instruction {}  {}\n", step_number, step.instruction_index, disassembly);
     }
-    for (const TracedRead& read : step.reads) {
-      const SourceOperand& source = instruction.sources[read.source];
-      std::string operand = read.row == 0 ? FormatSource(source)
-                                          : fmt::format("{} row {}", FormatSource(source), read.row);
-      out += fmt::format("        read  {} = {}", operand, FormatVec4(read.value));
-      // A plain read is its register; otherwise name the register and show it as stored.
-      if (source.negate || !source.swizzle.is_identity() || source.reg.relative || read.row > 0) {
-        out += fmt::format("   from {} = {}", RegisterName(read.register_read.file, read.register_read.index), FormatVec4(read.raw));
-      }
-      out += '\n';
-    }
-    if (step.write) out += fmt::format("        write {}\n", FormatWrite(instruction.dest, *step.write));
+    for (const TracedRead& read : step.reads) out += FormatRead(instruction, read, program.model());
+    if (step.write) out += fmt::format("        write {}\n", FormatWrite(instruction.dest, *step.write, program.model()));
+    if (!step.note.empty()) out += fmt::format("        flow  {}\n", step.note);
   }
   out += fmt::format("  outputs: reference | {}\n", engine_name);
   for (const TracedOutput& output : trace.outputs) {
@@ -247,6 +283,36 @@ std::string LaneLetters(WriteMask mask) {
   return letters;
 }
 
+json BoolsJson(const Vec4f& lanes) {
+  json out = json::array();
+  for (float lane : lanes) out.push_back(lane != 0.0f);
+  return out;
+}
+
+json ReadJson(const Instruction& instruction, const TracedRead& read, ShaderModel model) {
+  if (read.source == TracedRead::kPredicateOperand) {
+    return {{"operand", fmt::format("({})", FormatSource(instruction.predicate, Syntax::kDx9, model))},
+            {"source", read.source},
+            {"row", 0},
+            {"register", "p0"},
+            {"raw", BoolsJson(read.raw)},
+            {"value", BoolsJson(read.value)}};
+  }
+  json out = {{"operand", FormatSource(instruction.sources[read.source], Syntax::kDx9, model)},
+              {"source", read.source},
+              {"row", read.row},
+              {"register", RegisterName(read.register_read.file, read.register_read.index, model)}};
+  if (read.boolean) {
+    out["raw"] = BoolsJson(read.raw);
+    out["value"] = read.value[0] != 0.0f;
+  } else {
+    out["raw"] = Vec4Json(read.raw);
+    out["value"] = Vec4Json(read.value);
+  }
+  if (!read.address.empty()) out["address"] = read.address;
+  return out;
+}
+
 }  // namespace
 
 std::string TraceJson(const Program& program, const VertexTrace& trace, SourceLines& sources) {
@@ -258,28 +324,25 @@ std::string TraceJson(const Program& program, const VertexTrace& trace, SourceLi
   for (const TraceStep& step : trace.steps) {
     const Instruction& instruction = program.instructions[step.instruction_index];
     SourceLoc loc = program.LocOf(step.instruction_index);
-    json entry = {{"index", step.instruction_index}, {"instruction", FormatInstruction(instruction)}};
+    json entry = {{"index", step.instruction_index},
+                  {"instruction", FormatInstruction(instruction, Syntax::kDx9, program.model())}};
     if (!loc.file.empty()) {
       entry["file"] = loc.file;
       entry["line"] = loc.line;
       if (std::optional<std::string> line = sources.Line(loc)) entry["source"] = SourceStatement(*line);
     }
     json reads = json::array();
-    for (const TracedRead& read : step.reads) {
-      reads.push_back({{"operand", FormatSource(instruction.sources[read.source])},
-                       {"source", read.source},
-                       {"row", read.row},
-                       {"register", RegisterName(read.register_read.file, read.register_read.index)},
-                       {"raw", Vec4Json(read.raw)},
-                       {"value", Vec4Json(read.value)}});
-    }
+    for (const TracedRead& read : step.reads) reads.push_back(ReadJson(instruction, read, program.model()));
     entry["reads"] = reads;
     if (step.write) {
-      entry["write"] = {{"register", RegisterName(instruction.dest.reg.file, instruction.dest.reg.index)},
+      const RegisterRef& reg = instruction.dest.reg;
+      entry["write"] = {{"register", RegisterName(reg.file, reg.index, program.model())},
                         {"lanes", LaneLetters(step.write->written)},
                         {"before", Vec4Json(step.write->before)},
                         {"after", Vec4Json(step.write->after)}};
+      if (step.write->predicated_off.bits() != 0) entry["write"]["predicated_off"] = LaneLetters(step.write->predicated_off);
     }
+    if (!step.note.empty()) entry["flow"] = step.note;
     steps.push_back(entry);
   }
   vertex["steps"] = steps;

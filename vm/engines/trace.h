@@ -18,11 +18,16 @@ namespace vs11 {
 
 // One register an instruction read: a source operand, or one row of a matrix operand.
 struct TracedRead {
-  int source = 0;          // which source operand (0-2)
+  static constexpr int kPredicateOperand = -1;  // `source` of a predicated instruction's (p0) read
+  int source = 0;          // which source operand (0-2), or kPredicateOperand
   int row = 0;             // matrix row: register source.reg + row
   RegisterRef register_read;  // the register actually read (a relative constant resolved with a0)
   Vec4f raw{};             // that register as stored
   Vec4f value{};           // what the instruction used: swizzled and negated
+  // Later models: b# or p0 (lanes 1 true, 0 false): a condition's value in every lane, the
+  // predicate's per lane, `!` applied; raw: b# in lane x, or p0's four lanes.
+  bool boolean = false;
+  std::string address;     // later models: what a relative operand was read through ("aL = 4")
 };
 
 // The destination an instruction wrote. `written` holds the lanes the mask and the instruction's
@@ -30,13 +35,15 @@ struct TracedRead {
 struct TracedWrite {
   WriteMask written;
   Vec4f before{};
-  Vec4f after{};  // for a0: lane x holds the integer address
+  Vec4f after{};  // for a0: lane x holds the integer address (later models: each lane its own)
+  WriteMask predicated_off{0};  // lanes the mask allowed but the predicate turned off (kept)
 };
 
 struct TraceStep {
   int instruction_index = 0;  // into Program::instructions
   std::vector<TracedRead> reads;
   std::optional<TracedWrite> write;
+  std::string note;  // later models' flow control: what it decided ("3 iterations", "calls l0 at line 9")
 };
 
 // An output register at the end of the vertex, by the reference engine and by the engine compared.
@@ -59,7 +66,8 @@ struct VertexTrace {
 
 // Runs vertex `vertex` of `inputs` (vertex < inputs.count()) on the reference engine, its products
 // under `rules`, and records it. `api_constants` are the API's constants (def lines are applied here,
-// as every engine does).
+// as every engine does). A later model's program is traced by TraceFlowVertex (vm/engines/flow_trace.h):
+// every instruction in the order it runs, loops once per iteration, branches not taken left out.
 VertexTrace TraceVertex(const Program& program, const ConstantBank& api_constants, const VertexArrays& inputs,
                         std::size_t vertex, FloatRules rules = FloatRules::kD3d9);
 

@@ -1,6 +1,8 @@
 // `vs11 run` on a vs_2_0 program end to end: the ref engine runs a skinning loop over bones with
 // c#[aL], and batch and jit run it specialised for its i0 with the same numbers; a program with dynamic
-// flow control they refuse by name; --const and --consts set i# and b#.
+// flow control they refuse by name; --const and --consts set i# and b#; --trace follows the flow.
+#include <fstream>
+#include <sstream>
 #include <string>
 
 #include <gmock/gmock.h>
@@ -125,10 +127,31 @@ TEST_F(LaterModelRun, IntegerConstantsOutOfRangeAreUsageErrorsNamingTheFlag) {
   EXPECT_THAT(r.output, HasSubstr("--const i0 is given twice"));
 }
 
-TEST_F(LaterModelRun, TraceSaysItRunsOnlyVs11) {
-  const CommandResult r = RunVs11("run " + program_ + " --input v0=" + positions_ + kBones + " --missing zeros --engine ref --trace 0");
-  EXPECT_EQ(r.status, 1);
-  EXPECT_THAT(r.output, HasSubstr("--trace runs only vs_1_1 programs yet"));
+TEST_F(LaterModelRun, TraceFollowsALoopAnIfAndACallBesideTheEnginesOutputs) {
+  // The skinning loop's two iterations, then a call under if b0, then a call under if b1 (false).
+  const std::string program = Write("traced.vsh", "vs_2_0\ndefb b0, true\ndefb b1, false\ndef c1, 2, 2, 2, 1\n" +
+                                                      kSkinning.substr(kSkinning.find("defi")) + "if b0\ncall l0\nendif\n"
+                                                      "if b1\ncall l0\nendif\nret\nlabel l0\nmul oPos, r0, c1\nret\n");
+  const std::string json_file = (dir_ / "trace.json").string();
+  for (const char* engine : {"ref", "batch", "jit"}) {
+    const CommandResult r = RunVs11("run " + program + " --input v0=" + positions_ + kBones +
+                                    " --missing zeros --trace 0 --trace-json " + json_file + " --engine " + engine);
+    ASSERT_EQ(r.status, 0) << engine << ": " << r.output;
+    EXPECT_THAT(r.output, HasSubstr("flow  2 iterations, aL = 10, step 4")) << engine;
+    EXPECT_THAT(r.output, HasSubstr("read  c0[aL] = (1, 0, 0, 1)   from c10 = (1, 0, 0, 1) (aL = 10)")) << engine;
+    EXPECT_THAT(r.output, HasSubstr("read  c0[aL] = (2, 0, 0, 0)   from c14 = (2, 0, 0, 0) (aL = 14)")) << engine;
+    EXPECT_THAT(r.output, HasSubstr("flow  next iteration, aL = 14")) << engine;
+    EXPECT_THAT(r.output, HasSubstr("flow  the loop ends")) << engine;
+    EXPECT_THAT(r.output, HasSubstr("read  b1 = false")) << engine;
+    EXPECT_THAT(r.output, HasSubstr("flow  calls l0 at line ")) << engine;
+    EXPECT_THAT(r.output, HasSubstr("oPos = (4, 6, 9, 1) | (4, 6, 9, 1)  identical")) << engine;
+    const std::string call = "mul oPos, r0, c1";  // b1's call never ran: the routine shows once
+    EXPECT_EQ(r.output.find(call), r.output.rfind(call)) << engine;
+    std::ostringstream json;
+    json << std::ifstream(json_file).rdbuf();
+    EXPECT_THAT(json.str(), HasSubstr("\"identical\": true")) << engine;
+    EXPECT_THAT(json.str(), HasSubstr("\"address\": \"aL = 14\"")) << engine;
+  }
 }
 
 }  // namespace
