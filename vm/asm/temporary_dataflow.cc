@@ -8,6 +8,7 @@
 #include <cstdint>
 #include <map>
 #include <set>
+#include <string_view>
 #include <utility>
 
 #include "vm/asm/validator.h"
@@ -16,11 +17,15 @@ namespace vs11 {
 namespace {
 
 constexpr int kMaxTemps = 32;  // vs_2_x and vs_3_0 (vm/core/shader_model.h); vs_2_0 has 12
+// a0 (written by mova) and p0 (by setp) follow the temporaries in the same lane sets.
+constexpr int kA0Slot = kMaxTemps;
+constexpr int kP0Slot = kMaxTemps + 1;
+constexpr int kSlots = kMaxTemps + 2;
 constexpr std::uint8_t kAllLanes = WriteMask::kAllLanes;
 constexpr std::uint8_t kLaneX = 1 << 0;
 constexpr std::uint8_t kLaneW = 1 << 3;
 constexpr std::uint8_t kLanesXyz = 0x7;
-using Lanes = std::array<std::uint8_t, kMaxTemps>;
+using Lanes = std::array<std::uint8_t, kSlots>;
 
 // What is known about the temporaries at one point of the program, over the paths that reach it.
 struct FlowState {
@@ -41,7 +46,7 @@ FlowState Merge(const FlowState& a, const FlowState& b) {
   if (!a.reachable) return b;
   if (!b.reachable) return a;
   FlowState joined;
-  for (int r = 0; r < kMaxTemps; ++r) {
+  for (int r = 0; r < kSlots; ++r) {
     joined.must[r] = a.must[r] & b.must[r];
     joined.may[r] = a.may[r] | b.may[r];
     joined.clobbered[r] = a.clobbered[r] | b.clobbered[r];
@@ -265,7 +270,7 @@ class TemporaryDataflow {
       if (!first) entry->second = Merge(entry->second, state);
     }
     const Effect& effect = EffectOf(target);
-    for (int r = 0; r < kMaxTemps; ++r) {
+    for (int r = 0; r < kSlots; ++r) {
       if (!conditional) {
         state.must[r] |= effect.must[r];
         state.clobbered[r] &= ~effect.must[r];
@@ -275,18 +280,24 @@ class TemporaryDataflow {
     }
   }
 
-  void Write(const Instruction& instruction, FlowState& state) const {
+  // The slot a write lands in: a temporary, a0 (mova) or p0 (setp); -1 for any other.
+  int WrittenSlot(const Instruction& instruction) const {
     const RegisterRef& reg = instruction.dest.reg;
-    if (!state.reachable || !instruction.info().has_dest() || !instruction.info().is_executable() ||
-        reg.file != RegisterFile::kTemp || reg.relative || reg.index < 0 || reg.index >= temp_count_) {
-      return;
-    }
+    if (!instruction.info().has_dest() || !instruction.info().is_executable() || reg.relative) return -1;
+    if (reg.file == RegisterFile::kAddress) return kA0Slot;
+    if (reg.file == RegisterFile::kPredicate) return kP0Slot;
+    return reg.file == RegisterFile::kTemp && reg.index >= 0 && reg.index < temp_count_ ? reg.index : -1;
+  }
+
+  void Write(const Instruction& instruction, FlowState& state) const {
+    const int slot = WrittenSlot(instruction);
+    if (!state.reachable || slot < 0) return;
     const std::uint8_t mask = instruction.dest.mask.bits() & kAllLanes;
     if (!instruction.predicated) {
-      state.must[reg.index] |= mask;
-      state.clobbered[reg.index] &= ~mask;
+      state.must[slot] |= mask;
+      state.clobbered[slot] &= ~mask;
     }
-    state.may[reg.index] |= mask;
+    state.may[slot] |= mask;
   }
 
   // sgn's src1 and src2: "their contents are undefined after execution" (D3D9 reference, sgn - vs).
@@ -346,13 +357,74 @@ class TemporaryDataflow {
                          "write {} again before reading",
                          list, one ? "it" : "them");
     });
+    CheckRegisterReads(index, state, context, some_context);
+  }
+
+  // a0 and p0 as an instruction reads them: a0's lane in each index through a0 (c#[a0.y], vs_3_0's
+  // o#[a0.x]), p0's lane in a condition (if p0.x, callnz l#, p0.y, breakp p0.z), and the p0 lanes a
+  // predicated instruction's written lanes take through its swizzle. The same paths as the temporaries:
+  // lanes no path writes are an error, lanes some paths write a warning. a0's findings carry
+  // kAddressNotWritten, as vs_1_1's rule (validator.cc) does.
+  void CheckRegisterReads(int index, const FlowState& state, const std::string& context,
+                          const std::string& some_context) {
+    const Instruction& instruction = At(index);
+    Lanes read{};
+    const auto through_a0 = [&](const RegisterRef& reg) {
+      if (reg.relative && reg.address.file == RegisterFile::kAddress) read[kA0Slot] |= 1 << (reg.address.swizzle_bits & 3);
+    };
+    for (int s = 0; s < SourceCount(instruction.info(), program_.model()); ++s) {
+      const SourceOperand& source = instruction.sources[s];
+      through_a0(source.reg);
+      if (source.reg.file == RegisterFile::kPredicate) read[kP0Slot] |= 1 << source.swizzle[0];
+    }
+    if (instruction.info().has_dest()) through_a0(instruction.dest.reg);
+    if (instruction.predicated) {
+      const std::uint8_t lanes = instruction.info().has_dest() ? instruction.dest.mask.bits() & kAllLanes : kAllLanes;
+      read[kP0Slot] |= ThroughSwizzle(lanes, instruction.predicate.swizzle);
+    }
+    for (int slot : {kA0Slot, kP0Slot}) {
+      const std::uint8_t unwritten = read[slot] & ~state.may[slot];
+      const std::uint8_t some_paths = read[slot] & ~state.must[slot] & ~unwritten;
+      const bool address = slot == kA0Slot;
+      const std::string_view writer = address ? "mova" : "setp";
+      Lanes lanes{};
+      if (unwritten != 0) {
+        lanes[slot] = unwritten;
+        const bool none = state.may[slot] == 0;
+        Add(index, Severity::kError,
+            address ? DiagnosticCode::kAddressNotWritten
+                    : (none ? DiagnosticCode::kUninitializedRegister : DiagnosticCode::kUninitializedLanes),
+            lanes, [&](const std::string& list, bool) {
+              return fmt::format("reads {}, which no path writes before this read{}{}; write {} with {} earlier in "
+                                 "the program",
+                                 list, none ? "" : fmt::format(" ({} wrote other lanes)", writer), context,
+                                 address ? "a0" : "p0", writer);
+            });
+      }
+      if (some_paths != 0) {
+        lanes[slot] = some_paths;
+        Add(index, Severity::kWarning, address ? DiagnosticCode::kAddressNotWritten : DiagnosticCode::kUninitializedLanes,
+            lanes, [&](const std::string& list, bool) {
+              return fmt::format("reads {}, which only some paths write before this read (an if side, a loop that "
+                                 "may run no iteration, a predicated {}{}); on the others it is undefined: write it "
+                                 "on every path",
+                                 list, writer, some_context);
+            });
+      }
+    }
+  }
+
+  static std::string SlotName(int slot) {
+    if (slot == kA0Slot) return "a0";
+    if (slot == kP0Slot) return "p0";
+    return fmt::format("r{}", slot);
   }
 
   template <typename Describe>
   void Add(int index, Severity severity, DiagnosticCode code, const Lanes& lanes, Describe describe) {
     std::vector<std::string> names;
-    for (int r = 0; r < kMaxTemps; ++r) {
-      if (lanes[r] != 0) names.push_back(fmt::format("r{}{}", r, LaneSuffix(lanes[r])));
+    for (int r = 0; r < kSlots; ++r) {
+      if (lanes[r] != 0) names.push_back(fmt::format("{}{}", SlotName(r), LaneSuffix(lanes[r])));
     }
     if (names.empty()) return;
     Pending pending{TemporaryReadFinding{index, severity, code, describe(fmt::format("{}", fmt::join(names, ", ")),
@@ -367,7 +439,7 @@ class TemporaryDataflow {
       Pending& pending = findings_[f];
       if (pending.first_iteration_noted || pending.finding.severity != Severity::kError) continue;
       bool written_later = false;
-      for (int r = 0; r < kMaxTemps; ++r) written_later |= (pending.missing[r] & body_end.may[r]) != 0;
+      for (int r = 0; r < kSlots; ++r) written_later |= (pending.missing[r] & body_end.may[r]) != 0;
       if (!written_later) continue;
       pending.first_iteration_noted = true;
       pending.finding.message += "; the loop body writes it only after this read, so its first iteration reads it "

@@ -1,5 +1,5 @@
-// Reads of unwritten temporaries in a program of vs_2_0, vs_2_x or vs_3_0, along its flow control (the
-// validator's rule for those models: vm/asm/validator_models.cc). The D3D9 reference's temporary
+// Reads of unwritten temporaries, a0 and p0 in a program of vs_2_0, vs_2_x or vs_3_0, along its flow
+// control (the validator's rule for those models: vm/asm/validator_models.cc). The D3D9 reference's temporary
 // register page: "A temporary register must be initialized before it is used ... Vertex shaders that
 // read a value from a temporary register before writing to it will fail the Direct3D API call to create
 // the vertex shader."
@@ -25,6 +25,11 @@
 // source the one lane its swizzle's w selects (both need a replicate swizzle); texldl every lane (w is
 // the level of detail); if_comp and break_comp the lane their swizzle's x selects (README "Shader
 // models": the engines compare the x lanes of the replicate-swizzled sources).
+// a0 and p0 are followed the same way, as two more registers: mova writes a0's lanes, setp p0's; a
+// relative operand reads the a0 lane it indexes by, a condition (if, callnz, breakp) its p0 lane, and a
+// predicated instruction the p0 lanes its written lanes take through the predicate's swizzle. Their
+// findings say which instruction writes them; a0's carry kAddressNotWritten (vs_1_1's code for the same
+// mistake, whose straight-line check in validator.cc stays as it is).
 #pragma once
 
 #include <string>

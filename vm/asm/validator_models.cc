@@ -8,9 +8,10 @@
 // nrm writes a temporary that is not its source; mova writes a0, with any mask in every later model (the
 // mova page: "for versions 2_x and above, the address register is a component vector, therefore any write
 // mask is allowed"; we read "2_x" as the 2.x family, as Microsoft's assembler takes `mova a0.y` in
-// vs_2_0: Wine's case 20). Not modelled yet: the other per-instruction write-mask and swizzle rules
-// (replicate swizzles of if_comp and break_comp, sincos's vs_2_0 constant operands being c#), a0 and p0
-// read before they are written.
+// vs_2_0: Wine's case 20); if_comp's and break_comp's sources, and the p0 of if, callnz and breakp, are
+// one component (a replicate swizzle), a predicate p0 lane for lane or one lane. Reads of a0 and p0
+// before mova and setp write them are followed along the flow control with the temporaries
+// (vm/asm/temporary_dataflow.h). Not modelled yet: sincos's vs_2_0 constant operands being c#.
 #include <fmt/format.h>
 
 #include <algorithm>
@@ -122,6 +123,16 @@ class LaterModelValidator {
 
   static bool IsFile(const SourceOperand& source, RegisterFile file) { return source.reg.file == file; }
 
+  // A condition or comparison reads one lane: if_comp and break_comp compare two scalars, and if p0,
+  // callnz l#, p0 and breakp test one predicate lane (the asm reference's pages for each: a replicate
+  // swizzle is required; "[!]p0.c"). setp has no such rule: it compares lane by lane.
+  void ExpectOneLane(int index, const SourceOperand& source, std::string_view what) {
+    if (source.swizzle.is_replicate()) return;
+    Error(index, DiagnosticCode::kScalarSwizzle,
+          fmt::format("{} ({}) must be one component: give it a replicate swizzle such as .x", what,
+                      FormatSource(source, Syntax::kDx9, model_)));
+  }
+
   // What each later instruction's operands must be, and the files that may be read or written.
   void CheckOperands(int index) {
     const Instruction& instruction = At(index);
@@ -139,7 +150,15 @@ class LaterModelValidator {
         Error(index, DiagnosticCode::kSourceModifier, fmt::format("src{}: '!' applies only to a condition", s));
       }
     }
-    if (instruction.predicated) CheckExists(index, instruction.predicate.reg, "the predicate");
+    if (instruction.predicated && CheckExists(index, instruction.predicate.reg, "the predicate") &&
+        !instruction.predicate.swizzle.is_identity() && !instruction.predicate.swizzle.is_replicate()) {
+      // A predicate is p0 lane for lane (.xyzw, the default) or one lane for all (the asm reference's
+      // predicate register page: "([!]p0[.swizzle])", a full or a replicate swizzle).
+      Error(index, DiagnosticCode::kScalarSwizzle,
+            fmt::format("the predicate ({}) must be p0 lane for lane (.xyzw) or one lane (a replicate swizzle "
+                        "such as p0.x)",
+                        FormatSource(instruction.predicate, Syntax::kDx9, model_)));
+    }
     for (const ReadPortViolation& violation : FindReadPortViolations(instruction, model_)) {
       Error(index, DiagnosticCode::kReadPorts, DescribeReadPortViolation(violation, model_));
     }
@@ -156,6 +175,12 @@ class LaterModelValidator {
       case Opcode::kIf:
         Expect(index, IsFile(s0, RegisterFile::kConstBool) || IsFile(s0, RegisterFile::kPredicate), "if's condition",
                RegisterCount(RegisterFile::kPredicate, model_) ? "b# or p0 with one component" : "a boolean constant b#");
+        if (IsFile(s0, RegisterFile::kPredicate)) ExpectOneLane(index, s0, "if's condition");
+        return;
+      case Opcode::kIfc:
+      case Opcode::kBreakc:
+        ExpectOneLane(index, s0, op == Opcode::kIfc ? "if_comp's src0" : "break_comp's src0");
+        ExpectOneLane(index, s1, op == Opcode::kIfc ? "if_comp's src1" : "break_comp's src1");
         return;
       case Opcode::kCall:
       case Opcode::kLabel: Expect(index, IsFile(s0, RegisterFile::kLabel), "the operand", "a label l#"); return;
@@ -163,8 +188,12 @@ class LaterModelValidator {
         Expect(index, IsFile(s0, RegisterFile::kLabel), "callnz's target", "a label l#");
         Expect(index, IsFile(s1, RegisterFile::kConstBool) || IsFile(s1, RegisterFile::kPredicate),
                "callnz's condition", "b# or p0");
+        if (IsFile(s1, RegisterFile::kPredicate)) ExpectOneLane(index, s1, "callnz's condition");
         return;
-      case Opcode::kBreakp: Expect(index, IsFile(s0, RegisterFile::kPredicate), "breakp's operand", "p0"); return;
+      case Opcode::kBreakp:
+        Expect(index, IsFile(s0, RegisterFile::kPredicate), "breakp's operand", "p0");
+        ExpectOneLane(index, s0, "breakp's operand");
+        return;
       case Opcode::kSetp: Expect(index, dest == RegisterFile::kPredicate, "setp's destination", "p0"); break;
       case Opcode::kMova: Expect(index, dest == RegisterFile::kAddress, "mova's destination", "a0"); break;
       case Opcode::kTexldl: Expect(index, IsFile(s1, RegisterFile::kSampler), "texldl's src1", "a sampler s#"); break;

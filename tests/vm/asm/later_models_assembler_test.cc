@@ -220,8 +220,9 @@ INSTANTIATE_TEST_SUITE_P(Wine, LaterModelTokens, testing::ValuesIn(kTokenCases),
 // Microsoft assembled these without validation. Through the validator (as fragments: most write no
 // position) the read ports refuse only case 11's two relative constants, as Microsoft's validator would,
 // and sgn's, nrm's and mova's operand rules none. Their other errors are those of pieces that are not
-// whole shaders (temporaries read before any write, inputs without dcl, calls of labels not defined,
-// crs, pow and sincos examples with a full write mask or no replicate swizzle).
+// whole shaders (temporaries and a0 read before any write, inputs without dcl, calls of labels not
+// defined, crs, pow and sincos examples with a full write mask or no replicate swizzle, if_comp and
+// break_comp on whole registers).
 TEST_P(LaterModelTokens, ReadPortsRefuseOnlyCase11AndSgnNrmMovaRulesNone) {
   const TokenCase& c = GetParam();
   const AssembleResult result = AssembleUnvalidated(c.source);

@@ -1,10 +1,12 @@
-// The later models' read ports (vm/asm/read_ports.h), their reads of unwritten temporaries along the flow
-// control (vm/asm/temporary_dataflow.h) and the operand rules of sgn, nrm and mova (validator_models.cc):
+// The later models' read ports (vm/asm/read_ports.h), their reads of unwritten temporaries, a0 and p0 along
+// the flow control (vm/asm/temporary_dataflow.h) and the operand rules of sgn, nrm, mova and the conditions
+// (validator_models.cc):
 // for each rule a program that keeps it and one that breaks it, in each model the rule applies to.
 #include <fmt/format.h>
 #include <gtest/gtest.h>
 
 #include <string>
+#include <utility>
 #include <vector>
 
 #include "vm/asm/assembler.h"
@@ -226,8 +228,10 @@ TEST(LaterModelUnwrittenTemporaries, LoopBodiesAreCheckedOnTheirFirstIteration) 
 TEST(LaterModelUnwrittenTemporaries, BreakEndsItsPath) {
   for (const std::string& model : {std::string("vs_2_x"), std::string("vs_3_0")}) {
     ExpectClean(model, "rep i0\nif b0\nmov r1, c0\nelse\nbreak\nendif\nadd r2, r1, c1\nendrep\n");
-    ExpectWarningOnly(model, "rep i0\nif b0\nmov r1, c0\nelse\nbreakp p0.x\nendif\nadd r2, r1, c1\nendrep\n",
-                      DiagnosticCode::kUninitializedLanes, 7);
+    ExpectWarningOnly(model,
+                      "setp_gt p0, v0, c0\nrep i0\nif b0\nmov r1, c0\nelse\nbreakp p0.x\nendif\nadd r2, r1, c1\n"
+                      "endrep\n",
+                      DiagnosticCode::kUninitializedLanes, 8);
   }
 }
 
@@ -304,6 +308,77 @@ TEST(LaterModelUnwrittenTemporaries, BytecodeWithoutSourceNamesTheInstruction) {
   ASSERT_EQ(CountWithCode(diagnostics, DiagnosticCode::kUninitializedRegister), 1) << Messages(diagnostics);
   EXPECT_NE(diagnostics.all().front().message.find("instruction 2 (mov)"), std::string::npos)
       << Messages(diagnostics);
+}
+
+// --- a0 and p0 read before mova and setp write them ------------------------------------------------
+
+TEST(LaterModelRegisterDataflow, AddressReadBeforeMovaWritesItAlongTheFlowControl) {
+  for (const std::string& model : kLaterModels) {
+    ExpectClean(model, "mova a0.x, c0.x\nmov r0, c1[a0.x]\n");
+    ExpectClean(model, "mova a0.x, c0.x\ncall l0\nret\nlabel l0\nmov r0, c1[a0.x]\nret\n");
+    std::string message = ExpectError(model, "mov r0, c1[a0.x]\n", DiagnosticCode::kAddressNotWritten, 1);
+    EXPECT_NE(message.find("reads a0.x, which no path writes before this read; write a0 with mova earlier"),
+              std::string::npos)
+        << message;
+    message = ExpectError(model, "mova a0.x, c0.x\nmov r0, c1[a0.y]\n", DiagnosticCode::kAddressNotWritten, 2);
+    EXPECT_NE(message.find("reads a0.y, which no path writes before this read (mova wrote other lanes)"),
+              std::string::npos)
+        << message;
+    message = ExpectError(model, "rep i0\nmov r0, c1[a0.x]\nmova a0.x, c0.x\nendrep\n",
+                          DiagnosticCode::kAddressNotWritten, 2);
+    EXPECT_NE(message.find("its first iteration reads it unwritten"), std::string::npos) << message;
+    message = ExpectWarningOnly(model, "if b0\nmova a0.x, c0.x\nendif\nmov r0, c1[a0.x]\n",
+                                DiagnosticCode::kAddressNotWritten, 4);
+    EXPECT_NE(message.find("reads a0.x, which only some paths write"), std::string::npos) << message;
+  }
+}
+
+TEST(LaterModelRegisterDataflow, Vs11AddressRuleIsUnchanged) {
+  const AssembleResult result = AssembleSource("vs_1_1\ndcl_position v0\nmov oPos, c[a0.x]\n", "m.vsh", {}, NoFiles);
+  const Diagnostic* d = Find(result.diagnostics, Severity::kError, DiagnosticCode::kAddressNotWritten, 3);
+  ASSERT_NE(d, nullptr) << Messages(result.diagnostics);
+  EXPECT_NE(d->message.find("before a0 is written; put `mov a0.x, <src>` earlier in the program"), std::string::npos)
+      << d->message;
+}
+
+TEST(LaterModelRegisterDataflow, PredicateReadBeforeSetpWritesIt) {
+  for (const std::string& model : {std::string("vs_2_x"), std::string("vs_3_0")}) {
+    ExpectClean(model, "setp_gt p0.xw, v0, c0\n(p0.x) mov r0, c1\nif p0.w\nendif\n");
+    ExpectError(model, "if p0.x\nendif\n", DiagnosticCode::kUninitializedRegister, 1);
+    const std::string message = ExpectError(model, "(!p0) mov r0, c1\n", DiagnosticCode::kUninitializedRegister, 1);
+    EXPECT_NE(message.find("reads p0.xyzw, which no path writes before this read; write p0 with setp"),
+              std::string::npos)
+        << message;
+    // The lanes a predicated write takes from p0 are those its mask writes, through the swizzle.
+    ExpectError(model, "setp_gt p0.x, v0, c0\n(p0) mov r0.y, c1\n", DiagnosticCode::kUninitializedLanes, 2);
+    ExpectClean(model, "setp_gt p0.x, v0, c0\n(p0) mov r0.x, c1\n");
+    ExpectError(model, "setp_gt p0.x, v0, c0\nrep i0\nbreakp p0.y\nendrep\n", DiagnosticCode::kUninitializedLanes, 3);
+    ExpectWarningOnly(model, "if b0\nsetp_gt p0, v0, c0\nendif\ncallnz l0, p0.x\nret\nlabel l0\nret\n",
+                      DiagnosticCode::kUninitializedLanes, 4);
+  }
+}
+
+// --- conditions and comparisons read one component ------------------------------------------------
+
+TEST(LaterModelOperandRules, ConditionsAndComparisonsReadOneComponent) {
+  for (const std::string& model : {std::string("vs_2_x"), std::string("vs_3_0")}) {
+    // setp compares lane by lane: any swizzle. A predicate is p0 lane for lane or one lane.
+    ExpectClean(model,
+                "setp_lt p0, v0.yxwz, c0.zzxy\nif_gt v0.x, c0.y\nendif\nif !p0.z\nendif\nrep i0\n"
+                "break_le v0.w, -c0.x\nbreakp !p0.y\nendrep\ncallnz l0, !p0.w\n(p0.y) mov r0, c0\n"
+                "(!p0) mov r1, c0\n(p0.xyzw) mov r2, c0\nret\nlabel l0\nret\n");
+    for (const auto& [body, line] : std::vector<std::pair<std::string, int>>{
+             {"if_gt v0, c0.x\nendif\n", 1},
+             {"if_ge v0.x, c0.xy\nendif\n", 1},
+             {"rep i0\nbreak_ne v0.x, c0\nendrep\n", 2},
+             {"setp_gt p0, v0, c0\nif p0\nendif\n", 2},
+             {"setp_gt p0, v0, c0\nrep i0\nbreakp p0.xy\nendrep\n", 3},
+             {"setp_gt p0, v0, c0\ncallnz l0, p0\nret\nlabel l0\nret\n", 2},
+             {"setp_gt p0, v0, c0\n(p0.yx) mov r0, c0\n", 2},
+         }) {
+      ExpectError(model, body, DiagnosticCode::kScalarSwizzle, line);
+    }
+  }
 }
 
 }  // namespace
