@@ -155,7 +155,9 @@ void BindRun(py::class_<PyProgram>& program_class) {
       "Runs one vertex instruction by instruction on the reference engine and returns the record\n"
       "`vs11 run --trace-json` writes for it: a dict with 'vertex', 'identical', 'inputs', 'steps'\n"
       "(one dict per executed instruction: 'index', 'instruction', 'reads', 'write', and 'file',\n"
-      "'line', 'source' for assembled text) and 'outputs' (the reference's and `engine`'s values).\n"
+      "'line', 'source' for assembled text; a later model's in the order its flow control runs them,\n"
+      "with 'flow', 'address' and 'predicated_off' where they apply) and 'outputs' (the reference's and\n"
+      "`engine`'s values).\n"
       "inputs, constants, float_rules and missing as for run(); raises IndexError for a vertex out of range.\n\n"
       "Example:\n"
       "  steps = p.trace({'v0': normals}, constants, vertex=2)['steps']");

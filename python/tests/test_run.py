@@ -326,3 +326,30 @@ def test_trace_is_what_vs11_run_trace_json_writes(programs_dir, vs11_tool, tmp_p
         program.trace({"v0": normals}, constants, vertex=3)
     with pytest.raises(IndexError, match="vertex 1180591620717411303424: there are 3 vertices"):
         program.trace({"v0": normals}, constants, vertex=2**70)
+
+
+def test_trace_follows_a_later_models_flow(vs11_tool, tmp_path):
+    # A loop of two iterations over c0[aL] (aL = 10, 14), then a call under if b0.
+    path = tmp_path / "flow.vsh"
+    path.write_text("vs_2_0\ndefi i0, 2, 10, 4, 0\ndefb b0, true\ndcl_position v0\nmov r0, v0\n"
+                    "loop aL, i0\nadd r0, r0, c0[aL]\nendloop\nif b0\ncall l0\nendif\nmov oPos, r0\nret\n"
+                    "label l0\nmul r0, r0, c1\nret\n")
+    program = vs11.load(str(path))
+    positions = np.array([[0, 0, 0, 1], [1, 2, 3, 1]], dtype=np.float32)
+    constants = np.zeros((18, 4), dtype=np.float32)
+    constants[1] = [2, 2, 2, 1]
+    constants[10] = [1, 0, 0, 0]
+    constants[14] = [0, 1, 0, 0]
+    trace = program.trace({"v0": positions}, constants, vertex=1)
+    assert [step["flow"] for step in trace["steps"] if "flow" in step] == [
+        "2 iterations, aL = 10, step 4", "next iteration, aL = 14", "the loop ends", "true: runs the block",
+        "calls l0 at line 15", "returns to line 11", "the program ends"]
+    assert [step["line"] for step in trace["steps"]] == [5, 6, 7, 8, 7, 8, 9, 10, 15, 16, 11, 12, 13]
+    assert trace["outputs"][0]["reference"] == [4, 6, 6, 1] and trace["identical"]
+    write_csv(tmp_path / "p.csv", positions)
+    (tmp_path / "c.txt").write_text("c1 = 2 2 2 1\nc10 = 1 0 0 0\nc14 = 0 1 0 0\n")
+    subprocess.run([str(vs11_tool), "run", str(path), "--input", "v0=%s" % (tmp_path / "p.csv"), "--consts",
+                    str(tmp_path / "c.txt"), "--missing", "zeros", "--trace", "1", "--trace-json",
+                    str(tmp_path / "t.json")], capture_output=True, check=True)
+    import json
+    assert json.loads((tmp_path / "t.json").read_text())["vertices"][0] == trace
