@@ -29,11 +29,17 @@ struct Cursor {
     return pos >= line.size();
   }
   int column() const { return static_cast<int>(pos) + 1; }
-  std::optional<float> Number() {
+  // The next value: the text up to a blank or ','. The cursor stays before it (Take moves past it).
+  std::string_view Peek() {
     SkipSeparators();
     std::size_t end = pos;
     while (end < line.size() && !std::isspace(static_cast<unsigned char>(line[end])) && line[end] != ',') ++end;
-    std::string_view token = line.substr(pos, end - pos);
+    return line.substr(pos, end - pos);
+  }
+  void Take(std::string_view token) { pos += token.size(); }
+  std::optional<float> Number() {
+    const std::string_view whole = Peek();
+    std::string_view token = whole;
     if (!token.empty() && (token.back() == 'f' || token.back() == 'F') && token.size() > 1 &&
         token.find_first_of("xX") == std::string_view::npos) {
       token.remove_suffix(1);
@@ -42,7 +48,7 @@ struct Cursor {
     float value = 0.0f;
     auto [ptr, ec] = std::from_chars(token.data(), token.data() + token.size(), value);
     if (token.empty() || ec != std::errc() || ptr != token.data() + token.size()) return std::nullopt;
-    pos = end;
+    Take(whole);
     return value;
   }
 };
@@ -167,12 +173,8 @@ Status ReadIntegers(Cursor& cursor, Vec4i& values, int& column) {
   values = {};
   for (int i = 0; i < 4 && !cursor.AtEnd(); ++i) {
     column = cursor.column();
-    std::size_t end = cursor.pos;
-    while (end < cursor.line.size() && !std::isspace(static_cast<unsigned char>(cursor.line[end])) &&
-           cursor.line[end] != ',') {
-      ++end;
-    }
-    std::string_view token = cursor.line.substr(cursor.pos, end - cursor.pos);
+    const std::string_view whole = cursor.Peek();
+    std::string_view token = whole;
     if (!token.empty() && token.front() == '+') token.remove_prefix(1);
     long long value = 0;
     auto [ptr, ec] = std::from_chars(token.data(), token.data() + token.size(), value);
@@ -183,10 +185,10 @@ Status ReadIntegers(Cursor& cursor, Vec4i& values, int& column) {
     if (value < range.low || value > range.high) {
       return Failure(DiagnosticCode::kConstantValue,
                      fmt::format("{} ({}) must be {} to {}, not {}", "xyzw"[i], range.role, range.low, range.high,
-                                 cursor.line.substr(cursor.pos, end - cursor.pos)));
+                                 whole));
     }
     values[static_cast<std::size_t>(i)] = static_cast<int>(value);
-    cursor.pos = end;
+    cursor.Take(whole);
   }
   column = cursor.column();
   if (!cursor.AtEnd()) return Failure(DiagnosticCode::kConstantValue, "more than four values");
@@ -195,14 +197,9 @@ Status ReadIntegers(Cursor& cursor, Vec4i& values, int& column) {
 
 // Reads one boolean: true or false (any case), or 1 or 0.
 Status ReadBoolean(Cursor& cursor, bool& value, int& column) {
-  cursor.SkipSeparators();
+  const std::string_view token = cursor.Peek();
   column = cursor.column();
-  std::size_t end = cursor.pos;
-  while (end < cursor.line.size() && !std::isspace(static_cast<unsigned char>(cursor.line[end])) &&
-         cursor.line[end] != ',') {
-    ++end;
-  }
-  std::string word(cursor.line.substr(cursor.pos, end - cursor.pos));
+  std::string word(token);
   std::transform(word.begin(), word.end(), word.begin(), [](unsigned char ch) { return std::tolower(ch); });
   if (word == "true" || word == "1") {
     value = true;
@@ -211,7 +208,7 @@ Status ReadBoolean(Cursor& cursor, bool& value, int& column) {
   } else {
     return Failure(DiagnosticCode::kConstantValue, "expected true or false (or 1 or 0)");
   }
-  cursor.pos = end;
+  cursor.Take(token);
   column = cursor.column();
   if (!cursor.AtEnd()) return Failure(DiagnosticCode::kConstantValue, "a boolean constant takes one value");
   return {};
