@@ -25,6 +25,7 @@
 #include "irradiance/io/environment_io.h"
 #include "irradiance/io/environments.h"
 #include "tests/run_tool.h"
+#include "vm/mesh/npy.h"
 
 namespace {
 
@@ -87,6 +88,21 @@ const std::map<std::string, std::function<void(const fs::path&)>>& Fixtures() {
          WriteText(dir / "lit.csv",
                    "oPos.x,oPos.y,oPos.z,oPos.w,oD0.x,oD0.y,oD0.z,oD0.w\n0,0,0,1,1,1,1,1\n1,0,0,1,0,0,0,0\n"
                    "0,1,0,1,0,0,0,0\n");
+       }},
+      {"heights.vsh",  // vs11 run --texture: a vs_3_0 program lifting its vertices by an R32F height map
+       [](const fs::path& dir) {
+         WriteText(dir / "heights.vsh",
+                   "vs_3_0\ndcl_position v0\ndcl_position o0\ndcl_texcoord0 o1\ndcl_2d s0\nmov r0, v0\n"
+                   "texldl r1, v0, s0\nadd r0.z, v0.z, r1.x\nmov o0, r0\nmov o1, r1\n");
+       }},
+      {"heights.npy",  // a 4 x 4 R32F texture: shape (4, 4), texel (x, y) = 10 y + x
+       [](const fs::path& dir) {
+         vs11::mesh::NpyArray heights;
+         heights.rows = 4;
+         heights.columns = 4;
+         for (int i = 0; i < 16; ++i) heights.values.push_back(static_cast<float>(10 * (i / 4) + i % 4));
+         const std::vector<std::uint8_t> bytes = vs11::mesh::FormatNpy(heights);
+         WriteText(dir / "heights.npy", std::string(bytes.begin(), bytes.end()));
        }},
       {"positions.csv", [](const fs::path& dir) { WriteText(dir / "positions.csv", "x,y,z\n0,0,0\n1,0,0\n0,1,0\n"); }},
       {"normals.csv", [](const fs::path& dir) { WriteText(dir / "normals.csv", "nx,ny,nz\n0,0,1\n1,0,0\n0,1,0\n"); }},

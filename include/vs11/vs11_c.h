@@ -106,6 +106,29 @@ typedef enum vs11c_float_rules {
  * caller passes is defined to read (another value is VS11C_INVALID_ARGUMENT). */
 vs11c_status vs11c_shader_set_engine(vs11c_shader* shader, const char* engine, int float_rules);
 
+/* ---- Vertex textures (vs_3_0's texldl) ---- */
+
+typedef enum vs11c_texture_format {
+  VS11C_TEXTURE_R32F = 0,          /* one float a texel; samples as (r, 1, 1, 1) */
+  VS11C_TEXTURE_A32B32G32R32F = 1  /* four floats a texel, (r, g, b, a) */
+} vs11c_texture_format;
+
+/* D3DTEXTUREADDRESS values; MIRROR (2) and MIRRORONCE (5) give VS11C_UNSUPPORTED. */
+typedef enum vs11c_texture_address {
+  VS11C_ADDRESS_WRAP = 1,
+  VS11C_ADDRESS_CLAMP = 3,
+  VS11C_ADDRESS_BORDER = 4 /* the border colour is 0 (D3DSAMP_BORDERCOLOR's default) */
+} vs11c_texture_address;
+
+/* SetTexture(D3DVERTEXTEXTURESAMPLER0 + sampler) with SetSamplerState's ADDRESSU and ADDRESSV: binds
+ * a copy of `texels` (width x height texels, row v = 0 first, 1 or 4 floats each by `format`, a
+ * vs11c_texture_format) to sampler s<sampler> (0-3) as a one-level texture, point sampled; NULL
+ * texels unbind it (it then reads (0, 0, 0, 1)). Sizes from 1, at most 2^24 texels, no power of two
+ * needed. A sampler beyond s3: VS11C_REGISTER_OUT_OF_RANGE; another format, a size of 0 or too many
+ * texels: VS11C_INVALID_ARGUMENT. README, "Vertex textures". */
+vs11c_status vs11c_shader_set_texture(vs11c_shader* shader, unsigned sampler, int format, unsigned width,
+                                      unsigned height, const float* texels, int address_u, int address_v);
+
 /* ---- Vertices ---- */
 
 /* D3DVERTEXELEMENT9, the same layout (8 bytes). Type is a D3DDECLTYPE, Usage a D3DDECLUSAGE. */

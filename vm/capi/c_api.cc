@@ -122,6 +122,12 @@ vs11c_status vs11c_shader_set_constants(vs11c_shader* shader, unsigned start, co
   return Guarded([&] { return shader->shader.SetConstants(start, values, vector_count); });
 }
 
+vs11c_status vs11c_shader_set_texture(vs11c_shader* shader, unsigned sampler, int format, unsigned width,
+                                      unsigned height, const float* texels, int address_u, int address_v) {
+  if (shader == nullptr) return VS11C_INVALID_ARGUMENT;
+  return Guarded([&] { return shader->shader.SetTexture(sampler, format, width, height, texels, address_u, address_v); });
+}
+
 vs11c_status vs11c_shader_set_engine(vs11c_shader* shader, const char* engine, int float_rules) {
   if (shader == nullptr) return VS11C_INVALID_ARGUMENT;
   return Guarded([&] { return shader->shader.SetEngine(engine, float_rules); });

@@ -144,6 +144,44 @@ vs11c_status Shader::SetConstants(unsigned start, const float* values, std::size
   return VS11C_OK;
 }
 
+namespace {
+
+std::optional<TextureAddress> TextureAddressOf(int d3d_address) {
+  switch (d3d_address) {
+    case VS11C_ADDRESS_WRAP: return TextureAddress::kWrap;
+    case VS11C_ADDRESS_CLAMP: return TextureAddress::kClamp;
+    case VS11C_ADDRESS_BORDER: return TextureAddress::kBorder;
+    default: return std::nullopt;
+  }
+}
+
+}  // namespace
+
+vs11c_status Shader::SetTexture(unsigned sampler, int format, unsigned width, unsigned height, const float* texels,
+                                int address_u, int address_v) {
+  if (sampler >= static_cast<unsigned>(kVertexSamplerCount)) return VS11C_REGISTER_OUT_OF_RANGE;
+  const std::optional<TextureAddress> u = TextureAddressOf(address_u), v = TextureAddressOf(address_v);
+  if (!u || !v) return address_u >= 1 && address_u <= 5 && address_v >= 1 && address_v <= 5 ? VS11C_UNSUPPORTED
+                                                                                              : VS11C_INVALID_ARGUMENT;
+  SamplerBinding binding{nullptr, {*u, *v}};
+  if (texels != nullptr) {
+    if (format != VS11C_TEXTURE_R32F && format != VS11C_TEXTURE_A32B32G32R32F) return VS11C_INVALID_ARGUMENT;
+    const TextureFormat texture_format = format == VS11C_TEXTURE_R32F ? TextureFormat::kR32F : TextureFormat::kA32B32G32R32F;
+    if (width == 0 || height == 0 || width > kMaxTextureTexels || height > kMaxTextureTexels ||
+        std::size_t{width} * height > kMaxTextureTexels) {
+      return VS11C_INVALID_ARGUMENT;
+    }
+    const std::size_t floats = std::size_t{width} * height * static_cast<std::size_t>(ChannelCount(texture_format));
+    Result<VertexTexture> made = VertexTexture::Make(texture_format, static_cast<int>(width), static_cast<int>(height),
+                                                     std::vector<float>(texels, texels + floats));
+    if (!made) return VS11C_INVALID_ARGUMENT;
+    binding.texture = std::make_shared<const VertexTexture>(std::move(made).value());
+  }
+  constants_.sampler(static_cast<int>(sampler)) = std::move(binding);
+  constants_changed_ = true;
+  return VS11C_OK;
+}
+
 vs11c_status Shader::SetEngine(const char* name, int rules) {
   if (rules != VS11C_FLOAT_RULES_D3D9 && rules != VS11C_FLOAT_RULES_LEGACY) return VS11C_INVALID_ARGUMENT;
   const std::optional<EngineInfo> info = name == nullptr ? FindEngine(FastestEngine()) : FindEngine(name);

@@ -42,6 +42,8 @@ class Shader {
   Shader(Api api, Program program, std::optional<D3d8Declaration> declaration, int constant_count);
   vs11c_status SetConstants(unsigned start, const float* values, std::size_t vector_count);
   vs11c_status SetEngine(const char* name, int rules);  // rules: a vs11c_float_rules
+  vs11c_status SetTexture(unsigned sampler, int format, unsigned width, unsigned height, const float* texels,
+                          int address_u, int address_v);
   vs11c_status Process(const vs11c_vertex_element* declaration, std::span<const vs11c_stream> streams,
                        std::size_t vertex_count, const vs11c_output& output);
 

@@ -9,6 +9,7 @@
 #include "vm/cli/cli_support.h"
 #include "vm/cli/commands.h"
 #include "vm/cli/streamed_output.h"
+#include "vm/cli/texture_flags.h"
 #include "vm/cli/trace_output.h"
 #include "vm/cli/vertex_sources.h"
 #include "vm/core/atomic_file.h"
@@ -75,6 +76,7 @@ struct RunArgs {
   EngineFlags engine;
   TraceFlags trace;
   VertexSourceFlags sources;
+  TextureFlags textures;
 };
 
 using SuppliedInputs = mesh::RegisterData;  // register, one row per vertex
@@ -146,6 +148,7 @@ std::vector<std::string> RunInputFiles(const RunArgs& args) {
     if (const Result<InputSpec> spec = ParseInputSpec(flag)) files.push_back(spec->file);
   }
   for (const std::string& flag : args.sources.npy_inputs) files.push_back(flag.substr(flag.find('=') + 1));
+  for (const std::string& file : args.textures.Files()) files.push_back(file);
   std::erase(files, std::string());
   return files;
 }
@@ -166,6 +169,7 @@ void RunProgram(const RunArgs& args) {
   Program program = LoadProgramOrFail(args.program, args.flags);
   AssignedConstants constants_set;
   ConstantBank constants = LoadConstants(args.consts_files, args.const_flags, args.flags.constant_count, constants_set);
+  BindTextures(args.textures, program, args.program, constants);
   SuppliedInputs supplied = ReadCsvInputs(args.input_flags);
   CsvColumns prefix;
   if (args.sphere > 0) AddSphereInput(args, program, supplied, prefix);
@@ -234,6 +238,13 @@ constexpr const char* kRunFooter =
     "Float rules: --float-rules legacy makes every product of mul, mad, dp3, dp4, m*x*, dst and lit's\n"
     "power 0 when an operand is 0 (0 * inf = 0, as DX8-era hardware), on every engine and in --trace;\n"
     "d3d9 (the default) keeps IEEE's NaN.\n\n"
+    "Vertex textures (vs_3_0's texldl; engines ref, batch and jit): --texture s0=FILE.npy binds a float32\n"
+    "array of shape (H, W) as R32F (samples (r, 1, 1, 1)) or (H, W, 4) as A32B32G32R32F to a sampler the\n"
+    "program declares with dcl_2d; one level, point sampling: texel floor(u * W), floor(v * H), row 0 at\n"
+    "v = 0.\n"
+    "--texture-address s0=clamp (or s0=wrap,clamp for u and v) sets the address modes: wrap (the\n"
+    "default), clamp or border (0 outside [0, 1)). A declared sampler with no texture reads (0, 0, 0, 1),\n"
+    "with a warning.\n\n"
     "Examples:\n"
     "  vs11 run programs/sh9_irradiance.vsh --fragment --consts out/constants.vsh --sphere 6 --sphere-reg v0\n"
     "  vs11 run programs/sh9_irradiance.vsh --fragment --consts out/constants.vsh --sphere 6 --sphere-reg v0 --trace 2\n"
@@ -241,6 +252,7 @@ constexpr const char* kRunFooter =
     "  vs11 run light.vsh --input v0=lit.csv:oPos --input v1=normals.csv --const c4=0,0,1,0\n"
     "  vs11 run programs/sh9_irradiance.vsh --fragment --consts out/constants.vsh --sphere 6 --sphere-reg v0 --engine gl\n"
     "  vs11 run programs/sh9_irradiance.vsh --fragment --consts out/constants.vsh --sphere 6 --sphere-reg v0 --engine gl --gl-path transform-feedback\n"
+    "  vs11 run heights.vsh --input v0=positions.csv --texture s0=heights.npy --texture-address s0=clamp\n"
     "  vs11 run programs/sh9_irradiance.vsh --gl-device list\n"
     "  vs11 run programs/sh9_irradiance.vsh --input v0=infinite_normals.csv --missing zeros --float-rules legacy";
 
@@ -267,6 +279,7 @@ void AddRunCommand(CLI::App& app) {
   args->engine.AddTo(*command);
   args->trace.AddTo(*command);
   args->sources.AddTo(*command);
+  args->textures.AddTo(*command);
   command->callback([args] { RunProgram(*args); });
 }
 

@@ -135,6 +135,8 @@ inline constexpr NameTable kSeverityNames("severity", {
   X(kBinding, "binding")                                                                          \
   X(kMeshAttributeMissing, "mesh-attribute-missing")                                              \
   X(kBonePalette, "bone-palette")                                                                 \
+  /* Vertex textures (vm/core/vertex_texture.h) and --texture. */                                 \
+  X(kTexture, "texture")                                                                          \
   /* Metadata lines of verified programs (vm/reference/program_metadata.h). */                   \
   X(kMetadataSyntax, "metadata-syntax")                                                           \
   X(kMetadataDuplicateKey, "metadata-duplicate-key")                                              \

@@ -247,6 +247,7 @@ std::optional<int> ComparisonFromName(std::string_view name);  // case-insensiti
 
 // D3DSAMPLER_TEXTURE_TYPE (bits 27-30 of a sampler dcl's usage token): dcl_2d, dcl_cube, dcl_volume.
 inline constexpr std::array<std::string_view, 5> kSamplerTypeNames = {"", "", "2d", "cube", "volume"};
+inline constexpr int kSampler2d = 2;
 std::optional<int> SamplerTypeFromName(std::string_view name);  // case-insensitive
 std::optional<Opcode> OpcodeFromToken(std::uint16_t token);
 std::optional<Opcode> OpcodeFromMnemonic(std::string_view mnemonic);  // case-insensitive

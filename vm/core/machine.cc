@@ -18,12 +18,28 @@ namespace {
 Status LaterModelRefusal(const Program& program, std::string_view engine) {
   const ShaderModel model = program.model();
   for (std::size_t i = 0; i < program.instructions.size(); ++i) {
-    if (program.instructions[i].opcode != Opcode::kTexldl) continue;
+    const Instruction& instruction = program.instructions[i];
     const SourceLoc loc = program.LocOf(static_cast<int>(i));
+    const std::string where = fmt::format("instruction {}{}", i + 1, loc.line > 0 ? fmt::format(", line {}", loc.line) : "");
+    if (instruction.opcode == Opcode::kDcl && instruction.dest.reg.file == RegisterFile::kSampler &&
+        instruction.sampler_type != kSampler2d) {
+      return Failure(DiagnosticCode::kEngineUnavailable,
+                     fmt::format("the {} engine cannot run this program ({}): s{} is declared dcl_{}, and only 2D vertex "
+                                 "textures (dcl_2d) are modelled",
+                                 engine, where, instruction.dest.reg.index,
+                                 instruction.sampler_type >= 0 && instruction.sampler_type < static_cast<int>(kSamplerTypeNames.size())
+                                     ? kSamplerTypeNames[static_cast<std::size_t>(instruction.sampler_type)]
+                                     : "?"),
+                     loc);
+    }
+    if (instruction.opcode != Opcode::kTexldl || std::ranges::find(kTexldlEngines, engine) != kTexldlEngines.end()) continue;
+    std::string engines;  // "ref, batch and jit"
+    for (std::size_t e = 0; e < kTexldlEngines.size(); ++e) {
+      engines += fmt::format("{}{}", e == 0 ? "" : e + 1 == kTexldlEngines.size() ? " and " : ", ", kTexldlEngines[e]);
+    }
     return Failure(DiagnosticCode::kEngineUnavailable,
-                   fmt::format("the {} engine cannot run texldl (instruction {}{}): vertex textures are not "
-                               "modelled yet",
-                               engine, i + 1, loc.line > 0 ? fmt::format(", line {}", loc.line) : ""),
+                   fmt::format("the {} engine cannot run texldl ({}): vertex textures run on the {} engines", engine,
+                               where, engines),
                    loc);
   }
   if (model != ShaderModel::kVs30) return {};

@@ -19,6 +19,7 @@
 #include "vm/core/float_rules.h"
 #include "vm/core/program.h"
 #include "vm/core/result.h"
+#include "vm/core/vertex_texture.h"
 
 namespace vs11 {
 
@@ -31,8 +32,9 @@ using Vec4i = std::array<int, 4>;
 inline constexpr int kIntegerConstantCount = RegisterCount(RegisterFile::kConstInt, ShaderModel::kVs20);
 inline constexpr int kBooleanConstantCount = RegisterCount(RegisterFile::kConstBool, ShaderModel::kVs20);
 
-// Constant registers c0..c(N-1), N = MaxVertexShaderConst (at least 96), and the later models'
-// integer constants i0..i15 and boolean constants b0..b15, set by the API as c# is. Unset registers
+// Constant registers c0..c(N-1), N = MaxVertexShaderConst (at least 96), the later models'
+// integer constants i0..i15 and boolean constants b0..b15, set by the API as c# is, and vs_3_0's
+// vertex samplers. Unset registers
 // read 0 (false); out-of-range i#/b# read 0 (false).
 class ConstantBank {
  public:
@@ -55,11 +57,16 @@ class ConstantBank {
   // Out-of-range reads give (0, 0, 0, 0) (§1.4: the deterministic reading of "unpredictable").
   Vec4f Read(long index) const { return index >= 0 && index < size() ? values_[static_cast<std::size_t>(index)] : Vec4f{}; }
   const std::vector<Vec4f>& values() const { return values_; }
+  // The vertex samplers s0..s3 (vs_3_0's texldl): textures and sampler states, API state that travels
+  // with the constants. Unbound samplers read (0, 0, 0, 1).
+  SamplerBinding& sampler(int index) { return samplers_[static_cast<std::size_t>(index)]; }
+  const SamplerBinding& sampler(int index) const { return samplers_[static_cast<std::size_t>(index)]; }
 
  private:
   std::vector<Vec4f> values_;
   std::array<Vec4i, kIntegerConstantCount> integers_{};
   std::array<bool, kBooleanConstantCount> booleans_{};
+  SamplerBank samplers_{};
 };
 
 // The one engine that runs every later model's program (vs_2_0, vs_2_x, vs_3_0): the reference engine,
@@ -68,14 +75,19 @@ inline constexpr std::string_view kLaterModelEngine = "ref";
 // The engines that run a later model's program specialised for its integer and boolean constants
 // (vm/core/static_flow.h: static flow resolved, dynamic flow as per-vertex execution masks).
 inline constexpr std::array<std::string_view, 3> kStaticFlowEngines = {"batch", "jit", "gl"};
+// The engines that run texldl (vertex textures, vm/core/texture_sampling.h): ref, batch's texture
+// kernel, and jit, which runs a program with texldl on the batch kernels (the IR has no texture read
+// yet); the others (gl, translate) refuse it.
+inline constexpr std::array<std::string_view, 3> kTexldlEngines = {"ref", "batch", "jit"};
 
 // Success, or why `engine` ("ref", "batch", "jit", "gl", "translate") cannot run `program`
 // (kEngineUnavailable; MakeEngine and translate::Translate ask here). vs_1_1 runs everywhere; the later
 // models run on the ref engine, and on batch, jit and gl when StaticFlowRefusal lets them (whether the
 // program then specialises for the constants, those engines find when they are made:
-// MakeStaticFlowEngine); every other engine refuses them. Not texldl (no vertex textures yet) nor a
-// vs_3_0 output declared with a usage that has no output slot (dcl_normal o3): engines refuse them by
-// name rather than run them wrong.
+// MakeStaticFlowEngine); every other engine refuses them. Not texldl outside kTexldlEngines, a sampler
+// declared dcl_cube or dcl_volume (only 2D vertex textures are modelled), nor a vs_3_0 output declared
+// with a usage that has no output slot (dcl_normal o3): engines refuse them by name rather than run
+// them wrong.
 Status EngineRefusal(const Program& program, std::string_view engine);
 
 // The bank a program sees: the API's values with the program's def, defi and defb constants written

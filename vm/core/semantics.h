@@ -177,7 +177,7 @@ struct M3x4Semantics {};
 struct M3x3Semantics {};
 struct M3x2Semantics {};
 // The later models' rows without arithmetic: flow control (run by the reference engine's program
-// counter, vm/engines/reference_flow.cc), definitions, and texldl (no vertex textures yet). if_comp,
+// counter, vm/engines/reference_flow.cc), definitions, and texldl (vm/core/texture_sampling.h). if_comp,
 // break_comp and setp_comp compare with Compare below.
 struct CallSemantics {};
 struct CallnzSemantics {};

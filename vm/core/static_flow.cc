@@ -78,7 +78,7 @@ std::optional<std::string> RefusalOf(const Instruction& instruction) {
   if (TakesComparison(instruction.opcode) && (instruction.comparison < 1 || instruction.comparison > kComparisonCount)) {
     return "its comparison is none of gt, eq, ge, lt, ne, le";
   }
-  return std::nullopt;  // texldl is refused before (LaterModelRefusal); every other row has a kernel
+  return std::nullopt;  // every row has a kernel (texldl: batch's texture kernel; gl refuses it before)
 }
 
 RegisterRef RegisterOfSlot(int slot) {

@@ -227,8 +227,8 @@ struct StaticFlowKey {
 StaticFlowKey StaticFlowKeyOf(const ConstantBank& constants);  // constants: ModelConstants'
 
 // Success, or why `engine` cannot run `program` (a later model) specialised, whatever the constants:
-// texldl, and an instruction whose comparison is none of the six. Every arithmetic row, _sat, _abs,
-// a0's four lanes, r0-r31 and dynamic flow run.
+// an instruction whose comparison is none of the six (texldl is EngineRefusal's: batch and jit run it,
+// gl does not). Every arithmetic row, _sat, _abs, a0's four lanes, r0-r31 and dynamic flow run.
 Status StaticFlowRefusal(const Program& program, std::string_view engine);
 
 // `program` (which passes StaticFlowRefusal) as a straight-line program for the constants `key` (its

@@ -173,6 +173,12 @@ class BatchEngine final : public Engine {
       for (int c = 0; c < 4; ++c) constants_[ConstantIndex(reg, c)] = bank[reg][c];
     }
     constant_count_ = bank.size();
+    // texldl's samplers: the textures are shared, never written, and kept alive by samplers_.
+    for (int s = 0; s < kVertexSamplerCount; ++s) {
+      samplers_[static_cast<std::size_t>(s)] = bank.sampler(s);
+      const SamplerBinding& binding = samplers_[static_cast<std::size_t>(s)];
+      texture_views_[static_cast<std::size_t>(s)] = {ShapeOf(binding), binding.texture ? binding.texture->texels.data() : nullptr};
+    }
   }
 
   void Run(const VertexArrays& inputs, VertexArrays& outputs) override {
@@ -265,7 +271,7 @@ class BatchEngine final : public Engine {
     }
 
     Frame frame{workspace.read_lanes.data(), workspace.write_lanes.data(), constants_.data(),
-                workspace.address.get(), constant_count_, 0};
+                workspace.address.get(), constant_count_, 0, texture_views_.data()};
     // The kernels go through L1-sized batches; the compiled loop keeps its values in registers and
     // takes every whole granule at once, when it reads and writes only the caller's arrays (an absent
     // input's constant lane and an absent output's scratch lane hold one batch). A short rest runs on
@@ -334,6 +340,8 @@ class BatchEngine final : public Engine {
   ThreadPool* pool_;  // null: every call runs on its caller
   std::vector<float> constants_;
   std::int32_t constant_count_ = 0;
+  SamplerBank samplers_;
+  std::array<TextureView, kVertexSamplerCount> texture_views_{};
   // Compiled programs by the input lanes compiled in as constants (the first: none); null
   // compiled_: the plan's kernels run the program.
   static constexpr std::size_t kMaxVariants = 8;

@@ -37,6 +37,7 @@
 HWY_BEFORE_NAMESPACE();
 #include "vm/core/semantics.h"  // NOLINT(build/include_order): must follow the target pragma
 #include "vm/core/constant_gather.h"  // NOLINT(build/include_order): likewise
+#include "vm/core/texture_sampling.h"  // NOLINT(build/include_order): likewise
 
 // The lane operations vm/core/semantics.h calls that Highway lacks or names differently. The kernels call
 // them unqualified from namespace vs11::semantics, so they must sit where argument-dependent lookup
@@ -300,6 +301,52 @@ void GatherKernel(const Step& step, const Frame& frame) {
 #endif
 }
 
+// texldl's texture reader (vm/core/texture_sampling.h) over a batch: texels gathered per vertex.
+struct FrameTextures {
+  const TextureView* textures;
+  HWY_INLINE TextureShape Shape(int sampler) const {
+    return sampler >= 0 && sampler < kVertexSamplerCount ? textures[sampler].shape : TextureShape{};
+  }
+#if HWY_TARGET == HWY_SCALAR
+  HWY_INLINE Vec4F Texel(int sampler, std::int32_t index) const {
+    const TextureView& view = textures[sampler];
+    const int channels = ChannelCount(view.shape.format);
+    Vec4F texel{};
+    for (int c = 0; c < channels; ++c) texel[c] = view.texels[static_cast<std::ptrdiff_t>(index) * channels + c];
+    return texel;
+  }
+#else
+  template <class VI>
+  HWY_INLINE Vec4F Texel(int sampler, VI index) const {
+    const D d;
+    const TextureView& view = textures[sampler];
+    const VF zero = hn::Zero(d);
+    if (view.shape.format == TextureFormat::kR32F) return {hn::GatherIndex(d, view.texels, index), zero, zero, zero};
+    const VI offset = hn::ShiftLeft<2>(index);
+    return {hn::GatherIndex(d, view.texels, offset), hn::GatherIndex(d, view.texels + 1, offset),
+            hn::GatherIndex(d, view.texels + 2, offset), hn::GatherIndex(d, view.texels + 3, offset)};
+  }
+#endif
+};
+
+// texldl: dest[c] = component sources[1][c].index of the sample at (sources[0][0], sources[0][1]).
+void TextureKernel(const Step& step, const Frame& frame) {
+  const AnyOperandReader u(frame, step.sources[0][0], step.negate[0]);
+  const AnyOperandReader v(frame, step.sources[0][1], step.negate[0]);
+  std::array<float*, 4> out{};
+  for (int c = 0; c < 4; ++c) {
+    if (step.dest[c] != kNoLane) out[c] = frame.write_lanes[step.dest[c]];
+  }
+  const FrameTextures reader{frame.textures};
+  const VF zero = Broadcast(0.0f);
+  for (std::size_t i = 0; i < frame.count; i += LanesPerVector()) {
+    const Vec4F sample = semantics::SampleTexture(reader, step.base, Vec4F{u(i), v(i), zero, zero});
+    for (int c = 0; c < 4; ++c) {
+      if (out[c] != nullptr) StoreLanes(sample[step.sources[1][c].index], out[c] + i);
+    }
+  }
+}
+
 // ---- kernel table ----------------------------------------------------------------------------------
 
 constexpr int PowerOfThree(int exponent) { return exponent == 0 ? 1 : 3 * PowerOfThree(exponent - 1); }
@@ -379,6 +426,7 @@ KernelTable MakeKernelTable(KernelTable table) {
   FillDotWidth<kRules, 3>(table.dot[0], std::make_index_sequence<4>());
   FillDotWidth<kRules, 4>(table.dot[1], std::make_index_sequence<4>());
   table.gather = &GatherKernel;
+  table.texture = &TextureKernel;
   FillSaturateKernels(table.saturate, std::make_index_sequence<4>());
   if constexpr (kRules == FloatRules::kD3d9) {  // masks and compares follow no float rules
     FillCompareKernels(table, std::make_index_sequence<6>());

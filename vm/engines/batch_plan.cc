@@ -229,7 +229,8 @@ class PlanBuilder {
 
   void Compile(const Instruction& instruction) {
     const OpcodeInfo& info = instruction.info();
-    if (!info.is_executable() || info.kind == ResultKind::kNoResult) return;
+    const bool texldl = instruction.opcode == Opcode::kTexldl;
+    if (!info.is_executable() || (info.kind == ResultKind::kNoResult && !texldl)) return;
     const std::array<bool, 4> kept = instruction.predicated ? KeptValues(instruction) : std::array<bool, 4>{};
     const std::array<std::uint16_t, 4> stored = DestLanes(instruction);
     if (std::all_of(stored.begin(), stored.end(), [](std::uint16_t lane) { return lane == kNoLane; })) return;
@@ -250,7 +251,9 @@ class PlanBuilder {
       case ResultKind::kDotProduct:
       case ResultKind::kMatrix: CompileDot(instruction, dest); break;
       case ResultKind::kVector: CompileVector(instruction, dest); break;
-      case ResultKind::kNoResult: break;
+      case ResultKind::kNoResult:
+        if (texldl) CompileTexldl(instruction, dest);
+        break;
     }
     if (instruction.dest.saturate && !steps_.empty()) AddSaturate(dest);
     if (!steps_.empty()) {
@@ -456,6 +459,21 @@ class PlanBuilder {
       step.negate[s] = source.negate;
     }
     step.kernel = kernels_.vector[static_cast<int>(instruction.opcode)];
+    step.dest = dest;
+    steps_.push_back(step);
+  }
+
+  // One step: the kernel samples (vm/core/texture_sampling.h) and stores through s#'s swizzle. The
+  // LOD, src0.w, is not read: with one level it picks level 0 whatever it is.
+  void CompileTexldl(const Instruction& instruction, const std::array<std::uint16_t, 4>& dest) {
+    const SourceOperand& coordinate = instruction.sources[0];
+    const SourceOperand& sampler = instruction.sources[1];
+    Step step;
+    for (int c = 0; c < 2; ++c) step.sources[0][c] = ResolveSource(coordinate, 0, 0, coordinate.swizzle[c]);
+    step.negate[0] = coordinate.negate;
+    for (int c = 0; c < 4; ++c) step.sources[1][c] = Operand{static_cast<std::uint32_t>(sampler.swizzle[c]), false};
+    step.base = sampler.reg.index;
+    step.kernel = kernels_.texture;
     step.dest = dest;
     steps_.push_back(step);
   }

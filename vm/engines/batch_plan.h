@@ -61,6 +61,13 @@ struct Operand {
 enum class OperandKind : std::uint8_t { kArray, kNegatedArray, kBroadcast };
 inline constexpr int kOperandKinds = 3;
 
+// A sampler as texldl's kernel reads it: the texture's shape and its texels (VertexTexture::texels,
+// channels interleaved); texels null where the sampler is unbound.
+struct TextureView {
+  TextureShape shape;
+  const float* texels = nullptr;
+};
+
 // What a kernel sees of the batch being run.
 struct Frame {
   const float* const* read_lanes;  // lane table, for loads
@@ -69,6 +76,7 @@ struct Frame {
   std::int32_t* address;           // a0 of each vertex: lane l (x, y, z, w) at address + l * kBatchSize
   std::int32_t constant_count;     // registers in the bank: relative reads outside [0, count) read 0
   std::size_t count;               // vertices to compute, a multiple of kVertexGranule
+  const TextureView* textures = nullptr;  // s0..s3 (texldl)
 };
 
 struct Step;
@@ -80,7 +88,9 @@ using Kernel = void (*)(const Step& step, const Frame& frame);
 //   dot: sources[0][0..width) is the vector, sources[1 + r] row r, result of row r to dest[r];
 //   vector (lit, dst, expp, logp): sources[s][c] component c of source s, result c to dest[c];
 //   copy: sources[0][0] to dest[0]; address: sources[0][0] to a0.<address_lane> (Frame::address);
-//   gather: component c of c[a0.<address_lane> + base] to dest[c].
+//   gather: component c of c[a0.<address_lane> + base] to dest[c];
+//   texture (texldl): sampler s<base> at (u, v) = (sources[0][0], sources[0][1]), the sample's
+//   component sources[1][c].index (s#'s swizzle) to dest[c].
 // negate[i] applies to broadcast operands of sources[i] (array kinds carry it in OperandKind).
 struct Step {
   Kernel kernel = nullptr;
@@ -106,6 +116,7 @@ struct KernelTable {
   // Dot products and matrix rows: [width - 3][rows - 1][vector kind + 3 row kind].
   std::array<std::array<std::array<Kernel, 9>, 4>, 2> dot{};
   Kernel gather = nullptr;
+  Kernel texture = nullptr;  // texldl (vm/core/texture_sampling.h)
   // setp (semantics::Compare, 1 where it holds, else 0): [comparison - 1][lanes - 1][k0 + 3 k1].
   std::array<std::array<std::array<Kernel, 27>, 4>, 6> compare{};
   // A predicated write (semantics::PredicatedWrite), sources (predicate, new value, old value):

@@ -584,6 +584,11 @@ std::vector<JitIsa> SupportedIsas() {
 
 std::unique_ptr<CompiledProgram> Compile(const Program& program, std::string& why_not, JitIsa isa,
                                          std::span<const UniformInput> uniform_inputs, FloatRules rules) {
+  // The IR has no texture read yet: the jit engine runs such a program on the batch kernels.
+  if (std::ranges::any_of(program.instructions, [](const Instruction& i) { return i.opcode == Opcode::kTexldl; })) {
+    why_not = "texldl (vertex textures) has no machine code yet; the batch kernels run it";
+    return nullptr;
+  }
   const std::vector<JitIsa> supported = SupportedIsas();
   if (supported.empty()) {
     why_not = "the CPU has no AVX2";

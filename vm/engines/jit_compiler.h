@@ -89,8 +89,9 @@ struct UniformInput {
 // Compiles `program` (well formed, as Decode accepts) for `isa` (kBest: the last of SupportedIsas),
 // its products under `rules` (recorded in: the code of one rule holds no test for the other).
 // The code never reads the `uniform_inputs` lanes.
-// nullptr, with `why_not` set, when the CPU lacks that instruction set (or has no AVX2 at all) or,
-// should it ever happen, code generation fails.
+// nullptr, with `why_not` set, when the CPU lacks that instruction set (or has no AVX2 at all), the
+// program has texldl (vertex textures: the IR has no texture read yet), or, should it ever happen,
+// code generation fails.
 std::unique_ptr<CompiledProgram> Compile(const Program& program, std::string& why_not, JitIsa isa = JitIsa::kBest,
                                          std::span<const UniformInput> uniform_inputs = {},
                                          FloatRules rules = FloatRules::kD3d9);

@@ -6,6 +6,7 @@
 
 #include "vm/core/machine.h"
 #include "vm/core/operands.h"
+#include "vm/core/texture_sampling.h"
 
 namespace vs11 {
 
@@ -46,6 +47,22 @@ void StartVertex(const VertexArrays& inputs, std::size_t vertex, const std::arra
 // negation.
 Vec4f ReadRegister(const RegisterRef& reg, int row, const ConstantBank& constants, const VertexState& state);
 Vec4f FetchSource(const SourceOperand& source, int row, const ConstantBank& constants, const VertexState& state);
+
+// texldl's texture reader (vm/core/texture_sampling.h) for one vertex's float lanes: the textures
+// bound in a constant bank. (Not in texture_sampling.h, which the batch kernels compile per target.)
+struct BankTextures {
+  const ConstantBank& bank;
+  TextureShape Shape(int sampler) const {
+    return sampler >= 0 && sampler < kVertexSamplerCount ? ShapeOf(bank.sampler(sampler)) : TextureShape{};
+  }
+  Vec4f Texel(int sampler, std::int32_t index) const {
+    const VertexTexture& texture = *bank.sampler(sampler).texture;
+    const int channels = ChannelCount(texture.format);
+    Vec4f texel{};
+    for (int c = 0; c < channels; ++c) texel[c] = texture.texels[static_cast<std::size_t>(index) * channels + c];
+    return texel;
+  }
+};
 
 std::unique_ptr<Engine> MakeReferenceEngine(const Program& program, const ConstantBank& api_constants,
                                             FloatRules rules = FloatRules::kD3d9);

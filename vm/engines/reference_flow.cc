@@ -2,12 +2,15 @@
 
 #include <algorithm>
 #include <optional>
+#include <type_traits>
 #include <utility>
 #include <vector>
 
 #include "vm/core/operands.h"
 #include "vm/core/semantics.h"
 #include "vm/core/static_flow.h"
+#include "vm/core/texture_sampling.h"
+#include "vm/engines/reference_engine.h"
 
 namespace vs11 {
 namespace {
@@ -61,7 +64,9 @@ class FlowInterpreter {
     std::array<Vec4f, 3> src{};
     for (int s = 0; s < std::min(SourceCount(info, model_), 3); ++s) src[s] = Fetch(instruction.sources[s], 0);
     Vec4f result{};
-    if constexpr (semantics::HasLane<Semantics, float>) {
+    if constexpr (std::is_same_v<Semantics, semantics::TexldlSemantics>) {
+      result = semantics::Texldl(BankTextures{constants_}, instruction, src[0]);
+    } else if constexpr (semantics::HasLane<Semantics, float>) {
       for (int lane = 0; lane < 4; ++lane) {
         result[lane] = semantics::RunLane<kRules, Semantics>(src[0][lane], src[1][lane], src[2][lane]);
       }

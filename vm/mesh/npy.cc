@@ -6,6 +6,7 @@
 #include <optional>
 
 #include <fmt/format.h>
+#include <fmt/ranges.h>
 
 #include "vm/asm/program_file.h"
 #include "vm/core/input_file.h"
@@ -101,7 +102,7 @@ class HeaderParser {
       if (ec != std::errc()) return Malformed("'shape' holds something other than a non-negative integer");
       pos_ = static_cast<std::size_t>(ptr - text_.data());
       shape.push_back(value);
-      if (shape.size() > 2) return Malformed("'shape' has more than two dimensions");
+      if (shape.size() > 3) return Malformed("'shape' has more than three dimensions");
       if (Take(',')) continue;
       if (Take(')')) return {};
       return Malformed("expected ',' or ')' in 'shape'");
@@ -111,6 +112,12 @@ class HeaderParser {
   std::string_view text_;
   std::size_t pos_ = 0;
 };
+
+// "(3, 4)", "(5,)": as NumPy prints a shape.
+std::string ShapeText(const std::vector<std::size_t>& shape) {
+  if (shape.size() == 1) return fmt::format("({},)", shape[0]);
+  return fmt::format("({})", fmt::join(shape, ", "));
+}
 
 std::uint32_t ReadLittle(const std::uint8_t* p, int bytes) {
   std::uint32_t value = 0;
@@ -126,7 +133,33 @@ Vec4f NpyArray::Row(std::size_t row) const {
   return out;
 }
 
-Result<NpyArray> ParseNpy(std::span<const std::uint8_t> bytes, const std::string& name) {
+namespace {
+
+// The limits of ParseNpyGrid: every dimension and their product at most kMaxGridValues.
+constexpr std::size_t kMaxGridValues = kMaxNpyRows * 4;
+Status GridShapeProblem(const std::vector<std::size_t>& shape) {
+  std::size_t count = 1;
+  for (std::size_t size : shape) {
+    if (size > kMaxGridValues) return Malformed(fmt::format("shape {}: a dimension over the limit of {}", ShapeText(shape), kMaxGridValues));
+    count *= size;  // both factors at most 2^28: no overflow
+    if (count > kMaxGridValues) return Malformed(fmt::format("shape {}: over the limit of {} values", ShapeText(shape), kMaxGridValues));
+  }
+  return {};
+}
+
+// An array of vertices: (N,) or (N, k), k 1-4, N at most kMaxNpyRows.
+Status VertexShapeProblem(const std::vector<std::size_t>& shape) {
+  if (shape.size() > 2) return Malformed(fmt::format("shape {} has more than two dimensions (an array of vertices has one or two)", ShapeText(shape)));
+  const std::size_t rows = shape[0];
+  const std::size_t columns = shape.size() == 2 ? shape[1] : 1;
+  if (columns < 1 || columns > 4) return Malformed(fmt::format("shape ({}, {}): each row needs 1 to 4 values", rows, columns));
+  if (rows > kMaxNpyRows) return Malformed(fmt::format("{} rows, over the limit of {}", rows, kMaxNpyRows));
+  return {};
+}
+
+// The array, once `shape_problem` accepts its shape (before anything is allocated for it).
+Result<NpyGrid> ParseNpyChecked(std::span<const std::uint8_t> bytes, const std::string& name,
+                                Status (*shape_problem)(const std::vector<std::size_t>&)) {
   auto fail = [&](const std::string& message) { return Malformed(fmt::format("{}: {}", name, message)); };
   if (bytes.size() < kMagicSize + 4 || std::memcmp(bytes.data(), kMagic, kMagicSize) != 0) {
     return fail("not a .npy file (no \\x93NUMPY magic)");
@@ -141,37 +174,56 @@ Result<NpyArray> ParseNpy(std::span<const std::uint8_t> bytes, const std::string
   const std::string_view header(reinterpret_cast<const char*>(bytes.data() + prefix), header_length);
   std::string descr;
   bool fortran_order = false;
-  std::vector<std::size_t> shape;
-  if (Status parsed = HeaderParser(header).Parse(descr, fortran_order, shape); !parsed) return fail(parsed.message());
+  NpyGrid grid;
+  if (Status parsed = HeaderParser(header).Parse(descr, fortran_order, grid.shape); !parsed) return fail(parsed.message());
   if (descr != "<f4") return fail(fmt::format("dtype '{}' is not float32 ('<f4'): convert with .astype('<f4')", descr));
-  if (shape.empty()) return fail("a scalar, not an array of vertices");
-  const std::size_t rows = shape[0];
-  const std::size_t columns = shape.size() == 2 ? shape[1] : 1;
-  if (columns < 1 || columns > 4) return fail(fmt::format("shape ({}, {}): each row needs 1 to 4 values", rows, columns));
-  if (rows > kMaxNpyRows) return fail(fmt::format("{} rows, over the limit of {}", rows, kMaxNpyRows));
-  const std::size_t data_bytes = rows * columns * sizeof(float);
+  if (grid.shape.empty()) return fail("a scalar, not an array");
+  if (Status problem = shape_problem(grid.shape); !problem) return fail(problem.message());
+  std::size_t count = 1;
+  for (std::size_t size : grid.shape) count *= size;  // the check bounded it
+  const std::size_t data_bytes = count * sizeof(float);
   const std::size_t available = bytes.size() - prefix - header_length;
   if (available != data_bytes) {
-    return fail(fmt::format("shape ({}, {}) needs {} bytes of data, the file has {}", rows, columns, data_bytes, available));
+    return fail(fmt::format("shape {} needs {} bytes of data, the file has {}", ShapeText(grid.shape), data_bytes, available));
   }
-  NpyArray array;
-  array.rows = rows;
-  array.columns = static_cast<int>(columns);
-  array.values.resize(rows * columns);
+  grid.values.resize(count);
   const std::uint8_t* data = bytes.data() + prefix + header_length;
-  if (!fortran_order || columns == 1) {
-    if (data_bytes > 0) std::memcpy(array.values.data(), data, data_bytes);
-  } else {
-    for (std::size_t c = 0; c < columns; ++c) {
-      for (std::size_t r = 0; r < rows; ++r) {
-        std::memcpy(&array.values[r * columns + c], data + (c * rows + r) * sizeof(float), sizeof(float));
+  if (!fortran_order || grid.shape.size() == 1) {
+    if (data_bytes > 0) std::memcpy(grid.values.data(), data, data_bytes);
+    return grid;
+  }
+  // Fortran order: the first index varies fastest in the file; C order (values) the last.
+  const std::size_t n0 = grid.shape[0], n1 = grid.shape[1], n2 = grid.shape.size() == 3 ? grid.shape[2] : 1;
+  for (std::size_t i = 0; i < n0; ++i) {
+    for (std::size_t j = 0; j < n1; ++j) {
+      for (std::size_t k = 0; k < n2; ++k) {
+        std::memcpy(&grid.values[(i * n1 + j) * n2 + k], data + (i + n0 * (j + n1 * k)) * sizeof(float), sizeof(float));
       }
     }
   }
+  return grid;
+}
+
+}  // namespace
+
+Result<NpyGrid> ParseNpyGrid(std::span<const std::uint8_t> bytes, const std::string& name) {
+  return ParseNpyChecked(bytes, name, GridShapeProblem);
+}
+
+Result<NpyArray> ParseNpy(std::span<const std::uint8_t> bytes, const std::string& name) {
+  Result<NpyGrid> grid = ParseNpyChecked(bytes, name, VertexShapeProblem);
+  if (!grid) return grid.error();
+  NpyArray array;
+  array.rows = grid->shape[0];
+  array.columns = grid->shape.size() == 2 ? static_cast<int>(grid->shape[1]) : 1;
+  array.values = std::move(grid->values);
   return array;
 }
 
-Result<NpyArray> ReadNpy(const std::filesystem::path& path) {
+namespace {
+
+// The file's bytes, or why not (a size no array within the limits has).
+Result<std::string> ReadNpyBytes(const std::filesystem::path& path) {
   if (const Status why = InputFileProblem(path, /*pipes_allowed=*/false); !why.ok()) {
     return Failure(why.error().code, fmt::format("{}: {}", path.string(), why.message()));
   }
@@ -183,7 +235,25 @@ Result<NpyArray> ReadNpy(const std::filesystem::path& path) {
   }
   std::optional<std::string> text = ReadWholeFile(path);
   if (!text) return Malformed(fmt::format("{}: cannot read the file", path.string()));
-  return ParseNpy({reinterpret_cast<const std::uint8_t*>(text->data()), text->size()}, path.string());
+  return std::move(*text);
+}
+
+std::span<const std::uint8_t> BytesOf(const std::string& text) {
+  return {reinterpret_cast<const std::uint8_t*>(text.data()), text.size()};
+}
+
+}  // namespace
+
+Result<NpyArray> ReadNpy(const std::filesystem::path& path) {
+  Result<std::string> bytes = ReadNpyBytes(path);
+  if (!bytes) return bytes.error();
+  return ParseNpy(BytesOf(*bytes), path.string());
+}
+
+Result<NpyGrid> ReadNpyGrid(const std::filesystem::path& path) {
+  Result<std::string> bytes = ReadNpyBytes(path);
+  if (!bytes) return bytes.error();
+  return ParseNpyGrid(BytesOf(*bytes), path.string());
 }
 
 std::string NpyHeader(std::size_t rows, int columns) {

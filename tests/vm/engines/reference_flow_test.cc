@@ -246,10 +246,11 @@ TEST(ReferenceFlow, TheBankHasTheModelsConstantsWhateverTheApiBanksSize) {
 
 AssembleResult Assembled(const std::string& source) { return AssembleSource(source, "refused.vsh", {}, NoFiles); }
 
-TEST(ReferenceFlow, RefusesTexldlAndOutputsWithoutASlotByName) {
+TEST(ReferenceFlow, EnginesWithoutVertexTexturesRefuseTexldlAndOutputsWithoutASlotByName) {
   const AssembleResult texldl = Assembled("vs_3_0\ndcl_position v0\ndcl_position o0\ndcl_2d s0\ntexldl r0, v0, s0\nmov o0, r0\n");
   ASSERT_TRUE(texldl.program) << texldl.diagnostics.ToString();
-  const Result<std::unique_ptr<Engine>> refused = MakeEngine("ref", *texldl.program, ConstantBank());
+  EXPECT_TRUE(MakeEngine("ref", *texldl.program, ConstantBank()).ok());
+  const Result<std::unique_ptr<Engine>> refused = MakeEngine("gl", *texldl.program, ConstantBank());
   ASSERT_FALSE(refused.ok());
   EXPECT_EQ(refused.error().code, DiagnosticCode::kEngineUnavailable);
   EXPECT_NE(refused.message().find("texldl"), std::string::npos) << refused.message();

@@ -67,7 +67,7 @@ TEST(Npy, RefusesAnythingButFloat32RowsOfOneToFour) {
       {NpyWithHeader("{'descr': '<f8', 'fortran_order': False, 'shape': (2, 3), }", 48), "not float32"},
       {NpyWithHeader("{'descr': '>f4', 'fortran_order': False, 'shape': (2, 3), }", 24), "not float32"},
       {NpyWithHeader("{'descr': '<f4', 'fortran_order': False, 'shape': (2, 5), }", 40), "1 to 4"},
-      {NpyWithHeader("{'descr': '<f4', 'fortran_order': False, 'shape': (2, 3, 1), }", 24), "more than two"},
+      {NpyWithHeader("{'descr': '<f4', 'fortran_order': False, 'shape': (2, 3, 1), }", 24), "more than two dimensions"},
       {NpyWithHeader("{'descr': '<f4', 'fortran_order': False, 'shape': (2, 3), }", 20), "needs 24 bytes"},
       {NpyWithHeader("{'descr': '<f4', 'fortran_order': False, 'shape': (2, 3), }", 28), "needs 24 bytes"},
       {NpyWithHeader("{'descr': '<f4', 'fortran_order': False, 'shape': (), }", 4), "scalar"},
@@ -94,6 +94,40 @@ TEST(Npy, RefusesAnythingButFloat32RowsOfOneToFour) {
   for (std::size_t size = 0; size < 20; ++size) {
     EXPECT_FALSE(ParseNpy(std::span(truncated).first(size), "cut.npy").ok()) << size;
   }
+}
+
+TEST(NpyGrid, ReadsThreeDimensionsInCAndFortranOrder) {
+  std::vector<std::uint8_t> c_order = NpyWithHeader("{'descr': '<f4', 'fortran_order': False, 'shape': (2, 3, 4), }", 96);
+  std::vector<float> values(24);
+  for (int i = 0; i < 24; ++i) values[static_cast<std::size_t>(i)] = static_cast<float>(i);
+  std::memcpy(c_order.data() + c_order.size() - 96, values.data(), 96);
+  Result<NpyGrid> c = ParseNpyGrid(c_order, "c.npy");
+  ASSERT_TRUE(c.ok()) << c.message();
+  EXPECT_EQ(c->shape, (std::vector<std::size_t>{2, 3, 4}));
+  EXPECT_EQ(c->values, values);
+
+  // Element (i, j, k) of a (2, 3, 4) Fortran array lies at i + 2 (j + 3 k) in the file.
+  std::vector<std::uint8_t> fortran = NpyWithHeader("{'descr': '<f4', 'fortran_order': True, 'shape': (2, 3, 4), }", 96);
+  std::vector<float> column_major(24);
+  for (int i = 0; i < 2; ++i) {
+    for (int j = 0; j < 3; ++j) {
+      for (int k = 0; k < 4; ++k) column_major[static_cast<std::size_t>(i + 2 * (j + 3 * k))] = values[static_cast<std::size_t>((i * 3 + j) * 4 + k)];
+    }
+  }
+  std::memcpy(fortran.data() + fortran.size() - 96, column_major.data(), 96);
+  Result<NpyGrid> f = ParseNpyGrid(fortran, "f.npy");
+  ASSERT_TRUE(f.ok()) << f.message();
+  EXPECT_EQ(f->values, values);
+}
+
+TEST(NpyGrid, RefusesFourDimensionsAndShapesOverTheLimit) {
+  const Result<NpyGrid> four = ParseNpyGrid(NpyWithHeader("{'descr': '<f4', 'fortran_order': False, 'shape': (1, 1, 1, 1), }", 4), "g.npy");
+  ASSERT_FALSE(four.ok());
+  EXPECT_NE(four.message().find("more than three dimensions"), std::string::npos) << four.message();
+  const Result<NpyGrid> huge = ParseNpyGrid(
+      NpyWithHeader("{'descr': '<f4', 'fortran_order': False, 'shape': (65536, 65536, 4), }", 0), "g.npy");
+  ASSERT_FALSE(huge.ok());
+  EXPECT_NE(huge.message().find("over the limit"), std::string::npos) << huge.message();
 }
 
 }  // namespace
