@@ -224,5 +224,6 @@ TEST(CApi, FloatRulesDecideZeroTimesInfinity) {
   EXPECT_EQ(RunPosition(layout, infinite, VS11C_FLOAT_RULES_LEGACY, zero)[0], 0.0f);
 }
 
+
 }  // namespace
 }  // namespace vs11::capi
