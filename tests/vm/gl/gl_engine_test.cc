@@ -381,6 +381,37 @@ TEST_P(GlEngineTest, SetConstantsBetweenRunsGivesEachBanksOutputs) {
   }
 }
 
+// A bank larger than the driver holds (skinning.vsh reads c[a0.x + k], so the whole bank is live)
+// fails SetConstants with the link's code and the bank's size; the engine stays failed: every later
+// call returns that error, and Run writes NaN.
+TEST_P(GlEngineTest, ABankTheDriverCannotHoldFailsSetConstantsAndEveryLaterCall) {
+  std::mt19937 rng(25);
+  const Program program = ProgramFromFile("skinning.vsh");
+  const ConstantBank bank = OrdinaryConstants(rng);
+  const VertexArrays inputs = OrdinaryInputs(8, rng);
+  std::unique_ptr<Engine> gl = MakeGl(program, bank, OnPath(GetParam()));
+  ASSERT_NE(gl, nullptr);
+  VertexArrays outputs = MakeOutputArrays(inputs.count(), program);
+  ASSERT_EQ(gl->Run(inputs, outputs).message(), "");
+  const Status set = gl->SetConstants(ConstantBank(1 << 16));
+  ASSERT_FALSE(set.ok()) << "a bank of 65536 registers fitted";
+  EXPECT_EQ(set.error().code, DiagnosticCode::kGlCompile);
+  EXPECT_NE(set.message().find("the constant bank is c[65536]"), std::string::npos) << set.message();
+  const Status ran = gl->Run(inputs, outputs);
+  ASSERT_FALSE(ran.ok());
+  EXPECT_EQ(ran.error().code, DiagnosticCode::kGlCompile);
+  EXPECT_EQ(ran.message(), set.message());
+  for (int slot : outputs.registers()) {
+    for (int c = 0; c < 4; ++c) {
+      for (std::size_t v = 0; v < inputs.count(); ++v) {
+        ASSERT_TRUE(std::isnan(outputs.lane(slot, c)[v])) << OutputSlotName(slot) << " of vertex " << v;
+      }
+    }
+  }
+  EXPECT_EQ(gl->SetConstants(bank).message(), set.message());
+  EXPECT_EQ(gl->Run(inputs, outputs).message(), set.message());
+}
+
 // An engine is made on one thread and runs on others (vm/core/machine.h allows it when the calls are
 // ordered); and it leaves the calling thread's current EGL context as it found it.
 TEST_P(GlEngineTest, RunsWhereverItIsCalledAndLeavesTheCurrentContextAlone) {
