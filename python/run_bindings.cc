@@ -30,13 +30,14 @@ std::string CheckedEngine(const std::string& engine, const py::int_& threads) {
   return std::string(kind->name);
 }
 
-// The engine `kind` for a run; RuntimeError where it cannot be built (the module's engines, the CPU
-// ones, never fail). Touches no Python object, so it may run without the GIL.
-std::unique_ptr<Engine> BuiltEngine(const std::string& kind, const Program& program, const ConstantBank& bank,
-                                    const EngineOptions& options) {
+// Runs the engine `kind` over `inputs`; RuntimeError where it cannot be built or its run fails (the
+// module's engines, the CPU ones, never fail to run). Touches no Python object, so it may run without
+// the GIL.
+void RunBuiltEngine(const std::string& kind, const Program& program, const ConstantBank& bank,
+                    const EngineOptions& options, const VertexArrays& inputs, VertexArrays& outputs) {
   Result<std::unique_ptr<Engine>> engine = MakeEngine(kind, program, bank, options);
   if (!engine) throw std::runtime_error(engine.message());
-  return std::move(engine).value();
+  if (const Status ran = (*engine)->Run(inputs, outputs); !ran) throw std::runtime_error(ran.message());
 }
 
 FloatRules CheckedFloatRules(const std::string& name) {
@@ -83,9 +84,9 @@ py::dict Run(const PyProgram& self, const py::dict& inputs, const py::object& co
   {
     // Nothing below touches a Python object: other Python threads (and other engines) run meanwhile.
     py::gil_scoped_release release;
-    BuiltEngine(kind, self.program, bank,
-                EngineOptions{.threads = static_cast<int>(SaturatedInt(threads)), .float_rules = rules})
-        ->Run(run_inputs.arrays, *outputs);
+    RunBuiltEngine(kind, self.program, bank,
+                   EngineOptions{.threads = static_cast<int>(SaturatedInt(threads)), .float_rules = rules},
+                   run_inputs.arrays, *outputs);
   }
   return OutputsToPython(std::move(outputs));
 }
@@ -109,8 +110,8 @@ py::object Trace(const PyProgram& self, const py::dict& inputs, const py::object
   std::string json;
   {
     py::gil_scoped_release release;
-    BuiltEngine(kind, self.program, bank, EngineOptions{.threads = 1, .float_rules = rules})
-        ->Run(run_inputs.arrays, outputs);
+    RunBuiltEngine(kind, self.program, bank, EngineOptions{.threads = 1, .float_rules = rules}, run_inputs.arrays,
+                   outputs);
     VertexTrace trace = TraceVertex(self.program, bank, run_inputs.arrays, static_cast<std::size_t>(vertex), rules);
     CompareOutputs(outputs, trace);
     SourceLines sources;

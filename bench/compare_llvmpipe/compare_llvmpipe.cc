@@ -271,7 +271,10 @@ std::optional<Case> BuildCase(const Workload& workload, std::size_t count, std::
     }
   }
   c.vs11_outputs = MakeOutputArrays(count, *c.program);
-  MakeEngine("jit", *c.program, c.constants).value()->Run(c.inputs, c.vs11_outputs);
+  if (const Status ran = MakeEngine("jit", *c.program, c.constants).value()->Run(c.inputs, c.vs11_outputs); !ran) {
+    error = fmt::format("{}: the jit engine: {}", workload.name, ran.message());
+    return std::nullopt;
+  }
   return c;
 }
 
@@ -394,7 +397,7 @@ json Measure(const std::vector<Case>& cases, std::optional<int> lp_threads, int 
     if (!outputs) return failed(outputs.error());
     json entry = Agreement(c, *outputs);
 
-    Status drawn;  // the first failed draw's error
+    Status drawn;  // the first failed draw's or engine run's error
     const auto draw = [&](TransformFeedbackRun& run) {
       return [&drawn, target = &run](int calls) {
         if (Status status = target->Draw(calls); drawn.ok()) drawn = std::move(status);
@@ -404,7 +407,9 @@ json Measure(const std::vector<Case>& cases, std::optional<int> lp_threads, int 
     const auto engine_run = [&](std::string kind) {
       std::shared_ptr<Engine> engine = MakeEngine(kind, *c.program, c.constants).value();
       return [&, engine](int calls) {
-        for (int k = 0; k < calls; ++k) engine->Run(c.inputs, vs11_outputs);
+        for (int k = 0; k < calls; ++k) {
+          if (Status status = engine->Run(c.inputs, vs11_outputs); drawn.ok()) drawn = std::move(status);
+        }
       };
     };
     std::vector<Timed> workloads = {

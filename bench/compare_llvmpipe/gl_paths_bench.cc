@@ -95,12 +95,14 @@ void RunEngine(benchmark::State& state, const Program& program, const std::strin
   }
   const std::unique_ptr<Engine> engine = std::move(made).value();
   VertexArrays outputs = MakeOutputArrays(vertices, c.program);
-  engine->Run(c.inputs, outputs);  // warm: the driver compiles on first use
+  Status ran = engine->Run(c.inputs, outputs);  // warm: the driver compiles on first use
   for (auto _ : state) {
-    engine->Run(c.inputs, outputs);
+    if (!ran || !(ran = engine->Run(c.inputs, outputs))) {
+      state.SkipWithError(ran.message().c_str());
+      break;
+    }
     benchmark::DoNotOptimize(outputs.lane(outputs.registers().front(), 0));
   }
-  if (!engine->error().empty()) state.SkipWithError(engine->error().c_str());
   state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()) * static_cast<std::int64_t>(vertices));
 }
 

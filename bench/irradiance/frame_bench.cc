@@ -117,8 +117,9 @@ class VertexStep {
 
   void Run(const vs11::SevenConstants& constants) {
     if (vm_) {
-      engine_->SetConstants(Table1Bank(constants));
-      engine_->Run(inputs_, outputs_);
+      // The batch engine never fails: its calls return the empty Status.
+      (void)engine_->SetConstants(Table1Bank(constants));
+      (void)engine_->Run(inputs_, outputs_);
     } else {
       EvalTable1Scalar(constants, normals_.x.data(), normals_.y.data(), normals_.z.data(), r_.data(), g_.data(),
                        b_.data(), normals_.size());

@@ -147,7 +147,10 @@ void BM_MeshRun(benchmark::State& state, const BenchModel& model, std::string ki
   VertexArrays outputs = MakeOutputArrays(count, program);
   std::unique_ptr<Engine> engine = MakeEngine(kind, program, bank, EngineOptions{.threads = 1}).value();
   for (auto _ : state) {
-    engine->Run(inputs, outputs);
+    if (const Status ran = engine->Run(inputs, outputs); !ran) {
+      state.SkipWithError(ran.message().c_str());
+      break;
+    }
     benchmark::DoNotOptimize(outputs.lane(static_cast<int>(OutputSlot::kDiffuse), 0));
     benchmark::ClobberMemory();
   }

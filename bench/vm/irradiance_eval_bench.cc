@@ -113,7 +113,10 @@ void RunEngine(benchmark::State& state, std::string kind, EngineOptions options 
   VertexArrays outputs = MakeOutputArrays(count, program);
   std::unique_ptr<Engine> engine = MakeEngine(kind, program, bank, options).value();
   for (auto _ : state) {
-    engine->Run(inputs, outputs);
+    if (const Status ran = engine->Run(inputs, outputs); !ran) {
+      state.SkipWithError(ran.message().c_str());
+      break;
+    }
     benchmark::DoNotOptimize(outputs.lane(static_cast<int>(OutputSlot::kDiffuse), 0));
     benchmark::ClobberMemory();
   }

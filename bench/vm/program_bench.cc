@@ -106,7 +106,10 @@ void RunProgram(benchmark::State& state, const std::filesystem::path& path, std:
   std::unique_ptr<Engine> engine = MakeEngine(kind, program, c.constants, options).value();
   if (highway_target != 0) hwy::SetSupportedTargetsForTest(0);
   for (auto _ : state) {
-    engine->Run(c.inputs, outputs);
+    if (const Status ran = engine->Run(c.inputs, outputs); !ran) {
+      state.SkipWithError(ran.message().c_str());
+      break;
+    }
     benchmark::ClobberMemory();
   }
   state.SetItemsProcessed(static_cast<std::int64_t>(state.iterations()) * static_cast<std::int64_t>(count));

@@ -34,7 +34,7 @@ typedef enum vs11c_status {
   VS11C_BAD_DECLARATION = 4,      /* a D3D8 declaration token or a D3D9 element that is not valid */
   VS11C_UNSUPPORTED = 5,          /* valid in D3D but not modelled here (a tessellator token, ...) */
   VS11C_REGISTER_OUT_OF_RANGE = 6,/* a constant register beyond the shader's bank */
-  VS11C_ENGINE_FAILED = 7,        /* the engine could not be built (a jit on a CPU it does not serve) */
+  VS11C_ENGINE_FAILED = 7,        /* the engine could not be built or run (vs11c_shader_engine_error says why) */
   VS11C_OUT_OF_MEMORY = 8
 } vs11c_status;
 
@@ -186,6 +186,12 @@ typedef struct vs11c_output {
 vs11c_status vs11c_process_vertices(vs11c_shader* shader, const vs11c_vertex_element* declaration,
                                     const vs11c_stream* streams, size_t stream_count, size_t vertex_count,
                                     const vs11c_output* output);
+
+/* Why the latest vs11c_process_vertices on `shader` that returned VS11C_ENGINE_FAILED failed: the
+ * engine's message (a jit on a CPU it does not serve; a vs_2_0 loop that unrolls past what the batch
+ * and jit engines run); "" before any did, and for a NULL shader. The text belongs to the shader:
+ * valid until the next call on it. */
+const char* vs11c_shader_engine_error(const vs11c_shader* shader);
 
 #ifdef __cplusplus
 }

@@ -577,11 +577,13 @@ Status GpuFrameStage(IrrmapRun& run) {
 Status MeshStage(IrrmapRun& run) {
   const IrrmapOptions& options = run.options;
   const CubeMap& cube = EnvironmentCube(run);
-  run.lighting = Timed(run.report, "mesh", [&] {
+  Result<MeshLighting> lit = Timed(run.report, "mesh", [&] {
     MeshLightingOptions mesh_options{run.checked.engine, run.engine_options, run.checked.threads,
                                      options.mesh_truth_vertex_limit, options.mesh_panel_size};
     return LightMesh(*options.mesh, *run.program, run.report.constants, cube, mesh_options);
   });
+  if (!lit) return lit.error();
+  run.lighting = std::move(lit).value();
   const MeshLighting& lighting = run.lighting;
   for (const std::string& warning : lighting.warnings) run.report.warnings.push_back(warning);
   run.report.mesh = MeshReport{options.mesh->name, options.mesh->positions.size(), options.mesh->indices.size() / 3,
@@ -599,18 +601,22 @@ Status MeshStage(IrrmapRun& run) {
 // The irradiance cube map: the chosen program once per texel direction.
 Status IrradianceMapStage(IrrmapRun& run) {
   run.irradiance_map = CubeMap(run.options.map_size);
-  Timed(run.report, "irradiance_map", [&] {
+  const Status filled = Timed(run.report, "irradiance_map", [&]() -> Status {
     std::vector<glm::dvec3> evaluated;  // stays empty where the GPU frame evaluated the map (--engine gl)
     if (run.gpu_irradiance.empty()) {
-      evaluated = run.chosen_program->Irradiance(run.chosen_bank, CubeTexelDirections(run.options.map_size),
-                                                 run.checked.engine, run.engine_options);
+      Result<std::vector<glm::dvec3>> irradiance = run.chosen_program->Irradiance(
+          run.chosen_bank, CubeTexelDirections(run.options.map_size), run.checked.engine, run.engine_options);
+      if (!irradiance) return irradiance.error();
+      evaluated = std::move(irradiance).value();
     }
     const std::vector<glm::dvec3>& values = run.gpu_irradiance.empty() ? evaluated : run.gpu_irradiance;
     std::size_t k = 0;
     for (Image& face : run.irradiance_map.faces) {
       for (glm::vec3& texel : face.pixels) texel = glm::vec3(values[k++]);
     }
+    return {};
   });
+  if (!filled) return filled;
   if (!AllTexelsFinite(run.irradiance_map)) {
     return Failure(DiagnosticCode::kBeyondFloatRange,
                    fmt::format("{}: {}", run.report.environment,
@@ -663,16 +669,20 @@ Status GroundTruthStage(IrrmapRun& run) {
   truth.erase(grid_start, truth.end());
   run.error_truth = std::move(truth);
 
-  Timed(report, "level_errors", [&] {
+  const Status compared = Timed(report, "level_errors", [&]() -> Status {
     for (LevelReport& level : report.levels) {
-      const std::vector<glm::dvec3> estimate = run.program->Irradiance(
+      const Result<std::vector<glm::dvec3>> estimate = run.program->Irradiance(
           PackTable1(level.coefficients), run.error_normals, run.checked.engine, run.engine_options);
-      level.error = CompareIrradiance(estimate, run.error_truth, run.error_normals);
+      if (!estimate) return estimate.error();
+      level.error = CompareIrradiance(*estimate, run.error_truth, run.error_normals);
     }
-    report.program_error = CompareIrradiance(
-        run.chosen_program->Irradiance(run.chosen_bank, run.error_normals, run.checked.engine, run.engine_options),
-        run.error_truth, run.error_normals);
+    const Result<std::vector<glm::dvec3>> chosen =
+        run.chosen_program->Irradiance(run.chosen_bank, run.error_normals, run.checked.engine, run.engine_options);
+    if (!chosen) return chosen.error();
+    report.program_error = CompareIrradiance(*chosen, run.error_truth, run.error_normals);
+    return {};
   });
+  if (!compared) return compared;
   report.errors_measured = true;
   report.error_normals = static_cast<int>(run.error_normals.size());
   return {};
@@ -681,7 +691,7 @@ Status GroundTruthStage(IrrmapRun& run) {
 Status PreviewStage(IrrmapRun& run) {
   const IrrmapReport& report = run.report;
   const CubeMap& cube = EnvironmentCube(run);
-  run.preview = Timed(run.report, "preview", [&] {
+  Result<PreviewResult> preview = Timed(run.report, "preview", [&]() -> Result<PreviewResult> {
     PreviewOptions preview_options;
     preview_options.sphere_diameter = run.options.sphere_diameter;
     if (!run.options.font.empty()) preview_options.font = run.options.font;
@@ -694,16 +704,19 @@ Status PreviewStage(IrrmapRun& run) {
     const bool order2 = report.order == ShOrder::kOrder2;
     for (int level : PreviewLevels(report)) {
       const LevelReport& row = report.levels[level];
-      panels.push_back({PreviewLabel(row, row.chosen && order2),
-                        run.program->Irradiance(PackTable1(row.coefficients), sphere.normals, run.checked.engine,
-                                                run.engine_options)});
+      Result<std::vector<glm::dvec3>> irradiance = run.program->Irradiance(
+          PackTable1(row.coefficients), sphere.normals, run.checked.engine, run.engine_options);
+      if (!irradiance) return irradiance.error();
+      panels.push_back({PreviewLabel(row, row.chosen && order2), std::move(irradiance).value()});
       table_errors.push_back(row.error);
     }
     if (!order2) {  // the chosen program beside the nine terms it approximates
       const LevelReport& chosen = report.levels[report.level];
+      Result<std::vector<glm::dvec3>> irradiance =
+          run.chosen_program->Irradiance(run.chosen_bank, sphere.normals, run.checked.engine, run.engine_options);
+      if (!irradiance) return irradiance.error();
       panels.push_back({fmt::format("{} from {}x{} *", ShOrderName(report.order), chosen.size, chosen.size),
-                        run.chosen_program->Irradiance(run.chosen_bank, sphere.normals, run.checked.engine,
-                                                       run.engine_options)});
+                        std::move(irradiance).value()});
       table_errors.push_back(report.program_error);
     }
     const PreviewErrorBasis basis{report.error_metric, table_errors,
@@ -714,6 +727,8 @@ Status PreviewStage(IrrmapRun& run) {
     }
     return RenderPreview(sphere, truth_panel, panels, errors, cube, preview_options);
   });
+  if (!preview) return preview.error();
+  run.preview = std::move(preview).value();
   for (const std::string& warning : run.preview.warnings) run.report.warnings.push_back(warning);
   run.outputs.push_back({kPreviewFile, [&run](const fs::path& path) { return WriteImage(run.preview.image, path); }});
   return {};
@@ -748,9 +763,9 @@ Diagnostic OutOfMemory(const IrrmapRun& run, std::string_view doing) {
 }
 
 // The engine is built once for the paper's program before any work: where one that depends on a driver
-// (the gl engine) cannot be built, the job ends with MakeEngine's error, and later stages may build
-// it again without checking (PaperProgram::Irradiance, LightMesh). (The CPU engines never fail;
-// building them costs microseconds.)
+// (the gl engine) cannot be built, the job ends with MakeEngine's error before any stage runs (the
+// stages that build it again, PaperProgram::Irradiance and LightMesh, return the error of a build or
+// a run that fails later). (The CPU engines never fail; building them costs microseconds.)
 Status CheckEngine(const std::string& kind, const EngineOptions& engine_options) {
   const Result<PaperProgram> paper = PaperProgram::LoadOrder(ShOrder::kOrder2);
   if (!paper) return paper.error();

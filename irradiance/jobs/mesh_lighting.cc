@@ -32,9 +32,9 @@ double Median(std::vector<double> values) {
 }
 
 // Runs the program over every vertex normal; returns the irradiance and the engine's time per run.
-std::vector<glm::dvec3> EvaluateProgram(const MeshGeometry& mesh, const PaperProgram& program,
-                                        const SevenConstants& constants, const MeshLightingOptions& options,
-                                        double& ms_per_evaluation) {
+Result<std::vector<glm::dvec3>> EvaluateProgram(const MeshGeometry& mesh, const PaperProgram& program,
+                                                const SevenConstants& constants, const MeshLightingOptions& options,
+                                                double& ms_per_evaluation) {
   const std::size_t n = mesh.normals.size();
   const std::array<int, 1> registers = {program.normal_register()};
   VertexArrays inputs = MakeInputArrays(n, registers);
@@ -45,16 +45,16 @@ std::vector<glm::dvec3> EvaluateProgram(const MeshGeometry& mesh, const PaperPro
     for (int c = 0; c < 3; ++c) inputs.lane(program.normal_register(), c)[i] = static_cast<float>(unit[c]);
   }
   VertexArrays outputs = MakeOutputArrays(n, program.program());
-  // The job checked the engine before any work (irrmap_job.cc's CheckEngine); the CPU engines never fail.
-  std::unique_ptr<Engine> engine =
-      MakeEngine(options.engine, program.program(), program.Constants(constants), options.engine_options).value();
+  Result<std::unique_ptr<Engine>> engine =
+      MakeEngine(options.engine, program.program(), program.Constants(constants), options.engine_options);
+  if (!engine) return engine.error();
   std::vector<double> times;
   const Clock::time_point start = Clock::now();
   while (static_cast<int>(times.size()) < kMaxTimedRuns &&
          (static_cast<int>(times.size()) < kMinTimedRuns ||
           std::chrono::duration<double, std::milli>(Clock::now() - start).count() < kMinTimedMs)) {
     const Clock::time_point run = Clock::now();
-    engine->Run(inputs, outputs);
+    if (Status ran = (*engine)->Run(inputs, outputs); !ran) return ran.error();
     times.push_back(std::chrono::duration<double, std::milli>(Clock::now() - run).count());
   }
   ms_per_evaluation = Median(times);
@@ -82,11 +82,14 @@ void Blit(const Image& source, Image& target, int x0) {
 
 }  // namespace
 
-MeshLighting LightMesh(const MeshGeometry& mesh, const PaperProgram& program, const SevenConstants& constants,
-                       const CubeMap& environment, const MeshLightingOptions& options) {
+Result<MeshLighting> LightMesh(const MeshGeometry& mesh, const PaperProgram& program, const SevenConstants& constants,
+                               const CubeMap& environment, const MeshLightingOptions& options) {
   assert(mesh.normals.size() == mesh.positions.size());
   MeshLighting result;
-  result.irradiance = EvaluateProgram(mesh, program, constants, options, result.ms_per_evaluation);
+  Result<std::vector<glm::dvec3>> evaluated =
+      EvaluateProgram(mesh, program, constants, options, result.ms_per_evaluation);
+  if (!evaluated) return evaluated.error();
+  result.irradiance = std::move(evaluated).value();
 
   const std::size_t n = mesh.positions.size();
   // Vertices whose normal is zero or not finite have no direction to light: they are drawn black

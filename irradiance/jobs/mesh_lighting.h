@@ -68,9 +68,10 @@ struct MeshLighting {
   std::vector<std::string> warnings;
 };
 
-// Lights `mesh` (normals.size() == positions.size(), asserted) with the seven constants. Never fails:
-// degenerate meshes give an empty picture area.
-MeshLighting LightMesh(const MeshGeometry& mesh, const PaperProgram& program, const SevenConstants& constants,
-                       const CubeMap& environment, const MeshLightingOptions& options);
+// Lights `mesh` (normals.size() == positions.size(), asserted) with the seven constants. Fails only
+// where the engine cannot be built or run (the gl engine's driver): degenerate meshes give an empty
+// picture area.
+Result<MeshLighting> LightMesh(const MeshGeometry& mesh, const PaperProgram& program, const SevenConstants& constants,
+                               const CubeMap& environment, const MeshLightingOptions& options);
 
 }  // namespace vs11::irradiance

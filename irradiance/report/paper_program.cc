@@ -74,14 +74,15 @@ ConstantBank PaperProgram::Constants(std::span<const NamedRegister> registers) c
   return bank;
 }
 
-std::vector<glm::dvec3> PaperProgram::Irradiance(const SevenConstants& constants,
-                                                 std::span<const glm::dvec3> normals, std::string engine,
-                                                 const EngineOptions& engine_options) const {
+Result<std::vector<glm::dvec3>> PaperProgram::Irradiance(const SevenConstants& constants,
+                                                         std::span<const glm::dvec3> normals, std::string engine,
+                                                         const EngineOptions& engine_options) const {
   return Irradiance(Constants(constants), normals, engine, engine_options);
 }
 
-std::vector<glm::dvec3> PaperProgram::Irradiance(const ConstantBank& bank, std::span<const glm::dvec3> normals,
-                                                 std::string engine, const EngineOptions& engine_options) const {
+Result<std::vector<glm::dvec3>> PaperProgram::Irradiance(const ConstantBank& bank,
+                                                         std::span<const glm::dvec3> normals, std::string engine,
+                                                         const EngineOptions& engine_options) const {
   const std::array<int, 1> input_registers = {normal_register_};
   VertexArrays inputs = MakeInputArrays(normals.size(), input_registers);
   for (int c = 0; c < 3; ++c) {
@@ -89,8 +90,9 @@ std::vector<glm::dvec3> PaperProgram::Irradiance(const ConstantBank& bank, std::
     for (std::size_t i = 0; i < normals.size(); ++i) lane[i] = static_cast<float>(normals[i][c]);
   }
   VertexArrays outputs = MakeOutputArrays(normals.size(), program_);
-  std::unique_ptr<Engine> machine = MakeEngine(engine, program_, bank, engine_options).value();
-  machine->Run(inputs, outputs);
+  Result<std::unique_ptr<Engine>> machine = MakeEngine(engine, program_, bank, engine_options);
+  if (!machine) return machine.error();
+  if (Status ran = (*machine)->Run(inputs, outputs); !ran) return ran.error();
   std::vector<glm::dvec3> irradiance(normals.size());
   for (int c = 0; c < 3; ++c) {
     const float* lane = outputs.lane(output_slot_, c);

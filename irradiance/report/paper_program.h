@@ -42,12 +42,13 @@ class PaperProgram {
   // The constant bank with the seven registers (or any list of them) from constant_base() on.
   ConstantBank Constants(const SevenConstants& constants) const;
   ConstantBank Constants(std::span<const NamedRegister> registers) const;
-  // Runs the program once per normal (as (x, y, z, 1) in floats) and returns the output's rgb. The
-  // engine must build: the CPU engines always do, and irrmap checks the gl engine before any work.
-  std::vector<glm::dvec3> Irradiance(const SevenConstants& constants, std::span<const glm::dvec3> normals,
-                                     std::string engine, const EngineOptions& engine_options = {}) const;
-  std::vector<glm::dvec3> Irradiance(const ConstantBank& bank, std::span<const glm::dvec3> normals,
-                                     std::string engine, const EngineOptions& engine_options = {}) const;
+  // Runs the program once per normal (as (x, y, z, 1) in floats) and returns the output's rgb, or
+  // why the engine could not be built or failed to run (the gl engine's driver; the CPU engines never
+  // fail, and irrmap checks that the gl engine builds before any work).
+  Result<std::vector<glm::dvec3>> Irradiance(const SevenConstants& constants, std::span<const glm::dvec3> normals,
+                                             std::string engine, const EngineOptions& engine_options = {}) const;
+  Result<std::vector<glm::dvec3>> Irradiance(const ConstantBank& bank, std::span<const glm::dvec3> normals,
+                                             std::string engine, const EngineOptions& engine_options = {}) const;
 
  private:
   Program program_;

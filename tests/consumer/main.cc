@@ -52,7 +52,11 @@ int main() {
     inputs.lane(0, 3)[i] = 1.0f;
   }
   vs11::VertexArrays outputs = vs11::MakeOutputArrays(normals.size(), *assembled.program);
-  vs11::MakeEngine("batch", *assembled.program, constants).value()->Run(inputs, outputs);
+  if (const vs11::Status ran = vs11::MakeEngine("batch", *assembled.program, constants).value()->Run(inputs, outputs);
+      !ran) {
+    std::fprintf(stderr, "%s\n", ran.message().c_str());
+    return 1;
+  }
 
   const int diffuse = static_cast<int>(vs11::OutputSlot::kDiffuse);
   double worst = 0.0;

@@ -140,4 +140,8 @@ vs11c_status vs11c_process_vertices(vs11c_shader* shader, const vs11c_vertex_ele
   return Guarded([&] { return shader->shader.Process(declaration, Span(streams, stream_count), vertex_count, *output); });
 }
 
+const char* vs11c_shader_engine_error(const vs11c_shader* shader) {
+  return shader == nullptr ? "" : shader->shader.engine_error().c_str();
+}
+
 }  // extern "C"

@@ -51,12 +51,11 @@ std::vector<std::pair<int, int>> InputsRead(const Program& program) {
 
 // The one place the library builds an engine: engine_factory.h's MakeEngine; null where the engine
 // cannot be made.
-std::unique_ptr<Engine> BuildEngine(std::string_view name, const Program& program, const ConstantBank& constants,
-                                    FloatRules rules) {
+Result<std::unique_ptr<Engine>> BuildEngine(std::string_view name, const Program& program,
+                                            const ConstantBank& constants, FloatRules rules) {
   EngineOptions options;
   options.float_rules = rules;
-  Result<std::unique_ptr<Engine>> engine = MakeEngine(name, program, constants, options);
-  return engine ? std::move(engine).value() : nullptr;
+  return MakeEngine(name, program, constants, options);
 }
 
 std::string_view FastestEngine() { return FindEngine("jit") ? "jit" : "batch"; }
@@ -192,16 +191,22 @@ vs11c_status Shader::SetEngine(const char* name, int rules) {
   return VS11C_OK;
 }
 
-vs11c_status Shader::EnsureEngine() {
+Status Shader::EnsureEngine() {
   if (!engine_) {
-    engine_ = BuildEngine(engine_name_, program_, constants_, float_rules_);
-    if (!engine_) return VS11C_ENGINE_FAILED;
-    constants_changed_ = false;
+    Result<std::unique_ptr<Engine>> built = BuildEngine(engine_name_, program_, constants_, float_rules_);
+    if (!built) return built.error();
+    engine_ = std::move(built).value();
   } else if (constants_changed_) {
-    engine_->SetConstants(constants_);
     constants_changed_ = false;
+    return engine_->SetConstants(constants_);
   }
-  return engine_->error().empty() ? VS11C_OK : VS11C_ENGINE_FAILED;
+  constants_changed_ = false;
+  return {};
+}
+
+vs11c_status Shader::EngineFailed(const Status& status) {
+  engine_error_ = status.message();
+  return VS11C_ENGINE_FAILED;
 }
 
 vs11c_status Shader::Process(const vs11c_vertex_element* declaration, std::span<const vs11c_stream> streams,
@@ -229,7 +234,7 @@ vs11c_status Shader::Process(const vs11c_vertex_element* declaration, std::span<
                                                           : OutputsFromDeclaration(output.declaration, output.stride);
   if (const LayoutError* error = std::get_if<LayoutError>(&laid_out)) return error->status;
   const auto& outputs = std::get<std::vector<OutputElement>>(laid_out);
-  if (const vs11c_status status = EnsureEngine(); status != VS11C_OK) return status;
+  if (const Status ensured = EnsureEngine(); !ensured) return EngineFailed(ensured);
 
   std::vector<int> registers;
   for (const InputElement& input : inputs) registers.push_back(input.reg);
@@ -250,8 +255,7 @@ vs11c_status Shader::Process(const vs11c_vertex_element* declaration, std::span<
       for (int c = 0; c < 4; ++c) lanes[c] = in.lane(input.reg, c);
       ReadElements(input.type, bytes, stream.stride, count, lanes);
     }
-    engine_->Run(in, out);
-    if (!engine_->error().empty()) return VS11C_ENGINE_FAILED;
+    if (const Status ran = engine_->Run(in, out); !ran) return EngineFailed(ran);
     auto* destination = static_cast<std::uint8_t*>(output.data) + first * output.stride;
     for (const OutputElement& element : outputs) {
       // An unwritten register reads its one value (stride 0); a screen position, lanes of its own.

@@ -46,9 +46,13 @@ class Shader {
                           int address_u, int address_v);
   vs11c_status Process(const vs11c_vertex_element* declaration, std::span<const vs11c_stream> streams,
                        std::size_t vertex_count, const vs11c_output& output);
+  // Why the latest Process that returned VS11C_ENGINE_FAILED failed; empty before any did.
+  const std::string& engine_error() const { return engine_error_; }
 
  private:
-  vs11c_status EnsureEngine();
+  Status EnsureEngine();
+  // Keeps `status`'s message as engine_error().
+  vs11c_status EngineFailed(const Status& status);
 
   Api api_;
   Program program_;
@@ -58,6 +62,7 @@ class Shader {
   FloatRules float_rules_ = FloatRules::kD3d9;
   std::unique_ptr<Engine> engine_;  // built at the first run after a change of engine
   bool constants_changed_ = false;
+  std::string engine_error_;
 };
 
 }  // namespace vs11::capi

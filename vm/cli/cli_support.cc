@@ -131,8 +131,7 @@ void NoteGlPath(const Engine& engine) {
 }
 
 void RunOrFail(Engine& engine, const VertexArrays& inputs, VertexArrays& outputs) {
-  engine.Run(inputs, outputs);
-  if (const std::string error = engine.error(); !error.empty()) Fail(error);
+  if (const Status ran = engine.Run(inputs, outputs); !ran) Fail(ran.message());
 }
 
 void FloatRulesFlag::AddTo(CLI::App& command) {

@@ -52,7 +52,7 @@ double MeasureNsPerVertex(std::string_view engine_name, const Program& program, 
   double best = 1e300;
   for (int repeat = 0; repeat < kTimedRepeats; ++repeat) {
     auto start = std::chrono::steady_clock::now();
-    engine->Run(inputs, outputs);
+    RunOrFail(*engine, inputs, outputs);
     std::chrono::duration<double, std::nano> elapsed = std::chrono::steady_clock::now() - start;
     best = std::min(best, elapsed.count() / static_cast<double>(kTimedVertices));
   }

@@ -3,6 +3,7 @@
 #include <algorithm>
 #include <cctype>
 #include <cstring>
+#include <limits>
 #include <stdexcept>
 
 #include <fmt/format.h>
@@ -255,6 +256,14 @@ VertexArrays MakeOutputArrays(std::size_t count, const Program& program) {
   // Every lane starts as uniform 0, the value of a lane the program leaves alone in a register it
   // writes (oD0.a beside oD0.rgb): the engines need not store those again on every run.
   return VertexArrays(count, slots, kOutputSlotCount);
+}
+
+void FillWithNaN(VertexArrays& outputs) {
+  for (int reg : outputs.registers()) {
+    for (int c = 0; c < 4; ++c) {
+      std::fill_n(outputs.lane(reg, c), outputs.count(), std::numeric_limits<float>::quiet_NaN());
+    }
+  }
 }
 
 }  // namespace vs11

@@ -204,6 +204,8 @@ class VertexArrays {
 // Inputs: registers v0..v15. Outputs: the OutputSlot values.
 VertexArrays MakeInputArrays(std::size_t count, std::span<const int> input_registers);
 VertexArrays MakeOutputArrays(std::size_t count, const Program& program);  // the slots the program writes
+// Every lane of every register of `outputs` NaN: what an engine whose Run fails leaves (Engine::Run).
+void FillWithNaN(VertexArrays& outputs);
 
 // Runs one program with one constant bank over many vertices.
 //
@@ -221,13 +223,17 @@ class Engine {
   virtual ~Engine() = default;
   // `outputs` must come from MakeOutputArrays for the same program and count. Lanes the program does
   // not write get UnwrittenOutputValue.
-  virtual void Run(const VertexArrays& inputs, VertexArrays& outputs) = 0;
-  virtual void SetConstants(const ConstantBank& api_constants) = 0;
-  // Empty while the engine works. An engine that depends on a driver (gl) says here why its last Run
-  // or SetConstants failed; it then writes NaN to every output lane, and callers report this text
-  // instead of the outputs. (Run returns nothing so that the CPU engines, which never fail, keep a
-  // plain call; an engine that cannot be built is an error of MakeEngine instead.)
-  virtual std::string error() const { return {}; }
+  //
+  // Both calls return the empty Status on success, as the CPU engines (ref, batch, jit) always do; an
+  // engine that cannot be built is an error of MakeEngine instead. An engine that depends on a driver
+  // (gl: kGlError, or kGlCompile for a bank it cannot link) or on the constants (a later model's program
+  // that does not specialise for new i#/b# values: kEngineUnavailable) returns why it failed. A failed
+  // Run, and every Run after a failed SetConstants, returns that Diagnostic and writes NaN to every lane
+  // of `outputs` (FillWithNaN), so that outputs a caller forgets to check never pass for results. A gl
+  // engine that failed stays failed: every later call returns the same Diagnostic; the static-flow
+  // engine works again after a SetConstants whose constants specialise.
+  virtual Status Run(const VertexArrays& inputs, VertexArrays& outputs) = 0;
+  virtual Status SetConstants(const ConstantBank& api_constants) = 0;
 };
 
 class ThreadPool;  // vm/core/thread_pool.h

@@ -162,29 +162,18 @@ class BatchEngine final : public Engine {
         variants_.clear();
       }
     }
-    SetConstants(api_constants);
+    LoadConstants(api_constants);
   }
 
-  void SetConstants(const ConstantBank& api_constants) override {
-    const ConstantBank bank = ApplyDefinitions(program_, api_constants);
-    const int rows = std::max(bank.size(), plan_.max_static_constant + 1);
-    constants_.assign(4 * static_cast<std::size_t>(kFirstConstantRow + rows), 0.0f);
-    for (int reg = 0; reg < bank.size(); ++reg) {
-      for (int c = 0; c < 4; ++c) constants_[ConstantIndex(reg, c)] = bank[reg][c];
-    }
-    constant_count_ = bank.size();
-    // texldl's samplers: the textures are shared, never written, and kept alive by samplers_.
-    for (int s = 0; s < kVertexSamplerCount; ++s) {
-      samplers_[static_cast<std::size_t>(s)] = bank.sampler(s);
-      const SamplerBinding& binding = samplers_[static_cast<std::size_t>(s)];
-      texture_views_[static_cast<std::size_t>(s)] = {ShapeOf(binding), binding.texture ? binding.texture->texels.data() : nullptr};
-    }
+  Status SetConstants(const ConstantBank& api_constants) override {
+    LoadConstants(api_constants);
+    return {};
   }
 
-  void Run(const VertexArrays& inputs, VertexArrays& outputs) override {
+  Status Run(const VertexArrays& inputs, VertexArrays& outputs) override {
     const std::size_t count = inputs.count();
     assert(outputs.count() >= count);
-    if (count == 0) return;
+    if (count == 0) return {};
 
     // Whole batches per piece, so that only the last piece has a short batch.
     // kNeverSplit is the largest size_t: any count divided by it is 0, so one task.
@@ -200,16 +189,33 @@ class BatchEngine final : public Engine {
     for (std::size_t t = 0; t < threads; ++t) BindOutputs(workspaces_[t], outputs);
     if (threads == 1) {
       RunRange(workspaces_[0], inputs, 0, count);
-      return;
+      return {};
     }
     pool_->Run((count + per_task - 1) / per_task, static_cast<int>(threads),
               [this, per_task, count, &inputs](std::size_t task, int slot) {
                 const std::size_t begin = task * per_task;
                 RunRange(workspaces_[static_cast<std::size_t>(slot)], inputs, begin, std::min(count, begin + per_task));
               });
+    return {};
   }
 
  private:
+  void LoadConstants(const ConstantBank& api_constants) {
+    const ConstantBank bank = ApplyDefinitions(program_, api_constants);
+    const int rows = std::max(bank.size(), plan_.max_static_constant + 1);
+    constants_.assign(4 * static_cast<std::size_t>(kFirstConstantRow + rows), 0.0f);
+    for (int reg = 0; reg < bank.size(); ++reg) {
+      for (int c = 0; c < 4; ++c) constants_[ConstantIndex(reg, c)] = bank[reg][c];
+    }
+    constant_count_ = bank.size();
+    // texldl's samplers: the textures are shared, never written, and kept alive by samplers_.
+    for (int s = 0; s < kVertexSamplerCount; ++s) {
+      samplers_[static_cast<std::size_t>(s)] = bank.sampler(s);
+      const SamplerBinding& binding = samplers_[static_cast<std::size_t>(s)];
+      texture_views_[static_cast<std::size_t>(s)] = {ShapeOf(binding), binding.texture ? binding.texture->texels.data() : nullptr};
+    }
+  }
+
   // The compiled program for this run's inputs: the input lanes that hold one value throughout
   // (absent registers' defaults, lanes VertexArrays::FillUniform filled) are compiled in, not read.
   void SelectCompiled(const VertexArrays& inputs) {

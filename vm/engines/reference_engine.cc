@@ -84,11 +84,12 @@ class ReferenceEngine final : public Engine {
       : program_(program), executed_(ExecutedPart(program)), constants_(ApplyDefinitions(program, api_constants)),
         written_(WrittenOutputLanes(program)), rules_(rules) {}
 
-  void SetConstants(const ConstantBank& api_constants) override {
+  Status SetConstants(const ConstantBank& api_constants) override {
     constants_ = ApplyDefinitions(program_, api_constants);
+    return {};
   }
 
-  void Run(const VertexArrays& inputs, VertexArrays& outputs) override {
+  Status Run(const VertexArrays& inputs, VertexArrays& outputs) override {
     std::vector<int> output_slots = outputs.registers();
     VertexState state;
     for (std::size_t i = 0; i < inputs.count(); ++i) {
@@ -98,6 +99,7 @@ class ReferenceEngine final : public Engine {
         for (int c = 0; c < 4; ++c) outputs.lane(slot, c)[i] = state.outputs[slot][c];
       }
     }
+    return {};
   }
 
  private:

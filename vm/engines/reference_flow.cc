@@ -155,11 +155,12 @@ class FlowReferenceEngine final : public Engine {
       : program_(program), control_(BuildControlTable(program)), constants_(ModelConstants(program, api_constants)),
         written_(WrittenOutputLanes(program)), declared_outputs_(DeclaredOutputSlots(program)), rules_(rules) {}
 
-  void SetConstants(const ConstantBank& api_constants) override {
+  Status SetConstants(const ConstantBank& api_constants) override {
     constants_ = ModelConstants(program_, api_constants);
+    return {};
   }
 
-  void Run(const VertexArrays& inputs, VertexArrays& outputs) override {
+  Status Run(const VertexArrays& inputs, VertexArrays& outputs) override {
     const std::vector<int> output_slots = outputs.registers();
     FlowState state;
     for (std::size_t i = 0; i < inputs.count(); ++i) {
@@ -173,6 +174,7 @@ class FlowReferenceEngine final : public Engine {
         for (int c = 0; c < 4; ++c) outputs.lane(slot, c)[i] = state.outputs[static_cast<std::size_t>(slot)][c];
       }
     }
+    return {};
   }
 
  private:

@@ -1,7 +1,6 @@
 #include "vm/engines/static_flow_engine.h"
 
 #include <algorithm>
-#include <limits>
 #include <string>
 #include <utility>
 #include <vector>
@@ -27,59 +26,46 @@ class StaticFlowEngine final : public Engine {
       : program_(program), written_(WrittenOutputLanes(program)), options_(options), name_(engine), make_(make) {}
 
   // Runs the specialisation for these constants from now on, building it unless it is cached; or why
-  // the program does not specialise for them (Run then writes NaN).
-  Status Specialise(const ConstantBank& api_constants) {
+  // the program does not specialise for them (Run then returns it and writes NaN).
+  Status SetConstants(const ConstantBank& api_constants) override {
     const ConstantBank bank = ModelConstants(program_, api_constants);
     const StaticFlowKey key = StaticFlowKeyOf(bank);
     auto found = std::ranges::find_if(cache_, [&](const Specialisation& s) { return s.key == key; });
     if (found == cache_.end()) {
       ++specialisations_;
       Result<Program> straight = SpecialiseStaticFlow(program_, key, name_);
-      if (!straight) {
-        current_ = nullptr;
-        error_ = straight.message();
-        return straight.error();
-      }
+      if (!straight) return Fail(straight.error());
       Result<std::unique_ptr<Engine>> made = make_(*straight, bank, options_);
-      if (!made) {
-        current_ = nullptr;
-        error_ = made.message();
-        return made.error();
-      }
+      if (!made) return Fail(made.error());
       if (cache_.size() == kMaxSpecialisations) cache_.erase(cache_.begin());  // the least recently used
       cache_.push_back({key, WrittenOutputLanes(*straight), std::move(made).value()});
     } else {
       std::rotate(found, found + 1, cache_.end());  // most recently used last
     }
     current_ = &cache_.back();
-    error_.clear();
-    current_->engine->SetConstants(bank);
+    failure_ = {};
+    if (Status set = current_->engine->SetConstants(bank); !set) return Fail(set.error());
     return {};
   }
 
-  void SetConstants(const ConstantBank& api_constants) override { (void)Specialise(api_constants); }
-
-  void Run(const VertexArrays& inputs, VertexArrays& outputs) override {
-    const std::vector<int> slots = outputs.registers();
+  Status Run(const VertexArrays& inputs, VertexArrays& outputs) override {
     if (current_ == nullptr) {
-      for (int slot : slots) {
-        for (int c = 0; c < 4; ++c) std::fill_n(outputs.lane(slot, c), inputs.count(), std::numeric_limits<float>::quiet_NaN());
-      }
-      return;
+      FillWithNaN(outputs);
+      return failure_;
     }
-    current_->engine->Run(inputs, outputs);
+    if (Status ran = current_->engine->Run(inputs, outputs); !ran) return ran;
     // An output the program writes somewhere starts at 0 in the reference engine, even where this
     // specialisation never writes it (the straight-line engine would give UnwrittenOutputValue).
-    for (int slot : slots) {
+    for (int slot : outputs.registers()) {
       if (!written_[slot].bits() || current_->written[slot].bits()) continue;
       const Vec4f unwritten = UnwrittenOutputValue(slot);
       for (int c = 0; c < 4; ++c) {
         if (unwritten[c] != 0.0f) std::fill_n(outputs.lane(slot, c), inputs.count(), 0.0f);
       }
     }
+    return {};
   }
 
-  std::string error() const override { return error_; }
   int specialisations() const { return specialisations_; }
 
  private:
@@ -89,9 +75,17 @@ class StaticFlowEngine final : public Engine {
   std::string name_;
   StraightLineEngineMaker make_;
   std::vector<Specialisation> cache_;
+  // Null after a failed SetConstants: Run then returns failure_.
   Specialisation* current_ = nullptr;
-  std::string error_;
+  Status failure_;
   int specialisations_ = 0;
+
+  // Keeps `error` for the Runs that follow (the specialisation they would run is gone).
+  Status Fail(const Diagnostic& error) {
+    current_ = nullptr;
+    failure_ = error;
+    return failure_;
+  }
 };
 
 }  // namespace
@@ -100,7 +94,7 @@ Result<std::unique_ptr<Engine>> MakeStaticFlowEngine(const Program& program, con
                                                      const EngineOptions& options, std::string_view engine,
                                                      StraightLineEngineMaker make) {
   auto made = std::make_unique<StaticFlowEngine>(program, options, engine, make);
-  if (Status specialised = made->Specialise(api_constants); !specialised) return specialised.error();
+  if (Status specialised = made->SetConstants(api_constants); !specialised) return specialised.error();
   return std::unique_ptr<Engine>(std::move(made));
 }
 

@@ -18,8 +18,9 @@ using StraightLineEngineMaker = Result<std::unique_ptr<Engine>> (*)(const Progra
 
 // `program` must pass EngineRefusal(program, engine); `make` builds the engine that runs each
 // specialisation. Fails when the program does not specialise for `api_constants` (the unrolling is too
-// long) or `make` fails on the specialisation; when later constants do not, error() says why and Run
-// writes NaN.
+// long) or `make` fails on the specialisation. When later constants do not, SetConstants returns why
+// (kEngineUnavailable from the specialisation, or `make`'s own code), and every Run until a
+// SetConstants that works returns the same Diagnostic and writes NaN (Engine::Run).
 Result<std::unique_ptr<Engine>> MakeStaticFlowEngine(const Program& program, const ConstantBank& api_constants,
                                                      const EngineOptions& options, std::string_view engine,
                                                      StraightLineEngineMaker make);

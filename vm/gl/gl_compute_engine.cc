@@ -63,33 +63,34 @@ class GlComputeEngine final : public Engine, public GlPathOwner {
   }
 
   GlPath path() const override { return GlPath::kCompute; }
-  std::string error() const override { return error_; }
 
-  void SetConstants(const ConstantBank& api_constants) override {
-    if (!error_.empty()) return;
-    if (api_constants.size() != constant_count_ && !Keep(Build(api_constants.size()))) return;
+  Status SetConstants(const ConstantBank& api_constants) override {
+    if (!failure_) return failure_;
+    if (api_constants.size() != constant_count_ && !Keep(Build(api_constants.size()))) return failure_;
     ScopedCurrent current(*context_);
-    if (!Keep(current.status())) return;
+    if (!Keep(current.status())) return failure_;
     std::vector<float> rows;
     rows.reserve(static_cast<std::size_t>(api_constants.size()) * 4);
     for (const Vec4f& row : api_constants.values()) rows.insert(rows.end(), row.begin(), row.end());
     Keep(run_->SetConstants(rows));
+    return failure_;
   }
 
-  void Run(const VertexArrays& inputs, VertexArrays& outputs) override {
-    if (error_.empty() && inputs.count() > 0) {
+  Status Run(const VertexArrays& inputs, VertexArrays& outputs) override {
+    if (failure_ && inputs.count() > 0) {
       ScopedCurrent current(*context_);
       for (std::size_t first = 0; Keep(current.status()) && first < inputs.count(); first += kVerticesPerDispatch) {
         if (!Keep(RunDispatch(inputs, first, std::min(kVerticesPerDispatch, inputs.count() - first), outputs))) break;
       }
     }
-    if (!error_.empty()) FillWithNaN(outputs);
+    if (!failure_) FillWithNaN(outputs);
+    return failure_;
   }
 
  private:
-  // Keeps the message of a failed `status` as error(); whether it succeeded.
+  // Keeps a failed `status` as failure_, which every later call returns; whether it succeeded.
   bool Keep(const Status& status) {
-    if (!status) error_ = status.message();
+    if (!status) failure_ = status;
     return status.ok();
   }
 
@@ -166,7 +167,7 @@ class GlComputeEngine final : public Engine, public GlPathOwner {
   EngineOptions options_;
   std::unique_ptr<GlContext> context_;
   std::unique_ptr<ComputeRun> run_;
-  std::string error_;
+  Status failure_;
   int constant_count_ = 0;
   std::vector<int> inputs_read_, written_;
   GLuint input_buffer_ = 0, output_buffer_ = 0;
@@ -179,8 +180,7 @@ Result<std::unique_ptr<Engine>> MakeGlComputeEngine(const Program& program, cons
                                                     const EngineOptions& options, std::unique_ptr<GlContext> context) {
   auto engine = std::make_unique<GlComputeEngine>(program, options, std::move(context));
   if (Status built = engine->Build(api_constants.size()); !built) return built.error();
-  engine->SetConstants(api_constants);
-  if (!engine->error().empty()) return Failure(DiagnosticCode::kGlError, engine->error());
+  if (Status set = engine->SetConstants(api_constants); !set) return set.error();
   return std::unique_ptr<Engine>(std::move(engine));
 }
 

@@ -38,15 +38,14 @@ class GlEngine final : public Engine, public GlPathOwner {
 
   // Translates for a bank of `constant_count` registers, links, and makes the buffers.
   Status Build(int constant_count);
-  void Run(const VertexArrays& inputs, VertexArrays& outputs) override;
-  void SetConstants(const ConstantBank& api_constants) override;
-  std::string error() const override { return error_; }
+  Status Run(const VertexArrays& inputs, VertexArrays& outputs) override;
+  Status SetConstants(const ConstantBank& api_constants) override;
   GlPath path() const override { return GlPath::kTransformFeedback; }
 
  private:
   void DeleteObjects();
   Status RunDraw(const VertexArrays& inputs, std::size_t first, std::size_t count, VertexArrays& outputs);
-  // Keeps the message of a failed `status` as error(); whether it succeeded.
+  // Keeps a failed `status` as failure_; whether it succeeded.
   bool Keep(const Status& status);
   void UploadInputs(const VertexArrays& inputs, std::size_t first, std::size_t count);
   void ScatterOutputs(const float* captured, std::size_t first, std::size_t count, VertexArrays& outputs) const;
@@ -54,9 +53,8 @@ class GlEngine final : public Engine, public GlPathOwner {
   Program program_;
   EngineOptions options_;
   std::unique_ptr<GlContext> context_;
-  // Why the last SetConstants or Run failed: Run returns nothing, so the engine interface reports a
-  // run's failure through error() (vm/core/machine.h); construction returns its failure instead.
-  std::string error_;
+  // Why a SetConstants or Run failed: every later call returns it (vm/core/machine.h's Engine).
+  Status failure_;
   int constant_count_ = 0;
   GLuint program_object_ = 0, vertex_array_ = 0, output_buffer_ = 0, query_ = 0;
   GLint constants_location_ = -1;
@@ -100,7 +98,7 @@ std::vector<int> ActiveInputs(GLuint program) {
 }
 
 bool GlEngine::Keep(const Status& status) {
-  if (!status) error_ = status.message();
+  if (!status) failure_ = status;
   return status.ok();
 }
 
@@ -141,28 +139,30 @@ Status GlEngine::Build(int constant_count) {
   return GlOk("creating the vertex array and buffers");
 }
 
-void GlEngine::SetConstants(const ConstantBank& api_constants) {
-  if (!error_.empty()) return;
-  if (api_constants.size() != constant_count_ && !Keep(Build(api_constants.size()))) return;
-  if (constants_location_ < 0) return;  // the program reads no constant from the bank
+Status GlEngine::SetConstants(const ConstantBank& api_constants) {
+  if (!failure_) return failure_;
+  if (api_constants.size() != constant_count_ && !Keep(Build(api_constants.size()))) return failure_;
+  if (constants_location_ < 0) return {};  // the program reads no constant from the bank
   ScopedCurrent current(*context_);
-  if (!Keep(current.status())) return;
+  if (!Keep(current.status())) return failure_;
   std::vector<float> floats;
   floats.reserve(static_cast<std::size_t>(api_constants.size()) * 4);
   for (const Vec4f& row : api_constants.values()) floats.insert(floats.end(), row.begin(), row.end());
   glUseProgram(program_object_);
   glUniform4fv(constants_location_, api_constants.size(), floats.data());
   Keep(GlOk("setting the constants"));
+  return failure_;
 }
 
-void GlEngine::Run(const VertexArrays& inputs, VertexArrays& outputs) {
-  if (error_.empty() && !captures_.empty() && inputs.count() > 0) {
+Status GlEngine::Run(const VertexArrays& inputs, VertexArrays& outputs) {
+  if (failure_ && !captures_.empty() && inputs.count() > 0) {
     ScopedCurrent current(*context_);
     for (std::size_t first = 0; Keep(current.status()) && first < inputs.count(); first += kVerticesPerDraw) {
       if (!Keep(RunDraw(inputs, first, std::min(kVerticesPerDraw, inputs.count() - first), outputs))) break;
     }
   }
-  if (!error_.empty()) FillWithNaN(outputs);
+  if (!failure_) FillWithNaN(outputs);
+  return failure_;
 }
 
 // Vertices [first, first + count) of every attribute the shader reads, as vec4s; a register the
@@ -246,7 +246,7 @@ translate::TranslateOptions GlTranslateOptions(const EngineOptions& options, int
 
 std::optional<GlPath> GlPathOf(const Engine& engine) {
   const auto* owner = dynamic_cast<const GlPathOwner*>(&engine);
-  if (owner == nullptr || !engine.error().empty()) return std::nullopt;
+  if (owner == nullptr) return std::nullopt;
   return owner->path();
 }
 
@@ -284,10 +284,7 @@ Result<std::unique_ptr<Engine>> MakeGlEngine(const Program& program, const Const
   }
   auto engine = std::make_unique<GlEngine>(program, options, std::move(context).value());
   if (Status built = engine->Build(api_constants.size()); !built) return Prefixed(built.error(), on_renderer);
-  engine->SetConstants(api_constants);
-  if (!engine->error().empty()) {
-    return Failure(DiagnosticCode::kGlError, on_renderer + engine->error());
-  }
+  if (Status set = engine->SetConstants(api_constants); !set) return Prefixed(set.error(), on_renderer);
   return engine;
 }
 

@@ -5,7 +5,7 @@
 // are in the translation), and every output register the program writes comes back from the capture.
 // Its bits are the reference engine's wherever the driver computes IEEE single precision as the
 // translation asks (README, "vs11 translate" and "The gl engine"); where no device can be had,
-// MakeGlEngine returns the error, and a Run that fails leaves NaN outputs and says why in error(). A
+// MakeGlEngine returns the error, and a Run that fails returns why and leaves NaN outputs. A
 // later model's program with static flow runs specialised for its i#/b# values (static_flow_engine.h).
 #pragma once
 
@@ -51,7 +51,7 @@ class GlPathOwner {
   virtual GlPath path() const = 0;
 };
 
-// The path `engine` runs, where it is a working gl engine; nullopt for any other engine.
+// The path `engine` runs, where it is a gl engine; nullopt for any other engine.
 std::optional<GlPath> GlPathOf(const Engine& engine);
 
 // An error where the context (kGlUnavailable) or the program (kGlCompile, kGlError) cannot be had, or

@@ -2,10 +2,8 @@
 
 #include <GLES3/gl3.h>
 
-#include <algorithm>
 #include <cstdlib>
 #include <cstring>
-#include <limits>
 
 #include <fmt/format.h>
 
@@ -46,15 +44,6 @@ Result<unsigned> LinkAttachedProgram(unsigned program, const char* what) {
   glGetProgramInfoLog(program, sizeof log, nullptr, log);
   glDeleteProgram(program);
   return Failure(DiagnosticCode::kGlCompile, fmt::format("{} does not link: {}", what, log));
-}
-
-void FillWithNaN(VertexArrays& outputs) {
-  for (int reg : outputs.registers()) {
-    for (int c = 0; c < 4; ++c) {
-      float* lane = outputs.lane(reg, c);
-      std::fill(lane, lane + outputs.count(), std::numeric_limits<float>::quiet_NaN());
-    }
-  }
 }
 
 Status GlOk(const char* what) {

@@ -33,10 +33,6 @@ Result<unsigned> LinkAttachedProgram(unsigned program, const char* what);
 // object, or an error (kGlCompile) holding the info log.
 Result<unsigned> CompileShader(unsigned kind, const std::string& source);
 
-// Every lane of every register of `outputs` NaN: what a gl engine whose run failed writes (both paths;
-// its error() says why).
-void FillWithNaN(VertexArrays& outputs);
-
 // glGetError as a Status: an error (kGlError) "WHAT: GL error 0x...." where GL reports one.
 Status GlOk(const char* what);
 

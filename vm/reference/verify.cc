@@ -179,8 +179,10 @@ VerifyReport Verify(const Program& program, const ProgramMetadata& metadata, con
     return report;
   }
   VertexArrays outputs = MakeOutputArrays(count, program);
-  (*engine)->Run(rc->inputs, outputs);
-  if (report.error = (*engine)->error(); !report.error.empty()) return report;
+  if (const Status ran = (*engine)->Run(rc->inputs, outputs); !ran) {
+    report.error = ran.message();
+    return report;
+  }
   const std::array<WriteMask, kOutputSlotCount> written = WrittenOutputLanes(program);
 
   report.pass = true;
@@ -297,8 +299,10 @@ EngineComparison CompareEngines(const Program& program, std::string a, std::stri
       failed.error = engine.message();
       return failed;
     }
-    (*engine)->Run(inputs, *outputs);
-    if (failed.error = (*engine)->error(); !failed.error.empty()) return failed;
+    if (const Status ran = (*engine)->Run(inputs, *outputs); !ran) {
+      failed.error = ran.message();
+      return failed;
+    }
   }
   EngineComparison comparison = CompareOutputArrays(out_a, out_b);
   comparison.a = a;

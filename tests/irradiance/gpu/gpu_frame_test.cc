@@ -194,7 +194,10 @@ int LanesDifferingFromTheJit(GpuFrame& frame, ProgramStage& stage, const PaperPr
   EXPECT_TRUE(gpu && constants) << gpu.message() << constants.message();
   if (!gpu || !constants) return -1;
   const std::vector<glm::dvec3> inputs(normals.begin(), normals.end());
-  const std::vector<glm::dvec3> jit = paper.Irradiance(*constants, inputs, "jit");
+  const Result<std::vector<glm::dvec3>> evaluated = paper.Irradiance(*constants, inputs, "jit");
+  EXPECT_TRUE(evaluated) << evaluated.message();
+  if (!evaluated) return -1;
+  const std::vector<glm::dvec3>& jit = *evaluated;
   EXPECT_EQ(gpu->size(), jit.size());
   int differing = 0;
   for (std::size_t v = 0; v < std::min(gpu->size(), jit.size()); ++v) {

@@ -96,7 +96,9 @@ TEST(Irrmap, PaperProgramReadsItsRegistersFromTheMetadataAndMatchesEq6) {
   const Sh9Rgb sh = RandomCoefficients(3);
   const std::vector<glm::dvec3> normals = SphereNormals(400);
   for (std::string kind : {"ref", "batch"}) {
-    const std::vector<glm::dvec3> actual = program->Irradiance(PackTable1(sh), normals, kind);
+    const Result<std::vector<glm::dvec3>> evaluated = program->Irradiance(PackTable1(sh), normals, kind);
+    ASSERT_TRUE(evaluated) << evaluated.message();
+    const std::vector<glm::dvec3>& actual = *evaluated;
     ASSERT_EQ(actual.size(), normals.size());
     double scale = 0.0;
     for (const glm::dvec3& n : normals) scale = std::max(scale, glm::length(IrradianceEq6(sh, n)));

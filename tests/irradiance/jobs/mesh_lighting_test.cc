@@ -118,7 +118,9 @@ TEST_F(MeshLightingTest, PictureShowsTheLitMeshBesideTheTruthAndTheError) {
   SevenConstants constants = PackTable1(ProjectDirect(environment));
   MeshLightingOptions options;
   options.panel_size = 96;
-  MeshLighting lighting = LightMesh(geometry, *program, constants, environment, options);
+  Result<MeshLighting> lit = LightMesh(geometry, *program, constants, environment, options);
+  ASSERT_TRUE(lit) << lit.message();
+  MeshLighting& lighting = *lit;
   ASSERT_EQ(lighting.truth.size(), geometry.positions.size());
   EXPECT_NEAR(lighting.irradiance[0].g, M_PI, 1e-5);
   EXPECT_NEAR(lighting.truth[0].g, M_PI, 1.5 * M_PI * truth_error);

@@ -65,7 +65,9 @@ TEST(LoadMeshGeometry, AnStlWithZeroNormalsIsLitBySky) {
   MeshLightingOptions options;
   options.truth_vertex_limit = 1;  // the program's irradiance alone
   options.panel_size = 32;
-  const MeshLighting lighting = LightMesh(geometry, *program, PackTable1(ProjectDirect(sky)), sky, options);
+  const Result<MeshLighting> lit = LightMesh(geometry, *program, PackTable1(ProjectDirect(sky)), sky, options);
+  ASSERT_TRUE(lit) << lit.message();
+  const MeshLighting& lighting = *lit;
   EXPECT_EQ(lighting.unusable_normals, 0u);
   const std::vector<glm::dvec3> sphere_truth = GroundTruthIrradiance(sky, SphereNormals(500), 1);
   glm::dvec3 sky_mean(0.0), mesh_mean(0.0);

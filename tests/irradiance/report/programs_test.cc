@@ -189,7 +189,7 @@ std::vector<glm::dvec3> RunOnNormals(const Program& program, const ConstantBank&
     for (int c = 0; c < 3; ++c) inputs.lane(0, c)[i] = static_cast<float>(normals[i][c]);
   }
   VertexArrays outputs = MakeOutputArrays(normals.size(), program);
-  MakeEngine("batch", program, constants).value()->Run(inputs, outputs);
+  EXPECT_EQ(MakeEngine("batch", program, constants).value()->Run(inputs, outputs).message(), "");
   const int od0 = static_cast<int>(OutputSlot::kDiffuse);
   std::vector<glm::dvec3> result(normals.size());
   for (std::size_t i = 0; i < normals.size(); ++i) {

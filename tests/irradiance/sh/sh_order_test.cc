@@ -35,7 +35,10 @@ TEST(ShOrder, ProgramsHaveTheirSlotsAndComputeTheirRegistersPolynomial) {
     EXPECT_EQ(ComputeStats(program->program()).slots, Info(order).slots) << ShOrderName(order);
     const std::vector<NamedRegister> registers = PackShOrder(sh, order);
     for (std::string engine : {"ref", "batch"}) {
-      const std::vector<glm::dvec3> actual = program->Irradiance(program->Constants(registers), normals, engine);
+      const Result<std::vector<glm::dvec3>> evaluated =
+          program->Irradiance(program->Constants(registers), normals, engine);
+      ASSERT_TRUE(evaluated) << evaluated.message();
+      const std::vector<glm::dvec3>& actual = *evaluated;
       std::vector<glm::dvec3> expected;
       for (const glm::dvec3& n : normals) expected.push_back(EvaluateShOrder(registers, order, n));
       const double scale = Largest(expected);

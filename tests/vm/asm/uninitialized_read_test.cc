@@ -149,7 +149,7 @@ TEST(UninitializedRead, UnwrittenLaneReadsZeroOnEveryEngine) {
   for (std::string kind : {"ref", "batch", "jit"}) {
     std::unique_ptr<Engine> engine = MakeEngine(kind, *result.program, constants).value();
     VertexArrays outputs = MakeOutputArrays(kCount, *result.program);
-    engine->Run(inputs, outputs);
+    ASSERT_EQ(engine->Run(inputs, outputs).message(), "");
     for (int lane = 0; lane < 4; ++lane) {
       const float* values = outputs.lane(static_cast<int>(OutputSlot::kPosition), lane);
       for (std::size_t v = 0; v < kCount; ++v) {

@@ -224,5 +224,29 @@ TEST(CApi, FloatRulesDecideZeroTimesInfinity) {
   EXPECT_EQ(RunPosition(layout, infinite, VS11C_FLOAT_RULES_LEGACY, zero)[0], 0.0f);
 }
 
+// A vs_2_0 loop that unrolls past what the batch engine runs (255 * 255 * 2 instructions): the run
+// fails with VS11C_ENGINE_FAILED and the engine's message, and the ref engine runs the shader.
+TEST(CApi, AnEngineThatCannotRunTheShaderFailsWithItsMessage) {
+  ShaderHandle handle;
+  const std::vector<std::uint32_t> tokens =
+      Tokens("vs_2_0\ndcl_position v0\ndefi i0, 255, 0, 0, 0\nmov r0, v0\nrep i0\nrep i0\nadd r0, r0, c1\n"
+             "add r0, r0, c2\nendrep\nendrep\nmov oPos, r0\n");
+  ASSERT_EQ(vs11c_shader_create_d3d9(tokens.data(), tokens.size(), nullptr, &handle.shader), VS11C_OK);
+  EXPECT_STREQ(vs11c_shader_engine_error(handle.shader), "");
+  ASSERT_EQ(vs11c_shader_set_engine(handle.shader, "batch", VS11C_FLOAT_RULES_D3D9), VS11C_OK);
+  const vs11c_vertex_element declaration[] = {{0, 0, 3, 0, 0, 0}, kEnd};
+  const float position[4] = {1, 2, 3, 1};
+  const vs11c_stream stream{position, 16};
+  std::array<float, 4> out{};
+  const vs11c_output layout{out.data(), 16, kFvfXyzW, nullptr, nullptr};
+  EXPECT_EQ(vs11c_process_vertices(handle.shader, declaration, &stream, 1, 1, &layout), VS11C_ENGINE_FAILED);
+  const std::string message = vs11c_shader_engine_error(handle.shader);
+  EXPECT_NE(message.find("more than 4096 instructions"), std::string::npos) << message;
+  ASSERT_EQ(vs11c_shader_set_engine(handle.shader, "ref", VS11C_FLOAT_RULES_D3D9), VS11C_OK);
+  EXPECT_EQ(vs11c_process_vertices(handle.shader, declaration, &stream, 1, 1, &layout), VS11C_OK);
+  EXPECT_EQ(out, (std::array<float, 4>{1, 2, 3, 1}));  // c1 and c2 are 0
+  EXPECT_STREQ(vs11c_shader_engine_error(nullptr), "");
+}
+
 }  // namespace
 }  // namespace vs11::capi

@@ -84,7 +84,7 @@ Vec4f RunOnce(const std::string& body, const Vec4f& v0, const ConstantBank& cons
   const Program program = Assemble(body);
   VertexArrays inputs = Inputs(1, [&](int reg, std::size_t) { return reg == 0 ? v0 : kDefaultInput; });
   VertexArrays outputs = MakeOutputArrays(1, program);
-  MakeBatchEngine(program, constants, {})->Run(inputs, outputs);
+  EXPECT_EQ(MakeBatchEngine(program, constants, {})->Run(inputs, outputs).message(), "");
   return Lanes(outputs, kPosition, 0);
 }
 
@@ -231,7 +231,7 @@ TEST_P(BatchEngine, IrradianceProgramMatchesEquationSevenForAnyVertexCount) {
   for (std::size_t count : {1u, 7u, 255u, 256u, 257u, 1000u}) {
     VertexArrays inputs = Inputs(count, [](int, std::size_t i) { return RandomNormal(i); });
     VertexArrays outputs = MakeOutputArrays(count, program);
-    engine->Run(inputs, outputs);
+    ASSERT_EQ(engine->Run(inputs, outputs).message(), "");
     for (std::size_t i = 0; i < count; ++i) {
       ExpectBitsEqual(Lanes(outputs, static_cast<int>(OutputSlot::kDiffuse), i),
                       IrradianceByHand(RandomNormal(i), constants),
@@ -254,14 +254,14 @@ TEST_P(BatchEngine, ThreadsGiveTheSameBitsAsOneThread) {
     });
     for (const bool compiled : {false, true}) {
       VertexArrays one = MakeOutputArrays(count, program);
-      MakeBatchOrJit(compiled, program, constants, {1})->Run(inputs, one);
+      ASSERT_EQ(MakeBatchOrJit(compiled, program, constants, {1})->Run(inputs, one).message(), "");
       for (int threads = 1; threads <= 4; ++threads) {
         SCOPED_TRACE(std::to_string(count) + " vertices, " + std::to_string(threads) + " threads" +
                      (compiled ? ", compiled" : ", kernels"));
         std::unique_ptr<Engine> engine = MakeBatchOrJit(compiled, program, constants, {.threads = threads, .pool = &pool});
         for (int call = 0; call < 2; ++call) {
           VertexArrays many = MakeOutputArrays(count, program);
-          engine->Run(inputs, many);
+          ASSERT_EQ(engine->Run(inputs, many).message(), "");
           ExpectSameBits(many, one, count);
         }
       }
@@ -277,7 +277,7 @@ TEST_P(BatchEngine, EnginesSharingOnePoolFromSeveralThreadsGiveOneThreadsBits) {
   constexpr std::size_t kCount = 100000;
   VertexArrays inputs = Inputs(kCount, [](int, std::size_t i) { return RandomNormal(i); });
   VertexArrays one = MakeOutputArrays(kCount, program);
-  MakeBatchEngine(program, constants, {1})->Run(inputs, one);
+  ASSERT_EQ(MakeBatchEngine(program, constants, {1})->Run(inputs, one).message(), "");
   ThreadPool pool(3);
   constexpr int kCallers = 3;
   std::vector<VertexArrays> results;
@@ -286,7 +286,9 @@ TEST_P(BatchEngine, EnginesSharingOnePoolFromSeveralThreadsGiveOneThreadsBits) {
   for (int c = 0; c < kCallers; ++c) {
     callers.emplace_back([&, c] {
       std::unique_ptr<Engine> engine = MakeBatchOrJit(c % 2 == 1, program, constants, {.threads = 3, .pool = &pool});
-      for (int call = 0; call < 3; ++call) engine->Run(inputs, results[static_cast<std::size_t>(c)]);
+      for (int call = 0; call < 3; ++call) {
+        EXPECT_EQ(engine->Run(inputs, results[static_cast<std::size_t>(c)]).message(), "");
+      }
     });
   }
   for (std::thread& caller : callers) caller.join();
@@ -305,7 +307,7 @@ TEST_P(BatchEngine, AddressRegisterIsPerVertex) {
     return reg == 1 ? Vec4f{inputs_x[i], 0, 0, 0} : kDefaultInput;
   });
   VertexArrays outputs = MakeOutputArrays(count, program);
-  MakeBatchEngine(program, constants, {})->Run(inputs, outputs);
+  ASSERT_EQ(MakeBatchEngine(program, constants, {})->Run(inputs, outputs).message(), "");
   for (std::size_t i = 0; i < count; ++i) {
     EXPECT_EQ(outputs.lane(kPosition, 0)[i], expected_x[i]) << "a0 from " << inputs_x[i];
   }
@@ -317,7 +319,7 @@ TEST_P(BatchEngine, OutputSlotsTheProgramDoesNotWriteGetTheirDefaults) {
                        static_cast<int>(OutputSlot::kTexCoord0)};
   VertexArrays outputs(3, slots, kOutputSlotCount);
   VertexArrays inputs = Inputs(3, [](int, std::size_t) { return Vec4f{5, 6, 7, 8}; });
-  MakeBatchEngine(program, ConstantBank(), {})->Run(inputs, outputs);
+  ASSERT_EQ(MakeBatchEngine(program, ConstantBank(), {})->Run(inputs, outputs).message(), "");
   for (std::size_t i = 0; i < 3; ++i) {
     ExpectBitsEqual(Lanes(outputs, kPosition, i), {5, 6, 0, 0}, "oPos");
     ExpectBitsEqual(Lanes(outputs, slots[1], i), {1, 1, 1, 1}, "oD0");
@@ -330,7 +332,7 @@ TEST_P(BatchEngine, SkipsOutputsTheCallerDidNotAskFor) {
   const Program program = Assemble("mov oT3, v0\nadd oPos, v0, v0\n");
   VertexArrays outputs(300, std::vector<int>{kPosition}, kOutputSlotCount);
   VertexArrays inputs = Inputs(300, [](int, std::size_t i) { return Vec4f{static_cast<float>(i), 1, 2, 3}; });
-  MakeBatchEngine(program, ConstantBank(), {})->Run(inputs, outputs);
+  ASSERT_EQ(MakeBatchEngine(program, ConstantBank(), {})->Run(inputs, outputs).message(), "");
   for (std::size_t i = 0; i < 300; ++i) {
     ExpectBitsEqual(Lanes(outputs, kPosition, i), {2.0f * static_cast<float>(i), 2, 4, 6}, "oPos");
   }
@@ -341,10 +343,10 @@ TEST_P(BatchEngine, SetConstantsAndDefinitions) {
   auto engine = MakeBatchEngine(program, Constants({{0, {10, 10, 10, 10}}, {1, {9, 9, 9, 9}}}), {});
   VertexArrays inputs = Inputs(1, [](int, std::size_t) { return kDefaultInput; });
   VertexArrays outputs = MakeOutputArrays(1, program);
-  engine->Run(inputs, outputs);
+  ASSERT_EQ(engine->Run(inputs, outputs).message(), "");
   ExpectBitsEqual(Lanes(outputs, kPosition, 0), {11, 12, 13, 14}, "def wins over the API value");
-  engine->SetConstants(Constants({{0, {100, 100, 100, 100}}}));
-  engine->Run(inputs, outputs);
+  ASSERT_EQ(engine->SetConstants(Constants({{0, {100, 100, 100, 100}}})).message(), "");
+  ASSERT_EQ(engine->Run(inputs, outputs).message(), "");
   ExpectBitsEqual(Lanes(outputs, kPosition, 0), {101, 102, 103, 104}, "after SetConstants");
 }
 
@@ -352,7 +354,7 @@ TEST_P(BatchEngine, RunsNoVertices) {
   const Program program = Assemble("mov oPos, v0\n");
   VertexArrays inputs = Inputs(0, [](int, std::size_t) { return kDefaultInput; });
   VertexArrays outputs = MakeOutputArrays(0, program);
-  MakeBatchEngine(program, ConstantBank(), {2})->Run(inputs, outputs);
+  ASSERT_EQ(MakeBatchEngine(program, ConstantBank(), {2})->Run(inputs, outputs).message(), "");
   EXPECT_EQ(outputs.count(), 0u);
 }
 

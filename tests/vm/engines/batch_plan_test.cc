@@ -97,8 +97,8 @@ void ExpectBatchMatchesReference(const Program& program) {
     }
   }
   VertexArrays expected = MakeOutputArrays(kCount, program), actual = MakeOutputArrays(kCount, program);
-  MakeReferenceEngine(program, constants)->Run(inputs, expected);
-  MakeBatchEngine(program, constants, {})->Run(inputs, actual);
+  ASSERT_EQ(MakeReferenceEngine(program, constants)->Run(inputs, expected).message(), "");
+  ASSERT_EQ(MakeBatchEngine(program, constants, {})->Run(inputs, actual).message(), "");
   for (int slot : expected.registers()) {
     for (int c = 0; c < 4; ++c) {
       for (std::size_t i = 0; i < kCount; ++i) {

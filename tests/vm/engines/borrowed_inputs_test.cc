@@ -105,7 +105,7 @@ VertexArrays RunOn(std::string kind, const Program& program, const VertexArrays&
   EngineOptions options;
   options.threads = threads;
   VertexArrays outputs = MakeOutputArrays(inputs.count(), program);
-  MakeEngine(kind, program, PatternConstants(), options).value()->Run(inputs, outputs);
+  EXPECT_EQ(MakeEngine(kind, program, PatternConstants(), options).value()->Run(inputs, outputs).message(), "");
   return outputs;
 }
 

@@ -69,10 +69,12 @@ Comparison CompareEngines(const Program& program, const ConstantBank& constants,
   const std::size_t count = inputs.count();
   VertexArrays expected = MakeOutputArrays(count, program);
   VertexArrays actual = MakeOutputArrays(count, program);
-  MakeReferenceEngine(program, constants, engine.rules)->Run(inputs, expected);
-  MakeEngine(engine.kind, program, constants, WithJitIsa({.float_rules = engine.rules}, engine.jit_isa))
-      .value()
-      ->Run(inputs, actual);
+  EXPECT_EQ(MakeReferenceEngine(program, constants, engine.rules)->Run(inputs, expected).message(), "");
+  EXPECT_EQ(MakeEngine(engine.kind, program, constants, WithJitIsa({.float_rules = engine.rules}, engine.jit_isa))
+                .value()
+                ->Run(inputs, actual)
+                .message(),
+            "");
   Comparison result;
   for (int slot : expected.registers()) {
     for (int c = 0; c < 4; ++c) {
@@ -340,10 +342,10 @@ TEST_P(JitDifferential, UniformLanesFollowTheirPromise) {
   std::unique_ptr<vs11::Engine> engine = MakeEngine("jit", program, constants, WithJitIsa({}, GetParam())).value();
   const auto check = [&](const char* when) {
     VertexArrays expected = MakeOutputArrays(count, program);
-    MakeReferenceEngine(program, constants)->Run(inputs, expected);
+    ASSERT_EQ(MakeReferenceEngine(program, constants)->Run(inputs, expected).message(), "");
     VertexArrays actual = MakeOutputArrays(count, program);
     actual.lane(static_cast<int>(OutputSlot::kDiffuse), 3)[7] = 42.0f;  // a stale value: must be rewritten
-    engine->Run(inputs, actual);
+    ASSERT_EQ(engine->Run(inputs, actual).message(), "");
     for (int c = 0; c < 4; ++c) {
       for (std::size_t i = 0; i < count; ++i) {
         ASSERT_EQ(Bits(std::as_const(actual).lane(static_cast<int>(OutputSlot::kDiffuse), c)[i]),

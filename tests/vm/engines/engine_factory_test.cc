@@ -66,8 +66,7 @@ TEST(EngineRegistry, OneRegistrationAddsAnEngineToEveryList) {
   Result<std::unique_ptr<Engine>> made = MakeEngine("test_engine", program, ConstantBank());
   ASSERT_TRUE(made.ok()) << made.message();
   std::unique_ptr<Engine> engine = std::move(made).value();
-  EXPECT_EQ(engine->error(), "");
-  engine->Run(inputs, outputs);
+  ASSERT_EQ(engine->Run(inputs, outputs).message(), "");
   EXPECT_EQ(outputs.lane(static_cast<int>(OutputSlot::kFog), 0)[1], 3.0f);
 
   RegisterEngine({"test_engine", "", "replaced", &MakeTestEngine});

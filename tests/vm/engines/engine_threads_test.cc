@@ -92,7 +92,7 @@ ConstantBank PatternConstants() {
 
 VertexArrays RunEngine(Engine& engine, const Program& program, const VertexArrays& inputs) {
   VertexArrays outputs = MakeOutputArrays(inputs.count(), program);
-  engine.Run(inputs, outputs);
+  EXPECT_EQ(engine.Run(inputs, outputs).message(), "");
   return outputs;
 }
 

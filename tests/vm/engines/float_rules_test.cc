@@ -124,9 +124,11 @@ struct EngineUnderTest {
 VertexArrays Run(const EngineUnderTest& engine, const Program& program, const ConstantBank& bank,
                  const VertexArrays& inputs, FloatRules rules) {
   VertexArrays outputs = MakeOutputArrays(inputs.count(), program);
-  MakeEngine(engine.kind, program, bank, WithJitIsa({.float_rules = rules}, engine.jit_isa))
-      .value()
-      ->Run(inputs, outputs);
+  EXPECT_EQ(MakeEngine(engine.kind, program, bank, WithJitIsa({.float_rules = rules}, engine.jit_isa))
+                .value()
+                ->Run(inputs, outputs)
+                .message(),
+            "");
   return outputs;
 }
 

@@ -228,7 +228,7 @@ TEST_P(JitCompiledLoop, ComputesExactlyCountVerticesAndNothingPastThem) {
   for (const std::size_t count : kCounts) {
     const VertexArrays inputs = RandomInputs(count, rng);
     VertexArrays expected = MakeOutputArrays(count, program);
-    MakeReferenceEngine(program, bank)->Run(inputs, expected);
+    ASSERT_EQ(MakeReferenceEngine(program, bank)->Run(inputs, expected).message(), "");
     for (const auto& program_for_isa : compiled) {
       SCOPED_TRACE(testing::Message() << kJitIsaNames.Name(program_for_isa->isa()) << " ("
                                       << program_for_isa->vertices_per_iteration() << " vertices per iteration), "
@@ -292,7 +292,7 @@ TEST(JitCompiler, RelativeReadsMatchTheReferenceWhetherTheRowIsSharedOrNot) {
     }
   }
   VertexArrays expected = MakeOutputArrays(kVertices, program);
-  MakeReferenceEngine(program, bank)->Run(inputs, expected);
+  ASSERT_EQ(MakeReferenceEngine(program, bank)->Run(inputs, expected).message(), "");
   for (const JitIsa isa : jit::SupportedIsas()) {
     std::string why_not;
     const std::unique_ptr<jit::CompiledProgram> compiled = jit::Compile(program, why_not, isa);

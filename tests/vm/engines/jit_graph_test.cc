@@ -151,7 +151,7 @@ TEST(JitGraph, EvaluatesToTheReferenceEngineOnRandomProgramsInTwoGroups) {
     // Every other program under the legacy rule, whose products the graph records as selects.
     const FloatRules rules = k % 2 == 0 ? FloatRules::kD3d9 : FloatRules::kLegacy;
     VertexArrays expected = MakeOutputArrays(kVertices * kGroups, program);
-    MakeReferenceEngine(program, bank, rules)->Run(inputs, expected);
+    ASSERT_EQ(MakeReferenceEngine(program, bank, rules)->Run(inputs, expected).message(), "");
     // As the batch engine compiles it: absent registers and lanes of one value are literals.
     std::vector<UniformInput> uniform;
     for (int reg = 0; reg < kInputRegisterCount; ++reg) {

@@ -48,7 +48,9 @@ inline VertexArrays RunOn(std::string_view name, const Program& program, const C
   VertexArrays outputs = MakeOutputArrays(inputs.count(), program);
   Result<std::unique_ptr<Engine>> engine = MakeEngine(name, program, bank, options);
   EXPECT_TRUE(engine.ok()) << engine.message();
-  if (engine.ok()) (*engine)->Run(inputs, outputs);
+  if (engine.ok()) {
+    EXPECT_EQ((*engine)->Run(inputs, outputs).message(), "");
+  }
   return outputs;
 }
 

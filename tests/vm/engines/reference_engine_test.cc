@@ -292,7 +292,7 @@ TEST(ReferenceEngine, EngineFillsUnwrittenOutputsWithDefaults) {
   VertexArrays inputs = MakeInputArrays(2, registers);
   inputs.lane(0, 0)[1] = 5.0f;
   VertexArrays outputs = MakeOutputArrays(2, *assembled.program);
-  MakeEngine("ref", *assembled.program, ConstantBank()).value()->Run(inputs, outputs);
+  ASSERT_EQ(MakeEngine("ref", *assembled.program, ConstantBank()).value()->Run(inputs, outputs).message(), "");
   EXPECT_TRUE(outputs.has(static_cast<int>(OutputSlot::kPosition)));
   EXPECT_FALSE(outputs.has(static_cast<int>(OutputSlot::kDiffuse)));
   EXPECT_EQ(outputs.lane(static_cast<int>(OutputSlot::kPosition), 0)[1], 5.0f);
@@ -312,7 +312,7 @@ TEST(ReferenceEngine, ManyDefinitionsGiveTheLastValueOfEachRegisterToEveryVertex
   const std::vector<int> registers = {0};
   VertexArrays inputs = MakeInputArrays(3, registers);
   VertexArrays outputs = MakeOutputArrays(3, *assembled.program);
-  MakeEngine("ref", *assembled.program, ConstantBank()).value()->Run(inputs, outputs);
+  ASSERT_EQ(MakeEngine("ref", *assembled.program, ConstantBank()).value()->Run(inputs, outputs).message(), "");
   for (std::size_t vertex = 0; vertex < 3; ++vertex) {
     EXPECT_EQ(outputs.lane(static_cast<int>(OutputSlot::kPosition), 0)[vertex], 4092.0f + 4093 + 4094 + 4095);
     EXPECT_EQ(outputs.lane(static_cast<int>(OutputSlot::kPosition), 3)[vertex], 4.0f);

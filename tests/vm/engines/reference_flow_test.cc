@@ -46,7 +46,7 @@ std::vector<Vec4f> RunRef(const std::string& source, ConstantBank bank = Constan
     for (int c = 0; c < 4; ++c) inputs.lane(0, c)[i] = v0[i][c];
   }
   VertexArrays outputs = MakeOutputArrays(v0.size(), *assembled.program);
-  (*engine)->Run(inputs, outputs);
+  EXPECT_EQ((*engine)->Run(inputs, outputs).message(), "");
   std::vector<Vec4f> result(v0.size());
   for (std::size_t i = 0; i < v0.size(); ++i) {
     for (int c = 0; c < 4; ++c) result[i][c] = outputs.lane(slot, c)[i];

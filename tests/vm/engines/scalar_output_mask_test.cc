@@ -42,7 +42,7 @@ TEST(ScalarOutputMask, EnginesWriteOnlyTheMaskedLanesAndAgree) {
   for (std::string kind : {"ref", "batch", "jit"}) {
     SCOPED_TRACE(std::string(kind));
     VertexArrays outputs = MakeOutputArrays(1, program);
-    MakeEngine(kind, program, constants).value()->Run(inputs, outputs);
+    ASSERT_EQ(MakeEngine(kind, program, constants).value()->Run(inputs, outputs).message(), "");
     const std::uint32_t zero = 0, two = std::bit_cast<std::uint32_t>(2.0f), three = std::bit_cast<std::uint32_t>(3.0f);
     EXPECT_EQ(LaneBits(outputs, OutputSlot::kFog), (std::vector<std::uint32_t>{two, zero, zero, zero}));
     EXPECT_EQ(LaneBits(outputs, OutputSlot::kPointSize), (std::vector<std::uint32_t>{zero, zero, three, three}));

@@ -181,20 +181,20 @@ TEST(StaticFlow, NewIntegerConstantsChangeTheUnrollingAndKnownOnesHitTheCache) {
     std::unique_ptr<Engine> engine = MakeEngine(engine_name, program, bank, {}).value();
     auto position_x = [&] {
       VertexArrays outputs = MakeOutputArrays(1, program);
-      engine->Run(inputs, outputs);
+      EXPECT_EQ(engine->Run(inputs, outputs).message(), "");
       return outputs.lane(static_cast<int>(OutputSlot::kPosition), 0)[0];
     };
     EXPECT_EQ(position_x(), 0.0f + 10 + 11);  // c0.x + c[aL + 10].x for aL = 0, 1
     EXPECT_EQ(SpecialisationCount(*engine), 1);
     bank.integer(0) = {3, 1, 2, 0};  // aL = 1, 3, 5
-    engine->SetConstants(bank);
+    ASSERT_EQ(engine->SetConstants(bank).message(), "");
     EXPECT_EQ(SpecialisationCount(*engine), 2);
     EXPECT_EQ(position_x(), 11.0f + 13 + 15);
     bank[0] = {100, 0, 0, 0};  // a float constant: the same specialisation
-    engine->SetConstants(bank);
+    ASSERT_EQ(engine->SetConstants(bank).message(), "");
     EXPECT_EQ(position_x(), 100.0f + 11 + 13 + 15);
     bank.integer(0) = {2, 0, 1, 0};  // back to the first: from the cache
-    engine->SetConstants(bank);
+    ASSERT_EQ(engine->SetConstants(bank).message(), "");
     EXPECT_EQ(SpecialisationCount(*engine), 2) << engine_name;
     EXPECT_EQ(position_x(), 100.0f + 10 + 11);
     bank[0] = {};
@@ -215,7 +215,7 @@ TEST(StaticFlow, MovaAndDynamicFlowRunOnBatchAndJit) {
   }
 }
 
-TEST(StaticFlow, AnUnrollingPastTheBoundIsRefusedAndLaterOnesSetError) {
+TEST(StaticFlow, AnUnrollingPastTheBoundIsRefusedAndLaterOnesReturnTheError) {
   const Program program = Assemble(
       "vs_2_0\ndcl_position v0\nmov r0, v0\nrep i0\nrep i0\nadd r0, r0, c1\nadd r0, r0, c2\nendrep\nendrep\n"
       "mov oPos, r0\n");
@@ -226,14 +226,27 @@ TEST(StaticFlow, AnUnrollingPastTheBoundIsRefusedAndLaterOnesSetError) {
   EXPECT_NE(made.message().find("more than 4096 instructions"), std::string::npos) << made.message();
   bank.integer(0) = {2, 0, 0, 0};
   std::unique_ptr<Engine> engine = MakeEngine("batch", program, bank, {}).value();
-  EXPECT_EQ(engine->error(), "");
-  bank.integer(0) = {255, 0, 0, 0};
-  engine->SetConstants(bank);
-  EXPECT_NE(engine->error().find("more than 4096 instructions"), std::string::npos);
   const std::vector<int> registers = {0};
+  const VertexArrays inputs = MakeInputArrays(1, registers);
   VertexArrays outputs = MakeOutputArrays(1, program);
-  engine->Run(MakeInputArrays(1, registers), outputs);
-  EXPECT_TRUE(std::isnan(outputs.lane(static_cast<int>(OutputSlot::kPosition), 0)[0]));
+  ASSERT_EQ(engine->Run(inputs, outputs).message(), "");
+  bank.integer(0) = {255, 0, 0, 0};
+  const Status set = engine->SetConstants(bank);
+  ASSERT_FALSE(set.ok());
+  EXPECT_EQ(set.error().code, DiagnosticCode::kEngineUnavailable);
+  EXPECT_NE(set.message().find("more than 4096 instructions"), std::string::npos) << set.message();
+  // Every Run until constants that specialise returns the same error and writes NaN.
+  for (int run = 0; run < 2; ++run) {
+    const Status ran = engine->Run(inputs, outputs);
+    ASSERT_FALSE(ran.ok());
+    EXPECT_EQ(ran.error().code, DiagnosticCode::kEngineUnavailable);
+    EXPECT_EQ(ran.message(), set.message());
+    EXPECT_TRUE(std::isnan(outputs.lane(static_cast<int>(OutputSlot::kPosition), 0)[0]));
+  }
+  bank.integer(0) = {2, 0, 0, 0};
+  ASSERT_EQ(engine->SetConstants(bank).message(), "");
+  ASSERT_EQ(engine->Run(inputs, outputs).message(), "");
+  EXPECT_FALSE(std::isnan(outputs.lane(static_cast<int>(OutputSlot::kPosition), 0)[0]));
 }
 
 }  // namespace

@@ -110,7 +110,7 @@ TEST_F(TraceTest, ComparisonFailsOnAnyDifferentBit) {
   VertexArrays inputs = OneVertex({1, 2, 3, 4});
   VertexTrace trace = TraceVertex(*assembled.program, TestConstants(), inputs, 0);
   VertexArrays outputs = MakeOutputArrays(1, *assembled.program);
-  MakeEngine("batch", *assembled.program, TestConstants()).value()->Run(inputs, outputs);
+  ASSERT_EQ(MakeEngine("batch", *assembled.program, TestConstants()).value()->Run(inputs, outputs).message(), "");
   CompareOutputs(outputs, trace);
   ASSERT_EQ(trace.outputs.size(), 2u);  // oPos and oD0
   EXPECT_TRUE(trace.identical());

@@ -125,7 +125,7 @@ TEST_F(GlComputeTest, InterleavedInputsAndOutputsInTwoDimensionsGiveTheReference
   const std::vector<float> out = Read(buffers_[1], out_floats);
 
   VertexArrays expected = MakeOutputArrays(kCount, program);
-  MakeEngine("ref", program, bank).value()->Run(soa, expected);
+  ASSERT_EQ(MakeEngine("ref", program, bank).value()->Run(soa, expected).message(), "");
   for (std::size_t v = 0; v < kCount; ++v) {
     const float* vertex = out.data() + v * Interleaved::kOut;
     for (int c = 0; c < 4; ++c) {

@@ -61,7 +61,7 @@ std::unique_ptr<Engine> MakeGl(const Program& program, const ConstantBank& bank,
   if (!made) return nullptr;
   std::unique_ptr<Engine> gl = std::move(made).value();
   if (Info(program.model()).runs) {  // (a later model's engine wraps one gl engine per specialisation)
-    EXPECT_EQ(gl::GlPathOf(*gl), options.settings.Get<gl::GlOptions>().path) << gl->error();
+    EXPECT_EQ(gl::GlPathOf(*gl), options.settings.Get<gl::GlOptions>().path);
   }
   return gl;
 }
@@ -89,14 +89,13 @@ Comparison CompareWithReference(gl::GlPath path, const Program& program, const C
   VertexArrays expected = MakeOutputArrays(inputs.count(), program);
   VertexArrays actual = MakeOutputArrays(inputs.count(), program);
   const EngineOptions options = OnPath(path, rules);
-  MakeEngine("ref", program, bank, options).value()->Run(inputs, expected);
+  EXPECT_EQ(MakeEngine("ref", program, bank, options).value()->Run(inputs, expected).message(), "");
   std::unique_ptr<Engine> gl = MakeGl(program, bank, options);
   if (gl == nullptr) {
     comparison.error = "the gl engine could not be built";
     return comparison;
   }
-  gl->Run(inputs, actual);
-  comparison.error = gl->error();
+  comparison.error = gl->Run(inputs, actual).message();
   if (!comparison.error.empty()) return comparison;
   for (int slot : expected.registers()) {
     const int lanes = translate::OutputVariableOf(slot, /*exact_on_driver=*/true).components;
@@ -248,11 +247,10 @@ void CountKinds(gl::GlPath path, const Program& program, const ConstantBank& ban
                 std::map<std::string, int>& kinds, int& exact_programs) {
   VertexArrays expected = MakeOutputArrays(inputs.count(), program);
   VertexArrays actual = MakeOutputArrays(inputs.count(), program);
-  MakeEngine("ref", program, bank).value()->Run(inputs, expected);
+  ASSERT_EQ(MakeEngine("ref", program, bank).value()->Run(inputs, expected).message(), "");
   std::unique_ptr<Engine> gl = MakeGl(program, bank, OnPath(path));
   ASSERT_NE(gl, nullptr);
-  gl->Run(inputs, actual);
-  ASSERT_EQ(gl->error(), "");
+  ASSERT_EQ(gl->Run(inputs, actual).message(), "");
   bool exact = true;
   for (int slot : expected.registers()) {
     for (int c = 0; c < translate::OutputVariableOf(slot, /*exact_on_driver=*/true).components; ++c) {
@@ -332,8 +330,7 @@ TEST_P(GlEngineTest, InfinityTimesZeroFollowsTheEnginesFloatRules) {
     VertexArrays outputs = MakeOutputArrays(1, program);
     std::unique_ptr<Engine> gl = MakeGl(program, bank, OnPath(GetParam(), rules));
     ASSERT_NE(gl, nullptr);
-    gl->Run(inputs, outputs);
-    ASSERT_EQ(gl->error(), "");
+    ASSERT_EQ(gl->Run(inputs, outputs).message(), "");
     const float mul_x = outputs.lane(static_cast<int>(OutputSlot::kDiffuse), 0)[0];
     if (rules == FloatRules::kD3d9) {
       EXPECT_TRUE(std::isnan(mul_x)) << "d3d9: inf * 0 gave " << mul_x;
@@ -368,12 +365,11 @@ TEST_P(GlEngineTest, SetConstantsBetweenRunsGivesEachBanksOutputs) {
     for (int reg = 0; reg < bank.size(); ++reg) {
       for (int c = 0; c < 4; ++c) bank[reg][c] = Ordinary(rng);
     }
-    gl->SetConstants(bank);
+    ASSERT_EQ(gl->SetConstants(bank).message(), "");
     VertexArrays actual = MakeOutputArrays(inputs.count(), program);
     VertexArrays expected = MakeOutputArrays(inputs.count(), program);
-    gl->Run(inputs, actual);
-    ASSERT_EQ(gl->error(), "");
-    MakeEngine("ref", program, bank).value()->Run(inputs, expected);
+    ASSERT_EQ(gl->Run(inputs, actual).message(), "");
+    ASSERT_EQ(MakeEngine("ref", program, bank).value()->Run(inputs, expected).message(), "");
     for (int slot : expected.registers()) {
       for (int c = 0; c < translate::OutputVariableOf(slot, /*exact_on_driver=*/true).components; ++c) {
         for (std::size_t v = 0; v < inputs.count(); ++v) {
@@ -385,6 +381,37 @@ TEST_P(GlEngineTest, SetConstantsBetweenRunsGivesEachBanksOutputs) {
   }
 }
 
+// A bank larger than the driver holds (skinning.vsh reads c[a0.x + k], so the whole bank is live)
+// fails SetConstants with the link's code and the bank's size; the engine stays failed: every later
+// call returns that error, and Run writes NaN.
+TEST_P(GlEngineTest, ABankTheDriverCannotHoldFailsSetConstantsAndEveryLaterCall) {
+  std::mt19937 rng(25);
+  const Program program = ProgramFromFile("skinning.vsh");
+  const ConstantBank bank = OrdinaryConstants(rng);
+  const VertexArrays inputs = OrdinaryInputs(8, rng);
+  std::unique_ptr<Engine> gl = MakeGl(program, bank, OnPath(GetParam()));
+  ASSERT_NE(gl, nullptr);
+  VertexArrays outputs = MakeOutputArrays(inputs.count(), program);
+  ASSERT_EQ(gl->Run(inputs, outputs).message(), "");
+  const Status set = gl->SetConstants(ConstantBank(1 << 16));
+  ASSERT_FALSE(set.ok()) << "a bank of 65536 registers fitted";
+  EXPECT_EQ(set.error().code, DiagnosticCode::kGlCompile);
+  EXPECT_NE(set.message().find("the constant bank is c[65536]"), std::string::npos) << set.message();
+  const Status ran = gl->Run(inputs, outputs);
+  ASSERT_FALSE(ran.ok());
+  EXPECT_EQ(ran.error().code, DiagnosticCode::kGlCompile);
+  EXPECT_EQ(ran.message(), set.message());
+  for (int slot : outputs.registers()) {
+    for (int c = 0; c < 4; ++c) {
+      for (std::size_t v = 0; v < inputs.count(); ++v) {
+        ASSERT_TRUE(std::isnan(outputs.lane(slot, c)[v])) << OutputSlotName(slot) << " of vertex " << v;
+      }
+    }
+  }
+  EXPECT_EQ(gl->SetConstants(bank).message(), set.message());
+  EXPECT_EQ(gl->Run(inputs, outputs).message(), set.message());
+}
+
 // An engine is made on one thread and runs on others (vm/core/machine.h allows it when the calls are
 // ordered); and it leaves the calling thread's current EGL context as it found it.
 TEST_P(GlEngineTest, RunsWhereverItIsCalledAndLeavesTheCurrentContextAlone) {
@@ -393,15 +420,16 @@ TEST_P(GlEngineTest, RunsWhereverItIsCalledAndLeavesTheCurrentContextAlone) {
   const ConstantBank bank = OrdinaryConstants(rng);
   const VertexArrays inputs = OrdinaryInputs(100, rng);
   VertexArrays expected = MakeOutputArrays(inputs.count(), program);
-  MakeEngine("ref", program, bank).value()->Run(inputs, expected);
+  ASSERT_EQ(MakeEngine("ref", program, bank).value()->Run(inputs, expected).message(), "");
   const void* current_before = eglGetCurrentContext();
   std::unique_ptr<Engine> gl = MakeGl(program, bank, OnPath(GetParam()));
   ASSERT_NE(gl, nullptr);
   EXPECT_EQ(eglGetCurrentContext(), current_before);
   for (int round = 0; round < 3; ++round) {
     VertexArrays actual = MakeOutputArrays(inputs.count(), program);
-    std::thread([&] { gl->Run(inputs, actual); }).join();
-    ASSERT_EQ(gl->error(), "") << "round " << round;
+    Status ran;
+    std::thread([&] { ran = gl->Run(inputs, actual); }).join();
+    ASSERT_EQ(ran.message(), "") << "round " << round;
     for (int slot : expected.registers()) {
       for (std::size_t v = 0; v < inputs.count(); ++v) {
         ASSERT_EQ(Bits(actual.lane(slot, 0)[v]), Bits(expected.lane(slot, 0)[v])) << "round " << round;
@@ -409,8 +437,7 @@ TEST_P(GlEngineTest, RunsWhereverItIsCalledAndLeavesTheCurrentContextAlone) {
     }
   }
   VertexArrays here = MakeOutputArrays(inputs.count(), program);
-  gl->Run(inputs, here);
-  EXPECT_EQ(gl->error(), "");
+  ASSERT_EQ(gl->Run(inputs, here).message(), "");
   EXPECT_EQ(eglGetCurrentContext(), current_before);
 }
 

@@ -106,7 +106,7 @@ Outcome RunOnLlvmpipe(const Program& program, const ConstantBank& bank, const Ve
   }
 
   VertexArrays expected = MakeOutputArrays(inputs.count(), program);
-  MakeReferenceEngine(program, bank, rules)->Run(inputs, expected);
+  EXPECT_EQ(MakeReferenceEngine(program, bank, rules)->Run(inputs, expected).message(), "");
   auto want_at = [&](const Captured& captured, int c, std::size_t vertex) {
     return expected.has(captured.slot) ? expected.lane(captured.slot, c)[vertex] : UnwrittenOutputValue(captured.slot)[c];
   };
@@ -194,7 +194,7 @@ TEST(TranslationOnLlvmpipe, InfinityTimesZeroFollowsTheFloatRules) {
   const VertexArrays& inputs = test.inputs;
   for (FloatRules rules : kAllFloatRules) {
     VertexArrays expected = MakeOutputArrays(1, program);
-    MakeReferenceEngine(program, bank, rules)->Run(inputs, expected);
+    ASSERT_EQ(MakeReferenceEngine(program, bank, rules)->Run(inputs, expected).message(), "");
     const float mul_x = expected.lane(static_cast<int>(OutputSlot::kDiffuse), 0)[0];
     EXPECT_EQ(std::isnan(mul_x), rules == FloatRules::kD3d9) << "the reference engine: " << mul_x;
     const Outcome outcome = RunOnLlvmpipe(program, bank, inputs, rules);

@@ -64,7 +64,7 @@ std::vector<float> LightBox(const Mesh& box, const Program& program, std::string
   ConstantBank constants;
   for (int reg = 0; reg < constants.size(); ++reg) constants[reg] = {0.1f * reg, 0.5f, -0.25f * reg, 1.0f};
   VertexArrays outputs = MakeOutputArrays(box.vertex_count, program);
-  MakeEngine(kind, program, constants).value()->Run(inputs, outputs);
+  EXPECT_EQ(MakeEngine(kind, program, constants).value()->Run(inputs, outputs).message(), "");
   std::vector<float> flat;
   for (int slot : outputs.registers()) {
     for (int c = 0; c < 4; ++c) flat.insert(flat.end(), outputs.lane(slot, c), outputs.lane(slot, c) + box.vertex_count);
