@@ -137,7 +137,9 @@ Vec4f RunTexldl(const std::string& instruction, const ConstantBank& bank, const 
   VertexArrays inputs = MakeInputArrays(1, registers);
   for (int c = 0; c < 4; ++c) inputs.lane(0, c)[0] = coordinate[c];
   VertexArrays outputs = MakeOutputArrays(1, *assembled.program);
-  (*engine)->Run(inputs, outputs);
+  const Status ran = (*engine)->Run(inputs, outputs);
+  EXPECT_EQ(ran.message(), "");
+  if (!ran) return {};
   Vec4f result;
   for (int c = 0; c < 4; ++c) result[c] = outputs.lane(static_cast<int>(OutputSlot::kTexCoord0), c)[0];
   return result;

@@ -95,9 +95,9 @@ TEST(TexldlEngines, SetConstantsRebindsTheTextures) {
   for (const later_model::Candidate& candidate : later_model::Candidates(FloatRules::kD3d9)) {
     Result<std::unique_ptr<Engine>> engine = MakeEngine(candidate.engine, program, first, candidate.options);
     ASSERT_TRUE(engine.ok()) << engine.message();
-    (*engine)->SetConstants(second);
+    ASSERT_EQ((*engine)->SetConstants(second).message(), "") << candidate.name;
     VertexArrays actual = MakeOutputArrays(inputs.count(), program);
-    (*engine)->Run(inputs, actual);
+    ASSERT_EQ((*engine)->Run(inputs, actual).message(), "") << candidate.name;
     EXPECT_EQ(later_model::Difference(expected, actual), "") << candidate.name;
   }
 }
