@@ -9,7 +9,7 @@
  * - Handles are opaque; buffers are the caller's. Counts are explicit: no call reads a token stream
  *   or a declaration past the count it is given, whatever its end token says.
  * - The shader model comes from the version token: the same calls serve every model the library
- *   accepts (vs_1_0 and vs_1_1 today).
+ *   accepts (vs_1_0, vs_1_1, vs_2_0, vs_2_x and vs_3_0).
  * - Thread safety: a vs11c_shader may be used by one thread at a time (its calls change its
  *   constants and its engine's caches); distinct shaders may be used from any number of threads at
  *   once. Validation, creation (each call makes a new shader), vs11c_status_name and
